@@ -1,0 +1,2 @@
+// Placeholder entry point; the real CLI replaces it.
+int main() { return 0; }

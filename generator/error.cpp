@@ -1,0 +1,8 @@
+#include "generator/error.h"
+
+namespace boxgen {
+
+void fail_input(const std::string& message) { throw InputError(message); }
+void fail_internal(const std::string& message) { throw InternalError(message); }
+
+}  // namespace boxgen

@@ -1,0 +1,137 @@
+#include "generator/lattice.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <map>
+
+#include "generator/error.h"
+
+namespace boxgen {
+
+namespace {
+
+std::int64_t floor_div(std::int64_t a, std::int64_t b) {
+  std::int64_t q = a / b, r = a % b;
+  return (r != 0 && ((r < 0) != (b < 0))) ? q - 1 : q;
+}
+
+// Column-style Hermite normal form: unimodular column operations make G lower triangular
+// with a positive diagonal.
+IntColumns hermite_form(IntColumns h, int n) {
+  for (int row = 0; row < n; ++row) {
+    // Euclid on entries h[row..n-1][row] until only column `row` is nonzero in this row.
+    for (;;) {
+      int best = -1;
+      for (int j = row; j < n; ++j)
+        if (h[j][row] != 0 && (best < 0 || std::llabs(h[j][row]) < std::llabs(h[best][row]))) best = j;
+      if (best < 0) fail_internal("hermite_form: singular lattice");
+      std::swap(h[best], h[row]);
+      bool done = true;
+      for (int j = row + 1; j < n; ++j) {
+        if (h[j][row] == 0) continue;
+        std::int64_t q = h[j][row] / h[row][row];
+        for (int i = 0; i < n; ++i) h[j][i] -= q * h[row][i];
+        if (h[j][row] != 0) done = false;
+      }
+      if (done) break;
+    }
+    if (h[row][row] < 0)
+      for (int i = 0; i < n; ++i) h[row][i] = -h[row][i];
+  }
+  return h;
+}
+
+}  // namespace
+
+Lattice::Lattice(std::string name, IntColumns generator) : name_(std::move(name)), g_(std::move(generator)) {
+  n_ = static_cast<int>(g_.size());
+  if (n_ < 2 || n_ > 3) fail_input("lattice must be 2- or 3-dimensional, got dimension " + std::to_string(n_));
+  for (const auto& c : g_)
+    if (static_cast<int>(c.size()) != n_) fail_input("lattice generator must be square");
+  for (const auto& c : g_)
+    for (auto v : c)
+      if (std::llabs(v) > 1000) fail_input("lattice generator entries must be at most 1000 in magnitude");
+  std::int64_t d = det(g_);
+  if (d == 0) fail_input("singular lattice: the generator matrix has determinant 0");
+  det_abs_ = std::llabs(d);
+  hermite_ = hermite_form(g_, n_);
+}
+
+Lattice Lattice::cartesian(int n) {
+  IntColumns g(n, IntVec(n, 0));
+  for (int i = 0; i < n; ++i) g[i][i] = 1;
+  return Lattice("cartesian", g);
+}
+
+Lattice Lattice::bcc() { return Lattice("bcc", {{-1, 1, 1}, {1, -1, 1}, {1, 1, -1}}); }
+
+Lattice Lattice::fcc() { return Lattice("fcc", {{1, 1, 0}, {1, 0, 1}, {0, 1, 1}}); }
+
+IntColumns Lattice::generator_rows() const {
+  IntColumns rows(n_, IntVec(n_));
+  for (int i = 0; i < n_; ++i)
+    for (int j = 0; j < n_; ++j) rows[i][j] = g_[j][i];
+  return rows;
+}
+
+IntVec Lattice::reduce(const IntVec& x) const {
+  IntVec r = x;
+  for (int j = 0; j < n_; ++j) {
+    std::int64_t q = floor_div(r[j], hermite_[j][j]);
+    if (q != 0)
+      for (int i = 0; i < n_; ++i) r[i] -= q * hermite_[j][i];
+  }
+  return r;
+}
+
+bool Lattice::contains(const IntVec& x) const {
+  IntVec r = reduce(x);
+  return std::all_of(r.begin(), r.end(), [](std::int64_t v) { return v == 0; });
+}
+
+std::vector<IntVec> Lattice::coset_representatives() const {
+  std::vector<IntVec> reps{IntVec(n_, 0)};
+  for (int j = 0; j < n_; ++j) {
+    std::vector<IntVec> next;
+    for (const auto& r : reps)
+      for (std::int64_t a = 0; a < hermite_[j][j]; ++a) {
+        IntVec v = r;
+        v[j] = a;
+        next.push_back(v);
+      }
+    reps = std::move(next);
+  }
+  std::sort(reps.begin(), reps.end());
+  return reps;
+}
+
+std::vector<IntVec> Lattice::points_in_box(const IntVec& lo, const IntVec& hi) const {
+  std::vector<IntVec> out;
+  IntVec x = lo;
+  for (;;) {
+    if (contains(x)) out.push_back(x);
+    int i = 0;
+    while (i < n_ && x[i] == hi[i]) x[i] = lo[i], ++i;
+    if (i == n_) break;
+    ++x[i];
+  }
+  return out;
+}
+
+std::vector<std::vector<IntVec>> Lattice::shells(int count) const {
+  // Grow a box until it holds `count` complete shells (points of norm <= r^2 lie in [-r, r]^n).
+  for (std::int64_t r = 2;; r *= 2) {
+    IntVec lo(n_, -r), hi(n_, r);
+    std::map<std::int64_t, std::vector<IntVec>> by_norm;
+    for (const auto& p : points_in_box(lo, hi)) by_norm[dot(p, p)].push_back(p);
+    std::vector<std::vector<IntVec>> out;
+    for (auto& [norm, pts] : by_norm) {
+      if (norm > r * r) break;  // beyond this radius the box may miss points
+      out.push_back(pts);
+      if (static_cast<int>(out.size()) == count) return out;
+    }
+    if (r > 4096) fail_input("too many shells requested");
+  }
+}
+
+}  // namespace boxgen

@@ -1,0 +1,144 @@
+#include "generator/rational.h"
+
+#include <cln/integer_io.h>
+#include <cln/rational_io.h>
+#include <cln/real.h>
+
+#include <cctype>
+#include <sstream>
+
+#include "generator/error.h"
+
+namespace boxgen {
+
+namespace {
+
+bool all_digits(std::string_view s) {
+  if (s.empty()) return false;
+  for (char c : s)
+    if (!std::isdigit(static_cast<unsigned char>(c))) return false;
+  return true;
+}
+
+Integer parse_digits(std::string_view s) {
+  // Digit strings are validated by the caller; CLN parses arbitrary length exactly.
+  return Integer(std::string(s).c_str());
+}
+
+}  // namespace
+
+Rational parse_rational(std::string_view text, std::string_view what) {
+  auto bad = [&]() -> Rational {
+    fail_input(std::string("invalid ") + std::string(what) + " '" + std::string(text) +
+               "': expected an integer, a fraction p/q or a decimal such as -0.25");
+  };
+  std::string_view s = text;
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  if (s.empty() || s.size() > 200) return bad();
+  bool negative = false;
+  if (s.front() == '+' || s.front() == '-') {
+    negative = s.front() == '-';
+    s.remove_prefix(1);
+  }
+  Rational value;
+  if (auto slash = s.find('/'); slash != std::string_view::npos) {
+    std::string_view num = s.substr(0, slash), den = s.substr(slash + 1);
+    if (!all_digits(num) || !all_digits(den)) return bad();
+    Integer d = parse_digits(den);
+    if (cln::zerop(d)) fail_input(std::string(what) + " '" + std::string(text) + "' has a zero denominator");
+    value = Rational(parse_digits(num)) / Rational(d);
+  } else {
+    std::string_view mantissa = s, exponent;
+    if (auto e = s.find_first_of("eE"); e != std::string_view::npos) {
+      mantissa = s.substr(0, e);
+      exponent = s.substr(e + 1);
+      if (exponent.empty()) return bad();
+    }
+    std::string_view int_part = mantissa, frac_part;
+    if (auto dot_pos = mantissa.find('.'); dot_pos != std::string_view::npos) {
+      int_part = mantissa.substr(0, dot_pos);
+      frac_part = mantissa.substr(dot_pos + 1);
+    }
+    if (int_part.empty() && frac_part.empty()) return bad();
+    if (!int_part.empty() && !all_digits(int_part)) return bad();
+    if (!frac_part.empty() && !all_digits(frac_part)) return bad();
+    std::string digits = std::string(int_part) + std::string(frac_part);
+    value = Rational(parse_digits(digits.empty() ? "0" : digits));
+    long scale = -static_cast<long>(frac_part.size());
+    if (!exponent.empty()) {
+      bool eneg = false;
+      if (exponent.front() == '+' || exponent.front() == '-') {
+        eneg = exponent.front() == '-';
+        exponent.remove_prefix(1);
+      }
+      if (!all_digits(exponent) || exponent.size() > 4) return bad();
+      long e = std::stol(std::string(exponent));
+      if (e > 400) fail_input(std::string(what) + " '" + std::string(text) + "' has an exponent out of range (|e| <= 400)");
+      scale += eneg ? -e : e;
+    }
+    Rational ten_power = cln::expt(Rational(10), static_cast<long>(scale < 0 ? -scale : scale));
+    value = scale < 0 ? value / ten_power : value * ten_power;
+  }
+  return negative ? Rational(-value) : value;
+}
+
+RatVec parse_point(std::string_view text, int dimension, std::string_view what) {
+  RatVec out;
+  std::string token;
+  auto flush = [&] {
+    if (!token.empty()) {
+      out.push_back(parse_rational(token, "coordinate"));
+      token.clear();
+    }
+  };
+  for (char c : text) {
+    if (std::isspace(static_cast<unsigned char>(c)) || c == ',') flush();
+    else token.push_back(c);
+  }
+  flush();
+  if (static_cast<int>(out.size()) != dimension)
+    fail_input(std::string("invalid ") + std::string(what) + " '" + std::string(text) + "': expected " +
+               std::to_string(dimension) + " coordinates, got " + std::to_string(out.size()));
+  return out;
+}
+
+std::string to_string(const Rational& r) {
+  std::ostringstream os;
+  cln::fprint(os, r);
+  return os.str();
+}
+
+double to_double(const Rational& r) { return cln::double_approx(r); }
+
+Rational floor_rational(const Rational& r) { return Rational(cln::floor1(r)); }
+
+std::int64_t floor_to_int64(const Rational& r) {
+  Integer f = cln::floor1(r);
+  if (cln::integer_length(f) > 62) fail_internal("coordinate out of 64-bit range");
+  return cln::cl_I_to_Q(f);
+}
+
+Rational rational_from(std::int64_t value) { return Rational(static_cast<long long>(value)); }
+
+RatVec to_ratvec(const IntVec& v) {
+  RatVec out;
+  out.reserve(v.size());
+  for (auto x : v) out.push_back(rational_from(x));
+  return out;
+}
+
+Rational dot(const IntVec& a, const RatVec& b) {
+  Rational s = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (a[i] != 0) s = s + rational_from(a[i]) * b[i];
+  return s;
+}
+
+std::int64_t dot(const IntVec& a, const IntVec& b) {
+  std::int64_t s = 0;
+  for (size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
+  return s;
+}
+
+}  // namespace boxgen

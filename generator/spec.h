@@ -1,0 +1,44 @@
+// SPEC: what the user asks the generator about: a direction matrix Xi (columns) on a lattice.
+// A SPEC is a preset name (`boxgen presets`) or a direction list "1,1,1; 1,-1,-1; ..." with one
+// direction per ';'. The lattice is bcc | fcc | cartesian | "<rows of G>" (rows separated by ';');
+// by default the preset's lattice, else cartesian.
+#pragma once
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "generator/lattice.h"
+
+namespace boxgen {
+
+inline constexpr int kMaxDirections = 32;
+
+struct BoxSplineSpec {
+  std::string name;        // preset name, or "custom"
+  std::string text;        // the SPEC as the user gave it
+  IntColumns directions;   // the columns xi of Xi, in the given order
+  Lattice lattice;
+
+  int dimension() const { return lattice.dimension(); }
+  int count() const { return static_cast<int>(directions.size()); }
+  std::string directions_text() const;  // "1,1,1; 1,-1,-1; ..."
+};
+
+struct PresetInfo {
+  std::string name;
+  std::string directions;  // direction list in SPEC syntax
+  std::string lattice;     // lattice name
+  std::string description;
+};
+
+const std::vector<PresetInfo>& presets();
+
+// Parses and validates a SPEC. Throws InputError with a one-line message on any problem:
+// malformed text, unknown preset, wrong dimension, zero or rank-deficient matrix, a direction
+// not in the lattice, more than kMaxDirections directions, entries too large to derive.
+BoxSplineSpec parse_spec(std::string_view spec, std::string_view lattice_text = "");
+
+// Parses bcc | fcc | cartesian | "<rows of G>" for the given dimension.
+Lattice parse_lattice(std::string_view text, int dimension);
+
+}  // namespace boxgen

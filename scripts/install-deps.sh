@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs every Debian package boxgen needs to build, test and benchmark.
+# Idempotent: apt-get skips what is already present. Run as root on Debian 12.
+set -euo pipefail
+PACKAGES=(
+  build-essential cmake pkg-config git
+  libginac-dev libcln-dev ginac-tools   # exact symbolic/rational arithmetic (generator)
+  libfmt-dev                            # code templates and formatting
+  nlohmann-json3-dev                    # --json output
+  libcli11-dev                          # command-line parsing
+  libgtest-dev googletest               # unit tests
+  libbenchmark-dev                      # benchmarks
+  clang libclang-rt-14-dev              # libFuzzer targets (label: fuzz)
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
