@@ -111,6 +111,8 @@ std::string to_string(const Rational& r) {
 
 double to_double(const Rational& r) { return cln::double_approx(r); }
 
+bool is_integer(const Rational& r) { return cln::denominator(r) == 1; }
+
 Rational floor_rational(const Rational& r) { return Rational(cln::floor1(r)); }
 
 std::int64_t floor_to_int64(const Rational& r) {

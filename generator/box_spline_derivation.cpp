@@ -1,0 +1,82 @@
+#include "generator/box_spline_derivation.h"
+
+#include "generator/error.h"
+#include "generator/knot_normals.h"
+
+namespace boxgen {
+
+const char* method_name(DerivationMethod m) {
+  return m == DerivationMethod::TruncatedPower ? "truncated-power" : "directional-integration";
+}
+
+std::unique_ptr<BoxSplineDerivation> BoxSplineDerivation::make(const IntColumns& directions, int n,
+                                                               DerivationMethod m) {
+  if (m == DerivationMethod::TruncatedPower) return std::make_unique<TruncatedPowerDerivation>(directions, n);
+  return std::make_unique<DirectionalIntegrationDerivation>(directions, n);
+}
+
+DirectionalIntegrationDerivation::DirectionalIntegrationDerivation(const IntColumns& directions, int n)
+    : integrator_(basis_first(directions, n), n, IntegrationPath::UnitSegment) {}
+
+HalfSpaceFlip flip_into_half_space(const IntColumns& directions, int n) {
+  // Entries are bounded by 64 (spec validation), so h = (1, 1000, 10^6) separates every column.
+  const IntVec h = n == 2 ? IntVec{1, 1000} : IntVec{1, 1000, 1000000};
+  HalfSpaceFlip f{{}, IntVec(n, 0)};
+  for (const auto& xi : directions) {
+    const std::int64_t s = dot(h, xi);
+    if (s == 0) fail_internal("flip_into_half_space: zero column");
+    if (s > 0) {
+      f.columns.push_back(xi);
+    } else {
+      IntVec neg = xi;
+      for (auto& v : neg) v = -v;
+      f.columns.push_back(neg);
+      for (int i = 0; i < n; ++i) f.delta[i] += xi[i];
+    }
+  }
+  return f;
+}
+
+namespace {
+
+std::map<IntVec, Integer> difference_shifts(const HalfSpaceFlip& f) {
+  // sum over sub-multisets S of (-1)^|S| at the shift delta + sum(S), grouped by shift.
+  std::map<IntVec, Integer> w{{f.delta, Integer(1)}};
+  for (const auto& xi : f.columns) {
+    std::map<IntVec, Integer> next = w;
+    for (const auto& [s, c] : w) {
+      IntVec t = s;
+      for (size_t i = 0; i < t.size(); ++i) t[i] += xi[i];
+      next[t] = next[t] - c;
+    }
+    w.clear();
+    for (auto& [s, c] : next)
+      if (!cln::zerop(c)) w.emplace(s, c);
+  }
+  return w;
+}
+
+}  // namespace
+
+TruncatedPowerDerivation::TruncatedPowerDerivation(const IntColumns& directions, int n)
+    : n_(n),
+      integrator_(basis_first(flip_into_half_space(directions, n).columns, n), n, IntegrationPath::Ray),
+      shifts_(difference_shifts(flip_into_half_space(directions, n))) {}
+
+Poly TruncatedPowerDerivation::polynomial_at(const RatVec& p) {
+  Poly sum(n_, 0);
+  for (const auto& [s, w] : shifts_) {
+    RatVec q = p;
+    for (int i = 0; i < n_; ++i) q[i] = q[i] - Rational(s[i]);
+    const Poly& t = integrator_.top(q);
+    if (t.is_zero()) continue;
+    auto memo_key = std::make_pair(integrator_.top_key(q), s);
+    auto it = translated_.find(memo_key);
+    if (it == translated_.end()) it = translated_.emplace(memo_key, t.translated(to_ratvec(s))).first;
+    sum += it->second * Rational(w);
+  }
+  sum.trim();
+  return sum;
+}
+
+}  // namespace boxgen

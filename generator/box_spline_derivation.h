@@ -1,0 +1,59 @@
+// The two independent exact derivations of the piecewise polynomials of the uncentred box
+// spline M_Xi (integral 1, support Xi[0,1]^m):
+//  - DirectionalIntegration: the box-spline recurrence M_{Xi+xi}(x) = int_0^1 M_Xi(x - t xi) dt
+//    (design.md 5), lazily from the parallelepiped up;
+//  - TruncatedPower: finite differences of the truncated power (design.md 5b),
+//    M_Xi(x) = sum_S (-1)^|S| T_Xi(x - sum S), with T derived along rays on the central arrangement.
+// Both answer "the polynomial of M_Xi on the cell containing the generic point p".
+#pragma once
+#include <map>
+#include <memory>
+
+#include "generator/level_integrator.h"
+#include "generator/spec.h"
+
+namespace boxgen {
+
+enum class DerivationMethod { TruncatedPower, DirectionalIntegration };
+const char* method_name(DerivationMethod m);
+
+class BoxSplineDerivation {
+ public:
+  virtual ~BoxSplineDerivation() = default;
+  // p must lie on no plane nu.x = integer of the knot normals.
+  virtual Poly polynomial_at(const RatVec& p) = 0;
+  static std::unique_ptr<BoxSplineDerivation> make(const IntColumns& directions, int n, DerivationMethod m);
+};
+
+class DirectionalIntegrationDerivation final : public BoxSplineDerivation {
+ public:
+  DirectionalIntegrationDerivation(const IntColumns& directions, int n);
+  Poly polynomial_at(const RatVec& p) override { return integrator_.top(p); }
+
+ private:
+  LevelIntegrator integrator_;
+};
+
+class TruncatedPowerDerivation final : public BoxSplineDerivation {
+ public:
+  TruncatedPowerDerivation(const IntColumns& directions, int n);
+  Poly polynomial_at(const RatVec& p) override;
+  // The truncated power T of the sign-flipped matrix (exposed for tests).
+  const Poly& truncated_power_at(const RatVec& p) { return integrator_.top(p); }
+
+ private:
+  int n_;
+  LevelIntegrator integrator_;
+  std::map<IntVec, Integer> shifts_;  // M_Xi(x) = sum_s w_s T(x - s)
+  std::map<std::pair<CellKey, IntVec>, Poly> translated_;
+};
+
+// Columns flipped into the open half-space h.x > 0 (h generic), and the sum of the flipped
+// original columns delta, so that M_Xi(y) = M_Xi'(y - delta).
+struct HalfSpaceFlip {
+  IntColumns columns;
+  IntVec delta;
+};
+HalfSpaceFlip flip_into_half_space(const IntColumns& directions, int n);
+
+}  // namespace boxgen
