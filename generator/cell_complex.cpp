@@ -175,7 +175,7 @@ std::vector<Facet> facets_of(const FineCell& cell, const std::vector<IntVec>& no
 namespace {
 
 // Pulling triangulation of the convex hull of `pts` (dimension d) whose faces lie on `planes`.
-void pull(const std::vector<RatVec>& pts, int d, const std::vector<std::pair<IntVec, Rational>>& planes,
+void pull(const std::vector<RatVec>& pts, int d, const std::vector<Plane>& planes,
           std::vector<RatVec> apex, std::vector<std::vector<RatVec>>& out) {
   if (static_cast<int>(pts.size()) == d + 1) {
     apex.insert(apex.end(), pts.begin(), pts.end());
@@ -201,14 +201,18 @@ void pull(const std::vector<RatVec>& pts, int d, const std::vector<std::pair<Int
 
 }  // namespace
 
+std::vector<std::vector<RatVec>> triangulate_polytope(const std::vector<RatVec>& vertices,
+                                                      const std::vector<Plane>& planes) {
+  std::vector<std::vector<RatVec>> out;
+  pull(vertices, static_cast<int>(vertices[0].size()), planes, {}, out);
+  return out;
+}
+
 std::vector<std::vector<RatVec>> triangulate(const FineCell& cell, const std::vector<IntVec>& normals) {
-  const int n = static_cast<int>(cell.interior.size());
-  std::vector<std::pair<IntVec, Rational>> planes;
+  std::vector<Plane> planes;
   for (size_t i = 0; i < normals.size(); ++i)
     for (int up = 0; up <= 1; ++up) planes.push_back({normals[i], Rational(cell.key[i] + up)});
-  std::vector<std::vector<RatVec>> out;
-  pull(cell.vertices, n, planes, {}, out);
-  return out;
+  return triangulate_polytope(cell.vertices, planes);
 }
 
 }  // namespace boxgen

@@ -51,5 +51,13 @@ std::vector<Facet> facets_of(const FineCell& cell, const std::vector<IntVec>& no
 int affine_rank(const std::vector<RatVec>& points);
 // Pulling triangulation of a convex cell into simplices (each n+1 vertices).
 std::vector<std::vector<RatVec>> triangulate(const FineCell& cell, const std::vector<IntVec>& normals);
+// A plane nu . x = level.
+struct Plane {
+  IntVec nu;
+  Rational level;
+};
+// Pulling triangulation of the convex polytope with these vertices, whose faces lie on `planes`.
+std::vector<std::vector<RatVec>> triangulate_polytope(const std::vector<RatVec>& vertices,
+                                                      const std::vector<Plane>& planes);
 
 }  // namespace boxgen

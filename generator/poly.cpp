@@ -298,6 +298,46 @@ Poly Poly::derivative(int var) const {
   return r;
 }
 
+Poly Poly::substituted(int var, const RatVec& a) const {
+  // Horner in x_var: P = sum_j x_var^j R_j(other variables).
+  const int d = std::max(degree(), 0);
+  std::vector<Poly> r(d + 1, Poly(n_, d));
+  const auto& ex = monomial_exponents(n_, d);
+  const std::size_t count = monomial_count(n_, d);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (cln::zerop(c_[i])) continue;
+    Exponent e = ex[i];
+    const int j = e[var];
+    e[var] = 0;
+    r[j].c_[monomial_index(n_, e)] = c_[i];
+  }
+  Poly out = r[d];
+  for (int j = d - 1; j >= 0; --j) {
+    out = out.times_affine(a);
+    out += r[j];
+  }
+  out.trim();
+  return out;
+}
+
+Poly Poly::signed_permuted(const std::vector<int>& perm, const std::vector<int>& sign) const {
+  const int d = std::max(degree(), 0);
+  Poly r(n_, d);
+  const auto& ex = monomial_exponents(n_, d);
+  const std::size_t count = monomial_count(n_, d);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (cln::zerop(c_[i])) continue;
+    Exponent e{0, 0, 0};
+    int parity = 0;
+    for (int k = 0; k < n_; ++k) {
+      e[perm[k]] += ex[i][k];
+      if (sign[k] < 0) parity += ex[i][k];
+    }
+    r.c_[monomial_index(n_, e)] = parity % 2 ? Rational(-c_[i]) : c_[i];
+  }
+  return r;
+}
+
 std::vector<Poly> Poly::along_direction(const IntVec& dir) const {
   // (x_k - tau d_k)^{e_k} = sum_j binom(e_k, j) x_k^{e_k - j} (-d_k)^j tau^j
   const int d = std::max(degree(), 0);

@@ -54,6 +54,10 @@ class Poly {
   // P(A x + b), A row-major n x n (rows give the new coordinates in terms of x)
   Poly composed_affine(const std::vector<RatVec>& a, const RatVec& b) const;
   Poly derivative(int var) const;
+  // P with x_var replaced by the affine form a[0] + sum a[k+1] x_k (a[var+1] must be 0).
+  Poly substituted(int var, const RatVec& a) const;
+  // Q(x) = P(y) with y_i = sign[i] x_perm[i]: P composed with a signed permutation.
+  Poly signed_permuted(const std::vector<int>& perm, const std::vector<int>& sign) const;
   // Coefficients Q_e with P(x - tau d) = sum_e tau^e Q_e(x).
   std::vector<Poly> along_direction(const IntVec& d) const;
   void reserve_degree(int capacity);

@@ -1,0 +1,40 @@
+// `boxgen analyze`: everything the generator derives about a box spline on its lattice, with the
+// exact checks that run by default (design.md 3-5, 7). Every number here is derived, not looked up.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include "generator/box_spline_properties.h"
+#include "generator/piece_checks.h"
+#include "generator/piecewise_form.h"
+#include "generator/spline_regions.h"
+
+namespace boxgen {
+
+struct AnalysisChecks {
+  bool methods_agree = false;        // truncated power == directional integration, cell by cell
+  bool integral_is_one = false;
+  bool symmetric = false;
+  bool partition_of_unity = false;
+  ContinuityReport continuity;
+  double seconds = 0;
+};
+
+struct Analysis {
+  BoxSplineSpec spec;
+  BoxSplineProperties properties;
+  PiecewiseForm form;  // by the truncated power
+  SplineStructure structure;
+  int pieces = 0;
+  AnalysisChecks checks;
+  double derivation_seconds = 0;  // derivation and default checks, wall clock
+};
+
+struct AnalysisOptions {
+  bool verify = true;  // run the exact checks (a failure throws InternalError)
+};
+
+Analysis analyze(const BoxSplineSpec& spec, const AnalysisOptions& options = {});
+nlohmann::json to_json(const Analysis& a);
+std::string to_table(const Analysis& a);
+
+}  // namespace boxgen

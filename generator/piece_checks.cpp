@@ -1,0 +1,185 @@
+#include "generator/piece_checks.h"
+
+#include <numeric>
+#include <set>
+
+#include "generator/error.h"
+#include "generator/simplex_integral.h"
+
+namespace boxgen {
+
+namespace {
+
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int a) { return parent[a] == a ? a : parent[a] = find(parent[a]); }
+  void unite(int a, int b) { parent[find(a)] = find(b); }
+};
+
+CellKey neighbour_key(const FineCell& cell, const Facet& f) {
+  CellKey k = cell.key;
+  k[f.normal] += f.upper ? 1 : -1;
+  return k;
+}
+
+std::string describe_face(const IntVec& nu, std::int32_t level) {
+  std::string s = "(";
+  for (size_t i = 0; i < nu.size(); ++i) {
+    if (i) s += ',';
+    s += std::to_string(nu[i]);
+  }
+  s += ").x = ";
+  s += std::to_string(level);
+  return s;
+}
+
+// Whole unit cubes (every cell of a tensor-product spline) integrate monomial by monomial.
+bool is_unit_cube(const FineCell& cell) { return cell.vertices.size() == (std::size_t{1} << cell.interior.size()); }
+
+Rational integrate_over_unit_cube(const Poly& p, const FineCell& cell) {
+  const int n = static_cast<int>(cell.interior.size());
+  RatVec corner(n);
+  for (int i = 0; i < n; ++i) corner[i] = floor_rational(cell.interior[i]);
+  RatVec minus_corner(n);
+  for (int i = 0; i < n; ++i) minus_corner[i] = -corner[i];
+  const Poly local = p.translated(minus_corner);  // local(y) = p(y + corner), y in [0,1]^n
+  const auto& ex = monomial_exponents(n, local.capacity());
+  Rational total = 0;
+  for (std::size_t i = 0; i < local.coefficients().size(); ++i) {
+    if (cln::zerop(local.coefficients()[i])) continue;
+    Rational t = local.coefficients()[i];
+    for (int k = 0; k < n; ++k) t = t / Rational(ex[i][k] + 1);
+    total = total + t;
+  }
+  return total;
+}
+
+}  // namespace
+
+RatVec spline_centre(const BoxSplineSpec& spec) {
+  RatVec c(spec.dimension(), Rational(0));
+  for (const auto& xi : spec.directions)
+    for (int i = 0; i < spec.dimension(); ++i) c[i] = c[i] + Rational(xi[i]);
+  for (auto& v : c) v = v / 2;
+  return c;
+}
+
+RatVec symmetry_image(const SignedPermutation& g, const RatVec& y, const RatVec& centre) {
+  RatVec d(y.size());
+  for (size_t i = 0; i < y.size(); ++i) d[i] = y[i] - centre[i];
+  RatVec out = g.apply(d);
+  for (size_t i = 0; i < y.size(); ++i) out[i] = out[i] + centre[i];
+  return out;
+}
+
+int count_pieces(const PiecewiseForm& form) {
+  const auto& cells = form.complex.cells();
+  UnionFind uf(cells.size());
+  for (size_t i = 0; i < cells.size(); ++i) {
+    if (form.polys[i].is_zero()) continue;
+    for (const auto& f : facets_of(cells[i], form.complex.normals())) {
+      const int j = form.complex.find(neighbour_key(cells[i], f));
+      if (j >= 0 && !form.polys[j].is_zero() && form.polys[j] == form.polys[i]) uf.unite(static_cast<int>(i), j);
+    }
+  }
+  std::set<int> roots;
+  for (size_t i = 0; i < cells.size(); ++i)
+    if (!form.polys[i].is_zero()) roots.insert(uf.find(static_cast<int>(i)));
+  return static_cast<int>(roots.size());
+}
+
+Rational total_integral(const PiecewiseForm& form) {
+  Rational total = 0;
+  const auto& cells = form.complex.cells();
+  for (size_t i = 0; i < cells.size(); ++i) {
+    if (form.polys[i].is_zero()) continue;
+    if (is_unit_cube(cells[i])) {
+      total = total + integrate_over_unit_cube(form.polys[i], cells[i]);
+      continue;
+    }
+    for (const auto& simplex : triangulate(cells[i], form.complex.normals()))
+      total = total + integrate_over_simplex(form.polys[i], simplex);
+  }
+  return total;
+}
+
+ContinuityReport check_continuity(const PiecewiseForm& form, int order) {
+  ContinuityReport report;
+  report.smoothness = order;
+  const auto& cells = form.complex.cells();
+  const auto& normals = form.complex.normals();
+  const Poly zero(form.dimension(), 0);
+  for (size_t i = 0; i < cells.size(); ++i) {
+    if (form.polys[i].is_zero()) continue;
+    for (const auto& f : facets_of(cells[i], normals)) {
+      const int j = form.complex.find(neighbour_key(cells[i], f));
+      const Poly& other = j >= 0 ? form.polys[j] : zero;
+      if (!f.upper && !other.is_zero()) continue;  // that face is checked from the other side
+      ++report.faces_checked;
+      const IntVec& nu = normals[f.normal];
+      int var = 0;
+      while (nu[var] == 0) ++var;
+      // x_var on the face, as an affine form in the other coordinates.
+      RatVec on_face(form.dimension() + 1, Rational(0));
+      on_face[0] = Rational(f.level) / Rational(nu[var]);
+      for (int k = 0; k < form.dimension(); ++k)
+        if (k != var) on_face[k + 1] = Rational(-nu[k]) / Rational(nu[var]);
+      Poly jump = form.polys[i] - other;
+      for (int e = 0; e <= order; ++e) {
+        const bool vanishes = jump.substituted(var, on_face).is_zero();
+        if (e < order && !vanishes)
+          fail_internal("continuity check failed: derivative of order " + std::to_string(e) +
+                        " jumps across the face " + describe_face(nu, f.level));
+        if (e == order && !vanishes) report.sharp = true;
+        jump = jump.derivative(var);
+      }
+    }
+  }
+  return report;
+}
+
+std::vector<SignedPermutation> generators(const std::vector<SignedPermutation>& group) {
+  std::vector<SignedPermutation> gens;
+  std::set<std::pair<std::vector<int>, std::vector<int>>> closure{{group.front().perm, group.front().sign}};
+  for (const auto& g : group) {
+    if (closure.count({g.perm, g.sign})) continue;
+    gens.push_back(g);
+    // Close under multiplication by the generators.
+    std::vector<SignedPermutation> frontier;
+    for (const auto& [p, s] : closure) frontier.push_back({p, s});
+    while (!frontier.empty()) {
+      std::vector<SignedPermutation> next;
+      for (const auto& h : frontier)
+        for (const auto& k : gens) {
+          SignedPermutation prod = k.compose(h);
+          if (closure.insert({prod.perm, prod.sign}).second) next.push_back(prod);
+        }
+      frontier = std::move(next);
+    }
+  }
+  return gens;
+}
+
+void check_symmetry(const PiecewiseForm& form, const std::vector<SignedPermutation>& group) {
+  const int n = form.dimension();
+  const RatVec c = spline_centre(form.spec);
+  std::vector<SignedPermutation> checks = generators(group);
+  checks.push_back({std::vector<int>(n), std::vector<int>(n, -1)});
+  std::iota(checks.back().perm.begin(), checks.back().perm.end(), 0);
+  const auto& cells = form.complex.cells();
+  for (const auto& g : checks) {
+    // b = c - g c: the uncentred image of y is g y + b.
+    RatVec gc = g.apply(c), minus_b(n);
+    for (int i = 0; i < n; ++i) minus_b[i] = gc[i] - c[i];
+    for (size_t i = 0; i < cells.size(); ++i) {
+      const RatVec image = symmetry_image(g, cells[i].interior, c);
+      const Poly& target = form.poly_for_key(floor_key(form.complex.normals(), image));
+      if (form.polys[i].is_zero() && target.is_zero()) continue;
+      const Poly mapped = target.translated(minus_b).signed_permuted(g.perm, g.sign);
+      if (mapped != form.polys[i]) fail_internal("symmetry check failed: M^c(g x) != M^c(x) on a cell");
+    }
+  }
+}
+
+}  // namespace boxgen

@@ -1,0 +1,327 @@
+#include "generator/spline_regions.h"
+
+#include <algorithm>
+#include <deque>
+#include <numeric>
+#include <optional>
+#include <set>
+
+#include "generator/error.h"
+#include "generator/piece_checks.h"
+
+namespace boxgen {
+
+RatVec SpaceGroupElement::apply(const RatVec& x) const {
+  RatVec y = g.apply(x);
+  for (size_t i = 0; i < y.size(); ++i) y[i] = y[i] + Rational(l[i]);
+  return y;
+}
+
+namespace {
+
+CellKey shifted_key(const CellKey& k, const std::vector<IntVec>& normals, const IntVec& j) {
+  CellKey out = k;
+  for (size_t i = 0; i < normals.size(); ++i) out[i] -= static_cast<std::int32_t>(dot(normals[i], j));
+  return out;
+}
+
+IntVec sub(const IntVec& a, const IntVec& b) {
+  IntVec r(a.size());
+  for (size_t i = 0; i < a.size(); ++i) r[i] = a[i] - b[i];
+  return r;
+}
+
+// Everything about the fundamental region that the steps below share.
+class Fundamental {
+ public:
+  explicit Fundamental(const PiecewiseForm& form) : form_(form), n_(form.dimension()) {
+    for (const auto& rep : form.spec.lattice.coset_representatives())
+      for (auto& c : CellComplex::split_cube(form.complex.normals(), rep)) {
+        index_.emplace(c.key, static_cast<int>(cells_.size()));
+        FundamentalCell fc;
+        fc.cell = std::move(c);
+        cells_.push_back(std::move(fc));
+      }
+  }
+  std::vector<FundamentalCell>& cells() { return cells_; }
+  const std::vector<IntVec>& normals() const { return form_.complex.normals(); }
+
+  // The fundamental cell and lattice vector l such that the cell with this absolute key is F cell + l.
+  std::pair<int, IntVec> locate(const CellKey& absolute) const {
+    IntVec corner(absolute.begin(), absolute.begin() + n_);
+    IntVec rep = form_.spec.lattice.reduce(corner);
+    IntVec l = sub(corner, rep);
+    auto it = index_.find(shifted_key(absolute, normals(), l));
+    if (it == index_.end()) fail_internal("a cell of the arrangement is missing from the fundamental region");
+    return {it->second, l};
+  }
+  std::pair<int, IntVec> locate_point(const RatVec& u) const { return locate(floor_key(normals(), u)); }
+
+  // Lattice points j with a chance of M_Xi(u - j) != 0 for u in the unit cube at `corner`.
+  std::vector<IntVec> candidates(const IntVec& corner, int margin) const {
+    IntVec lo(n_), hi(n_);
+    for (int i = 0; i < n_; ++i) {
+      lo[i] = corner[i] - form_.complex.hi()[i] + 1 - margin;
+      hi[i] = corner[i] - form_.complex.lo()[i] + margin;
+    }
+    return form_.spec.lattice.points_in_box(lo, hi);
+  }
+
+  std::vector<IntVec> stencil_of_key(const CellKey& key) const {
+    std::vector<IntVec> out;
+    for (const auto& j : candidates(IntVec(key.begin(), key.begin() + n_), 0))
+      if (!form_.poly_for_key(shifted_key(key, normals(), j)).is_zero()) out.push_back(j);
+    return out;
+  }
+
+  // True if the spline has one polynomial on the two adjacent cells (absolute keys).
+  bool same_spline_piece(const CellKey& a, const CellKey& b) const {
+    for (const auto& j : candidates(IntVec(a.begin(), a.begin() + n_), 1))
+      if (form_.poly_for_key(shifted_key(a, normals(), j)) != form_.poly_for_key(shifted_key(b, normals(), j)))
+        return false;
+    return true;
+  }
+
+ private:
+  const PiecewiseForm& form_;
+  int n_;
+  std::vector<FundamentalCell> cells_;
+  std::unordered_map<CellKey, int, CellKeyHash> index_;
+};
+
+void add_unique(std::vector<RatVec>& pts, const RatVec& p) {
+  if (std::find(pts.begin(), pts.end(), p) == pts.end()) pts.push_back(p);
+}
+
+void add_unique_plane(std::vector<Plane>& planes, const Plane& p) {
+  for (const auto& q : planes)
+    if (q.nu == p.nu && q.level == p.level) return;
+  planes.push_back(p);
+}
+
+RatVec mean(const std::vector<RatVec>& pts) {
+  RatVec m(pts[0].size(), Rational(0));
+  for (const auto& p : pts)
+    for (size_t i = 0; i < m.size(); ++i) m[i] = m[i] + p[i];
+  for (auto& v : m) v = v / Rational(static_cast<long>(pts.size()));
+  return m;
+}
+
+// Builds regions by breadth-first search over facets where the spline piece continues.
+std::vector<SplineRegion> merge_regions(Fundamental& fund, const RatVec& c, int n) {
+  auto& cells = fund.cells();
+  std::vector<std::optional<IntVec>> placed(cells.size());
+  std::vector<SplineRegion> regions;
+  for (size_t start = 0; start < cells.size(); ++start) {
+    if (placed[start]) continue;
+    SplineRegion region;
+    std::vector<RatVec> all_vertices;
+    std::deque<int> queue{static_cast<int>(start)};
+    placed[start] = IntVec(n, 0);
+    while (!queue.empty()) {
+      const int i = queue.front();
+      queue.pop_front();
+      const IntVec& p = *placed[i];
+      cells[i].region = static_cast<int>(regions.size());
+      cells[i].placement = p;
+      region.cells.push_back(i);
+      for (const auto& v : cells[i].cell.vertices) {
+        RatVec x(n);
+        for (int k = 0; k < n; ++k) x[k] = v[k] + Rational(p[k]) - c[k];
+        add_unique(all_vertices, x);
+      }
+      for (const auto& f : facets_of(cells[i].cell, fund.normals())) {
+        CellKey other = cells[i].cell.key;
+        other[f.normal] += f.upper ? 1 : -1;
+        const IntVec& nu = fund.normals()[f.normal];
+        if (!fund.same_spline_piece(cells[i].cell.key, other)) {
+          add_unique_plane(region.planes, {nu, Rational(f.level) + Rational(dot(nu, p)) - dot(nu, c)});
+          continue;
+        }
+        auto [j, l] = fund.locate(other);
+        IntVec where(n);
+        for (int k = 0; k < n; ++k) where[k] = p[k] + l[k];
+        if (!placed[j]) {
+          placed[j] = where;
+          queue.push_back(j);
+        } else if (*placed[j] != where && cells[j].region == static_cast<int>(regions.size())) {
+          fail_internal("a spline region meets its own lattice translate");
+        }
+      }
+    }
+    // Vertices of the convex region: points where n independent boundary planes are tight.
+    for (const auto& x : all_vertices) {
+      IntColumns tight;
+      for (const auto& pl : region.planes)
+        if (dot(pl.nu, x) == pl.level) tight.push_back(pl.nu);
+      if (!tight.empty() && rank(tight, n) == n) region.vertices.push_back(x);
+    }
+    std::sort(region.vertices.begin(), region.vertices.end());
+    region.centroid = mean(region.vertices);
+    regions.push_back(std::move(region));
+  }
+  return regions;
+}
+
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int a) { return parent[a] == a ? a : parent[a] = find(parent[a]); }
+  void unite(int a, int b) { parent[find(a)] = find(b); }
+};
+
+Rational norm2(const RatVec& v) {
+  Rational s = 0;
+  for (const auto& x : v) s = s + x * x;
+  return s;
+}
+
+std::vector<RatVec> image_of(const SpaceGroupElement& e, const std::vector<RatVec>& pts) {
+  std::vector<RatVec> out;
+  for (const auto& p : pts) out.push_back(e.apply(p));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+SplineStructure spline_structure(const PiecewiseForm& form) {
+  const int n = form.dimension();
+  const Lattice& lattice = form.spec.lattice;
+  SplineStructure s;
+  s.centre = spline_centre(form.spec);
+  s.group = symmetry_group(form.spec);
+  Fundamental fund(form);
+  for (auto& fc : fund.cells()) fc.stencil = fund.stencil_of_key(fc.cell.key);
+  s.regions = merge_regions(fund, s.centre, n);
+  s.cells = fund.cells();
+  s.stencil_min = s.stencil_max = static_cast<int>(s.cells.front().stencil.size());
+  for (const auto& fc : s.cells) {
+    s.stencil_min = std::min(s.stencil_min, static_cast<int>(fc.stencil.size()));
+    s.stencil_max = std::max(s.stencil_max, static_cast<int>(fc.stencil.size()));
+  }
+
+  // Orbits: the image of a region's first cell under each symmetry lands in another region.
+  UnionFind orbits(s.regions.size());
+  for (size_t r = 0; r < s.regions.size(); ++r) {
+    const auto& fc = s.cells[s.regions[r].cells.front()];
+    for (const auto& g : s.group) {
+      auto [j, l] = fund.locate_point(symmetry_image(g, fc.cell.interior, s.centre));
+      orbits.unite(static_cast<int>(r), s.cells[j].region);
+    }
+  }
+  std::vector<int> orbit_of_root(s.regions.size(), -1);
+  for (size_t r = 0; r < s.regions.size(); ++r) {
+    int root = orbits.find(static_cast<int>(r));
+    if (orbit_of_root[root] < 0) {
+      orbit_of_root[root] = static_cast<int>(s.references.size());
+      s.references.emplace_back();
+    }
+    s.regions[r].orbit = orbit_of_root[root];
+    ++s.references[s.regions[r].orbit].regions_in_orbit;
+  }
+
+  // Reference region of each orbit: the image g R + l whose centroid is nearest the origin,
+  // ties broken towards the lexicographically largest centroid (x >= y >= z >= 0 when the
+  // group allows it). For M7 this is the paper's tetrahedron (0,0,0),(1,1,1),(1,0,0),(1,1,0).
+  std::int64_t reach = 2;
+  for (const auto& col : lattice.generator())
+    for (auto v : col) reach = std::max<std::int64_t>(reach, std::llabs(v) + 1);
+  for (size_t o = 0; o < s.references.size(); ++o) {
+    std::optional<std::pair<Rational, RatVec>> best;
+    SpaceGroupElement best_map;
+    int best_region = -1;
+    for (size_t r = 0; r < s.regions.size(); ++r) {
+      if (s.regions[r].orbit != static_cast<int>(o)) continue;
+      for (const auto& g : s.group) {
+        RatVec z = g.apply(s.regions[r].centroid);
+        IntVec lo(n), hi(n);
+        for (int i = 0; i < n; ++i) {
+          lo[i] = floor_to_int64(-z[i]) - reach;
+          hi[i] = floor_to_int64(-z[i]) + reach;
+        }
+        for (const auto& l : lattice.points_in_box(lo, hi)) {
+          RatVec y = z;
+          for (int i = 0; i < n; ++i) y[i] = y[i] + Rational(l[i]);
+          Rational d = norm2(y);
+          if (!best || d < best->first || (d == best->first && y > best->second)) {
+            best = std::make_pair(d, y);
+            best_map = {g, l};
+            best_region = static_cast<int>(r);
+          }
+        }
+      }
+    }
+    ReferenceRegion& ref = s.references[o];
+    const SplineRegion& src = s.regions[best_region];
+    ref.vertices = image_of(best_map, src.vertices);
+    for (const auto& pl : src.planes) {
+      // nu.x = level maps to (g nu).(g x + l) = level + (g nu).l
+      IntVec gnu = best_map.g.apply(pl.nu);
+      ref.planes.push_back({gnu, pl.level + Rational(dot(gnu, best_map.l))});
+    }
+    const auto& first = s.cells[src.cells.front()];
+    RatVec x(n);
+    for (int k = 0; k < n; ++k) x[k] = first.cell.interior[k] + Rational(first.placement[k]) - s.centre[k];
+    ref.interior = best_map.apply(x);
+  }
+
+  // Every region's map onto its reference: g R + l = R_ref (vertex sets equal).
+  for (auto& region : s.regions) {
+    const ReferenceRegion& ref = s.references[region.orbit];
+    const RatVec target = mean(ref.vertices);
+    bool found = false;
+    for (const auto& g : s.group) {
+      RatVec z = g.apply(region.centroid);
+      IntVec l(n);
+      bool integral = true;
+      for (int i = 0; i < n; ++i) {
+        Rational d = target[i] - z[i];
+        if (!is_integer(d)) integral = false;
+        else l[i] = floor_to_int64(d);
+      }
+      if (!integral || !lattice.contains(l)) continue;
+      SpaceGroupElement e{g, l};
+      if (image_of(e, region.vertices) == ref.vertices) {
+        region.to_reference = e;
+        found = true;
+        break;
+      }
+    }
+    if (!found) fail_internal("a region does not map onto its orbit's reference region");
+  }
+
+  // Stencil and basis polynomials of each reference region (centred frame).
+  const Rational scale = Rational(lattice.det_abs());
+  for (auto& ref : s.references) {
+    RatVec u(n);
+    IntVec corner(n);
+    for (int k = 0; k < n; ++k) {
+      u[k] = ref.interior[k] + s.centre[k];
+      corner[k] = floor_to_int64(u[k]);
+    }
+    for (const auto& j : fund.candidates(corner, 0)) {
+      RatVec uj = u;
+      for (int k = 0; k < n; ++k) uj[k] = uj[k] - Rational(j[k]);
+      const Poly& p = form.poly_for_key(floor_key(form.complex.normals(), uj));
+      if (p.is_zero()) continue;
+      RatVec shift(n);
+      for (int k = 0; k < n; ++k) shift[k] = Rational(j[k]) - s.centre[k];
+      ref.stencil.push_back(j);
+      ref.basis.push_back(p.translated(shift) * scale);
+    }
+  }
+  return s;
+}
+
+void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& s) {
+  const Poly expected = Poly::constant(form.dimension(), Rational(1) / Rational(form.spec.lattice.det_abs()));
+  for (const auto& fc : s.cells) {
+    Poly sum(form.dimension(), 0);
+    for (const auto& j : fc.stencil)
+      sum += form.poly_for_key(shifted_key(fc.cell.key, form.complex.normals(), j)).translated(to_ratvec(j));
+    if (sum != expected) fail_internal("partition of unity fails on a cell of the fundamental region");
+  }
+}
+
+}  // namespace boxgen
