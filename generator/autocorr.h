@@ -24,9 +24,13 @@ struct Autocorrelation {
 BoxSplineSpec doubled_spec(const BoxSplineSpec& spec);
 
 struct RefinementOptions {
-  // Solve on orbits of the symmetry group (fast); off, every lattice point is an unknown, which
-  // also checks that the eigenvalue 1 is simple on the whole space, not only on symmetric vectors.
+  // Solve exactly on orbits of the symmetry group (fast). Off: every lattice point is an unknown
+  // of the exact solve (slow beyond a few hundred points; for tests of small cases).
   bool reduce_by_symmetry = true;
+  // After an orbit solve, confirm on all points without symmetry: exactly that the samples are
+  // an eigenvector, and by ranks modulo primes that eigenvalue 1 is simple on the whole space
+  // (a lower bound on the rank over Q, so a proof, not a heuristic).
+  bool verify_on_all_points = true;
 };
 
 // The eigenvector of eigenvalue 1 of the subdivision operator restricted to the lattice points

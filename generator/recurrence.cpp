@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -65,13 +66,15 @@ bool is_generic_point(const IntColumns& xi, const RatVec& x) {
 // State of the recursion: the multiset of remaining columns, coded in mixed radix as a count per
 // distinct column (repeated columns are interchangeable, so the multiset is all that matters).
 struct BoxSplineRecurrence::Impl {
+  struct Basis {  // t = adjugate * x / det solves (basis) t = x
+    IntColumns adjugate_rows;
+    Rational inverse_det;
+  };
   struct StateInfo {
     std::vector<int> counts;
     int total = 0;
+    std::size_t basis_id = 0;
     std::vector<int> basis_position;  // per distinct column: its index in the basis, or -1
-    IntColumns adjugate_rows;         // t = t_base + adjugate * shift / det (basis matrix)
-    Rational inverse_det;             // 1/det of the basis matrix
-    RatVec t_base;                    // t for shift 0
     std::vector<char> removable;      // removing one copy leaves columns that span R^n
     IntVec lo, hi;                    // extent of the support along each prune direction
     Rational parallelepiped_value;    // 1/|det| when total == n
@@ -95,21 +98,43 @@ struct BoxSplineRecurrence::Impl {
   };
   static constexpr std::uint64_t kDenseStates = std::uint64_t{1} << 22;
 
+  // Structure of Xi (independent of the point).
+  IntColumns xi;
   int n = 0;
   IntColumns distinct;
   std::vector<int> full_counts;
   std::vector<std::uint64_t> stride;
   std::uint64_t full_code = 0, state_count = 0;
-  RatVec base;
   // The support of every sub-spline lies in the slabs lo <= dir.x <= hi for these directions
   // (coordinate axes and knot normals: the zonotope's own facets, so the prune is tight).
   IntColumns prune_dirs;
-  IntVec base_floor, base_ceil;  // floor / ceil of dir.base per prune direction
+  std::vector<Basis> bases;
+  std::map<IntColumns, std::size_t> basis_ids;
   std::vector<std::unique_ptr<StateInfo>> dense_states;  // indexed by code when few enough
   std::unordered_map<std::uint64_t, StateInfo> sparse_states;
+
+  // Per base point.
+  bool has_base = false;
+  RatVec base;
+  IntVec base_floor, base_ceil;     // floor / ceil of dir.base per prune direction
+  std::vector<RatVec> t_base;       // per basis id: t for shift 0 (empty until needed)
   std::unordered_map<Key, Rational, KeyHash> memo;
 
-  StateInfo make_state(std::uint64_t code) const {
+  std::size_t basis_id_of(const IntColumns& basis) {
+    if (auto it = basis_ids.find(basis); it != basis_ids.end()) return it->second;
+    const std::int64_t basis_det = det(basis);
+    const RatMatrix inv = inverse(basis);
+    Basis b;
+    b.inverse_det = Rational(1) / rational_from(basis_det);
+    b.adjugate_rows.assign(n, IntVec(n));
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) b.adjugate_rows[j][i] = floor_to_int64(inv[j][i] * rational_from(basis_det));
+    bases.push_back(std::move(b));
+    basis_ids.emplace(basis, bases.size() - 1);
+    return bases.size() - 1;
+  }
+
+  StateInfo make_state(std::uint64_t code) {
     StateInfo s;
     const std::size_t p = distinct.size();
     s.counts.resize(p);
@@ -130,16 +155,7 @@ struct BoxSplineRecurrence::Impl {
       }
     }
     if (static_cast<int>(basis.size()) != n) fail_internal("box spline recurrence reached a rank-deficient state");
-    const std::int64_t basis_det = det(basis);
-    const RatMatrix inv = inverse(basis);
-    s.inverse_det = Rational(1) / rational_from(basis_det);
-    s.adjugate_rows.assign(n, IntVec(n));
-    s.t_base.assign(n, 0);
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        s.adjugate_rows[j][i] = floor_to_int64(inv[j][i] * rational_from(basis_det));  // exact integer
-        s.t_base[j] = s.t_base[j] + inv[j][i] * base[i];
-      }
+    s.basis_id = basis_id_of(basis);
     s.removable.assign(p, 0);
     for (std::size_t d = 0; d < p; ++d) {
       if (s.counts[d] == 0) continue;
@@ -159,7 +175,7 @@ struct BoxSplineRecurrence::Impl {
         const std::int64_t v = s.counts[d] * dot(prune_dirs[k], distinct[d]);
         (v < 0 ? s.lo[k] : s.hi[k]) += v;
       }
-    if (s.total == n) s.parallelepiped_value = Rational(1) / rational_from(std::llabs(basis_det));
+    if (s.total == n) s.parallelepiped_value = Rational(1) / rational_from(std::llabs(det(basis)));
     return s;
   }
 
@@ -174,6 +190,16 @@ struct BoxSplineRecurrence::Impl {
     return sparse_states.emplace(code, make_state(code)).first->second;
   }
 
+  const RatVec& t_at_base(std::size_t id) {
+    if (t_base.size() < bases.size()) t_base.resize(bases.size());
+    RatVec& t = t_base[id];
+    if (t.empty()) {
+      t.assign(n, 0);
+      for (int j = 0; j < n; ++j) t[j] = dot(bases[id].adjugate_rows[j], base) * bases[id].inverse_det;
+    }
+    return t;
+  }
+
   Rational value(std::uint64_t code, const Shift& shift) {
     const StateInfo& s = state(code);
     // Outside the slabs the value is 0. floor/ceil of dir.(base + shift) are exact integers, and
@@ -186,11 +212,12 @@ struct BoxSplineRecurrence::Impl {
     const Key key{code, shift};
     if (auto it = memo.find(key); it != memo.end()) return it->second;
 
-    RatVec t = s.t_base;
+    const Basis& basis = bases[s.basis_id];
+    RatVec t = t_at_base(s.basis_id);
     for (int j = 0; j < n; ++j) {
       std::int64_t numerator = 0;
-      for (int i = 0; i < n; ++i) numerator += s.adjugate_rows[j][i] * shift[i];
-      if (numerator != 0) t[j] = t[j] + rational_from(numerator) * s.inverse_det;
+      for (int i = 0; i < n; ++i) numerator += basis.adjugate_rows[j][i] * shift[i];
+      if (numerator != 0) t[j] = t[j] + rational_from(numerator) * basis.inverse_det;
     }
 
     Rational result = 0;
@@ -221,15 +248,11 @@ struct BoxSplineRecurrence::Impl {
   }
 };
 
-BoxSplineRecurrence::BoxSplineRecurrence(const IntColumns& xi, const RatVec& base) : impl_(std::make_unique<Impl>()) {
+BoxSplineRecurrence::BoxSplineRecurrence(const IntColumns& xi) : impl_(std::make_unique<Impl>()) {
   validate_columns(xi);
   Impl& m = *impl_;
+  m.xi = xi;
   m.n = static_cast<int>(xi[0].size());
-  if (static_cast<int>(base.size()) != m.n)
-    fail_input("box spline recurrence: the point has " + std::to_string(base.size()) + " coordinates, expected " +
-               std::to_string(m.n));
-  if (!is_generic_point(xi, base))
-    fail_input("box spline recurrence: the point lies on a knot plane; the recurrence needs a generic point");
   m.distinct = distinct_columns(xi);
   for (const auto& d : m.distinct)
     m.full_counts.push_back(static_cast<int>(std::count(xi.begin(), xi.end(), d)));
@@ -243,7 +266,6 @@ BoxSplineRecurrence::BoxSplineRecurrence(const IntColumns& xi, const RatVec& bas
     radix *= digits;
   }
   m.state_count = radix;
-  m.base = base;
   std::set<IntVec> dirs;
   for (int i = 0; i < m.n; ++i) {
     IntVec e(m.n, 0);
@@ -252,30 +274,48 @@ BoxSplineRecurrence::BoxSplineRecurrence(const IntColumns& xi, const RatVec& bas
   }
   for (const auto& nu : knot_plane_normals(xi)) dirs.insert(nu);
   m.prune_dirs.assign(dirs.begin(), dirs.end());
-  for (const auto& dir : m.prune_dirs) {
-    const Rational along = dot(dir, base);
-    m.base_floor.push_back(floor_to_int64(along));
-    m.base_ceil.push_back(-floor_to_int64(Rational(-along)));
-  }
 }
 
 BoxSplineRecurrence::~BoxSplineRecurrence() = default;
 BoxSplineRecurrence::BoxSplineRecurrence(BoxSplineRecurrence&&) noexcept = default;
 BoxSplineRecurrence& BoxSplineRecurrence::operator=(BoxSplineRecurrence&&) noexcept = default;
 
+void BoxSplineRecurrence::set_base(const RatVec& base) {
+  Impl& m = *impl_;
+  if (static_cast<int>(base.size()) != m.n)
+    fail_input("box spline recurrence: the point has " + std::to_string(base.size()) + " coordinates, expected " +
+               std::to_string(m.n));
+  if (!is_generic_point(m.xi, base))
+    fail_input("box spline recurrence: the point lies on a knot plane; the recurrence needs a generic point");
+  m.base = base;
+  m.base_floor.clear();
+  m.base_ceil.clear();
+  for (const auto& dir : m.prune_dirs) {
+    const Rational along = dot(dir, base);
+    m.base_floor.push_back(floor_to_int64(along));
+    m.base_ceil.push_back(-floor_to_int64(Rational(-along)));
+  }
+  m.t_base.clear();
+  m.memo.clear();
+  m.has_base = true;
+}
+
 Rational BoxSplineRecurrence::at_shift(const IntVec& shift) {
+  if (!impl_->has_base) fail_internal("box spline recurrence: at_shift before set_base");
   if (static_cast<int>(shift.size()) != impl_->n) fail_input("box spline recurrence: shift of the wrong dimension");
   Shift s{};
   std::copy(shift.begin(), shift.end(), s.begin());
   return impl_->value(impl_->full_code, s);
 }
 
+Rational BoxSplineRecurrence::value(const RatVec& x) {
+  set_base(x);
+  return at_shift(IntVec(x.size(), 0));
+}
+
 std::size_t BoxSplineRecurrence::memo_size() const { return impl_->memo.size(); }
 
-Rational box_spline_recurrence(const IntColumns& xi, const RatVec& x) {
-  BoxSplineRecurrence rec(xi, x);
-  return rec.at_shift(IntVec(x.size(), 0));
-}
+Rational box_spline_recurrence(const IntColumns& xi, const RatVec& x) { return BoxSplineRecurrence(xi).value(x); }
 
 Rational box_spline_centred_recurrence(const IntColumns& xi, const RatVec& x) {
   validate_columns(xi);

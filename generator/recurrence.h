@@ -23,20 +23,24 @@ std::vector<IntVec> knot_plane_normals(const IntColumns& xi);
 // True if nu.x is not an integer for every normal of knot_plane_normals(xi).
 bool is_generic_point(const IntColumns& xi, const RatVec& x);
 
-// Evaluates M_Xi at base + k for integer vectors k. One memo serves all shifts of the same base,
-// because the recursion only ever moves by integer vectors: sampling a spline at many lattice
-// points (sums of shifts, autocorrelation) then costs little more than one point.
+// The recursion over one direction matrix. What depends only on Xi (the sub-multisets reached,
+// their bases and slabs) is kept across points; the memo of values is per base point. One memo
+// serves all integer shifts of a base, because the recursion only ever moves by integer vectors:
+// sampling a spline at many lattice points (sums of shifts, autocorrelation) then costs little
+// more than one point.
 class BoxSplineRecurrence {
  public:
-  // Throws InputError if xi has a zero column, mixed lengths, rank < n, n outside 1..3, so many
-  // distinct columns that the multiset code overflows, or if base is not generic.
-  BoxSplineRecurrence(const IntColumns& xi, const RatVec& base);
+  // Throws InputError if xi has a zero column, mixed lengths, rank < n, n outside 1..3, or so
+  // many distinct columns that the multiset code overflows.
+  explicit BoxSplineRecurrence(const IntColumns& xi);
   ~BoxSplineRecurrence();
   BoxSplineRecurrence(BoxSplineRecurrence&&) noexcept;
   BoxSplineRecurrence& operator=(BoxSplineRecurrence&&) noexcept;
 
-  Rational at_shift(const IntVec& shift);  // M_Xi(base + shift)
-  std::size_t memo_size() const;           // for measurements
+  Rational value(const RatVec& x);            // M_Xi(x), with a fresh memo
+  void set_base(const RatVec& base);          // clears the memo; throws InputError if not generic
+  Rational at_shift(const IntVec& shift);     // M_Xi(base + shift), sharing the memo
+  std::size_t memo_size() const;              // for measurements
 
  private:
   struct Impl;

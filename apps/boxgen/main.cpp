@@ -1,2 +1,82 @@
-// Placeholder entry point; the real CLI replaces it.
-int main() { return 0; }
+// boxgen: the generator's command-line interface. Every command takes --json; errors are one
+// line on stderr with a non-zero exit code (1: bad input, 2: bad usage, 3: internal failure).
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "apps/boxgen/commands.h"
+#include "generator/error.h"
+
+namespace {
+
+void add_common(CLI::App* cmd, boxgen::cli::Common& c, bool needs_spec = true) {
+  if (needs_spec)
+    cmd->add_option("SPEC", c.spec, "preset name (see `boxgen presets`) or directions \"1,1,1; 1,-1,-1; ...\"")
+        ->required();
+  cmd->add_option("--lattice", c.lattice, "bcc | fcc | cartesian | \"<rows of G>\" (default: the preset's, else cartesian)");
+  cmd->add_flag("--json", c.json, "machine-readable output");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"boxgen: exact analysis of box splines on lattices and code generation for their evaluators"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "boxgen 0.1.0");
+  boxgen::cli::Common c;
+  bool verify = true, no_verify = false;
+  std::vector<std::string> points;
+  std::string derivative, region = "reference", shells, method = "refinement";
+
+  auto* presets = app.add_subcommand("presets", "list the preset direction matrices");
+  presets->add_flag("--json", c.json, "machine-readable output");
+  auto* analyze = app.add_subcommand("analyze", "derive the properties and structure of a box spline");
+  add_common(analyze, c);
+  analyze->add_flag("--no-verify", no_verify, "skip the exact checks (second derivation, integral, symmetry, ...)");
+  auto* eval = app.add_subcommand("eval", "exact value of the filter M = |det G| M^c at points");
+  add_common(eval, c);
+  eval->add_option("--at", points, "a point \"x y z\" (fractions or decimals); repeatable")->required();
+  eval->add_option("--derivative", derivative, "orders \"a b c\" of the partial derivative");
+  auto* bbform = app.add_subcommand("bbform", "stencil and exact BB-coefficients on the reference region");
+  add_common(bbform, c);
+  bbform->add_option("--region", region, "reference (every orbit's reference region) or an orbit index");
+  auto* prefilter = app.add_subcommand("prefilter", "exact quasi-interpolation prefilter on lattice shells");
+  add_common(prefilter, c);
+  prefilter->add_option("--shells", shells, "shells of the lattice, e.g. 0,1 or 0,1,2")->required();
+  auto* autocorr = app.add_subcommand("autocorr", "lattice samples of the doubled box spline (autocorrelation)");
+  add_common(autocorr, c);
+  autocorr->add_option("--method", method, "refinement (default) or continuity");
+  auto* table1 = app.add_subcommand("table1", "derive M12, M8, M7 and print the paper's Table 1 beside ours");
+  table1->add_flag("--json", c.json, "machine-readable output");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::string what = e.what();
+    for (char& ch : what)
+      if (ch == '\n') ch = ' ';
+    std::cerr << "boxgen: usage error: " << what << " (see boxgen --help)\n";
+    return 2;
+  }
+  verify = !no_verify;
+  try {
+    if (presets->parsed()) return boxgen::cli::run_presets(c.json);
+    if (analyze->parsed()) return boxgen::cli::run_analyze(c, verify);
+    if (eval->parsed()) return boxgen::cli::run_eval(c, points, derivative);
+    if (bbform->parsed()) return boxgen::cli::run_bbform(c, region);
+    if (prefilter->parsed()) return boxgen::cli::run_prefilter(c, shells);
+    if (autocorr->parsed()) return boxgen::cli::run_autocorr(c, method);
+    if (table1->parsed()) return boxgen::cli::run_table1(c.json);
+  } catch (const boxgen::InputError& e) {
+    std::cerr << "boxgen: error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "boxgen: internal error: " << e.what() << '\n';
+    return 3;
+  }
+  return 2;
+}

@@ -160,7 +160,8 @@ Rational sum_of_shifts(const IntColumns& xi, const Lattice& lattice, const RatVe
     jlo[i] = floor_to_int64(x[i] - rational_from(hi[i]));
     jhi[i] = floor_to_int64(x[i] - rational_from(lo[i])) + 1;
   }
-  BoxSplineRecurrence rec(xi, x);
+  BoxSplineRecurrence rec(xi);
+  rec.set_base(x);
   Rational sum = 0;
   int nonzero = 0;
   for (const auto& j : lattice.points_in_box(jlo, jhi)) {
@@ -213,7 +214,8 @@ TEST(Recurrence, CentredSplineIsEven) {
 TEST(Recurrence, SharedMemoMatchesFreshEvaluation) {
   GenericPoints gen(31);
   const RatVec x = gen.next(3, -1, 2);
-  BoxSplineRecurrence rec(kM7, x);
+  BoxSplineRecurrence rec(kM7);
+  rec.set_base(x);
   for (const IntVec& j : {IntVec{0, 0, 0}, IntVec{1, 1, 1}, IntVec{-2, 0, 0}, IntVec{1, -1, 1}, IntVec{9, 9, 9}}) {
     RatVec y = x;
     for (int i = 0; i < 3; ++i) y[i] = y[i] + rational_from(j[i]);

@@ -1,0 +1,44 @@
+#include <fmt/core.h>
+
+#include "apps/boxgen/commands.h"
+#include "generator/error.h"
+#include "generator/piece_checks.h"
+#include "generator/piecewise_form.h"
+
+namespace boxgen::cli {
+
+int run_eval(const Common& c, const std::vector<std::string>& points, const std::string& derivative) {
+  const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
+  const int n = spec.dimension();
+  std::array<int, 3> orders{0, 0, 0};
+  if (!derivative.empty()) {
+    const RatVec d = parse_point(derivative, n, "--derivative orders");
+    for (int i = 0; i < n; ++i) {
+      if (!is_integer(d[i]) || cln::minusp(d[i]) || d[i] > 64)
+        fail_input("--derivative orders must be integers from 0 to 64, got '" + derivative + "'");
+      orders[i] = static_cast<int>(floor_to_int64(d[i]));
+    }
+  }
+  std::vector<RatVec> xs;
+  for (const auto& p : points) xs.push_back(parse_point(p, n, "point"));
+  const PiecewiseForm form = derive_piecewise(spec, DerivationMethod::TruncatedPower);
+  const RatVec centre = spline_centre(spec);
+  const Rational scale = Rational(spec.lattice.det_abs());
+  nlohmann::json out = nlohmann::json::array();
+  std::vector<Rational> values;
+  for (const auto& x : xs) {
+    RatVec u = x;  // M(x) = |det G| M_Xi(x + c)
+    for (int i = 0; i < n; ++i) u[i] = u[i] + centre[i];
+    values.push_back(form.value_at(u, orders) * scale);
+  }
+  for (size_t k = 0; k < xs.size(); ++k) {
+    if (c.json)
+      out.push_back({{"x", rational_list(xs[k])}, {"value", to_string(values[k])}, {"value_float", to_double(values[k])}});
+    else
+      fmt::print("{}\n", to_string(values[k]));
+  }
+  if (c.json) print_json(out);
+  return 0;
+}
+
+}  // namespace boxgen::cli

@@ -1,0 +1,32 @@
+// The boxgen subcommands. Each writes its whole result to stdout only after it has been
+// derived, so a failure never leaves half an answer behind.
+#pragma once
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "generator/rational.h"
+
+namespace boxgen::cli {
+
+struct Common {
+  std::string spec;
+  std::string lattice;
+  bool json = false;
+};
+
+int run_presets(bool json);
+int run_analyze(const Common& c, bool verify);
+int run_eval(const Common& c, const std::vector<std::string>& points, const std::string& derivative);
+int run_bbform(const Common& c, const std::string& region);
+int run_prefilter(const Common& c, const std::string& shells);
+int run_autocorr(const Common& c, const std::string& method);
+int run_table1(bool json);
+
+// Shared output helpers.
+nlohmann::json rational_list(const RatVec& v);
+std::string format_point(const IntVec& p);
+void print_json(const nlohmann::json& j);
+
+}  // namespace boxgen::cli
