@@ -1,4 +1,4 @@
-// LeakSanitizer suppressions linked into the fuzz targets (LSan calls this hook at start-up), so
+// LeakSanitizer suppressions linked into every sanitized executable (fuzz targets, tests, CLI) (LSan calls this hook at start-up), so
 // they hold however a fuzzer is run. libcln.so allocates 26 bytes in a static initialiser and
 // never frees them: any program that merely loads CLN reports that leak, and libFuzzer would
 // record every run as a crash. The stack of that allocation has no frame but CLN's malloc
