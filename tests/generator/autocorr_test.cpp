@@ -4,6 +4,7 @@
 
 #include <map>
 
+#include "generator/error.h"
 #include "generator/symmetry.h"
 
 namespace boxgen {
@@ -158,6 +159,12 @@ TEST(Autocorr, FullRefinementIsInvariantAndMatchesOrbitReduction) {
     expect_invariant(spec, full);
     expect_same(full, autocorrelation_refinement(spec), spec.name);
   }
+}
+
+TEST(Autocorr, RejectsDirectionsOutsideTheLattice) {
+  const BoxSplineSpec bad{"bad", "", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}}, Lattice::bcc()};
+  EXPECT_THROW(autocorrelation_refinement(bad), InputError);
+  EXPECT_THROW(autocorrelation_continuity(bad), InputError);
 }
 
 TEST(Autocorr, DoubledSpecRepeatsTheColumns) {

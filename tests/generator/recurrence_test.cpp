@@ -114,6 +114,14 @@ TEST(Recurrence, CourantElementMatchesClosedForm) {
   EXPECT_EQ(box_spline_recurrence(kHex3, p), p[1]);
 }
 
+TEST(Recurrence, OneDimensionalBoxSplineIsTheCardinalBspline) {
+  GenericPoints gen(3);
+  for (int k = 0; k < 50; ++k) {
+    const RatVec x = gen.next(1, -1, 6);
+    EXPECT_EQ(box_spline_recurrence({{1}, {1}, {1}, {1}}, x), cardinal_bspline(4, x[0])) << k;
+  }
+}
+
 TEST(Recurrence, TricubicIsProductOfCubicBsplines) {
   const IntColumns eye = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   const IntColumns xi = concat({eye, eye, eye, eye});

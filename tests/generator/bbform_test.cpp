@@ -1,0 +1,61 @@
+// BB-form: the coefficients reproduce every basis polynomial of every reference region exactly.
+#include <gtest/gtest.h>
+
+#include "generator/bbform.h"
+#include "tests/generator/analysis_fixture.h"
+
+namespace boxgen {
+namespace {
+
+using testing::analysis_of;
+
+TEST(BBForm, RoundTripOnEveryReferenceRegion) {
+  for (const char* preset : testing::kAllPresets) {
+    const Analysis& a = analysis_of(preset);
+    for (const auto& ref : a.structure.references) {
+      const RegionBBForm bb = region_bb_form(ref, a.properties.degree);
+      for (const auto& s : bb.simplices)
+        for (size_t k = 0; k < ref.basis.size(); ++k) {
+          std::vector<Rational> c;
+          for (const auto& row : s.weights) c.push_back(row[k]);
+          EXPECT_EQ(bb_polynomial(c, s.vertices, a.properties.degree), ref.basis[k]) << preset;
+        }
+    }
+  }
+}
+
+TEST(BBForm, M7HasThePapersTable) {
+  // Paper section 4.2 and its supplemental Table 1: 30 stencil points, 35 quartic coefficients.
+  const Analysis& a = analysis_of("m7");
+  const RegionBBForm bb = region_bb_form(a.structure.references.at(0), 4);
+  EXPECT_FALSE(bb.triangulated);
+  ASSERT_EQ(bb.simplices.size(), 1u);
+  EXPECT_EQ(bb.stencil.size(), 30u);
+  EXPECT_EQ(bb.simplices[0].indices.size(), 35u);
+  // Each BB coefficient of the spline of V = 1 is 1 (partition of unity), so each row of the
+  // table sums to 1.
+  for (const auto& row : bb.simplices[0].weights) {
+    Rational sum = 0;
+    for (const auto& w : row) sum = sum + w;
+    EXPECT_EQ(sum, 1);
+  }
+}
+
+TEST(BBForm, CubesAreTriangulated) {
+  const Analysis& a = analysis_of("m12");
+  const RegionBBForm bb = region_bb_form(a.structure.references.at(0), 9);
+  EXPECT_TRUE(bb.triangulated);
+  EXPECT_GE(bb.simplices.size(), 5u);
+}
+
+TEST(BBForm, KnownCoefficientsOfASimplePolynomial) {
+  // x on the unit triangle (0,0),(1,0),(0,1) in degree 2: c = values of x at the domain points
+  // (b1/2): (b0,b1,b2) = (2,0,0):0 (1,1,0):1/2 (1,0,1):0 (0,2,0):1 (0,1,1):1/2 (0,0,2):0.
+  const std::vector<RatVec> tri{{0, 0}, {1, 0}, {0, 1}};
+  const auto c = bb_coefficients(Poly::affine({0, 1, 0}), tri, 2);
+  const std::vector<Rational> expected{0, Rational(1) / 2, 0, 1, Rational(1) / 2, 0};
+  EXPECT_EQ(c, expected);
+}
+
+}  // namespace
+}  // namespace boxgen
