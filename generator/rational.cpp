@@ -13,6 +13,15 @@ namespace boxgen {
 
 namespace {
 
+// What a message repeats of the user's text: at most 40 characters, control characters as '?',
+// so an error stays one line whatever was typed.
+std::string echo(std::string_view s) {
+  std::string out;
+  for (char c : s.substr(0, 40)) out.push_back(std::isprint(static_cast<unsigned char>(c)) ? c : '?');
+  if (s.size() > 40) out += "...";
+  return out;
+}
+
 bool all_digits(std::string_view s) {
   if (s.empty()) return false;
   for (char c : s)
@@ -29,7 +38,7 @@ Integer parse_digits(std::string_view s) {
 
 Rational parse_rational(std::string_view text, std::string_view what) {
   auto bad = [&]() -> Rational {
-    fail_input(std::string("invalid ") + std::string(what) + " '" + std::string(text) +
+    fail_input(std::string("invalid ") + std::string(what) + " '" + echo(text) +
                "': expected an integer, a fraction p/q or a decimal such as -0.25");
   };
   std::string_view s = text;
@@ -46,7 +55,7 @@ Rational parse_rational(std::string_view text, std::string_view what) {
     std::string_view num = s.substr(0, slash), den = s.substr(slash + 1);
     if (!all_digits(num) || !all_digits(den)) return bad();
     Integer d = parse_digits(den);
-    if (cln::zerop(d)) fail_input(std::string(what) + " '" + std::string(text) + "' has a zero denominator");
+    if (cln::zerop(d)) fail_input(std::string(what) + " '" + echo(text) + "' has a zero denominator");
     value = Rational(parse_digits(num)) / Rational(d);
   } else {
     std::string_view mantissa = s, exponent;
@@ -74,7 +83,7 @@ Rational parse_rational(std::string_view text, std::string_view what) {
       }
       if (!all_digits(exponent) || exponent.size() > 4) return bad();
       long e = std::stol(std::string(exponent));
-      if (e > 400) fail_input(std::string(what) + " '" + std::string(text) + "' has an exponent out of range (|e| <= 400)");
+      if (e > 400) fail_input(std::string(what) + " '" + echo(text) + "' has an exponent out of range (|e| <= 400)");
       scale += eneg ? -e : e;
     }
     Rational ten_power = cln::expt(Rational(10), static_cast<long>(scale < 0 ? -scale : scale));
@@ -98,7 +107,7 @@ RatVec parse_point(std::string_view text, int dimension, std::string_view what) 
   }
   flush();
   if (static_cast<int>(out.size()) != dimension)
-    fail_input(std::string("invalid ") + std::string(what) + " '" + std::string(text) + "': expected " +
+    fail_input(std::string("invalid ") + std::string(what) + " '" + echo(text) + "': expected " +
                std::to_string(dimension) + " coordinates, got " + std::to_string(out.size()));
   return out;
 }
