@@ -10,6 +10,7 @@ PACKAGES=(
   libcli11-dev                          # command-line parsing
   libgtest-dev googletest               # unit tests
   libbenchmark-dev                      # benchmarks
+  libteem-dev                           # NRRD volume files (runtime)
   clang libclang-rt-14-dev              # libFuzzer targets (label: fuzz)
 )
 missing=()
