@@ -174,17 +174,6 @@ Rational newton_value(const RatVec& x, RatVec y, std::size_t count, const Ration
   return value;
 }
 
-}  // namespace
-
-BoxSplineSpec doubled_spec(const BoxSplineSpec& spec) {
-  BoxSplineSpec d = spec;
-  d.name = spec.name + " doubled";
-  d.directions.insert(d.directions.end(), spec.directions.begin(), spec.directions.end());
-  return d;
-}
-
-namespace {
-
 // The subdivision operator restricted to the lattice points in the open support.
 struct Subdivision {
   std::vector<IntVec> points;
@@ -230,10 +219,26 @@ void verify_on_all_points(const Subdivision& s, const std::vector<Rational>& v) 
                 std::to_string(nullity) + " modulo three primes)");
 }
 
+// Both methods rely on the columns lying in the lattice: then the centre sum(Xi) and every mask
+// exponent are lattice vectors, and the refinement equations close on lattice points.
+BoxSplineSpec checked_doubled_spec(const BoxSplineSpec& spec) {
+  for (const auto& c : spec.directions)
+    if (static_cast<int>(c.size()) != spec.dimension() || !spec.lattice.contains(c))
+      fail_input("autocorrelation: a direction is not a vector of the " + spec.lattice.name() + " lattice");
+  return doubled_spec(spec);
+}
+
 }  // namespace
 
+BoxSplineSpec doubled_spec(const BoxSplineSpec& spec) {
+  BoxSplineSpec d = spec;
+  d.name = spec.name + " doubled";
+  d.directions.insert(d.directions.end(), spec.directions.begin(), spec.directions.end());
+  return d;
+}
+
 Autocorrelation autocorrelation_refinement(const BoxSplineSpec& spec, const RefinementOptions& options) {
-  const BoxSplineSpec doubled = doubled_spec(spec);
+  const BoxSplineSpec doubled = checked_doubled_spec(spec);
   const int n = spec.dimension();
   const IntColumns& w = doubled.directions;
   Subdivision s;
@@ -299,10 +304,22 @@ Autocorrelation autocorrelation_refinement(const BoxSplineSpec& spec, const Refi
 }
 
 Autocorrelation autocorrelation_continuity(const BoxSplineSpec& spec) {
-  const BoxSplineSpec doubled = doubled_spec(spec);
+  const BoxSplineSpec doubled = checked_doubled_spec(spec);
   const int n = spec.dimension();
   const IntColumns& w = doubled.directions;
   const int degree = static_cast<int>(w.size()) - n;
+  // The recurrence's work grows with the number of sub-multisets of the columns; beyond this
+  // bound (M7 and cart7 have 2187 and take seconds, M12 has 15625 and takes many minutes) the
+  // method would look like a hang, so refuse clearly instead.
+  std::map<IntVec, std::uint64_t> multiplicity;
+  for (const auto& c : w) ++multiplicity[c];
+  std::uint64_t sub_multisets = 1;
+  for (const auto& [c, count] : multiplicity) sub_multisets = std::min<std::uint64_t>(sub_multisets * (count + 1), 1u << 30);
+  if (sub_multisets > kContinuityMaxSubMultisets)
+    fail_input("the continuity method is limited to " + std::to_string(kContinuityMaxSubMultisets) +
+               " sub-multisets of the doubled directions (this spline has " +
+               (sub_multisets >= (1u << 30) ? std::string("more than 2^30") : std::to_string(sub_multisets)) +
+               "); use the refinement method");
 
   // v = (1, P, P^2) with P > max|nu_i| gives nu.v != 0 for every knot normal (nu_0 = 0 mod P,
   // then nu_1 = 0 mod P, ...); then eps |nu.v| < 1 keeps x0 + eps v, eps in (0, eps_max], inside one

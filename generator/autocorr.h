@@ -33,6 +33,9 @@ struct RefinementOptions {
   bool verify_on_all_points = true;
 };
 
+// Both methods throw InputError if a direction is not a lattice vector (parse_spec rejects that
+// already; hand-built specs are checked again because the methods depend on it).
+//
 // The eigenvector of eigenvalue 1 of the subdivision operator restricted to the lattice points
 // in the open support, normalised so the samples sum to 1/|det G|. Throws InternalError if the
 // eigenvalue is not simple or a sample is not positive.
@@ -41,7 +44,11 @@ Autocorrelation autocorrelation_refinement(const BoxSplineSpec& spec, const Refi
 // The limit of M^c_{Xi ∪ Xi}(x0 + eps v) as eps -> 0 along a generic direction v, from exact
 // recurrence values at deg+1 small eps (one polynomial cell) interpolated in eps, confirmed by
 // two more samples. Scans every lattice point of the support's bounding box, so it also checks
-// where the samples vanish. Practical for up to about 16 doubled columns (M7, M8).
+// where the samples vanish. Its cost grows with the number of sub-multisets of the doubled
+// columns, prod over distinct columns of (multiplicity + 1): M7 and cart7 2187 (seconds), M8 625,
+// M12 15625 (many minutes). Above kContinuityMaxSubMultisets it throws InputError rather than
+// appear to hang.
+inline constexpr unsigned kContinuityMaxSubMultisets = 4096;
 Autocorrelation autocorrelation_continuity(const BoxSplineSpec& spec);
 
 }  // namespace boxgen

@@ -89,9 +89,13 @@ TEST(Autocorr, RefinementAndContinuityAgreeOnM8) {
   expect_invariant(m8(), c);
 }
 
-TEST(Autocorr, RefinementAndContinuityAgreeIn2D) {
-  expect_same(autocorrelation_refinement(hex3()), autocorrelation_continuity(hex3()), "hex3");
-  expect_same(autocorrelation_refinement(zp()), autocorrelation_continuity(zp()), "zp");
+TEST(Autocorr, RefinementAndContinuityAgreeOnFcc6AndIn2D) {
+  for (const auto& spec : {fcc6(), hex3(), zp()})
+    expect_same(autocorrelation_refinement(spec), autocorrelation_continuity(spec), spec.name);
+}
+
+TEST(Autocorr, ContinuityRefusesSplinesTooLargeForIt) {
+  EXPECT_THROW(autocorrelation_continuity(m12()), InputError);  // 5^6 sub-multisets
 }
 
 // The known value quoted in design.md 9b.
