@@ -70,17 +70,18 @@ inline std::int64_t floor_div(std::int64_t a, std::int64_t b) {
 
 template <class T>
 int locate(int cube, const T* r) {
-  double v[kNormalCount + 1];
+  double v[kNormalCount + 1] = {};
+  bool in_range = true;
   int index = 0;
   for (int k = 0; k < kNormalCount; ++k) {
     double s = 0;
     for (int i = 0; i < kDimension; ++i) s += kNormals[k][i] * static_cast<double>(r[i]);
     v[k] = s;
     const int f = static_cast<int>(std::floor(s)) - kNormalMin[k];
-    if (f < 0 || f >= kNormalStride[k + 1] / kNormalStride[k]) { index = -1; break; }
-    index += f * kNormalStride[k];
+    if (f < 0 || f >= kNormalStride[k + 1] / kNormalStride[k]) in_range = false;
+    else index += f * kNormalStride[k];
   }
-  if (index >= 0 && kLookup[cube][index] >= 0) return kLookup[cube][index];
+  if (in_range && kLookup[cube][index] >= 0) return kLookup[cube][index];
   // Rounding put r on an empty key combination (it lies on a knot plane): take the cell of this
   // cube whose slabs it violates least. The spline is continuous there, so either side is right.
   int best = -1;
@@ -418,7 +419,7 @@ T evaluate(const std::array<T, kDimension>& x, Fetch&& fetch, std::array<T, kDim
   T xr[kDimension];
   for (int i = 0; i < kDimension; ++i)
     xr[i] = static_cast<T>(cell.sign[i]) * (x[cell.perm[i]] - static_cast<T>(t[cell.perm[i]])) + static_cast<T>(cell.a[i]);
-  T v[kStencilSize];
+  T v[kStencilSize] = {};  // orbits with smaller stencils leave the tail unused
   for (int k = 0; k < kOrbitStencilSize[cell.orbit]; ++k) {
     Point j;  // j = g^-1 (j_ref - a) + t
     for (int i = 0; i < kDimension; ++i)

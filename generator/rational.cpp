@@ -5,6 +5,7 @@
 #include <cln/real.h>
 
 #include <cctype>
+#include <cmath>
 #include <sstream>
 
 #include "generator/error.h"
@@ -119,6 +120,13 @@ std::string to_string(const Rational& r) {
 }
 
 double to_double(const Rational& r) { return cln::double_approx(r); }
+
+Rational exact_rational(double d) {
+  int e = 0;
+  const double f = std::frexp(d, &e);  // d = f 2^e, |f| in [0.5, 1): f 2^53 is an integer
+  const Rational mantissa = Rational(static_cast<long long>(std::ldexp(f, 53)));
+  return e >= 53 ? Rational(mantissa * cln::expt(Rational(2), e - 53)) : Rational(mantissa / cln::expt(Rational(2), 53 - e));
+}
 
 bool is_integer(const Rational& r) { return cln::denominator(r) == 1; }
 

@@ -22,6 +22,8 @@ RatVec parse_point(std::string_view text, int dimension, std::string_view what =
 
 std::string to_string(const Rational& r);  // "p/q" or "p"
 double to_double(const Rational& r);
+// The exact value of a finite double.
+Rational exact_rational(double d);
 Rational floor_rational(const Rational& r);  // as a rational integer
 bool is_integer(const Rational& r);
 std::int64_t floor_to_int64(const Rational& r);

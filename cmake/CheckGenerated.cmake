@@ -1,0 +1,15 @@
+# Fails if generated/ differs from a fresh emission (cmake -P script, run by the test
+# GeneratedHeadersAreFresh). Regenerate with: cmake --build build --target regenerate
+foreach(name m7 m8 m12)
+  execute_process(COMMAND ${BOXGEN} emit ${name} --name ${name} --out ${WORK} RESULT_VARIABLE rc OUTPUT_QUIET)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "boxgen emit ${name} failed (${rc})")
+  endif()
+  foreach(file ${name}.hpp ${name}_prefilters.hpp)
+    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/${file} ${SOURCE}/${file} RESULT_VARIABLE diff)
+    if(NOT diff EQUAL 0)
+      message(FATAL_ERROR "generated/${file} is stale: run `cmake --build build --target regenerate` and commit it")
+    endif()
+  endforeach()
+endforeach()
+message(STATUS "generated/ matches a fresh emission")

@@ -1,0 +1,216 @@
+// Emitted evaluators (value and gradient, double and float) against the exact rational spline
+// s(x) = sum_j V(j) M(x - j) computed from the generator's piecewise form (cell lookup by key,
+// not the emitted tables), at 1000 points per filter, half of them within 1e-3 of a knot plane.
+// Points are dyadic (multiples of 2^-20, |x| < 4), so float and double hold them exactly and the
+// comparison is with the exact value at the very point evaluated. V is an integer hash, so every
+// stencil weight matters. Tolerances, relative to max|V| = 1000: double 1e-13, float 2e-6.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <random>
+
+#include "emitted/cart7.hpp"
+#include "emitted/fcc6.hpp"
+#include "emitted/tricubic.hpp"
+#include "emitted/zp.hpp"
+#include "generated/m12.hpp"
+#include "generated/m7.hpp"
+#include "generated/m8.hpp"
+#include "generator/piece_checks.h"
+#include "generator/piecewise_form.h"
+
+namespace boxgen {
+namespace {
+
+constexpr double kMaxV = 1000;
+
+double data_value(const IntVec& j) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (auto v : j) h = (h ^ static_cast<std::uint64_t>(v + 4096)) * 1099511628211ull;
+  return static_cast<double>(h % 2001) - kMaxV;
+}
+
+// A polynomial as integer numerators over one denominator: evaluating it at X / 2^20 needs
+// integer products only (rational arithmetic would normalise by a gcd at every step).
+struct IntegerPoly {
+  int n = 0, degree = 0;
+  std::vector<Exponent> exponents;
+  std::vector<Integer> numerators;
+  Integer denominator = 1;
+
+  explicit IntegerPoly(const Poly& p) : n(p.vars()), degree(std::max(p.degree(), 0)) {
+    const auto& ex = monomial_exponents(n, p.capacity());
+    for (std::size_t i = 0; i < p.coefficients().size(); ++i)
+      if (!cln::zerop(p.coefficients()[i])) denominator = cln::lcm(denominator, cln::denominator(p.coefficients()[i]));
+    for (std::size_t i = 0; i < p.coefficients().size(); ++i) {
+      const Rational& c = p.coefficients()[i];
+      if (cln::zerop(c)) continue;
+      exponents.push_back(ex[i]);
+      numerators.push_back(cln::numerator(c) * cln::exquo(denominator, cln::denominator(c)));
+    }
+  }
+  // p(X / D) with D = 2^shift, X integers.
+  Rational eval(const std::vector<Integer>& x, int shift) const {
+    std::vector<std::vector<Integer>> pw(n, std::vector<Integer>(degree + 1));
+    for (int i = 0; i < n; ++i) {
+      pw[i][0] = 1;
+      for (int e = 1; e <= degree; ++e) pw[i][e] = pw[i][e - 1] * x[i];
+    }
+    Integer sum = 0;
+    for (std::size_t t = 0; t < numerators.size(); ++t) {
+      Integer term = numerators[t];
+      int total = 0;
+      for (int i = 0; i < n; ++i) {
+        term = term * pw[i][exponents[t][i]];
+        total += exponents[t][i];
+      }
+      sum = sum + cln::ash(term, shift * (degree - total));  // times D^(degree - |e|)
+    }
+    return Rational(sum) / Rational(cln::ash(denominator, shift * degree));
+  }
+};
+
+constexpr int kShift = 20;  // test points are multiples of 2^-20
+
+struct Exact {
+  Rational value;
+  RatVec gradient;
+};
+
+class Reference {
+ public:
+  explicit Reference(const std::string& preset)
+      : spec_(parse_spec(preset)), form_(derive_piecewise(spec_, DerivationMethod::TruncatedPower)),
+        centre_(spline_centre(spec_)) {}
+  int dimension() const { return spec_.dimension(); }
+  const PiecewiseForm& form() const { return form_; }
+  const RatVec& centre() const { return centre_; }
+
+  Exact at(const RatVec& x) const {
+    const int n = dimension();
+    Exact e{0, RatVec(n, 0)};
+    IntVec lo(n), hi(n);
+    for (int i = 0; i < n; ++i) {
+      lo[i] = floor_to_int64(x[i] + centre_[i]) - form_.complex.hi()[i];
+      hi[i] = floor_to_int64(x[i] + centre_[i]) - form_.complex.lo()[i] + 1;
+    }
+    const Rational det = Rational(spec_.lattice.det_abs());
+    for (const auto& j : spec_.lattice.points_in_box(lo, hi)) {
+      RatVec u(n);
+      for (int i = 0; i < n; ++i) u[i] = x[i] - Rational(j[i]) + centre_[i];
+      const int cell = form_.complex.find(floor_key(form_.complex.normals(), u));
+      if (cell < 0 || form_.polys[cell].is_zero()) continue;
+      // The splines tested are C^1, so any cell whose closure holds u gives the value and gradient.
+      const Rational v = Rational(static_cast<long>(data_value(j))) * det;
+      std::vector<Integer> scaled(n);
+      for (int i = 0; i < n; ++i) {
+        const Rational s = u[i] * Rational(1L << kShift);
+        if (!is_integer(s)) ADD_FAILURE() << "test point off the 2^-20 grid";
+        scaled[i] = cln::numerator(s);
+      }
+      const auto& polys = polys_of(cell);
+      e.value = e.value + v * polys[0].eval(scaled, kShift);
+      for (int d = 0; d < n; ++d) e.gradient[d] = e.gradient[d] + v * polys[d + 1].eval(scaled, kShift);
+    }
+    return e;
+  }
+
+ private:
+  // The cell's polynomial and its partial derivatives, in integer form.
+  const std::vector<IntegerPoly>& polys_of(int cell) const {
+    auto it = cache_.find(cell);
+    if (it == cache_.end()) {
+      std::vector<IntegerPoly> g{IntegerPoly(form_.polys[cell])};
+      for (int d = 0; d < dimension(); ++d) g.emplace_back(form_.polys[cell].derivative(d));
+      it = cache_.emplace(cell, std::move(g)).first;
+    }
+    return it->second;
+  }
+
+  mutable std::map<int, std::vector<IntegerPoly>> cache_;
+  BoxSplineSpec spec_;
+  PiecewiseForm form_;
+  RatVec centre_;
+};
+
+// Dyadic points in a few unit cells around the origin; every other one moved along an axis to
+// within 1e-3 of a random knot plane so region boundaries are exercised.
+std::vector<RatVec> test_points(const Reference& ref, int count) {
+  std::mt19937_64 rng(2024);
+  const int n = ref.dimension();
+  const auto& normals = ref.form().complex.normals();
+  const Rational unit = Rational(1) / Rational(1L << 20);
+  std::vector<RatVec> out;
+  for (int k = 0; k < count; ++k) {
+    RatVec x(n);
+    for (int i = 0; i < n; ++i) x[i] = Rational(static_cast<long>(rng() % (6L << 20)) - (3L << 20)) * unit;
+    if (k % 2) {
+      const IntVec& nu = normals[rng() % normals.size()];
+      int axis = 0;
+      while (nu[axis] == 0) ++axis;
+      RatVec u(n);
+      for (int i = 0; i < n; ++i) u[i] = x[i] + ref.centre()[i];
+      const Rational s = dot(nu, u);
+      const Rational target = floor_rational(s) + Rational(static_cast<long>(rng() % 2));
+      const Rational offset = Rational(static_cast<long>(rng() % 2001) - 1000) * unit;
+      x[axis] = x[axis] + (target - s) / Rational(nu[axis]);
+      x[axis] = floor_rational(x[axis] / unit) * unit + offset;  // back onto the 2^-20 grid
+    }
+    out.push_back(x);
+  }
+  return out;
+}
+
+template <class T, int N, class Evaluate>
+void check_filter(const std::string& preset, Evaluate evaluate, double tolerance) {
+  const Reference ref(preset);
+  ASSERT_EQ(ref.dimension(), N);
+  double worst = 0, worst_gradient = 0;
+  for (const auto& x : test_points(ref, 1000)) {
+    const Exact e = ref.at(x);
+    std::array<T, N> xt;
+    for (int i = 0; i < N; ++i) xt[i] = static_cast<T>(to_double(x[i]));
+    for (int i = 0; i < N; ++i) ASSERT_EQ(exact_rational(static_cast<double>(xt[i])), x[i]) << "not representable";
+    const Exact& er = e;
+    std::array<T, N> g;
+    const T v = evaluate(xt, &g);
+    worst = std::max(worst, std::abs(static_cast<double>(v) - to_double(er.value)));
+    for (int d = 0; d < N; ++d)
+      worst_gradient = std::max(worst_gradient, std::abs(static_cast<double>(g[d]) - to_double(er.gradient[d])));
+  }
+  EXPECT_LE(worst / kMaxV, tolerance) << preset << " value";
+  EXPECT_LE(worst_gradient / kMaxV, tolerance) << preset << " gradient";
+  ::testing::Test::RecordProperty("max_relative_error", std::to_string(worst / kMaxV));
+}
+
+#define BOXGEN_EMITTED_TEST(NS, PRESET, N)                                                              \
+  TEST(Emitted, NS##Double) {                                                                          \
+    check_filter<double, N>(                                                                           \
+        PRESET,                                                                                        \
+        [](const std::array<double, N>& x, std::array<double, N>* g) {                                 \
+          return generated::NS::evaluate<double>(                                                      \
+              x, [](const generated::NS::Point& j) { return data_value(IntVec(j.begin(), j.end())); }, g); \
+        },                                                                                             \
+        1e-13);                                                                                        \
+  }                                                                                                    \
+  TEST(Emitted, NS##Float) {                                                                           \
+    check_filter<float, N>(                                                                            \
+        PRESET,                                                                                        \
+        [](const std::array<float, N>& x, std::array<float, N>* g) {                                   \
+          return generated::NS::evaluate<float>(                                                       \
+              x, [](const generated::NS::Point& j) { return data_value(IntVec(j.begin(), j.end())); }, g); \
+        },                                                                                             \
+        2e-6);                                                                                         \
+  }
+
+BOXGEN_EMITTED_TEST(m7, "m7", 3)
+BOXGEN_EMITTED_TEST(m8, "m8", 3)
+BOXGEN_EMITTED_TEST(m12, "m12", 3)
+BOXGEN_EMITTED_TEST(cart7, "cart7", 3)
+BOXGEN_EMITTED_TEST(fcc6, "fcc6", 3)
+BOXGEN_EMITTED_TEST(tricubic, "tricubic", 3)
+BOXGEN_EMITTED_TEST(zp, "zp", 2)
+
+}  // namespace
+}  // namespace boxgen
