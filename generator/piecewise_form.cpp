@@ -1,5 +1,7 @@
 #include "generator/piecewise_form.h"
 
+#include <fmt/format.h>
+
 #include <chrono>
 
 #include "generator/error.h"
@@ -73,7 +75,37 @@ Rational PiecewiseForm::value_at(const RatVec& x, const std::array<int, 3>& deri
   return *value;
 }
 
+void check_derivation_size(const BoxSplineSpec& spec) {
+  // Refuse up front what would not finish: the number of fine cells in the bounding box is at
+  // most (unit cubes) x (cells of an arrangement of P planes, P = knot planes crossing a cube),
+  // and each cell holds a polynomial of monomial_count(n, degree) exact coefficients.
+  const int n = spec.dimension();
+  constexpr int kMaxDegree = 24;  // 24 tensor directions (degree 21) take about 15 s here
+  if (spec.count() - n > kMaxDegree)
+    fail_input(fmt::format("too large to derive exactly: degree {} (limit {}); use fewer directions", spec.count() - n,
+                           kMaxDegree));
+  Zonotope support(spec.directions, n);
+  double cubes = 1;
+  for (int i = 0; i < n; ++i) cubes *= static_cast<double>(support.box_hi()[i] - support.box_lo()[i]);
+  double planes = 0;
+  for (const auto& nu : knot_normals(spec.directions, n)) {
+    std::int64_t width = 0;
+    for (auto v : nu) width += v < 0 ? -v : v;
+    planes += static_cast<double>(width - 1);
+  }
+  double per_cube = 1 + planes + planes * (planes - 1) / 2;
+  if (n == 3) per_cube += planes * (planes - 1) * (planes - 2) / 6;
+  const double work =
+      cubes * per_cube * static_cast<double>(monomial_count(n, spec.count() - n));
+  constexpr double kLimit = 2e7;  // about 30 times the work of M8
+  if (work > kLimit)
+    fail_input(fmt::format("too large to derive exactly: about {:.2g} cell coefficients (limit {:.0g}; M8 needs 7e5); "
+                           "use fewer directions or smaller entries",
+                           work, kLimit));
+}
+
 PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method) {
+  check_derivation_size(spec);
   const auto start = std::chrono::steady_clock::now();
   const int n = spec.dimension();
   Zonotope support(spec.directions, n);

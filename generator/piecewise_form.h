@@ -43,6 +43,8 @@ struct PiecewiseForm {
   Poly zero_;
 };
 
+// Throws InputError if the derivation would be too large to finish in reasonable time.
+void check_derivation_size(const BoxSplineSpec& spec);
 PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method);
 
 }  // namespace boxgen

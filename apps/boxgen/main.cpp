@@ -2,6 +2,7 @@
 // line on stderr with a non-zero exit code (1: bad input, 2: bad usage, 3: internal failure).
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
 #include <iostream>
 
 #include "apps/boxgen/commands.h"
@@ -19,7 +20,23 @@ void add_common(CLI::App* cmd, boxgen::cli::Common& c, bool needs_spec = true) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// Output goes through both iostreams and stdio (fmt): both are flushed and checked, so a full
+// disk or a closed pipe is an error, not a silent success with a truncated file.
+int finish(int code) {
+  std::cout.flush();
+  const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+  if (failed && code == 0) {
+    std::cerr << "boxgen: error: could not write the output (disk full or closed pipe?)\n";
+    return 1;
+  }
+  return code;
+}
+
+int run(int argc, char** argv);
+
+int main(int argc, char** argv) { return finish(run(argc, argv)); }
+
+int run(int argc, char** argv) {
   CLI::App app{"boxgen: exact analysis of box splines on lattices and code generation for their evaluators"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "boxgen 0.1.0");
