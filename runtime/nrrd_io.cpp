@@ -1,0 +1,394 @@
+#include "runtime/nrrd_io.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <teem/biff.h>
+#include <teem/nrrd.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <type_traits>
+
+namespace boxgen::runtime {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Teem reports errors through biff, a global message store: one lock for every Teem call.
+std::mutex& teem_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+// Text from a file or path, made fit for a one-line message: control characters become '?',
+// and at most `limit` characters are kept.
+std::string printable(std::string_view text, std::size_t limit = 200) {
+  std::string out;
+  for (char ch : text.substr(0, limit)) out += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
+  if (text.size() > limit) out += "...";
+  return out;
+}
+
+// Teem's biff message is several lines, outermost call first ("[nrrd] nrrdRead: trouble", ...,
+// "[nrrd] _nrrdEncodingRaw_read: fread got only ..."): keep the innermost line that says
+// something, without its "[nrrd] function: " prefix.
+std::string teem_error() {
+  char* raw = biffGetDone(NRRD);
+  const std::string all = raw ? raw : "";
+  std::free(raw);
+  std::string best;
+  std::size_t start = 0;
+  while (start < all.size()) {
+    std::size_t end = all.find('\n', start);
+    if (end == std::string::npos) end = all.size();
+    std::string_view line(all.data() + start, end - start);
+    start = end + 1;
+    if (line.starts_with("[")) {
+      const std::size_t bracket = line.find("] ");
+      if (bracket != std::string_view::npos) line.remove_prefix(bracket + 2);
+      const std::size_t colon = line.find(':');
+      if (colon != std::string_view::npos && line.substr(0, colon).find(' ') == std::string_view::npos) line.remove_prefix(colon + 1);
+    }
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front()))) line.remove_prefix(1);
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.remove_suffix(1);
+    if (!line.empty()) best = std::string(line);
+  }
+  return best.empty() ? std::string("Teem reported an unspecified error") : printable(best);
+}
+
+struct NrrdDeleter {
+  void operator()(Nrrd* n) const { nrrdNuke(n); }  // frees the data too
+};
+struct NrrdShellDeleter {
+  void operator()(Nrrd* n) const { nrrdNix(n); }  // the data belongs to someone else
+};
+struct IoStateDeleter {
+  void operator()(NrrdIoState* s) const { nrrdIoStateNix(s); }
+};
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using NrrdOwner = std::unique_ptr<Nrrd, NrrdDeleter>;
+using NrrdShell = std::unique_ptr<Nrrd, NrrdShellDeleter>;
+using IoState = std::unique_ptr<NrrdIoState, IoStateDeleter>;
+using File = std::unique_ptr<std::FILE, FileCloser>;
+
+template <class T>
+constexpr int teem_type() {
+  return std::is_same_v<T, float> ? nrrdTypeFloat : nrrdTypeDouble;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writing
+
+// Creates a temporary file next to `path`, lets `write` fill it, and renames it over `path`.
+// On any failure the temporary file is removed and NrrdError is thrown.
+void write_atomically(const fs::path& path, const std::function<bool(std::FILE*)>& write) {
+  const std::string shown = printable(path.string());
+  auto fail = [&](const std::string& why) { throw NrrdError("cannot write '" + shown + "': " + why); };
+  const std::string name = path.filename().string();
+  if (name.empty() || name == "." || name == "..") fail("not a file name");
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+
+  static std::atomic<unsigned> counter{0};
+  fs::path temp;
+  int fd = -1;
+  for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
+    temp = dir / fmt::format(".{}.tmp-{}-{}", name, static_cast<long>(::getpid()), counter++);
+    fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0 && errno != EEXIST) fail(std::strerror(errno));
+  }
+  if (fd < 0) fail("could not create a temporary file next to it");
+
+  std::FILE* file = ::fdopen(fd, "wb");
+  if (!file) {
+    const int error = errno;
+    ::close(fd);
+    ::unlink(temp.c_str());
+    fail(std::strerror(error));
+  }
+  std::string problem;
+  if (!write(file))
+    problem = teem_error();
+  else if (std::fflush(file) != 0 || std::ferror(file) || ::fsync(::fileno(file)) != 0)
+    problem = std::strerror(errno);
+  if (std::fclose(file) != 0 && problem.empty()) problem = std::strerror(errno);
+  if (problem.empty() && std::rename(temp.c_str(), path.c_str()) != 0) problem = std::strerror(errno);
+  if (!problem.empty()) {
+    ::unlink(temp.c_str());
+    fail(problem);
+  }
+}
+
+bool write_nrrd(std::FILE* file, const Nrrd* nrrd) {
+  IoState io(nrrdIoStateNew());
+  if (!io) return false;
+  io->format = nrrdFormatNRRD;
+  io->encoding = nrrdEncodingRaw;
+  return nrrdWrite(file, nrrd, io.get()) == 0;
+}
+
+// Wraps `data` (not copied, not freed) in a Nrrd with the given sizes, space directions and
+// origin in a 3-D right-handed space.
+template <class T>
+NrrdShell wrap(const T* data, unsigned dim, const std::size_t* sizes) {
+  NrrdShell nrrd(nrrdNew());
+  if (!nrrd || nrrdWrap_nva(nrrd.get(), const_cast<T*>(data), teem_type<T>(), dim, sizes) != 0 ||
+      nrrdSpaceSet(nrrd.get(), nrrdSpace3DRightHanded) != 0)
+    throw NrrdError("cannot describe the volume to Teem: " + teem_error());
+  for (unsigned a = 0; a < dim; ++a)
+    for (int b = 0; b < 3; ++b) nrrd->axis[a].spaceDirection[b] = AIR_NAN;
+  return nrrd;
+}
+
+void set_origin(Nrrd* nrrd, const Vec3& origin) {
+  double o[3] = {origin[0], origin[1], origin[2]};
+  if (nrrdSpaceOriginSet(nrrd, o) != 0) throw NrrdError("cannot describe the volume to Teem: " + teem_error());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading
+
+constexpr std::size_t kMaxHeaderBytes = std::size_t{1} << 20;
+
+// The header as Teem will read it (lines end at "\n", "\r" or "\r\n"; Teem keeps a line only up
+// to its first NUL; the header ends at the first empty line). Returns true if a line names a
+// detached data file: the field "data file" or "datafile" in any case or spacing (checked
+// loosely, so that anything Teem could take for that field is caught). Sets header_complete when
+// the empty line that ends the header lies within `head`.
+bool header_names_data_file(std::string_view head, bool& header_complete) {
+  header_complete = false;
+  std::size_t pos = 0;
+  while (pos < head.size()) {
+    std::size_t end = head.find_first_of("\r\n", pos);
+    const bool terminated = end != std::string_view::npos;
+    if (!terminated) end = head.size();  // scanned too: a later Teem may keep an unterminated line
+    std::string_view line = head.substr(pos, end - pos);
+    pos = end + 1;
+    if (terminated && head[end] == '\r' && pos < head.size() && head[pos] == '\n') ++pos;
+    if (terminated && line.empty()) {
+      header_complete = true;
+      return false;
+    }
+    line = line.substr(0, line.find('\0'));
+    if (line.starts_with("#")) continue;
+    std::string squeezed;
+    for (char ch : line)
+      if (!std::isspace(static_cast<unsigned char>(ch))) squeezed += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (squeezed.find("datafile:") != std::string::npos) return true;
+  }
+  return false;
+}
+
+struct BccHeader {
+  Sizes sizes;
+  double h;
+  Vec3 origin;
+  int type;  // nrrdTypeFloat or nrrdTypeDouble
+  std::uint64_t data_bytes;
+};
+
+// Checks that `nrrd` describes a BCC volume; returns what it says or an error text.
+std::string check_bcc_header(const Nrrd* nrrd, BccHeader& header) {
+  if (nrrd->dim != 4)
+    return fmt::format("it has dimension {}; a BCC volume is a 4-D NRRD (sizes 2 N0 N1 N2, the coset axis first)", nrrd->dim);
+  if (nrrd->axis[0].size != 2)
+    return fmt::format("axis 0 has size {}; the coset axis of a BCC volume must have size 2", nrrd->axis[0].size);
+  std::uint64_t count = 2;
+  for (int a = 0; a < 3; ++a) {
+    const std::size_t n = nrrd->axis[a + 1].size;
+    if (n < 1 || n > static_cast<std::size_t>(BccVolume<double>::kMaxSize))
+      return fmt::format("axis {} has size {} (each must be in 1..{})", a + 1, n, BccVolume<double>::kMaxSize);
+    header.sizes[a] = static_cast<int>(n);
+    count *= n;
+    if (count > BccVolume<double>::kMaxSamples)
+      return fmt::format("its {} x {} x {} x {} samples are too many (at most {})", nrrd->axis[0].size, nrrd->axis[1].size,
+                         nrrd->axis[2].size, nrrd->axis[3].size, BccVolume<double>::kMaxSamples);
+  }
+  if (nrrd->type != nrrdTypeFloat && nrrd->type != nrrdTypeDouble)
+    return fmt::format("its sample type '{}' is not supported (float or double)", printable(airEnumStr(nrrdType, nrrd->type)));
+  header.type = nrrd->type;
+  header.data_bytes = count * (nrrd->type == nrrdTypeFloat ? 4 : 8);
+
+  if (nrrd->spaceDim != 3)
+    return "it has no 3-D space directions; a BCC volume needs 'space directions: none (2h,0,0) (0,2h,0) (0,0,2h)'";
+  for (int b = 0; b < 3; ++b)
+    if (!std::isnan(nrrd->axis[0].spaceDirection[b])) return "axis 0 (the coset axis) must have the space direction 'none'";
+  const double d = nrrd->axis[1].spaceDirection[0];
+  bool consistent = std::isfinite(d) && d / 2 > 0;  // h = d/2 must not underflow to 0
+  for (int a = 0; a < 3 && consistent; ++a)
+    for (int b = 0; b < 3; ++b) {
+      const double v = nrrd->axis[a + 1].spaceDirection[b];
+      const double expected = a == b ? d : 0.0;
+      // A relative tolerance admits files whose writer printed 2h with fewer digits.
+      if (!std::isfinite(v) || std::fabs(v - expected) > 1e-9 * d) consistent = false;
+    }
+  if (!consistent) {
+    const auto& s = nrrd->axis;
+    return fmt::format("its space directions ({},{},{}) ({},{},{}) ({},{},{}) are not (2h,0,0) (0,2h,0) (0,0,2h) for one h > 0",
+                       s[1].spaceDirection[0], s[1].spaceDirection[1], s[1].spaceDirection[2], s[2].spaceDirection[0],
+                       s[2].spaceDirection[1], s[2].spaceDirection[2], s[3].spaceDirection[0], s[3].spaceDirection[1],
+                       s[3].spaceDirection[2]);
+  }
+  header.h = d / 2;
+  for (int b = 0; b < 3; ++b) {
+    header.origin[b] = nrrd->spaceOrigin[b];
+    if (!std::isfinite(header.origin[b])) return "its space origin is missing or not finite";
+  }
+
+  char* lattice = nrrdKeyValueGet(nrrd, "lattice");
+  const std::string value = lattice ? lattice : "";
+  const bool present = lattice != nullptr;
+  std::free(lattice);
+  if (!present) return "the key/value 'lattice:=bcc' that marks a BCC volume is missing";
+  if (value != "bcc") return fmt::format("its lattice is '{}', not 'bcc'", printable(value, 40));
+  return {};
+}
+
+// Reads `file` (from its start) into `nrrd`, header only or whole; returns an error text or "".
+std::string teem_read(std::FILE* file, Nrrd* nrrd, bool header_only, long& data_start) {
+  std::rewind(file);
+  IoState io(nrrdIoStateNew());
+  if (!io) return "out of memory";
+  io->skipData = header_only ? 1 : 0;
+  if (nrrdRead(nrrd, file, io.get()) != 0) return teem_error();
+  if (io->format != nrrdFormatNRRD) return "not a NRRD file";
+  if (io->dataFNArr && io->dataFNArr->len != 0) return "detached data files are not supported; keep the data in the .nrrd file";
+  data_start = io->encoding == nrrdEncodingRaw ? std::ftell(file) : -1;
+  return {};
+}
+
+}  // namespace
+
+template <class T>
+void write_bcc_nrrd(const fs::path& path, const BccVolume<T>& volume) {
+  std::lock_guard lock(teem_mutex());
+  const Sizes& n = volume.sizes();
+  const std::size_t sizes[4] = {2, static_cast<std::size_t>(n[0]), static_cast<std::size_t>(n[1]), static_cast<std::size_t>(n[2])};
+  NrrdShell nrrd = wrap(volume.samples().data(), 4, sizes);
+  nrrd->axis[0].kind = nrrdKindList;
+  for (int a = 0; a < 3; ++a) {
+    nrrd->axis[a + 1].kind = nrrdKindDomain;
+    for (int b = 0; b < 3; ++b) nrrd->axis[a + 1].spaceDirection[b] = a == b ? 2 * volume.spacing() : 0.0;
+  }
+  set_origin(nrrd.get(), volume.origin());
+  if (nrrdKeyValueAdd(nrrd.get(), "lattice", "bcc") != 0) throw NrrdError("cannot describe the volume to Teem: " + teem_error());
+  write_atomically(path, [&](std::FILE* file) { return write_nrrd(file, nrrd.get()); });
+}
+
+template <class T>
+void write_cartesian_nrrd(const fs::path& path, const CartesianVolume<T>& grid) {
+  std::uint64_t count = 1;
+  for (int a = 0; a < 3; ++a) {
+    if (grid.sizes[a] < 1) throw std::invalid_argument(fmt::format("Cartesian grid size {} on axis {} must be at least 1", grid.sizes[a], a));
+    count *= static_cast<std::uint64_t>(grid.sizes[a]);
+    if (!std::isfinite(grid.spacing[a]) || grid.spacing[a] <= 0)
+      throw std::invalid_argument(fmt::format("Cartesian grid spacing {} on axis {} must be finite and positive", grid.spacing[a], a));
+    if (!std::isfinite(grid.origin[a])) throw std::invalid_argument(fmt::format("Cartesian grid origin on axis {} is not finite", a));
+  }
+  if (count != grid.values.size())
+    throw std::invalid_argument(fmt::format("Cartesian grid of {} x {} x {} holds {} values", grid.sizes[0], grid.sizes[1], grid.sizes[2],
+                                            grid.values.size()));
+  std::lock_guard lock(teem_mutex());
+  const std::size_t sizes[3] = {static_cast<std::size_t>(grid.sizes[0]), static_cast<std::size_t>(grid.sizes[1]),
+                                static_cast<std::size_t>(grid.sizes[2])};
+  NrrdShell nrrd = wrap(grid.values.data(), 3, sizes);
+  for (int a = 0; a < 3; ++a) {
+    nrrd->axis[a].kind = nrrdKindDomain;
+    for (int b = 0; b < 3; ++b) nrrd->axis[a].spaceDirection[b] = a == b ? grid.spacing[a] : 0.0;
+  }
+  set_origin(nrrd.get(), grid.origin);
+  write_atomically(path, [&](std::FILE* file) { return write_nrrd(file, nrrd.get()); });
+}
+
+template <class T>
+BccVolume<T> read_bcc_nrrd(const fs::path& path, const NrrdReadLimits& limits) {
+  const std::string shown = printable(path.string());
+  auto fail = [&](const std::string& why) { throw NrrdError("cannot read BCC volume '" + shown + "': " + why); };
+
+  // Only regular files: opening a FIFO or a device could block or never end.
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (error && error != std::errc::no_such_file_or_directory) fail(error.message());
+  if (!fs::exists(status)) fail("no such file");
+  if (fs::is_directory(status)) fail("it is a directory");
+  if (!fs::is_regular_file(status)) fail("not a regular file");
+  File file(std::fopen(path.c_str(), "rb"));
+  if (!file) fail(std::strerror(errno));
+  struct stat info {};
+  if (::fstat(::fileno(file.get()), &info) != 0) fail(std::strerror(errno));
+  if (!S_ISREG(info.st_mode)) fail("not a regular file");
+  const auto file_size = static_cast<std::uint64_t>(info.st_size);
+
+  // Look at the header before Teem does: the magic keeps Teem's other formats (PNG, PNM, VTK,
+  // text tables) out, and a detached data file is refused before Teem would open it.
+  std::string head(std::min<std::uint64_t>(file_size, kMaxHeaderBytes), '\0');
+  head.resize(std::fread(head.data(), 1, head.size(), file.get()));
+  if (!head.starts_with("NRRD000") || head.size() < 8 || !std::isdigit(static_cast<unsigned char>(head[7])))
+    fail("not a NRRD file (it does not start with the magic 'NRRD000x')");
+  bool header_complete = false;
+  if (header_names_data_file(head, header_complete))
+    fail("detached data files ('data file:' in the header) are not supported; keep the data in the .nrrd file");
+  if (!header_complete && file_size > head.size()) fail(fmt::format("its header is longer than {} bytes", kMaxHeaderBytes));
+
+  std::lock_guard lock(teem_mutex());
+  BccHeader header{};
+  long data_start = -1;
+  {
+    NrrdOwner nrrd(nrrdNew());
+    if (std::string why = teem_read(file.get(), nrrd.get(), true, data_start); !why.empty()) fail(why);
+    if (std::string why = check_bcc_header(nrrd.get(), header); !why.empty()) fail(why);
+  }
+  if (header.data_bytes > limits.max_data_bytes)
+    fail(fmt::format("its data of {} bytes exceeds the limit of {} bytes", header.data_bytes, limits.max_data_bytes));
+  if (data_start >= 0 && file_size - std::min<std::uint64_t>(file_size, static_cast<std::uint64_t>(data_start)) < header.data_bytes)
+    fail(fmt::format("the file is truncated: its header announces {} bytes of raw data, but only {} follow it", header.data_bytes,
+                     file_size - std::min<std::uint64_t>(file_size, static_cast<std::uint64_t>(data_start))));
+
+  NrrdOwner nrrd(nrrdNew());
+  if (std::string why = teem_read(file.get(), nrrd.get(), false, data_start); !why.empty()) fail(why);
+  BccHeader full{};
+  if (std::string why = check_bcc_header(nrrd.get(), full); !why.empty()) fail(why);  // the file may have changed
+  if (!nrrd->data) fail("Teem returned no data");
+
+  BccVolume<T> volume(full.sizes, full.h, full.origin);
+  const std::span<T> out = volume.samples();
+  if (full.type == teem_type<T>())
+    std::memcpy(out.data(), nrrd->data, out.size_bytes());
+  else if (full.type == nrrdTypeFloat)
+    std::copy_n(static_cast<const float*>(nrrd->data), out.size(), out.begin());
+  else
+    for (std::size_t s = 0; s < out.size(); ++s) {
+      const double x = static_cast<const double*>(nrrd->data)[s];
+      // A finite double beyond float's range has no float value (converting it is undefined).
+      if (std::isfinite(x) && std::fabs(x) > std::numeric_limits<float>::max())
+        fail(fmt::format("its sample {} = {} is beyond the range of float; read it in double precision", s, x));
+      out[s] = static_cast<T>(x);
+    }
+  return volume;
+}
+
+template void write_bcc_nrrd<float>(const fs::path&, const BccVolume<float>&);
+template void write_bcc_nrrd<double>(const fs::path&, const BccVolume<double>&);
+template BccVolume<float> read_bcc_nrrd<float>(const fs::path&, const NrrdReadLimits&);
+template BccVolume<double> read_bcc_nrrd<double>(const fs::path&, const NrrdReadLimits&);
+template void write_cartesian_nrrd<float>(const fs::path&, const CartesianVolume<float>&);
+template void write_cartesian_nrrd<double>(const fs::path&, const CartesianVolume<double>&);
+
+}  // namespace boxgen::runtime

@@ -1,0 +1,56 @@
+#include "runtime/sampling.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace boxgen::runtime {
+
+BccGrid cube_grid(int n, int margin) {
+  if (n < 2) throw std::invalid_argument(fmt::format("density N = {} is too small: N^3 x 2 samples over [-1,1]^3 need N >= 2", n));
+  if (margin < 0) throw std::invalid_argument(fmt::format("margin {} must not be negative", margin));
+  const long long per_axis = static_cast<long long>(n) + 2 * static_cast<long long>(margin);
+  if (per_axis > BccVolume<double>::kMaxSize)
+    throw std::invalid_argument(fmt::format("density N = {} with margin {} is too large ({} samples per coset and axis, at most {})", n,
+                                            margin, per_axis, BccVolume<double>::kMaxSize));
+  const double h = 1.0 / (n - 1);
+  const double o = -1 - 2 * h * margin;
+  const int size = static_cast<int>(per_axis);
+  return {{size, size, size}, h, {o, o, o}};
+}
+
+template <class T>
+BccVolume<T> sample_bcc(const ScalarFunction& f, const BccGrid& grid) {
+  BccVolume<T> volume(grid.sizes, grid.h, grid.origin);
+  const Sizes& n = grid.sizes;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i)
+        for (int c = 0; c < 2; ++c) volume(c, i, j, k) = to_sample<T>(f(volume.sample_position(c, i, j, k)));
+  return volume;
+}
+
+double support_radius(const std::vector<std::array<int, 3>>& directions) {
+  double radius = 0;
+  for (int a = 0; a < 3; ++a) {
+    double sum = 0;
+    for (const auto& xi : directions) sum += std::abs(static_cast<double>(xi[a]));
+    radius = std::max(radius, sum / 2);
+  }
+  return radius;
+}
+
+int reconstruction_margin(double radius) {
+  if (!std::isfinite(radius) || radius < 0 || radius > 1e9)
+    throw std::invalid_argument(fmt::format("support radius {} must be finite, non-negative and at most 1e9", radius));
+  // Lattice points are integers, so only floor(r) matters: j_a >= 2m - floor(r) >= 0.
+  return static_cast<int>(std::ceil(std::floor(radius) / 2));
+}
+
+template BccVolume<float> sample_bcc<float>(const ScalarFunction&, const BccGrid&);
+template BccVolume<double> sample_bcc<double>(const ScalarFunction&, const BccGrid&);
+
+}  // namespace boxgen::runtime

@@ -1,0 +1,424 @@
+// NRRD files: bit-exact round trips, the header fields read back with Teem itself, hand-written
+// files, and every kind of bad file giving one clear error (never a crash: these run under ASan).
+#include "runtime/nrrd_io.h"
+
+#include <gtest/gtest.h>
+#include <teem/biff.h>
+#include <teem/nrrd.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace boxgen::runtime {
+namespace {
+
+namespace fs = std::filesystem;
+
+class BccNrrd : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("boxgen-runtime-" + std::to_string(::getpid()) + "-" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path file(const std::string& name) const { return dir_ / name; }
+  std::vector<std::string> listing() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  fs::path dir_;
+};
+
+void write_bytes(const fs::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Sample values that use every bit: random patterns of finite doubles (or floats), both signs,
+// tiny and huge magnitudes.
+template <class T>
+BccVolume<T> random_volume(Sizes sizes, double h, Vec3 origin, unsigned seed) {
+  BccVolume<T> v(sizes, h, origin);
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  std::uniform_int_distribution<int> exponent(-30, 30);
+  for (T& x : v.samples()) x = static_cast<T>(std::ldexp(mantissa(random), exponent(random)));
+  return v;
+}
+
+template <class T>
+void expect_identical(const BccVolume<T>& a, const BccVolume<T>& b) {
+  EXPECT_EQ(a.sizes(), b.sizes());
+  EXPECT_EQ(a.spacing(), b.spacing());
+  EXPECT_EQ(a.origin(), b.origin());
+  ASSERT_EQ(a.sample_count(), b.sample_count());
+  EXPECT_EQ(std::memcmp(a.samples().data(), b.samples().data(), a.samples().size_bytes()), 0);
+}
+
+// Teem's own view of a file.
+struct TeemNrrd {
+  explicit TeemNrrd(const fs::path& path) : nrrd(nrrdNew()) {
+    if (nrrdLoad(nrrd, path.c_str(), nullptr) != 0) {
+      char* e = biffGetDone(NRRD);
+      ADD_FAILURE() << "Teem cannot load " << path << ": " << e;
+      std::free(e);
+    }
+  }
+  ~TeemNrrd() { nrrdNuke(nrrd); }
+  TeemNrrd(const TeemNrrd&) = delete;
+  TeemNrrd& operator=(const TeemNrrd&) = delete;
+  std::string key(const char* name) const {
+    char* v = nrrdKeyValueGet(nrrd, name);
+    std::string s = v ? v : "<missing>";
+    std::free(v);
+    return s;
+  }
+  Nrrd* nrrd;
+};
+
+TEST_F(BccNrrd, RoundTripDoubleIsBitExact) {
+  // h = 1/9 and this origin have no short decimal form: the header must carry all 17 digits.
+  const auto v = random_volume<double>({3, 4, 5}, 1.0 / 9, {-1.2345678901234567, 0.1, 3e-7}, 1);
+  write_bcc_nrrd(file("v.nrrd"), v);
+  expect_identical(read_bcc_nrrd<double>(file("v.nrrd")), v);
+}
+
+TEST_F(BccNrrd, RoundTripFloatIsBitExact) {
+  const auto v = random_volume<float>({5, 1, 2}, 0.7, {1e10, -2.0 / 3, 0}, 2);
+  write_bcc_nrrd(file("v.nrrd"), v);
+  expect_identical(read_bcc_nrrd<float>(file("v.nrrd")), v);
+  // A single-sample-per-coset volume works too.
+  const auto tiny = random_volume<float>({1, 1, 1}, 2, {0, 0, 0}, 3);
+  write_bcc_nrrd(file("tiny.nrrd"), tiny);
+  expect_identical(read_bcc_nrrd<float>(file("tiny.nrrd")), tiny);
+}
+
+TEST_F(BccNrrd, HeaderFieldsAreAsSpecified) {
+  const double h = 0.125;
+  const auto v = random_volume<double>({3, 4, 5}, h, {-1, 2, 0.5}, 4);
+  write_bcc_nrrd(file("v.nrrd"), v);
+  EXPECT_TRUE(read_bytes(file("v.nrrd")).starts_with("NRRD000"));
+  const TeemNrrd t(file("v.nrrd"));
+  ASSERT_EQ(t.nrrd->dim, 4u);
+  EXPECT_EQ(t.nrrd->type, nrrdTypeDouble);
+  EXPECT_EQ(t.nrrd->axis[0].size, 2u);
+  EXPECT_EQ(t.nrrd->axis[1].size, 3u);
+  EXPECT_EQ(t.nrrd->axis[2].size, 4u);
+  EXPECT_EQ(t.nrrd->axis[3].size, 5u);
+  EXPECT_EQ(t.nrrd->spaceDim, 3u);
+  for (int b = 0; b < 3; ++b) EXPECT_TRUE(std::isnan(t.nrrd->axis[0].spaceDirection[b])) << "axis 0 has no space direction";
+  for (int a = 1; a <= 3; ++a)
+    for (int b = 0; b < 3; ++b) EXPECT_EQ(t.nrrd->axis[a].spaceDirection[b], a - 1 == b ? 2 * h : 0.0) << a << " " << b;
+  EXPECT_EQ(t.nrrd->spaceOrigin[0], -1.0);
+  EXPECT_EQ(t.nrrd->spaceOrigin[1], 2.0);
+  EXPECT_EQ(t.nrrd->spaceOrigin[2], 0.5);
+  EXPECT_EQ(t.key("lattice"), "bcc");
+  EXPECT_EQ(t.nrrd->axis[0].kind, nrrdKindList);
+  for (int a = 1; a <= 3; ++a) EXPECT_EQ(t.nrrd->axis[a].kind, nrrdKindDomain);
+  // Coset fastest: Teem's linear order is exactly samples().
+  ASSERT_NE(t.nrrd->data, nullptr);
+  EXPECT_EQ(std::memcmp(t.nrrd->data, v.samples().data(), v.samples().size_bytes()), 0);
+  EXPECT_EQ(static_cast<const double*>(t.nrrd->data)[v.index(1, 2, 3, 4)], v.at(1, 2, 3, 4));
+}
+
+TEST_F(BccNrrd, CartesianGridIsAPlain3dNrrd) {
+  CartesianVolume<float> grid;
+  grid.sizes = {4, 3, 2};
+  grid.spacing = {0.5, 0.25, 2};
+  grid.origin = {-1, 0, 3};
+  for (int s = 0; s < 24; ++s) grid.values.push_back(static_cast<float>(s) * 1.5f - 7);
+  write_cartesian_nrrd(file("grid.nrrd"), grid);
+  const TeemNrrd t(file("grid.nrrd"));
+  ASSERT_EQ(t.nrrd->dim, 3u);
+  EXPECT_EQ(t.nrrd->type, nrrdTypeFloat);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(t.nrrd->axis[a].size, static_cast<std::size_t>(grid.sizes[a]));
+    EXPECT_EQ(t.nrrd->axis[a].kind, nrrdKindDomain);
+    for (int b = 0; b < 3; ++b) EXPECT_EQ(t.nrrd->axis[a].spaceDirection[b], a == b ? grid.spacing[a] : 0.0);
+    EXPECT_EQ(t.nrrd->spaceOrigin[a], grid.origin[a]);
+  }
+  EXPECT_EQ(t.key("lattice"), "<missing>");
+  ASSERT_NE(t.nrrd->data, nullptr);
+  EXPECT_EQ(std::memcmp(t.nrrd->data, grid.values.data(), grid.values.size() * sizeof(float)), 0);
+  EXPECT_EQ(static_cast<const float*>(t.nrrd->data)[grid.index(3, 1, 1)], grid.values[3 + 4 * (1 + 3 * 1)]);
+  // It is not a BCC volume.
+  EXPECT_THROW((void)read_bcc_nrrd<float>(file("grid.nrrd")), NrrdError);
+
+  CartesianVolume<double> bad;
+  bad.sizes = {2, 2, 2};
+  bad.spacing = {1, 1, 1};
+  bad.values.resize(7);
+  EXPECT_THROW(write_cartesian_nrrd(file("bad.nrrd"), bad), std::invalid_argument);
+  bad.values.resize(8);
+  bad.spacing[1] = 0;
+  EXPECT_THROW(write_cartesian_nrrd(file("bad.nrrd"), bad), std::invalid_argument);
+  EXPECT_FALSE(fs::exists(file("bad.nrrd")));
+}
+
+TEST_F(BccNrrd, SamplesOfTheOtherTypeAreConverted) {
+  const auto f = random_volume<float>({2, 3, 2}, 0.5, {0, 0, 0}, 5);
+  write_bcc_nrrd(file("f.nrrd"), f);
+  const auto as_double = read_bcc_nrrd<double>(file("f.nrrd"));
+  for (std::size_t s = 0; s < f.sample_count(); ++s) EXPECT_EQ(as_double.samples()[s], static_cast<double>(f.samples()[s]));
+
+  auto d = random_volume<double>({2, 3, 2}, 0.5, {0, 0, 0}, 6);
+  write_bcc_nrrd(file("d.nrrd"), d);
+  const auto as_float = read_bcc_nrrd<float>(file("d.nrrd"));
+  for (std::size_t s = 0; s < d.sample_count(); ++s) EXPECT_EQ(as_float.samples()[s], static_cast<float>(d.samples()[s]));
+
+  // A finite double that no float can hold is an error, not an undefined conversion.
+  d.samples()[3] = 1e300;
+  write_bcc_nrrd(file("huge.nrrd"), d);
+  EXPECT_EQ(read_bcc_nrrd<double>(file("huge.nrrd")).samples()[3], 1e300);
+  EXPECT_THROW((void)read_bcc_nrrd<float>(file("huge.nrrd")), NrrdError);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hand-written files. The base header describes a valid 2 x 2 x 1 x 1 float volume, h = 0.25; each
+// bad case changes one thing, so the positive control shows that only that change is rejected.
+
+const char* kEndian = std::endian::native == std::endian::little ? "little" : "big";
+
+std::string base_header() {
+  return std::string("NRRD0004\n"
+                     "# hand-written test volume\n"
+                     "type: float\n"
+                     "dimension: 4\n"
+                     "sizes: 2 2 1 1\n"
+                     "space dimension: 3\n"
+                     "space directions: none (0.5,0,0) (0,0.5,0) (0,0,0.5)\n"
+                     "space origin: (1,2,3)\n"
+                     "encoding: raw\n"
+                     "endian: ") +
+         kEndian + "\nlattice:=bcc\n\n";
+}
+
+std::string raw_floats(const std::vector<float>& values) {
+  std::string bytes(values.size() * sizeof(float), '\0');
+  std::memcpy(bytes.data(), values.data(), bytes.size());
+  return bytes;
+}
+
+const std::vector<float> kValues = {1.5f, -2, 0.25f, 8};
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  if (at == std::string::npos) ADD_FAILURE() << "'" << from << "' is not in the header";
+  else text.replace(at, from.size(), to);
+  return text;
+}
+
+TEST_F(BccNrrd, HandWrittenFilesRead) {
+  write_bytes(file("raw.nrrd"), base_header() + raw_floats(kValues));
+  const auto v = read_bcc_nrrd<float>(file("raw.nrrd"));
+  EXPECT_EQ(v.sizes(), (Sizes{2, 1, 1}));
+  EXPECT_EQ(v.spacing(), 0.25);
+  EXPECT_EQ(v.origin(), (Vec3{1, 2, 3}));
+  EXPECT_EQ(std::vector<float>(v.samples().begin(), v.samples().end()), kValues);
+  EXPECT_EQ(v.value(3, 1, 1), 8.0f);  // coset 1, i = 1
+
+  // Other encodings and byte orders are Teem's business: ASCII, and raw in the other byte order.
+  write_bytes(file("ascii.nrrd"), replace(base_header(), "encoding: raw", "encoding: ascii") + "1.5 -2\n0.25 8\n");
+  const auto a = read_bcc_nrrd<double>(file("ascii.nrrd"));
+  EXPECT_EQ(std::vector<double>(a.samples().begin(), a.samples().end()), (std::vector<double>{1.5, -2, 0.25, 8}));
+  std::string swapped = raw_floats(kValues);
+  for (std::size_t s = 0; s < swapped.size(); s += 4) std::reverse(swapped.begin() + static_cast<std::ptrdiff_t>(s), swapped.begin() + static_cast<std::ptrdiff_t>(s + 4));
+  const std::string other = std::endian::native == std::endian::little ? "big" : "little";
+  write_bytes(file("swapped.nrrd"), replace(base_header(), std::string("endian: ") + kEndian, "endian: " + other) + swapped);
+  const auto s = read_bcc_nrrd<float>(file("swapped.nrrd"));
+  EXPECT_EQ(std::vector<float>(s.samples().begin(), s.samples().end()), kValues);
+  // Windows line ends are fine.
+  std::string crlf;
+  for (char ch : base_header()) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
+  write_bytes(file("crlf.nrrd"), crlf + raw_floats(kValues));
+  EXPECT_EQ(read_bcc_nrrd<float>(file("crlf.nrrd")).value(3, 1, 1), 8.0f);
+}
+
+struct BadFile {
+  const char* name;
+  std::string bytes;
+  const char* expected;  // part of the message
+};
+
+std::vector<BadFile> bad_files() {
+  const std::string h = base_header();
+  const std::string data = raw_floats(kValues);
+  std::string long_header = "NRRD0004\n";
+  while (long_header.size() < (std::size_t{1} << 21)) long_header += "# a comment line that goes on and on and on and on\n";
+  return {
+      {"empty", "", "not a NRRD file"},
+      {"text", "hello, world\n", "not a NRRD file"},
+      {"png", std::string("\x89PNG\r\n\x1a\n", 8) + std::string(100, 'x'), "not a NRRD file"},
+      {"magic only", "NRRD0004", ""},
+      {"header cut", h.substr(0, 60), ""},
+      {"no data", h, "truncated"},
+      {"data cut", h + data.substr(0, 13), "truncated"},
+      {"wrong dimension", replace(replace(replace(h, "dimension: 4", "dimension: 3"), "sizes: 2 2 1 1", "sizes: 2 2 1"),
+                                  "none (0.5,0,0) (0,0.5,0) (0,0,0.5)", "(0.5,0,0) (0,0.5,0) (0,0,0.5)") + data,
+       "dimension 3"},
+      {"axis 0 size 4", replace(h, "sizes: 2 2 1 1", "sizes: 4 1 1 1") + data, "axis 0 has size 4"},
+      {"missing lattice key", replace(h, "lattice:=bcc\n", "") + data, "lattice:=bcc"},
+      {"other lattice", replace(h, "lattice:=bcc", "lattice:=fcc") + data, "'fcc'"},
+      {"inconsistent spacing", replace(h, "(0,0.5,0)", "(0,0.25,0)") + data, "space directions"},
+      {"rotated directions", replace(h, "(0.5,0,0)", "(0.5,0.1,0)") + data, "space directions"},
+      {"negative h", replace(h, "none (0.5,0,0) (0,0.5,0) (0,0,0.5)", "none (-0.5,0,0) (0,-0.5,0) (0,0,-0.5)") + data, "space directions"},
+      {"h underflows to 0", replace(h, "none (0.5,0,0) (0,0.5,0) (0,0,0.5)", "none (4.9e-324,0,0) (0,4.9e-324,0) (0,0,4.9e-324)") + data,
+       "space directions"},
+      {"coset axis with direction", replace(h, "none (0.5,0,0)", "(1,0,0) (0.5,0,0)") + data, "axis 0"},
+      {"spacings instead of directions",
+       replace(replace(replace(h, "space dimension: 3\n", ""), "space directions: none (0.5,0,0) (0,0.5,0) (0,0,0.5)\n", "spacings: nan 0.5 0.5 0.5\n"),
+               "space origin: (1,2,3)\n", "") + data,
+       "space directions"},
+      {"missing origin", replace(h, "space origin: (1,2,3)\n", "") + data, "origin"},
+      {"int samples", replace(h, "type: float", "type: int") + data, "'int'"},
+      {"unparsable sizes", replace(h, "sizes: 2 2 1 1", "sizes: 2 two 1 1") + data, ""},
+      {"unknown field", replace(h, "encoding: raw", "encoding: raw\nfrobnicate: yes") + data, ""},
+      {"detached data", replace(h, "encoding: raw", "data file: missing.raw\nencoding: raw"), "detached"},
+      {"detached from stdin", replace(h, "encoding: raw", "DATA  File: /dev/stdin\nencoding: raw") + data, "detached"},
+      {"detached after CR", replace(h, "encoding: raw\n", "encoding: raw\rdatafile: /dev/stdin\n") + data, "detached"},
+      {"huge raw", replace(h, "sizes: 2 2 1 1", "sizes: 2 1000 1000 1000") + data, "truncated"},
+      {"huge sizes", replace(h, "sizes: 2 2 1 1", "sizes: 2 4000000000 4000000000 4000000000") + data, ""},
+      {"long header", long_header, "header is longer"},
+  };
+}
+
+TEST_F(BccNrrd, BadFilesGiveOneLineErrors) {
+  // Positive control: the base file reads.
+  write_bytes(file("good.nrrd"), base_header() + raw_floats(kValues));
+  ASSERT_NO_THROW((void)read_bcc_nrrd<float>(file("good.nrrd")));
+
+  int index = 0;
+  for (const BadFile& bad : bad_files()) {
+    const fs::path path = file("bad-" + std::to_string(index++) + ".nrrd");
+    write_bytes(path, bad.bytes);
+    for (int precision = 0; precision < 2; ++precision) {
+      try {
+        if (precision == 0)
+          (void)read_bcc_nrrd<float>(path);
+        else
+          (void)read_bcc_nrrd<double>(path);
+        ADD_FAILURE() << bad.name << ": no error";
+      } catch (const NrrdError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.find('\n'), std::string::npos) << bad.name << ": " << message;
+        EXPECT_NE(message.find(path.filename().string()), std::string::npos) << bad.name << ": " << message;
+        EXPECT_NE(message.find(bad.expected), std::string::npos) << bad.name << ": " << message;
+        EXPECT_LT(message.size(), 400u) << bad.name << ": " << message;
+      }
+    }
+  }
+}
+
+TEST_F(BccNrrd, MissingPathsAndDirectoriesAreErrors) {
+  try {
+    (void)read_bcc_nrrd<double>(file("does-not-exist.nrrd"));
+    ADD_FAILURE() << "no error";
+  } catch (const NrrdError& e) {
+    EXPECT_NE(std::string(e.what()).find("no such file"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW((void)read_bcc_nrrd<double>(dir_), NrrdError);
+  EXPECT_THROW((void)read_bcc_nrrd<double>(file("no-dir") / "v.nrrd"), NrrdError);
+  EXPECT_THROW((void)read_bcc_nrrd<double>("/dev/null"), NrrdError);  // not a regular file
+}
+
+// Files that other tools compressed (3D Slicer writes gzip by default): re-save our file with
+// Teem in each compressed encoding and read it back.
+TEST_F(BccNrrd, CompressedFilesRead) {
+  const auto v = random_volume<double>({4, 3, 2}, 0.5, {1, -1, 0}, 10);
+  write_bcc_nrrd(file("raw.nrrd"), v);
+  const TeemNrrd t(file("raw.nrrd"));
+  for (const NrrdEncoding* encoding : {nrrdEncodingGzip, nrrdEncodingBzip2}) {
+    const fs::path path = file(std::string(encoding->name) + ".nrrd");
+    NrrdIoState* io = nrrdIoStateNew();
+    io->encoding = encoding;
+    const int failed = nrrdSave(path.c_str(), t.nrrd, io);
+    nrrdIoStateNix(io);
+    ASSERT_EQ(failed, 0) << encoding->name;
+    EXPECT_NE(read_bytes(path).find(std::string("encoding: ") + encoding->name), std::string::npos);
+    expect_identical(read_bcc_nrrd<double>(path), v);
+  }
+}
+
+TEST_F(BccNrrd, CompressedDataBeyondTheLimitIsRefusedBeforeAllocation) {
+  // gzip data cannot be checked against the file size; the limit bounds the allocation.
+  const std::string h = replace(replace(base_header(), "sizes: 2 2 1 1", "sizes: 2 1000 1000 1000"), "encoding: raw", "encoding: gzip");
+  write_bytes(file("bomb.nrrd"), h + std::string(64, '\0'));
+  try {
+    (void)read_bcc_nrrd<float>(file("bomb.nrrd"), NrrdReadLimits{std::uint64_t{1} << 20});
+    ADD_FAILURE() << "no error";
+  } catch (const NrrdError& e) {
+    EXPECT_NE(std::string(e.what()).find("exceeds the limit"), std::string::npos) << e.what();
+  }
+  // Within the limit, short compressed data is Teem's to reject. (zlib passes data without a
+  // gzip header through unchanged, so it must be short, not merely not gzip.)
+  write_bytes(file("small.nrrd"), replace(base_header(), "encoding: raw", "encoding: gzip") + std::string(5, 'x'));
+  EXPECT_THROW((void)read_bcc_nrrd<float>(file("small.nrrd")), NrrdError);
+  write_bytes(file("small.bz2.nrrd"), replace(base_header(), "encoding: raw", "encoding: bzip2") + std::string(5, 'x'));
+  EXPECT_THROW((void)read_bcc_nrrd<float>(file("small.bz2.nrrd")), NrrdError);
+}
+
+TEST_F(BccNrrd, WritingReplacesTheFileAndLeavesNoTemporaryFiles) {
+  const auto first = random_volume<double>({2, 2, 2}, 0.5, {0, 0, 0}, 7);
+  const auto second = random_volume<float>({3, 1, 2}, 0.25, {1, 1, 1}, 8);
+  write_bcc_nrrd(file("v.nrrd"), first);
+  write_bcc_nrrd(file("v.nrrd"), second);
+  expect_identical(read_bcc_nrrd<float>(file("v.nrrd")), second);
+  EXPECT_EQ(listing(), std::vector<std::string>{"v.nrrd"});
+}
+
+TEST_F(BccNrrd, FailedWritesLeaveNothingBehind) {
+  const auto v = random_volume<double>({2, 2, 2}, 0.5, {0, 0, 0}, 9);
+  // The directory does not exist.
+  EXPECT_THROW(write_bcc_nrrd(file("missing") / "v.nrrd", v), NrrdError);
+  // The target is a directory: the rename fails, the temporary file goes.
+  fs::create_directory(file("target"));
+  try {
+    write_bcc_nrrd(file("target"), v);
+    ADD_FAILURE() << "no error";
+  } catch (const NrrdError& e) {
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("cannot write"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(listing(), std::vector<std::string>{"target"});
+  EXPECT_TRUE(fs::is_empty(file("target")));
+  // A path without a file name.
+  EXPECT_THROW(write_bcc_nrrd(dir_ / "", v), NrrdError);
+  // An existing file survives a failed write unchanged.
+  write_bcc_nrrd(file("keep.nrrd"), v);
+  const std::string before = read_bytes(file("keep.nrrd"));
+  CartesianVolume<double> bad;
+  bad.sizes = {2, 2, 2};
+  bad.spacing = {1, 1, 1};
+  EXPECT_THROW(write_cartesian_nrrd(file("keep.nrrd"), bad), std::invalid_argument);
+  EXPECT_EQ(read_bytes(file("keep.nrrd")), before);
+  EXPECT_EQ(listing(), (std::vector<std::string>{"keep.nrrd", "target"}));
+}
+
+}  // namespace
+}  // namespace boxgen::runtime

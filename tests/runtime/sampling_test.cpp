@@ -1,0 +1,154 @@
+// Sampling on [-1,1]^3 (design.md 10) and the margins that stencils need.
+#include "runtime/sampling.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "runtime/test_functions.h"
+
+namespace boxgen::runtime {
+namespace {
+
+// The direction matrices of the paper's filters (design.md 1): integer direction vectors, the
+// input of support_radius.
+const std::vector<std::array<int, 3>> kXi1 = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+const std::vector<std::array<int, 3>> kXi2 = {{2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
+
+std::vector<std::array<int, 3>> concat(std::initializer_list<std::vector<std::array<int, 3>>> parts, int sign_of_last_two = 1) {
+  std::vector<std::array<int, 3>> all;
+  int index = 0;
+  const int count = static_cast<int>(parts.size());
+  for (const auto& part : parts) {
+    for (auto xi : part) {
+      if (index >= count - 2 && sign_of_last_two < 0)
+        for (int& x : xi) x = -x;
+      all.push_back(xi);
+    }
+    ++index;
+  }
+  return all;
+}
+
+TEST(BccSampling, CubeGridGeometry) {
+  const BccGrid g = cube_grid(33, 0);
+  EXPECT_EQ(g.sizes, (Sizes{33, 33, 33}));
+  EXPECT_EQ(g.h, 1.0 / 32);
+  EXPECT_EQ(g.origin, (Vec3{-1, -1, -1}));
+  const BccGrid m = cube_grid(5, 2);  // h = 1/4, origin -1 - 2 h m = -2
+  EXPECT_EQ(m.sizes, (Sizes{9, 9, 9}));
+  EXPECT_EQ(m.h, 0.25);
+  EXPECT_EQ(m.origin, (Vec3{-2, -2, -2}));
+}
+
+TEST(BccSampling, EvenPointsSpanTheCubeAndOddPointsAreCubeCentres) {
+  const int n = 5;  // h = 1/4
+  const auto x = sample_cube<double>([](const Vec3& p) { return p[0]; }, n, 0);
+  const auto y = sample_cube<double>([](const Vec3& p) { return p[1]; }, n, 0);
+  const auto z = sample_cube<double>([](const Vec3& p) { return p[2]; }, n, 0);
+  EXPECT_EQ(x.at(0, 0, 0, 0), -1.0);
+  EXPECT_EQ(x.at(0, n - 1, 0, 0), 1.0);
+  EXPECT_EQ(z.at(0, 0, 0, n - 1), 1.0);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        // Primary points -1 + 2 h i.
+        EXPECT_EQ(x.at(0, i, j, k), -1 + 0.5 * i);
+        EXPECT_EQ(y.at(0, i, j, k), -1 + 0.5 * j);
+        EXPECT_EQ(z.at(0, i, j, k), -1 + 0.5 * k);
+        // The odd sample (1, i, j, k) is the centre of the cube between even samples i and i+1.
+        if (i + 1 < n && j + 1 < n && k + 1 < n) {
+          EXPECT_EQ(x.at(1, i, j, k), (x.at(0, i, j, k) + x.at(0, i + 1, j, k)) / 2);
+          EXPECT_EQ(y.at(1, i, j, k), (y.at(0, i, j, k) + y.at(0, i, j + 1, k)) / 2);
+          EXPECT_EQ(z.at(1, i, j, k), (z.at(0, i, j, k) + z.at(0, i, j, k + 1)) / 2);
+        }
+      }
+}
+
+TEST(BccSampling, MarginKeepsTheCubeAtTheSameWorldPositions) {
+  const int n = 9, m = 3;  // h = 1/8
+  const auto v = sample_cube<double>(marschner_lobb, n, m);
+  EXPECT_EQ(v.sizes(), (Sizes{n + 2 * m, n + 2 * m, n + 2 * m}));
+  // Lattice (2m, 2m, 2m) is the corner (-1,-1,-1), lattice 2m + 2N - 2 the corner (1,1,1).
+  EXPECT_EQ(v.to_world({2.0 * m, 2.0 * m, 2.0 * m}), (Vec3{-1, -1, -1}));
+  EXPECT_EQ(v.to_world({2.0 * m + 2 * n - 2, 2.0 * m + 2 * n - 2, 2.0 * m + 2 * n - 2}), (Vec3{1, 1, 1}));
+  const auto plain = sample_cube<double>(marschner_lobb, n, 0);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (int c = 0; c < 2; ++c) EXPECT_EQ(v.at(c, i + m, j + m, k + m), plain.at(c, i, j, k));
+}
+
+TEST(BccSampling, FloatSamplesAreTheRoundedDoubleSamples) {
+  const auto d = sample_cube<double>(gaussian, 6, 1);
+  const auto f = sample_cube<float>(gaussian, 6, 1);
+  ASSERT_EQ(d.sample_count(), f.sample_count());
+  for (std::size_t s = 0; s < d.sample_count(); ++s) EXPECT_EQ(f.samples()[s], static_cast<float>(d.samples()[s]));
+  EXPECT_EQ(f.spacing(), d.spacing());
+  EXPECT_EQ(f.origin(), d.origin());
+}
+
+TEST(BccSampling, SampleBccPlacesEverySampleAtItsWorldPoint) {
+  const BccGrid grid{{2, 3, 4}, 0.3, {0.5, -1, 2}};
+  const auto v = sample_bcc<double>([](const Vec3& p) { return p[0] + 10 * p[1] + 100 * p[2]; }, grid);
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 2; ++i)
+        for (int c = 0; c < 2; ++c) {
+          const Vec3 p{0.5 + 0.3 * (2 * i + c), -1 + 0.3 * (2 * j + c), 2 + 0.3 * (2 * k + c)};
+          EXPECT_NEAR(v.at(c, i, j, k), p[0] + 10 * p[1] + 100 * p[2], 1e-12);
+        }
+}
+
+TEST(BccSampling, BadArgumentsAreRejected) {
+  EXPECT_THROW(cube_grid(1, 0), std::invalid_argument);
+  EXPECT_THROW(cube_grid(-3, 0), std::invalid_argument);
+  EXPECT_THROW(cube_grid(5, -1), std::invalid_argument);
+  EXPECT_THROW(cube_grid(BccVolume<double>::kMaxSize, 1), std::invalid_argument);
+  EXPECT_THROW(reconstruction_margin(-1), std::invalid_argument);
+  EXPECT_THROW(reconstruction_margin(std::nan("")), std::invalid_argument);
+}
+
+TEST(BccSampling, SupportRadiusAndMarginOfThePaperFilters) {
+  const auto m7 = concat({kXi1, kXi2});
+  const auto m8 = concat({kXi1, kXi1});
+  const auto m12 = concat({kXi2, kXi2, kXi2, kXi2}, -1);
+  ASSERT_EQ(m7.size(), 7u);
+  ASSERT_EQ(m8.size(), 8u);
+  ASSERT_EQ(m12.size(), 12u);
+  // Per axis: M7 4 * 1/2 + 2/2 = 3, M8 8 * 1/2 = 4, M12 4 * 2/2 = 4.
+  EXPECT_EQ(support_radius(m7), 3.0);
+  EXPECT_EQ(support_radius(m8), 4.0);
+  EXPECT_EQ(support_radius(m12), 4.0);
+  EXPECT_EQ(reconstruction_margin(3), 2);
+  EXPECT_EQ(reconstruction_margin(4), 2);
+  EXPECT_EQ(reconstruction_margin(2.5), 1);
+  EXPECT_EQ(reconstruction_margin(3.5), 2);
+  EXPECT_EQ(reconstruction_margin(5), 3);
+  EXPECT_EQ(reconstruction_margin(0), 0);
+}
+
+// The margin is enough, and one less is not: every lattice point within max-norm r of a point of
+// the cube must be in the volume.
+TEST(BccSampling, ReconstructionMarginCoversEveryStencilOfTheCube) {
+  for (double r : {1.0, 2.0, 2.5, 3.0, 4.0, 5.0})
+    for (int n : {2, 5, 8}) {
+      const int m = reconstruction_margin(r);
+      auto needed = [&](int margin) {
+        const BccVolume<float> v(cube_grid(n, margin).sizes, 1, {0, 0, 0});
+        const std::int64_t lo = static_cast<std::int64_t>(std::ceil(2 * margin - r));
+        const std::int64_t hi = static_cast<std::int64_t>(std::floor(2 * margin + 2 * n - 2 + r));
+        return v.contains_box({lo, lo, lo}, {hi, hi, hi});
+      };
+      EXPECT_TRUE(needed(m)) << "r = " << r << ", n = " << n;
+      if (m > 0) {
+        EXPECT_FALSE(needed(m - 1)) << "r = " << r << ", n = " << n;
+      }
+    }
+}
+
+}  // namespace
+}  // namespace boxgen::runtime
