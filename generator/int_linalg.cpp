@@ -44,10 +44,7 @@ std::int64_t gcd_of(const IntVec& v) {
   return g;
 }
 
-IntVec primitive(IntVec v) {
-  std::int64_t g = gcd_of(v);
-  if (g == 0) return v;
-  for (auto& x : v) x /= g;
+IntVec sign_canonical(IntVec v) {
   for (auto x : v) {
     if (x == 0) continue;
     if (x < 0)
@@ -55,6 +52,13 @@ IntVec primitive(IntVec v) {
     break;
   }
   return v;
+}
+
+IntVec primitive(IntVec v) {
+  std::int64_t g = gcd_of(v);
+  if (g == 0) return v;
+  for (auto& x : v) x /= g;
+  return sign_canonical(std::move(v));
 }
 
 std::optional<IntVec> hyperplane_normal(const IntColumns& c, int n) {

@@ -126,16 +126,6 @@ RatVec reciprocal_sinc_coefficients(int terms) {
   return b;
 }
 
-IntVec up_to_sign(IntVec v) {
-  for (auto x : v) {
-    if (x == 0) continue;
-    if (x < 0)
-      for (auto& y : v) y = -y;
-    break;
-  }
-  return v;
-}
-
 // ---- Exact linear systems -----------------------------------------------------------------------
 
 struct LinearSolution {
@@ -182,7 +172,7 @@ class OrderConditions {
       : index_(n, order), terms_(order / 2 + 1), target_(unit_series(index_)) {
     // 1/hat(M^c)(w) = prod_xi 1/sinc(xi.w/2); equal directions up to sign share one power of 1/sinc.
     std::map<IntVec, int> multiplicity;
-    for (const auto& xi : directions) ++multiplicity[up_to_sign(xi)];
+    for (const auto& xi : directions) ++multiplicity[sign_canonical(xi)];
     const RatVec reciprocal = reciprocal_sinc_coefficients(terms_);
     for (const auto& [xi, count] : multiplicity) {
       RatVec power(terms_, Rational(0));

@@ -65,16 +65,6 @@ std::vector<SignedPermutation> all_signed_permutations(int n) {
 
 namespace {
 
-IntVec sign_canonical(IntVec v) {
-  for (auto x : v) {
-    if (x == 0) continue;
-    if (x < 0)
-      for (auto& y : v) y = -y;
-    break;
-  }
-  return v;
-}
-
 std::vector<IntVec> canonical_multiset(const IntColumns& cols) {
   std::vector<IntVec> out;
   for (const auto& c : cols) out.push_back(sign_canonical(c));

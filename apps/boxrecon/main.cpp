@@ -1,0 +1,202 @@
+// boxrecon: reconstruction of BCC volumes with the generated M7, M8 and M12 evaluators.
+//   boxrecon sample --function ml --n N [--h H] [--precision float|double] -o vol.nrrd
+//   boxrecon eval --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd --points pts.txt [--gradient]
+//   boxrecon error --function ml --n N --filter m7 --prefilter q2 [--points K] [--seed S] [--gradient] [--json]
+// Errors are one line on stderr with a non-zero exit (1: bad input, 2: bad usage, 3: internal).
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <sstream>
+
+#include "runtime/nrrd_io.h"
+#include "runtime/reconstruction.h"
+#include "runtime/sampling.h"
+#include "runtime/test_functions.h"
+
+namespace {
+
+using namespace boxgen::runtime;
+
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+BccGrid grid_for(int n, double h, int margin) {
+  if (n < 2 || n > 1024) throw InputError(fmt::format("--n must be between 2 and 1024, got {}", n));
+  BccGrid grid = cube_grid(n, margin);
+  if (h > 0) {  // --h overrides the spacing; the grid still starts margin cells below -1
+    grid.h = h;
+    for (auto& o : grid.origin) o = -1 - 2 * h * margin;
+  }
+  return grid;
+}
+
+std::vector<Vec3> read_points(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(fmt::format("cannot read points file '{}'", path));
+  std::vector<Vec3> points;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    std::istringstream is(line);
+    Vec3 p;
+    std::string extra;
+    if (!(is >> p[0] >> p[1] >> p[2]) || (is >> extra))
+      throw InputError(fmt::format("{}:{}: expected three numbers 'x y z'", path, number));
+    points.push_back(p);
+  }
+  return points;
+}
+
+template <class T>
+int run_eval(const std::string& filter, const std::string& pre, const std::string& volume_path,
+             const std::string& points_path, bool gradient) {
+  const Filter f = parse_filter(filter);
+  const PrefilterChoice q = parse_prefilter(pre);
+  BccVolume<T> volume = read_bcc_nrrd<T>(volume_path);
+  if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
+  const auto points = read_points(points_path);
+  std::vector<T> values(points.size());
+  std::vector<Vec3> gradients(gradient ? points.size() : 0);
+  Reconstructor<T>(volume, f).evaluate(points, values, gradients);
+  std::string out;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    out += fmt::format("{:.17g}", static_cast<double>(values[i]));
+    if (gradient) out += fmt::format(" {:.17g} {:.17g} {:.17g}", gradients[i][0], gradients[i][1], gradients[i][2]);
+    out += '\n';
+  }
+  std::fwrite(out.data(), 1, out.size(), stdout);
+  return 0;
+}
+
+int run_error(const std::string& function, int n, const std::string& filter, const std::string& pre, int count,
+              std::uint64_t seed, bool gradient, bool json) {
+  const TestFunction& fn = find_test_function(function);
+  const Filter f = parse_filter(filter);
+  const PrefilterChoice q = parse_prefilter(pre);
+  if (count < 1 || count > 100000000) throw InputError("--points must be between 1 and 100000000");
+  BccVolume<double> volume = sample_bcc<double>(fn.value, grid_for(n, 0, required_margin(f, q)));
+  if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> points(count);
+  for (auto& p : points) p = {u(rng), u(rng), u(rng)};
+  std::vector<double> values(count);
+  std::vector<Vec3> gradients(gradient ? count : 0);
+  Reconstructor<double>(volume, f).evaluate(points, values, gradients);
+  double sum2 = 0, worst = 0, gsum2 = 0;
+  for (int i = 0; i < count; ++i) {
+    const double e = values[i] - fn.value(points[i]);
+    sum2 += e * e;
+    worst = std::max(worst, std::abs(e));
+    if (gradient) {
+      const Vec3 g = fn.gradient(points[i]);
+      for (int d = 0; d < 3; ++d) gsum2 += (gradients[i][d] - g[d]) * (gradients[i][d] - g[d]);
+    }
+  }
+  const double rms = std::sqrt(sum2 / count), grms = std::sqrt(gsum2 / count);
+  if (json) {
+    nlohmann::json j{{"function", function}, {"n", n}, {"filter", filter}, {"prefilter", pre},
+                     {"points", count}, {"seed", seed}, {"rms", rms}, {"max", worst}};
+    if (gradient) j["gradient_rms"] = grms;
+    std::cout << j.dump(2) << '\n';
+  } else {
+    std::cout << fmt::format("rms {:.6e}  max {:.6e}", rms, worst);
+    if (gradient) std::cout << fmt::format("  gradient_rms {:.6e}", grms);
+    std::cout << '\n';
+  }
+  return 0;
+}
+
+int finish(int code) {
+  std::cout.flush();
+  if ((!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) && code == 0) {
+    std::cerr << "boxrecon: error: could not write the output\n";
+    return 1;
+  }
+  return code;
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"boxrecon: reconstruct BCC volumes with the generated box-spline evaluators"};
+  app.require_subcommand(1);
+  std::string function = "ml", output, filter = "m7", pre = "none", volume, points_path, precision = "double";
+  int n = 33, count = 100000;
+  double h = 0;
+  std::uint64_t seed = 1;
+  bool gradient = false, json = false;
+
+  auto* sample = app.add_subcommand("sample", "sample a test function on N^3 x 2 BCC points over [-1,1]^3");
+  sample->add_option("--function", function, "ml | cubic | sphere | gaussian");
+  sample->add_option("--n", n, "N: N^3 x 2 samples, h = 1/(N-1)")->required();
+  sample->add_option("--h", h, "spacing override");
+  sample->add_option("--precision", precision, "float | double");
+  sample->add_option("-o,--output", output, "output NRRD file")->required();
+  auto* eval = app.add_subcommand("eval", "evaluate the reconstruction at the points of a file");
+  eval->add_option("--filter", filter, "m7 | m8 | m12")->required();
+  eval->add_option("--prefilter", pre, "none | q1 | q2");
+  eval->add_option("--volume", volume, "BCC NRRD volume")->required();
+  eval->add_option("--points", points_path, "file with one 'x y z' (world) per line")->required();
+  eval->add_flag("--gradient", gradient, "also print the three partial derivatives");
+  eval->add_option("--precision", precision, "float | double");
+  auto* error = app.add_subcommand("error", "RMS and max error of a reconstruction over random points of [-1,1]^3");
+  error->add_option("--function", function, "ml | cubic | sphere | gaussian");
+  error->add_option("--n", n, "N")->required();
+  error->add_option("--filter", filter, "m7 | m8 | m12")->required();
+  error->add_option("--prefilter", pre, "none | q1 | q2");
+  error->add_option("--points", count, "number of random points");
+  error->add_option("--seed", seed, "random seed");
+  error->add_flag("--gradient", gradient, "also the RMS error of the gradient");
+  error->add_flag("--json", json, "JSON with keys rms, max, gradient_rms");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::string what = e.what();
+    for (char& c : what)
+      if (c == '\n') c = ' ';
+    std::cerr << "boxrecon: usage error: " << what << " (see boxrecon --help)\n";
+    return 2;
+  }
+  try {
+    if (precision != "float" && precision != "double")
+      throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) + "'");
+    if (sample->parsed()) {
+      const TestFunction& fn = find_test_function(function);
+      const BccGrid grid = grid_for(n, h, 3);  // margin 3: enough for every filter with Q^I or Q^II
+      if (precision == "float") write_bcc_nrrd(output, sample_bcc<float>(fn.value, grid));
+      else write_bcc_nrrd(output, sample_bcc<double>(fn.value, grid));
+      return 0;
+    }
+    if (eval->parsed())
+      return precision == "float" ? run_eval<float>(filter, pre, volume, points_path, gradient)
+                                  : run_eval<double>(filter, pre, volume, points_path, gradient);
+    if (error->parsed()) return run_error(function, n, filter, pre, count, seed, gradient, json);
+  } catch (const InputError& e) {
+    std::cerr << "boxrecon: error: " << e.what() << '\n';
+    return 1;
+  } catch (const NrrdError& e) {
+    std::cerr << "boxrecon: error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "boxrecon: error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::out_of_range& e) {
+    std::cerr << "boxrecon: error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "boxrecon: internal error: " << e.what() << '\n';
+    return 3;
+  }
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return finish(run(argc, argv)); }

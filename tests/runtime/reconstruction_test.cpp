@@ -1,0 +1,121 @@
+// Reconstruction through the generated evaluators: cubic reproduction with the generated
+// prefilters (and its failure without), the order of convergence, and the error paths.
+#include "runtime/reconstruction.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "runtime/sampling.h"
+#include "runtime/test_functions.h"
+
+namespace boxgen::runtime {
+namespace {
+
+std::vector<Vec3> random_points(int count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> out(count);
+  for (auto& p : out) p = {u(rng), u(rng), u(rng)};
+  return out;
+}
+
+// Largest |s - f| over random points of [-1,1]^3 for data sampled from f on N^3 x 2 points.
+double max_error(const TestFunction& fn, int n, Filter f, PrefilterChoice q, int count = 300) {
+  BccVolume<double> volume = sample_cube<double>(fn.value, n, required_margin(f, q));
+  if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
+  const Reconstructor<double> r(volume, f);
+  double worst = 0;
+  for (const auto& p : random_points(count, 7)) worst = std::max(worst, std::abs(r.value(p) - fn.value(p)));
+  return worst;
+}
+
+double rms_error(const TestFunction& fn, int n, Filter f, PrefilterChoice q, int count = 2000) {
+  BccVolume<double> volume = sample_cube<double>(fn.value, n, required_margin(f, q));
+  if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
+  const auto points = random_points(count, 11);
+  std::vector<double> values(points.size());
+  Reconstructor<double>(volume, f).evaluate(points, values);
+  double sum = 0;
+  for (size_t i = 0; i < points.size(); ++i) sum += (values[i] - fn.value(points[i])) * (values[i] - fn.value(points[i]));
+  return std::sqrt(sum / static_cast<double>(points.size()));
+}
+
+TEST(Reconstruction, CubicsAreReproducedWithTheGeneratedPrefilters) {
+  // The `cubic` test function is a cubic polynomial; order-4 quasi-interpolation reproduces it.
+  const TestFunction& cubic = find_test_function("cubic");
+  for (Filter f : {Filter::M7, Filter::M8, Filter::M12})
+    for (PrefilterChoice q : {PrefilterChoice::Q1, PrefilterChoice::Q2})
+      EXPECT_LE(max_error(cubic, 9, f, q), 1e-11) << filter_name(f) << " q" << static_cast<int>(q);
+}
+
+TEST(Reconstruction, WithoutAPrefilterCubicsAreNotReproduced) {
+  const TestFunction& cubic = find_test_function("cubic");
+  for (Filter f : {Filter::M7, Filter::M8, Filter::M12})
+    EXPECT_GT(max_error(cubic, 9, f, PrefilterChoice::None), 1e-4) << filter_name(f);
+}
+
+TEST(Reconstruction, RmsErrorFallsAtOrderFour) {
+  // Halving h should divide the RMS error by about 2^4 = 16 with a prefilter; the slope over
+  // three densities (N = 9, 17, 33 gives h = 1/8, 1/16, 1/32) must be at least 3.5.
+  const TestFunction& g = find_test_function("gaussian");
+  for (Filter f : {Filter::M7, Filter::M8, Filter::M12}) {
+    const double e1 = rms_error(g, 9, f, PrefilterChoice::Q2), e2 = rms_error(g, 17, f, PrefilterChoice::Q2),
+                 e3 = rms_error(g, 33, f, PrefilterChoice::Q2);
+    const double slope = std::log2(e1 / e3) / 2;
+    EXPECT_GE(slope, 3.5) << filter_name(f) << " errors " << e1 << " " << e2 << " " << e3;
+    EXPECT_LT(e2, e1);
+    EXPECT_LT(e3, e2);
+  }
+}
+
+TEST(Reconstruction, PointsOutsideTheVolumeAndNaNAreErrors) {
+  const TestFunction& fn = find_test_function("ml");
+  const BccVolume<double> volume = sample_cube<double>(fn.value, 9, 2);
+  const Reconstructor<double> r(volume, Filter::M7);
+  EXPECT_NO_THROW(r.value({0.9, -0.9, 0.5}));
+  EXPECT_THROW(r.value({5, 0, 0}), std::out_of_range);
+  EXPECT_THROW(r.value({std::nan(""), 0, 0}), std::invalid_argument);
+  EXPECT_THROW(r.value({0, INFINITY, 0}), std::invalid_argument);
+  std::vector<Vec3> points{{0, 0, 0}, {9, 9, 9}};
+  std::vector<double> values(2);
+  EXPECT_THROW(r.evaluate(points, values), std::out_of_range);
+}
+
+TEST(Reconstruction, BatchEqualsSingleEvaluationAndFloatIsClose) {
+  const TestFunction& fn = find_test_function("ml");
+  const BccVolume<double> volume = sample_cube<double>(fn.value, 17, 2);
+  const BccVolume<float> volume_f = sample_cube<float>(fn.value, 17, 2);
+  for (Filter f : {Filter::M7, Filter::M8, Filter::M12}) {
+    const Reconstructor<double> r(volume, f);
+    const Reconstructor<float> rf(volume_f, f);
+    const auto points = random_points(3000, 5);
+    std::vector<double> values(points.size());
+    std::vector<Vec3> gradients(points.size());
+    r.evaluate(points, values, gradients);
+    for (size_t i = 0; i < points.size(); i += 97) {
+      Vec3 g;
+      EXPECT_EQ(r.value(points[i], &g), values[i]);
+      EXPECT_EQ(g, gradients[i]);
+      EXPECT_NEAR(rf.value(points[i]), values[i], 1e-5);
+    }
+  }
+}
+
+TEST(Reconstruction, ParsesNamesAndRejectsOthers) {
+  EXPECT_EQ(parse_filter("m8"), Filter::M8);
+  EXPECT_EQ(parse_prefilter("q2"), PrefilterChoice::Q2);
+  EXPECT_THROW(parse_filter("m9"), std::invalid_argument);
+  EXPECT_THROW(parse_prefilter("q3"), std::invalid_argument);
+  // Generated prefilter taps sum to one (a quasi-interpolant preserves constants).
+  for (Filter f : {Filter::M7, Filter::M8, Filter::M12})
+    for (PrefilterChoice q : {PrefilterChoice::Q1, PrefilterChoice::Q2}) {
+      double sum = 0;
+      for (const auto& [offset, w] : prefilter_taps(f, q)) sum += w;
+      EXPECT_NEAR(sum, 1.0, 1e-15);
+    }
+}
+
+}  // namespace
+}  // namespace boxgen::runtime
