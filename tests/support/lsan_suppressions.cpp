@@ -6,3 +6,8 @@
 // which our value-type use of cl_RA/cl_I cannot produce. Leaks of our own objects are reported.
 extern "C" const char* __lsan_default_suppressions();
 extern "C" const char* __lsan_default_suppressions() { return "leak:libcln.so\n"; }
+
+// Without this LeakSanitizer prints a "Suppressions used" summary on stderr at every exit, which
+// would break the one-line-on-stderr contract of the command-line programs under test.
+extern "C" const char* __lsan_default_options();
+extern "C" const char* __lsan_default_options() { return "print_suppressions=0"; }
