@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/generator/bspline_reference.h"
+
 #include <map>
 
 #include "generator/error.h"
@@ -121,23 +123,8 @@ TEST(Autocorr, CourantElementByTheSimplexFormula) {
   EXPECT_EQ(as_map(a), expected);
 }
 
-Rational power(const Rational& b, int e) {
-  Rational r = 1;
-  for (int i = 0; i < e; ++i) r = r * b;
-  return r;
-}
-
-// Cardinal B-spline of order k by the explicit truncated-power sum (independent of box splines).
-Rational cardinal_bspline(int k, const Rational& x) {
-  Rational sum = 0, binom = 1, factorial = 1;
-  for (int i = 1; i < k; ++i) factorial = factorial * i;
-  for (int i = 0; i <= k; ++i) {
-    const Rational y = x - i;
-    if (y > 0) sum = sum + (i % 2 == 0 ? binom : Rational(-binom)) * power(y, k - 1);
-    binom = binom * (k - i) / (i + 1);
-  }
-  return sum / factorial;
-}
+using testing::cardinal_bspline;
+using testing::power;
 
 // Doubled m12 is, per coordinate, the 1-D box spline of eight columns +-2: centred, that is
 // B_8(x/2 + 4)/2 (scaling by 2, centring the order-8 B-spline on [0, 8]).

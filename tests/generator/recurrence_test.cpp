@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/generator/bspline_reference.h"
+
 #include <algorithm>
 
 #include "generator/error.h"
@@ -59,24 +61,8 @@ class GenericPoints {
   std::uint64_t state_;
 };
 
-Rational power(const Rational& b, int e) {
-  Rational r = 1;
-  for (int i = 0; i < e; ++i) r = r * b;
-  return r;
-}
-
-// Cardinal B-spline of order k (degree k-1, knots 0..k) by the explicit truncated-power sum
-// B_k(x) = 1/(k-1)! sum_i (-1)^i C(k,i) (x-i)_+^(k-1): independent of the box-spline recurrence.
-Rational cardinal_bspline(int k, const Rational& x) {
-  Rational sum = 0, binom = 1, factorial = 1;
-  for (int i = 1; i < k; ++i) factorial = factorial * i;
-  for (int i = 0; i <= k; ++i) {
-    const Rational y = x - i;
-    if (y > 0) sum = sum + (i % 2 == 0 ? binom : Rational(-binom)) * power(y, k - 1);
-    binom = binom * (k - i) / (i + 1);
-  }
-  return sum / factorial;
-}
+using testing::cardinal_bspline;
+using testing::power;
 
 TEST(Recurrence, ParallelepipedBaseCase) {
   const IntColumns xi = {{1, 1, 1}, {1, -1, -1}, {0, 2, 0}};
