@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/generator/bspline_reference.h"
+#include "tests/generator/paper_directions.h"
 
 #include <map>
 
@@ -12,20 +13,10 @@
 namespace boxgen {
 namespace {
 
-// Specs written out (design.md 1 and issue 3) so the test does not depend on the SPEC parser.
-const IntColumns kXi1 = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
-const IntColumns kXi2 = {{2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
-
-IntColumns concat(std::initializer_list<IntColumns> parts) {
-  IntColumns out;
-  for (const auto& p : parts) out.insert(out.end(), p.begin(), p.end());
-  return out;
-}
-IntColumns negated(IntColumns c) {
-  for (auto& v : c)
-    for (auto& x : v) x = -x;
-  return c;
-}
+using testing::concat;
+using testing::kXi1;
+using testing::kXi2;
+using testing::negated;
 
 BoxSplineSpec m7() { return {"m7", "", concat({kXi1, kXi2}), Lattice::bcc()}; }
 BoxSplineSpec m8() { return {"m8", "", concat({kXi1, kXi1}), Lattice::bcc()}; }

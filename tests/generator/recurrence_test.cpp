@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/generator/bspline_reference.h"
+#include "tests/generator/paper_directions.h"
 
 #include <algorithm>
 
@@ -12,21 +13,10 @@
 namespace boxgen {
 namespace {
 
-// The paper's direction sets (design.md 1), written out here rather than taken from the presets
-// so the test does not depend on the SPEC parser.
-const IntColumns kXi1 = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
-const IntColumns kXi2 = {{2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
-
-IntColumns concat(std::initializer_list<IntColumns> parts) {
-  IntColumns out;
-  for (const auto& p : parts) out.insert(out.end(), p.begin(), p.end());
-  return out;
-}
-IntColumns negated(IntColumns c) {
-  for (auto& v : c)
-    for (auto& x : v) x = -x;
-  return c;
-}
+using testing::concat;
+using testing::kXi1;
+using testing::kXi2;
+using testing::negated;
 
 const IntColumns kM7 = concat({kXi1, kXi2});
 const IntColumns kM8 = concat({kXi1, kXi1});
