@@ -8,37 +8,19 @@
 #include <map>
 #include <sstream>
 
+#include "generator/code_text.h"
 #include "generator/embedded_templates.h"
 #include "generator/error.h"
+#include "generator/polynomial_code.h"
 #include "generator/prefilter.h"
 
 namespace boxgen {
 
 namespace {
 
-std::string literal(const Rational& r) { return fmt::format("{:.17g}", to_double(r)); }
-
-std::string join(const std::vector<std::string>& parts, const char* sep = ", ") {
-  std::string out;
-  for (size_t i = 0; i < parts.size(); ++i) {
-    if (i) out += sep;
-    out += parts[i];
-  }
-  return out;
-}
-
-template <class V>
-std::string brace_list(const V& values) {
-  std::vector<std::string> parts;
-  for (const auto& v : values) parts.push_back(fmt::format("{}", v));
-  return "{" + join(parts) + "}";
-}
-
-std::string vertex_text(const RatVec& v) {
-  std::vector<std::string> parts;
-  for (const auto& x : v) parts.push_back(to_string(x));
-  return "(" + join(parts, ",") + ")";
-}
+using code::brace_list;
+using code::join;
+using code::literal;
 
 bool is_identifier(const std::string& s) {
   if (s.empty() || s.size() > 64 || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
@@ -58,48 +40,6 @@ std::string banner(const Analysis& a, const EmissionRequest& req) {
         return join(rows, " ");
       }(),
       req.command);
-}
-
-// Straight-line code of one orbit's reference polynomial (the monomial strategy).
-std::string orbit_function(const ReferenceRegion& ref, int orbit, int n, int degree) {
-  const auto& exps = monomial_exponents(n, degree);
-  const std::size_t count = monomial_count(n, degree);
-  std::string coefficients, value_terms;
-  std::vector<std::string> grad_terms(n);
-  int used = 0;
-  for (std::size_t m = 0; m < count; ++m) {
-    std::vector<std::string> terms;
-    for (size_t k = 0; k < ref.basis.size(); ++k) {
-      const auto& cs = ref.basis[k].coefficients();
-      if (m < cs.size() && !cln::zerop(cs[m])) terms.push_back(fmt::format("T({}) * v[{}]", literal(cs[m]), k));
-    }
-    if (terms.empty()) continue;
-    ++used;
-    coefficients += fmt::format("  const T c{} = {};\n", m, join(terms, " + "));
-    std::string power;
-    for (int i = 0; i < n; ++i)
-      if (exps[m][i]) power += fmt::format(" * p[{}][{}]", i, exps[m][i]);
-    value_terms += fmt::format("\n      + c{}{}", m, power);
-    for (int d = 0; d < n; ++d) {
-      if (!exps[m][d]) continue;
-      std::string g = fmt::format("T({}) * c{}", exps[m][d], m);
-      for (int i = 0; i < n; ++i) {
-        const int e = exps[m][i] - (i == d ? 1 : 0);
-        if (e) g += fmt::format(" * p[{}][{}]", i, e);
-      }
-      grad_terms[d] += "\n        + " + g;
-    }
-  }
-  std::string evaluation = fmt::format("  const T value = T(0){};\n  if (gradient) {{\n", value_terms);
-  for (int d = 0; d < n; ++d)
-    evaluation += fmt::format("    gradient[{}] = T(0){};\n", d, grad_terms[d]);
-  evaluation += "  }\n  return value;";
-  std::vector<std::string> verts;
-  for (const auto& v : ref.vertices) verts.push_back(vertex_text(v));
-  return fmt::format(fmt::runtime(templates::orbit_polynomial), fmt::arg("orbit", orbit),
-                     fmt::arg("vertices", join(verts, " ")), fmt::arg("monomials", used),
-                     fmt::arg("stencil", ref.stencil.size()), fmt::arg("coefficients", coefficients),
-                     fmt::arg("evaluation", evaluation));
 }
 
 std::string evaluator(const Analysis& a, const EmissionRequest& req) {
@@ -182,7 +122,7 @@ std::string evaluator(const Analysis& a, const EmissionRequest& req) {
     stencil_blocks.push_back("{" + join(pts) + "}");
     orbit_sizes.push_back(std::to_string(ref.stencil.size()));
     dispatch.push_back(fmt::format("    case {0}: value = orbit_{0}<T>(v, xr, gradient ? gref : nullptr); break;", o));
-    orbit_functions.push_back(orbit_function(ref, static_cast<int>(o), n, a.properties.degree));
+    orbit_functions.push_back(orbit_function(ref, static_cast<int>(o), n, a.properties.degree, req.strategy));
   }
   std::vector<std::string> centre, hermite_rows;
   for (const auto& c : s.centre) centre.push_back(literal(c));
@@ -191,7 +131,7 @@ std::string evaluator(const Analysis& a, const EmissionRequest& req) {
       fmt::runtime(templates::evaluator_hpp), fmt::arg("banner", banner(a, req)), fmt::arg("name", req.name),
       fmt::arg("dimension", n), fmt::arg("degree", a.properties.degree), fmt::arg("stencil_size", stencil_max),
       fmt::arg("lattice_det", a.spec.lattice.det_abs()), fmt::arg("spec_text", a.spec.directions_text()),
-      fmt::arg("strategy", "monomial"), fmt::arg("centre", join(centre)), fmt::arg("hermite", join(hermite_rows)),
+      fmt::arg("strategy", strategy_name(req.strategy)), fmt::arg("centre", join(centre)), fmt::arg("hermite", join(hermite_rows)),
       fmt::arg("cube_count", cube_count), fmt::arg("normal_count", k_count), fmt::arg("normals", join(normal_rows)),
       fmt::arg("normal_min", join([&] {
                  std::vector<std::string> v;

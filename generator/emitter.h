@@ -4,15 +4,12 @@
 #include <string>
 
 #include "generator/analysis.h"
+#include "generator/polynomial_code.h"
 
 namespace boxgen {
 
 inline constexpr const char* kGeneratorVersion = "boxgen 0.1.0";
 
-// How the reference polynomials are written out. `monomial`: per-monomial linear combinations
-// of the stencil values, then a sum over powers (the only strategy so far; the switch exists so
-// the performance work can add Horner/CSE and BB forms behind the same interface).
-enum class EmissionStrategy { Monomial };
 
 struct EmittedFile {
   std::string filename;
@@ -22,7 +19,7 @@ struct EmittedFile {
 struct EmissionRequest {
   std::string name;     // C++ identifier: the namespace boxgen::generated::<name>
   std::string command;  // the command that reproduces the file, for its header
-  EmissionStrategy strategy = EmissionStrategy::Monomial;
+  EmissionStrategy strategy = EmissionStrategy::Horner;  // see generator/polynomial_code.h
 };
 
 // <name>.hpp (evaluator) and <name>_prefilters.hpp (Q^I on shells 0,1 and Q^II on 0,1,2 where

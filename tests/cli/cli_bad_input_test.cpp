@@ -83,6 +83,9 @@ std::vector<BadInput> bad_inputs() {
       {"RegionNegative", {"bbform", "m7", "--region", "-1"}, {"-1"}},
       // --method
       {"UnknownAutocorrMethod", {"autocorr", "m7", "--method", "foo"}, {"foo"}},
+      // emit (both fail before anything is derived or written)
+      {"UnknownEmitStrategy", {"emit", "zp", "--name", "z", "--out", "/nonexistent/boxgen", "--strategy", "foo"}, {"foo", "horner"}},
+      {"EmitNameNotAnIdentifier", {"emit", "zp", "--name", "9z", "--out", "/nonexistent/boxgen"}, {"9z"}},
   };
 }
 

@@ -14,6 +14,7 @@
 #include "emitted/fcc6.hpp"
 #include "emitted/tricubic.hpp"
 #include "emitted/zp.hpp"
+#include "emitted/zp_monomial.hpp"
 #include "generated/m12.hpp"
 #include "generated/m7.hpp"
 #include "generated/m8.hpp"
@@ -211,6 +212,19 @@ BOXGEN_EMITTED_TEST(cart7, "cart7", 3)
 BOXGEN_EMITTED_TEST(fcc6, "fcc6", 3)
 BOXGEN_EMITTED_TEST(tricubic, "tricubic", 3)
 BOXGEN_EMITTED_TEST(zp, "zp", 2)
+BOXGEN_EMITTED_TEST(zp_monomial, "zp", 2)
 
 }  // namespace
 }  // namespace boxgen
+
+namespace {
+
+// The headers above really are the two strategies (so both forms are what was checked).
+TEST(Emitted, HeadersNameTheirStrategy) {
+  EXPECT_STREQ(boxgen::generated::m7::kStrategy, "horner");
+  EXPECT_STREQ(boxgen::generated::zp::kStrategy, "horner");
+  EXPECT_STREQ(boxgen::generated::zp_monomial::kStrategy, "monomial");
+  EXPECT_STREQ(boxgen::generated::cart7::kStrategy, "monomial");
+}
+
+}  // namespace
