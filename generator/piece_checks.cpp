@@ -35,7 +35,16 @@ std::string describe_face(const IntVec& nu, std::int32_t level) {
 }
 
 // Whole unit cubes (every cell of a tensor-product spline) integrate monomial by monomial.
-bool is_unit_cube(const FineCell& cell) { return cell.vertices.size() == (std::size_t{1} << cell.interior.size()); }
+// A cell lies in one unit cube (the axes are in the arrangement); it is that whole cube exactly
+// when it has 2^n vertices, all integral. (2^n vertices alone is not enough: a line of slope 1/2
+// cuts a unit square into a triangle and a quadrilateral.)
+bool is_unit_cube(const FineCell& cell) {
+  if (cell.vertices.size() != (std::size_t{1} << cell.interior.size())) return false;
+  for (const auto& v : cell.vertices)
+    for (const auto& x : v)
+      if (!is_integer(x)) return false;
+  return true;
+}
 
 Rational integrate_over_unit_cube(const Poly& p, const FineCell& cell) {
   const int n = static_cast<int>(cell.interior.size());
