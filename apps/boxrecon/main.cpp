@@ -2,6 +2,8 @@
 //   boxrecon sample --function ml --n N [--h H] [--precision float|double] -o vol.nrrd
 //   boxrecon eval --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd --points pts.txt [--gradient]
 //   boxrecon error --function ml --n N --filter m7 --prefilter q2 [--points K] [--seed S] [--gradient] [--json]
+//   boxrecon resample --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd -o grid.nrrd [--n N]
+//                     [--min X Y Z --max X Y Z] [--precision float|double]
 // Errors are one line on stderr with a non-zero exit (1: bad input, 2: bad usage, 3: internal).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -13,9 +15,13 @@
 #include <iostream>
 #include <random>
 #include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "runtime/nrrd_io.h"
 #include "runtime/reconstruction.h"
+#include "runtime/resample.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
 
@@ -23,9 +29,21 @@ namespace {
 
 using namespace boxgen::runtime;
 
-struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+// A mistake in the user's input (exit code 1), like the runtime's std::invalid_argument.
+struct InputError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
 };
+
+// Exit code for an exception: 1 when the input was at fault (a bad argument or file, a point or
+// box outside the volume), 3 for anything else (an internal error).
+int exit_code_for(const std::exception& e) {
+  const bool bad_input = dynamic_cast<const std::invalid_argument*>(&e) || dynamic_cast<const std::out_of_range*>(&e) ||
+                         dynamic_cast<const NrrdError*>(&e);
+  return bad_input ? 1 : 3;
+}
+
+// Largest --n of resample: 512^3 double values are 1 GiB.
+constexpr int kMaxResampleN = 512;
 
 BccGrid grid_for(int n, double h, int margin) {
   if (n < 2 || n > 1024) throw InputError(fmt::format("--n must be between 2 and 1024, got {}", n));
@@ -113,6 +131,20 @@ int run_error(const std::string& function, int n, const std::string& filter, con
   return 0;
 }
 
+// Resampling onto a Cartesian grid: n points per axis over the box (default_box when none given).
+template <class T>
+int run_resample(const std::string& filter, const std::string& pre, const std::string& volume_path, const std::string& output,
+                 int n, const std::vector<double>& min, const std::vector<double>& max) {
+  const Filter f = parse_filter(filter);
+  const PrefilterChoice q = parse_prefilter(pre);
+  if (n < 2 || n > kMaxResampleN) throw InputError(fmt::format("--n must be between 2 and {}, got {}", kMaxResampleN, n));
+  BccVolume<T> volume = read_bcc_nrrd<T>(volume_path);
+  if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
+  const Box box = min.empty() ? default_box(volume, f) : Box{{min[0], min[1], min[2]}, {max[0], max[1], max[2]}};
+  write_cartesian_nrrd(output, resample(volume, f, grid_over(box, {n, n, n})));
+  return 0;
+}
+
 int finish(int code) {
   std::cout.flush();
   if ((!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) && code == 0) {
@@ -130,6 +162,8 @@ int run(int argc, char** argv) {
   double h = 0;
   std::uint64_t seed = 1;
   bool gradient = false, json = false;
+  int resample_n = 64;
+  std::vector<double> box_min, box_max;
 
   auto* sample = app.add_subcommand("sample", "sample a test function on N^3 x 2 BCC points over [-1,1]^3");
   sample->add_option("--function", function, "ml | cubic | sphere | gaussian");
@@ -153,6 +187,20 @@ int run(int argc, char** argv) {
   error->add_option("--seed", seed, "random seed");
   error->add_flag("--gradient", gradient, "also the RMS error of the gradient");
   error->add_flag("--json", json, "JSON with keys rms, max, gradient_rms");
+  auto* resample = app.add_subcommand("resample", "resample the reconstruction onto a Cartesian grid (a plain 3-D NRRD)");
+  resample->add_option("--filter", filter, "m7 | m8 | m12")->required();
+  resample->add_option("--prefilter", pre, "none | q1 | q2");
+  resample->add_option("--volume", volume, "BCC NRRD volume")->required();
+  resample->add_option("-o,--output", output, "output NRRD file (Cartesian grid)")->required();
+  resample->add_option("--n", resample_n, fmt::format("grid points per axis, 2..{} (default 64)", kMaxResampleN));
+  auto* min_option = resample->add_option("--min", box_min,
+                                          "X Y Z: lower corner of the box (world); default (without --min/--max): the largest box "
+                                          "in which the filter's stencil lies inside the volume")
+                         ->expected(3);
+  auto* max_option = resample->add_option("--max", box_max, "X Y Z: upper corner of the box (world)")->expected(3);
+  min_option->needs(max_option);
+  max_option->needs(min_option);
+  resample->add_option("--precision", precision, "float | double");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -178,21 +226,13 @@ int run(int argc, char** argv) {
       return precision == "float" ? run_eval<float>(filter, pre, volume, points_path, gradient)
                                   : run_eval<double>(filter, pre, volume, points_path, gradient);
     if (error->parsed()) return run_error(function, n, filter, pre, count, seed, gradient, json);
-  } catch (const InputError& e) {
-    std::cerr << "boxrecon: error: " << e.what() << '\n';
-    return 1;
-  } catch (const NrrdError& e) {
-    std::cerr << "boxrecon: error: " << e.what() << '\n';
-    return 1;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "boxrecon: error: " << e.what() << '\n';
-    return 1;
-  } catch (const std::out_of_range& e) {
-    std::cerr << "boxrecon: error: " << e.what() << '\n';
-    return 1;
+    if (resample->parsed())
+      return precision == "float" ? run_resample<float>(filter, pre, volume, output, resample_n, box_min, box_max)
+                                  : run_resample<double>(filter, pre, volume, output, resample_n, box_min, box_max);
   } catch (const std::exception& e) {
-    std::cerr << "boxrecon: internal error: " << e.what() << '\n';
-    return 3;
+    const int code = exit_code_for(e);
+    std::cerr << (code == 1 ? "boxrecon: error: " : "boxrecon: internal error: ") << e.what() << '\n';
+    return code;
   }
   return 2;
 }

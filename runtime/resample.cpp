@@ -1,0 +1,214 @@
+#include "runtime/resample.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <span>
+#include <stdexcept>
+#include <vector>
+
+#include "generated/m12.hpp"
+#include "generated/m7.hpp"
+#include "generated/m8.hpp"
+
+namespace boxgen::runtime {
+
+namespace {
+
+// The reach of an evaluator emitted from templates/evaluator.hpp.fmt, read off its tables. A
+// cell maps x to its reference region by x_ref = g (x - t) + a, t = corner - rep, where rep is
+// the cube's Hermite representative; it fetches j[perm_i] = sign_i (s_i - a_i) + t[perm_i] for
+// each reference stencil point s of its orbit, so j - corner = sign_i (s_i - a_i) - rep[perm_i].
+template <class Cell, std::size_t CellCount, std::size_t Orbits, std::size_t StencilSize>
+StencilReach reach_from_tables(const Cell (&cells)[CellCount], const std::int32_t (&stencil)[Orbits][StencilSize][3],
+                               const int (&orbit_size)[Orbits], const std::int64_t (&hermite)[3][3], const double (&centre)[3]) {
+  StencilReach reach;
+  reach.lo.fill(std::numeric_limits<int>::max());
+  reach.hi.fill(std::numeric_limits<int>::min());
+  for (int a = 0; a < 3; ++a) reach.centre[a] = centre[a];
+  for (const Cell& cell : cells) {
+    // Decode the cube index: cube = rep_0 + H_00 (rep_1 + H_11 rep_2) (the evaluator's encoding).
+    std::int64_t rep[3], cube = cell.cube;
+    for (int i = 0; i < 3; ++i) {
+      rep[i] = cube % hermite[i][i];
+      cube /= hermite[i][i];
+    }
+    for (int k = 0; k < orbit_size[cell.orbit]; ++k)
+      for (int i = 0; i < 3; ++i) {
+        const int axis = cell.perm[i];
+        const int d = static_cast<int>(cell.sign[i] * (stencil[cell.orbit][k][i] - cell.a[i]) - rep[axis]);
+        reach.lo[axis] = std::min(reach.lo[axis], d);
+        reach.hi[axis] = std::max(reach.hi[axis], d);
+      }
+  }
+  return reach;
+}
+
+// The evaluable region in lattice coordinates: lo <= x < hi per axis (may be empty).
+struct LatticeRegion {
+  Vec3 lo, hi;
+};
+
+template <class T>
+LatticeRegion lattice_region(const BccVolume<T>& volume, Filter f) {
+  const StencilReach reach = stencil_reach(f);
+  LatticeRegion region;
+  for (int a = 0; a < 3; ++a) {
+    // floor(x + c) + lo >= 0 and floor(x + c) + hi <= 2N - 1, with floor(x + c) an integer.
+    region.lo[a] = -reach.lo[a] - reach.centre[a];
+    region.hi[a] = 2.0 * volume.sizes()[a] - reach.hi[a] - reach.centre[a];
+    if (region.hi[a] <= region.lo[a]) {
+      const int needed = (reach.hi[a] - reach.lo[a]) / 2 + 1;  // smallest N with 2N > hi - lo
+      throw std::invalid_argument(fmt::format(
+          "BCC volume of 2 x {} x {} x {} samples is too small for the {} stencil (it needs at least {} samples per coset on axis {})",
+          volume.sizes()[0], volume.sizes()[1], volume.sizes()[2], filter_name(f), needed, a));
+    }
+  }
+  return region;
+}
+
+template <class T>
+Box to_world(const BccVolume<T>& volume, const Vec3& lo, const Vec3& hi) {
+  return {volume.to_world(lo), volume.to_world(hi)};
+}
+
+std::string describe(const Box& b) {
+  return fmt::format("[{}, {}] x [{}, {}] x [{}, {}]", b.min[0], b.max[0], b.min[1], b.max[1], b.min[2], b.max[2]);
+}
+
+}  // namespace
+
+StencilReach stencil_reach(Filter f) {
+  switch (f) {
+    case Filter::M7: {
+      namespace g = generated::m7::detail;
+      return reach_from_tables(g::kCells, g::kStencil, g::kOrbitStencilSize, g::kHermite, g::kCentre);
+    }
+    case Filter::M8: {
+      namespace g = generated::m8::detail;
+      return reach_from_tables(g::kCells, g::kStencil, g::kOrbitStencilSize, g::kHermite, g::kCentre);
+    }
+    case Filter::M12: {
+      namespace g = generated::m12::detail;
+      return reach_from_tables(g::kCells, g::kStencil, g::kOrbitStencilSize, g::kHermite, g::kCentre);
+    }
+  }
+  throw std::logic_error("unknown filter");
+}
+
+template <class T>
+Box evaluable_region(const BccVolume<T>& volume, Filter f) {
+  const LatticeRegion region = lattice_region(volume, f);
+  return to_world(volume, region.lo, region.hi);
+}
+
+template <class T>
+Box default_box(const BccVolume<T>& volume, Filter f) {
+  const LatticeRegion region = lattice_region(volume, f);
+  // Rounding guard, in lattice units. A grid point on a face reaches the evaluator through
+  // world = origin + i * spacing, lattice = (world - o) / h (double), a cast to T and + c (in T):
+  // each step errs by a few ulps of the magnitudes involved. 16 ulps of each bound them all.
+  double lattice_extent = 0, world_extent = 0;
+  for (int a = 0; a < 3; ++a) {
+    lattice_extent = std::max({lattice_extent, std::abs(region.lo[a]), std::abs(region.hi[a])});
+    world_extent = std::max(world_extent, std::abs(volume.origin()[a]) / volume.spacing());
+  }
+  const double guard = 16 * (std::numeric_limits<T>::epsilon() * (lattice_extent + 2) +
+                             std::numeric_limits<double>::epsilon() * (world_extent + lattice_extent + 2));
+  Vec3 lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = region.lo[a] + guard;
+    hi[a] = region.hi[a] - guard;
+    if (!(lo[a] < hi[a]))
+      throw std::invalid_argument(fmt::format("BCC volume of 2 x {} x {} x {} samples is too small for the {} stencil on axis {}",
+                                              volume.sizes()[0], volume.sizes()[1], volume.sizes()[2], filter_name(f), a));
+  }
+  return to_world(volume, lo, hi);
+}
+
+CartesianGrid grid_over(const Box& box, Sizes n) {
+  std::uint64_t count = 1;
+  for (int a = 0; a < 3; ++a) {
+    if (n[a] < 2 || n[a] > kMaxGridSize)
+      throw std::invalid_argument(
+          fmt::format("Cartesian grid of {} x {} x {} points: each size must be in 2..{}", n[0], n[1], n[2], kMaxGridSize));
+    count *= static_cast<std::uint64_t>(n[a]);
+  }
+  if (count > kMaxGridPoints)
+    throw std::invalid_argument(fmt::format("Cartesian grid of {} x {} x {} points is too large (at most {})", n[0], n[1], n[2], kMaxGridPoints));
+  CartesianGrid grid{n, {}, box.min};
+  for (int a = 0; a < 3; ++a) {
+    if (!std::isfinite(box.min[a]) || !std::isfinite(box.max[a]))
+      throw std::invalid_argument(fmt::format("resampling box {} is not finite", describe(box)));
+    if (!(box.min[a] < box.max[a]))
+      throw std::invalid_argument(fmt::format("resampling box {} is empty or degenerate on axis {} (it needs min < max)", describe(box), a));
+    grid.spacing[a] = (box.max[a] - box.min[a]) / (n[a] - 1);
+    if (!std::isfinite(grid.spacing[a]) || grid.spacing[a] <= 0)
+      throw std::invalid_argument(fmt::format("resampling box {} gives no usable spacing on axis {}", describe(box), a));
+  }
+  return grid;
+}
+
+template <class T>
+CartesianVolume<T> resample(const BccVolume<T>& volume, Filter f, const CartesianGrid& grid) {
+  std::uint64_t count = 1;
+  for (int a = 0; a < 3; ++a) {
+    if (grid.sizes[a] < 2 || grid.sizes[a] > kMaxGridSize)
+      throw std::invalid_argument(fmt::format("Cartesian grid of {} x {} x {} points: each size must be in 2..{}", grid.sizes[0],
+                                              grid.sizes[1], grid.sizes[2], kMaxGridSize));
+    count *= static_cast<std::uint64_t>(grid.sizes[a]);
+    if (!std::isfinite(grid.spacing[a]) || grid.spacing[a] <= 0 || !std::isfinite(grid.origin[a]))
+      throw std::invalid_argument(fmt::format("Cartesian grid spacing and origin must be finite (and spacing > 0) on axis {}", a));
+  }
+  if (count > kMaxGridPoints)
+    throw std::invalid_argument(fmt::format("Cartesian grid of {} x {} x {} points is too large (at most {})", grid.sizes[0],
+                                            grid.sizes[1], grid.sizes[2], kMaxGridPoints));
+
+  CartesianVolume<T> out;
+  out.sizes = grid.sizes;
+  out.spacing = grid.spacing;
+  out.origin = grid.origin;
+  // The first and last grid points, computed as the evaluation will see them, must lie in the
+  // evaluable region; then every point between them does (the region is a box).
+  const LatticeRegion region = lattice_region(volume, f);
+  const Vec3 first = volume.to_lattice(out.position(0, 0, 0));
+  const Vec3 last = volume.to_lattice(out.position(grid.sizes[0] - 1, grid.sizes[1] - 1, grid.sizes[2] - 1));
+  for (int a = 0; a < 3; ++a)
+    if (!(first[a] >= region.lo[a] && last[a] < region.hi[a]))
+      throw std::out_of_range(fmt::format("resampling grid {} leaves the region where the {} stencil lies inside the volume, {}",
+                                          describe({out.position(0, 0, 0), out.position(grid.sizes[0] - 1, grid.sizes[1] - 1, grid.sizes[2] - 1)}),
+                                          filter_name(f), describe(to_world(volume, region.lo, region.hi))));
+
+  out.values.resize(static_cast<std::size_t>(count));
+  // Whole z-slices per batch (about 2^16 points): all cores at work, bounded scratch memory.
+  const std::size_t slice = static_cast<std::size_t>(grid.sizes[0]) * static_cast<std::size_t>(grid.sizes[1]);
+  const int slices_per_batch = static_cast<int>(std::max<std::size_t>(1, (std::size_t{1} << 16) / slice));
+  const Reconstructor<T> reconstructor(volume, f);
+  std::vector<Vec3> points;
+  for (int k0 = 0; k0 < grid.sizes[2]; k0 += slices_per_batch) {
+    const int k1 = std::min(grid.sizes[2], k0 + slices_per_batch);
+    points.clear();
+    for (int k = k0; k < k1; ++k)
+      for (int j = 0; j < grid.sizes[1]; ++j)
+        for (int i = 0; i < grid.sizes[0]; ++i) points.push_back(out.position(i, j, k));
+    const std::span<T> values(out.values.data() + out.index(0, 0, k0), points.size());
+    try {
+      reconstructor.evaluate(points, values);
+    } catch (const std::out_of_range& e) {  // a point within rounding of the region's face
+      throw std::out_of_range(fmt::format("resampling grid slices z = {}..{}: {}", k0, k1 - 1, e.what()));
+    }
+  }
+  return out;
+}
+
+template Box evaluable_region<float>(const BccVolume<float>&, Filter);
+template Box evaluable_region<double>(const BccVolume<double>&, Filter);
+template Box default_box<float>(const BccVolume<float>&, Filter);
+template Box default_box<double>(const BccVolume<double>&, Filter);
+template CartesianVolume<float> resample<float>(const BccVolume<float>&, Filter, const CartesianGrid&);
+template CartesianVolume<double> resample<double>(const BccVolume<double>&, Filter, const CartesianGrid&);
+
+}  // namespace boxgen::runtime

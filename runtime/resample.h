@@ -1,0 +1,81 @@
+// Resampling a BCC volume onto a Cartesian grid (for 3D Slicer, ParaView, unu: nrrd_io.h writes
+// the result), and the default grid: the largest box in which the chosen filter can be evaluated.
+//
+// Where a filter can be evaluated: the generated evaluator of a filter with centre shift c
+// (kCentre: the uncentred frame u = x + c has its knot planes at integer levels) fetches, for a
+// point x in lattice coordinates, a stencil that depends only on the unit cube k = floor(x + c)
+// holding x and on the cell of that cube. Over all cells of all cubes the fetched lattice points
+// j satisfy  k_a + lo_a <= j_a <= k_a + hi_a  (StencilReach, read off the generated tables). The
+// volume holds 0 <= j_a <= 2 N_a - 1, and every cube type occurs on every face of a box at least
+// two units wide, so the exact region where every point evaluates is the half-open box
+//   -lo_a - c_a  <=  x_a  <  2 N_a - hi_a - c_a        (lattice coordinates, per axis a).
+// The default box is that region, closed, and pulled in on each side by a rounding guard g (a few
+// ulps of the coordinates, in T and in double: see default_box) so that a grid point on its faces
+// still lands in the right unit cube after world -> lattice conversion. Growing it by one grid
+// step (anything more than g) on any side leaves the region.
+#pragma once
+#include <array>
+#include <cstdint>
+
+#include "runtime/bcc_volume.h"
+#include "runtime/cartesian_volume.h"
+#include "runtime/reconstruction.h"
+
+namespace boxgen::runtime {
+
+// Offsets j_a - floor(x_a + centre_a) of every lattice point the generated evaluator of a filter
+// may fetch (see above), per axis.
+struct StencilReach {
+  std::array<int, 3> lo{}, hi{};
+  Vec3 centre{};
+};
+StencilReach stencil_reach(Filter f);
+
+// An axis-aligned box of world points, min <= x <= max.
+struct Box {
+  Vec3 min{}, max{};
+};
+
+// The region where f can be evaluated on `volume` (the half-open box above), in world
+// coordinates: every point with min <= x < max (componentwise) evaluates. Throws
+// std::invalid_argument (one line) when the volume is too small for the stencil (empty region).
+template <class T>
+Box evaluable_region(const BccVolume<T>& volume, Filter f);
+// The default resampling box: evaluable_region closed and pulled in by the rounding guard.
+// Throws std::invalid_argument (one line) when the volume is too small for the stencil.
+template <class T>
+Box default_box(const BccVolume<T>& volume, Filter f);
+
+// Geometry of a Cartesian grid (a CartesianVolume without its values).
+struct CartesianGrid {
+  Sizes sizes{};
+  Vec3 spacing{};
+  Vec3 origin{};
+};
+
+// Largest number of grid points per axis and in total: keeps the sample count far from overflow
+// (memory runs out before the second limit; the allocation then throws std::bad_alloc).
+inline constexpr int kMaxGridSize = 1 << 16;
+inline constexpr std::uint64_t kMaxGridPoints = std::uint64_t{1} << 34;
+
+// n[a] points from box.min[a] to box.max[a] (both included): spacing (max - min) / (n - 1),
+// origin box.min. Throws std::invalid_argument (one line) for a non-finite, empty or degenerate
+// box (max <= min on some axis) or a size outside [2, kMaxGridSize] or above kMaxGridPoints.
+CartesianGrid grid_over(const Box& box, Sizes n);
+
+// The values of the spline of f on `volume` (prefilter it first for quasi-interpolation) at the
+// grid points, evaluated on all cores (Reconstructor::evaluate). Throws std::invalid_argument
+// (one line) for an invalid grid (sizes as in grid_over, spacing not finite and > 0, origin not
+// finite) or a volume too small for the stencil, and std::out_of_range (one line) when a grid
+// point lies outside evaluable_region(volume, f): the volume never invents data.
+template <class T>
+CartesianVolume<T> resample(const BccVolume<T>& volume, Filter f, const CartesianGrid& grid);
+
+extern template Box evaluable_region<float>(const BccVolume<float>&, Filter);
+extern template Box evaluable_region<double>(const BccVolume<double>&, Filter);
+extern template Box default_box<float>(const BccVolume<float>&, Filter);
+extern template Box default_box<double>(const BccVolume<double>&, Filter);
+extern template CartesianVolume<float> resample<float>(const BccVolume<float>&, Filter, const CartesianGrid&);
+extern template CartesianVolume<double> resample<double>(const BccVolume<double>&, Filter, const CartesianGrid&);
+
+}  // namespace boxgen::runtime

@@ -1,0 +1,281 @@
+// Resampling onto a Cartesian grid: cubic reproduction against the analytic polynomial, the grid
+// geometry, the NRRD file as Teem reads it, the default box (inside the volume, and tight) and
+// the errors for bad boxes.
+#include "runtime/resample.h"
+
+#include <gtest/gtest.h>
+#include <teem/biff.h>
+#include <teem/nrrd.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <random>
+#include <string>
+
+#include "generated/m12.hpp"
+#include "generated/m7.hpp"
+#include "generated/m8.hpp"
+#include "runtime/nrrd_io.h"
+#include "runtime/prefilter.h"
+#include "runtime/sampling.h"
+
+namespace boxgen::runtime {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr Filter kFilters[] = {Filter::M7, Filter::M8, Filter::M12};
+
+// A cubic with every kind of cubic term and no symmetry, written here rather than taken from
+// runtime/test_functions so the expected values do not come from the code under test.
+double cubic(const Vec3& p) {
+  const double x = p[0], y = p[1], z = p[2];
+  return 0.75 - 1.5 * x + 0.5 * y + 2 * z * z - 3 * x * y * z + x * x * x - 0.25 * y * y * z + 1.25 * x * z * z - 0.5 * y * y * y;
+}
+
+template <class T>
+BccVolume<T> prefiltered(const ScalarFunction& f, int n, Filter filter, PrefilterChoice q) {
+  BccVolume<T> volume = sample_cube<T>(f, n, required_margin(filter, q));
+  return q == PrefilterChoice::None ? volume : prefilter(volume, prefilter_taps(filter, q));
+}
+
+double max_cubic_error(const CartesianVolume<double>& grid) {
+  double worst = 0;
+  for (int k = 0; k < grid.sizes[2]; ++k)
+    for (int j = 0; j < grid.sizes[1]; ++j)
+      for (int i = 0; i < grid.sizes[0]; ++i)
+        worst = std::max(worst, std::abs(grid.values[grid.index(i, j, k)] - cubic(grid.position(i, j, k))));
+  return worst;
+}
+
+TEST(Resample, CubicIsReproducedOnTheCartesianGridWithQ1) {
+  // Quasi-interpolation of order 4 (Q^I) reproduces cubics: every grid value is the polynomial
+  // at the grid point up to rounding. Without a prefilter it is not (so this test can fail).
+  // The grid [-1,1]^3 with 7 points per axis puts points on lattice points, cell faces and inside.
+  const CartesianGrid grid = grid_over({{-1, -1, -1}, {1, 1, 1}}, {7, 7, 7});
+  for (Filter f : kFilters) {
+    const auto with_q1 = resample(prefiltered<double>(cubic, 9, f, PrefilterChoice::Q1), f, grid);
+    EXPECT_LE(max_cubic_error(with_q1), 1e-11) << filter_name(f);
+    const auto without = resample(prefiltered<double>(cubic, 9, f, PrefilterChoice::None), f, grid);
+    EXPECT_GT(max_cubic_error(without), 1e-4) << filter_name(f);
+  }
+}
+
+TEST(Resample, FloatVolumesResampleToFloatGrids) {
+  // float data: the cubic (|values| <= about 8) to float rounding, 1e-5.
+  const CartesianGrid grid = grid_over({{-1, -1, -1}, {1, 1, 1}}, {5, 5, 5});
+  const auto values = resample(prefiltered<float>(cubic, 9, Filter::M8, PrefilterChoice::Q1), Filter::M8, grid);
+  ASSERT_EQ(values.values.size(), 125u);
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 5; ++i)
+        EXPECT_NEAR(values.values[values.index(i, j, k)], cubic(values.position(i, j, k)), 1e-5) << i << " " << j << " " << k;
+}
+
+TEST(Resample, GridGeometryIsWhatWasAsked) {
+  const Box box{{-1, -0.5, 0}, {1, 0.5, 0.75}};
+  const CartesianGrid grid = grid_over(box, {5, 3, 4});
+  EXPECT_EQ(grid.sizes, (Sizes{5, 3, 4}));
+  EXPECT_EQ(grid.spacing, (Vec3{0.5, 0.5, 0.25}));
+  EXPECT_EQ(grid.origin, (Vec3{-1, -0.5, 0}));
+
+  const BccVolume<double> volume = prefiltered<double>(cubic, 9, Filter::M7, PrefilterChoice::Q2);
+  const auto out = resample(volume, Filter::M7, grid);
+  EXPECT_EQ(out.sizes, grid.sizes);
+  EXPECT_EQ(out.spacing, grid.spacing);
+  EXPECT_EQ(out.origin, grid.origin);
+  ASSERT_EQ(out.values.size(), 60u);
+  // The last point is the box's upper corner; storage is x fastest (index = i + 5 (j + 3 k)).
+  EXPECT_EQ(out.position(4, 2, 3), box.max);
+  const Reconstructor<double> r(volume, Filter::M7);
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 5; ++i) {
+        const Vec3 p{-1 + 0.5 * i, -0.5 + 0.5 * j, 0.25 * k};
+        EXPECT_EQ(out.values[static_cast<std::size_t>(i + 5 * (j + 3 * k))], r.value(p)) << i << " " << j << " " << k;
+      }
+}
+
+class ResampleNrrd : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("boxgen-resample-" + std::to_string(::getpid()) + "-" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+template <class T>
+void expect_teem_reads(const fs::path& path, const CartesianVolume<T>& grid) {
+  Nrrd* nrrd = nrrdNew();
+  if (nrrdLoad(nrrd, path.c_str(), nullptr) != 0) {
+    char* e = biffGetDone(NRRD);
+    ADD_FAILURE() << "Teem cannot load " << path << ": " << e;
+    std::free(e);
+    nrrdNuke(nrrd);
+    return;
+  }
+  EXPECT_EQ(nrrd->dim, 3u);
+  EXPECT_EQ(nrrd->type, sizeof(T) == 8 ? nrrdTypeDouble : nrrdTypeFloat);
+  EXPECT_EQ(nrrd->spaceDim, 3u);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(nrrd->axis[a].size, static_cast<std::size_t>(grid.sizes[a])) << a;
+    for (int b = 0; b < 3; ++b) EXPECT_EQ(nrrd->axis[a].spaceDirection[b], a == b ? grid.spacing[a] : 0.0) << a << " " << b;
+    EXPECT_EQ(nrrd->spaceOrigin[a], grid.origin[a]) << a;
+  }
+  ASSERT_NE(nrrd->data, nullptr);
+  EXPECT_EQ(std::memcmp(nrrd->data, grid.values.data(), grid.values.size() * sizeof(T)), 0);
+  nrrdNuke(nrrd);
+}
+
+TEST_F(ResampleNrrd, TeemReadsThePlain3dGrid) {
+  // A box with no short decimal form: the header must carry the exact spacing and origin.
+  const Box box{{-0.9, -1.0 / 3, 0.1}, {0.7, 0.8, 2.0 / 3}};
+  const CartesianGrid grid = grid_over(box, {6, 5, 4});
+  const auto d = resample(prefiltered<double>(cubic, 9, Filter::M12, PrefilterChoice::Q1), Filter::M12, grid);
+  write_cartesian_nrrd(dir_ / "d.nrrd", d);
+  expect_teem_reads(dir_ / "d.nrrd", d);
+  const auto f = resample(prefiltered<float>(cubic, 9, Filter::M7, PrefilterChoice::None), Filter::M7, grid);
+  write_cartesian_nrrd(dir_ / "f.nrrd", f);
+  expect_teem_reads(dir_ / "f.nrrd", f);
+}
+
+// The generated evaluator's own view of its stencil: every lattice point it fetches, relative to
+// floor(x + c), over many random points (a recording fetch, independent of the tables).
+template <class Evaluate>
+void expect_reach_matches_fetches(Filter f, Evaluate evaluate) {
+  const StencilReach reach = stencil_reach(f);
+  std::array<int, 3> seen_lo{99, 99, 99}, seen_hi{-99, -99, -99};
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-4, 4);
+  for (int n = 0; n < 20000; ++n) {
+    const std::array<double, 3> x{u(rng), u(rng), u(rng)};
+    evaluate(x, [&](const std::array<std::int64_t, 3>& j) {
+      for (int a = 0; a < 3; ++a) {
+        const int d = static_cast<int>(j[a] - static_cast<std::int64_t>(std::floor(x[a] + reach.centre[a])));
+        seen_lo[a] = std::min(seen_lo[a], d);
+        seen_hi[a] = std::max(seen_hi[a], d);
+      }
+      return 1.0;
+    });
+  }
+  EXPECT_EQ(seen_lo, reach.lo) << filter_name(f);
+  EXPECT_EQ(seen_hi, reach.hi) << filter_name(f);
+}
+
+TEST(Resample, StencilReachIsWhatTheEvaluatorsFetch) {
+  expect_reach_matches_fetches(Filter::M7, [](const auto& x, auto&& fetch) { return generated::m7::evaluate<double>(x, fetch); });
+  expect_reach_matches_fetches(Filter::M8, [](const auto& x, auto&& fetch) { return generated::m8::evaluate<double>(x, fetch); });
+  expect_reach_matches_fetches(Filter::M12, [](const auto& x, auto&& fetch) { return generated::m12::evaluate<double>(x, fetch); });
+}
+
+// Every point of the default grid, its corners and random points inside evaluate; a point one grid
+// step (or just 1e-3 lattice units) beyond any of its six faces leaves the volume for some
+// position on that face.
+template <class T>
+void expect_default_box_inside_and_tight(const BccVolume<T>& volume, Filter f) {
+  SCOPED_TRACE(::testing::Message() << filter_name(f) << (sizeof(T) == 4 ? " float" : " double"));
+  const Box box = default_box(volume, f);
+  const int n = 9;
+  const CartesianGrid grid = grid_over(box, {n, n, n});
+  EXPECT_NO_THROW(resample(volume, f, grid));
+  const Reconstructor<T> r(volume, f);
+  // The box lies inside the volume's lattice range (0..2N-1, in world coordinates).
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_GE(box.min[a], volume.origin()[a]);
+    EXPECT_LE(box.max[a], volume.origin()[a] + volume.spacing() * (2 * volume.sizes()[a] - 1));
+  }
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int s = 0; s < 2000; ++s) {
+    Vec3 p;
+    for (int a = 0; a < 3; ++a) p[a] = s < 8 ? ((s >> a) & 1 ? box.max[a] : box.min[a]) : box.min[a] + u(rng) * (box.max[a] - box.min[a]);
+    EXPECT_NO_THROW(r.value(p)) << p[0] << " " << p[1] << " " << p[2];
+  }
+  // Beyond a face by one grid step (the brief's test), and by only 1e-3 lattice units: the box
+  // is tight to far less than a grid step (the rounding guard is below 1e-4 units).
+  for (const double step : {grid.spacing[0], 1e-3 * volume.spacing()})
+  for (int a = 0; a < 3; ++a)
+    for (int side = 0; side < 2; ++side) {
+      int outside = 0;
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      for (int i = 0; i <= 40; ++i)
+        for (int k = 0; k <= 40; ++k) {
+          Vec3 p;
+          p[a] = side ? box.max[a] + step : box.min[a] - step;
+          p[b] = box.min[b] + (box.max[b] - box.min[b]) * i / 40;
+          p[c] = box.min[c] + (box.max[c] - box.min[c]) * k / 40;
+          try {
+            (void)r.value(p);
+          } catch (const std::out_of_range&) {
+            ++outside;
+          }
+        }
+      EXPECT_GT(outside, 0) << "the box could grow by " << step << " on axis " << a << (side ? " upwards" : " downwards");
+    }
+}
+
+TEST(Resample, DefaultBoxIsInsideTheVolumeAndTight) {
+  // Unequal sizes, an origin off zero and a spacing with no short binary form.
+  for (Filter f : kFilters) {
+    BccVolume<double> d({9, 10, 11}, 0.1, {0.3, -2, 5});
+    BccVolume<float> s({11, 9, 10}, 1.0 / 3, {-7, 0.25, 100});
+    expect_default_box_inside_and_tight(d, f);
+    expect_default_box_inside_and_tight(s, f);
+  }
+}
+
+TEST(Resample, DefaultBoxOfASampledCubeHoldsTheCube) {
+  // With the margin sampling.h prescribes, [-1,1]^3 is inside the default box.
+  for (Filter f : kFilters)
+    for (PrefilterChoice q : {PrefilterChoice::None, PrefilterChoice::Q2}) {
+      const Box box = default_box(prefiltered<double>(cubic, 5, f, q), f);
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_LE(box.min[a], -1) << filter_name(f);
+        EXPECT_GE(box.max[a], 1) << filter_name(f);
+      }
+    }
+}
+
+TEST(Resample, BadBoxesAndGridsAreErrors) {
+  const BccVolume<double> volume = prefiltered<double>(cubic, 5, Filter::M7, PrefilterChoice::None);
+  const Box inside{{-1, -1, -1}, {1, 1, 1}};
+  // Empty, degenerate, inverted or non-finite boxes, and too few points.
+  EXPECT_THROW(grid_over({{-1, 0, -1}, {1, 0, 1}}, {3, 3, 3}), std::invalid_argument);
+  EXPECT_THROW(grid_over({{1, -1, -1}, {-1, 1, 1}}, {3, 3, 3}), std::invalid_argument);
+  EXPECT_THROW(grid_over({{-1, -1, NAN}, {1, 1, 1}}, {3, 3, 3}), std::invalid_argument);
+  EXPECT_THROW(grid_over({{-1, -1, -1}, {1, INFINITY, 1}}, {3, 3, 3}), std::invalid_argument);
+  EXPECT_THROW(grid_over(inside, {3, 1, 3}), std::invalid_argument);
+  EXPECT_THROW(grid_over(inside, {3, 3, kMaxGridSize + 1}), std::invalid_argument);
+  EXPECT_THROW(grid_over(inside, {kMaxGridSize, kMaxGridSize, kMaxGridSize}), std::invalid_argument);
+  // A grid with zero spacing or a non-finite origin.
+  EXPECT_THROW(resample(volume, Filter::M7, CartesianGrid{{3, 3, 3}, {0.5, 0, 0.5}, {0, 0, 0}}), std::invalid_argument);
+  EXPECT_THROW(resample(volume, Filter::M7, CartesianGrid{{3, 3, 3}, {0.5, 0.5, 0.5}, {0, NAN, 0}}), std::invalid_argument);
+  // A box leaving the volume, on either side of any axis: one line naming the allowed region.
+  const Box allowed = default_box(volume, Filter::M7);
+  for (int a = 0; a < 3; ++a)
+    for (int side = 0; side < 2; ++side) {
+      Box out = inside;
+      (side ? out.max : out.min)[a] = side ? allowed.max[a] + 0.5 : allowed.min[a] - 0.5;
+      try {
+        (void)resample(volume, Filter::M7, grid_over(out, {3, 3, 3}));
+        ADD_FAILURE() << "a box leaving the volume on axis " << a << " was accepted";
+      } catch (const std::out_of_range& e) {
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("m7"), std::string::npos) << e.what();
+      }
+    }
+  // A volume too small for the stencil has no default box, and nothing can be resampled from it.
+  const BccVolume<double> tiny({2, 9, 9}, 0.5, {0, 0, 0});
+  EXPECT_THROW((void)default_box(tiny, Filter::M8), std::invalid_argument);
+  EXPECT_THROW((void)resample(tiny, Filter::M8, grid_over({{1, 1, 1}, {2, 2, 2}}, {3, 3, 3})), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace boxgen::runtime
