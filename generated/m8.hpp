@@ -22,10 +22,14 @@ inline constexpr const char* kStrategy = "horner";
 
 using Point = std::array<std::int64_t, kDimension>;
 
-namespace detail {
-
 // c = sum(Xi)/2: the uncentred frame is u = x + c, where every knot plane is an integer level.
 inline constexpr double kCentre[kDimension] = {0, 0, 0};
+// What a volume must hold around a point x: evaluate() fetches only lattice points j with
+// kStencilReachLo[i] <= j[i] - floor(x[i] + kCentre[i]) <= kStencilReachHi[i] (over every cell).
+inline constexpr int kStencilReachLo[kDimension] = {-3, -3, -3};
+inline constexpr int kStencilReachHi[kDimension] = {4, 4, 4};
+
+namespace detail {
 // Lower-triangular Hermite basis of the lattice (columns): reduces integer points to the coset
 // representatives 0 <= r_i < H_ii, the lower corners of the unit cubes of the fundamental region.
 inline constexpr std::int64_t kHermite[kDimension][kDimension] = {{1, -1, -1}, {0, 2, 0}, {0, 0, 2}};

@@ -5,7 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <map>
+#include <algorithm>
+#include <limits>
 #include <sstream>
 
 #include "generator/code_text.h"
@@ -21,6 +22,12 @@ namespace {
 using code::brace_list;
 using code::join;
 using code::literal;
+
+std::string join_ints(const IntVec& v) {
+  std::vector<std::string> parts;
+  for (auto x : v) parts.push_back(std::to_string(x));
+  return join(parts);
+}
 
 bool is_identifier(const std::string& s) {
   if (s.empty() || s.size() > 64 || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
@@ -87,6 +94,9 @@ std::string evaluator(const Analysis& a, const EmissionRequest& req) {
   const int cube_count = static_cast<int>(a.spec.lattice.det_abs());
   std::vector<std::vector<int>> lookup(cube_count, std::vector<int>(lookup_size, -1));
   std::vector<std::string> cells;
+  // Offsets j - floor(x + c) of every lattice point any cell fetches, per axis (the public
+  // kStencilReachLo/Hi: what a volume must hold around a point).
+  IntVec reach_lo(n, std::numeric_limits<std::int64_t>::max()), reach_hi(n, std::numeric_limits<std::int64_t>::min());
   for (size_t c = 0; c < s.cells.size(); ++c) {
     const auto& fc = s.cells[c];
     IntVec rep(fc.cell.key.begin(), fc.cell.key.begin() + n);
@@ -105,6 +115,14 @@ std::string evaluator(const Analysis& a, const EmissionRequest& req) {
     // x_ref = g (x - t + p) + l = g (x - t) + (g p + l)
     IntVec gp = g.apply(fc.placement), av(n);
     for (int i = 0; i < n; ++i) av[i] = gp[i] + region.to_reference.l[i];
+    // The evaluator fetches j[perm_i] = sign_i (s_i - a_i) + t[perm_i], t = corner - rep.
+    for (const auto& sp : s.references[region.orbit].stencil)
+      for (int i = 0; i < n; ++i) {
+        const int axis = g.perm[i];
+        const std::int64_t d = g.sign[i] * (sp[i] - av[i]) - rep[axis];
+        reach_lo[axis] = std::min(reach_lo[axis], d);
+        reach_hi[axis] = std::max(reach_hi[axis], d);
+      }
     cells.push_back(fmt::format("{{{}, {}, {}, {}, {}, {}}}", cube, region.orbit, brace_list(keys), brace_list(g.perm),
                                 brace_list(g.sign), brace_list(av)));
   }
@@ -131,7 +149,7 @@ std::string evaluator(const Analysis& a, const EmissionRequest& req) {
       fmt::runtime(templates::evaluator_hpp), fmt::arg("banner", banner(a, req)), fmt::arg("name", req.name),
       fmt::arg("dimension", n), fmt::arg("degree", a.properties.degree), fmt::arg("stencil_size", stencil_max),
       fmt::arg("lattice_det", a.spec.lattice.det_abs()), fmt::arg("spec_text", a.spec.directions_text()),
-      fmt::arg("strategy", strategy_name(req.strategy)), fmt::arg("centre", join(centre)), fmt::arg("hermite", join(hermite_rows)),
+      fmt::arg("strategy", strategy_name(req.strategy)), fmt::arg("centre", join(centre)), fmt::arg("reach_lo", join_ints(reach_lo)), fmt::arg("reach_hi", join_ints(reach_hi)), fmt::arg("hermite", join(hermite_rows)),
       fmt::arg("cube_count", cube_count), fmt::arg("normal_count", k_count), fmt::arg("normals", join(normal_rows)),
       fmt::arg("normal_min", join([&] {
                  std::vector<std::string> v;

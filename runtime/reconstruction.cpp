@@ -38,6 +38,18 @@ T evaluate_generated(Filter f, const std::array<T, 3>& x, Fetch&& fetch, std::ar
   throw std::logic_error("unknown filter");
 }
 
+// The reach the generator computed and published with each evaluator (kStencilReachLo/Hi).
+template <class Reach>
+StencilReach published_reach(const Reach& lo, const Reach& hi, const double (&centre)[3]) {
+  StencilReach reach;
+  for (int a = 0; a < 3; ++a) {
+    reach.lo[a] = lo[a];
+    reach.hi[a] = hi[a];
+    reach.centre[a] = centre[a];
+  }
+  return reach;
+}
+
 }  // namespace
 
 Filter parse_filter(std::string_view name) {
@@ -74,10 +86,24 @@ DiscreteFilter prefilter_taps(Filter f, PrefilterChoice q) {
   throw std::logic_error("unknown filter");
 }
 
+StencilReach stencil_reach(Filter f) {
+  switch (f) {
+    case Filter::M7: return published_reach(generated::m7::kStencilReachLo, generated::m7::kStencilReachHi, generated::m7::kCentre);
+    case Filter::M8: return published_reach(generated::m8::kStencilReachLo, generated::m8::kStencilReachHi, generated::m8::kCentre);
+    case Filter::M12: return published_reach(generated::m12::kStencilReachLo, generated::m12::kStencilReachHi, generated::m12::kCentre);
+  }
+  throw std::logic_error("unknown filter");
+}
+
 int required_margin(Filter f, PrefilterChoice q) {
-  // The stencil reaches max-norm radius r = 3 (M7) or 4 (M8, M12) lattice units from the point;
-  // a coset cell is 2 units: margin ceil(floor(r)/2) = 2, plus the prefilter's own reach.
-  const int reconstruction = 2;
+  // Evaluation needs -lo - c <= x < 2N - hi - c in the volume's lattice coordinates (resample.h).
+  // A margin of m coset cells puts [-1,1] at [2m, 2N - 2m - 2], so it needs 2m >= -lo - c and
+  // 2m > hi + c - 2; we add one unit of slack to each for rounding at the faces. Then the
+  // prefilter's own reach.
+  const StencilReach r = stencil_reach(f);
+  double need = 0;
+  for (int a = 0; a < 3; ++a) need = std::max({need, -r.lo[a] - r.centre[a], r.hi[a] + r.centre[a] - 2});
+  const int reconstruction = static_cast<int>(std::ceil((need + 1) / 2));
   return reconstruction + (q == PrefilterChoice::None ? 0 : prefilter_margin(prefilter_taps(f, q)));
 }
 

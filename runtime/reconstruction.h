@@ -2,6 +2,7 @@
 // m12.hpp) and their generated prefilters. Nothing here knows a polynomial coefficient or a
 // prefilter weight: both come from generated/.
 #pragma once
+#include <array>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -18,6 +19,15 @@ enum class PrefilterChoice { None, Q1, Q2 };
 Filter parse_filter(std::string_view name);
 PrefilterChoice parse_prefilter(std::string_view name);
 const char* filter_name(Filter f);
+
+// Offsets j_a - floor(x_a + centre_a) of every lattice point the generated evaluator of a filter
+// may fetch, per axis, and the centre shift c: published by the generator with each evaluator
+// (kStencilReachLo/Hi, kCentre). runtime/resample.h explains the box this gives.
+struct StencilReach {
+  std::array<int, 3> lo{}, hi{};
+  Vec3 centre{};
+};
+StencilReach stencil_reach(Filter f);
 
 // The generated quasi-interpolation prefilter (Q^I on shells 0,1; Q^II on shells 0,1,2).
 DiscreteFilter prefilter_taps(Filter f, PrefilterChoice q);

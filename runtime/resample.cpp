@@ -18,35 +18,6 @@ namespace boxgen::runtime {
 
 namespace {
 
-// The reach of an evaluator emitted from templates/evaluator.hpp.fmt, read off its tables. A
-// cell maps x to its reference region by x_ref = g (x - t) + a, t = corner - rep, where rep is
-// the cube's Hermite representative; it fetches j[perm_i] = sign_i (s_i - a_i) + t[perm_i] for
-// each reference stencil point s of its orbit, so j - corner = sign_i (s_i - a_i) - rep[perm_i].
-template <class Cell, std::size_t CellCount, std::size_t Orbits, std::size_t StencilSize>
-StencilReach reach_from_tables(const Cell (&cells)[CellCount], const std::int32_t (&stencil)[Orbits][StencilSize][3],
-                               const int (&orbit_size)[Orbits], const std::int64_t (&hermite)[3][3], const double (&centre)[3]) {
-  StencilReach reach;
-  reach.lo.fill(std::numeric_limits<int>::max());
-  reach.hi.fill(std::numeric_limits<int>::min());
-  for (int a = 0; a < 3; ++a) reach.centre[a] = centre[a];
-  for (const Cell& cell : cells) {
-    // Decode the cube index: cube = rep_0 + H_00 (rep_1 + H_11 rep_2) (the evaluator's encoding).
-    std::int64_t rep[3], cube = cell.cube;
-    for (int i = 0; i < 3; ++i) {
-      rep[i] = cube % hermite[i][i];
-      cube /= hermite[i][i];
-    }
-    for (int k = 0; k < orbit_size[cell.orbit]; ++k)
-      for (int i = 0; i < 3; ++i) {
-        const int axis = cell.perm[i];
-        const int d = static_cast<int>(cell.sign[i] * (stencil[cell.orbit][k][i] - cell.a[i]) - rep[axis]);
-        reach.lo[axis] = std::min(reach.lo[axis], d);
-        reach.hi[axis] = std::max(reach.hi[axis], d);
-      }
-  }
-  return reach;
-}
-
 // The evaluable region in lattice coordinates: lo <= x < hi per axis (may be empty).
 struct LatticeRegion {
   Vec3 lo, hi;
@@ -80,24 +51,6 @@ std::string describe(const Box& b) {
 }
 
 }  // namespace
-
-StencilReach stencil_reach(Filter f) {
-  switch (f) {
-    case Filter::M7: {
-      namespace g = generated::m7::detail;
-      return reach_from_tables(g::kCells, g::kStencil, g::kOrbitStencilSize, g::kHermite, g::kCentre);
-    }
-    case Filter::M8: {
-      namespace g = generated::m8::detail;
-      return reach_from_tables(g::kCells, g::kStencil, g::kOrbitStencilSize, g::kHermite, g::kCentre);
-    }
-    case Filter::M12: {
-      namespace g = generated::m12::detail;
-      return reach_from_tables(g::kCells, g::kStencil, g::kOrbitStencilSize, g::kHermite, g::kCentre);
-    }
-  }
-  throw std::logic_error("unknown filter");
-}
 
 template <class T>
 Box evaluable_region(const BccVolume<T>& volume, Filter f) {

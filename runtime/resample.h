@@ -5,7 +5,8 @@
 // (kCentre: the uncentred frame u = x + c has its knot planes at integer levels) fetches, for a
 // point x in lattice coordinates, a stencil that depends only on the unit cube k = floor(x + c)
 // holding x and on the cell of that cube. Over all cells of all cubes the fetched lattice points
-// j satisfy  k_a + lo_a <= j_a <= k_a + hi_a  (StencilReach, read off the generated tables). The
+// j satisfy  k_a + lo_a <= j_a <= k_a + hi_a  (StencilReach: the generator publishes lo and hi
+// with each evaluator as kStencilReachLo/Hi, and tests/runtime checks them against the fetches). The
 // volume holds 0 <= j_a <= 2 N_a - 1, and every cube type occurs on every face of a box at least
 // two units wide, so the exact region where every point evaluates is the half-open box
 //   -lo_a - c_a  <=  x_a  <  2 N_a - hi_a - c_a        (lattice coordinates, per axis a).
@@ -22,14 +23,6 @@
 #include "runtime/reconstruction.h"
 
 namespace boxgen::runtime {
-
-// Offsets j_a - floor(x_a + centre_a) of every lattice point the generated evaluator of a filter
-// may fetch (see above), per axis.
-struct StencilReach {
-  std::array<int, 3> lo{}, hi{};
-  Vec3 centre{};
-};
-StencilReach stencil_reach(Filter f);
 
 // An axis-aligned box of world points, min <= x <= max.
 struct Box {
