@@ -22,6 +22,7 @@
 #include <sstream>
 
 #include "cli_support.h"
+#include "tests/support/scratch_directory.h"
 
 #ifndef BOXRECON_EXE
 #error "BOXRECON_EXE must name the boxrecon binary (set by tests/cli/CMakeLists.txt)"
@@ -120,15 +121,9 @@ std::vector<std::vector<double>> parse_lines(const std::string& out, std::size_t
   return lines;
 }
 
-class BoxreconCli : public ::testing::Test {
+class BoxreconCli : public test::ScratchDirectoryTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("boxrecon-cli-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  BoxreconCli() : ScratchDirectoryTest("boxrecon-cli") {}
   std::string file(const std::string& name) const { return (dir_ / name).string(); }
   std::set<std::string> listing() const {
     std::set<std::string> names;
@@ -150,7 +145,6 @@ class BoxreconCli : public ::testing::Test {
     write_bytes(file(name), text);
     return points;
   }
-  fs::path dir_;
 };
 
 TEST_F(BoxreconCli, SampleThenEvalReproducesTheCubic) {

@@ -1,6 +1,7 @@
 // NRRD files: bit-exact round trips, the header fields read back with Teem itself, hand-written
 // files, and every kind of bad file giving one clear error (never a crash: these run under ASan).
 #include "runtime/nrrd_io.h"
+#include "tests/support/scratch_directory.h"
 
 #include <gtest/gtest.h>
 #include <teem/biff.h>
@@ -27,15 +28,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class BccNrrd : public ::testing::Test {
+class BccNrrd : public test::ScratchDirectoryTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("boxgen-runtime-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  BccNrrd() : ScratchDirectoryTest("boxgen-runtime") {}
 
   fs::path file(const std::string& name) const { return dir_ / name; }
   std::vector<std::string> listing() const {
@@ -45,7 +40,6 @@ class BccNrrd : public ::testing::Test {
     return names;
   }
 
-  fs::path dir_;
 };
 
 void write_bytes(const fs::path& path, const std::string& bytes) {

@@ -21,6 +21,7 @@
 #include "runtime/nrrd_io.h"
 #include "runtime/prefilter.h"
 #include "runtime/sampling.h"
+#include "tests/support/scratch_directory.h"
 
 namespace boxgen::runtime {
 namespace {
@@ -99,16 +100,9 @@ TEST(Resample, GridGeometryIsWhatWasAsked) {
       }
 }
 
-class ResampleNrrd : public ::testing::Test {
+class ResampleNrrd : public test::ScratchDirectoryTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("boxgen-resample-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  ResampleNrrd() : ScratchDirectoryTest("boxgen-resample") {}
 };
 
 template <class T>
