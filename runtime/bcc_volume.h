@@ -99,6 +99,9 @@ class BccVolume {
     return samples_[lattice_index(x, y, z)];
   }
   T value(const LatticePoint& p) const { return value(p[0], p[1], p[2]); }
+  // The sample at a BCC lattice point the caller has already shown to be inside (contains_box
+  // around a whole stencil): no check, for the reconstruction's inner loop.
+  T value_unchecked(const LatticePoint& p) const noexcept { return samples_[lattice_index(p[0], p[1], p[2])]; }
   // The sample at (x, y, z), or `outside` where value() would throw.
   T value_or(std::int64_t x, std::int64_t y, std::int64_t z, T outside) const noexcept {
     return contains(x, y, z) ? samples_[lattice_index(x, y, z)] : outside;

@@ -113,9 +113,27 @@ T Reconstructor<T>::value(const Vec3& world, Vec3* gradient) const {
     if (!std::isfinite(c)) throw std::invalid_argument("point has a non-finite coordinate");
   const Vec3 lattice = volume_.to_lattice(world);
   const std::array<T, 3> x{static_cast<T>(lattice[0]), static_cast<T>(lattice[1]), static_cast<T>(lattice[2])};
+  // Far outside the volume, stop before the evaluator converts floor(x) to an integer (which
+  // would overflow for huge coordinates); the stencil's reach is far smaller than kFar.
+  constexpr double kFar = 64;
+  for (int a = 0; a < 3; ++a)
+    if (!(lattice[a] > -kFar && lattice[a] < 2.0 * volume_.sizes()[a] + kFar))
+      throw std::out_of_range(fmt::format("point ({}, {}, {}) is outside the volume", world[0], world[1], world[2]));
   std::array<T, 3> g{};
-  const T v = evaluate_generated<T>(
-      filter_, x, [&](const LatticePoint& j) { return volume_.value(j); }, gradient ? &g : nullptr);
+  // The evaluator fetches only within reach_ of its unit cube floor(x + c), computed here exactly
+  // as it computes it (in T). Inside the volume with that whole box, no fetch needs a check;
+  // near the border each fetch is checked, so only a point that really needs outside data fails.
+  LatticePoint lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    const auto corner = static_cast<std::int64_t>(std::floor(x[a] + static_cast<T>(reach_.centre[a])));
+    lo[a] = corner + reach_.lo[a];
+    hi[a] = corner + reach_.hi[a];
+  }
+  const T v = volume_.contains_box(lo, hi)
+                  ? evaluate_generated<T>(
+                        filter_, x, [&](const LatticePoint& j) { return volume_.value_unchecked(j); }, gradient ? &g : nullptr)
+                  : evaluate_generated<T>(
+                        filter_, x, [&](const LatticePoint& j) { return volume_.value(j); }, gradient ? &g : nullptr);
   if (gradient)
     for (int i = 0; i < 3; ++i) (*gradient)[i] = static_cast<double>(g[i]) / volume_.spacing();
   return v;

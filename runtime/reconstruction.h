@@ -37,7 +37,8 @@ int required_margin(Filter f, PrefilterChoice q);
 template <class T>
 class Reconstructor {
  public:
-  Reconstructor(const BccVolume<T>& volume, Filter filter) : volume_(volume), filter_(filter) {}
+  Reconstructor(const BccVolume<T>& volume, Filter filter)
+      : volume_(volume), filter_(filter), reach_(stencil_reach(filter)) {}
 
   // The spline at a world point; with `gradient` also its gradient in world units. Throws
   // std::invalid_argument for a non-finite coordinate and std::out_of_range (one line) when the
@@ -50,6 +51,7 @@ class Reconstructor {
  private:
   const BccVolume<T>& volume_;
   Filter filter_;
+  StencilReach reach_;  // a point whose whole reach box is inside is fetched without checks
 };
 
 extern template class Reconstructor<float>;

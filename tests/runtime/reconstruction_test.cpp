@@ -7,6 +7,9 @@
 #include <cmath>
 #include <random>
 
+#include "generated/m12.hpp"
+#include "generated/m7.hpp"
+#include "generated/m8.hpp"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
 
@@ -78,6 +81,8 @@ TEST(Reconstruction, PointsOutsideTheVolumeAndNaNAreErrors) {
   EXPECT_THROW(r.value({5, 0, 0}), std::out_of_range);
   EXPECT_THROW(r.value({std::nan(""), 0, 0}), std::invalid_argument);
   EXPECT_THROW(r.value({0, INFINITY, 0}), std::invalid_argument);
+  EXPECT_THROW(r.value({1e300, 0, 0}), std::out_of_range);  // no integer overflow on the way
+  EXPECT_THROW(r.value({0, -1e19, 0}), std::out_of_range);
   std::vector<Vec3> points{{0, 0, 0}, {9, 9, 9}};
   std::vector<double> values(2);
   EXPECT_THROW(r.evaluate(points, values), std::out_of_range);
@@ -100,6 +105,44 @@ TEST(Reconstruction, BatchEqualsSingleEvaluationAndFloatIsClose) {
       EXPECT_EQ(g, gradients[i]);
       EXPECT_NEAR(rf.value(points[i]), values[i], 1e-5);
     }
+  }
+}
+
+// Points whose whole stencil reach is inside are fetched without checks; the others (near the
+// faces) fetch through checked access. Both paths must give the generated evaluator's value, bit
+// for bit, and near the faces a point either evaluates or is refused, never reads outside.
+TEST(Reconstruction, UncheckedAndCheckedFetchesAgreeEverywhere) {
+  const TestFunction& fn = find_test_function("ml");
+  const BccVolume<double> volume = sample_cube<double>(fn.value, 9, 2);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.6, 1.6);  // beyond [-1,1]: into and past the margin
+  for (Filter f : {Filter::M7, Filter::M8, Filter::M12}) {
+    const Reconstructor<double> r(volume, f);
+    int inside = 0, refused = 0;
+    for (int i = 0; i < 4000; ++i) {
+      const Vec3 p{u(rng), u(rng), u(rng)};
+      const Vec3 lattice = volume.to_lattice(p);
+      const std::array<double, 3> x{lattice[0], lattice[1], lattice[2]};
+      auto checked = [&](const LatticePoint& j) { return volume.value(j); };
+      double expected = 0;
+      bool evaluable = true;
+      try {
+        expected = f == Filter::M7 ? generated::m7::evaluate<double>(x, checked)
+                   : f == Filter::M8 ? generated::m8::evaluate<double>(x, checked)
+                                     : generated::m12::evaluate<double>(x, checked);
+      } catch (const std::out_of_range&) {
+        evaluable = false;
+      }
+      if (evaluable) {
+        ++inside;
+        EXPECT_EQ(r.value(p), expected) << filter_name(f) << " at " << p[0] << " " << p[1] << " " << p[2];
+      } else {
+        ++refused;
+        EXPECT_THROW(r.value(p), std::out_of_range) << filter_name(f);
+      }
+    }
+    EXPECT_GT(inside, 100) << filter_name(f);
+    EXPECT_GT(refused, 100) << filter_name(f);
   }
 }
 
