@@ -1,4 +1,7 @@
-// One analysis per preset, derived once per test binary (the exact checks run with it).
+// One analysis per preset, derived once per test binary process. analysis_of() skips the default
+// exact checks (they dominate the time and every test process would repeat them); the checks run
+// in verified_analysis_of(), which AnalyzePreset.MatchesTheLiterature uses for every preset, and
+// are themselves tested on broken forms in piecewise_test.cpp.
 #pragma once
 #include <map>
 #include <memory>
@@ -9,12 +12,24 @@
 
 namespace boxgen::testing {
 
-inline const Analysis& analysis_of(const std::string& preset) {
-  static std::map<std::string, std::unique_ptr<Analysis>> cache;
-  auto it = cache.find(preset);
-  if (it == cache.end()) it = cache.emplace(preset, std::make_unique<Analysis>(analyze(parse_spec(preset)))).first;
+namespace detail {
+inline const Analysis& cached_analysis(const std::string& preset, bool verify) {
+  static std::map<std::pair<std::string, bool>, std::unique_ptr<Analysis>> cache;
+  const auto key = std::make_pair(preset, verify);
+  auto it = cache.find(key);
+  if (it == cache.end()) {
+    AnalysisOptions options;
+    options.verify = verify;
+    it = cache.emplace(key, std::make_unique<Analysis>(analyze(parse_spec(preset), options))).first;
+  }
   return *it->second;
 }
+}  // namespace detail
+
+// Properties, piecewise form and structure (no exact checks).
+inline const Analysis& analysis_of(const std::string& preset) { return detail::cached_analysis(preset, false); }
+// The same with the default exact checks run (a failing check throws InternalError).
+inline const Analysis& verified_analysis_of(const std::string& preset) { return detail::cached_analysis(preset, true); }
 
 inline const char* const kAllPresets[] = {"m7", "m8", "m12", "cart7", "fcc6", "tricubic", "hex3", "zp"};
 

@@ -43,7 +43,7 @@ class AnalyzePreset : public ::testing::TestWithParam<Expected> {};
 
 TEST_P(AnalyzePreset, MatchesTheLiterature) {
   const Expected& e = GetParam();
-  const Analysis& a = analysis_of(e.preset);
+  const Analysis& a = testing::verified_analysis_of(e.preset);
   EXPECT_EQ(a.properties.degree, e.degree);
   EXPECT_EQ(a.properties.approximation_order, e.order);
   EXPECT_EQ(a.properties.continuity, e.order - 2);
