@@ -97,6 +97,21 @@ constexpr int teem_type() {
 // ---------------------------------------------------------------------------------------------
 // Writing
 
+}  // namespace
+
+void require_output_directory(const fs::path& path) {
+  const std::string name = path.filename().string();
+  if (name.empty() || name == "." || name == "..")
+    throw NrrdError("cannot write '" + printable(path.string()) + "': not a file name");
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    throw NrrdError("cannot write '" + printable(path.string()) + "': the directory '" + printable(dir.string()) +
+                    "' does not exist");
+}
+
+namespace {
+
 // Creates a temporary file next to `path`, lets `write` fill it, and renames it over `path`.
 // On any failure the temporary file is removed and NrrdError is thrown.
 void write_atomically(const fs::path& path, const std::function<bool(std::FILE*)>& write) {

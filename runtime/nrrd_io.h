@@ -46,6 +46,10 @@ struct NrrdReadLimits {
   std::uint64_t max_data_bytes = std::uint64_t{1} << 36;
 };
 
+// Throws NrrdError (one line) unless `path` names a file in an existing directory: lets a
+// program refuse a bad -o before it spends time computing what it would write.
+void require_output_directory(const std::filesystem::path& path);
+
 // Throws NrrdError if the file cannot be written (the target is left as it was).
 template <class T>
 void write_bcc_nrrd(const std::filesystem::path& path, const BccVolume<T>& volume);

@@ -118,7 +118,7 @@ T Reconstructor<T>::value(const Vec3& world, Vec3* gradient) const {
   constexpr double kFar = 64;
   for (int a = 0; a < 3; ++a)
     if (!(lattice[a] > -kFar && lattice[a] < 2.0 * volume_.sizes()[a] + kFar))
-      throw std::out_of_range(fmt::format("point ({}, {}, {}) is outside the volume", world[0], world[1], world[2]));
+      throw std::out_of_range(fmt::format("world point ({}, {}, {}) is outside the volume", world[0], world[1], world[2]));
   std::array<T, 3> g{};
   // The evaluator fetches only within reach_ of its unit cube floor(x + c), computed here exactly
   // as it computes it (in T). Inside the volume with that whole box, no fetch needs a check;
@@ -129,11 +129,18 @@ T Reconstructor<T>::value(const Vec3& world, Vec3* gradient) const {
     lo[a] = corner + reach_.lo[a];
     hi[a] = corner + reach_.hi[a];
   }
-  const T v = volume_.contains_box(lo, hi)
-                  ? evaluate_generated<T>(
-                        filter_, x, [&](const LatticePoint& j) { return volume_.value_unchecked(j); }, gradient ? &g : nullptr)
-                  : evaluate_generated<T>(
-                        filter_, x, [&](const LatticePoint& j) { return volume_.value(j); }, gradient ? &g : nullptr);
+  T v;
+  if (volume_.contains_box(lo, hi)) {
+    v = evaluate_generated<T>(
+        filter_, x, [&](const LatticePoint& j) { return volume_.value_unchecked(j); }, gradient ? &g : nullptr);
+  } else {
+    try {
+      v = evaluate_generated<T>(filter_, x, [&](const LatticePoint& j) { return volume_.value(j); }, gradient ? &g : nullptr);
+    } catch (const std::out_of_range& e) {  // name the point the user asked for, then the sample
+      throw std::out_of_range(fmt::format("world point ({}, {}, {}) needs a sample outside the volume: {}", world[0], world[1],
+                                          world[2], e.what()));
+    }
+  }
   if (gradient)
     for (int i = 0; i < 3; ++i) (*gradient)[i] = static_cast<double>(g[i]) / volume_.spacing();
   return v;

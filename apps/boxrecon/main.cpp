@@ -138,6 +138,7 @@ int run_resample(const std::string& filter, const std::string& pre, const std::s
   const Filter f = parse_filter(filter);
   const PrefilterChoice q = parse_prefilter(pre);
   if (n < 2 || n > kMaxResampleN) throw InputError(fmt::format("--n must be between 2 and {}, got {}", kMaxResampleN, n));
+  require_output_directory(output);  // before the work, not after it
   BccVolume<T> volume = read_bcc_nrrd<T>(volume_path);
   if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
   const Box box = min.empty() ? default_box(volume, f) : Box{{min[0], min[1], min[2]}, {max[0], max[1], max[2]}};
@@ -217,6 +218,7 @@ int run(int argc, char** argv) {
       throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) + "'");
     if (sample->parsed()) {
       const TestFunction& fn = find_test_function(function);
+      require_output_directory(output);
       const BccGrid grid = grid_for(n, h, 3);  // margin 3: enough for every filter with Q^I or Q^II
       if (precision == "float") write_bcc_nrrd(output, sample_bcc<float>(fn.value, grid));
       else write_bcc_nrrd(output, sample_bcc<double>(fn.value, grid));

@@ -341,8 +341,8 @@ std::vector<BadInput> bad_inputs() {
       {"ResampleNTooLarge", {"resample", "--filter", "m7", "--volume", "@/vol.nrrd", "-o", "@/out.nrrd", "--n", "513"}, 1, {"--n"}},
       {"NNotANumber", {"sample", "--n", "many", "-o", "@/out.nrrd"}, 2, {"--n", "many"}},
       // output files
-      {"SampleIntoMissingDirectory", {"sample", "--n", "5", "-o", "@/nodir/out.nrrd"}, 1, {"nodir"}},
-      {"ResampleIntoMissingDirectory", {"resample", "--filter", "m7", "--volume", "@/vol.nrrd", "-o", "@/nodir/out.nrrd"}, 1, {"nodir"}},
+      {"SampleIntoMissingDirectory", {"sample", "--n", "5", "-o", "@/nodir/out.nrrd"}, 1, {"nodir", "does not exist"}},
+      {"ResampleIntoMissingDirectory", {"resample", "--filter", "m7", "--volume", "@/vol.nrrd", "-o", "@/nodir/out.nrrd"}, 1, {"nodir", "does not exist"}},
       // usage
       {"NoSubcommand", {}, 2, {"subcommand"}},
       {"UnknownSubcommand", {"frobnicate"}, 2, {"frobnicate", "subcommand"}},

@@ -50,6 +50,7 @@ void record_status(int status, ProcessResult& r) {
 ProcessResult run_process(const std::string& program, const std::vector<std::string>& args,
                           std::chrono::seconds timeout, const std::string& stdout_file) {
   ProcessResult r;
+  r.program = program.substr(program.find_last_of('/') + 1);
   const auto start = Clock::now();
   const auto deadline = start + timeout;
   int out_pipe[2], err_pipe[2];
@@ -137,7 +138,7 @@ ProcessResult run_process(const std::string& program, const std::vector<std::str
 }
 
 std::string describe(const std::vector<std::string>& args, const ProcessResult& r) {
-  std::string s = "command: boxgen";
+  std::string s = "command: " + r.program;
   for (const auto& a : args) s += " '" + a + "'";
   s += "\nended: ";
   if (!r.started) s += "could not start";

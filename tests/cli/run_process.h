@@ -9,6 +9,7 @@
 namespace boxgen::test {
 
 struct ProcessResult {
+  std::string program;     // the program's file name, for messages
   bool started = false;    // posix_spawn succeeded
   bool exited = false;     // ended through exit() (not a signal)
   int exit_code = -1;      // valid when exited

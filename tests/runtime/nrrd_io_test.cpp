@@ -386,6 +386,16 @@ TEST_F(BccNrrd, WritingReplacesTheFileAndLeavesNoTemporaryFiles) {
   EXPECT_EQ(listing(), std::vector<std::string>{"v.nrrd"});
 }
 
+TEST_F(BccNrrd, OutputDirectoryIsCheckedBeforeAnyWork) {
+  EXPECT_NO_THROW(require_output_directory(file("v.nrrd")));
+  EXPECT_NO_THROW(require_output_directory("relative-name.nrrd"));  // the current directory
+  EXPECT_THROW(require_output_directory(file("missing") / "v.nrrd"), NrrdError);
+  EXPECT_THROW(require_output_directory(file("v.nrrd") / ""), NrrdError);  // a directory, not a file
+  std::ofstream(file("plain")) << "x";
+  EXPECT_THROW(require_output_directory(file("plain") / "v.nrrd"), NrrdError);  // parent is a file
+  EXPECT_EQ(listing(), std::vector<std::string>{"plain"});  // nothing written by the checks
+}
+
 TEST_F(BccNrrd, FailedWritesLeaveNothingBehind) {
   const auto v = random_volume<double>({2, 2, 2}, 0.5, {0, 0, 0}, 9);
   // The directory does not exist.

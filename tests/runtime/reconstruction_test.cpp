@@ -81,6 +81,13 @@ TEST(Reconstruction, PointsOutsideTheVolumeAndNaNAreErrors) {
   EXPECT_THROW(r.value({5, 0, 0}), std::out_of_range);
   EXPECT_THROW(r.value({std::nan(""), 0, 0}), std::invalid_argument);
   EXPECT_THROW(r.value({0, INFINITY, 0}), std::invalid_argument);
+  try {  // the message names the point asked for, in world coordinates, then the missing sample
+    r.value({5, 0.5, 0});
+    ADD_FAILURE() << "no error for a point outside the volume";
+  } catch (const std::out_of_range& e) {
+    EXPECT_NE(std::string(e.what()).find("world point (5, 0.5, 0)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("BCC lattice point"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(r.value({1e300, 0, 0}), std::out_of_range);  // no integer overflow on the way
   EXPECT_THROW(r.value({0, -1e19, 0}), std::out_of_range);
   std::vector<Vec3> points{{0, 0, 0}, {9, 9, 9}};
