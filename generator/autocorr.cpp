@@ -6,6 +6,7 @@
 #include <string>
 
 #include "generator/error.h"
+#include "generator/rational_linear_systems.h"
 #include "generator/recurrence.h"
 #include "generator/symmetry.h"
 
@@ -119,39 +120,6 @@ std::size_t rank_mod_p(std::vector<std::vector<std::uint64_t>> a, std::size_t co
     ++row;
   }
   return row;
-}
-
-// Exact null space of a dense rational matrix by reduced row echelon form.
-std::vector<RatVec> null_space(std::vector<RatVec> a, std::size_t cols) {
-  std::vector<std::size_t> pivot_cols;
-  std::size_t row = 0;
-  for (std::size_t col = 0; col < cols && row < a.size(); ++col) {
-    std::size_t pivot = row;
-    while (pivot < a.size() && cln::zerop(a[pivot][col])) ++pivot;
-    if (pivot == a.size()) continue;
-    std::swap(a[pivot], a[row]);
-    const Rational inv = Rational(1) / a[row][col];
-    for (std::size_t j = col; j < cols; ++j) a[row][j] = a[row][j] * inv;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      if (i == row || cln::zerop(a[i][col])) continue;
-      const Rational f = a[i][col];
-      for (std::size_t j = col; j < cols; ++j)
-        if (!cln::zerop(a[row][j])) a[i][j] = a[i][j] - f * a[row][j];
-    }
-    pivot_cols.push_back(col);
-    ++row;
-  }
-  std::vector<RatVec> basis;
-  std::vector<char> is_pivot(cols, 0);
-  for (auto c : pivot_cols) is_pivot[c] = 1;
-  for (std::size_t free = 0; free < cols; ++free) {
-    if (is_pivot[free]) continue;
-    RatVec v(cols, 0);
-    v[free] = 1;
-    for (std::size_t r = 0; r < pivot_cols.size(); ++r) v[pivot_cols[r]] = -a[r][free];
-    basis.push_back(std::move(v));
-  }
-  return basis;
 }
 
 Autocorrelation finish(std::vector<AutocorrSample> samples, int n) {
@@ -278,7 +246,7 @@ Autocorrelation autocorrelation_refinement(const BoxSplineSpec& spec, const Refi
     });
     system[o][o] = system[o][o] - 1;
   }
-  const auto kernel = null_space(std::move(system), unknowns);
+  const auto kernel = null_space(std::move(system), static_cast<int>(unknowns));
   if (kernel.size() != 1)
     fail_internal("refinement: eigenvalue 1 of the subdivision operator has multiplicity " +
                   std::to_string(kernel.size()) + (options.reduce_by_symmetry ? " on symmetric vectors" : "") +

@@ -8,6 +8,7 @@
 
 #include "generator/approximation_order.h"
 #include "generator/error.h"
+#include "generator/rational_linear_systems.h"
 #include "generator/symmetry.h"
 
 namespace boxgen {
@@ -124,42 +125,6 @@ RatVec reciprocal_sinc_coefficients(int terms) {
   for (int k = 1; k < terms; ++k)
     for (int i = 1; i <= k; ++i) b[k] = b[k] - a[i] * b[k - i];
   return b;
-}
-
-// ---- Exact linear systems -----------------------------------------------------------------------
-
-struct LinearSolution {
-  RatVec values;
-  std::vector<int> free_columns;  // set to zero
-};
-
-// Solves rows [a | b] exactly by reduced row echelon form; pivots are taken left to right, so the
-// free unknowns (set to zero) are the last ones in column order. nullopt if inconsistent.
-std::optional<LinearSolution> solve_exactly(std::vector<RatVec> rows, int unknowns) {
-  int rank = 0;
-  std::vector<int> pivots;
-  LinearSolution solution{RatVec(unknowns, Rational(0)), {}};
-  for (int col = 0; col < unknowns; ++col) {
-    auto it = std::find_if(rows.begin() + rank, rows.end(), [&](const RatVec& r) { return !cln::zerop(r[col]); });
-    if (it == rows.end()) {
-      solution.free_columns.push_back(col);
-      continue;
-    }
-    std::swap(*it, rows[rank]);
-    const Rational p = rows[rank][col];
-    for (auto& x : rows[rank]) x = x / p;
-    for (size_t i = 0; i < rows.size(); ++i) {
-      if (static_cast<int>(i) == rank || cln::zerop(rows[i][col])) continue;
-      const Rational f = rows[i][col];
-      for (int j = col; j <= unknowns; ++j) rows[i][j] = rows[i][j] - f * rows[rank][j];
-    }
-    pivots.push_back(col);
-    ++rank;
-  }
-  for (size_t i = rank; i < rows.size(); ++i)
-    if (!cln::zerop(rows[i][unknowns])) return std::nullopt;
-  for (int k = 0; k < rank; ++k) solution.values[pivots[k]] = rows[k][unknowns];
-  return solution;
 }
 
 // ---- The order conditions -----------------------------------------------------------------------
