@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "apps/boxgen/commands.h"
+#include "apps/common/exit_status.h"
 #include "generator/error.h"
 
 namespace {
@@ -20,21 +21,9 @@ void add_common(CLI::App* cmd, boxgen::cli::Common& c, bool needs_spec = true) {
 
 }  // namespace
 
-// Output goes through both iostreams and stdio (fmt): both are flushed and checked, so a full
-// disk or a closed pipe is an error, not a silent success with a truncated file.
-int finish(int code) {
-  std::cout.flush();
-  const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
-  if (failed && code == 0) {
-    std::cerr << "boxgen: error: could not write the output (disk full or closed pipe?)\n";
-    return 1;
-  }
-  return code;
-}
-
 int run(int argc, char** argv);
 
-int main(int argc, char** argv) { return finish(run(argc, argv)); }
+int main(int argc, char** argv) { return boxgen::app::finish(run(argc, argv), "boxgen"); }
 
 int run(int argc, char** argv) {
   CLI::App app{"boxgen: exact analysis of box splines on lattices and code generation for their evaluators"};
@@ -72,19 +61,7 @@ int run(int argc, char** argv) {
   auto* table1 = app.add_subcommand("table1", "derive M12, M8, M7 and print the paper's Table 1 beside ours");
   table1->add_flag("--json", c.json, "machine-readable output");
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::string what = e.what();
-    for (char& ch : what)
-      if (ch == '\n') ch = ' ';
-    std::cerr << "boxgen: usage error: " << what << " (see boxgen --help)\n";
-    return 2;
-  }
+  if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxgen")) return *stop;
   verify = !no_verify;
   try {
     if (presets->parsed()) return boxgen::cli::run_presets(c.json);

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/common/exit_status.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/reconstruction.h"
 #include "runtime/resample.h"
@@ -146,15 +147,6 @@ int run_resample(const std::string& filter, const std::string& pre, const std::s
   return 0;
 }
 
-int finish(int code) {
-  std::cout.flush();
-  if ((!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) && code == 0) {
-    std::cerr << "boxrecon: error: could not write the output\n";
-    return 1;
-  }
-  return code;
-}
-
 int run(int argc, char** argv) {
   CLI::App app{"boxrecon: reconstruct BCC volumes with the generated box-spline evaluators"};
   app.require_subcommand(1);
@@ -202,17 +194,7 @@ int run(int argc, char** argv) {
   min_option->needs(max_option);
   max_option->needs(min_option);
   resample->add_option("--precision", precision, "float | double");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::string what = e.what();
-    for (char& c : what)
-      if (c == '\n') c = ' ';
-    std::cerr << "boxrecon: usage error: " << what << " (see boxrecon --help)\n";
-    return 2;
-  }
+  if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxrecon")) return *stop;
   try {
     if (precision != "float" && precision != "double")
       throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) + "'");
@@ -241,4 +223,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return finish(run(argc, argv)); }
+int main(int argc, char** argv) { return boxgen::app::finish(run(argc, argv), "boxrecon"); }
