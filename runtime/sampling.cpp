@@ -33,23 +33,6 @@ BccVolume<T> sample_bcc(const ScalarFunction& f, const BccGrid& grid) {
   return volume;
 }
 
-double support_radius(const std::vector<std::array<int, 3>>& directions) {
-  double radius = 0;
-  for (int a = 0; a < 3; ++a) {
-    double sum = 0;
-    for (const auto& xi : directions) sum += std::abs(static_cast<double>(xi[a]));
-    radius = std::max(radius, sum / 2);
-  }
-  return radius;
-}
-
-int reconstruction_margin(double radius) {
-  if (!std::isfinite(radius) || radius < 0 || radius > 1e9)
-    throw std::invalid_argument(fmt::format("support radius {} must be finite, non-negative and at most 1e9", radius));
-  // Lattice points are integers, so only floor(r) matters: j_a >= 2m - floor(r) >= 0.
-  return static_cast<int>(std::ceil(std::floor(radius) / 2));
-}
-
 template BccVolume<float> sample_bcc<float>(const ScalarFunction&, const BccGrid&);
 template BccVolume<double> sample_bcc<double>(const ScalarFunction&, const BccGrid&);
 

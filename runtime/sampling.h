@@ -8,16 +8,9 @@
 // (The odd coset then runs from -1 - 2hm + h to 1 + 2hm + h: one odd point lies beyond each
 // cube face, the cost of storing both cosets with equal sizes.)
 //
-// How much margin: in lattice coordinates the cube is [2m, 2m + 2N - 2] per axis. A box spline
-// whose support reaches r lattice units from its centre (max-norm; support_radius below) needs
-// the samples j with |x_a - j_a| <= r for every x in the cube (<= rather than <: points on a
-// region boundary, including ones moved there by rounding, may be evaluated with the stencil of
-// the neighbouring region). As j is an integer the lower side needs 2m >= floor(r), the upper side
-// only 2m >= floor(r) - 1, so m = ceil(floor(r)/2) = reconstruction_margin(r) suffices:
-//   M7 (r = 3): 2,  M8 (r = 4): 2,  M12 (r = 4): 2.
-// A prefilter shrinks the volume by prefilter_margin(q) coset cells per side (prefilter.h; 1 for
-// Q^I and Q^II, whose taps lie within max-norm 2), so sample with
-//   margin = reconstruction_margin(support_radius(directions)) + prefilter_margin(q).
+// How much margin: required_margin(filter, prefilter) in reconstruction.h derives it from the
+// stencil reach the generator publishes with each evaluator (2 coset cells for M7, M8 and M12,
+// one more with Q^I or Q^II, whose taps reach one coset cell: prefilter_margin in prefilter.h).
 #pragma once
 #include <array>
 #include <functional>
@@ -50,13 +43,6 @@ template <class T>
 BccVolume<T> sample_cube(const ScalarFunction& f, int n, int margin) {
   return sample_bcc<T>(f, cube_grid(n, margin));
 }
-
-// Max-norm radius, in lattice units, of the support of the centred box spline with these
-// direction vectors (columns of Xi): max over axes a of sum_xi |xi_a| / 2.
-double support_radius(const std::vector<std::array<int, 3>>& directions);
-// Coset cells of margin that reconstruction with a filter of that support radius needs:
-// ceil(floor(r) / 2), see above. Throws std::invalid_argument for a negative or non-finite radius.
-int reconstruction_margin(double support_radius);
 
 extern template BccVolume<float> sample_bcc<float>(const ScalarFunction&, const BccGrid&);
 extern template BccVolume<double> sample_bcc<double>(const ScalarFunction&, const BccGrid&);

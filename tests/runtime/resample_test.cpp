@@ -226,7 +226,7 @@ TEST(Resample, DefaultBoxIsInsideTheVolumeAndTight) {
 }
 
 TEST(Resample, DefaultBoxOfASampledCubeHoldsTheCube) {
-  // With the margin sampling.h prescribes, [-1,1]^3 is inside the default box.
+  // With required_margin (reconstruction.h) as the sampling margin, [-1,1]^3 is inside the default box.
   for (Filter f : kFilters)
     for (PrefilterChoice q : {PrefilterChoice::None, PrefilterChoice::Q2}) {
       const Box box = default_box(prefiltered<double>(cubic, 5, f, q), f);

@@ -13,26 +13,6 @@
 namespace boxgen::runtime {
 namespace {
 
-// The direction matrices of the paper's filters (design.md 1): integer direction vectors, the
-// input of support_radius.
-const std::vector<std::array<int, 3>> kXi1 = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
-const std::vector<std::array<int, 3>> kXi2 = {{2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
-
-std::vector<std::array<int, 3>> concat(std::initializer_list<std::vector<std::array<int, 3>>> parts, int sign_of_last_two = 1) {
-  std::vector<std::array<int, 3>> all;
-  int index = 0;
-  const int count = static_cast<int>(parts.size());
-  for (const auto& part : parts) {
-    for (auto xi : part) {
-      if (index >= count - 2 && sign_of_last_two < 0)
-        for (int& x : xi) x = -x;
-      all.push_back(xi);
-    }
-    ++index;
-  }
-  return all;
-}
-
 TEST(BccSampling, CubeGridGeometry) {
   const BccGrid g = cube_grid(33, 0);
   EXPECT_EQ(g.sizes, (Sizes{33, 33, 33}));
@@ -108,46 +88,6 @@ TEST(BccSampling, BadArgumentsAreRejected) {
   EXPECT_THROW(cube_grid(-3, 0), std::invalid_argument);
   EXPECT_THROW(cube_grid(5, -1), std::invalid_argument);
   EXPECT_THROW(cube_grid(BccVolume<double>::kMaxSize, 1), std::invalid_argument);
-  EXPECT_THROW(reconstruction_margin(-1), std::invalid_argument);
-  EXPECT_THROW(reconstruction_margin(std::nan("")), std::invalid_argument);
-}
-
-TEST(BccSampling, SupportRadiusAndMarginOfThePaperFilters) {
-  const auto m7 = concat({kXi1, kXi2});
-  const auto m8 = concat({kXi1, kXi1});
-  const auto m12 = concat({kXi2, kXi2, kXi2, kXi2}, -1);
-  ASSERT_EQ(m7.size(), 7u);
-  ASSERT_EQ(m8.size(), 8u);
-  ASSERT_EQ(m12.size(), 12u);
-  // Per axis: M7 4 * 1/2 + 2/2 = 3, M8 8 * 1/2 = 4, M12 4 * 2/2 = 4.
-  EXPECT_EQ(support_radius(m7), 3.0);
-  EXPECT_EQ(support_radius(m8), 4.0);
-  EXPECT_EQ(support_radius(m12), 4.0);
-  EXPECT_EQ(reconstruction_margin(3), 2);
-  EXPECT_EQ(reconstruction_margin(4), 2);
-  EXPECT_EQ(reconstruction_margin(2.5), 1);
-  EXPECT_EQ(reconstruction_margin(3.5), 2);
-  EXPECT_EQ(reconstruction_margin(5), 3);
-  EXPECT_EQ(reconstruction_margin(0), 0);
-}
-
-// The margin is enough, and one less is not: every lattice point within max-norm r of a point of
-// the cube must be in the volume.
-TEST(BccSampling, ReconstructionMarginCoversEveryStencilOfTheCube) {
-  for (double r : {1.0, 2.0, 2.5, 3.0, 4.0, 5.0})
-    for (int n : {2, 5, 8}) {
-      const int m = reconstruction_margin(r);
-      auto needed = [&](int margin) {
-        const BccVolume<float> v(cube_grid(n, margin).sizes, 1, {0, 0, 0});
-        const std::int64_t lo = static_cast<std::int64_t>(std::ceil(2 * margin - r));
-        const std::int64_t hi = static_cast<std::int64_t>(std::floor(2 * margin + 2 * n - 2 + r));
-        return v.contains_box({lo, lo, lo}, {hi, hi, hi});
-      };
-      EXPECT_TRUE(needed(m)) << "r = " << r << ", n = " << n;
-      if (m > 0) {
-        EXPECT_FALSE(needed(m - 1)) << "r = " << r << ", n = " << n;
-      }
-    }
 }
 
 }  // namespace
