@@ -11,6 +11,9 @@ PACKAGES=(
   libgtest-dev googletest               # unit tests
   libbenchmark-dev                      # benchmarks
   libteem-dev                           # NRRD volume files (runtime)
+  libhwy-dev                            # portable SIMD with dynamic dispatch (runtime batch path)
+  gnuplot-nox                           # line plots of kernels and spectra (boxgen kernel/spectrum)
+  libpng-dev                            # PNG images of spectra and renders
   clang libclang-rt-14-dev              # libFuzzer targets (label: fuzz)
 )
 missing=()
