@@ -52,12 +52,15 @@ int run(int argc, char** argv) {
   auto* autocorr = app.add_subcommand("autocorr", "lattice samples of the doubled box spline (autocorrelation)");
   add_common(autocorr, c);
   autocorr->add_option("--method", method, "refinement (default) or continuity");
-  std::string emit_name, emit_out, emit_strategy = "horner";
+  std::string emit_name, emit_out, emit_strategy = "auto";
+  bool emit_report = false;
   auto* emit = app.add_subcommand("emit", "emit the C++ evaluator and prefilter headers of a box spline");
   add_common(emit, c);
   emit->add_option("--name", emit_name, "C++ identifier: namespace boxgen::generated::<name>")->required();
   emit->add_option("--out", emit_out, "output directory")->required();
-  emit->add_option("--strategy", emit_strategy, "how polynomials are written: horner (default) or monomial");
+  emit->add_option("--strategy", emit_strategy,
+                   "how polynomials are written: auto (default: the cheapest), horner, separable or monomial");
+  emit->add_flag("--report", emit_report, "also print the strategy and operation counts per orbit");
   auto* table1 = app.add_subcommand("table1", "derive M12, M8, M7 and print the paper's Table 1 beside ours");
   table1->add_flag("--json", c.json, "machine-readable output");
 
@@ -71,7 +74,7 @@ int run(int argc, char** argv) {
     if (prefilter->parsed()) return boxgen::cli::run_prefilter(c, shells);
     if (autocorr->parsed()) return boxgen::cli::run_autocorr(c, method);
     if (table1->parsed()) return boxgen::cli::run_table1(c.json);
-    if (emit->parsed()) return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy);
+    if (emit->parsed()) return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy, emit_report);
   } catch (const boxgen::InputError& e) {
     std::cerr << "boxgen: error: " << e.what() << '\n';
     return 1;
