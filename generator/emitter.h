@@ -39,6 +39,10 @@ struct EmissionReport {
 // With `report`, also fills it.
 std::vector<EmittedFile> emit(const Analysis& analysis, const EmissionRequest& request, EmissionReport* report = nullptr);
 
+// registry.hpp: boxgen::generated::with_filter over the named filters (each with its evaluator and
+// both prefilters in the same directory), in the order given; the last one is the switch's default.
+EmittedFile emit_registry(const std::vector<std::string>& names, const std::string& command);
+
 // Writes the files into `directory` (each through a temporary file and a rename).
 void write_files(const std::vector<EmittedFile>& files, const std::string& directory);
 

@@ -19,7 +19,8 @@ void print_report(const EmissionReport& r) {
 
 }  // namespace
 
-int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy, bool report) {
+int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy, bool report,
+             const std::vector<std::string>& registry) {
   const EmissionStrategy chosen = parse_strategy(strategy);  // before the derivation: fail fast
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
   const Analysis a = analyze(spec);  // the exact checks run before anything is emitted
@@ -29,7 +30,12 @@ int run_emit(const Common& c, const std::string& name, const std::string& out, c
                                       c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy),
                           chosen};
   EmissionReport r;
-  const auto files = emit(a, request, &r);
+  auto files = emit(a, request, &r);
+  if (!registry.empty()) {
+    std::string names;
+    for (const auto& n : registry) names += (names.empty() ? "" : ",") + n;
+    files.push_back(emit_registry(registry, fmt::format("boxgen emit ... --registry {} --out <dir>", names)));
+  }
   write_files(files, out);
   if (c.json) {
     nlohmann::json j = nlohmann::json::array();

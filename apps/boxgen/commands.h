@@ -24,7 +24,7 @@ int run_prefilter(const Common& c, const std::string& shells);
 int run_autocorr(const Common& c, const std::string& method);
 int run_table1(bool json);
 int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy,
-             bool report);
+             bool report, const std::vector<std::string>& registry);
 
 // Shared output helpers.
 nlohmann::json rational_list(const RatVec& v);

@@ -54,6 +54,7 @@ int run(int argc, char** argv) {
   autocorr->add_option("--method", method, "refinement (default) or continuity");
   std::string emit_name, emit_out, emit_strategy = "auto";
   bool emit_report = false;
+  std::vector<std::string> emit_registry;
   auto* emit = app.add_subcommand("emit", "emit the C++ evaluator and prefilter headers of a box spline");
   add_common(emit, c);
   emit->add_option("--name", emit_name, "C++ identifier: namespace boxgen::generated::<name>")->required();
@@ -61,6 +62,8 @@ int run(int argc, char** argv) {
   emit->add_option("--strategy", emit_strategy,
                    "how polynomials are written: auto (default: the cheapest), horner, separable or monomial");
   emit->add_flag("--report", emit_report, "also print the strategy and operation counts per orbit");
+  emit->add_option("--registry", emit_registry, "also write registry.hpp listing these filters (comma-separated)")
+      ->delimiter(',');
   auto* table1 = app.add_subcommand("table1", "derive M12, M8, M7 and print the paper's Table 1 beside ours");
   table1->add_flag("--json", c.json, "machine-readable output");
 
@@ -74,7 +77,7 @@ int run(int argc, char** argv) {
     if (prefilter->parsed()) return boxgen::cli::run_prefilter(c, shells);
     if (autocorr->parsed()) return boxgen::cli::run_autocorr(c, method);
     if (table1->parsed()) return boxgen::cli::run_table1(c.json);
-    if (emit->parsed()) return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy, emit_report);
+    if (emit->parsed()) return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy, emit_report, emit_registry);
   } catch (const boxgen::InputError& e) {
     std::cerr << "boxgen: error: " << e.what() << '\n';
     return 1;
