@@ -42,7 +42,7 @@ void plot_png(const std::string& path, const std::vector<PlotPanel>& panels, int
   for (std::size_t p = 0; p < panels.size(); ++p) {
     const auto& panel = panels[p];
     script += "reset\nset grid\nset key top left\n";
-    script += fmt::format("set title {}\nset xlabel {}\nset ylabel {}\n", quoted(panel.title), quoted(panel.xlabel),
+    script += fmt::format("set title {} noenhanced\nset xlabel {} noenhanced\nset ylabel {} noenhanced\n", quoted(panel.title), quoted(panel.xlabel),
                           quoted(panel.ylabel));
     if (panel.log_x) script += "set logscale x\nset format x '10^{%L}'\n";
     if (panel.log_y) script += "set logscale y\nset format y '10^{%L}'\n";

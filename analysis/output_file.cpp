@@ -1,6 +1,7 @@
 #include "analysis/output_file.h"
 
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -31,6 +32,10 @@ void AtomicOutput::commit() {
   std::error_code ec;
   const auto size = std::filesystem::file_size(temporary_, ec);
   if (ec || size == 0) throw std::runtime_error(fmt::format("nothing was written for '{}'", path_));
+  // mkstemp creates the file 0600; give it the mode an ordinary new file gets (0666 & ~umask).
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::chmod(temporary_.c_str(), 0666 & ~mask);
   if (std::rename(temporary_.c_str(), path_.c_str()) != 0)
     throw std::runtime_error(fmt::format("cannot rename the finished file to '{}'", path_));
   committed_ = true;

@@ -85,7 +85,7 @@ int run_kernel(const AnalysisOptions& o) {
     panel.xlabel = "w";
     panel.ylabel = "E";
     panel.log_x = panel.log_y = true;
-    panel.extra = "set key bottom right font ',8'\nset yrange [1e-12:2]";
+    panel.extra = "set key bottom right font ',8'\nset autoscale xfix\nset yrange [1e-16:2]";
     const std::map<std::string, std::string> dash = {{"none", "dt 3"}, {"q1", "dt 2"}, {"q2", "dt 1"}};
     const std::map<std::string, std::string> label = {{"none", "no prefilter"}, {"q1", "Q^I"}, {"q2", "Q^{II}"}};
     for (std::size_t i = 0; i < all.size(); ++i) {
