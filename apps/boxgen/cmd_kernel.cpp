@@ -88,7 +88,7 @@ int run_kernel(const AnalysisOptions& o) {
     panel.extra = "set key bottom right font ',8'\nset autoscale xfix\nset yrange [1e-16:2]";
     const std::map<std::string, std::string> dash = {{"none", "dt 3"}, {"q1", "dt 2"}, {"q2", "dt 1"}};
     const std::map<std::string, std::string> label = {{"none", "no prefilter"}, {"q1", "Q^I"}, {"q2", "Q^{II}"}};
-    for (std::size_t i = 0; i < all.size(); ++i) {
+    for (std::size_t i = all.size(); i-- > 0;) {  // the first SPEC drawn last, on top
       for (const std::string name : {"none", "q1", "q2"})
         panel.series.push_back({fmt::format("{} {}", all[i].key, label.at(name)), w, all[i].e.at(name),
                                 fmt::format("lines lw 2 lc rgb '{}' {}", colour(i), dash.at(name))});
