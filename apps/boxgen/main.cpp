@@ -86,6 +86,7 @@ int run(int argc, char** argv) {
   add_specs(spectrum);
   spectrum->add_option("--plane", ao.plane, "normal a,b,c of a plane through 0 (image)");
   spectrum->add_option("--line", ao.line, "direction a,b,c of a line through 0 (plot)");
+  spectrum->add_option("--w", ao.w, "line: abscissae w (comma or space separated)")->delimiter(',');
   add_range(spectrum);
   spectrum->add_option("--size", ao.size, "plane image: pixels per filter panel side (default 400)");
   spectrum->add_option("-o,--output", ao.plot, "PNG to write");
