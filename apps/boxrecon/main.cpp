@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "apps/boxrecon/cmd_error_table.h"
+#include "apps/boxrecon/cmd_render.h"
 #include "apps/common/exit_status.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/reconstruction.h"
@@ -197,6 +198,7 @@ int run(int argc, char** argv) {
   min_option->needs(max_option);
   max_option->needs(min_option);
   resample->add_option("--precision", precision, "float | double");
+  auto* render = boxgen::recon::add_render_command(app);
   if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxrecon")) return *stop;
   try {
     if (precision != "float" && precision != "double")
@@ -212,6 +214,7 @@ int run(int argc, char** argv) {
     if (eval->parsed())
       return precision == "float" ? run_eval<float>(filter, pre, volume, points_path, gradient)
                                   : run_eval<double>(filter, pre, volume, points_path, gradient);
+    if (render->parsed()) return boxgen::recon::run_render();
     if (error->parsed() && table) return boxgen::recon::run_error_table(count, seed, json);
     if (error->parsed() && (error_n->count() == 0 || error_filter->count() == 0)) {
       std::cerr << "boxrecon: usage error: error needs --n and --filter (or --table) (see boxrecon --help)\n";

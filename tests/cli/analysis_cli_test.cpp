@@ -88,6 +88,48 @@ TEST_F(AnalysisCli, FiguresAreWrittenAsPngAndNothingElse) {
   EXPECT_EQ(listing(), (std::vector<std::string>{"k.png", "l.png", "p.png"}));
 }
 
+#ifndef BOXRECON_EXE
+#error "BOXRECON_EXE must name the boxrecon binary"
+#endif
+ProcessResult boxrecon(const std::vector<std::string>& args) { return run_process(BOXRECON_EXE, args, kDefaultTimeout); }
+
+TEST_F(AnalysisCli, RenderWritesAPngOfTheRequestedSize) {
+  const ProcessResult r = boxrecon({"render", "--function", "ml", "--n", "17", "--filter", "m7", "--prefilter", "q1",
+                                    "--cutaway", "--width", "40", "--height", "30", "--quiet", "-o", file("r.png")});
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << describe({"render"}, r);
+  EXPECT_EQ(r.err, "");
+  ASSERT_TRUE(is_png(file("r.png")));
+  std::ifstream in(file("r.png"), std::ios::binary);
+  unsigned char header[24] = {};
+  in.read(reinterpret_cast<char*>(header), 24);
+  const auto be32 = [&](int at) { return (header[at] << 24) | (header[at + 1] << 16) | (header[at + 2] << 8) | header[at + 3]; };
+  EXPECT_EQ(be32(16), 40);  // IHDR width
+  EXPECT_EQ(be32(20), 30);  // IHDR height
+  EXPECT_EQ(listing(), (std::vector<std::string>{"r.png"}));
+}
+
+TEST_F(AnalysisCli, ErrorTableJsonHasEveryRowAndKey) {
+  const ProcessResult r = boxrecon({"error", "--table", "--points", "200", "--json"});
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << describe({"error", "--table"}, r);
+  const auto j = nlohmann::json::parse(r.out);
+  // 5 densities x (3 filters x 3 prefilters + 2 tricubic rows).
+  ASSERT_EQ(j["rows"].size(), 55u);
+  for (const auto& row : j["rows"]) {
+    for (const char* key : {"n", "filter", "prefilter", "rms", "max", "gradient_rms", "samples"})
+      EXPECT_TRUE(row.contains(key)) << key << " in " << row.dump();
+    const int n = row["n"].get<int>();
+    EXPECT_LE(row["rms"].get<double>(), row["max"].get<double>());
+    if (row["filter"] == "tricubic") {
+      const int m = static_cast<int>(std::lround(std::cbrt(2.0) * n));
+      EXPECT_EQ(row["cartesian_n"].get<int>(), m);
+      EXPECT_EQ(row["samples"].get<std::uint64_t>(), static_cast<std::uint64_t>(m) * m * m);
+    } else {
+      EXPECT_FALSE(row.contains("cartesian_n"));
+      EXPECT_EQ(row["samples"].get<std::uint64_t>(), 2ull * n * n * n);
+    }
+  }
+}
+
 struct BadAnalysisInput {
   const char* name;
   std::vector<std::string> args;  // "@/" stands for the scratch directory
@@ -103,7 +145,9 @@ TEST_P(AnalysisBadInput, OneLineOnStderrNonZeroExitNoFile) {
   std::vector<std::string> args = c.args;
   for (auto& a : args)
     if (a.starts_with("@/")) a = file(a.substr(2));
-  const ProcessResult r = boxgen(args);
+  const bool recon = args.front() == "boxrecon";
+  if (recon) args.erase(args.begin());
+  const ProcessResult r = recon ? boxrecon(args) : boxgen(args);
   const std::string what = describe(args, r);
   ASSERT_TRUE(r.exited) << what;
   EXPECT_EQ(r.exit_code, c.exit_code) << what;
@@ -129,6 +173,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadAnalysisInput{"UnwritablePlot", {"kernel", "m7", "--plot", "@/missing/k.png"}, 1, "cannot write"},
         BadAnalysisInput{"UnwritablePlane", {"spectrum", "m7", "--plane", "1,1,1", "-o", "@/missing/p.png"}, 1, "cannot write"},
         BadAnalysisInput{"BadSpec", {"metrics", "m7", "m99"}, 1, "m99"},
+        BadAnalysisInput{"RenderCurvatureNotYetAvailable", {"boxrecon", "render", "--function", "ml", "--n", "9", "--shading", "curvature", "-o", "@/r.png"}, 1, "hessian"},
+        BadAnalysisInput{"RenderUnwritable", {"boxrecon", "render", "--function", "ml", "--n", "9", "-o", "@/missing/r.png"}, 1, "cannot write"},
+        BadAnalysisInput{"RenderUnknownPrefilter", {"boxrecon", "render", "--function", "ml", "--n", "9", "--prefilter", "q7", "-o", "@/r.png"}, 1, "prefilter"},
+        BadAnalysisInput{"RenderNoSource", {"boxrecon", "render", "-o", "@/r.png"}, 1, "--function"},
+        BadAnalysisInput{"RenderBadSize", {"boxrecon", "render", "--function", "ml", "--n", "9", "--width", "0", "-o", "@/r.png"}, 1, "width"},
+        BadAnalysisInput{"ErrorWithoutTableOrN", {"boxrecon", "error", "--filter", "m7"}, 2, "--table"},
         BadAnalysisInput{"LogPlotFromZero", {"kernel", "m7", "--plot", "@/k.png", "--from", "0", "--to", "1", "--steps", "5"}, 1, "positive"}),
     [](const ::testing::TestParamInfo<BadAnalysisInput>& p) { return std::string(p.param.name); });
 
