@@ -67,6 +67,36 @@ int run(int argc, char** argv) {
   auto* table1 = app.add_subcommand("table1", "derive M12, M8, M7 and print the paper's Table 1 beside ours");
   table1->add_flag("--json", c.json, "machine-readable output");
 
+  // Frequency-domain analysis of one or more filters (analysis/).
+  boxgen::cli::AnalysisOptions ao;
+  auto add_specs = [&](CLI::App* cmd) {
+    cmd->add_option("SPEC", ao.specs, "one or more presets or direction lists")->required();
+    cmd->add_option("--lattice", ao.lattice, "bcc | fcc | cartesian | \"<rows of G>\" (default: each preset's)");
+    cmd->add_flag("--json", ao.json, "machine-readable output");
+  };
+  auto add_range = [&](CLI::App* cmd) {
+    cmd->add_option("--from", ao.from, "first abscissa");
+    cmd->add_option("--to", ao.to, "last abscissa");
+    cmd->add_option("--steps", ao.steps, "number of abscissae from --from to --to");
+  };
+  auto* metrics = app.add_subcommand("metrics", "Marschner-Lobb smoothing and postaliasing (the paper's Table 3)");
+  add_specs(metrics);
+  auto* kernel = app.add_subcommand("kernel", "Blu-Unser frequency error kernel E(w * direction) (the paper's Fig. 13)");
+  add_specs(kernel);
+  kernel->add_option("--prefilter", ao.prefilter, "none | q1 | q2 | min (E_min), default q2");
+  kernel->add_option("--direction", ao.direction, "direction d of w * d, e.g. 1,1,1 (default)");
+  kernel->add_option("--w", ao.w, "abscissae w (comma or space separated)")->delimiter(',');
+  add_range(kernel);
+  kernel->add_option("--plot", ao.plot, "draw every prefilter and E_min of each SPEC, log axes (PNG)");
+  auto* spectrum = app.add_subcommand("spectrum", "|psi_hat| on a plane or along a line (the paper's Figs. 11-12)");
+  add_specs(spectrum);
+  spectrum->add_option("--plane", ao.plane, "normal a,b,c of a plane through 0 (image)");
+  spectrum->add_option("--line", ao.line, "direction a,b,c of a line through 0 (plot)");
+  spectrum->add_option("--w", ao.w, "line: abscissae w (comma or space separated)")->delimiter(',');
+  add_range(spectrum);
+  spectrum->add_option("--size", ao.size, "plane image: pixels per filter panel side (default 400)");
+  spectrum->add_option("-o,--output", ao.plot, "PNG to write");
+
   if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxgen")) return *stop;
   verify = !no_verify;
   try {
@@ -77,8 +107,14 @@ int run(int argc, char** argv) {
     if (prefilter->parsed()) return boxgen::cli::run_prefilter(c, shells);
     if (autocorr->parsed()) return boxgen::cli::run_autocorr(c, method);
     if (table1->parsed()) return boxgen::cli::run_table1(c.json);
+    if (metrics->parsed()) return boxgen::cli::run_metrics(ao.specs, ao.lattice, ao.json);
+    if (kernel->parsed()) return boxgen::cli::run_kernel(ao);
+    if (spectrum->parsed()) return boxgen::cli::run_spectrum(ao);
     if (emit->parsed()) return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy, emit_report, emit_registry);
   } catch (const boxgen::InputError& e) {
+    std::cerr << "boxgen: error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::invalid_argument& e) {  // the analysis module's bad input (an unwritable -o, ...)
     std::cerr << "boxgen: error: " << e.what() << '\n';
     return 1;
   } catch (const std::exception& e) {
