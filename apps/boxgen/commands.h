@@ -24,6 +24,7 @@ int run_prefilter(const Common& c, const std::string& shells);
 int run_autocorr(const Common& c, const std::string& method);
 int run_table1(bool json);
 int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy);
+int run_pieces(const Common& c, const std::string& of, const std::string& region, const std::string& format);
 
 // Shared output helpers.
 nlohmann::json rational_list(const RatVec& v);

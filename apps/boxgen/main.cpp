@@ -58,6 +58,12 @@ int run(int argc, char** argv) {
   emit->add_option("--name", emit_name, "C++ identifier: namespace boxgen::generated::<name>")->required();
   emit->add_option("--out", emit_out, "output directory")->required();
   emit->add_option("--strategy", emit_strategy, "how polynomials are written: horner (default) or monomial");
+  std::string pieces_of = "spline", pieces_region = "reference", pieces_format = "text";
+  auto* pieces = app.add_subcommand("pieces", "explicit piecewise polynomials of the spline or the filter, with their regions");
+  add_common(pieces, c);
+  pieces->add_option("--of", pieces_of, "spline (default): s(x) = sum_j V(j) M(x - j); filter: M itself");
+  pieces->add_option("--region", pieces_region, "reference (one piece per orbit, default), all, or an orbit index");
+  pieces->add_option("--format", pieces_format, "text (default), latex, c or json (--json is --format json)");
   auto* table1 = app.add_subcommand("table1", "derive M12, M8, M7 and print the paper's Table 1 beside ours");
   table1->add_flag("--json", c.json, "machine-readable output");
 
@@ -72,6 +78,7 @@ int run(int argc, char** argv) {
     if (autocorr->parsed()) return boxgen::cli::run_autocorr(c, method);
     if (table1->parsed()) return boxgen::cli::run_table1(c.json);
     if (emit->parsed()) return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy);
+    if (pieces->parsed()) return boxgen::cli::run_pieces(c, pieces_of, pieces_region, pieces_format);
   } catch (const boxgen::InputError& e) {
     std::cerr << "boxgen: error: " << e.what() << '\n';
     return 1;
