@@ -249,9 +249,10 @@ Pieces filter_pieces(const PiecewiseForm& form, const PieceSelection& selection)
   }
   // Orbits under the symmetry group: the image of a piece's interior point lies in its image piece.
   UnionFind orbits(all.size());
+  const std::vector<SignedPermutation> group = symmetry_group(form.spec);
   for (size_t i = 0; i < all.size(); ++i) {
     if (alone[i]) continue;
-    for (const auto& g : symmetry_group(form.spec)) {
+    for (const auto& g : group) {
       const int cell = form.complex.find(floor_key(form.complex.normals(), plus(g.apply(all[i].interior), centre)));
       const int image = cell >= 0 ? piece_of_cell[cell] : -1;
       if (image < 0) fail_internal("a symmetry maps a piece of the filter outside its support");
