@@ -1,4 +1,4 @@
-// C++ code for one orbit's reference polynomial (design.md 7): its coefficients are linear
+// C++ code for one orbit's reference polynomial (docs/design.md §11): its coefficients are linear
 // combinations of the stencil values, and the strategy decides how the polynomial and its exact
 // gradient are written out. The emitter places the result into templates/orbit_<strategy>.fmt.
 #pragma once
