@@ -1,4 +1,4 @@
-// Emission (design.md 7, issue 4): the generator's tables and polynomial code, filled into the
+// Emission (docs/design.md §11): the generator's tables and polynomial code, filled into the
 // fmt templates of templates/ to make a self-contained C++ evaluator header for one spline.
 #pragma once
 #include <string>

@@ -1,4 +1,4 @@
-// C++ code for one orbit's reference polynomial (design.md 7): the spline on the reference region
+// C++ code for one orbit's reference polynomial (docs/design.md §11): the spline on the reference region
 // is sum_k v[k] p_k(x) over its stencil, and a strategy decides how that sum and its exact
 // derivatives are written out. Each strategy counts the arithmetic it emits, so the emitter can
 // choose the cheapest (`auto`) and record the counts in the header.

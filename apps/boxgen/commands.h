@@ -45,6 +45,7 @@ struct AnalysisOptions {
 int run_metrics(const std::vector<std::string>& specs, const std::string& lattice, bool json);
 int run_kernel(const AnalysisOptions& o);
 int run_spectrum(const AnalysisOptions& o);
+int run_pieces(const Common& c, const std::string& of, const std::string& region, const std::string& format);
 
 // Shared output helpers.
 nlohmann::json rational_list(const RatVec& v);
