@@ -1,4 +1,4 @@
-// The fixed glue of every emitted evaluator (docs/design.md, "Emission"): locating the cell of a
+// The fixed glue of every emitted evaluator (README.md, `boxgen emit`): locating the cell of a
 // point, mapping it onto its orbit's reference region, fetching the stencil and mapping the
 // derivatives back. Hand-written and compiled like any other header (tests/emitted exercises it
 // through every emitted filter); the generated headers carry only what varies: the tables and the

@@ -1,8 +1,8 @@
-// Common-subexpression elimination on fixed linear combinations (design.md 7, "emission forms"):
+// Common-subexpression elimination on fixed linear combinations (README.md, `boxgen emit`):
 // the monomial coefficients of a reference polynomial are rows of a sparse rational matrix times
 // the stencil values. Pairs of inputs that occur with the same weight ratio in several rows are
 // summed once into a temporary t = x_a + r x_b that those rows then share (greedy, the most
-// frequent pair first, the way FFTW's and Halide's simplifiers share partial sums).
+// frequent pair first).
 #pragma once
 #include <utility>
 #include <vector>
