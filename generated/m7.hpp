@@ -165,6 +165,8 @@ T orbit_0(const T* v, const T* x, T* d) {
 // Everything generated/evaluator_support.hpp needs (its header lists the members).
 struct Traits {
   static constexpr const char* kName = "m7";
+  static constexpr const char* kLattice = m7::kLattice;
+  static constexpr const char* kStrategy = m7::kStrategy;
   static constexpr int kDimension = 3;
   static constexpr int kDegree = 4;
   static constexpr int kStencilSize = 30;

@@ -225,6 +225,8 @@ T orbit_0(const T* v, const T* x, T* d) {
 // Everything generated/evaluator_support.hpp needs (its header lists the members).
 struct Traits {
   static constexpr const char* kName = "m8";
+  static constexpr const char* kLattice = m8::kLattice;
+  static constexpr const char* kStrategy = m8::kStrategy;
   static constexpr int kDimension = 3;
   static constexpr int kDegree = 5;
   static constexpr int kStencilSize = 32;

@@ -301,6 +301,8 @@ T orbit_0(const T* v, const T* x, T* d) {
 // Everything generated/evaluator_support.hpp needs (its header lists the members).
 struct Traits {
   static constexpr const char* kName = "tricubic";
+  static constexpr const char* kLattice = tricubic::kLattice;
+  static constexpr const char* kStrategy = tricubic::kStrategy;
   static constexpr int kDimension = 3;
   static constexpr int kDegree = 9;
   static constexpr int kStencilSize = 64;
