@@ -1,7 +1,10 @@
-// Time per evaluation of the emitted M7, M8 and M12 evaluators, one strategy against the other
-// (generated/ holds the default, horner; the monomial ones are emitted at build time). One
-// thread, data from an in-memory hash (no volume, no bounds checks), points uniform in a box of
-// lattice coordinates, value only and value + gradient.
+// Evaluation speed (Google Benchmark; `boxrecon bench` prints the issue-8 ratios and the full
+// Table 2 replica). Two groups:
+//   scalar/<filter>_<strategy>_<path>: the emitted evaluate<double>() per strategy (generated/
+//     holds the cost-chosen `auto` forms; the monomial and Horner ones are emitted at build time),
+//     data from an in-memory hash (no volume, no bounds checks), value / gradient / Hessian paths;
+//   batch/<filter>/<precision>/N: Reconstructor<T>::evaluate on one thread at random points of an
+//     N^3 x 2 volume (the paper's Table 2 sizes), items = points.
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -9,12 +12,15 @@
 #include <random>
 #include <vector>
 
+#include "emitted/m12_horner.hpp"
 #include "emitted/m12_monomial.hpp"
 #include "emitted/m7_monomial.hpp"
 #include "emitted/m8_monomial.hpp"
 #include "generated/m12.hpp"
 #include "generated/m7.hpp"
 #include "generated/m8.hpp"
+#include "runtime/batch_threads.h"
+#include "runtime/reconstruction.h"
 
 namespace {
 
@@ -39,35 +45,69 @@ std::vector<std::array<double, 3>> points() {
 }
 
 template <class Evaluate>
-void run(benchmark::State& state, Evaluate evaluate, bool gradient) {
+void run(benchmark::State& state, Evaluate evaluate, int order) {
   const auto xs = points();
   std::size_t i = 0;
   std::array<double, 3> g{};
+  std::array<double, 6> h{};
   for (auto _ : state) {
-    const double v = evaluate(xs[i], gradient ? &g : nullptr);
+    const double v = evaluate(xs[i], order >= 1 ? &g : nullptr, order >= 2 ? &h : nullptr);
     benchmark::DoNotOptimize(v);
     benchmark::DoNotOptimize(g);
+    benchmark::DoNotOptimize(h);
     i = (i + 1) & (xs.size() - 1);
   }
   state.SetItemsProcessed(state.iterations());
 }
 
-#define BOXGEN_EVAL_BENCHMARK(NS)                                                                       \
-  void NS##_value(benchmark::State& s) {                                                                \
-    run(s, [](const auto& x, auto* g) { return boxgen::generated::NS::evaluate<double>(x, HashFetch{}, g); }, false); \
-  }                                                                                                     \
-  void NS##_gradient(benchmark::State& s) {                                                             \
-    run(s, [](const auto& x, auto* g) { return boxgen::generated::NS::evaluate<double>(x, HashFetch{}, g); }, true); \
-  }                                                                                                     \
-  BENCHMARK(NS##_value);                                                                                \
-  BENCHMARK(NS##_gradient)
+#define BOXGEN_SCALAR_BENCHMARK(NS)                                                                           \
+  void NS##_scalar(benchmark::State& s) {                                                                      \
+    run(s, [](const auto& x, auto* g, auto* h) { return boxgen::generated::NS::evaluate<double>(x, HashFetch{}, g, h); }, \
+        static_cast<int>(s.range(0)));                                                                         \
+  }                                                                                                            \
+  BENCHMARK(NS##_scalar)->Name("scalar/" #NS)->ArgName("order")->DenseRange(0, 2)
 
-BOXGEN_EVAL_BENCHMARK(m7);
-BOXGEN_EVAL_BENCHMARK(m7_monomial);
-BOXGEN_EVAL_BENCHMARK(m8);
-BOXGEN_EVAL_BENCHMARK(m8_monomial);
-BOXGEN_EVAL_BENCHMARK(m12);
-BOXGEN_EVAL_BENCHMARK(m12_monomial);
+BOXGEN_SCALAR_BENCHMARK(m7);
+BOXGEN_SCALAR_BENCHMARK(m7_monomial);
+BOXGEN_SCALAR_BENCHMARK(m8);
+BOXGEN_SCALAR_BENCHMARK(m8_monomial);
+BOXGEN_SCALAR_BENCHMARK(m12);
+BOXGEN_SCALAR_BENCHMARK(m12_horner);
+BOXGEN_SCALAR_BENCHMARK(m12_monomial);
+
+template <class T>
+void batch(benchmark::State& state, boxgen::runtime::Filter f) {
+  using namespace boxgen::runtime;
+  const int n = static_cast<int>(state.range(0));
+  BccVolume<T> volume({n, n, n}, 1.0, {0, 0, 0});
+  std::mt19937_64 rng(n);
+  for (auto& s : volume.samples()) s = static_cast<T>(static_cast<double>(rng() % 4096) / 4096.0);
+  std::uniform_real_distribution<double> u(6.0, 2.0 * n - 7.0);
+  std::vector<Vec3> pts(100000);
+  for (auto& p : pts) p = {u(rng), u(rng), u(rng)};
+  std::vector<T> values(pts.size());
+  set_batch_threads(1);
+  const Reconstructor<T> r(volume, f);
+  for (auto _ : state) {
+    r.evaluate(pts, values);
+    benchmark::DoNotOptimize(values.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(pts.size()));
+}
+
+void batch_float(benchmark::State& state, boxgen::runtime::Filter f) { batch<float>(state, f); }
+void batch_double(benchmark::State& state, boxgen::runtime::Filter f) { batch<double>(state, f); }
+
+#define BOXGEN_BATCH_BENCHMARK(F, T)                                                                   \
+  BENCHMARK_CAPTURE(batch_##T, F##_##T, boxgen::runtime::Filter::F)                                    \
+      ->Name("batch/" #F "/" #T)->ArgName("N")->Arg(21)->Arg(32)->Arg(45)->Arg(77)->Arg(117)->Unit(benchmark::kMillisecond)
+
+BOXGEN_BATCH_BENCHMARK(M7, float);
+BOXGEN_BATCH_BENCHMARK(M8, float);
+BOXGEN_BATCH_BENCHMARK(M12, float);
+BOXGEN_BATCH_BENCHMARK(M7, double);
+BOXGEN_BATCH_BENCHMARK(M8, double);
+BOXGEN_BATCH_BENCHMARK(M12, double);
 
 }  // namespace
 

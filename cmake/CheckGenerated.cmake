@@ -1,6 +1,6 @@
 # Fails if generated/ differs from a fresh emission (cmake -P script, run by the test
 # GeneratedHeadersAreFresh). Regenerate with: cmake --build build --target regenerate
-foreach(name m7 m8 m12)
+foreach(name m7 m8 m12 tricubic)
   set(extra)
   if(name STREQUAL "m12")
     set(extra --registry m7,m8,m12)

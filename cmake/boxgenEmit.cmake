@@ -1,6 +1,6 @@
 # boxgen_emit: turn a direction matrix of your own into C++ headers at build time.
 #
-#   boxgen_emit(<target> NAME <name> SPEC <spec> [LATTICE <lattice>] [STRATEGY horner|monomial]
+#   boxgen_emit(<target> NAME <name> SPEC <spec> [LATTICE <lattice>] [STRATEGY auto|horner|separable|monomial]
 #               [OUTPUT_DIR <dir>] [HEADERS <variable>])
 #
 # adds a build step that runs `boxgen emit <spec> [--lattice <lattice>] [--strategy <strategy>]
@@ -49,7 +49,9 @@ function(boxgen_emit target)
                      COMMENT "boxgen emit ${arg_NAME}"
                      VERBATIM)
   target_sources(${target} PRIVATE ${headers})
-  target_include_directories(${target} PRIVATE ${arg_OUTPUT_DIR})
+  # The emitted header includes the fixed glue "generated/evaluator_support.hpp" (boxgen::generated).
+  target_include_directories(${target} PRIVATE ${arg_OUTPUT_DIR}
+                                               $<TARGET_PROPERTY:boxgen::generated,INTERFACE_INCLUDE_DIRECTORIES>)
   if(arg_HEADERS)
     set(${arg_HEADERS} ${headers} PARENT_SCOPE)
   endif()

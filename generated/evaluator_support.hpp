@@ -1,4 +1,4 @@
-// The fixed glue of every emitted evaluator (docs/design.md, "Emission"): locating the cell of a
+// The fixed glue of every emitted evaluator (README.md, `boxgen emit`): locating the cell of a
 // point, mapping it onto its orbit's reference region, fetching the stencil and mapping the
 // derivatives back. Hand-written and compiled like any other header (tests/emitted exercises it
 // through every emitted filter); the generated headers carry only what varies: the tables and the
@@ -21,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 namespace boxgen::generated::support {
 
@@ -61,7 +62,7 @@ constexpr std::int64_t floor_div(std::int64_t a, std::int64_t b) {
 // Rounding put r on an empty key combination (it lies on a knot plane): take the cell of this
 // cube whose slabs it violates least. The spline is continuous there, so either side is right.
 template <class Tr, class T>
-int nearest_cell(int cube, const T* r) {
+[[gnu::noinline]] int nearest_cell(int cube, const T* r) {
   int best = -1;
   double best_violation = 0;
   for (int c = 0; c < Tr::kCellCount; ++c) {
@@ -81,24 +82,34 @@ int nearest_cell(int cube, const T* r) {
   return best;
 }
 
-// The cell of cube `cube` holding r in [0,1)^n: floor(nu . r) per knot normal by comparisons
-// (no floor, no branch), one table lookup.
+// floor(nu_K . r) - min_K for r in [0,1)^n by comparisons: the normal is a compile-time constant,
+// so after inlining this is a few adds and compares, no floor and no branch.
+template <class Tr, int K, class T>
+[[gnu::always_inline]] inline int knot_key(const T* r) {
+  T s = 0;
+  for (int i = 0; i < Tr::kDimension; ++i)
+    s += static_cast<T>(Tr::kNormals[K][i]) * r[i];
+  int f = 0;
+  for (int m = 1; m < Tr::kNormalWidth[K]; ++m) f += s >= static_cast<T>(Tr::kNormalMin[K] + m);
+  return f * Tr::kNormalStride[K];
+}
+
+template <class Tr, class T, int... K>
+[[gnu::always_inline]] inline int lookup_index(const T* r, std::integer_sequence<int, K...>) {
+  static_cast<void>(r);  // no knot planes besides the axes (M12, tricubic)
+  return (0 + ... + knot_key<Tr, K>(r));
+}
+
+// The cell of cube `cube` holding r in [0,1)^n: the combined knot-plane key, one table lookup.
 template <class Tr, class T>
-int cell_of(int cube, const T* r) {
-  int index = 0;
-  for (int k = 0; k < Tr::kNormalCount; ++k) {
-    T s = 0;
-    for (int i = 0; i < Tr::kDimension; ++i) s += static_cast<T>(Tr::kNormals[k][i]) * r[i];
-    int f = 0;
-    for (int m = 1; m < Tr::kNormalWidth[k]; ++m) f += s >= static_cast<T>(Tr::kNormalMin[k] + m);
-    index += f * Tr::kNormalStride[k];
-  }
+[[gnu::always_inline]] inline int cell_of(int cube, const T* r) {
+  const int index = lookup_index<Tr>(r, std::make_integer_sequence<int, Tr::kNormalCount>{});
   const int cell = Tr::kLookup[cube][index];
   return cell >= 0 ? cell : nearest_cell<Tr>(cube, r);
 }
 
 template <class Tr, class T>
-Located<Tr::kDimension, T> locate(const std::array<T, Tr::kDimension>& x) {
+[[gnu::always_inline]] inline Located<Tr::kDimension, T> locate(const std::array<T, Tr::kDimension>& x) {
   constexpr int n = Tr::kDimension;
   Located<n, T> out;
   T r[n];

@@ -524,6 +524,8 @@ T orbit_0(const T* v, const T* x, T* d) {
 // Everything generated/evaluator_support.hpp needs (its header lists the members).
 struct Traits {
   static constexpr const char* kName = "m12";
+  static constexpr const char* kLattice = m12::kLattice;
+  static constexpr const char* kStrategy = m12::kStrategy;
   static constexpr int kDimension = 3;
   static constexpr int kDegree = 9;
   static constexpr int kStencilSize = 128;

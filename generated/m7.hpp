@@ -9,8 +9,8 @@
 //
 // Emission strategy: horner. Arithmetic per point of the polynomial code (additions +
 // multiplications as emitted, the costliest orbit), value / value + gradient / + Hessian:
-//   479 / 605 / 737
-//   orbit 0: horner, 479 / 605 / 737
+//   282 / 408 / 540
+//   orbit 0: horner, 282 / 408 / 540
 #pragma once
 #include <array>
 #include <cstdint>
@@ -26,9 +26,9 @@ inline constexpr int kLatticeDet = 4;
 inline constexpr const char* kSpec = "1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 2,0,0; 0,2,0; 0,0,2";
 inline constexpr const char* kLattice = "bcc";
 inline constexpr const char* kStrategy = "horner";
-inline constexpr long kValueOperations = 479;
-inline constexpr long kGradientOperations = 605;
-inline constexpr long kHessianOperations = 737;
+inline constexpr long kValueOperations = 282;
+inline constexpr long kGradientOperations = 408;
+inline constexpr long kHessianOperations = 540;
 
 using Point = std::array<std::int64_t, kDimension>;
 
@@ -43,42 +43,104 @@ namespace detail {
 
 // Orbit 0: the spline on the reference region with vertices (0,0,0) (1,0,0) (1,1,0) (1,1,1),
 // as 32 monomial coefficients, each a linear combination of the 30 stencil values
-// (grouped by shared weight), evaluated in nested Horner form; each partial derivative is the
-// Horner form of the exact derivative polynomial, sharing the coefficients.
+// (61 partial sums s shared between coefficients, then values of equal weight grouped),
+// evaluated in nested Horner form; each partial derivative is the Horner form of the exact
+// derivative polynomial, sharing the coefficients.
 template <int Order, class T>
 T orbit_0(const T* v, const T* x, T* d) {
-  const T c0 = T(0.020833333333333332) * (v[0] + v[11] + v[13] + v[15] + v[16] + v[25]) + T(0.0625) * (v[4] + v[5] + v[7] + v[8] + v[18] + v[19] + v[21] + v[22]) + T(0.375) * v[14];
-  const T c1 = T(0.083333333333333329) * (-v[4] + v[5] - v[7] + v[8] - v[13] + v[15] - v[18] + v[19] - v[21] + v[22]);
-  const T c2 = T(0.083333333333333329) * (-v[4] - v[5] + v[7] + v[8] - v[11] + v[16] - v[18] - v[19] + v[21] + v[22]);
-  const T c3 = T(0.083333333333333329) * (-v[0] - v[4] - v[5] - v[7] - v[8] + v[18] + v[19] + v[21] + v[22] + v[25]);
+  const T s0 = v[4] + v[7];
+  const T s1 = v[4] - v[7];
+  const T s2 = v[18] + v[21];
+  const T s3 = v[18] - v[21];
+  const T s4 = v[0] + v[25];
+  const T s5 = v[5] + v[19];
+  const T s6 = v[5] - v[19];
+  const T s7 = v[0] - v[25];
+  const T s8 = v[8] + v[22];
+  const T s9 = v[8] - v[22];
+  const T s10 = v[1] + v[26];
+  const T s11 = v[1] - v[26];
+  const T s12 = s1 + s3;
+  const T s13 = v[2] + v[27];
+  const T s14 = v[2] - v[27];
+  const T s15 = v[6] + v[9];
+  const T s16 = v[6] - v[9];
+  const T s17 = v[11] - v[12];
+  const T s18 = v[14] + T(0.055555555555555552) * s4;
+  const T s19 = v[14] + T(-0.5) * s4;
+  const T s20 = v[16] - v[17];
+  const T s21 = v[20] + v[23];
+  const T s22 = v[20] - v[23];
+  const T s23 = s1 - s3;
+  const T s24 = v[3] + T(-2) * v[10];
+  const T s25 = v[28] + s22;
+  const T s26 = s0 + s2;
+  const T s27 = s0 - s2;
+  const T s28 = s5 + s8;
+  const T s29 = s5 - s8;
+  const T s30 = s6 + s9;
+  const T s31 = s6 - s9;
+  const T s32 = s7 - s11;
+  const T s33 = s13 + T(2) * s19;
+  const T s34 = v[7] - v[21];
+  const T s35 = v[15] + T(-0.5) * s10;
+  const T s36 = v[16] + v[17];
+  const T s37 = v[24] + T(-0.5) * s24;
+  const T s38 = v[24] + T(0.5) * s24;
+  const T s39 = s7 - s14;
+  const T s40 = s17 + s20;
+  const T s41 = v[3] - s14;
+  const T s42 = v[3] - s33;
+  const T s43 = v[9] - v[23];
+  const T s44 = v[11] + v[15];
+  const T s45 = v[13] - v[15];
+  const T s46 = s4 - s10;
+  const T s47 = s6 + T(-0.5) * s11;
+  const T s48 = s12 - s16;
+  const T s49 = s12 + s29;
+  const T s50 = s12 - s29;
+  const T s51 = s16 + s23;
+  const T s52 = s17 - s20;
+  const T s53 = s23 + s31;
+  const T s54 = s26 + s28;
+  const T s55 = s26 - s28;
+  const T s56 = s27 + s30;
+  const T s57 = s27 - s30;
+  const T s58 = s35 + T(0.5) * s42;
+  const T s59 = s38 + T(-0.5) * s39;
+  const T s60 = s40 + s46;
+  const T c0 = T(0.020833333333333332) * (v[13] + v[16] + s44) + T(0.375) * s18 + T(0.0625) * s54;
+  const T c1 = T(0.083333333333333329) * (-s45 - s55);
+  const T c2 = T(0.083333333333333329) * (-v[11] + v[16] - s49);
+  const T c3 = T(0.083333333333333329) * (-s7 - s56);
   const T c4 = T(0.125) * (v[13] + v[15]) + T(0.25) * -v[14];
-  const T c5 = T(0.125) * (v[4] - v[5] - v[7] + v[8] + v[18] - v[19] - v[21] + v[22]);
-  const T c6 = T(0.125) * (v[4] - v[5] + v[7] - v[8] - v[18] + v[19] - v[21] + v[22]);
+  const T c5 = T(0.125) * s50;
+  const T c6 = T(0.125) * s57;
   const T c7 = T(0.125) * (v[11] + v[16]) + T(0.25) * -v[14];
-  const T c8 = T(0.125) * (v[4] + v[5] - v[7] - v[8] - v[18] - v[19] + v[21] + v[22]);
-  const T c9 = T(0.125) * (v[0] + v[25]) + T(0.25) * -v[14];
-  const T c10 = T(0.020833333333333332) * (-v[0] + v[1] - v[11] + v[12] - v[16] + v[17] - v[25] + v[26]) + T(0.041666666666666664) * (v[4] - v[5] + v[7] - v[8] + v[18] - v[19] + v[21] - v[22]) + T(0.083333333333333329) * (-v[13] + v[14]);
-  const T c11 = T(0.0625) * (-v[4] + v[5] + v[7] - v[8] + v[11] - v[12] - v[16] + v[17] - v[18] + v[19] + v[21] - v[22]);
-  const T c12 = T(0.0625) * (v[0] - v[1] - v[4] + v[5] - v[7] + v[8] + v[18] - v[19] + v[21] - v[22] - v[25] + v[26]);
-  const T c13 = T(0.0625) * (-v[11] + v[12] - v[16] + v[17]) + T(0.125) * (v[14] - v[15]);
-  const T c14 = T(0.125) * (-v[4] + v[5] + v[7] - v[8] + v[18] - v[19] - v[21] + v[22]);
-  const T c15 = T(0.0625) * (-v[0] + v[1] - v[25] + v[26]) + T(0.125) * (v[14] - v[15]);
-  const T c16 = T(0.020833333333333332) * (-v[0] + v[2] + v[4] - v[7] - v[12] + v[16] + v[17] + v[18] - v[21] - v[25] + v[27]) + T(0.0625) * (v[5] - v[8] - v[11] + v[19] - v[22]) + T(0.041666666666666664) * v[14];
-  const T c17 = T(0.0625) * (v[0] - v[2] - v[4] - v[5] + v[7] + v[8] + v[18] + v[19] - v[21] - v[22] - v[25] + v[27]);
-  const T c18 = T(0.0625) * (-v[0] + v[2] - v[25] + v[27]) + T(0.125) * (v[14] - v[16]);
-  const T c19 = T(0.041666666666666664) * (-v[0] + v[5] + v[7] - v[19] - v[21] + v[25]) + T(0.020833333333333332) * (-v[1] - v[2] + v[26] + v[27]) + T(0.083333333333333329) * (v[8] - v[22]);
-  const T c20 = T(0.010416666666666666) * (v[0] - v[1] + v[5] + v[8] + v[11] - v[12] + v[16] - v[17] + v[19] + v[22] + v[25] - v[26]) + T(0.015625) * (-v[4] - v[7] - v[18] - v[21]) + T(0.005208333333333333) * (v[6] + v[9] + v[20] + v[23]) + T(0.020833333333333332) * (v[13] - v[15]);
-  const T c21 = T(0.010416666666666666) * (v[4] - v[6] - v[7] + v[9] + v[18] - v[20] - v[21] + v[23]) + T(0.020833333333333332) * (-v[11] + v[12] + v[16] - v[17]);
-  const T c22 = T(0.020833333333333332) * (-v[0] + v[1] + v[25] - v[26]) + T(0.010416666666666666) * (v[4] - v[6] + v[7] - v[9] - v[18] + v[20] - v[21] + v[23]);
-  const T c24 = T(0.03125) * (v[4] + v[6] - v[7] - v[9] - v[18] - v[20] + v[21] + v[23]) + T(0.0625) * (-v[5] + v[8] + v[19] - v[22]);
-  const T c26 = T(0.010416666666666666) * (v[0] - v[1] - v[2] + v[3] - v[4] + v[6] + v[7] - v[9] - v[18] + v[20] + v[21] - v[23] + v[25] - v[26] - v[27] + v[28]) + T(0.020833333333333332) * (v[11] - v[12] - v[14] + v[15]);
-  const T c27 = T(0.03125) * (-v[0] + v[1] + v[2] - v[3] + v[4] - v[6] - v[7] + v[9] - v[18] + v[20] + v[21] - v[23] + v[25] - v[26] - v[27] + v[28]);
-  const T c28 = T(0.03125) * (v[0] - v[1] - v[2] + v[3] + v[25] - v[26] - v[27] + v[28]) + T(0.0625) * (-v[14] + v[15] + v[16] - v[17]);
-  const T c29 = T(0.010416666666666666) * (v[0] - v[1] + v[2] - v[3] - v[25] + v[26] - v[27] + v[28]) + T(0.020833333333333332) * (-v[7] + v[9] + v[21] - v[23]);
-  const T c30 = T(0.005208333333333333) * (v[0] + v[1] - v[2] - v[3] - v[4] - v[6] + v[7] + v[9] - v[18] - v[20] + v[21] + v[23] + v[25] + v[26] - v[27] - v[28]) + T(0.020833333333333332) * (-v[5] - v[16] - v[17] - v[19]) + T(0.010416666666666666) * (v[8] + v[10] + v[11] + v[12] + v[14] + v[15] + v[22] + v[24]);
-  const T c31 = T(0.010416666666666666) * (-v[0] - v[1] + v[2] + v[3] + v[4] + v[6] - v[7] - v[9] - v[18] - v[20] + v[21] + v[23] + v[25] + v[26] - v[27] - v[28]) + T(0.020833333333333332) * (v[8] - v[10] - v[22] + v[24]);
-  const T c33 = T(0.010416666666666666) * (v[0] + v[1] - v[2] - v[3] - v[25] - v[26] + v[27] + v[28]) + T(0.020833333333333332) * (-v[5] + v[10] + v[19] - v[24]);
-  const T c34 = T(0.005208333333333333) * (v[0] + v[1] + v[2] + v[3]) + T(0.010416666666666666) * (-v[5] - v[7] - v[9] - v[10] + v[14] + v[15] + v[16] + v[17] + v[19] + v[21] + v[23] + v[24]) + T(0.020833333333333332) * (-v[8] + v[29]) + T(0.015625) * (-v[25] - v[26] - v[27] - v[28]);
+  const T c8 = T(0.125) * s53;
+  const T c9 = T(0.25) * -s19;
+  const T c10 = T(0.083333333333333329) * (-v[13] + v[14]) + T(0.041666666666666664) * s55 + T(0.020833333333333332) * -s60;
+  const T c11 = T(0.0625) * (-s50 + s52);
+  const T c12 = T(0.0625) * (s32 - s57);
+  const T c13 = T(0.125) * (v[14] - v[15]) + T(0.0625) * -s40;
+  const T c14 = T(0.125) * (-s23 + s31);
+  const T c15 = T(0.125) * (s19 - s35);
+  const T c16 = T(0.0625) * (-v[11] + s29) + T(0.020833333333333332) * (-v[12] + s12 + s33 + s36);
+  const T c17 = T(0.0625) * (s39 - s53);
+  const T c18 = T(0.125) * -v[16] + T(0.0625) * s33;
+  const T c19 = T(0.041666666666666664) * (-s7 + s34 + s47) + T(0.083333333333333329) * s9 + T(0.020833333333333332) * -s14;
+  const T c20 = T(0.005208333333333333) * (s15 + s21) + T(0.015625) * -s26 + T(0.010416666666666666) * (s28 + s60) + T(0.020833333333333332) * s45;
+  const T c21 = T(0.010416666666666666) * (-s22 + s48) + T(0.020833333333333332) * -s52;
+  const T c22 = T(0.010416666666666666) * (-s15 + s21 + s27) + T(0.020833333333333332) * -s32;
+  const T c24 = T(0.03125) * (-s22 + s51) + T(0.0625) * -s31;
+  const T c26 = T(0.020833333333333332) * (s17 + s58) + T(0.010416666666666666) * (s25 - s48);
+  const T c27 = T(0.03125) * (-s16 + s23 + s25 - s32 - s41);
+  const T c28 = T(0.03125) * v[28] + T(0.0625) * (s20 + s58);
+  const T c29 = T(0.010416666666666666) * (v[28] + s32 - s41) + T(0.020833333333333332) * (-s34 + s43);
+  const T c30 = T(0.010416666666666666) * (v[12] + v[14] + s8 + s37 + s44) + T(0.005208333333333333) * (s4 + s10 - s12 - s13 - s16 - s25) + T(0.020833333333333332) * (-s5 - s36);
+  const T c31 = T(0.020833333333333332) * (s9 + s59) + T(0.010416666666666666) * (-s11 - s25 + s51);
+  const T c33 = T(0.010416666666666666) * v[28] + T(0.020833333333333332) * (-s47 - s59);
+  const T c34 = T(0.005208333333333333) * (v[0] + v[1] + v[2]) + T(0.020833333333333332) * (-v[8] + v[29]) + T(0.010416666666666666) * (v[14] + v[15] - s6 - s34 + s36 + s38 - s43) + T(0.015625) * (-v[25] - v[26] - v[27] - v[28]);
   static_cast<void>(x);  // unused when the polynomial is constant
   static_cast<void>(d);  // unused on the value path
   if constexpr (Order >= 1) {
@@ -103,6 +165,8 @@ T orbit_0(const T* v, const T* x, T* d) {
 // Everything generated/evaluator_support.hpp needs (its header lists the members).
 struct Traits {
   static constexpr const char* kName = "m7";
+  static constexpr const char* kLattice = m7::kLattice;
+  static constexpr const char* kStrategy = m7::kStrategy;
   static constexpr int kDimension = 3;
   static constexpr int kDegree = 4;
   static constexpr int kStencilSize = 30;

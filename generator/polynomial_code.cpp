@@ -8,6 +8,7 @@
 #include "generator/code_text.h"
 #include "generator/embedded_templates.h"
 #include "generator/error.h"
+#include "generator/linear_cse.h"
 #include "generator/separable_form.h"
 
 namespace boxgen {
@@ -66,8 +67,8 @@ std::string orbit_vertices(const ReferenceRegion& ref) {
 
 // ---- Coefficients of the monomials: fixed rational combinations of the stencil values. ----
 
-// sum_k w_k v[k] for one monomial; with `grouped`, values sharing |w| share one multiplication.
-std::string linear_combination(const ReferenceRegion& ref, std::size_t m, bool grouped) {
+// sum_i w_i x_i over named inputs; with `grouped`, inputs sharing |w| share one multiplication.
+std::string linear_combination(const LinearRow& row, const std::vector<std::string>& names, bool grouped) {
   struct Group {
     Rational weight;  // > 0
     std::string sum;
@@ -75,21 +76,18 @@ std::string linear_combination(const ReferenceRegion& ref, std::size_t m, bool g
   };
   std::vector<Group> groups;
   std::vector<std::string> terms;
-  for (std::size_t k = 0; k < ref.basis.size(); ++k) {
-    const auto& cs = ref.basis[k].coefficients();
-    if (m >= cs.size() || cln::zerop(cs[m])) continue;
-    const Rational& w = cs[m];
+  for (const auto& [input, w] : row) {
     if (!grouped) {
-      terms.push_back(fmt::format("T({}) * v[{}]", literal(w), k));
+      terms.push_back(fmt::format("T({}) * {}", literal(w), names[input]));
       continue;
     }
     const Rational magnitude = cln::abs(w);
     const bool negative = cln::minusp(w);
     auto it = std::find_if(groups.begin(), groups.end(), [&](const Group& g) { return g.weight == magnitude; });
     if (it == groups.end()) {
-      groups.push_back({magnitude, fmt::format("{}v[{}]", negative ? "-" : "", k), 1});
+      groups.push_back({magnitude, fmt::format("{}{}", negative ? "-" : "", names[input]), 1});
     } else {
-      it->sum += fmt::format(" {} v[{}]", negative ? "-" : "+", k);
+      it->sum += fmt::format(" {} {}", negative ? "-" : "+", names[input]);
       ++it->count;
     }
   }
@@ -105,15 +103,42 @@ struct Coefficients {
   std::vector<std::size_t> used;  // monomial indices with a non-zero coefficient
   std::string definitions;
   OperationCount cost;
+  std::size_t shared_sums = 0;
 };
 
-Coefficients coefficients(const ReferenceRegion& ref, int n, int degree, bool grouped) {
+// The coefficient of each monomial as a linear combination of the stencil values. `shared`
+// (the Horner form) groups equal weights and shares partial sums across coefficients
+// (generator/linear_cse.h); otherwise every term is written out (the monomial form).
+Coefficients coefficients(const ReferenceRegion& ref, int n, int degree, bool shared) {
   Coefficients c;
+  std::vector<LinearRow> rows;
   for (std::size_t m = 0; m < monomial_count(n, degree); ++m) {
-    const std::string sum = linear_combination(ref, m, grouped);
-    if (sum.empty()) continue;
+    LinearRow row;
+    for (std::size_t k = 0; k < ref.basis.size(); ++k) {
+      const auto& cs = ref.basis[k].coefficients();
+      if (m < cs.size() && !cln::zerop(cs[m])) row.emplace_back(static_cast<int>(k), cs[m]);
+    }
+    if (row.empty()) continue;
     c.used.push_back(m);
-    c.definitions += fmt::format("  const T c{} = {};\n", m, sum);
+    rows.push_back(std::move(row));
+  }
+  const int inputs = static_cast<int>(ref.basis.size());
+  const SharedRows s = shared ? share_partial_sums(rows, inputs) : SharedRows{{}, rows};
+  std::vector<std::string> names;
+  for (int k = 0; k < inputs; ++k) names.push_back(fmt::format("v[{}]", k));
+  for (std::size_t j = 0; j < s.temporaries.size(); ++j) {
+    const SharedSum& t = s.temporaries[j];
+    const std::string expr = t.r == 1    ? fmt::format("{} + {}", names[t.a], names[t.b])
+                             : t.r == -1 ? fmt::format("{} - {}", names[t.a], names[t.b])
+                                         : fmt::format("{} + T({}) * {}", names[t.a], literal(t.r), names[t.b]);
+    names.push_back(fmt::format("s{}", j));
+    c.definitions += fmt::format("  const T {} = {};\n", names.back(), expr);
+    c.cost += count_operations(expr);
+  }
+  c.shared_sums = s.temporaries.size();
+  for (std::size_t i = 0; i < c.used.size(); ++i) {
+    const std::string sum = linear_combination(s.rows[i], names, shared);
+    c.definitions += fmt::format("  const T c{} = {};\n", c.used[i], sum);
     c.cost += count_operations(sum);
   }
   return c;
@@ -232,6 +257,7 @@ OrbitCode horner_code(const ReferenceRegion& ref, int orbit, int n, int degree) 
   assign_path_costs(code, c.cost, count_operations(value), d_costs, n);
   code.text = fmt::format(fmt::runtime(templates::orbit_horner), fmt::arg("orbit", orbit),
                           fmt::arg("vertices", orbit_vertices(ref)), fmt::arg("monomials", c.used.size()),
+                          fmt::arg("shared", c.shared_sums),
                           fmt::arg("stencil", ref.stencil.size()), fmt::arg("coefficients", c.definitions),
                           fmt::arg("gradient", derivative_block(d_exprs, 0, n)),
                           fmt::arg("hessian", derivative_block(d_exprs, n, d_exprs.size())), fmt::arg("value", value));

@@ -1,4 +1,4 @@
-// Tensor-product structure of a reference polynomial (design.md 7, "emission forms"): when every
+// Tensor-product structure of a reference polynomial (README.md, `boxgen emit`): when every
 // stencil polynomial p_k is a product of univariate factors and the stencil splits into full
 // grids X_0 x ... x X_{n-1} with each factor depending only on its own coordinate of j_k, the
 // spline sum_k v[k] p_k(x) is a contraction of the grid's values with 1-D weights per axis.

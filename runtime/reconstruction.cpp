@@ -108,7 +108,9 @@ namespace {
 // and the corner floor(x + c) its stencil is relative to, support::Located); inside the volume
 // with the whole published reach around that corner, the stencil is fetched through offsets
 // into samples() precomputed per cell; near the border each fetch is checked.
-template <class Tr, class T>
+// Offset is std::int32_t where every offset fits (a smaller table stays in the L1 cache), else
+// std::int64_t.
+template <class Tr, class T, class Offset>
 class FilterPath final : public EvaluationPath<T> {
   static constexpr int kStencil = Tr::kStencilSize;
 
@@ -128,7 +130,7 @@ class FilterPath final : public EvaluationPath<T> {
           const auto& d = Tr::kOffsets[cell][k];
           const int coset = parity ^ (d[0] & 1);
           offsets_[(parity * Tr::kCellCount + cell) * kStencil + k] =
-              d[0] + n0 * d[1] + n0 * n1 * d[2] - coset * coset_shift;
+              static_cast<Offset>(d[0] + n0 * d[1] + n0 * n1 * d[2] - coset * coset_shift);
         }
   }
 
@@ -170,7 +172,7 @@ class FilterPath final : public EvaluationPath<T> {
       const T* samples = volume_.samples().data();
       const std::int64_t base =
           located.corner[0] * stride_[0] + located.corner[1] * stride_[1] + located.corner[2] * stride_[2];
-      const std::int64_t* offsets = &offsets_[((located.corner[0] & 1) * Tr::kCellCount + located.cell) * kStencil];
+      const Offset* offsets = &offsets_[((located.corner[0] & 1) * Tr::kCellCount + located.cell) * kStencil];
       for (int k = 0; k < size; ++k) v[k] = samples[base + offsets[k]];
     } else {
       try {
@@ -220,7 +222,7 @@ class FilterPath final : public EvaluationPath<T> {
 
   const BccVolume<T>& volume_;
   std::array<std::int64_t, 3> stride_{};
-  std::vector<std::int64_t> offsets_;  // [corner parity][cell][k]
+  std::vector<Offset> offsets_;  // [corner parity][cell][k]
 };
 
 }  // namespace
@@ -228,7 +230,14 @@ class FilterPath final : public EvaluationPath<T> {
 template <class T>
 Reconstructor<T>::Reconstructor(const BccVolume<T>& volume, Filter filter)
     : path_(generated::with_filter(registry_index(filter), [&](auto entry) -> std::shared_ptr<const EvaluationPath<T>> {
-        return std::make_shared<FilterPath<typename decltype(entry)::Traits, T>>(volume);
+        using Tr = typename decltype(entry)::Traits;
+        // |offset| <= (max reach + 1) (1 + N0 + N0 N1): 32 bits suffice for all but huge slabs.
+        int reach = 0;
+        for (int a = 0; a < 3; ++a) reach = std::max({reach, -Tr::kStencilReachLo[a], Tr::kStencilReachHi[a]});
+        const double n0 = volume.sizes()[0], n1 = volume.sizes()[1];
+        if ((reach + 1.0) * (1.0 + n0 + n0 * n1) < 2147483647.0)
+          return std::make_shared<FilterPath<Tr, T, std::int32_t>>(volume);
+        return std::make_shared<FilterPath<Tr, T, std::int64_t>>(volume);
       })) {}
 
 template <class T>

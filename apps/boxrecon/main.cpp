@@ -2,6 +2,8 @@
 //   boxrecon sample --function ml --n N [--h H] [--precision float|double] -o vol.nrrd
 //   boxrecon eval --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd --points pts.txt [--gradient]
 //   boxrecon error --function ml --n N --filter m7 --prefilter q2 [--points K] [--seed S] [--gradient] [--json]
+//   boxrecon bench [--quick] [--json] [--points K] [--repeats R]
+//   (every command: --threads N caps the batch paths' threads, like BOXGEN_THREADS)
 //   boxrecon resample --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd -o grid.nrrd [--n N]
 //                     [--min X Y Z --max X Y Z] [--precision float|double]
 // Errors are one line on stderr with a non-zero exit (1: bad input, 2: bad usage, 3: internal).
@@ -21,7 +23,9 @@
 
 #include "apps/boxrecon/cmd_error_table.h"
 #include "apps/boxrecon/cmd_render.h"
+#include "apps/boxrecon/cmd_bench.h"
 #include "apps/common/exit_status.h"
+#include "runtime/batch_threads.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/reconstruction.h"
 #include "runtime/resample.h"
@@ -159,6 +163,9 @@ int run(int argc, char** argv) {
   bool gradient = false, json = false;
   int resample_n = 64;
   std::vector<double> box_min, box_max;
+  int threads = 0;
+  app.add_option("--threads", threads, "threads of the batch paths (default: BOXGEN_THREADS, else all cores)")
+      ->check(CLI::Range(1, 4096));
 
   auto* sample = app.add_subcommand("sample", "sample a test function on N^3 x 2 BCC points over [-1,1]^3");
   sample->add_option("--function", function, "ml | cubic | sphere | gaussian");
@@ -199,8 +206,18 @@ int run(int argc, char** argv) {
   max_option->needs(min_option);
   resample->add_option("--precision", precision, "float | double");
   auto* render = boxgen::recon::add_render_command(app);
+  boxrecon::BenchOptions bench_options;
+  auto* bench = app.add_subcommand("bench", "evaluation speed: the paper's Table 2, fetch floors, tricubic, threads");
+  bench->add_flag("--quick", bench_options.quick, "only the ratios, on one cache-resident volume (under a minute)");
+  bench->add_flag("--json", bench_options.json, "one JSON object");
+  bench->add_option("--points", bench_options.points, "points per measurement (default 10^7, quick 2 10^5)")
+      ->check(CLI::Range(1L, 1000000000L));
+  bench->add_option("--repeats", bench_options.repeats, "runs per measurement; the fastest counts (default 3)")
+      ->check(CLI::Range(1, 100));
   if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxrecon")) return *stop;
   try {
+    if (threads > 0) set_batch_threads(threads);
+    if (bench->parsed()) return boxrecon::run_bench(bench_options);
     if (precision != "float" && precision != "double")
       throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) + "'");
     if (sample->parsed()) {

@@ -420,5 +420,22 @@ TEST_F(BoxreconCli, SmallHandWrittenVolumeWorks) {
   EXPECT_NEAR(values[0][0], 1.0, 1e-14);
 }
 
+// boxrecon bench --quick --json: one JSON object with every ratio of issue 8 (each a measured,
+// positive, finite number) and the machine; --threads takes a positive count.
+TEST(BoxreconBench, QuickJsonHasEveryRatioAndTheMachine) {
+  const std::string out = boxrecon_ok({"--threads", "2", "bench", "--quick", "--json", "--points", "20000", "--repeats", "1"});
+  const auto j = nlohmann::json::parse(out);
+  for (const char* key : {"t7_over_t8", "t12_over_t8", "m7_over_floor", "m8_over_floor", "m12_over_floor",
+                          "speedup_2_threads", "m7_over_tricubic"}) {
+    ASSERT_TRUE(j.contains(key) && j[key].is_number()) << key;
+    EXPECT_TRUE(std::isfinite(j[key].get<double>()) && j[key].get<double>() > 0) << key;
+  }
+  EXPECT_FALSE(j["machine"]["cpu"].get<std::string>().empty());
+  EXPECT_GE(j["machine"]["cores"].get<int>(), 1);
+  EXPECT_TRUE(j["machine"].contains("simd_target"));
+  const ProcessResult bad = boxrecon({"--threads", "0", "bench", "--quick"});
+  EXPECT_EQ(bad.exit_code, 2) << describe({"--threads", "0"}, bad);
+}
+
 }  // namespace
 }  // namespace boxgen::test

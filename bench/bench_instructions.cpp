@@ -1,0 +1,70 @@
+// A program to count instructions per point under valgrind (shared machines make times noisy):
+//   valgrind --tool=callgrind --toggle-collect='*Reconstructor<float>::evaluate*'
+//            build/bench/bench_instructions m7 20000
+//   valgrind --tool=callgrind --toggle-collect='*fetch_floor*' build/bench/bench_instructions m7 20000 floor
+// evaluates `points` random points of a 32^3 x 2 float volume through Reconstructor<float>::evaluate
+// (BOXGEN_THREADS=1 is set here), or runs the filter's fetch floor: per point the corner and its
+// base index, then the filter's own stencil shape (cell 0's offsets) fetched and summed. Divide
+// the collected count by `points`.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "generated/registry.hpp"
+#include "runtime/batch_threads.h"
+#include "runtime/reconstruction.h"
+
+using namespace boxgen::runtime;
+
+template <class Tr>
+__attribute__((noinline)) void fetch_floor(const BccVolume<float>& volume, const std::vector<Vec3>& points,
+                                           std::vector<float>& out) {
+  const std::int64_t n0 = volume.sizes()[0], n1 = volume.sizes()[1];
+  std::int32_t offsets[Tr::kStencilSize];
+  for (int k = 0; k < Tr::kStencilSize; ++k) {
+    const auto& d = Tr::kOffsets[0][k];
+    offsets[k] = static_cast<std::int32_t>(d[0] + n0 * d[1] + n0 * n1 * d[2] - (d[0] & 1) * (n0 + n0 * n1));
+  }
+  const float* samples = volume.samples().data();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    std::int64_t corner[3];
+    for (int a = 0; a < 3; ++a)
+      corner[a] = static_cast<std::int64_t>(std::floor(static_cast<float>(points[i][a]) + static_cast<float>(Tr::kCentre[a]))) &
+                  ~std::int64_t{1};  // an even corner keeps every offset on the lattice
+    const float* base = samples + (corner[0] + n0 * corner[1] + n0 * n1 * corner[2]);
+    float sum = 0;
+    for (int k = 0; k < Tr::kStencilSize; ++k) sum += base[offsets[k]];
+    out[i] = sum;
+  }
+}
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: bench_instructions m7|m8|m12 POINTS [floor]\n");
+    return 2;
+  }
+  const Filter f = parse_filter(argv[1]);
+  const long count = std::atol(argv[2]);
+  const bool floor = argc > 3 && std::string(argv[3]) == "floor";
+  set_batch_threads(1);
+  const int n = 32;
+  BccVolume<float> volume({n, n, n}, 1.0, {0, 0, 0});
+  std::mt19937_64 rng(1);
+  for (auto& s : volume.samples()) s = static_cast<float>(rng() % 1000) / 1000.f;
+  std::uniform_real_distribution<double> u(6.0, 2.0 * n - 7.0);
+  std::vector<Vec3> points(count > 0 ? count : 1);
+  for (auto& p : points) p = {u(rng), u(rng), u(rng)};
+  std::vector<float> values(points.size());
+  if (floor)
+    boxgen::generated::with_filter(static_cast<int>(f),
+                                   [&](auto entry) { fetch_floor<typename decltype(entry)::Traits>(volume, points, values); });
+  else
+    Reconstructor<float>(volume, f).evaluate(points, values);
+  double sum = 0;
+  for (float v : values) sum += v;
+  std::printf("%s%s: %ld points, checksum %.6g\n", argv[1], floor ? " floor" : "", count, sum);
+  return 0;
+}
