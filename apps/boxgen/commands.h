@@ -33,7 +33,7 @@ struct AnalysisOptions {
   std::string lattice;
   bool json = false;
   std::string prefilter = "q2";          // kernel: none | q1 | q2 | min
-  std::string direction = "1,1,1";       // kernel: w * direction
+  std::string direction;                 // kernel: w * direction (default: all ones)
   std::vector<double> w;                 // explicit abscissae
   std::optional<double> from, to;        // or a range
   int steps = 0;
