@@ -130,6 +130,25 @@ TEST_F(AnalysisCli, ErrorTableJsonHasEveryRowAndKey) {
   }
 }
 
+// A BCC volume of 2 x 2^3 samples written by hand (the NRRD layout of runtime/nrrd_io.h): far too
+// small for any stencil.
+TEST_F(AnalysisCli, RenderRefusesAVolumeWithoutTheStencilMargin) {
+  std::string text = "NRRD0004\ntype: double\ndimension: 4\nspace dimension: 3\nsizes: 2 2 2 2\n"
+                     "space directions: none (1,0,0) (0,1,0) (0,0,1)\nspace origin: (0,0,0)\nendian: little\n"
+                     "encoding: raw\nlattice:=bcc\n\n";
+  const std::vector<double> ones(16, 1.0);
+  text.append(reinterpret_cast<const char*>(ones.data()), ones.size() * sizeof(double));
+  {
+    std::ofstream out(file("tiny.nrrd"), std::ios::binary);
+    out << text;
+  }
+  const ProcessResult r = boxrecon({"render", "--volume", file("tiny.nrrd"), "--prefilter", "none", "-o", file("r.png")});
+  EXPECT_TRUE(r.exited) << describe({"render"}, r);
+  EXPECT_EQ(r.exit_code, 1) << describe({"render"}, r);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(listing(), (std::vector<std::string>{"tiny.nrrd"}));
+}
+
 struct BadAnalysisInput {
   const char* name;
   std::vector<std::string> args;  // "@/" stands for the scratch directory
