@@ -24,7 +24,8 @@ int run_bbform(const Common& c, const std::string& region);
 int run_prefilter(const Common& c, const std::string& shells);
 int run_autocorr(const Common& c, const std::string& method);
 int run_table1(bool json);
-int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy);
+int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy,
+             bool report, const std::vector<std::string>& registry);
 
 // The frequency-domain analysis (analysis/, design.md 9): cmd_metrics.cpp, cmd_kernel.cpp,
 // cmd_spectrum.cpp.
@@ -44,6 +45,7 @@ struct AnalysisOptions {
 int run_metrics(const std::vector<std::string>& specs, const std::string& lattice, bool json);
 int run_kernel(const AnalysisOptions& o);
 int run_spectrum(const AnalysisOptions& o);
+int run_pieces(const Common& c, const std::string& of, const std::string& region, const std::string& format);
 
 // Shared output helpers.
 nlohmann::json rational_list(const RatVec& v);

@@ -52,12 +52,24 @@ int run(int argc, char** argv) {
   auto* autocorr = app.add_subcommand("autocorr", "lattice samples of the doubled box spline (autocorrelation)");
   add_common(autocorr, c);
   autocorr->add_option("--method", method, "refinement (default) or continuity");
-  std::string emit_name, emit_out, emit_strategy = "horner";
+  std::string emit_name, emit_out, emit_strategy = "auto";
+  bool emit_report = false;
+  std::vector<std::string> emit_registry;
   auto* emit = app.add_subcommand("emit", "emit the C++ evaluator and prefilter headers of a box spline");
   add_common(emit, c);
   emit->add_option("--name", emit_name, "C++ identifier: namespace boxgen::generated::<name>")->required();
   emit->add_option("--out", emit_out, "output directory")->required();
-  emit->add_option("--strategy", emit_strategy, "how polynomials are written: horner (default) or monomial");
+  emit->add_option("--strategy", emit_strategy,
+                   "how polynomials are written: auto (default: the cheapest), horner, separable or monomial");
+  emit->add_flag("--report", emit_report, "also print the strategy and operation counts per orbit");
+  emit->add_option("--registry", emit_registry, "also write registry.hpp listing these filters (comma-separated)")
+      ->delimiter(',');
+  std::string pieces_of = "spline", pieces_region = "reference", pieces_format = "text";
+  auto* pieces = app.add_subcommand("pieces", "explicit piecewise polynomials of the spline or the filter, with their regions");
+  add_common(pieces, c);
+  pieces->add_option("--of", pieces_of, "spline (default): s(x) = sum_j V(j) M(x - j); filter: M itself");
+  pieces->add_option("--region", pieces_region, "reference (one piece per orbit, default), all, or an orbit index");
+  pieces->add_option("--format", pieces_format, "text (default), latex, c or json (--json is --format json)");
   auto* table1 = app.add_subcommand("table1", "derive M12, M8, M7 and print the paper's Table 1 beside ours");
   table1->add_flag("--json", c.json, "machine-readable output");
 
@@ -104,7 +116,8 @@ int run(int argc, char** argv) {
     if (metrics->parsed()) return boxgen::cli::run_metrics(ao.specs, ao.lattice, ao.json);
     if (kernel->parsed()) return boxgen::cli::run_kernel(ao);
     if (spectrum->parsed()) return boxgen::cli::run_spectrum(ao);
-    if (emit->parsed()) return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy);
+    if (emit->parsed()) return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy, emit_report, emit_registry);
+    if (pieces->parsed()) return boxgen::cli::run_pieces(c, pieces_of, pieces_region, pieces_format);
   } catch (const boxgen::InputError& e) {
     std::cerr << "boxgen: error: " << e.what() << '\n';
     return 1;
