@@ -1,5 +1,5 @@
 // `boxgen kernel SPEC...`: the Blu-Unser error kernel E(w d) of each filter with a prefilter
-// (design.md 9 and 9b; the paper's Fig. 13), from the exact autocorrelation samples.
+// (docs/design.md §9-§10; the paper's Fig. 13), from the exact autocorrelation samples.
 #include <fmt/core.h>
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // `boxgen metrics SPEC...`: the Marschner-Lobb smoothing and postaliasing of each filter
-// (design.md 9, the paper's Table 3), with the quadrature's convergence shown.
+// (docs/design.md §10, the paper's Table 3), with the quadrature's convergence shown.
 #include <fmt/core.h>
 
 #include <chrono>

@@ -27,7 +27,7 @@ int run_table1(bool json);
 int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy,
              bool report, const std::vector<std::string>& registry);
 
-// The frequency-domain analysis (analysis/, design.md 9): cmd_metrics.cpp, cmd_kernel.cpp,
+// The frequency-domain analysis (analysis/, docs/design.md §10): cmd_metrics.cpp, cmd_kernel.cpp,
 // cmd_spectrum.cpp.
 struct AnalysisOptions {
   std::vector<std::string> specs;

@@ -1,7 +1,7 @@
 // boxgen metrics / kernel / spectrum as a user's script sees them: the JSON contract, the figures
 // (a real PNG appears, nothing else), and bad input giving one line on stderr, exit code 1 or 2
 // and no file left behind. Expected values: the paper's printed smoothing digits (an independent
-// computation), the exact a(0) of M7 from design.md 9b, and hand-derived facts (E(0) = 0,
+// computation), the exact a(0) of M7 from docs/design.md §9, and hand-derived facts (E(0) = 0,
 // |psi_hat(0)| = 1, the Nyquist interval of BCC along (1,0,0) is [-pi, pi]).
 #include <algorithm>
 #include <cmath>
@@ -38,7 +38,7 @@ class AnalysisCli : public ScratchDirectoryTest {
 
 TEST_F(AnalysisCli, MetricsJsonHasTheDocumentedKeysAndThePapersSmoothing) {
   const auto j = boxgen_json({"metrics", "m7", "m8", "m12", "--json"});
-  EXPECT_EQ(exact(j["m7"]["integral_squared"]), Q("39559/1064448"));  // design.md 9b
+  EXPECT_EQ(exact(j["m7"]["integral_squared"]), Q("39559/1064448"));  // docs/design.md §9
   const std::map<std::string, double> paper_s = {{"m7", 0.85488}, {"m8", 0.85287}, {"m12", 0.94495}};
   for (const auto& [key, s] : paper_s) {
     ASSERT_TRUE(j.contains(key)) << key;
