@@ -1,5 +1,5 @@
 // The dual lattice 2 pi G^-T Z^n of a lattice L = G Z^n and its Voronoi cell around 0, the
-// Nyquist region of sampling on L (design.md 9). For BCC it is the rhombic dodecahedron
+// Nyquist region of sampling on L (docs/design.md §10). For BCC it is the rhombic dodecahedron
 // |w_i| + |w_j| <= pi, volume 2 pi^3.
 #pragma once
 #include <cstdint>

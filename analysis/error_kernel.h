@@ -1,4 +1,4 @@
-// The Blu-Unser frequency error kernel on a lattice (design.md 9, the paper's Fig. 13):
+// The Blu-Unser frequency error kernel on a lattice (docs/design.md §10, the paper's Fig. 13):
 //   E(w) = 1 - psi_hat^2 / A + A |Q(w) - psi_hat / A|^2,   E_min(w) = 1 - psi_hat^2 / A,
 //   A(w) = sum_{k in 2 pi G^-T Z^n} psi_hat(w + k)^2 = |det G| sum_{j in L} a(j) e^{-i w.j},
 //   Q(w) = sum_j q(j) e^{-i w.j},

@@ -1,4 +1,5 @@
-// Marschner-Lobb filter metrics of psi = M^c on its lattice (design.md 9, the paper's Table 3):
+// Marschner-Lobb filter metrics of psi = M^c on its lattice (docs/design.md §10; the paper's
+// Table 3):
 //   smoothing     S = 1 - (1/|N|) ∫_N |psi_hat|^2,
 //   postaliasing  P = (1/|N|) ∫_{outside N} |psi_hat|^2 = (1/|N|) ((2 pi)^n a(0) - ∫_N |psi_hat|^2),
 // the unbounded integral by Parseval from the exact a(0) = ∫ (M^c)^2 (the generator's

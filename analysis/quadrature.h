@@ -1,5 +1,5 @@
-// Quadrature of a smooth function over the Voronoi cell (design.md 9: "integrate over N with a
-// high-order rule"). Two independent rules, so each checks the other:
+// Quadrature of a smooth function over the Voronoi cell, the numerical part of the metrics of
+// docs/design.md §10. Two independent rules, so each checks the other:
 //  - simplex fan: the cell split into simplices with apex 0 over its (triangulated) faces, each
 //    mapped from the unit cube by the collapsed (Duffy) map with Gauss-Legendre in every variable;
 //  - iterated: Gauss-Legendre in x, then y, then z with the limits of each slice computed from the

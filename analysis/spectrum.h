@@ -1,4 +1,4 @@
-// The Fourier transform of the centred box spline psi = M^c (design.md 9):
+// The Fourier transform of the centred box spline psi = M^c (docs/design.md §10):
 //   psi_hat(w) = prod_xi sinc(xi . w / 2),  sinc(t) = sin(t) / t,
 // with w in the generator's lattice coordinates. psi_hat(0) = 1.
 #pragma once

@@ -32,6 +32,20 @@ Vec3 value_colour(double t) {
           (1 - f) * stops[i][2] + f * stops[i + 1][2]};
 }
 
+// Principal curvatures to a colour: u >= v in (-1, 1) after tanh(k * scale); their mean pulls
+// grey towards orange (convex) or blue (concave), their difference towards green (saddles).
+Vec3 curvature_colour(double k1, double k2, double scale_) {
+  const double u = std::tanh(k1 * scale_), v = std::tanh(k2 * scale_);
+  const double mean = 0.5 * (u + v), spread = std::clamp(0.5 * (u - v), 0.0, 1.0);
+  Vec3 c{0.80, 0.80, 0.80};
+  const Vec3 target = mean > 0 ? Vec3{1.0, 0.55, 0.15} : Vec3{0.2, 0.4, 1.0};
+  for (int i = 0; i < 3; ++i) c[i] += std::abs(mean) * (target[i] - c[i]);
+  const Vec3 saddle{0.25, 0.8, 0.3};
+  const double w = spread * (1 - std::abs(mean));
+  for (int i = 0; i < 3; ++i) c[i] += w * (saddle[i] - c[i]);
+  return c;
+}
+
 struct Camera {
   Vec3 eye, forward, right, up;
   double tan_half;
@@ -79,8 +93,9 @@ bool clip_to_box(const Vec3& o, const Vec3& d, const Box& box, double& t0, doubl
 
 }  // namespace
 
-RayCaster::RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step, bool cutaway)
-    : spline_(spline), box_(box), iso_(iso), step_(step), cutaway_(cutaway) {
+RayCaster::RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step, bool cutaway,
+                     bool curvature)
+    : spline_(spline), box_(box), iso_(iso), step_(step), cutaway_(cutaway), curvature_(curvature) {
   if (!std::isfinite(iso)) throw std::invalid_argument("--iso must be finite");
   if (!(step > 0) || !std::isfinite(step)) throw std::invalid_argument("the marching step must be > 0");
   for (int i = 0; i < 3; ++i)
@@ -134,6 +149,32 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
   h.on_cut = entry_face || !in_region(add(origin, scale(d, h.t - 2e-9 * size_)));
   if (!h.on_cut && dot(gradient, gradient) > 0) {
     h.normal = normalise(scale(gradient, -1));  // s grows into the solid
+    if (curvature_) {
+      Hessian hs{};
+      spline_.value_gradient_hessian(h.point, gradient, hs);
+      const double H[3][3] = {{hs[0], hs[1], hs[2]}, {hs[1], hs[3], hs[4]}, {hs[2], hs[4], hs[5]}};
+      const double glen = std::sqrt(dot(gradient, gradient));
+      const Vec3 n = scale(gradient, -1 / glen);
+      double P[3][3], PH[3][3], G[3][3];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) P[i][j] = (i == j ? 1.0 : 0.0) - n[i] * n[j];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          PH[i][j] = 0;
+          for (int k = 0; k < 3; ++k) PH[i][j] += P[i][k] * H[k][j];
+        }
+      double trace = 0, frob2 = 0;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          G[i][j] = 0;
+          for (int k = 0; k < 3; ++k) G[i][j] -= PH[i][k] * P[k][j] / glen;
+          frob2 += G[i][j] * G[i][j];
+        }
+      for (int i = 0; i < 3; ++i) trace += G[i][i];
+      const double root = std::sqrt(std::max(0.0, 2 * frob2 - trace * trace));
+      h.k1 = 0.5 * (trace + root);
+      h.k2 = 0.5 * (trace - root);
+    }
   } else {
     h.on_cut = true;
     int axis = 0;
@@ -158,7 +199,8 @@ RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box
     throw std::invalid_argument(fmt::format("image size must be 1..8192 per side, got {} x {}", o.width, o.height));
   const double step = o.step > 0 ? o.step : 0.5 * volume.spacing();
   const Reconstructor<double> spline(volume, f);
-  const RayCaster caster(spline, box, o.iso, step, o.cutaway);
+  const RayCaster caster(spline, box, o.iso, step, o.cutaway, o.shading == Shading::Curvature);
+  const double curvature_scale = 5 * volume.spacing();
   const Camera cam = camera_for(box, o.closeup);
   const Vec3 light = normalise(add(scale(cam.forward, -1), add(scale(cam.up, 0.6), scale(cam.right, -0.3))));
   RgbBuffer image{o.width, o.height, std::vector<std::uint8_t>(static_cast<std::size_t>(o.width) * o.height * 3)};
@@ -174,7 +216,8 @@ RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box
       Vec3 colour{0.93 - 0.12 * (y / static_cast<double>(o.height)), 0.94 - 0.1 * (y / static_cast<double>(o.height)), 0.96};
       const RayHit h = caster.cast(cam.eye, d);
       if (h.hit) {
-        const Vec3 base = h.on_cut ? value_colour(h.value) : Vec3{0.82, 0.80, 0.76};
+        Vec3 base = h.on_cut ? value_colour(h.value) : Vec3{0.82, 0.80, 0.76};
+        if (!h.on_cut && o.shading == Shading::Curvature) base = curvature_colour(h.k1, h.k2, curvature_scale);
         const double diffuse = std::max(0.0, dot(h.normal, light));
         const Vec3 half = normalise(add(light, scale(d, -1)));
         const double specular = h.on_cut ? 0 : 0.25 * std::pow(std::max(0.0, dot(h.normal, half)), 40);

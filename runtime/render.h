@@ -1,11 +1,14 @@
 // Ray-cast isosurfaces of a reconstructed spline (the paper's Figs. 8-9, rendered in the paper
-// with POV-Ray and finite-difference normals). Here every ray is marched through the box in
-// steps of a fraction of the lattice spacing; where the sign of s(x) - iso changes, the crossing
-// is bracketed and refined by bisection on the spline itself until the bracket is below 1e-9 of
-// the box's diagonal (the step is small enough that the ML surface's ripples are not skipped; a feature
-// thinner than the step can be). Normals come from the spline's analytic gradient. Optionally
-// the 3/8 cut-away of Fig. 8 removes {z > 0 and (x > 0 or y > 0)}; the cut faces show the value
-// of the spline as a colour (the cross-section view). Rows are spread over all cores (OpenMP).
+// with POV-Ray and finite-difference normals). Every ray is marched through the box in steps of
+// a fraction of the lattice spacing; where the sign of s(x) - iso changes, the crossing is
+// bracketed and refined by bisection on the spline itself until the bracket is below 1e-9 of the
+// box's diagonal (the step is small enough for the ML surface's ripples; a feature thinner than
+// the step can be stepped over). Normals come from the spline's analytic gradient. Optionally the
+// 3/8 cut-away of Fig. 8 removes {z > 0 and (x > 0 or y > 0)}; the cut faces show the value of the
+// spline as a colour (the cross-section view). With curvature shading the isosurface is coloured
+// by its principal curvatures from the exact Hessian (as the paper's author does in his own ray
+// caster): convex orange, concave blue, saddles green, flat grey, saturating at curvature radii of
+// about five lattice spacings. Rows are spread over all cores (OpenMP).
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -20,6 +23,7 @@ enum class Shading { Normal, Curvature };
 
 struct RenderOptions {
   int width = 512, height = 512;
+  Shading shading = Shading::Normal;  // Curvature: colour by the principal curvatures (k1, k2)
   double iso = 0.5;
   bool cutaway = false;
   bool closeup = false;  // the camera of Fig. 9: close to the top rims
@@ -39,12 +43,18 @@ struct RayHit {
   double t = 0;         // distance along the normalised direction
   Vec3 point{}, normal{};  // normal: unit, facing the ray; on the isosurface -grad s / |grad s|
   double value = 0;        // s at the point
+  // Principal curvatures k1 >= k2 of the isosurface at the point (when the caster was asked for
+  // them and the hit is on the isosurface), from the exact gradient g and Hessian H:
+  // G = -P H P / |g| with P = I - n n^T, k = (tr G +- sqrt(2 |G|_F^2 - tr(G)^2)) / 2; positive where
+  // the solid {s >= iso} is convex (a ball of radius r: k1 = k2 = 1/r).
+  double k1 = 0, k2 = 0;
 };
 
 class RayCaster {
  public:
   // Throws std::invalid_argument for a non-finite iso, a step <= 0 or an empty box.
-  RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step, bool cutaway);
+  RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step, bool cutaway,
+            bool curvature = false);
   RayHit cast(const Vec3& origin, const Vec3& direction) const;
 
  private:
@@ -53,7 +63,7 @@ class RayCaster {
   const Reconstructor<double>& spline_;
   Box box_;
   double iso_, step_;
-  bool cutaway_;
+  bool cutaway_, curvature_;
   Vec3 mid_{};
   double size_ = 0;
 };

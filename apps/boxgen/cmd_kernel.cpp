@@ -1,5 +1,5 @@
 // `boxgen kernel SPEC...`: the Blu-Unser error kernel E(w d) of each filter with a prefilter
-// (design.md 9 and 9b; the paper's Fig. 13), from the exact autocorrelation samples.
+// (docs/design.md §9-§10; the paper's Fig. 13), from the exact autocorrelation samples.
 #include <fmt/core.h>
 
 #include <cmath>
@@ -50,7 +50,8 @@ int run_kernel(const AnalysisOptions& o) {
     if (s.dimension() != n) fail_input("all SPECs of one kernel command must have the same dimension");
   if (o.prefilter != "none" && o.prefilter != "q1" && o.prefilter != "q2" && o.prefilter != "min")
     fail_input("unknown prefilter '" + o.prefilter.substr(0, 40) + "': expected none, q1, q2 or min");
-  const analysis::Vec d = parse_direction(o.direction, n, "--direction");
+  const std::string direction = !o.direction.empty() ? o.direction : (n == 3 ? "1,1,1" : "1,1");
+  const analysis::Vec d = parse_direction(direction, n, "--direction");
   const bool plot = !o.plot.empty();
   // A plot defaults to the low band of Fig. 13: w from 0.05 to pi/2 (the Nyquist boundary of
   // BCC along (1,1,1)), log-spaced.
@@ -81,7 +82,7 @@ int run_kernel(const AnalysisOptions& o) {
 
   if (plot) {
     analysis::PlotPanel panel;
-    panel.title = fmt::format("Error kernels E(w ({}))", o.direction);
+    panel.title = fmt::format("Error kernels E(w ({}))", direction);
     panel.xlabel = "w";
     panel.ylabel = "E";
     panel.log_x = panel.log_y = true;
@@ -109,7 +110,7 @@ int run_kernel(const AnalysisOptions& o) {
     }
     return 0;
   }
-  fmt::print("error kernel E(w d), d = ({}), prefilter {}\n", o.direction, name);
+  fmt::print("error kernel E(w d), d = ({}), prefilter {}\n", direction, name);
   fmt::print("{:>14}", "w");
   for (const auto& c : all) fmt::print(" {:>14}", c.key);
   fmt::print("\n");

@@ -1,5 +1,5 @@
 // `boxgen metrics SPEC...`: the Marschner-Lobb smoothing and postaliasing of each filter
-// (design.md 9, the paper's Table 3), with the quadrature's convergence shown.
+// (docs/design.md §10, the paper's Table 3), with the quadrature's convergence shown.
 #include <fmt/core.h>
 
 #include <chrono>
@@ -75,11 +75,10 @@ int run_metrics(const std::vector<std::string>& specs, const std::string& lattic
   for (const auto& r : rows) {
     // The paper's row only for the preset on its own lattice.
     const auto paper = r.spec.lattice.name() == "bcc" ? paper_table3(r.spec.name) : std::nullopt;
-    const bool own_lattice = true;
     fmt::print("{:<10} {:<10} {:>12.7g} {:>12.7g} {:>9.1e} {:>10} {:>10}  {}\n", r.key, r.spec.lattice.name(),
                r.m.smoothing, r.m.postaliasing, r.m.estimated_error,
-               paper && own_lattice ? fmt::format("{:.5f}", paper->smoothing) : "-",
-               paper && own_lattice ? fmt::format("{:.5f}", paper->postaliasing) : "-", to_string(r.a0));
+               paper ? fmt::format("{:.5f}", paper->smoothing) : "-",
+               paper ? fmt::format("{:.5f}", paper->postaliasing) : "-", to_string(r.a0));
   }
   fmt::print("\nquadrature of int_N |psi_hat|^2 (Gauss-Legendre of the given order per variable; two independent "
              "rules)\n");

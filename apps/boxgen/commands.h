@@ -27,14 +27,14 @@ int run_table1(bool json);
 int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy,
              bool report, const std::vector<std::string>& registry);
 
-// The frequency-domain analysis (analysis/, design.md 9): cmd_metrics.cpp, cmd_kernel.cpp,
+// The frequency-domain analysis (analysis/, docs/design.md §10): cmd_metrics.cpp, cmd_kernel.cpp,
 // cmd_spectrum.cpp.
 struct AnalysisOptions {
   std::vector<std::string> specs;
   std::string lattice;
   bool json = false;
   std::string prefilter = "q2";          // kernel: none | q1 | q2 | min
-  std::string direction = "1,1,1";       // kernel: w * direction
+  std::string direction;                 // kernel: w * direction (default: all ones)
   std::vector<double> w;                 // explicit abscissae
   std::optional<double> from, to;        // or a range
   int steps = 0;

@@ -56,10 +56,7 @@ CLI::App* add_render_command(CLI::App& app) {
 int run_render() {
   const Filter f = parse_filter(args.filter);
   const PrefilterChoice q = parse_prefilter(args.prefilter);
-  if (args.shading == "curvature")
-    throw std::invalid_argument(
-        "--shading curvature needs the Hessian of the evaluators, which this build does not have yet; use --shading normal");
-  if (args.shading != "normal")
+  if (args.shading != "normal" && args.shading != "curvature")
     throw std::invalid_argument("--shading must be normal or curvature, got '" + args.shading.substr(0, 40) + "'");
   if (args.function.empty() == args.volume.empty()) throw std::invalid_argument("give --function NAME --n N or --volume FILE");
   if (!args.function.empty() && (args.n < 2 || args.n > 1024))
@@ -80,6 +77,7 @@ int run_render() {
   o.iso = args.iso;
   o.cutaway = args.cutaway;
   o.closeup = args.closeup;
+  o.shading = args.shading == "curvature" ? Shading::Curvature : Shading::Normal;
   o.step = args.step;
   o.progress = !args.quiet;
   const auto start = std::chrono::steady_clock::now();

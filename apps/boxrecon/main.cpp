@@ -1,6 +1,6 @@
 // boxrecon: reconstruction of BCC volumes with the generated M7, M8 and M12 evaluators.
 //   boxrecon sample --function ml --n N [--h H] [--precision float|double] -o vol.nrrd
-//   boxrecon eval --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd --points pts.txt [--gradient]
+//   boxrecon eval --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd --points pts.txt [--gradient] [--hessian]
 //   boxrecon error --function ml --n N --filter m7 --prefilter q2 [--points K] [--seed S] [--gradient] [--json]
 //   boxrecon bench [--quick] [--json] [--points K] [--repeats R]
 //   (every command: --threads N caps the batch paths' threads, like BOXGEN_THREADS)
@@ -80,19 +80,23 @@ std::vector<Vec3> read_points(const std::string& path) {
 
 template <class T>
 int run_eval(const std::string& filter, const std::string& pre, const std::string& volume_path,
-             const std::string& points_path, bool gradient) {
+             const std::string& points_path, bool gradient, bool hessian) {
   const Filter f = parse_filter(filter);
   const PrefilterChoice q = parse_prefilter(pre);
   BccVolume<T> volume = read_bcc_nrrd<T>(volume_path);
   if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
   const auto points = read_points(points_path);
   std::vector<T> values(points.size());
-  std::vector<Vec3> gradients(gradient ? points.size() : 0);
-  Reconstructor<T>(volume, f).evaluate(points, values, gradients);
+  std::vector<Vec3> gradients(gradient || hessian ? points.size() : 0);
+  std::vector<Hessian> hessians(hessian ? points.size() : 0);
+  if (hessian) Reconstructor<T>(volume, f).evaluate(points, values, gradients, hessians);
+  else Reconstructor<T>(volume, f).evaluate(points, values, gradients);
   std::string out;
   for (std::size_t i = 0; i < points.size(); ++i) {
     out += fmt::format("{:.17g}", static_cast<double>(values[i]));
     if (gradient) out += fmt::format(" {:.17g} {:.17g} {:.17g}", gradients[i][0], gradients[i][1], gradients[i][2]);
+    if (hessian)  // h_xx h_xy h_xz h_yy h_yz h_zz
+      for (double h : hessians[i]) out += fmt::format(" {:.17g}", h);
     out += '\n';
   }
   std::fwrite(out.data(), 1, out.size(), stdout);
@@ -179,6 +183,8 @@ int run(int argc, char** argv) {
   eval->add_option("--volume", volume, "BCC NRRD volume")->required();
   eval->add_option("--points", points_path, "file with one 'x y z' (world) per line")->required();
   eval->add_flag("--gradient", gradient, "also print the three partial derivatives");
+  bool hessian = false;
+  eval->add_flag("--hessian", hessian, "then the second derivatives h_xx h_xy h_xz h_yy h_yz h_zz");
   eval->add_option("--precision", precision, "float | double");
   auto* error = app.add_subcommand("error", "RMS and max error of a reconstruction over random points of [-1,1]^3");
   error->add_option("--function", function, "ml | cubic | sphere | gaussian");
@@ -229,8 +235,8 @@ int run(int argc, char** argv) {
       return 0;
     }
     if (eval->parsed())
-      return precision == "float" ? run_eval<float>(filter, pre, volume, points_path, gradient)
-                                  : run_eval<double>(filter, pre, volume, points_path, gradient);
+      return precision == "float" ? run_eval<float>(filter, pre, volume, points_path, gradient, hessian)
+                                  : run_eval<double>(filter, pre, volume, points_path, gradient, hessian);
     if (render->parsed()) return boxgen::recon::run_render();
     if (error->parsed() && table) return boxgen::recon::run_error_table(count, seed, json);
     if (error->parsed() && (error_n->count() == 0 || error_filter->count() == 0)) {

@@ -38,6 +38,19 @@ TEST(RayCaster, HitsTheIsosurfaceWithTheGradientsNormal) {
   EXPECT_GT(h.normal[0] * h.point[0] / r + h.normal[1] * h.point[1] / r + h.normal[2] * h.point[2] / r, 0.999);
 }
 
+TEST(RayCaster, PrincipalCurvaturesOfTheBallAreOneOverItsRadius) {
+  Scene s;
+  const RayCaster caster(s.spline, s.box, 0.5, 0.5 * s.volume.spacing(), false, true);
+  for (const Vec3& from : {Vec3{3, 0.1, 0.05}, Vec3{-2, 2.5, 1}, Vec3{0.2, -0.1, 3}}) {
+    const RayHit h = caster.cast(from, {-from[0], -from[1], -from[2]});
+    ASSERT_TRUE(h.hit && !h.on_cut);
+    // The reconstructed Gaussian's level set is a ball up to the reconstruction error (N = 33).
+    EXPECT_NEAR(h.k1, 1 / s.radius, 0.03 / s.radius);
+    EXPECT_NEAR(h.k2, 1 / s.radius, 0.03 / s.radius);
+    EXPECT_GE(h.k1, h.k2);
+  }
+}
+
 TEST(RayCaster, MissesWhenTheRayPassesBesideTheSurface) {
   Scene s;
   const RayCaster caster(s.spline, s.box, 0.5, 0.5 * s.volume.spacing(), false);

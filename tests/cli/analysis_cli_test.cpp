@@ -1,13 +1,14 @@
 // boxgen metrics / kernel / spectrum as a user's script sees them: the JSON contract, the figures
 // (a real PNG appears, nothing else), and bad input giving one line on stderr, exit code 1 or 2
 // and no file left behind. Expected values: the paper's printed smoothing digits (an independent
-// computation), the exact a(0) of M7 from design.md 9b, and hand-derived facts (E(0) = 0,
+// computation), the exact a(0) of M7 from docs/design.md §9, and hand-derived facts (E(0) = 0,
 // |psi_hat(0)| = 1, the Nyquist interval of BCC along (1,0,0) is [-pi, pi]).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <sstream>
 
 #include "cli_support.h"
 #include "tests/support/scratch_directory.h"
@@ -37,7 +38,7 @@ class AnalysisCli : public ScratchDirectoryTest {
 
 TEST_F(AnalysisCli, MetricsJsonHasTheDocumentedKeysAndThePapersSmoothing) {
   const auto j = boxgen_json({"metrics", "m7", "m8", "m12", "--json"});
-  EXPECT_EQ(exact(j["m7"]["integral_squared"]), Q("39559/1064448"));  // design.md 9b
+  EXPECT_EQ(exact(j["m7"]["integral_squared"]), Q("39559/1064448"));  // docs/design.md §9
   const std::map<std::string, double> paper_s = {{"m7", 0.85488}, {"m8", 0.85287}, {"m12", 0.94495}};
   for (const auto& [key, s] : paper_s) {
     ASSERT_TRUE(j.contains(key)) << key;
@@ -130,6 +131,58 @@ TEST_F(AnalysisCli, ErrorTableJsonHasEveryRowAndKey) {
   }
 }
 
+// eval --hessian: the cubic x^3 - 2xyz + 3y^2 - z + 1 (runtime/test_functions.h) is reproduced by
+// every filter with Q^I, so its second derivatives, written out here by hand, come back exactly
+// (up to rounding): h_xx = 6x, h_xy = -2z, h_xz = -2y, h_yy = 6, h_yz = -2x, h_zz = 0.
+TEST_F(AnalysisCli, EvalHessianReproducesTheCubicsSecondDerivatives) {
+  ProcessResult r = boxrecon({"sample", "--function", "cubic", "--n", "9", "-o", file("c.nrrd")});
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << describe({"sample"}, r);
+  {
+    std::ofstream out(file("p.txt"));
+    out << "0.1 -0.2 0.3\n-0.55 0.4 0.05\n0.7 0.7 -0.6\n";
+  }
+  const double pts[3][3] = {{0.1, -0.2, 0.3}, {-0.55, 0.4, 0.05}, {0.7, 0.7, -0.6}};
+  for (const char* filter : {"m7", "m8", "m12"}) {
+    r = boxrecon({"eval", "--filter", filter, "--prefilter", "q1", "--volume", file("c.nrrd"), "--points", file("p.txt"),
+                  "--gradient", "--hessian"});
+    ASSERT_TRUE(r.exited && r.exit_code == 0) << describe({"eval", filter}, r);
+    std::istringstream lines(r.out);
+    for (const auto& p : pts) {
+      double v[10];
+      for (double& x : v) ASSERT_TRUE(lines >> x) << r.out;
+      const double x = p[0], y = p[1], z = p[2];
+      const double expected[6] = {6 * x, -2 * z, -2 * y, 6, -2 * x, 0};
+      for (int k = 0; k < 6; ++k) EXPECT_NEAR(v[4 + k], expected[k], 1e-8) << filter << " h" << k << " at " << x << "," << y << "," << z;
+    }
+  }
+}
+
+TEST_F(AnalysisCli, RenderWithCurvatureShading) {
+  const ProcessResult r = boxrecon({"render", "--function", "ml", "--n", "17", "--shading", "curvature", "--width", "32",
+                                    "--height", "32", "--quiet", "-o", file("c.png")});
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << describe({"render", "--shading", "curvature"}, r);
+  EXPECT_TRUE(is_png(file("c.png")));
+}
+
+// A BCC volume of 2 x 2^3 samples written by hand (the NRRD layout of runtime/nrrd_io.h): far too
+// small for any stencil.
+TEST_F(AnalysisCli, RenderRefusesAVolumeWithoutTheStencilMargin) {
+  std::string text = "NRRD0004\ntype: double\ndimension: 4\nspace dimension: 3\nsizes: 2 2 2 2\n"
+                     "space directions: none (1,0,0) (0,1,0) (0,0,1)\nspace origin: (0,0,0)\nendian: little\n"
+                     "encoding: raw\nlattice:=bcc\n\n";
+  const std::vector<double> ones(16, 1.0);
+  text.append(reinterpret_cast<const char*>(ones.data()), ones.size() * sizeof(double));
+  {
+    std::ofstream out(file("tiny.nrrd"), std::ios::binary);
+    out << text;
+  }
+  const ProcessResult r = boxrecon({"render", "--volume", file("tiny.nrrd"), "--prefilter", "none", "-o", file("r.png")});
+  EXPECT_TRUE(r.exited) << describe({"render"}, r);
+  EXPECT_EQ(r.exit_code, 1) << describe({"render"}, r);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(listing(), (std::vector<std::string>{"tiny.nrrd"}));
+}
+
 struct BadAnalysisInput {
   const char* name;
   std::vector<std::string> args;  // "@/" stands for the scratch directory
@@ -173,7 +226,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadAnalysisInput{"UnwritablePlot", {"kernel", "m7", "--plot", "@/missing/k.png"}, 1, "cannot write"},
         BadAnalysisInput{"UnwritablePlane", {"spectrum", "m7", "--plane", "1,1,1", "-o", "@/missing/p.png"}, 1, "cannot write"},
         BadAnalysisInput{"BadSpec", {"metrics", "m7", "m99"}, 1, "m99"},
-        BadAnalysisInput{"RenderCurvatureNotYetAvailable", {"boxrecon", "render", "--function", "ml", "--n", "9", "--shading", "curvature", "-o", "@/r.png"}, 1, "hessian"},
+        BadAnalysisInput{"RenderUnknownShading", {"boxrecon", "render", "--function", "ml", "--n", "9", "--shading", "phong", "-o", "@/r.png"}, 1, "shading"},
         BadAnalysisInput{"RenderUnwritable", {"boxrecon", "render", "--function", "ml", "--n", "9", "-o", "@/missing/r.png"}, 1, "cannot write"},
         BadAnalysisInput{"RenderUnknownPrefilter", {"boxrecon", "render", "--function", "ml", "--n", "9", "--prefilter", "q7", "-o", "@/r.png"}, 1, "prefilter"},
         BadAnalysisInput{"RenderNoSource", {"boxrecon", "render", "-o", "@/r.png"}, 1, "--function"},
