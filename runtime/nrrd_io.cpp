@@ -1,5 +1,7 @@
 #include "runtime/nrrd_io.h"
 
+#include "runtime/output_file.h"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <teem/biff.h>
@@ -99,55 +101,25 @@ constexpr int teem_type() {
 
 }  // namespace
 
-void require_output_directory(const fs::path& path) {
-  const std::string name = path.filename().string();
-  if (name.empty() || name == "." || name == "..")
-    throw NrrdError("cannot write '" + printable(path.string()) + "': not a file name");
-  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec))
-    throw NrrdError("cannot write '" + printable(path.string()) + "': the directory '" + printable(dir.string()) +
-                    "' does not exist");
+void require_output_directory(const fs::path& path) { require_output_file(path, {}); }
+
+void require_output_file(const fs::path& path, std::span<const fs::path> inputs) {
+  try {
+    (void)check_output_file(path, inputs);
+  } catch (const OutputFileError& e) {
+    throw NrrdError(e.what());
+  }
 }
 
 namespace {
 
-// Creates a temporary file next to `path`, lets `write` fill it, and renames it over `path`.
-// On any failure the temporary file is removed and NrrdError is thrown.
+// output_file.h's write (links followed, special files refused, temporary file then rename),
+// with its errors as NrrdError. Teem's own message explains a failed nrrdWrite.
 void write_atomically(const fs::path& path, const std::function<bool(std::FILE*)>& write) {
-  const std::string shown = printable(path.string());
-  auto fail = [&](const std::string& why) { throw NrrdError("cannot write '" + shown + "': " + why); };
-  const std::string name = path.filename().string();
-  if (name.empty() || name == "." || name == "..") fail("not a file name");
-  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-
-  static std::atomic<unsigned> counter{0};
-  fs::path temp;
-  int fd = -1;
-  for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
-    temp = dir / fmt::format(".{}.tmp-{}-{}", name, static_cast<long>(::getpid()), counter++);
-    fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd < 0 && errno != EEXIST) fail(std::strerror(errno));
-  }
-  if (fd < 0) fail("could not create a temporary file next to it");
-
-  std::FILE* file = ::fdopen(fd, "wb");
-  if (!file) {
-    const int error = errno;
-    ::close(fd);
-    ::unlink(temp.c_str());
-    fail(std::strerror(error));
-  }
-  std::string problem;
-  if (!write(file))
-    problem = teem_error();
-  else if (std::fflush(file) != 0 || std::ferror(file) || ::fsync(::fileno(file)) != 0)
-    problem = std::strerror(errno);
-  if (std::fclose(file) != 0 && problem.empty()) problem = std::strerror(errno);
-  if (problem.empty() && std::rename(temp.c_str(), path.c_str()) != 0) problem = std::strerror(errno);
-  if (!problem.empty()) {
-    ::unlink(temp.c_str());
-    fail(problem);
+  try {
+    write_output_file(path, write, [] { return teem_error(); });
+  } catch (const OutputFileError& e) {
+    throw NrrdError(e.what());
   }
 }
 
@@ -276,8 +248,15 @@ std::string check_bcc_header(const Nrrd* nrrd, BccHeader& header) {
   return {};
 }
 
+// Where and how the data of an attached NRRD is stored, as Teem read it from the header.
+struct DataLayout {
+  const NrrdEncoding* encoding = nullptr;
+  long start = -1;                 // file offset of the first data byte (the header's end)
+  int endian = airEndianUnknown;  // the byte order the header declares (binary encodings)
+};
+
 // Reads `file` (from its start) into `nrrd`, header only or whole; returns an error text or "".
-std::string teem_read(std::FILE* file, Nrrd* nrrd, bool header_only, long& data_start) {
+std::string teem_read(std::FILE* file, Nrrd* nrrd, bool header_only, DataLayout& layout) {
   std::rewind(file);
   IoState io(nrrdIoStateNew());
   if (!io) return "out of memory";
@@ -285,8 +264,86 @@ std::string teem_read(std::FILE* file, Nrrd* nrrd, bool header_only, long& data_
   if (nrrdRead(nrrd, file, io.get()) != 0) return teem_error();
   if (io->format != nrrdFormatNRRD) return "not a NRRD file";
   if (io->dataFNArr && io->dataFNArr->len != 0) return "detached data files are not supported; keep the data in the .nrrd file";
-  data_start = io->encoding == nrrdEncodingRaw ? std::ftell(file) : -1;
+  // Skipped lines or bytes would hide data the exact size check below could not account for.
+  if (io->lineSkip != 0 || io->byteSkip != 0) return "'line skip' and 'byte skip' are not supported; the data must follow the header";
+  layout.encoding = io->encoding;
+  layout.endian = io->endian;
+  layout.start = header_only ? std::ftell(file) : layout.start;
   return {};
+}
+
+// The amount of data after the header, counted in the unit the encoding stores: bytes (raw),
+// numbers (ascii: whitespace-separated tokens) or hex digits (hex). Returns false when the
+// encoding is compressed (its length is Teem's to check) and for text that is not data.
+bool count_stored_data(std::FILE* file, const DataLayout& layout, std::uint64_t file_size, std::uint64_t& count, std::string& problem) {
+  const auto start = static_cast<std::uint64_t>(std::max(0L, layout.start));
+  if (layout.encoding == nrrdEncodingRaw) {
+    count = file_size - std::min(file_size, start);
+    return true;
+  }
+  const bool ascii = layout.encoding == nrrdEncodingAscii;
+  if (!ascii && layout.encoding != nrrdEncodingHex) return false;
+  if (std::fseek(file, layout.start, SEEK_SET) != 0) {
+    problem = std::strerror(errno);
+    return true;
+  }
+  count = 0;
+  bool in_token = false;
+  char buffer[65536];
+  for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, file)) > 0;)
+    for (std::size_t i = 0; i < got; ++i) {
+      const auto ch = static_cast<unsigned char>(buffer[i]);
+      const bool space = std::isspace(ch) != 0;
+      if (ascii) {
+        if (!space && !in_token) ++count;
+        in_token = !space;
+      } else if (std::isxdigit(ch)) {
+        ++count;
+      } else if (!space) {
+        problem = "its hex data holds a character that is not a hex digit";
+        return true;
+      }
+    }
+  return true;
+}
+
+// Reverses the bytes of x: the sample as the other byte order would read it.
+template <class T>
+T byte_swapped(T x) {
+  unsigned char bytes[sizeof(T)];
+  std::memcpy(bytes, &x, sizeof(T));
+  std::reverse(bytes, bytes + sizeof(T));
+  std::memcpy(&x, bytes, sizeof(T));
+  return x;
+}
+
+// A value no sampled field holds, but a byte-swapped one typically does: not finite, or a
+// magnitude far outside any physical scale (1.0 byte-swapped is about 3e-317 as a double and
+// 5e-41 as a float).
+template <class T>
+bool implausible(T x) {
+  constexpr double kScale = std::is_same_v<T, float> ? 1e20 : 1e150;
+  const double m = std::fabs(static_cast<double>(x));
+  return !std::isfinite(m) || (m != 0 && (m < 1 / kScale || m > kScale));
+}
+
+// The byte order a binary file declares is the one its data is read in; it is refused when that
+// reading is evidently a lie: at least half of the non-zero samples implausible, while the other
+// byte order makes every sample plausible.
+template <class T>
+std::string check_byte_order(const T* data, std::size_t count, int endian) {
+  std::size_t nonzero = 0, declared = 0, swapped = 0;
+  for (std::size_t s = 0; s < count; ++s) {
+    if (data[s] == 0) continue;
+    ++nonzero;
+    declared += implausible(data[s]) ? 1 : 0;
+    swapped += implausible(byte_swapped(data[s])) ? 1 : 0;
+  }
+  if (declared == 0 || swapped != 0 || 2 * declared < nonzero) return {};
+  return fmt::format("its data do not match the byte order its header declares ('endian: {}'): read so, {} of its {} non-zero "
+                     "samples are not finite or beyond 1e+-{}, and none are in the other byte order; correct its 'endian' field",
+                     printable(airEnumStr(airEndian, endian)), declared, nonzero,
+                     std::is_same_v<T, float> ? 20 : 150);
 }
 
 }  // namespace
@@ -364,23 +421,43 @@ BccVolume<T> read_bcc_nrrd(const fs::path& path, const NrrdReadLimits& limits) {
 
   std::lock_guard lock(teem_mutex());
   BccHeader header{};
-  long data_start = -1;
+  DataLayout layout;
   {
     NrrdOwner nrrd(nrrdNew());
-    if (std::string why = teem_read(file.get(), nrrd.get(), true, data_start); !why.empty()) fail(why);
+    if (std::string why = teem_read(file.get(), nrrd.get(), true, layout); !why.empty()) fail(why);
     if (std::string why = check_bcc_header(nrrd.get(), header); !why.empty()) fail(why);
   }
   if (header.data_bytes > limits.max_data_bytes)
     fail(fmt::format("its data of {} bytes exceeds the limit of {} bytes", header.data_bytes, limits.max_data_bytes));
-  if (data_start >= 0 && file_size - std::min<std::uint64_t>(file_size, static_cast<std::uint64_t>(data_start)) < header.data_bytes)
-    fail(fmt::format("the file is truncated: its header announces {} bytes of raw data, but only {} follow it", header.data_bytes,
-                     file_size - std::min<std::uint64_t>(file_size, static_cast<std::uint64_t>(data_start))));
+  // The data must be exactly what the header describes: a wrong type or too few sizes over the
+  // right data would otherwise read as other numbers.
+  const std::uint64_t sample_count = header.data_bytes / (header.type == nrrdTypeFloat ? 4 : 8);
+  std::uint64_t stored = 0;
+  std::string problem;
+  if (count_stored_data(file.get(), layout, file_size, stored, problem)) {
+    if (!problem.empty()) fail(problem);
+    const bool raw = layout.encoding == nrrdEncodingRaw, ascii = layout.encoding == nrrdEncodingAscii;
+    const std::uint64_t expected = raw ? header.data_bytes : ascii ? sample_count : 2 * header.data_bytes;
+    const char* unit = raw ? "bytes of raw data" : ascii ? "numbers" : "hex digits";
+    if (stored < expected)
+      fail(fmt::format("the file is truncated: its header announces {} {}, but only {} follow it", expected, unit, stored));
+    if (stored > expected)
+      fail(fmt::format("{} {} follow its header, which announces {} (its type and sizes must describe the data exactly)", stored,
+                       unit, expected));
+  }
 
   NrrdOwner nrrd(nrrdNew());
-  if (std::string why = teem_read(file.get(), nrrd.get(), false, data_start); !why.empty()) fail(why);
+  if (std::string why = teem_read(file.get(), nrrd.get(), false, layout); !why.empty()) fail(why);
   BccHeader full{};
   if (std::string why = check_bcc_header(nrrd.get(), full); !why.empty()) fail(why);  // the file may have changed
+  if (full.data_bytes != header.data_bytes) fail("the file changed while it was read");
   if (!nrrd->data) fail("Teem returned no data");
+  const std::size_t count = static_cast<std::size_t>(sample_count);
+  if (layout.encoding != nrrdEncodingAscii) {
+    const std::string why = full.type == nrrdTypeFloat ? check_byte_order(static_cast<const float*>(nrrd->data), count, layout.endian)
+                                                       : check_byte_order(static_cast<const double*>(nrrd->data), count, layout.endian);
+    if (!why.empty()) fail(why);
+  }
 
   BccVolume<T> volume(full.sizes, full.h, full.origin);
   const std::span<T> out = volume.samples();
@@ -396,6 +473,16 @@ BccVolume<T> read_bcc_nrrd(const fs::path& path, const NrrdReadLimits& limits) {
         fail(fmt::format("its sample {} = {} is beyond the range of float; read it in double precision", s, x));
       out[s] = static_cast<T>(x);
     }
+  if (!limits.allow_non_finite)
+    for (std::size_t s = 0; s < out.size(); ++s)
+      if (!std::isfinite(out[s])) {
+        const Sizes& n = full.sizes;
+        const std::size_t cell = s / 2;
+        fail(fmt::format("its sample {} (coset {}, {}, {}, {}) is {}; non-finite samples are refused unless allowed "
+                         "(boxrecon --allow-nonfinite)",
+                         s, s % 2, cell % static_cast<std::size_t>(n[0]), cell / static_cast<std::size_t>(n[0]) % static_cast<std::size_t>(n[1]),
+                         cell / static_cast<std::size_t>(n[0]) / static_cast<std::size_t>(n[1]), static_cast<double>(out[s])));
+      }
   return volume;
 }
 

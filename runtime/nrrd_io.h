@@ -13,12 +13,19 @@
 // directions (sx,0,0) (0,sy,0) (0,0,sz), space origin, kinds domain domain domain; 3D Slicer,
 // ParaView and `unu` open it.
 //
-// Writing goes to a temporary file in the target's directory, which is renamed over the target
-// only once it is complete: a failed write never leaves a half-written file behind.
+// Writing follows output_file.h: symbolic links are written through, special files (FIFOs,
+// devices) refused, and the data goes to a temporary file in the target's directory, renamed over
+// the target only once it is complete: a failed write never leaves a half-written file behind.
 //
 // Reading checks everything (magic, dimension, sizes, type, space directions consistent with one
-// h, origin, the lattice key, and that the data is all there); any problem is a NrrdError whose
-// message is one line naming the file. Reading refuses detached data ("data file:" fields): Teem
+// h, origin, the lattice key) and believes no header that lies: the data must be exactly as long
+// as type and sizes say (raw: bytes, ascii: numbers, hex: digits; compressed data is decompressed
+// by Teem, which refuses data that is too short), it is read in the byte order the header
+// declares, and a file whose declared byte order is evidently wrong (at least half of the
+// non-zero samples not finite or beyond 1e+-150 for double, 1e+-20 for float, while the other
+// byte order makes every sample plausible) is refused. Non-finite samples (NaN, +-inf) are refused
+// unless NrrdReadLimits::allow_non_finite is set. Any problem is a NrrdError whose message is one
+// line naming the file. Reading refuses detached data ("data file:" fields): Teem
 // would open whatever file such a header names, even a FIFO or device. Compressed data (gzip,
 // bzip2) is Teem's to decode. Teem 1.12 leaks memory on some error paths (a few KB, or the
 // decompressor's state for corrupt compressed data: up to a few MB), once per failed read; see
@@ -27,6 +34,7 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <stdexcept>
 
 #include "runtime/bcc_volume.h"
@@ -44,10 +52,15 @@ struct NrrdReadLimits {
   // checked against the file's size before anything is allocated; compressed data cannot be, so
   // this bounds what a small hostile file can make us allocate.
   std::uint64_t max_data_bytes = std::uint64_t{1} << 36;
+  // Accept NaN and infinite samples (a reconstruction near them is NaN or infinite too).
+  bool allow_non_finite = false;
 };
 
-// Throws NrrdError (one line) unless `path` names a file in an existing directory: lets a
+// Throws NrrdError (one line) unless `path` may be written (output_file.h: a regular file, or a
+// new file in an existing directory, after following links) and is none of `inputs`: lets a
 // program refuse a bad -o before it spends time computing what it would write.
+void require_output_file(const std::filesystem::path& path, std::span<const std::filesystem::path> inputs);
+// require_output_file(path, {}).
 void require_output_directory(const std::filesystem::path& path);
 
 // Throws NrrdError if the file cannot be written (the target is left as it was).
