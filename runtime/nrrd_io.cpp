@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <atomic>
 #include <cctype>
 #include <cerrno>
@@ -22,6 +23,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -183,7 +185,8 @@ bool header_names_data_file(std::string_view head, bool& header_complete) {
   return false;
 }
 
-struct BccHeader {
+struct VolumeHeader {
+  CosetLattice lattice = CosetLattice::bcc();
   Sizes sizes;
   double h;
   Vec3 origin;
@@ -192,7 +195,7 @@ struct BccHeader {
 };
 
 // Checks that `nrrd` describes a BCC volume; returns what it says or an error text.
-std::string check_bcc_header(const Nrrd* nrrd, BccHeader& header) {
+std::string check_bcc_header(const Nrrd* nrrd, VolumeHeader& header) {
   if (nrrd->dim != 4)
     return fmt::format("it has dimension {}; a BCC volume is a 4-D NRRD (sizes 2 N0 N1 N2, the coset axis first)", nrrd->dim);
   if (nrrd->axis[0].size != 2)
@@ -245,6 +248,126 @@ std::string check_bcc_header(const Nrrd* nrrd, BccHeader& header) {
   std::free(lattice);
   if (!present) return "the key/value 'lattice:=bcc' that marks a BCC volume is missing";
   if (value != "bcc") return fmt::format("its lattice is '{}', not 'bcc'", printable(value, 40));
+  return {};
+}
+
+// The value of key/value `key`, or nothing.
+std::optional<std::string> key_value(const Nrrd* nrrd, const char* key) {
+  char* value = nrrdKeyValueGet(nrrd, key);
+  if (!value) return std::nullopt;
+  std::string text = value;
+  std::free(value);
+  return text;
+}
+
+// "(x,y,z) (x,y,z) ..." as written by CosetLattice::offsets_text.
+std::optional<std::vector<Offset>> parse_offsets(std::string_view text) {
+  std::vector<Offset> offsets;
+  std::size_t pos = 0;
+  while (true) {
+    while (pos < text.size() && std::isspace(static_cast<unsigned char>(text[pos]))) ++pos;
+    if (pos == text.size()) break;
+    if (text[pos] != '(') return std::nullopt;
+    const std::size_t close = text.find(')', pos);
+    if (close == std::string_view::npos) return std::nullopt;
+    std::string_view inner = text.substr(pos + 1, close - pos - 1);
+    Offset o{};
+    for (int a = 0; a < 3; ++a) {
+      const std::size_t comma = inner.find(',');
+      if ((comma == std::string_view::npos) != (a == 2)) return std::nullopt;
+      std::string_view entry = inner.substr(0, comma);
+      inner.remove_prefix(comma == std::string_view::npos ? inner.size() : comma + 1);
+      while (!entry.empty() && std::isspace(static_cast<unsigned char>(entry.front()))) entry.remove_prefix(1);
+      while (!entry.empty() && std::isspace(static_cast<unsigned char>(entry.back()))) entry.remove_suffix(1);
+      const auto [end, error] = std::from_chars(entry.data(), entry.data() + entry.size(), o[a]);
+      if (entry.empty() || error != std::errc() || end != entry.data() + entry.size()) return std::nullopt;
+    }
+    offsets.push_back(o);
+    if (offsets.size() > 1u << 18) return std::nullopt;
+    pos = close + 1;
+  }
+  return offsets;
+}
+
+// The lattice a file declares: lattice:=bcc|fcc|cartesian|custom, with lattice_rows:= and
+// coset_offsets:= for custom (optional for the named lattices: they must then agree). A 3-D NRRD
+// without the key is a Cartesian grid.
+std::string file_lattice(const Nrrd* nrrd, VolumeHeader& header) {
+  const auto name = key_value(nrrd, "lattice");
+  const auto rows = key_value(nrrd, "lattice_rows");
+  const auto offsets = key_value(nrrd, "coset_offsets");
+  if (!name && nrrd->dim != 3) return "the key/value 'lattice:=bcc|fcc|cartesian|custom' that marks a lattice volume is missing";
+  const std::string value = name.value_or("cartesian");
+  try {
+    if (value == "custom") {
+      if (!rows) return "its lattice is 'custom' but the key/value 'lattice_rows:=a,b,c; d,e,f; g,h,i' is missing";
+      if (!offsets) return "its lattice is 'custom' but the key/value 'coset_offsets:=(x,y,z) ...' is missing";
+    } else if (value != "bcc" && value != "fcc" && value != "cartesian") {
+      return fmt::format("its lattice is '{}', not bcc, fcc, cartesian or custom", printable(value, 40));
+    }
+    CosetLattice lattice = value == "custom" ? CosetLattice::parse(*rows) : CosetLattice::parse(value);
+    if (value != "custom" && rows) {
+      const CosetLattice declared = CosetLattice::parse(*rows);
+      if (declared.name() != value) return fmt::format("its lattice_rows '{}' do not generate the {} lattice", printable(*rows, 80), value);
+    }
+    if (offsets) {
+      const auto parsed = parse_offsets(*offsets);
+      if (!parsed) return fmt::format("its coset_offsets '{}' are not of the form '(x,y,z) (x,y,z) ...'", printable(*offsets, 80));
+      lattice = lattice.with_offsets(*parsed);
+    }
+    header.lattice = lattice;
+  } catch (const std::invalid_argument& e) {
+    return printable(e.what());
+  }
+  return {};
+}
+
+// Checks that `nrrd` describes a lattice volume (nrrd_io.h); returns what it says or an error text.
+std::string check_lattice_header(const Nrrd* nrrd, VolumeHeader& header) {
+  if (std::string why = file_lattice(nrrd, header); !why.empty()) return why;
+  const int k = header.lattice.coset_count(), d = header.lattice.period();
+  const std::string& name = header.lattice.name();
+  unsigned first = 0;  // the first domain axis
+  if (nrrd->dim == 4) {
+    if (nrrd->axis[0].size != static_cast<std::size_t>(k))
+      return fmt::format("axis 0 has size {}; the coset axis of a {} volume must have size K = {}", nrrd->axis[0].size, name, k);
+    first = 1;
+  } else if (nrrd->dim != 3 || k != 1) {
+    return fmt::format("it has dimension {}; a {} volume is a 4-D NRRD (sizes {} N0 N1 N2, the coset axis first){}", nrrd->dim, name, k,
+                       k == 1 ? " or a 3-D one" : "");
+  }
+  std::uint64_t count = static_cast<std::uint64_t>(k);
+  for (int a = 0; a < 3; ++a) {
+    const std::size_t n = nrrd->axis[first + a].size;
+    if (n < 1 || n > static_cast<std::size_t>(LatticeVolume<double>::kMaxSize))
+      return fmt::format("axis {} has size {} (each must be in 1..{})", first + a, n, LatticeVolume<double>::kMaxSize);
+    header.sizes[a] = static_cast<int>(n);
+    count *= n;
+    if (count > LatticeVolume<double>::kMaxSamples)
+      return fmt::format("its samples are too many (at most {})", LatticeVolume<double>::kMaxSamples);
+  }
+  if (nrrd->type != nrrdTypeFloat && nrrd->type != nrrdTypeDouble)
+    return fmt::format("its sample type '{}' is not supported (float or double)", printable(airEnumStr(nrrdType, nrrd->type)));
+  header.type = nrrd->type;
+  header.data_bytes = count * (nrrd->type == nrrdTypeFloat ? 4 : 8);
+  if (nrrd->spaceDim != 3) return fmt::format("it has no 3-D space directions; a {} volume needs (dh,0,0) (0,dh,0) (0,0,dh), d = {}", name, d);
+  if (first == 1)
+    for (int b = 0; b < 3; ++b)
+      if (!std::isnan(nrrd->axis[0].spaceDirection[b])) return "axis 0 (the coset axis) must have the space direction 'none'";
+  const double step = nrrd->axis[first].spaceDirection[0];
+  bool consistent = std::isfinite(step) && step / d > 0;
+  for (int a = 0; a < 3 && consistent; ++a)
+    for (int b = 0; b < 3; ++b) {
+      const double v = nrrd->axis[first + a].spaceDirection[b];
+      if (!std::isfinite(v) || std::fabs(v - (a == b ? step : 0.0)) > 1e-9 * step) consistent = false;
+    }
+  if (!consistent)
+    return fmt::format("its space directions are not (dh,0,0) (0,dh,0) (0,0,dh) for one h > 0 (d = {} for the {} lattice)", d, name);
+  header.h = step / d;
+  for (int b = 0; b < 3; ++b) {
+    header.origin[b] = nrrd->spaceOrigin[b];
+    if (!std::isfinite(header.origin[b])) return "its space origin is missing or not finite";
+  }
   return {};
 }
 
@@ -365,6 +488,34 @@ void write_bcc_nrrd(const fs::path& path, const BccVolume<T>& volume) {
 }
 
 template <class T>
+void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume) {
+  std::lock_guard lock(teem_mutex());
+  const Sizes& n = volume.sizes();
+  const CosetLattice& lattice = volume.lattice();
+  const int k = volume.coset_count();
+  const double step = lattice.period() * volume.spacing();
+  // K = 1: a plain 3-D NRRD, which any NRRD reader takes for what it is.
+  const unsigned first = k == 1 ? 0 : 1, dim = 3 + first;
+  const std::size_t sizes[4] = {static_cast<std::size_t>(k == 1 ? n[0] : k), static_cast<std::size_t>(k == 1 ? n[1] : n[0]),
+                                static_cast<std::size_t>(k == 1 ? n[2] : n[1]), static_cast<std::size_t>(n[2])};
+  NrrdShell nrrd = wrap(volume.samples().data(), dim, sizes);
+  if (first == 1) nrrd->axis[0].kind = nrrdKindList;
+  for (unsigned a = 0; a < 3; ++a) {
+    nrrd->axis[first + a].kind = nrrdKindDomain;
+    for (unsigned b = 0; b < 3; ++b) nrrd->axis[first + a].spaceDirection[b] = a == b ? step : 0.0;
+  }
+  set_origin(nrrd.get(), volume.origin());
+  bool ok = nrrdKeyValueAdd(nrrd.get(), "lattice", lattice.name().c_str()) == 0;
+  const bool custom = lattice.name() == "custom";
+  if (ok && custom) ok = nrrdKeyValueAdd(nrrd.get(), "lattice_rows", lattice.rows_text().c_str()) == 0;
+  // A named lattice's offsets are implied unless the volume stores its cosets in another order.
+  if (ok && (custom || !(lattice == CosetLattice::parse(lattice.name()))))
+    ok = nrrdKeyValueAdd(nrrd.get(), "coset_offsets", lattice.offsets_text().c_str()) == 0;
+  if (!ok) throw NrrdError("cannot describe the volume to Teem: " + teem_error());
+  write_atomically(path, [&](std::FILE* file) { return write_nrrd(file, nrrd.get()); });
+}
+
+template <class T>
 void write_cartesian_nrrd(const fs::path& path, const CartesianVolume<T>& grid) {
   std::uint64_t count = 1;
   for (int a = 0; a < 3; ++a) {
@@ -389,10 +540,17 @@ void write_cartesian_nrrd(const fs::path& path, const CartesianVolume<T>& grid) 
   write_atomically(path, [&](std::FILE* file) { return write_nrrd(file, nrrd.get()); });
 }
 
+namespace {
+
+using HeaderCheck = std::string (*)(const Nrrd*, VolumeHeader&);
+
+// Reads the volume file `path` whose header `check` accepts (`kind` names it in messages):
+// everything but building the volume, which the caller does from the header and the samples.
 template <class T>
-BccVolume<T> read_bcc_nrrd(const fs::path& path, const NrrdReadLimits& limits) {
+std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, HeaderCheck check, const char* kind,
+                           VolumeHeader& full) {
   const std::string shown = printable(path.string());
-  auto fail = [&](const std::string& why) { throw NrrdError("cannot read BCC volume '" + shown + "': " + why); };
+  auto fail = [&](const std::string& why) { throw NrrdError(fmt::format("cannot read {} '{}': {}", kind, shown, why)); };
 
   // Only regular files: opening a FIFO or a device could block or never end.
   std::error_code error;
@@ -420,12 +578,12 @@ BccVolume<T> read_bcc_nrrd(const fs::path& path, const NrrdReadLimits& limits) {
   if (!header_complete && file_size > head.size()) fail(fmt::format("its header is longer than {} bytes", kMaxHeaderBytes));
 
   std::lock_guard lock(teem_mutex());
-  BccHeader header{};
+  VolumeHeader header{};
   DataLayout layout;
   {
     NrrdOwner nrrd(nrrdNew());
     if (std::string why = teem_read(file.get(), nrrd.get(), true, layout); !why.empty()) fail(why);
-    if (std::string why = check_bcc_header(nrrd.get(), header); !why.empty()) fail(why);
+    if (std::string why = check(nrrd.get(), header); !why.empty()) fail(why);
   }
   if (header.data_bytes > limits.max_data_bytes)
     fail(fmt::format("its data of {} bytes exceeds the limit of {} bytes", header.data_bytes, limits.max_data_bytes));
@@ -448,8 +606,7 @@ BccVolume<T> read_bcc_nrrd(const fs::path& path, const NrrdReadLimits& limits) {
 
   NrrdOwner nrrd(nrrdNew());
   if (std::string why = teem_read(file.get(), nrrd.get(), false, layout); !why.empty()) fail(why);
-  BccHeader full{};
-  if (std::string why = check_bcc_header(nrrd.get(), full); !why.empty()) fail(why);  // the file may have changed
+    if (std::string why = check(nrrd.get(), full); !why.empty()) fail(why);  // the file may have changed
   if (full.data_bytes != header.data_bytes) fail("the file changed while it was read");
   if (!nrrd->data) fail("Teem returned no data");
   const std::size_t count = static_cast<std::size_t>(sample_count);
@@ -459,14 +616,13 @@ BccVolume<T> read_bcc_nrrd(const fs::path& path, const NrrdReadLimits& limits) {
     if (!why.empty()) fail(why);
   }
 
-  BccVolume<T> volume(full.sizes, full.h, full.origin);
-  const std::span<T> out = volume.samples();
+  std::vector<T> out(count);
   if (full.type == teem_type<T>())
-    std::memcpy(out.data(), nrrd->data, out.size_bytes());
+    std::memcpy(out.data(), nrrd->data, count * sizeof(T));
   else if (full.type == nrrdTypeFloat)
-    std::copy_n(static_cast<const float*>(nrrd->data), out.size(), out.begin());
+    std::copy_n(static_cast<const float*>(nrrd->data), count, out.begin());
   else
-    for (std::size_t s = 0; s < out.size(); ++s) {
+    for (std::size_t s = 0; s < count; ++s) {
       const double x = static_cast<const double*>(nrrd->data)[s];
       // A finite double beyond float's range has no float value (converting it is undefined).
       if (std::isfinite(x) && std::fabs(x) > std::numeric_limits<float>::max())
@@ -474,22 +630,42 @@ BccVolume<T> read_bcc_nrrd(const fs::path& path, const NrrdReadLimits& limits) {
       out[s] = static_cast<T>(x);
     }
   if (!limits.allow_non_finite)
-    for (std::size_t s = 0; s < out.size(); ++s)
+    for (std::size_t s = 0; s < count; ++s)
       if (!std::isfinite(out[s])) {
         const Sizes& n = full.sizes;
-        const std::size_t cell = s / 2;
+        const auto k = static_cast<std::size_t>(full.lattice.coset_count());
+        const std::size_t cell = s / k, n0 = static_cast<std::size_t>(n[0]), n1 = static_cast<std::size_t>(n[1]);
         fail(fmt::format("its sample {} (coset {}, {}, {}, {}) is {}; non-finite samples are refused unless allowed "
                          "(boxrecon --allow-nonfinite)",
-                         s, s % 2, cell % static_cast<std::size_t>(n[0]), cell / static_cast<std::size_t>(n[0]) % static_cast<std::size_t>(n[1]),
-                         cell / static_cast<std::size_t>(n[0]) / static_cast<std::size_t>(n[1]), static_cast<double>(out[s])));
+                         s, s % k, cell % n0, cell / n0 % n1, cell / n0 / n1, static_cast<double>(out[s])));
       }
-  return volume;
+  return out;
+}
+
+}  // namespace
+
+template <class T>
+BccVolume<T> read_bcc_nrrd(const fs::path& path, const NrrdReadLimits& limits) {
+  VolumeHeader header{};
+  std::vector<T> samples = read_volume<T>(path, limits, check_bcc_header, "BCC volume", header);
+  return BccVolume<T>(header.sizes, header.h, header.origin, std::move(samples));
+}
+
+template <class T>
+LatticeVolume<T> read_lattice_nrrd(const fs::path& path, const NrrdReadLimits& limits) {
+  VolumeHeader header{};
+  std::vector<T> samples = read_volume<T>(path, limits, check_lattice_header, "lattice volume", header);
+  return LatticeVolume<T>(header.lattice, header.sizes, header.h, header.origin, std::move(samples));
 }
 
 template void write_bcc_nrrd<float>(const fs::path&, const BccVolume<float>&);
 template void write_bcc_nrrd<double>(const fs::path&, const BccVolume<double>&);
 template BccVolume<float> read_bcc_nrrd<float>(const fs::path&, const NrrdReadLimits&);
 template BccVolume<double> read_bcc_nrrd<double>(const fs::path&, const NrrdReadLimits&);
+template void write_lattice_nrrd<float>(const fs::path&, const LatticeVolume<float>&);
+template void write_lattice_nrrd<double>(const fs::path&, const LatticeVolume<double>&);
+template LatticeVolume<float> read_lattice_nrrd<float>(const fs::path&, const NrrdReadLimits&);
+template LatticeVolume<double> read_lattice_nrrd<double>(const fs::path&, const NrrdReadLimits&);
 template void write_cartesian_nrrd<float>(const fs::path&, const CartesianVolume<float>&);
 template void write_cartesian_nrrd<double>(const fs::path&, const CartesianVolume<double>&);
 

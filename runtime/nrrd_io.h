@@ -9,6 +9,21 @@
 //   lattice:=bcc                   key/value that marks the file as a BCC volume
 // so sample (c, i, j, k) is at o + h (2i + c, 2j + c, 2k + c).
 //
+// A volume on any lattice L = G Z^3 (LatticeVolume, lattice_volume.h), stored as K cosets of
+// d Z^3, is a NRRD of dimension 4 (dimension 3 when K = 1):
+//   sizes: K N0 N1 N2              the coset axis fastest (N0 N1 N2 when K = 1)
+//   space directions: none (dh,0,0) (0,dh,0) (0,0,dh)    (no "none" when K = 1)
+//   space origin: o                the world position of lattice point (0, 0, 0)
+//   kinds: list domain domain domain
+//   lattice:=bcc|fcc|cartesian|custom
+//   lattice_rows:=a,b,c; d,e,f; g,h,i        (custom: the rows of G)
+//   coset_offsets:=(x,y,z) (x,y,z) ...        (custom, or a named lattice whose cosets are
+//                                             stored in another order: off_0 ... off_{K-1})
+// so sample (c, i, j, k) is at o + h (d i + off_c.x, d j + off_c.y, d k + off_c.z). The BCC
+// layout above is this layout with d = 2, K = 2, offsets (0,0,0) (1,1,1). A named lattice may
+// carry lattice_rows and coset_offsets too (they must then agree with it: the offsets may come in
+// another order, which is then the order of the coset axis).
+//
 // A Cartesian grid (CartesianVolume) is a plain 3-D NRRD: sizes N0 N1 N2 (x fastest), space
 // directions (sx,0,0) (0,sy,0) (0,0,sz), space origin, kinds domain domain domain; 3D Slicer,
 // ParaView and `unu` open it.
@@ -39,6 +54,7 @@
 
 #include "runtime/bcc_volume.h"
 #include "runtime/cartesian_volume.h"
+#include "runtime/lattice_volume.h"
 
 namespace boxgen::runtime {
 
@@ -72,6 +88,16 @@ void write_bcc_nrrd(const std::filesystem::path& path, const BccVolume<T>& volum
 template <class T>
 BccVolume<T> read_bcc_nrrd(const std::filesystem::path& path, const NrrdReadLimits& limits = {});
 
+// A volume on any lattice (lattice_volume.h): the layout in the comment at the top. Throws
+// NrrdError if the file cannot be written.
+template <class T>
+void write_lattice_nrrd(const std::filesystem::path& path, const LatticeVolume<T>& volume);
+
+// Reads a lattice volume (any lattice; BCC files written by write_bcc_nrrd included; a 3-D NRRD
+// without a lattice key is a Cartesian volume). Checks as read_bcc_nrrd. Throws NrrdError.
+template <class T>
+LatticeVolume<T> read_lattice_nrrd(const std::filesystem::path& path, const NrrdReadLimits& limits = {});
+
 // Throws std::invalid_argument for an inconsistent grid (sizes < 1, values.size() different
 // from N0 N1 N2, spacing not finite and > 0, origin not finite) and NrrdError if the file
 // cannot be written.
@@ -82,6 +108,10 @@ extern template void write_bcc_nrrd<float>(const std::filesystem::path&, const B
 extern template void write_bcc_nrrd<double>(const std::filesystem::path&, const BccVolume<double>&);
 extern template BccVolume<float> read_bcc_nrrd<float>(const std::filesystem::path&, const NrrdReadLimits&);
 extern template BccVolume<double> read_bcc_nrrd<double>(const std::filesystem::path&, const NrrdReadLimits&);
+extern template void write_lattice_nrrd<float>(const std::filesystem::path&, const LatticeVolume<float>&);
+extern template void write_lattice_nrrd<double>(const std::filesystem::path&, const LatticeVolume<double>&);
+extern template LatticeVolume<float> read_lattice_nrrd<float>(const std::filesystem::path&, const NrrdReadLimits&);
+extern template LatticeVolume<double> read_lattice_nrrd<double>(const std::filesystem::path&, const NrrdReadLimits&);
 extern template void write_cartesian_nrrd<float>(const std::filesystem::path&, const CartesianVolume<float>&);
 extern template void write_cartesian_nrrd<double>(const std::filesystem::path&, const CartesianVolume<double>&);
 
