@@ -1,5 +1,5 @@
 // boxrecon: reconstruction of BCC volumes with the generated M7, M8 and M12 evaluators.
-//   boxrecon sample --function ml --n N [--h H] [--precision float|double] -o vol.nrrd
+//   boxrecon sample --function ml --n N [--h H] [--lattice bcc|fcc|cartesian|ROWS] [--precision float|double] -o vol.nrrd
 //   boxrecon eval --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd --points pts.txt|- [--gradient]
 //   boxrecon error --function ml --n N --filter m7 --prefilter q2 [--points K] [--seed S] [--gradient] [--json]
 //   boxrecon resample --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd -o grid.nrrd [--n N]
@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "apps/boxrecon/input_checks.h"
+#include "apps/boxrecon/sample_command.h"
 #include "apps/common/exit_status.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/points_file.h"
@@ -48,17 +49,12 @@ int exit_code_for(const std::exception& e) {
 // Largest --n of resample: 512^3 double values are 1 GiB.
 constexpr int kMaxResampleN = 512;
 
-// The sampling grid of --n (and --h), checked to fit in memory before anything is allocated.
-BccGrid grid_for(int n, std::optional<double> h, int margin, std::uint64_t bytes_per_sample) {
+// The sampling grid of `error`'s --n, checked to fit in memory before anything is allocated.
+BccGrid grid_for(int n, int margin) {
   if (n < 2 || n > 1024) throw InputError(fmt::format("--n must be between 2 and 1024, got {}", n));
-  boxgen::app::check_spacing(h);
   BccGrid grid = cube_grid(n, margin);
-  boxgen::app::check_volume_memory(2 * static_cast<std::uint64_t>(grid.sizes[0]) * grid.sizes[1] * grid.sizes[2], bytes_per_sample,
+  boxgen::app::check_volume_memory(2 * static_cast<std::uint64_t>(grid.sizes[0]) * grid.sizes[1] * grid.sizes[2], sizeof(double),
                                    fmt::format("--n {}", n));
-  if (h) {  // --h overrides the spacing; the grid still starts margin cells below -1
-    grid.h = *h;
-    for (auto& o : grid.origin) o = -1 - 2 * *h * margin;
-  }
   return grid;
 }
 
@@ -89,7 +85,7 @@ int run_error(const std::string& function, int n, const std::string& filter, con
   const Filter f = parse_filter(filter);
   const PrefilterChoice q = parse_prefilter(pre);
   if (count < 1 || count > 100000000) throw InputError("--points must be between 1 and 100000000");
-  BccVolume<double> volume = sample_bcc<double>(fn.value, grid_for(n, std::nullopt, required_margin(f, q), sizeof(double)));
+  BccVolume<double> volume = sample_bcc<double>(fn.value, grid_for(n, required_margin(f, q)));
   if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -141,7 +137,7 @@ int run_resample(const std::string& filter, const std::string& pre, const std::s
 int run(int argc, char** argv) {
   CLI::App app{"boxrecon: reconstruct BCC volumes with the generated box-spline evaluators"};
   app.require_subcommand(1);
-  std::string function = "ml", output, filter = "m7", pre = "none", volume, points_path, precision = "double";
+  std::string function = "ml", lattice = "bcc", output, filter = "m7", pre = "none", volume, points_path, precision = "double";
   int n = 33, count = 100000;
   std::optional<double> h;
   std::string seed = "1";
@@ -151,8 +147,9 @@ int run(int argc, char** argv) {
 
   auto* sample = app.add_subcommand("sample", "sample a test function on N^3 x 2 BCC points over [-1,1]^3");
   sample->add_option("--function", function, "ml | cubic | sphere | gaussian");
-  sample->add_option("--n", n, "N: N^3 x 2 samples, h = 1/(N-1)")->required();
+  sample->add_option("--n", n, "N: N^3 x K samples, K cosets of N^3 with cells of 2/(N-1)")->required();
   sample->add_option("--h", h, "spacing override (finite, > 0)");
+  sample->add_option("--lattice", lattice, "bcc (default) | fcc | cartesian | \"a,b,c; d,e,f; g,h,i\" (rows of G)");
   sample->add_option("--precision", precision, "float | double");
   sample->add_option("-o,--output", output, "output NRRD file")->required();
   auto* eval = app.add_subcommand("eval", "evaluate the reconstruction at the points of a file");
@@ -191,15 +188,7 @@ int run(int argc, char** argv) {
   try {
     if (precision != "float" && precision != "double")
       throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) + "'");
-    if (sample->parsed()) {
-      const TestFunction& fn = find_test_function(function);
-      require_output_directory(output);
-      // margin 3: enough for every filter with Q^I or Q^II
-      const BccGrid grid = grid_for(n, h, 3, precision == "float" ? sizeof(float) : sizeof(double));
-      if (precision == "float") write_bcc_nrrd(output, sample_bcc<float>(fn.value, grid));
-      else write_bcc_nrrd(output, sample_bcc<double>(fn.value, grid));
-      return 0;
-    }
+    if (sample->parsed()) return boxgen::app::run_sample(function, n, h, lattice, precision, output);
     NrrdReadLimits limits;
     limits.allow_non_finite = allow_nonfinite;
     if (eval->parsed())

@@ -293,5 +293,73 @@ TEST_F(BoxreconFiles, PointsFilesAsPeopleWriteThem) {
   refused(eval_args("v.nrrd", "bad.txt"), {"bad.txt:4"});
 }
 
+// ---------------------------------------------------------------------------------------------
+// sample --lattice
+
+// The header field `name` of a NRRD file ("" if absent), and its data as doubles.
+std::string field(const std::string& text, const std::string& name) {
+  const std::size_t at = text.find("\n" + name);
+  if (at == std::string::npos) return "";
+  const std::size_t start = at + 1 + name.size(), end = text.find('\n', start);
+  return text.substr(start, end - start);
+}
+
+std::vector<double> data_of(const std::string& text) {
+  const std::size_t start = text.find("\n\n") + 2;
+  std::vector<double> values((text.size() - start) / 8);
+  std::memcpy(values.data(), text.data() + start, values.size() * 8);
+  return values;
+}
+
+double cubic(double x, double y, double z) { return x * x * x - 2 * x * y * z + 3 * y * y - z + 1; }
+
+TEST_F(BoxreconFiles, SampleOnEveryLattice) {
+  // --lattice bcc is the default, byte for byte.
+  ok({"sample", "--function", "cubic", "--n", "4", "-o", file("default.nrrd")});
+  ok({"sample", "--function", "cubic", "--n", "4", "--lattice", "bcc", "-o", file("bcc.nrrd")});
+  EXPECT_EQ(read_bytes(file("bcc.nrrd")), read_bytes(file("default.nrrd")));
+  // N = 4 and margin 3: 10 samples per coset and axis, cells of 2/3, origin -1 - 3 (2/3) = -3.
+  struct Case {
+    const char* lattice;
+    int k;
+    int d;
+    std::vector<std::array<int, 3>> offsets;  // as the issue specifies them
+    const char* key;
+  };
+  const std::vector<Case> cases = {
+      {"fcc", 4, 2, {{0, 0, 0}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1}}, "fcc"},
+      {"cartesian", 1, 1, {{0, 0, 0}}, "cartesian"},
+      {"1,0,0; 0,1,0; 0,0,2", 4, 2, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, "custom"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.lattice);
+    ok({"sample", "--function", "cubic", "--n", "4", "--lattice", c.lattice, "-o", file("v.nrrd")});
+    const std::string text = read_bytes(file("v.nrrd"));
+    EXPECT_EQ(field(text, "lattice:="), c.key);
+    const std::size_t k = c.offsets.size();
+    EXPECT_EQ(field(text, "sizes: "), (k == 1 ? std::string() : std::to_string(k) + " ") + "10 10 10");
+    const double h = 2.0 / 3 / c.d;
+    const std::vector<double> values = data_of(text);
+    ASSERT_EQ(values.size(), k * 1000);
+    // A few samples (c, i, j, k) against the cubic at o + h (d (i,j,k) + off_c).
+    for (std::size_t s : {std::size_t{0}, k * 123 + k - 1, values.size() - 1, values.size() / 2}) {
+      const std::size_t coset = s % k, cell = s / k;
+      const std::array<int, 3>& off = c.offsets[coset];
+      const double x = -3 + h * (c.d * static_cast<double>(cell % 10) + off[0]);
+      const double y = -3 + h * (c.d * static_cast<double>(cell / 10 % 10) + off[1]);
+      const double z = -3 + h * (c.d * static_cast<double>(cell / 100) + off[2]);
+      EXPECT_NEAR(values[s], cubic(x, y, z), 1e-12 * (1 + std::abs(cubic(x, y, z)))) << s;
+    }
+  }
+  // z = 0 mod 2 is the custom lattice above: its rows and offsets are in the file.
+  EXPECT_EQ(field(read_bytes(file("v.nrrd")), "lattice_rows:="), "1,0,0; 0,1,0; 0,0,2");
+  EXPECT_EQ(field(read_bytes(file("v.nrrd")), "coset_offsets:="), "(0,0,0) (1,0,0) (0,1,0) (1,1,0)");
+  for (const char* bad : {"hexagonal", "1,0,0; 0,1,0; 1,1,0", "1,0,0; 0,1,0"}) {
+    SCOPED_TRACE(bad);
+    refused({"sample", "--function", "cubic", "--n", "4", "--lattice", bad, "-o", file("bad.nrrd")}, {"lattice"});
+    EXPECT_FALSE(fs::exists(file("bad.nrrd")));
+  }
+}
+
 }  // namespace
 }  // namespace boxgen::test
