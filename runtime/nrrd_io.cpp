@@ -5,7 +5,9 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <teem/biff.h>
+#include <bzlib.h>
 #include <teem/nrrd.h>
+#include <zlib.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -395,13 +397,92 @@ std::string teem_read(std::FILE* file, Nrrd* nrrd, bool header_only, DataLayout&
   return {};
 }
 
-// The amount of data after the header, counted in the unit the encoding stores: bytes (raw),
-// numbers (ascii: whitespace-separated tokens) or hex digits (hex). Returns false when the
-// encoding is compressed (its length is Teem's to check) and for text that is not data.
-bool count_stored_data(std::FILE* file, const DataLayout& layout, std::uint64_t file_size, std::uint64_t& count, std::string& problem) {
+// The decompressed length of the gzip or bzip2 data from the file's current position, counted up
+// to `cap` bytes (counting stops beyond it). As Teem's reader does, gzip data without the gzip
+// magic is taken as stored uncompressed; concatenated gzip members or bzip2 streams count
+// together. Sets `problem` for data that does not decompress.
+void count_decompressed(std::FILE* file, bool gzip, std::uint64_t cap, std::uint64_t& count, std::string& problem) {
+  std::vector<unsigned char> in(1 << 16), out(1 << 16);
+  std::size_t have = std::fread(in.data(), 1, in.size(), file), used = 0;
+  count = 0;
+  const auto refill = [&] {
+    if (used < have) return true;
+    have = std::fread(in.data(), 1, in.size(), file);
+    used = 0;
+    return have > 0;
+  };
+  if (gzip && !(have >= 2 && in[0] == 0x1f && in[1] == 0x8b)) {  // not gzip: Teem reads it as it is
+    for (count = have; count <= cap;) {
+      used = have;
+      if (!refill()) break;
+      count += have;
+    }
+    return;
+  }
+  while (count <= cap && refill()) {  // one gzip member or bzip2 stream per pass
+    if (gzip) {
+      z_stream z{};
+      if (inflateInit2(&z, 15 + 16) != Z_OK) {
+        problem = "cannot start zlib";
+        return;
+      }
+      int status = Z_OK;
+      while (status != Z_STREAM_END && count <= cap) {
+        if (!refill()) break;
+        z.next_in = in.data() + used;
+        z.avail_in = static_cast<uInt>(have - used);
+        z.next_out = out.data();
+        z.avail_out = static_cast<uInt>(out.size());
+        status = inflate(&z, Z_NO_FLUSH);
+        used = have - z.avail_in;
+        count += out.size() - z.avail_out;
+        if (status != Z_OK && status != Z_STREAM_END && status != Z_BUF_ERROR) break;
+      }
+      inflateEnd(&z);
+      if (status != Z_STREAM_END && count <= cap) {
+        problem = status == Z_OK || status == Z_BUF_ERROR ? "its gzip data end too early" : "its gzip data are corrupt";
+        return;
+      }
+    } else {
+      bz_stream b{};
+      if (BZ2_bzDecompressInit(&b, 0, 0) != BZ_OK) {
+        problem = "cannot start bzip2";
+        return;
+      }
+      int status = BZ_OK;
+      while (status != BZ_STREAM_END && count <= cap) {
+        if (!refill()) break;
+        b.next_in = reinterpret_cast<char*>(in.data() + used);
+        b.avail_in = static_cast<unsigned>(have - used);
+        b.next_out = reinterpret_cast<char*>(out.data());
+        b.avail_out = static_cast<unsigned>(out.size());
+        status = BZ2_bzDecompress(&b);
+        used = have - b.avail_in;
+        count += out.size() - b.avail_out;
+        if (status != BZ_OK && status != BZ_STREAM_END) break;
+      }
+      BZ2_bzDecompressEnd(&b);
+      if (status != BZ_STREAM_END && count <= cap) {
+        problem = status == BZ_OK ? "its bzip2 data end too early" : "its bzip2 data are corrupt";
+        return;
+      }
+    }
+  }
+}
+
+// The amount of data after the header, counted in the unit the encoding stores: bytes (raw,
+// and decompressed bytes for gzip and bzip2, counted up to `cap`), numbers (ascii: whitespace-
+// separated tokens) or hex digits (hex). Returns false for an encoding it cannot count.
+bool count_stored_data(std::FILE* file, const DataLayout& layout, std::uint64_t file_size, std::uint64_t cap, std::uint64_t& count,
+                       std::string& problem) {
   const auto start = static_cast<std::uint64_t>(std::max(0L, layout.start));
   if (layout.encoding == nrrdEncodingRaw) {
     count = file_size - std::min(file_size, start);
+    return true;
+  }
+  if (layout.encoding == nrrdEncodingGzip || layout.encoding == nrrdEncodingBzip2) {
+    if (std::fseek(file, layout.start, SEEK_SET) != 0) problem = std::strerror(errno);
+    else count_decompressed(file, layout.encoding == nrrdEncodingGzip, cap, count, problem);
     return true;
   }
   const bool ascii = layout.encoding == nrrdEncodingAscii;
@@ -592,21 +673,22 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, H
   const std::uint64_t sample_count = header.data_bytes / (header.type == nrrdTypeFloat ? 4 : 8);
   std::uint64_t stored = 0;
   std::string problem;
-  if (count_stored_data(file.get(), layout, file_size, stored, problem)) {
+  const bool raw = layout.encoding == nrrdEncodingRaw, ascii = layout.encoding == nrrdEncodingAscii,
+             hex = layout.encoding == nrrdEncodingHex;
+  const std::uint64_t expected = ascii ? sample_count : hex ? 2 * header.data_bytes : header.data_bytes;
+  if (count_stored_data(file.get(), layout, file_size, expected, stored, problem)) {
     if (!problem.empty()) fail(problem);
-    const bool raw = layout.encoding == nrrdEncodingRaw, ascii = layout.encoding == nrrdEncodingAscii;
-    const std::uint64_t expected = raw ? header.data_bytes : ascii ? sample_count : 2 * header.data_bytes;
-    const char* unit = raw ? "bytes of raw data" : ascii ? "numbers" : "hex digits";
+    const char* unit = raw ? "bytes of raw data" : ascii ? "numbers" : hex ? "hex digits" : "bytes of decompressed data";
     if (stored < expected)
       fail(fmt::format("the file is truncated: its header announces {} {}, but only {} follow it", expected, unit, stored));
     if (stored > expected)
-      fail(fmt::format("{} {} follow its header, which announces {} (its type and sizes must describe the data exactly)", stored,
-                       unit, expected));
+      fail(fmt::format("{}{} {} follow its header, which announces {} (its type and sizes must describe the data exactly)",
+                       raw || ascii || hex ? "" : "more than ", raw || ascii || hex ? stored : expected, unit, expected));
   }
 
   NrrdOwner nrrd(nrrdNew());
   if (std::string why = teem_read(file.get(), nrrd.get(), false, layout); !why.empty()) fail(why);
-    if (std::string why = check(nrrd.get(), full); !why.empty()) fail(why);  // the file may have changed
+  if (std::string why = check(nrrd.get(), full); !why.empty()) fail(why);  // the file may have changed
   if (full.data_bytes != header.data_bytes) fail("the file changed while it was read");
   if (!nrrd->data) fail("Teem returned no data");
   const std::size_t count = static_cast<std::size_t>(sample_count);

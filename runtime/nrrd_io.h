@@ -34,8 +34,8 @@
 //
 // Reading checks everything (magic, dimension, sizes, type, space directions consistent with one
 // h, origin, the lattice key) and believes no header that lies: the data must be exactly as long
-// as type and sizes say (raw: bytes, ascii: numbers, hex: digits; compressed data is decompressed
-// by Teem, which refuses data that is too short), it is read in the byte order the header
+// as type and sizes say (raw: bytes, ascii: numbers, hex: digits, gzip and bzip2: decompressed
+// bytes, counted before Teem decodes them), it is read in the byte order the header
 // declares, and a file whose declared byte order is evidently wrong (at least half of the
 // non-zero samples not finite or beyond 1e+-150 for double, 1e+-20 for float, while the other
 // byte order makes every sample plausible) is refused. Non-finite samples (NaN, +-inf) are refused

@@ -470,6 +470,28 @@ TEST_F(BccNrrd, DataMustMatchTheHeaderExactly) {
   write_bytes(file("hex.nrrd"), replace(h, "encoding: raw", "encoding: hex") + hex.substr(0, 10) + "\n" + hex.substr(10) + "\n");
   const auto v = read_bcc_nrrd<float>(file("hex.nrrd"));
   EXPECT_EQ(std::vector<float>(v.samples().begin(), v.samples().end()), kValues);
+  // Compressed data is decompressed and counted: Teem re-saves the honest file in gzip and bzip2,
+  // then the header is made to lie about the type (float over doubles) or the sizes.
+  BccVolume<double> d({2, 2, 2}, 0.5, {0, 0, 0});
+  for (double& x : d.samples()) x = 0.75;
+  write_bcc_nrrd(file("d.nrrd"), d);
+  const TeemNrrd t(file("d.nrrd"));
+  for (const NrrdEncoding* encoding : {nrrdEncodingGzip, nrrdEncodingBzip2}) {
+    SCOPED_TRACE(encoding->name);
+    NrrdIoState* io = nrrdIoStateNew();
+    io->encoding = encoding;
+    const fs::path compressed = file(std::string("c.") + encoding->name + ".nrrd");
+    ASSERT_EQ(nrrdSave(compressed.c_str(), t.nrrd, io), 0);
+    nrrdIoStateNix(io);
+    const std::string bytes = read_bytes(compressed);
+    EXPECT_NO_THROW((void)read_bcc_nrrd<double>(compressed));  // the honest file reads
+    write_bytes(file("lie.nrrd"), replace(bytes, "type: double", "type: float"));
+    EXPECT_NE(read_error(file("lie.nrrd")).find("announces"), std::string::npos);
+    write_bytes(file("lie.nrrd"), replace(bytes, "sizes: 2 2 2 2", "sizes: 2 2 2 1"));
+    EXPECT_NE(read_error(file("lie.nrrd")).find("announces"), std::string::npos);
+    write_bytes(file("lie.nrrd"), replace(bytes, "sizes: 2 2 2 2", "sizes: 2 2 2 3"));
+    EXPECT_NE(read_error(file("lie.nrrd")).find("truncated"), std::string::npos);
+  }
   // Skipped lines or bytes in attached data are not supported.
   write_bytes(file("skip.nrrd"), replace(h, "encoding: raw", "encoding: raw\nbyte skip: 4") + "abcd" + data);
   EXPECT_NE(read_error(file("skip.nrrd")).find("byte skip"), std::string::npos);
