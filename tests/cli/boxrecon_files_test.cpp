@@ -388,5 +388,32 @@ TEST_F(BoxreconFiles, SampleOnEveryLattice) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// boxgen emit writes through the same module (runtime/output_file.h).
+
+TEST_F(BoxreconFiles, EmitWritesThroughLinksAndRefusesSpecialFiles) {
+  const std::string spec = "1,0; 0,1; 1,1";  // a small planar box spline: derived in milliseconds
+  fs::create_directory(file("out"));
+  fs::create_directory(file("real"));
+  fs::create_symlink("../real/zp.hpp", file("out/zp.hpp"));
+  ProcessResult r = boxgen({"emit", spec, "--name", "zp", "--out", file("out")});
+  EXPECT_TRUE(r.exited && r.exit_code == 0) << describe({"emit"}, r);
+  EXPECT_TRUE(fs::is_symlink(file("out/zp.hpp")));
+  EXPECT_NE(read_bytes(file("real/zp.hpp")).find("zp"), std::string::npos);
+  EXPECT_TRUE(fs::is_regular_file(file("out/zp_prefilters.hpp")));
+  // A FIFO in place of one of the files: refused before anything is written, the FIFO stays.
+  fs::remove(file("out/zp_prefilters.hpp"));
+  ASSERT_EQ(::mkfifo(file("out/zp_prefilters.hpp").c_str(), 0600), 0);
+  const std::string before = read_bytes(file("real/zp.hpp"));
+  r = boxgen({"emit", spec, "--name", "zp", "--out", file("out")});
+  EXPECT_TRUE(r.exited && r.exit_code == 1) << describe({"emit"}, r);
+  EXPECT_NE(r.err.find("FIFO"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  struct stat info {};
+  ASSERT_EQ(::lstat(file("out/zp_prefilters.hpp").c_str(), &info), 0);
+  EXPECT_TRUE(S_ISFIFO(info.st_mode));
+  EXPECT_EQ(read_bytes(file("real/zp.hpp")), before);
+}
+
 }  // namespace
 }  // namespace boxgen::test
