@@ -1,5 +1,5 @@
 // `boxgen analyze`: everything the generator derives about a box spline on its lattice, with the
-// exact checks that run by default (design.md 3-5, 7). Every number here is derived, not looked up.
+// exact checks that run by default (docs/design.md §3-§5, §7). Every number here is derived, not looked up.
 #pragma once
 #include <nlohmann/json.hpp>
 

@@ -1,4 +1,4 @@
-// The approximation order rho(Xi) of a box spline (design.md section 3): the least number of
+// The approximation order rho(Xi) of a box spline (docs/design.md §3): the least number of
 // columns whose removal leaves a set that does not span R^n. The spline is C^(rho-2) and
 // reproduces polynomials of degree < rho; quasi-interpolation prefilters aim at this order.
 #pragma once

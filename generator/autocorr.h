@@ -1,4 +1,4 @@
-// Lattice samples of the doubled box spline, a(j) = M^c_{Xi ∪ Xi}(j) (design.md 9b, paper 3.5):
+// Lattice samples of the doubled box spline, a(j) = M^c_{Xi ∪ Xi}(j) (docs/design.md §9, paper 3.5):
 // the autocorrelation of M^c at lattice points, which the error kernel and the filter metrics
 // need; a(0) = ∫ (M^c)^2 for the normalisation ∫ M = 1. The doubled spline has degree 2m - n
 // (21 for M12), so deriving its piecewise form is avoided; two cheap exact methods, independent

@@ -1,4 +1,4 @@
-// Bernstein-Bezier form (design.md 6): on a simplex v0..vn a degree-d polynomial is
+// Bernstein-Bezier form (docs/design.md §6): on a simplex v0..vn a degree-d polynomial is
 // sum_{|b|=d} c_b d!/b! lambda^b in barycentric coordinates lambda. For the spline on a region
 // each c_b is a linear combination of the stencil values V(j) (the paper's supplemental Table 1
 // for M7). Non-simplicial regions are triangulated.

@@ -1,8 +1,8 @@
 // The two independent exact derivations of the piecewise polynomials of the uncentred box
 // spline M_Xi (integral 1, support Xi[0,1]^m):
 //  - DirectionalIntegration: the box-spline recurrence M_{Xi+xi}(x) = int_0^1 M_Xi(x - t xi) dt
-//    (design.md 5), lazily from the parallelepiped up;
-//  - TruncatedPower: finite differences of the truncated power (design.md 5b),
+//    (docs/design.md §5), lazily from the parallelepiped up;
+//  - TruncatedPower: finite differences of the truncated power (docs/design.md §5),
 //    M_Xi(x) = sum_S (-1)^|S| T_Xi(x - sum S), with T derived along rays on the central arrangement.
 // Both answer "the polynomial of M_Xi on the cell containing the generic point p".
 #pragma once

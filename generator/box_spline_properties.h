@@ -1,4 +1,4 @@
-// Properties of a box spline that follow from its direction matrix alone (design.md 3,
+// Properties of a box spline that follow from its direction matrix alone (docs/design.md §3,
 // paper section 3.2): degree, continuity, approximation order, support volume, stencil size and
 // linear independence of the lattice shifts.
 #pragma once

@@ -1,4 +1,4 @@
-// The fine cell complex of design.md 4: integer levels of every knot normal plus the coordinate
+// The fine cell complex of docs/design.md §4: integer levels of every knot normal plus the coordinate
 // axes. Each cell is a convex polytope inside one unit cube, kept with its exact vertices and
 // the slab constraints level <= nu.x <= level + 1 that define it.
 #pragma once

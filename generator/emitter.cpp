@@ -49,122 +49,181 @@ std::string banner(const Analysis& a, const EmissionRequest& req) {
       req.command);
 }
 
-std::string evaluator(const Analysis& a, const EmissionRequest& req) {
-  const SplineStructure& s = a.structure;
+// Knot planes other than the axes and the combined key of floor(nu . r), r in [0,1)^n, that
+// indexes the lookup table: key = sum_k (floor(nu_k . r) - min_k) stride_k.
+struct KnotPlaneKeys {
+  std::vector<IntVec> planes;
+  std::vector<int> mins, widths, strides{1};
+  long size() const { return strides.back(); }
+};
+
+KnotPlaneKeys knot_plane_keys(const Analysis& a) {
   const int n = a.spec.dimension();
   const auto& normals = a.form.complex.normals();
-  // Axes come first in the arrangement; the lookup uses the others.
-  std::vector<IntVec> planes(normals.begin() + n, normals.end());
-  const int k_count = static_cast<int>(planes.size());
-  std::vector<int> mins, strides{1};
-  for (const auto& nu : planes) {
+  KnotPlaneKeys keys;
+  keys.planes.assign(normals.begin() + n, normals.end());  // axes come first in the arrangement
+  for (const auto& nu : keys.planes) {
     int lo = 0, width = 0;
     for (auto v : nu) {
       lo += v < 0 ? static_cast<int>(v) : 0;
       width += static_cast<int>(v < 0 ? -v : v);
     }
-    mins.push_back(lo);
-    strides.push_back(strides.back() * width);
+    keys.mins.push_back(lo);
+    keys.widths.push_back(width);
+    keys.strides.push_back(keys.strides.back() * width);
   }
-  const long lookup_size = strides.back();
-  if (lookup_size > 1 << 20) fail_input("emission: too many knot planes per unit cube for a lookup table");
-  const auto reps = a.spec.lattice.coset_representatives();
+  if (keys.size() > 1 << 20) fail_input("emission: too many knot planes per unit cube for a lookup table");
+  return keys;
+}
+
+// The Hermite basis (columns) recovered from the coset representatives' ranges: the first
+// multiple d e_j that leaves the representatives' box is d e_j - reduce(d e_j) = column j.
+IntColumns hermite_basis(const Analysis& a) {
+  const int n = a.spec.dimension();
   IntColumns hermite(n, IntVec(n, 0));
-  {
-    // Recover the Hermite diagonal from the representatives' ranges and the basis by reduction.
-    for (int j = 0; j < n; ++j) {
-      IntVec e(n, 0);
-      for (std::int64_t d = 1;; ++d) {
-        e[j] = d;
-        IntVec r = a.spec.lattice.reduce(e);
-        IntVec col(n);
-        for (int i = 0; i < n; ++i) col[i] = e[i] - r[i];
-        if (col[j] != 0) {  // first multiple of e_j leaving the box: d e_j - r = H column j
-          hermite[j] = col;
-          break;
-        }
+  for (int j = 0; j < n; ++j) {
+    IntVec e(n, 0);
+    for (std::int64_t d = 1;; ++d) {
+      e[j] = d;
+      const IntVec r = a.spec.lattice.reduce(e);
+      IntVec col(n);
+      for (int i = 0; i < n; ++i) col[i] = e[i] - r[i];
+      if (col[j] != 0) {
+        hermite[j] = col;
+        break;
       }
     }
   }
+  return hermite;
+}
+
+// Per fundamental cell: its row of the cell table, its stencil offsets from the corner, and its
+// place in the lookup table; with the stencil reach over all cells.
+struct CellTables {
+  std::vector<std::vector<int>> lookup;  // [cube][key] -> cell or -1
+  std::vector<std::string> cells, offsets;
+  IntVec reach_lo, reach_hi;  // offsets j - floor(x + c) per axis, over every cell
+};
+
+CellTables cell_tables(const Analysis& a, const KnotPlaneKeys& keys, const IntColumns& hermite) {
+  const SplineStructure& s = a.structure;
+  const int n = a.spec.dimension();
   auto cube_index = [&](const IntVec& rep) {
     int idx = 0;
     for (int i = n - 1; i >= 0; --i) idx = idx * static_cast<int>(hermite[i][i]) + static_cast<int>(rep[i]);
     return idx;
   };
-  const int cube_count = static_cast<int>(a.spec.lattice.det_abs());
-  std::vector<std::vector<int>> lookup(cube_count, std::vector<int>(lookup_size, -1));
-  std::vector<std::string> cells;
-  // Offsets j - floor(x + c) of every lattice point any cell fetches, per axis (the public
-  // kStencilReachLo/Hi: what a volume must hold around a point).
-  IntVec reach_lo(n, std::numeric_limits<std::int64_t>::max()), reach_hi(n, std::numeric_limits<std::int64_t>::min());
+  CellTables t;
+  t.lookup.assign(a.spec.lattice.det_abs(), std::vector<int>(keys.size(), -1));
+  t.reach_lo.assign(n, std::numeric_limits<std::int64_t>::max());
+  t.reach_hi.assign(n, std::numeric_limits<std::int64_t>::min());
   for (size_t c = 0; c < s.cells.size(); ++c) {
     const auto& fc = s.cells[c];
-    IntVec rep(fc.cell.key.begin(), fc.cell.key.begin() + n);
+    const IntVec rep(fc.cell.key.begin(), fc.cell.key.begin() + n);
     const int cube = cube_index(rep);
-    std::vector<int> keys;
+    std::vector<int> local_keys;
     long index = 0;
-    for (int k = 0; k < k_count; ++k) {
-      const int local = fc.cell.key[n + k] - static_cast<int>(dot(planes[k], rep));
-      keys.push_back(local);
-      index += static_cast<long>(local - mins[k]) * strides[k];
+    for (size_t k = 0; k < keys.planes.size(); ++k) {
+      const int local = fc.cell.key[n + k] - static_cast<int>(dot(keys.planes[k], rep));
+      local_keys.push_back(local);
+      index += static_cast<long>(local - keys.mins[k]) * keys.strides[k];
     }
-    lookup[cube][index] = static_cast<int>(c);
-    keys.push_back(0);
+    t.lookup[cube][index] = static_cast<int>(c);
+    local_keys.push_back(0);
     const auto& region = s.regions[fc.region];
     const auto& g = region.to_reference.g;
-    // x_ref = g (x - t + p) + l = g (x - t) + (g p + l)
+    // x_ref = g (x - t + p) + l = g (x - t) + (g p + l), t = corner - rep
     IntVec gp = g.apply(fc.placement), av(n);
     for (int i = 0; i < n; ++i) av[i] = gp[i] + region.to_reference.l[i];
-    // The evaluator fetches j[perm_i] = sign_i (s_i - a_i) + t[perm_i], t = corner - rep.
-    for (const auto& sp : s.references[region.orbit].stencil)
+    // Stencil point k of the orbit sits at j[perm_i] = sign_i (s_i - a_i) + t[perm_i].
+    std::vector<std::string> points;
+    for (const auto& sp : s.references[region.orbit].stencil) {
+      IntVec d(n);
       for (int i = 0; i < n; ++i) {
         const int axis = g.perm[i];
-        const std::int64_t d = g.sign[i] * (sp[i] - av[i]) - rep[axis];
-        reach_lo[axis] = std::min(reach_lo[axis], d);
-        reach_hi[axis] = std::max(reach_hi[axis], d);
+        d[axis] = g.sign[i] * (sp[i] - av[i]) - rep[axis];
+        t.reach_lo[axis] = std::min(t.reach_lo[axis], d[axis]);
+        t.reach_hi[axis] = std::max(t.reach_hi[axis], d[axis]);
       }
-    cells.push_back(fmt::format("{{{}, {}, {}, {}, {}, {}}}", cube, region.orbit, brace_list(keys), brace_list(g.perm),
-                                brace_list(g.sign), brace_list(av)));
+      points.push_back(brace_list(d));
+    }
+    for (size_t k = points.size(); k < static_cast<size_t>(s.stencil_max); ++k) points.push_back(brace_list(IntVec(n, 0)));
+    t.offsets.push_back("{" + join(points) + "}");
+    t.cells.push_back(fmt::format("{{{}, {}, {}, {}, {}, {}}}", cube, region.orbit, brace_list(local_keys), brace_list(g.perm),
+                                  brace_list(g.sign), brace_list(av)));
   }
-  std::vector<std::string> lookup_rows, normal_rows, stencil_blocks, orbit_sizes, dispatch, orbit_functions;
-  for (const auto& row : lookup) lookup_rows.push_back(brace_list(row));
-  for (const auto& nu : planes) normal_rows.push_back(brace_list(nu));
-  normal_rows.push_back(brace_list(IntVec(n, 0)));
-  mins.push_back(0);
-  const int stencil_max = s.stencil_max;
+  return t;
+}
+
+// The polynomial code of every orbit, and the costliest orbit's counts.
+struct OrbitCodes {
+  std::vector<OrbitCode> orbits;
+  OperationCount value, gradient, hessian;
+  std::string strategy;  // one name, or "mixed: ..." when orbits differ
+};
+
+OrbitCodes orbit_codes(const Analysis& a, EmissionStrategy strategy) {
+  OrbitCodes out;
+  std::vector<std::string> names;
+  for (size_t o = 0; o < a.structure.references.size(); ++o) {
+    out.orbits.push_back(choose_orbit_code(a.structure.references[o], static_cast<int>(o), a.spec.dimension(),
+                                           a.properties.degree, strategy));
+    const OrbitCode& c = out.orbits.back();
+    if (c.value.total() > out.value.total()) out.value = c.value;
+    if (c.gradient.total() > out.gradient.total()) out.gradient = c.gradient;
+    if (c.hessian.total() > out.hessian.total()) out.hessian = c.hessian;
+    names.push_back(strategy_name(c.strategy));
+  }
+  const bool same = std::all_of(names.begin(), names.end(), [&](const std::string& x) { return x == names[0]; });
+  out.strategy = same ? names.at(0) : "mixed: " + join(names, " ");
+  return out;
+}
+
+std::string ints(const std::vector<int>& v) {
+  std::vector<std::string> parts;
+  for (int x : v) parts.push_back(std::to_string(x));
+  return join(parts);
+}
+
+std::string evaluator(const Analysis& a, const EmissionRequest& req, const OrbitCodes& code) {
+  const SplineStructure& s = a.structure;
+  const int n = a.spec.dimension();
+  KnotPlaneKeys keys = knot_plane_keys(a);
+  const IntColumns hermite = hermite_basis(a);
+  const CellTables t = cell_tables(a, keys, hermite);
+  std::vector<std::string> lookup_rows, normal_rows, orbit_sizes, dispatch, functions, costs;
+  for (const auto& row : t.lookup) lookup_rows.push_back(brace_list(row));
+  for (const auto& nu : keys.planes) normal_rows.push_back(brace_list(nu));
+  normal_rows.push_back(brace_list(IntVec(n, 0)));  // a zero row keeps the arrays non-empty
+  keys.mins.push_back(0);
+  keys.widths.push_back(1);
   for (size_t o = 0; o < s.references.size(); ++o) {
-    const auto& ref = s.references[o];
-    std::vector<std::string> pts;
-    for (const auto& j : ref.stencil) pts.push_back(brace_list(j));
-    for (size_t k = ref.stencil.size(); k < static_cast<size_t>(stencil_max); ++k) pts.push_back(brace_list(IntVec(n, 0)));
-    stencil_blocks.push_back("{" + join(pts) + "}");
-    orbit_sizes.push_back(std::to_string(ref.stencil.size()));
-    dispatch.push_back(fmt::format("    case {0}: value = orbit_{0}<T>(v, xr, gradient ? gref : nullptr); break;", o));
-    orbit_functions.push_back(orbit_function(ref, static_cast<int>(o), n, a.properties.degree, req.strategy));
+    orbit_sizes.push_back(std::to_string(s.references[o].stencil.size()));
+    dispatch.push_back(fmt::format("      case {0}: return detail::orbit_{0}<Order>(v, x, d);", o));
+    functions.push_back(code.orbits[o].text);
+    const OrbitCode& c = code.orbits[o];
+    costs.push_back(fmt::format("//   orbit {}: {}, {} / {} / {}", o, strategy_name(c.strategy), c.value.total(),
+                                c.gradient.total(), c.hessian.total()));
   }
   std::vector<std::string> centre, hermite_rows;
   for (const auto& c : s.centre) centre.push_back(literal(c));
   for (const auto& col : hermite) hermite_rows.push_back(brace_list(col));
   return fmt::format(
       fmt::runtime(templates::evaluator_hpp), fmt::arg("banner", banner(a, req)), fmt::arg("name", req.name),
-      fmt::arg("dimension", n), fmt::arg("degree", a.properties.degree), fmt::arg("stencil_size", stencil_max),
+      fmt::arg("dimension", n), fmt::arg("degree", a.properties.degree), fmt::arg("stencil_size", s.stencil_max),
       fmt::arg("lattice_det", a.spec.lattice.det_abs()), fmt::arg("spec_text", a.spec.directions_text()),
-      fmt::arg("strategy", strategy_name(req.strategy)), fmt::arg("centre", join(centre)), fmt::arg("reach_lo", join_ints(reach_lo)), fmt::arg("reach_hi", join_ints(reach_hi)), fmt::arg("hermite", join(hermite_rows)),
-      fmt::arg("cube_count", cube_count), fmt::arg("normal_count", k_count), fmt::arg("normals", join(normal_rows)),
-      fmt::arg("normal_min", join([&] {
-                 std::vector<std::string> v;
-                 for (int m : mins) v.push_back(std::to_string(m));
-                 return v;
-               }())),
-      fmt::arg("normal_stride", join([&] {
-                 std::vector<std::string> v;
-                 for (int m : strides) v.push_back(std::to_string(m));
-                 return v;
-               }())),
-      fmt::arg("lookup_size", lookup_size), fmt::arg("lookup", join(lookup_rows, ",\n    ")),
-      fmt::arg("cell_count", cells.size()), fmt::arg("cells", join(cells, ",\n    ")),
+      fmt::arg("lattice", a.spec.lattice.name()), fmt::arg("strategy", code.strategy),
+      fmt::arg("value_ops", code.value.total()), fmt::arg("gradient_ops", code.gradient.total()),
+      fmt::arg("hessian_ops", code.hessian.total()), fmt::arg("orbit_costs", join(costs, "\n")),
+      fmt::arg("centre", join(centre)), fmt::arg("reach_lo", join_ints(t.reach_lo)),
+      fmt::arg("reach_hi", join_ints(t.reach_hi)), fmt::arg("hermite", join(hermite_rows)),
+      fmt::arg("cube_count", t.lookup.size()), fmt::arg("normal_count", keys.planes.size()),
+      fmt::arg("normals", join(normal_rows)), fmt::arg("normal_min", ints(keys.mins)),
+      fmt::arg("normal_width", ints(keys.widths)), fmt::arg("normal_stride", ints(keys.strides)),
+      fmt::arg("lookup_size", keys.size()), fmt::arg("lookup", join(lookup_rows, ",\n      ")),
+      fmt::arg("cell_count", t.cells.size()), fmt::arg("cells", join(t.cells, ",\n      ")),
       fmt::arg("orbit_count", s.references.size()), fmt::arg("orbit_stencil_sizes", join(orbit_sizes)),
-      fmt::arg("stencils", join(stencil_blocks, ",\n    ")), fmt::arg("orbit_functions", join(orbit_functions, "\n")),
+      fmt::arg("offsets", join(t.offsets, ",\n      ")), fmt::arg("orbit_functions", join(functions, "\n")),
       fmt::arg("orbit_dispatch", join(dispatch, "\n")));
 }
 
@@ -192,12 +251,36 @@ std::string prefilters(const Analysis& a, const EmissionRequest& req) {
 
 }  // namespace
 
-std::vector<EmittedFile> emit(const Analysis& analysis, const EmissionRequest& request) {
+std::vector<EmittedFile> emit(const Analysis& analysis, const EmissionRequest& request, EmissionReport* report) {
   if (!is_identifier(request.name))
     fail_input("--name must be a C++ identifier (letters, digits, '_', not starting with a digit), got '" +
                request.name.substr(0, 40) + "'");
-  return {{request.name + ".hpp", evaluator(analysis, request)},
+  const OrbitCodes code = orbit_codes(analysis, request.strategy);
+  if (report) {
+    *report = {code.strategy, {}, code.value, code.gradient, code.hessian};
+    for (const auto& o : code.orbits) report->orbits.push_back({strategy_name(o.strategy), o.value, o.gradient, o.hessian});
+  }
+  return {{request.name + ".hpp", evaluator(analysis, request, code)},
           {request.name + "_prefilters.hpp", prefilters(analysis, request)}};
+}
+
+EmittedFile emit_registry(const std::vector<std::string>& names, const std::string& command) {
+  if (names.empty()) fail_input("--registry needs at least one filter name");
+  std::vector<std::string> includes, quoted, entries, cases;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string& n = names[i];
+    if (!is_identifier(n)) fail_input("--registry: '" + n.substr(0, 40) + "' is not a C++ identifier");
+    includes.push_back(fmt::format("#include \"generated/{0}.hpp\"\n#include \"generated/{0}_prefilters.hpp\"", n));
+    quoted.push_back("\"" + n + "\"");
+    entries.push_back(fmt::format("using {0}_entry = RegistryEntry<{0}::Traits, {0}::q1, {0}::q2>;", n));
+    const bool last = i + 1 == names.size();
+    cases.push_back(fmt::format("    {}: return f({}_entry{{}});", last ? "default" : fmt::format("case {}", i), n));
+  }
+  return {"registry.hpp",
+          fmt::format(fmt::runtime(templates::registry_hpp), fmt::arg("version", kGeneratorVersion), fmt::arg("command", command),
+                      fmt::arg("includes", join(includes, "\n")), fmt::arg("count", names.size()),
+                      fmt::arg("names", join(quoted)), fmt::arg("entries", join(entries, "\n")),
+                      fmt::arg("cases", join(cases, "\n")))};
 }
 
 void write_files(const std::vector<EmittedFile>& files, const std::string& directory) {

@@ -1,4 +1,4 @@
-// Emission (design.md 7, issue 4): the generator's tables and polynomial code, filled into the
+// Emission (docs/design.md §11): the generator's tables and polynomial code, filled into the
 // fmt templates of templates/ to make a self-contained C++ evaluator header for one spline.
 #pragma once
 #include <string>
@@ -19,12 +19,29 @@ struct EmittedFile {
 struct EmissionRequest {
   std::string name;     // C++ identifier: the namespace boxgen::generated::<name>
   std::string command;  // the command that reproduces the file, for its header
-  EmissionStrategy strategy = EmissionStrategy::Horner;  // see generator/polynomial_code.h
+  EmissionStrategy strategy = EmissionStrategy::Auto;  // see generator/polynomial_code.h
+};
+
+// What the emitted evaluator costs: the strategy of each orbit and its operation counts (value;
+// value + gradient; value + gradient + Hessian), as recorded in the header.
+struct OrbitReport {
+  std::string strategy;
+  OperationCount value, gradient, hessian;
+};
+struct EmissionReport {
+  std::string strategy;  // of the whole evaluator ("mixed: ..." when orbits differ)
+  std::vector<OrbitReport> orbits;
+  OperationCount value, gradient, hessian;  // the costliest orbit's
 };
 
 // <name>.hpp (evaluator) and <name>_prefilters.hpp (Q^I on shells 0,1 and Q^II on 0,1,2 where
 // they exist). Throws InputError for a name that is not a C++ identifier.
-std::vector<EmittedFile> emit(const Analysis& analysis, const EmissionRequest& request);
+// With `report`, also fills it.
+std::vector<EmittedFile> emit(const Analysis& analysis, const EmissionRequest& request, EmissionReport* report = nullptr);
+
+// registry.hpp: boxgen::generated::with_filter over the named filters (each with its evaluator and
+// both prefilters in the same directory), in the order given; the last one is the switch's default.
+EmittedFile emit_registry(const std::vector<std::string>& names, const std::string& command);
 
 // Writes the files into `directory` (each through a temporary file and a rename).
 void write_files(const std::vector<EmittedFile>& files, const std::string& directory);

@@ -1,4 +1,4 @@
-// Knot-plane normals of a direction matrix (design.md 4): every n-1 columns that span a
+// Knot-plane normals of a direction matrix (docs/design.md §4): every n-1 columns that span a
 // hyperplane give a primitive integer normal. All knot planes of M_Xi and of its integer
 // shifts are nu . x = c with integer c.
 #pragma once

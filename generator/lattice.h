@@ -1,4 +1,4 @@
-// Integer lattices L = G Z^n (design.md section 1): membership, reduction to coset
+// Integer lattices L = G Z^n (docs/design.md §1): membership, reduction to coset
 // representatives of Z^n / L (the fundamental region is the union of the unit cubes at those
 // representatives), and shells of lattice points by distance.
 #pragma once

@@ -1,4 +1,4 @@
-// Lazy, exact derivation of a box spline (design.md 5) or of its truncated power (5b) by
+// Lazy, exact derivation of a box spline (docs/design.md §5) or of its truncated power by
 // directional integration, one column at a time, cell by cell.
 //
 // Level k uses the first k columns. On a cell C of level k+1 the function is

@@ -1,4 +1,4 @@
-// Exact checks and counts on the piecewise form of M_Xi (design.md 5): distinct pieces, the
+// Exact checks and counts on the piecewise form of M_Xi (docs/design.md §5): distinct pieces, the
 // integral, continuity across every internal face, and symmetry of the centred spline.
 #pragma once
 #include "generator/piecewise_form.h"

@@ -1,7 +1,7 @@
 // Dense exact polynomials in n = 2 or 3 variables with CLN rational coefficients.
 // Monomials are stored in graded order (all of degree 0, then 1, ...), so a polynomial of
 // lower degree is a prefix of one of higher degree: growing the capacity only appends zeros.
-// This is the hot-loop representation of the generator (design.md 11); GiNaC expressions are
+// This is the hot-loop representation of the generator (docs/design.md §12); GiNaC expressions are
 // made from it only at the edges (printing, emission).
 #pragma once
 #include <array>

@@ -8,21 +8,63 @@
 #include "generator/code_text.h"
 #include "generator/embedded_templates.h"
 #include "generator/error.h"
+#include "generator/separable_form.h"
 
 namespace boxgen {
 
+using code::count_operations;
 using code::join;
 using code::literal;
 
 EmissionStrategy parse_strategy(std::string_view name) {
+  if (name == "auto") return EmissionStrategy::Auto;
   if (name == "monomial") return EmissionStrategy::Monomial;
   if (name == "horner") return EmissionStrategy::Horner;
-  fail_input("--strategy must be monomial or horner, got '" + std::string(name.substr(0, 40)) + "'");
+  if (name == "separable") return EmissionStrategy::Separable;
+  fail_input("--strategy must be auto, horner, separable or monomial, got '" + std::string(name.substr(0, 40)) + "'");
 }
 
-const char* strategy_name(EmissionStrategy s) { return s == EmissionStrategy::Monomial ? "monomial" : "horner"; }
+const char* strategy_name(EmissionStrategy s) {
+  switch (s) {
+    case EmissionStrategy::Auto: return "auto";
+    case EmissionStrategy::Monomial: return "monomial";
+    case EmissionStrategy::Horner: return "horner";
+    case EmissionStrategy::Separable: return "separable";
+  }
+  return "?";
+}
 
 namespace {
+
+// Multi-indices of the derivatives an evaluation of `order` writes, in the order of d[]: the
+// gradient (e_i), then the Hessian's upper triangle row by row (e_i + e_j, i <= j).
+std::vector<Exponent> derivative_indices(int n, int order) {
+  std::vector<Exponent> out;
+  if (order >= 1)
+    for (int i = 0; i < n; ++i) {
+      Exponent e{0, 0, 0};
+      e[i] = 1;
+      out.push_back(e);
+    }
+  if (order >= 2)
+    for (int i = 0; i < n; ++i)
+      for (int j = i; j < n; ++j) {
+        Exponent e{0, 0, 0};
+        ++e[i];
+        ++e[j];
+        out.push_back(e);
+      }
+  return out;
+}
+
+
+std::string orbit_vertices(const ReferenceRegion& ref) {
+  std::vector<std::string> verts;
+  for (const auto& v : ref.vertices) verts.push_back(code::vertex_text(v));
+  return join(verts, " ");
+}
+
+// ---- Coefficients of the monomials: fixed rational combinations of the stencil values. ----
 
 // sum_k w_k v[k] for one monomial; with `grouped`, values sharing |w| share one multiplication.
 std::string linear_combination(const ReferenceRegion& ref, std::size_t m, bool grouped) {
@@ -59,10 +101,10 @@ std::string linear_combination(const ReferenceRegion& ref, std::size_t m, bool g
   return join(terms, " + ");
 }
 
-// Names of the coefficient variables c<m> of the monomials that occur, and their definitions.
 struct Coefficients {
-  std::vector<std::size_t> used;  // monomial indices
+  std::vector<std::size_t> used;  // monomial indices with a non-zero coefficient
   std::string definitions;
+  OperationCount cost;
 };
 
 Coefficients coefficients(const ReferenceRegion& ref, int n, int degree, bool grouped) {
@@ -72,44 +114,80 @@ Coefficients coefficients(const ReferenceRegion& ref, int n, int degree, bool gr
     if (sum.empty()) continue;
     c.used.push_back(m);
     c.definitions += fmt::format("  const T c{} = {};\n", m, sum);
+    c.cost += count_operations(sum);
   }
   return c;
 }
 
-std::string orbit_header_args(const ReferenceRegion& ref) {
-  std::vector<std::string> verts;
-  for (const auto& v : ref.vertices) verts.push_back(code::vertex_text(v));
-  return join(verts, " ");
+// d^D x^e / dx^D = factor x^(e - D); factor 0 when some e_i < D_i.
+long derivative_factor(const Exponent& e, const Exponent& d, Exponent& lowered) {
+  long factor = 1;
+  for (int i = 0; i < 3; ++i) {
+    if (e[i] < d[i]) return 0;
+    for (int k = 0; k < d[i]; ++k) factor *= e[i] - k;
+    lowered[i] = e[i] - d[i];
+  }
+  return factor;
 }
 
-std::string monomial_function(const ReferenceRegion& ref, int orbit, int n, int degree) {
+// The path costs of code that shares the coefficients: value, then each derivative added.
+void assign_path_costs(OrbitCode& code, const OperationCount& shared, const OperationCount& value,
+                       const std::vector<OperationCount>& derivatives, int n) {
+  code.value = shared;
+  code.value += value;
+  code.gradient = code.value;
+  for (int i = 0; i < n; ++i) code.gradient += derivatives[i];
+  code.hessian = code.gradient;
+  for (std::size_t i = n; i < derivatives.size(); ++i) code.hessian += derivatives[i];
+}
+
+// The derivative assignments "d[i] = ...;" of one order, each in its own text.
+std::string derivative_block(const std::vector<std::string>& exprs, std::size_t from, std::size_t to) {
+  std::string out;
+  for (std::size_t i = from; i < to; ++i) out += fmt::format("    d[{}] = {};\n", i, exprs[i].empty() ? "T(0)" : exprs[i]);
+  if (!out.empty()) out.pop_back();
+  return out;
+}
+
+// ---- monomial ----
+
+std::string power_product(const Exponent& e, int n) {
+  std::string out;
+  for (int i = 0; i < n; ++i)
+    if (e[i]) out += fmt::format(" * p[{}][{}]", i, e[i]);
+  return out;
+}
+
+OrbitCode monomial_code(const ReferenceRegion& ref, int orbit, int n, int degree) {
   const auto& exps = monomial_exponents(n, degree);
   const Coefficients c = coefficients(ref, n, degree, false);
-  std::string value_terms;
-  std::vector<std::string> grad_terms(n);
+  const auto derivatives = derivative_indices(n, 2);
+  std::string value = "T(0)";
+  std::vector<std::string> d_exprs(derivatives.size());
   for (std::size_t m : c.used) {
-    std::string power;
-    for (int i = 0; i < n; ++i)
-      if (exps[m][i]) power += fmt::format(" * p[{}][{}]", i, exps[m][i]);
-    value_terms += fmt::format("\n      + c{}{}", m, power);
-    for (int d = 0; d < n; ++d) {
-      if (!exps[m][d]) continue;
-      std::string g = fmt::format("T({}) * c{}", exps[m][d], m);
-      for (int i = 0; i < n; ++i) {
-        const int e = exps[m][i] - (i == d ? 1 : 0);
-        if (e) g += fmt::format(" * p[{}][{}]", i, e);
-      }
-      grad_terms[d] += "\n        + " + g;
+    value += fmt::format("\n      + c{}{}", m, power_product(exps[m], n));
+    for (std::size_t k = 0; k < derivatives.size(); ++k) {
+      Exponent lowered{0, 0, 0};
+      const long factor = derivative_factor(exps[m], derivatives[k], lowered);
+      if (!factor) continue;
+      d_exprs[k] += fmt::format("{}T({}) * c{}{}", d_exprs[k].empty() ? "" : "\n        + ", factor, m, power_product(lowered, n));
     }
   }
-  std::string evaluation = fmt::format("  const T value = T(0){};\n  if (gradient) {{\n", value_terms);
-  for (int d = 0; d < n; ++d) evaluation += fmt::format("    gradient[{}] = T(0){};\n", d, grad_terms[d]);
-  evaluation += "  }\n  return value;";
-  return fmt::format(fmt::runtime(templates::orbit_monomial), fmt::arg("orbit", orbit),
-                     fmt::arg("vertices", orbit_header_args(ref)), fmt::arg("monomials", c.used.size()),
-                     fmt::arg("stencil", ref.stencil.size()), fmt::arg("coefficients", c.definitions),
-                     fmt::arg("evaluation", evaluation));
+  OrbitCode code{EmissionStrategy::Monomial, "", {}, {}, {}};
+  std::vector<OperationCount> d_costs;
+  for (const auto& e : d_exprs) d_costs.push_back(count_operations(e));
+  OperationCount shared = c.cost;
+  shared.muls += static_cast<long>(n) * degree;  // the table of powers
+  assign_path_costs(code, shared, count_operations(value), d_costs, n);
+  code.text = fmt::format(fmt::runtime(templates::orbit_monomial), fmt::arg("orbit", orbit),
+                          fmt::arg("vertices", orbit_vertices(ref)), fmt::arg("monomials", c.used.size()),
+                          fmt::arg("stencil", ref.stencil.size()), fmt::arg("coefficients", c.definitions),
+                          fmt::arg("gradient", derivative_block(d_exprs, 0, n)),
+                          fmt::arg("hessian", derivative_block(d_exprs, n, d_exprs.size())), fmt::arg("value", value));
+  return code;
 }
+
+// ---- horner ----
 
 // Nested Horner form of sum_e coefficient(e) x^e, variables from `var` on: the outer variable is
 // factored out power by power, the remaining ones recursively.
@@ -128,38 +206,191 @@ std::string horner(const std::map<Exponent, std::string>& terms, int var, int n)
   return acc;
 }
 
-std::string horner_function(const ReferenceRegion& ref, int orbit, int n, int degree) {
+OrbitCode horner_code(const ReferenceRegion& ref, int orbit, int n, int degree) {
   const auto& exps = monomial_exponents(n, degree);
   const Coefficients c = coefficients(ref, n, degree, true);
+  const auto derivatives = derivative_indices(n, 2);
   std::map<Exponent, std::string> value_terms;
-  std::vector<std::map<Exponent, std::string>> grad_terms(n);
+  std::vector<std::map<Exponent, std::string>> d_terms(derivatives.size());
   for (std::size_t m : c.used) {
     value_terms.emplace(exps[m], fmt::format("c{}", m));
-    for (int d = 0; d < n; ++d) {
-      if (!exps[m][d]) continue;
-      Exponent lowered = exps[m];
-      --lowered[d];
-      grad_terms[d].emplace(lowered, exps[m][d] == 1 ? fmt::format("c{}", m) : fmt::format("T({}) * c{}", exps[m][d], m));
+    for (std::size_t k = 0; k < derivatives.size(); ++k) {
+      Exponent lowered{0, 0, 0};
+      const long factor = derivative_factor(exps[m], derivatives[k], lowered);
+      if (factor) d_terms[k].emplace(lowered, factor == 1 ? fmt::format("c{}", m) : fmt::format("T({}) * c{}", factor, m));
     }
   }
-  std::string gradient;
-  for (int d = 0; d < n; ++d) {
-    const std::string g = horner(grad_terms[d], 0, n);
-    gradient += fmt::format("    gradient[{}] = {};\n", d, g.empty() ? "T(0)" : g);
+  std::vector<std::string> d_exprs;
+  std::vector<OperationCount> d_costs;
+  for (const auto& t : d_terms) {
+    d_exprs.push_back(horner(t, 0, n));
+    d_costs.push_back(count_operations(d_exprs.back()));
   }
-  if (!gradient.empty()) gradient.pop_back();
-  const std::string value = horner(value_terms, 0, n);
-  return fmt::format(fmt::runtime(templates::orbit_horner), fmt::arg("orbit", orbit),
-                     fmt::arg("vertices", orbit_header_args(ref)), fmt::arg("monomials", c.used.size()),
-                     fmt::arg("stencil", ref.stencil.size()), fmt::arg("coefficients", c.definitions),
-                     fmt::arg("gradient", gradient), fmt::arg("value", value.empty() ? "T(0)" : value));
+  std::string value = horner(value_terms, 0, n);
+  if (value.empty()) value = "T(0)";
+  OrbitCode code{EmissionStrategy::Horner, "", {}, {}, {}};
+  assign_path_costs(code, c.cost, count_operations(value), d_costs, n);
+  code.text = fmt::format(fmt::runtime(templates::orbit_horner), fmt::arg("orbit", orbit),
+                          fmt::arg("vertices", orbit_vertices(ref)), fmt::arg("monomials", c.used.size()),
+                          fmt::arg("stencil", ref.stencil.size()), fmt::arg("coefficients", c.definitions),
+                          fmt::arg("gradient", derivative_block(d_exprs, 0, n)),
+                          fmt::arg("hessian", derivative_block(d_exprs, n, d_exprs.size())), fmt::arg("value", value));
+  return code;
+}
+
+// ---- separable ----
+
+UnivariatePoly derivative(UnivariatePoly f, int order) {
+  for (int k = 0; k < order; ++k) {
+    if (f.size() <= 1) return {};
+    UnivariatePoly g(f.size() - 1);
+    for (std::size_t a = 1; a < f.size(); ++a) g[a - 1] = f[a] * Rational(static_cast<long>(a));
+    f = g;
+  }
+  bool zero = true;
+  for (const auto& x : f) zero = zero && cln::zerop(x);
+  return zero ? UnivariatePoly{} : f;
+}
+
+// f(x_axis) in Horner form.
+std::string univariate_horner(const UnivariatePoly& f, int axis) {
+  std::string acc = fmt::format("T({})", literal(f.back()));
+  for (int a = static_cast<int>(f.size()) - 2; a >= 0; --a)
+    acc = (cln::zerop(f[a]) ? "" : fmt::format("T({}) + ", literal(f[a]))) + fmt::format("x[{}] * ({})", axis, acc);
+  return acc;
+}
+
+std::string names(const std::vector<int>& v) {
+  std::string out;
+  for (std::size_t i = 0; i < v.size(); ++i) out += (i ? "x" : "") + std::to_string(v[i]);
+  return out;
+}
+
+// Straight-line code for the value and the derivatives up to `order`: 1-D weights per grid and
+// axis, then the contraction axis by axis, sharing partial sums across derivatives.
+std::string separable_body(const std::vector<TensorGrid>& grids, int n, int order, OperationCount& cost) {
+  std::string out;
+  auto define = [&](const std::string& name, const std::string& expr) {
+    out += fmt::format("    const T {} = {};\n", name, expr);
+    cost += count_operations(expr);
+  };
+  // key: (derivative orders of the contracted axes, grid positions on the others)
+  using Key = std::pair<std::vector<int>, std::vector<int>>;
+  std::map<Exponent, std::vector<std::string>> results;  // derivative -> one term per grid
+  for (std::size_t g = 0; g < grids.size(); ++g) {
+    const TensorGrid& grid = grids[g];
+    // weight[i][a][o]: name of the o-th derivative of axis i's a-th weight ("" when zero)
+    std::vector<std::vector<std::vector<std::string>>> weight(n);
+    for (int i = 0; i < n; ++i)
+      for (int a = 0; a < grid.sizes[i]; ++a) {
+        weight[i].emplace_back();
+        for (int o = 0; o <= order; ++o) {
+          const UnivariatePoly f = derivative(grid.weights[i][a], o);
+          if (f.empty()) {
+            weight[i][a].push_back("");
+            continue;
+          }
+          const std::string name = fmt::format("w{}_{}_{}_{}", g, i, a, o);
+          define(name, f.size() == 1 ? fmt::format("T({})", literal(f[0])) : univariate_horner(f, i));
+          weight[i][a].push_back(name);
+        }
+      }
+    std::map<Key, std::string> level;
+    for (std::size_t flat = 0; flat < grid.stencil.size(); ++flat) {
+      std::vector<int> position;
+      std::size_t rest = flat;
+      for (int i = 0; i < n; ++i) {
+        position.push_back(static_cast<int>(rest % grid.sizes[i]));
+        rest /= grid.sizes[i];
+      }
+      level[{{}, position}] = fmt::format("v[{}]", grid.stencil[flat]);
+    }
+    for (int axis = 0; axis < n; ++axis) {
+      std::map<Key, std::string> next;
+      std::map<Key, std::vector<std::string>> terms;
+      for (const auto& [key, name] : level) {
+        const int a = key.second[0];
+        std::vector<int> rest(key.second.begin() + 1, key.second.end());
+        int used = 0;
+        for (int o : key.first) used += o;
+        for (int o = 0; used + o <= order; ++o) {
+          if (weight[axis][a][o].empty()) continue;
+          std::vector<int> orders = key.first;
+          orders.push_back(o);
+          terms[{orders, rest}].push_back(weight[axis][a][o] + " * " + name);
+        }
+      }
+      for (const auto& [key, list] : terms) {
+        const std::string name = fmt::format("s{}_{}_{}_{}", g, axis, names(key.first), names(key.second));
+        define(name, join(list, " + "));
+        next[key] = name;
+      }
+      level = std::move(next);
+    }
+    for (const auto& [key, name] : level) {
+      Exponent e{0, 0, 0};
+      for (int i = 0; i < n; ++i) e[i] = key.first[i];
+      results[e].push_back(name);
+    }
+  }
+  auto sum_of = [&](const Exponent& e) {
+    const auto it = results.find(e);
+    if (it == results.end()) return std::string("T(0)");
+    cost += count_operations(join(it->second, " + "));
+    return join(it->second, " + ");
+  };
+  out += fmt::format("    const T value = {};\n", sum_of(Exponent{0, 0, 0}));
+  const auto derivatives = derivative_indices(n, order);
+  for (std::size_t k = 0; k < derivatives.size(); ++k) out += fmt::format("    d[{}] = {};\n", k, sum_of(derivatives[k]));
+  out += "    return value;";
+  return out;
+}
+
+std::optional<OrbitCode> separable_code(const ReferenceRegion& ref, int orbit, int n) {
+  const auto grids = separable_form(ref, n);
+  if (!grids) return std::nullopt;
+  OrbitCode code{EmissionStrategy::Separable, "", {}, {}, {}};
+  const std::string value = separable_body(*grids, n, 0, code.value);
+  const std::string gradient = separable_body(*grids, n, 1, code.gradient);
+  const std::string hessian = separable_body(*grids, n, 2, code.hessian);
+  std::vector<std::string> shapes;
+  for (const auto& g : *grids) shapes.push_back(join([&] {
+    std::vector<std::string> s;
+    for (int x : g.sizes) s.push_back(std::to_string(x));
+    return s;
+  }(), "x"));
+  code.text = fmt::format(fmt::runtime(templates::orbit_separable), fmt::arg("orbit", orbit),
+                          fmt::arg("vertices", orbit_vertices(ref)), fmt::arg("stencil", ref.stencil.size()),
+                          fmt::arg("grids", join(shapes)), fmt::arg("value", value), fmt::arg("gradient", gradient),
+                          fmt::arg("hessian", hessian));
+  return code;
 }
 
 }  // namespace
 
-std::string orbit_function(const ReferenceRegion& ref, int orbit, int n, int degree, EmissionStrategy strategy) {
-  return strategy == EmissionStrategy::Monomial ? monomial_function(ref, orbit, n, degree)
-                                                : horner_function(ref, orbit, n, degree);
+std::optional<OrbitCode> orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree, EmissionStrategy strategy) {
+  switch (strategy) {
+    case EmissionStrategy::Monomial: return monomial_code(ref, orbit, n, degree);
+    case EmissionStrategy::Horner: return horner_code(ref, orbit, n, degree);
+    case EmissionStrategy::Separable: return separable_code(ref, orbit, n);
+    case EmissionStrategy::Auto: break;
+  }
+  return std::nullopt;
+}
+
+OrbitCode choose_orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree, EmissionStrategy strategy) {
+  if (strategy != EmissionStrategy::Auto) {
+    auto code = orbit_code(ref, orbit, n, degree, strategy);
+    if (!code)
+      fail_input(fmt::format("--strategy {}: orbit {} is not a tensor product of univariate factors", strategy_name(strategy), orbit));
+    return *code;
+  }
+  std::optional<OrbitCode> best;
+  for (auto s : {EmissionStrategy::Horner, EmissionStrategy::Separable, EmissionStrategy::Monomial}) {
+    auto code = orbit_code(ref, orbit, n, degree, s);
+    if (code && (!best || code->gradient.total() < best->gradient.total())) best = std::move(code);
+  }
+  return *best;
 }
 
 }  // namespace boxgen

@@ -1,7 +1,9 @@
-// C++ code for one orbit's reference polynomial (design.md 7): its coefficients are linear
-// combinations of the stencil values, and the strategy decides how the polynomial and its exact
-// gradient are written out. The emitter places the result into templates/orbit_<strategy>.fmt.
+// C++ code for one orbit's reference polynomial (docs/design.md §11): the spline on the reference region
+// is sum_k v[k] p_k(x) over its stencil, and a strategy decides how that sum and its exact
+// derivatives are written out. Each strategy counts the arithmetic it emits, so the emitter can
+// choose the cheapest (`auto`) and record the counts in the header.
 #pragma once
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -9,16 +11,47 @@
 
 namespace boxgen {
 
-// `monomial`: one coefficient per monomial, then a sum over a table of coordinate powers.
-// `horner`: coefficients with stencil values grouped by shared weight, then nested Horner forms
-// of the polynomial and of each partial derivative (fewer multiplications; the default).
-enum class EmissionStrategy { Monomial, Horner };
+// `monomial`: one coefficient per monomial (a linear combination of the stencil values), then a
+//   sum over a table of coordinate powers.
+// `horner`: the same coefficients, stencil values grouped by shared weight, then nested Horner
+//   forms of the polynomial and of each exact partial derivative.
+// `separable`: where every p_k is a product of univariate factors and the stencil splits into
+//   full tensor grids (axis-aligned direction matrices: M12, tricubic), 1-D weights per axis
+//   and a contraction per grid.
+// `auto`: the cheapest of those that apply, by the value + gradient operation count.
+enum class EmissionStrategy { Auto, Monomial, Horner, Separable };
 
-// "monomial" | "horner"; anything else: InputError naming the choices.
+// "auto" | "monomial" | "horner" | "separable"; anything else: InputError naming the choices.
 EmissionStrategy parse_strategy(std::string_view name);
 const char* strategy_name(EmissionStrategy s);
 
-// The function `template <class T> T orbit_<orbit>(const T* v, const T* x, T* gradient)`.
-std::string orbit_function(const ReferenceRegion& ref, int orbit, int n, int degree, EmissionStrategy strategy);
+// Floating-point operations of straight-line code: additions (and subtractions) and
+// multiplications, counted on the emitted expressions.
+struct OperationCount {
+  long adds = 0, muls = 0;
+  long total() const { return adds + muls; }
+  OperationCount& operator+=(const OperationCount& o) {
+    adds += o.adds;
+    muls += o.muls;
+    return *this;
+  }
+};
+
+// The function `template <int Order, class T> T orbit_<orbit>(const T* v, const T* x, T* d)`
+// (support::evaluate_located describes d) and what each path costs.
+struct OrbitCode {
+  EmissionStrategy strategy = EmissionStrategy::Horner;
+  std::string text;
+  OperationCount value, gradient, hessian;  // whole paths: value; value + gradient; + Hessian
+};
+
+// The code of one orbit in a given strategy (not Auto); nullopt when the strategy does not apply
+// (separable code for a polynomial that is not a tensor product).
+std::optional<OrbitCode> orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree, EmissionStrategy strategy);
+
+// Auto: every applicable strategy, the one with the fewest value + gradient operations (ties
+// keep the earlier of horner, separable, monomial). Otherwise the strategy asked for; InputError
+// if it does not apply.
+OrbitCode choose_orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree, EmissionStrategy strategy);
 
 }  // namespace boxgen

@@ -1,4 +1,4 @@
-// Exact quasi-interpolation prefilters (design.md section 8, the paper's Table 1).
+// Exact quasi-interpolation prefilters (docs/design.md §8, the paper's Table 1).
 // For the filter M = |det G| M^c on its lattice L, a discrete filter q on L gives the
 // reconstruction s(x) = sum_j (V*q)(j) M(x - j) approximation order rho when
 //   hat(q)(w) hat(M^c)(w) = 1 + O(|w|^rho),   hat(M^c)(w) = prod_xi sinc(xi.w/2),

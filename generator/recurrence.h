@@ -1,5 +1,5 @@
 // An exact point evaluator of the uncentred box spline M_Xi by the de Boor-Hoellig recurrence
-// (design.md 2). It shares nothing with the piecewise derivation, which is why it exists: it is
+// (docs/design.md §2). It shares nothing with the piecewise derivation, which is why it exists: it is
 // the independent reference that the piecewise form and the autocorrelation are checked against.
 //
 // Validity: the recurrence drops the terms whose remaining columns no longer span R^n (they are

@@ -1,4 +1,4 @@
-// The polynomial structure of the spline s(x) = sum_j V(j) M(x - j) (design.md 7, paper 4.2).
+// The polynomial structure of the spline s(x) = sum_j V(j) M(x - j) (docs/design.md §7, paper 4.2).
 //
 // Frames: fine cells are kept in the UNCENTRED frame u of M_Xi; the user's (centred) frame is
 // x = u - c, c = sum(Xi)/2. A stencil point j is the same lattice point in both frames because

@@ -1,4 +1,4 @@
-// The symmetry group of a box spline on its lattice (design.md section 7): the signed
+// The symmetry group of a box spline on its lattice (docs/design.md §7): the signed
 // permutation matrices g with g L = L and g Xi = Xi up to column signs. M^c(g x) = M^c(x).
 #pragma once
 #include <vector>

@@ -4,21 +4,27 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <exception>
-#include <mutex>
 #include <stdexcept>
-#include <thread>
+#include <string>
 
-#include "generated/m12.hpp"
-#include "generated/m12_prefilters.hpp"
-#include "generated/m7.hpp"
-#include "generated/m7_prefilters.hpp"
-#include "generated/m8.hpp"
-#include "generated/m8_prefilters.hpp"
+#include "generated/registry.hpp"
+#include "runtime/batch_threads.h"
 
 namespace boxgen::runtime {
 
+namespace generated = boxgen::generated;
+namespace support = boxgen::generated::support;
+
 namespace {
+
+// The Filter enum is an index into the registry; its names must agree with it.
+int registry_index(Filter f) {
+  const int index = static_cast<int>(f);
+  if (index < 0 || index >= generated::kFilterCount) throw std::logic_error("unknown filter");
+  return index;
+}
 
 template <class Tap, std::size_t N>
 DiscreteFilter taps(const Tap (&table)[N]) {
@@ -27,35 +33,25 @@ DiscreteFilter taps(const Tap (&table)[N]) {
   return out;
 }
 
-// Calls the generated evaluator of the filter; x in lattice coordinates.
-template <class T, class Fetch>
-T evaluate_generated(Filter f, const std::array<T, 3>& x, Fetch&& fetch, std::array<T, 3>* g) {
-  switch (f) {
-    case Filter::M7: return generated::m7::evaluate<T>(x, fetch, g);
-    case Filter::M8: return generated::m8::evaluate<T>(x, fetch, g);
-    case Filter::M12: return generated::m12::evaluate<T>(x, fetch, g);
-  }
-  throw std::logic_error("unknown filter");
-}
-
-// The reach the generator computed and published with each evaluator (kStencilReachLo/Hi).
-template <class Reach>
-StencilReach published_reach(const Reach& lo, const Reach& hi, const double (&centre)[3]) {
+template <class Tr>
+StencilReach published_reach() {
   StencilReach reach;
   for (int a = 0; a < 3; ++a) {
-    reach.lo[a] = lo[a];
-    reach.hi[a] = hi[a];
-    reach.centre[a] = centre[a];
+    reach.lo[a] = Tr::kStencilReachLo[a];
+    reach.hi[a] = Tr::kStencilReachHi[a];
+    reach.centre[a] = Tr::kCentre[a];
   }
   return reach;
 }
 
+constexpr const char* kRegistryOrder[] = {"m7", "m8", "m12"};  // Filter::M7, M8, M12
+static_assert(std::size(kRegistryOrder) == generated::kFilterCount, "Filter must list the registry's filters");
+
 }  // namespace
 
 Filter parse_filter(std::string_view name) {
-  if (name == "m7") return Filter::M7;
-  if (name == "m8") return Filter::M8;
-  if (name == "m12") return Filter::M12;
+  for (int i = 0; i < generated::kFilterCount; ++i)
+    if (name == generated::kFilterNames[i]) return static_cast<Filter>(i);
   throw std::invalid_argument(fmt::format("unknown filter '{}': expected m7, m8 or m12", name.substr(0, 40)));
 }
 
@@ -67,32 +63,21 @@ PrefilterChoice parse_prefilter(std::string_view name) {
 }
 
 const char* filter_name(Filter f) {
-  switch (f) {
-    case Filter::M7: return "m7";
-    case Filter::M8: return "m8";
-    case Filter::M12: return "m12";
-  }
-  return "?";
+  const int index = static_cast<int>(f);
+  if (index < 0 || index >= generated::kFilterCount) return "?";
+  if (std::strcmp(generated::kFilterNames[index], kRegistryOrder[index]) != 0) throw std::logic_error("registry order");
+  return generated::kFilterNames[index];
 }
 
 DiscreteFilter prefilter_taps(Filter f, PrefilterChoice q) {
   if (q == PrefilterChoice::None) return {{{0, 0, 0}, 1.0}};
-  const bool first = q == PrefilterChoice::Q1;
-  switch (f) {
-    case Filter::M7: return first ? taps(generated::m7::q1) : taps(generated::m7::q2);
-    case Filter::M8: return first ? taps(generated::m8::q1) : taps(generated::m8::q2);
-    case Filter::M12: return first ? taps(generated::m12::q1) : taps(generated::m12::q2);
-  }
-  throw std::logic_error("unknown filter");
+  return generated::with_filter(registry_index(f),
+                                [&](auto entry) { return q == PrefilterChoice::Q1 ? taps(entry.q1) : taps(entry.q2); });
 }
 
 StencilReach stencil_reach(Filter f) {
-  switch (f) {
-    case Filter::M7: return published_reach(generated::m7::kStencilReachLo, generated::m7::kStencilReachHi, generated::m7::kCentre);
-    case Filter::M8: return published_reach(generated::m8::kStencilReachLo, generated::m8::kStencilReachHi, generated::m8::kCentre);
-    case Filter::M12: return published_reach(generated::m12::kStencilReachLo, generated::m12::kStencilReachHi, generated::m12::kCentre);
-  }
-  throw std::logic_error("unknown filter");
+  return generated::with_filter(registry_index(f),
+                                [](auto entry) { return published_reach<typename decltype(entry)::Traits>(); });
 }
 
 int required_margin(Filter f, PrefilterChoice q) {
@@ -108,72 +93,166 @@ int required_margin(Filter f, PrefilterChoice q) {
 }
 
 template <class T>
-T Reconstructor<T>::value(const Vec3& world, Vec3* gradient) const {
-  for (double c : world)
-    if (!std::isfinite(c)) throw std::invalid_argument("point has a non-finite coordinate");
-  const Vec3 lattice = volume_.to_lattice(world);
-  const std::array<T, 3> x{static_cast<T>(lattice[0]), static_cast<T>(lattice[1]), static_cast<T>(lattice[2])};
-  // Far outside the volume, stop before the evaluator converts floor(x) to an integer (which
-  // would overflow for huge coordinates); the stencil's reach is far smaller than kFar.
-  constexpr double kFar = 64;
-  for (int a = 0; a < 3; ++a)
-    if (!(lattice[a] > -kFar && lattice[a] < 2.0 * volume_.sizes()[a] + kFar))
-      throw std::out_of_range(fmt::format("world point ({}, {}, {}) is outside the volume", world[0], world[1], world[2]));
-  std::array<T, 3> g{};
-  // The evaluator fetches only within reach_ of its unit cube floor(x + c), computed here exactly
-  // as it computes it (in T). Inside the volume with that whole box, no fetch needs a check;
-  // near the border each fetch is checked, so only a point that really needs outside data fails.
-  LatticePoint lo, hi;
-  for (int a = 0; a < 3; ++a) {
-    const auto corner = static_cast<std::int64_t>(std::floor(x[a] + static_cast<T>(reach_.centre[a])));
-    lo[a] = corner + reach_.lo[a];
-    hi[a] = corner + reach_.hi[a];
+class EvaluationPath {
+ public:
+  virtual ~EvaluationPath() = default;
+  // One point; gradient and hessian may be null (not computed).
+  virtual T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const = 0;
+  virtual void batch(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
+                     std::span<Hessian> hessians) const = 0;
+};
+
+namespace {
+
+// The generated evaluator of one filter on one volume. The evaluator locates a point (its cell
+// and the corner floor(x + c) its stencil is relative to, support::Located); inside the volume
+// with the whole published reach around that corner, the stencil is fetched through offsets
+// into samples() precomputed per cell; near the border each fetch is checked.
+template <class Tr, class T>
+class FilterPath final : public EvaluationPath<T> {
+  static constexpr int kStencil = Tr::kStencilSize;
+
+ public:
+  explicit FilterPath(const BccVolume<T>& volume) : volume_(volume) {
+    static_assert(Tr::kDimension == 3, "the BCC runtime evaluates 3-D filters");
+    // Sample (x, y, z) sits at x + N0 y + N0 N1 z - c (N0 + N0 N1), c = x & 1 its coset
+    // (bcc_volume.h): linear in the point apart from the coset term. For j = corner + d the
+    // coset is (corner_x & 1) ^ (d_x & 1), so one table per corner parity.
+    const std::int64_t n0 = volume.sizes()[0], n1 = volume.sizes()[1];
+    stride_ = {1, n0, n0 * n1};
+    const std::int64_t coset_shift = n0 + n0 * n1;
+    offsets_.resize(2 * Tr::kCellCount * kStencil);
+    for (int parity = 0; parity < 2; ++parity)
+      for (int cell = 0; cell < Tr::kCellCount; ++cell)
+        for (int k = 0; k < kStencil; ++k) {
+          const auto& d = Tr::kOffsets[cell][k];
+          const int coset = parity ^ (d[0] & 1);
+          offsets_[(parity * Tr::kCellCount + cell) * kStencil + k] =
+              d[0] + n0 * d[1] + n0 * n1 * d[2] - coset * coset_shift;
+        }
   }
-  T v;
-  if (volume_.contains_box(lo, hi)) {
-    v = evaluate_generated<T>(
-        filter_, x, [&](const LatticePoint& j) { return volume_.value_unchecked(j); }, gradient ? &g : nullptr);
-  } else {
-    try {
-      v = evaluate_generated<T>(filter_, x, [&](const LatticePoint& j) { return volume_.value(j); }, gradient ? &g : nullptr);
-    } catch (const std::out_of_range& e) {  // name the point the user asked for, then the sample
-      throw std::out_of_range(fmt::format("world point ({}, {}, {}) needs a sample outside the volume: {}", world[0], world[1],
-                                          world[2], e.what()));
+
+  T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const override {
+    if (hessian) return point<support::kHessian>(world, gradient, hessian);
+    if (gradient) return point<support::kGradient>(world, gradient, nullptr);
+    return point<support::kValue>(world, nullptr, nullptr);
+  }
+
+  void batch(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
+             std::span<Hessian> hessians) const override {
+    if (!hessians.empty()) return loop<support::kHessian>(points, values, gradients, hessians);
+    if (!gradients.empty()) return loop<support::kGradient>(points, values, gradients, hessians);
+    loop<support::kValue>(points, values, gradients, hessians);
+  }
+
+ private:
+  template <int Order>
+  T point(const Vec3& world, Vec3* gradient, Hessian* hessian) const {
+    for (double c : world)
+      if (!std::isfinite(c)) throw std::invalid_argument("point has a non-finite coordinate");
+    const Vec3 lattice = volume_.to_lattice(world);
+    // Far outside the volume, stop before the evaluator converts floor(x) to an integer (which
+    // would overflow for huge coordinates); the stencil's reach is far smaller than kFar.
+    constexpr double kFar = 64;
+    for (int a = 0; a < 3; ++a)
+      if (!(lattice[a] > -kFar && lattice[a] < 2.0 * volume_.sizes()[a] + kFar))
+        throw std::out_of_range(fmt::format("world point ({}, {}, {}) is outside the volume", world[0], world[1], world[2]));
+    const std::array<T, 3> x{static_cast<T>(lattice[0]), static_cast<T>(lattice[1]), static_cast<T>(lattice[2])};
+    const support::Located<3, T> located = support::locate<Tr>(x);
+    T v[kStencil];
+    const int size = Tr::kOrbitStencilSize[Tr::kCells[located.cell].orbit];
+    LatticePoint lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = located.corner[a] + Tr::kStencilReachLo[a];
+      hi[a] = located.corner[a] + Tr::kStencilReachHi[a];
     }
+    if (volume_.contains_box(lo, hi)) {
+      const T* samples = volume_.samples().data();
+      const std::int64_t base =
+          located.corner[0] * stride_[0] + located.corner[1] * stride_[1] + located.corner[2] * stride_[2];
+      const std::int64_t* offsets = &offsets_[((located.corner[0] & 1) * Tr::kCellCount + located.cell) * kStencil];
+      for (int k = 0; k < size; ++k) v[k] = samples[base + offsets[k]];
+    } else {
+      try {
+        for (int k = 0; k < size; ++k) {
+          LatticePoint j;
+          for (int a = 0; a < 3; ++a) j[a] = located.corner[a] + Tr::kOffsets[located.cell][k][a];
+          v[k] = volume_.value(j);
+        }
+      } catch (const std::out_of_range& e) {  // name the point the user asked for, then the sample
+        throw std::out_of_range(fmt::format("world point ({}, {}, {}) needs a sample outside the volume: {}", world[0],
+                                            world[1], world[2], e.what()));
+      }
+    }
+    T d[3 + 6] = {};
+    const T value = support::evaluate_located<Order, Tr>(located, v, d);
+    const double h = volume_.spacing();
+    if constexpr (Order >= support::kGradient)
+      if (gradient)
+        for (int i = 0; i < 3; ++i) (*gradient)[i] = static_cast<double>(d[i]) / h;
+    if constexpr (Order >= support::kHessian)
+      for (int i = 0; i < 6; ++i) (*hessian)[i] = static_cast<double>(d[3 + i]) / (h * h);
+    return value;
   }
-  if (gradient)
-    for (int i = 0; i < 3; ++i) (*gradient)[i] = static_cast<double>(g[i]) / volume_.spacing();
-  return v;
+
+  template <int Order>
+  void loop(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
+            std::span<Hessian> hessians) const {
+    const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(points.size());
+    const int threads = batch_threads();
+    std::ptrdiff_t first_bad = count;
+    std::string first_error;
+#pragma omp parallel for schedule(static) num_threads(threads) if (count > 256)
+    for (std::ptrdiff_t i = 0; i < count; ++i) {
+      try {
+        values[i] = point<Order>(points[i], gradients.empty() ? nullptr : &gradients[i],
+                                 hessians.empty() ? nullptr : &hessians[i]);
+      } catch (const std::exception& e) {
+#pragma omp critical(boxgen_batch_error)
+        if (i < first_bad) {
+          first_bad = i;
+          first_error = e.what();
+        }
+      }
+    }
+    if (first_bad < count) throw std::out_of_range(fmt::format("point {}: {}", first_bad + 1, first_error));
+  }
+
+  const BccVolume<T>& volume_;
+  std::array<std::int64_t, 3> stride_{};
+  std::vector<std::int64_t> offsets_;  // [corner parity][cell][k]
+};
+
+}  // namespace
+
+template <class T>
+Reconstructor<T>::Reconstructor(const BccVolume<T>& volume, Filter filter)
+    : path_(generated::with_filter(registry_index(filter), [&](auto entry) -> std::shared_ptr<const EvaluationPath<T>> {
+        return std::make_shared<FilterPath<typename decltype(entry)::Traits, T>>(volume);
+      })) {}
+
+template <class T>
+T Reconstructor<T>::value(const Vec3& world, Vec3* gradient) const {
+  return path_->at(world, gradient, nullptr);
+}
+
+template <class T>
+T Reconstructor<T>::value_gradient_hessian(const Vec3& world, Vec3& gradient, Hessian& hessian) const {
+  return path_->at(world, &gradient, &hessian);
 }
 
 template <class T>
 void Reconstructor<T>::evaluate(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients) const {
-  if (values.size() != points.size() || (!gradients.empty() && gradients.size() != points.size()))
+  evaluate(points, values, gradients, {});
+}
+
+template <class T>
+void Reconstructor<T>::evaluate(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
+                                std::span<Hessian> hessians) const {
+  if (values.size() != points.size() || (!gradients.empty() && gradients.size() != points.size()) ||
+      (!hessians.empty() && (hessians.size() != points.size() || gradients.size() != points.size())))
     throw std::invalid_argument("evaluate: output sizes differ from the number of points");
-  const std::size_t workers =
-      std::max<std::size_t>(1, std::min<std::size_t>(std::thread::hardware_concurrency(), points.size() / 256 + 1));
-  std::mutex mutex;
-  std::size_t first_bad = points.size();
-  std::string first_error;
-  auto work = [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      try {
-        values[i] = value(points[i], gradients.empty() ? nullptr : &gradients[i]);
-      } catch (const std::exception& e) {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (i < first_bad) first_bad = i, first_error = e.what();
-        return;
-      }
-    }
-  };
-  std::vector<std::thread> threads;
-  const std::size_t chunk = (points.size() + workers - 1) / workers;
-  for (std::size_t w = 0; w < workers; ++w) {
-    const std::size_t begin = w * chunk, end = std::min(points.size(), begin + chunk);
-    if (begin < end) threads.emplace_back(work, begin, end);
-  }
-  for (auto& t : threads) t.join();
-  if (first_bad < points.size()) throw std::out_of_range(fmt::format("point {}: {}", first_bad + 1, first_error));
+  path_->batch(points, values, gradients, hessians);
 }
 
 template class Reconstructor<float>;

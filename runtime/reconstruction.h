@@ -1,8 +1,9 @@
-// Reconstruction of BCC volumes with the generated evaluators (generated/m7.hpp, m8.hpp,
-// m12.hpp) and their generated prefilters. Nothing here knows a polynomial coefficient or a
-// prefilter weight: both come from generated/.
+// Reconstruction of BCC volumes with the generated evaluators and their generated prefilters,
+// for every filter of generated/registry.hpp (M7, M8, M12). Nothing here knows a polynomial
+// coefficient or a prefilter weight: both come from generated/.
 #pragma once
 #include <array>
+#include <memory>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -12,6 +13,7 @@
 
 namespace boxgen::runtime {
 
+// A filter of generated/registry.hpp, by its position there (reconstruction.cpp checks the names).
 enum class Filter { M7, M8, M12 };
 enum class PrefilterChoice { None, Q1, Q2 };
 
@@ -34,24 +36,35 @@ DiscreteFilter prefilter_taps(Filter f, PrefilterChoice q);
 // Samples beyond [-1,1]^3 (in coset cells) that reconstruction with f, after prefilter q, needs.
 int required_margin(Filter f, PrefilterChoice q);
 
+// Second derivatives in world units: the upper triangle {xx, xy, xz, yy, yz, zz}.
+using Hessian = std::array<double, 6>;
+
+// How one filter evaluates on a volume (reconstruction.cpp, one per entry of
+// generated/registry.hpp): the generated evaluator with fetches through precomputed linear offsets.
+template <class T>
+class EvaluationPath;
+
 template <class T>
 class Reconstructor {
  public:
-  Reconstructor(const BccVolume<T>& volume, Filter filter)
-      : volume_(volume), filter_(filter), reach_(stencil_reach(filter)) {}
+  Reconstructor(const BccVolume<T>& volume, Filter filter);
 
   // The spline at a world point; with `gradient` also its gradient in world units. Throws
   // std::invalid_argument for a non-finite coordinate and std::out_of_range (one line) when the
   // stencil leaves the volume: the volume never invents data.
   T value(const Vec3& world, Vec3* gradient = nullptr) const;
+  // value() with the exact gradient and second derivatives (world units) of the spline.
+  T value_gradient_hessian(const Vec3& world, Vec3& gradient, Hessian& hessian) const;
 
-  // value() for many points on all cores. Throws the first error, naming the point's index.
+  // value() for many points on up to batch_threads() threads (runtime/batch_threads.h). Throws
+  // the first error, naming the point's index. `gradients` may be empty (values only).
   void evaluate(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients = {}) const;
+  // The same with second derivatives; `hessians` (and `gradients`) as long as `points`.
+  void evaluate(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
+                std::span<Hessian> hessians) const;
 
  private:
-  const BccVolume<T>& volume_;
-  Filter filter_;
-  StencilReach reach_;  // a point whose whole reach box is inside is fetched without checks
+  std::shared_ptr<const EvaluationPath<T>> path_;
 };
 
 extern template class Reconstructor<float>;

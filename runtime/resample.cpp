@@ -10,10 +10,6 @@
 #include <stdexcept>
 #include <vector>
 
-#include "generated/m12.hpp"
-#include "generated/m7.hpp"
-#include "generated/m8.hpp"
-
 namespace boxgen::runtime {
 
 namespace {

@@ -1,7 +1,7 @@
 // Sampling an analytic function on the BCC lattice, and the margins that reconstruction and
 // prefiltering need around the region of interest.
 //
-// The cube [-1,1]^3 at density N ("N^3 x 2 samples", design.md 10): h = 1/(N-1), the even
+// The cube [-1,1]^3 at density N ("N^3 x 2 samples", docs/design.md §13): h = 1/(N-1), the even
 // (primary) points -1 + 2hi, i = 0..N-1, span [-1,1] on each axis, and the odd points
 // -1 + h(2i+1) are the centres of the cubes between them. A margin of m coset cells adds m
 // samples per coset on every side: N + 2m samples per coset and axis, origin o = -1 - 2hm.

@@ -10,7 +10,7 @@ namespace boxgen::runtime {
 
 using Vec3 = std::array<double, 3>;
 
-// The Marschner-Lobb function (design.md 10):
+// The Marschner-Lobb function (docs/design.md §13):
 //   rho(x,y,z) = (1 - sin(pi z/2) + a (1 + cos(2 pi fM cos(pi r/2)))) / (2 (1 + a)),
 //   r = sqrt(x^2 + y^2), fM = 6, a = 0.25.
 inline constexpr double kMarschnerLobbFrequency = 6.0;  // fM

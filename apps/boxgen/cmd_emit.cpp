@@ -27,9 +27,20 @@ void write_emitted(const std::vector<EmittedFile>& files, const std::string& dir
   }
 }
 
+nlohmann::json counts_json(const OperationCount& c) { return {{"adds", c.adds}, {"muls", c.muls}, {"total", c.total()}}; }
+
+void print_report(const EmissionReport& r) {
+  fmt::print("strategy {}: operations per point (adds + muls), value / value+gradient / +hessian: {} / {} / {}\n",
+             r.strategy, r.value.total(), r.gradient.total(), r.hessian.total());
+  for (std::size_t o = 0; o < r.orbits.size(); ++o)
+    fmt::print("  orbit {}: {}, {} / {} / {}\n", o, r.orbits[o].strategy, r.orbits[o].value.total(),
+               r.orbits[o].gradient.total(), r.orbits[o].hessian.total());
+}
+
 }  // namespace
 
-int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy) {
+int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy, bool report,
+             const std::vector<std::string>& registry) {
   const EmissionStrategy chosen = parse_strategy(strategy);  // before the derivation: fail fast
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
   const Analysis a = analyze(spec);  // the exact checks run before anything is emitted
@@ -38,14 +49,30 @@ int run_emit(const Common& c, const std::string& name, const std::string& out, c
                                       spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,
                                       c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy),
                           chosen};
-  const auto files = emit(a, request);
+  EmissionReport r;
+  auto files = emit(a, request, &r);
+  if (!registry.empty()) {
+    std::string names;
+    for (const auto& n : registry) names += (names.empty() ? "" : ",") + n;
+    files.push_back(emit_registry(registry, fmt::format("boxgen emit ... --registry {} --out <dir>", names)));
+  }
   write_emitted(files, out);
   if (c.json) {
     nlohmann::json j = nlohmann::json::array();
     for (const auto& f : files) j.push_back(out + "/" + f.filename);
-    print_json({{"files", j}});
+    nlohmann::json result{{"files", j}};
+    if (report) {
+      nlohmann::json orbits = nlohmann::json::array();
+      for (const auto& o : r.orbits)
+        orbits.push_back({{"strategy", o.strategy}, {"value", counts_json(o.value)}, {"gradient", counts_json(o.gradient)},
+                          {"hessian", counts_json(o.hessian)}});
+      result["report"] = {{"strategy", r.strategy}, {"value", counts_json(r.value)}, {"gradient", counts_json(r.gradient)},
+                          {"hessian", counts_json(r.hessian)}, {"orbits", orbits}};
+    }
+    print_json(result);
   } else {
     for (const auto& f : files) fmt::print("{}/{}\n", out, f.filename);
+    if (report) print_report(r);
   }
   return 0;
 }

@@ -1,6 +1,7 @@
 // The boxgen subcommands. Each writes its whole result to stdout only after it has been
 // derived, so a failure never leaves half an answer behind.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,7 +24,28 @@ int run_bbform(const Common& c, const std::string& region);
 int run_prefilter(const Common& c, const std::string& shells);
 int run_autocorr(const Common& c, const std::string& method);
 int run_table1(bool json);
-int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy);
+int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy,
+             bool report, const std::vector<std::string>& registry);
+
+// The frequency-domain analysis (analysis/, design.md 9): cmd_metrics.cpp, cmd_kernel.cpp,
+// cmd_spectrum.cpp.
+struct AnalysisOptions {
+  std::vector<std::string> specs;
+  std::string lattice;
+  bool json = false;
+  std::string prefilter = "q2";          // kernel: none | q1 | q2 | min
+  std::string direction = "1,1,1";       // kernel: w * direction
+  std::vector<double> w;                 // explicit abscissae
+  std::optional<double> from, to;        // or a range
+  int steps = 0;
+  std::string plot;                      // kernel --plot, spectrum -o
+  std::string plane, line;               // spectrum
+  int size = 0;                          // spectrum plane: image side in pixels
+};
+int run_metrics(const std::vector<std::string>& specs, const std::string& lattice, bool json);
+int run_kernel(const AnalysisOptions& o);
+int run_spectrum(const AnalysisOptions& o);
+int run_pieces(const Common& c, const std::string& of, const std::string& region, const std::string& format);
 
 // Shared output helpers.
 nlohmann::json rational_list(const RatVec& v);

@@ -52,14 +52,56 @@ int run(int argc, char** argv) {
   auto* autocorr = app.add_subcommand("autocorr", "lattice samples of the doubled box spline (autocorrelation)");
   add_common(autocorr, c);
   autocorr->add_option("--method", method, "refinement (default) or continuity");
-  std::string emit_name, emit_out, emit_strategy = "horner";
+  std::string emit_name, emit_out, emit_strategy = "auto";
+  bool emit_report = false;
+  std::vector<std::string> emit_registry;
   auto* emit = app.add_subcommand("emit", "emit the C++ evaluator and prefilter headers of a box spline");
   add_common(emit, c);
   emit->add_option("--name", emit_name, "C++ identifier: namespace boxgen::generated::<name>")->required();
   emit->add_option("--out", emit_out, "output directory")->required();
-  emit->add_option("--strategy", emit_strategy, "how polynomials are written: horner (default) or monomial");
+  emit->add_option("--strategy", emit_strategy,
+                   "how polynomials are written: auto (default: the cheapest), horner, separable or monomial");
+  emit->add_flag("--report", emit_report, "also print the strategy and operation counts per orbit");
+  emit->add_option("--registry", emit_registry, "also write registry.hpp listing these filters (comma-separated)")
+      ->delimiter(',');
+  std::string pieces_of = "spline", pieces_region = "reference", pieces_format = "text";
+  auto* pieces = app.add_subcommand("pieces", "explicit piecewise polynomials of the spline or the filter, with their regions");
+  add_common(pieces, c);
+  pieces->add_option("--of", pieces_of, "spline (default): s(x) = sum_j V(j) M(x - j); filter: M itself");
+  pieces->add_option("--region", pieces_region, "reference (one piece per orbit, default), all, or an orbit index");
+  pieces->add_option("--format", pieces_format, "text (default), latex, c or json (--json is --format json)");
   auto* table1 = app.add_subcommand("table1", "derive M12, M8, M7 and print the paper's Table 1 beside ours");
   table1->add_flag("--json", c.json, "machine-readable output");
+
+  // Frequency-domain analysis of one or more filters (analysis/).
+  boxgen::cli::AnalysisOptions ao;
+  auto add_specs = [&](CLI::App* cmd) {
+    cmd->add_option("SPEC", ao.specs, "one or more presets or direction lists")->required();
+    cmd->add_option("--lattice", ao.lattice, "bcc | fcc | cartesian | \"<rows of G>\" (default: each preset's)");
+    cmd->add_flag("--json", ao.json, "machine-readable output");
+  };
+  auto add_range = [&](CLI::App* cmd) {
+    cmd->add_option("--from", ao.from, "first abscissa");
+    cmd->add_option("--to", ao.to, "last abscissa");
+    cmd->add_option("--steps", ao.steps, "number of abscissae from --from to --to");
+  };
+  auto* metrics = app.add_subcommand("metrics", "Marschner-Lobb smoothing and postaliasing (the paper's Table 3)");
+  add_specs(metrics);
+  auto* kernel = app.add_subcommand("kernel", "Blu-Unser frequency error kernel E(w * direction) (the paper's Fig. 13)");
+  add_specs(kernel);
+  kernel->add_option("--prefilter", ao.prefilter, "none | q1 | q2 | min (E_min), default q2");
+  kernel->add_option("--direction", ao.direction, "direction d of w * d, e.g. 1,1,1 (default)");
+  kernel->add_option("--w", ao.w, "abscissae w (comma or space separated)")->delimiter(',');
+  add_range(kernel);
+  kernel->add_option("--plot", ao.plot, "draw every prefilter and E_min of each SPEC, log axes (PNG)");
+  auto* spectrum = app.add_subcommand("spectrum", "|psi_hat| on a plane or along a line (the paper's Figs. 11-12)");
+  add_specs(spectrum);
+  spectrum->add_option("--plane", ao.plane, "normal a,b,c of a plane through 0 (image)");
+  spectrum->add_option("--line", ao.line, "direction a,b,c of a line through 0 (plot)");
+  spectrum->add_option("--w", ao.w, "line: abscissae w (comma or space separated)")->delimiter(',');
+  add_range(spectrum);
+  spectrum->add_option("--size", ao.size, "plane image: pixels per filter panel side (default 400)");
+  spectrum->add_option("-o,--output", ao.plot, "PNG to write");
 
   if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxgen")) return *stop;
   verify = !no_verify;
@@ -71,8 +113,15 @@ int run(int argc, char** argv) {
     if (prefilter->parsed()) return boxgen::cli::run_prefilter(c, shells);
     if (autocorr->parsed()) return boxgen::cli::run_autocorr(c, method);
     if (table1->parsed()) return boxgen::cli::run_table1(c.json);
-    if (emit->parsed()) return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy);
+    if (metrics->parsed()) return boxgen::cli::run_metrics(ao.specs, ao.lattice, ao.json);
+    if (kernel->parsed()) return boxgen::cli::run_kernel(ao);
+    if (spectrum->parsed()) return boxgen::cli::run_spectrum(ao);
+    if (emit->parsed()) return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy, emit_report, emit_registry);
+    if (pieces->parsed()) return boxgen::cli::run_pieces(c, pieces_of, pieces_region, pieces_format);
   } catch (const boxgen::InputError& e) {
+    std::cerr << "boxgen: error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::invalid_argument& e) {  // the analysis module's bad input (an unwritable -o, ...)
     std::cerr << "boxgen: error: " << e.what() << '\n';
     return 1;
   } catch (const std::exception& e) {

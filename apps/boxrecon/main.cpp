@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "apps/boxrecon/cmd_error_table.h"
+#include "apps/boxrecon/cmd_render.h"
 #include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/sample_command.h"
 #include "apps/common/exit_status.h"
@@ -162,8 +164,10 @@ int run(int argc, char** argv) {
   eval->add_flag("--allow-nonfinite", allow_nonfinite, "accept NaN and infinite samples in the volume (refused by default)");
   auto* error = app.add_subcommand("error", "RMS and max error of a reconstruction over random points of [-1,1]^3");
   error->add_option("--function", function, "ml | cubic | sphere | gaussian");
-  error->add_option("--n", n, "N")->required();
-  error->add_option("--filter", filter, "m7 | m8 | m12")->required();
+  auto* error_n = error->add_option("--n", n, "N (required unless --table)");
+  auto* error_filter = error->add_option("--filter", filter, "m7 | m8 | m12 (required unless --table)");
+  bool table = false;
+  error->add_flag("--table", table, "ML errors for N in {17,25,33,41,57} x {m7,m8,m12} x {none,q1,q2} and the tricubic on Cartesian");
   error->add_option("--prefilter", pre, "none | q1 | q2");
   error->add_option("--points", count, "number of random points");
   error->add_option("--seed", seed, "random seed, 0..2^64-1");
@@ -184,6 +188,7 @@ int run(int argc, char** argv) {
   max_option->needs(min_option);
   resample->add_option("--precision", precision, "float | double");
   resample->add_flag("--allow-nonfinite", allow_nonfinite, "accept NaN and infinite samples in the volume (refused by default)");
+  auto* render = boxgen::recon::add_render_command(app);
   if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxrecon")) return *stop;
   try {
     if (precision != "float" && precision != "double")
@@ -194,6 +199,12 @@ int run(int argc, char** argv) {
     if (eval->parsed())
       return precision == "float" ? run_eval<float>(filter, pre, volume, points_path, gradient, limits)
                                   : run_eval<double>(filter, pre, volume, points_path, gradient, limits);
+    if (render->parsed()) return boxgen::recon::run_render();
+    if (error->parsed() && table) return boxgen::recon::run_error_table(count, boxgen::app::parse_seed(seed), json);
+    if (error->parsed() && (error_n->count() == 0 || error_filter->count() == 0)) {
+      std::cerr << "boxrecon: usage error: error needs --n and --filter (or --table) (see boxrecon --help)\n";
+      return 2;
+    }
     if (error->parsed()) return run_error(function, n, filter, pre, count, boxgen::app::parse_seed(seed), gradient, json);
     if (resample->parsed())
       return precision == "float" ? run_resample<float>(filter, pre, volume, output, resample_n, box_min, box_max, limits)

@@ -242,7 +242,7 @@ TEST(CliPrefilter, M7ShellsZeroOneTwoIsThePapersQ7II) {
 
 TEST(CliAutocorr, M7HasTheDesignNotesIntegralAndConsistentSamples) {
   const json a = boxgen_json({"autocorr", "m7", "--json"});
-  // design.md 9b: for M7, a(0) = integral of (M^c)^2 = 39559/1064448.
+  // docs/design.md §9: for M7, a(0) = integral of (M^c)^2 = 39559/1064448.
   EXPECT_EQ(a.value("integral_squared", json()), json("39559/1064448"));
   ASSERT_TRUE(a.contains("samples") && a["samples"].is_array() && !a["samples"].empty()) << a.dump();
   Q sum = 0;

@@ -1,9 +1,13 @@
-// Emitted evaluators (value and gradient, double and float) against the exact rational spline
+// Emitted evaluators (value, gradient and Hessian; double and float; the value-only, gradient
+// and Hessian paths each) against the exact rational spline
 // s(x) = sum_j V(j) M(x - j) computed from the generator's piecewise form (cell lookup by key,
 // not the emitted tables), at 1000 points per filter, half of them within 1e-3 of a knot plane.
 // Points are dyadic (multiples of 2^-20, |x| < 4), so float and double hold them exactly and the
 // comparison is with the exact value at the very point evaluated. V is an integer hash, so every
-// stencil weight matters. Tolerances, relative to max|V| = 1000: double 1e-13, float 2e-6.
+// stencil weight matters. Tolerances, relative to max|V| = 1000: double 1e-13, float 2e-6 (value
+// and gradient); second derivatives, whose coefficients carry one more power of the degree, 4x
+// that. Hessians are compared only for C^2 splines and, for the others (zp), away from knot planes
+// where they jump.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,9 +19,14 @@
 #include "emitted/tricubic.hpp"
 #include "emitted/zp.hpp"
 #include "emitted/zp_monomial.hpp"
+#include "emitted/biquadratic.hpp"
+#include "emitted/m12_horner.hpp"
+#include "emitted/m7_monomial.hpp"
+#include "emitted/tricubic_horner.hpp"
 #include "generated/m12.hpp"
 #include "generated/m7.hpp"
 #include "generated/m8.hpp"
+#include "generator/box_spline_properties.h"
 #include "generator/piece_checks.h"
 #include "generator/piecewise_form.h"
 
@@ -77,6 +86,8 @@ constexpr int kShift = 20;  // test points are multiples of 2^-20
 struct Exact {
   Rational value;
   RatVec gradient;
+  RatVec hessian;  // upper triangle, row by row (xx xy xz yy yz zz)
+  bool hessian_defined = true;  // false where cells around the point disagree on it
 };
 
 class Reference {
@@ -85,12 +96,13 @@ class Reference {
       : spec_(parse_spec(preset)), form_(derive_piecewise(spec_, DerivationMethod::TruncatedPower)),
         centre_(spline_centre(spec_)) {}
   int dimension() const { return spec_.dimension(); }
+  bool twice_differentiable() const { return box_spline_properties(spec_).continuity >= 2; }
   const PiecewiseForm& form() const { return form_; }
   const RatVec& centre() const { return centre_; }
 
   Exact at(const RatVec& x) const {
     const int n = dimension();
-    Exact e{0, RatVec(n, 0)};
+    Exact e{0, RatVec(n, 0), RatVec(n * (n + 1) / 2, 0)};
     IntVec lo(n), hi(n);
     for (int i = 0; i < n; ++i) {
       lo[i] = floor_to_int64(x[i] + centre_[i]) - form_.complex.hi()[i];
@@ -113,6 +125,10 @@ class Reference {
       const auto& polys = polys_of(cell);
       e.value = e.value + v * polys[0].eval(scaled, kShift);
       for (int d = 0; d < n; ++d) e.gradient[d] = e.gradient[d] + v * polys[d + 1].eval(scaled, kShift);
+      for (int h = 0; h < n * (n + 1) / 2; ++h) e.hessian[h] = e.hessian[h] + v * polys[n + 1 + h].eval(scaled, kShift);
+      // On a knot plane (some nu . u an integer) a C^1 spline's second derivatives may jump.
+      for (const auto& nu : form_.complex.normals())
+        if (is_integer(dot(nu, u))) e.hessian_defined = false;
     }
     return e;
   }
@@ -124,6 +140,8 @@ class Reference {
     if (it == cache_.end()) {
       std::vector<IntegerPoly> g{IntegerPoly(form_.polys[cell])};
       for (int d = 0; d < dimension(); ++d) g.emplace_back(form_.polys[cell].derivative(d));
+      for (int i = 0; i < dimension(); ++i)
+        for (int j = i; j < dimension(); ++j) g.emplace_back(form_.polys[cell].derivative(i).derivative(j));
       it = cache_.emplace(cell, std::move(g)).first;
     }
     return it->second;
@@ -167,40 +185,56 @@ template <class T, int N, class Evaluate>
 void check_filter(const std::string& preset, Evaluate evaluate, double tolerance) {
   const Reference ref(preset);
   ASSERT_EQ(ref.dimension(), N);
-  double worst = 0, worst_gradient = 0;
+  constexpr int H = N * (N + 1) / 2;
+  const bool c2 = ref.twice_differentiable();
+  double worst = 0, worst_gradient = 0, worst_hessian = 0;
+  int hessians_compared = 0;
   for (const auto& x : test_points(ref, 1000)) {
     const Exact e = ref.at(x);
     std::array<T, N> xt;
     for (int i = 0; i < N; ++i) xt[i] = static_cast<T>(to_double(x[i]));
     for (int i = 0; i < N; ++i) ASSERT_EQ(exact_rational(static_cast<double>(xt[i])), x[i]) << "not representable";
-    const Exact& er = e;
-    std::array<T, N> g;
-    const T v = evaluate(xt, &g);
-    worst = std::max(worst, std::abs(static_cast<double>(v) - to_double(er.value)));
+    // The three paths: value only, value + gradient, value + gradient + Hessian.
+    std::array<T, N> g, g2;
+    std::array<T, H> h;
+    const T v0 = evaluate(xt, nullptr, nullptr);
+    const T v1 = evaluate(xt, &g, nullptr);
+    const T v2 = evaluate(xt, &g2, &h);
+    for (const T v : {v0, v1, v2}) worst = std::max(worst, std::abs(static_cast<double>(v) - to_double(e.value)));
     for (int d = 0; d < N; ++d)
-      worst_gradient = std::max(worst_gradient, std::abs(static_cast<double>(g[d]) - to_double(er.gradient[d])));
+      for (const T gd : {g[d], g2[d]})
+        worst_gradient = std::max(worst_gradient, std::abs(static_cast<double>(gd) - to_double(e.gradient[d])));
+    if (!c2 && !e.hessian_defined) continue;
+    ++hessians_compared;
+    for (int k = 0; k < H; ++k)
+      worst_hessian = std::max(worst_hessian, std::abs(static_cast<double>(h[k]) - to_double(e.hessian[k])));
   }
   EXPECT_LE(worst / kMaxV, tolerance) << preset << " value";
   EXPECT_LE(worst_gradient / kMaxV, tolerance) << preset << " gradient";
+  EXPECT_LE(worst_hessian / kMaxV, 4 * tolerance) << preset << " hessian";
+  EXPECT_GE(hessians_compared, 500) << preset;
   ::testing::Test::RecordProperty("max_relative_error", std::to_string(worst / kMaxV));
 }
+
+template <class T, std::size_t N>
+using HessianOf = std::array<T, N*(N + 1) / 2>;
 
 #define BOXGEN_EMITTED_TEST(NS, PRESET, N)                                                              \
   TEST(Emitted, NS##Double) {                                                                          \
     check_filter<double, N>(                                                                           \
         PRESET,                                                                                        \
-        [](const std::array<double, N>& x, std::array<double, N>* g) {                                 \
+        [](const std::array<double, N>& x, std::array<double, N>* g, HessianOf<double, N>* h) {        \
           return generated::NS::evaluate<double>(                                                      \
-              x, [](const generated::NS::Point& j) { return data_value(IntVec(j.begin(), j.end())); }, g); \
+              x, [](const generated::NS::Point& j) { return data_value(IntVec(j.begin(), j.end())); }, g, h); \
         },                                                                                             \
         1e-13);                                                                                        \
   }                                                                                                    \
   TEST(Emitted, NS##Float) {                                                                           \
     check_filter<float, N>(                                                                            \
         PRESET,                                                                                        \
-        [](const std::array<float, N>& x, std::array<float, N>* g) {                                   \
+        [](const std::array<float, N>& x, std::array<float, N>* g, HessianOf<float, N>* h) {           \
           return generated::NS::evaluate<float>(                                                       \
-              x, [](const generated::NS::Point& j) { return data_value(IntVec(j.begin(), j.end())); }, g); \
+              x, [](const generated::NS::Point& j) { return data_value(IntVec(j.begin(), j.end())); }, g, h); \
         },                                                                                             \
         2e-6);                                                                                         \
   }
@@ -208,23 +242,44 @@ void check_filter(const std::string& preset, Evaluate evaluate, double tolerance
 BOXGEN_EMITTED_TEST(m7, "m7", 3)
 BOXGEN_EMITTED_TEST(m8, "m8", 3)
 BOXGEN_EMITTED_TEST(m12, "m12", 3)
+BOXGEN_EMITTED_TEST(m12_horner, "m12", 3)
+BOXGEN_EMITTED_TEST(m7_monomial, "m7", 3)
 BOXGEN_EMITTED_TEST(cart7, "cart7", 3)
 BOXGEN_EMITTED_TEST(fcc6, "fcc6", 3)
 BOXGEN_EMITTED_TEST(tricubic, "tricubic", 3)
+BOXGEN_EMITTED_TEST(tricubic_horner, "tricubic", 3)
 BOXGEN_EMITTED_TEST(zp, "zp", 2)
 BOXGEN_EMITTED_TEST(zp_monomial, "zp", 2)
+BOXGEN_EMITTED_TEST(biquadratic, "1,0; 0,1; 1,0; 0,1; 1,0; 0,1", 2)
 
 }  // namespace
 }  // namespace boxgen
 
 namespace {
 
-// The headers above really are the two strategies (so both forms are what was checked).
+// The headers above really are the strategies named (so every form is what was checked), and
+// `auto` chose the separable form for the tensor products and Horner for M7 and M8.
 TEST(Emitted, HeadersNameTheirStrategy) {
   EXPECT_STREQ(boxgen::generated::m7::kStrategy, "horner");
+  EXPECT_STREQ(boxgen::generated::m8::kStrategy, "horner");
+  EXPECT_STREQ(boxgen::generated::m12::kStrategy, "separable");
+  EXPECT_STREQ(boxgen::generated::tricubic::kStrategy, "separable");
+  EXPECT_STREQ(boxgen::generated::m12_horner::kStrategy, "horner");
+  EXPECT_STREQ(boxgen::generated::tricubic_horner::kStrategy, "horner");
+  EXPECT_STREQ(boxgen::generated::m7_monomial::kStrategy, "monomial");
   EXPECT_STREQ(boxgen::generated::zp::kStrategy, "horner");
   EXPECT_STREQ(boxgen::generated::zp_monomial::kStrategy, "monomial");
+  EXPECT_STREQ(boxgen::generated::biquadratic::kStrategy, "separable");
   EXPECT_STREQ(boxgen::generated::cart7::kStrategy, "monomial");
+}
+
+// The recorded counts are the cost model `auto` chose by: the separable M12 is far cheaper than
+// its Horner form, and every path costs at least the one before it.
+TEST(Emitted, HeadersRecordTheirOperationCounts) {
+  EXPECT_LT(boxgen::generated::m12::kGradientOperations, boxgen::generated::m12_horner::kGradientOperations / 4);
+  EXPECT_LT(boxgen::generated::tricubic::kGradientOperations, boxgen::generated::tricubic_horner::kGradientOperations);
+  EXPECT_LT(boxgen::generated::m7::kValueOperations, boxgen::generated::m7::kGradientOperations);
+  EXPECT_LT(boxgen::generated::m7::kGradientOperations, boxgen::generated::m7::kHessianOperations);
 }
 
 }  // namespace

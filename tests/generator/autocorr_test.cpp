@@ -91,7 +91,7 @@ TEST(Autocorr, ContinuityRefusesSplinesTooLargeForIt) {
   EXPECT_THROW(autocorrelation_continuity(m12()), InputError);  // 5^6 sub-multisets
 }
 
-// The known value quoted in design.md 9b.
+// The known value quoted in docs/design.md §9.
 TEST(Autocorr, M7IntegralOfSquareIsTheKnownValue) {
   EXPECT_EQ(autocorrelation_refinement(m7()).integral_squared, Rational(39559) / 1064448);
 }

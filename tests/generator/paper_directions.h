@@ -1,4 +1,4 @@
-// The paper's direction sets (design.md 1), written out so tests of the recurrence and the
+// The paper's direction sets (docs/design.md §1), written out so tests of the recurrence and the
 // autocorrelation do not depend on the SPEC parser.
 #pragma once
 #include <initializer_list>

@@ -1,5 +1,5 @@
 // Quasi-interpolation: with the prefilters of Table 1 the spline reproduces every cubic exactly;
-// without a prefilter it does not (design.md 8). Checked as polynomial identities on the
+// without a prefilter it does not (docs/design.md §8). Checked as polynomial identities on the
 // reference region: s(x) = sum_j (f * q)(j) M(x - j) = f(x).
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Quasi-interpolation prefilters and the approximation order, checked exactly against values
 // from the literature and the paper's Table 1, and independently of the series code through the
-// moment conditions of design.md section 8.
+// moment conditions of docs/design.md §8.
 #include "generator/prefilter.h"
 
 #include <cln/rational_io.h>
@@ -177,7 +177,7 @@ TEST(Prefilter, MomentConditionsAndSymmetryHoldForEveryPreset) {
 }
 
 TEST(Prefilter, MomentSigmaOfThePaper) {
-  // design.md 8: M7 and M8 have Sigma = (2/3) I, M12 (4/3) I; so the second moments of q are
+  // docs/design.md §8: M7 and M8 have Sigma = (2/3) I, M12 (4/3) I; so the second moments of q are
   // -(2/3) I and -(4/3) I. A direct check of the Sigma used above for the paper's splines.
   for (const auto& [spec, diagonal] : {std::pair{m7(), r(-2, 3)}, {m8(), r(-2, 3)}, {m12(), r(-4, 3)}}) {
     const Prefilter q = derive_prefilter(spec, {0, 1, 2});

@@ -132,7 +132,7 @@ TEST(Recurrence, CentredM12IsCentredProduct) {
   }
 }
 
-// sum_{j in L} M_Xi(x - j) = 1/|det G| (design.md 2); all shifts share one memo.
+// sum_{j in L} M_Xi(x - j) = 1/|det G| (docs/design.md §1); all shifts share one memo.
 Rational sum_of_shifts(const IntColumns& xi, const Lattice& lattice, const RatVec& x) {
   const int n = lattice.dimension();
   IntVec lo(n, 0), hi(n, 0);

@@ -53,7 +53,7 @@ struct ExpectedPreset {
   std::string name;
   int dimension;
   int count;
-  std::int64_t det;  // |det G|: bcc 4, fcc 2, cartesian 1 (design.md section 1)
+  std::int64_t det;  // |det G|: bcc 4, fcc 2, cartesian 1 (docs/design.md §1)
   IntColumns directions;
 };
 

@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <random>
 
 #include "generated/m12.hpp"
 #include "generated/m7.hpp"
 #include "generated/m8.hpp"
+#include "runtime/batch_threads.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
 
@@ -151,6 +153,89 @@ TEST(Reconstruction, UncheckedAndCheckedFetchesAgreeEverywhere) {
     EXPECT_GT(inside, 100) << filter_name(f);
     EXPECT_GT(refused, 100) << filter_name(f);
   }
+}
+
+// Second derivatives: the runtime's (fast fetches, world units) equal the generated evaluator's
+// exact Hessian through checked fetches divided by h^2, bit for bit, and agree with central
+// differences of the gradient (an independent check of the frame and of the xx xy xz yy yz zz
+// order). The batch with Hessians equals single evaluation.
+TEST(Reconstruction, HessianIsTheEvaluatorsInWorldUnitsAndMatchesGradientDifferences) {
+  const TestFunction& fn = find_test_function("ml");
+  const BccVolume<double> volume = sample_cube<double>(fn.value, 12, 3);
+  const double h = volume.spacing();
+  ASSERT_NE(h, 1.0);
+  for (Filter f : {Filter::M7, Filter::M8, Filter::M12}) {
+    const Reconstructor<double> r(volume, f);
+    const auto points = random_points(200, 17);
+    std::vector<double> values(points.size());
+    std::vector<Vec3> gradients(points.size());
+    std::vector<Hessian> hessians(points.size());
+    r.evaluate(points, values, gradients, hessians);
+    double worst_difference = 0, scale = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+      const Vec3& p = points[i];
+      Vec3 g;
+      Hessian hs;
+      const double v = r.value_gradient_hessian(p, g, hs);
+      EXPECT_EQ(v, values[i]);
+      EXPECT_EQ(g, gradients[i]);
+      EXPECT_EQ(hs, hessians[i]);
+      const Vec3 lattice = volume.to_lattice(p);
+      const std::array<double, 3> x{lattice[0], lattice[1], lattice[2]};
+      std::array<double, 3> lg;
+      std::array<double, 6> lh;
+      auto fetch = [&](const LatticePoint& j) { return volume.value(j); };
+      const double direct = f == Filter::M7 ? generated::m7::evaluate<double>(x, fetch, &lg, &lh)
+                            : f == Filter::M8 ? generated::m8::evaluate<double>(x, fetch, &lg, &lh)
+                                              : generated::m12::evaluate<double>(x, fetch, &lg, &lh);
+      EXPECT_EQ(v, direct);
+      for (int k = 0; k < 6; ++k) EXPECT_EQ(hs[k], lh[k] / (h * h)) << filter_name(f) << " entry " << k;
+      // Central differences of the gradient along each axis: column a of the Hessian.
+      constexpr int kIndex[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+      const double step = 1e-5;
+      for (int a = 0; a < 3; ++a) {
+        Vec3 plus = p, minus = p, gp, gm;
+        plus[a] += step;
+        minus[a] -= step;
+        r.value(plus, &gp);
+        r.value(minus, &gm);
+        for (int b = 0; b < 3; ++b) {
+          worst_difference = std::max(worst_difference, std::abs((gp[b] - gm[b]) / (2 * step) - hs[kIndex[a][b]]));
+          scale = std::max(scale, std::abs(hs[kIndex[a][b]]));
+        }
+      }
+    }
+    EXPECT_GT(scale, 1.0) << filter_name(f);
+    EXPECT_LT(worst_difference, 1e-5 * scale) << filter_name(f);
+  }
+}
+
+// BOXGEN_THREADS caps the batch path's threads (1: the calling thread only); the results do not
+// depend on the count; a malformed value is refused in one line; a program's own cap wins.
+TEST(Reconstruction, ThreadCapFromEnvironmentAndProgram) {
+  const TestFunction& fn = find_test_function("ml");
+  const BccVolume<float> volume = sample_cube<float>(fn.value, 10, 2);
+  const Reconstructor<float> r(volume, Filter::M7);
+  const auto points = random_points(5000, 3);
+  std::vector<float> one(points.size()), two(points.size());
+  ASSERT_EQ(setenv("BOXGEN_THREADS", "1", 1), 0);
+  EXPECT_EQ(batch_threads(), 1);
+  r.evaluate(points, one);
+  ASSERT_EQ(setenv("BOXGEN_THREADS", "2", 1), 0);
+  EXPECT_EQ(batch_threads(), 2);
+  r.evaluate(points, two);
+  EXPECT_EQ(one, two);
+  set_batch_threads(3);
+  EXPECT_EQ(batch_threads(), 3);
+  set_batch_threads(0);
+  ASSERT_EQ(setenv("BOXGEN_THREADS", "two", 1), 0);
+  EXPECT_THROW(batch_threads(), std::invalid_argument);
+  EXPECT_THROW(r.evaluate(points, one), std::invalid_argument);
+  ASSERT_EQ(setenv("BOXGEN_THREADS", "0", 1), 0);
+  EXPECT_THROW(batch_threads(), std::invalid_argument);
+  EXPECT_THROW(set_batch_threads(-1), std::invalid_argument);
+  ASSERT_EQ(unsetenv("BOXGEN_THREADS"), 0);
+  EXPECT_GE(batch_threads(), 1);
 }
 
 TEST(Reconstruction, ParsesNamesAndRejectsOthers) {

@@ -1,4 +1,4 @@
-// Sampling on [-1,1]^3 (design.md 10) and the margins that stencils need.
+// Sampling on [-1,1]^3 (docs/design.md §13) and the margins that stencils need.
 #include "runtime/sampling.h"
 
 #include <gtest/gtest.h>

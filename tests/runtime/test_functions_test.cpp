@@ -1,4 +1,4 @@
-// Test functions: Marschner-Lobb values worked out by hand from design.md 10, gradients against
+// Test functions: Marschner-Lobb values worked out by hand from docs/design.md §13, gradients against
 // central differences, the registry.
 #include "runtime/test_functions.h"
 

@@ -1,0 +1,41 @@
+// The Blu-Unser frequency error kernel on a lattice (design.md 9, the paper's Fig. 13):
+//   E(w) = 1 - psi_hat^2 / A + A |Q(w) - psi_hat / A|^2,   E_min(w) = 1 - psi_hat^2 / A,
+//   A(w) = sum_{k in 2 pi G^-T Z^n} psi_hat(w + k)^2 = |det G| sum_{j in L} a(j) e^{-i w.j},
+//   Q(w) = sum_j q(j) e^{-i w.j},
+// where a(j) are the generator's exact autocorrelation samples and q the prefilter taps (both
+// converted to double by the caller). Evaluated in long double: E falls like |w|^8 with an
+// order-4 prefilter and is formed by cancellation near 0.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "analysis/dual_lattice.h"
+#include "analysis/spectrum.h"
+
+namespace boxgen::analysis {
+
+struct LatticeTap {
+  std::vector<std::int64_t> point;  // a lattice point j (lattice coordinates = world coordinates)
+  double value;
+};
+
+class ErrorKernel {
+ public:
+  // `prefilter` empty: no prefilter (Q = 1, the samples used as coefficients).
+  ErrorKernel(BoxSplineSpectrum psi, double det_g, std::vector<LatticeTap> autocorrelation,
+              std::vector<LatticeTap> prefilter);
+  long double operator()(const Vec& w) const;  // E(w)
+  long double minimum(const Vec& w) const;     // E_min(w)
+  long double aliasing_sum(const Vec& w) const;  // A(w) from the autocorrelation samples
+
+ private:
+  BoxSplineSpectrum psi_;
+  double det_g_;
+  std::vector<LatticeTap> autocorrelation_, prefilter_;
+};
+
+// A(w) as the truncated sum over the dual lattice points with |k| <= radius (for tests: an
+// independent route to A through the spectrum alone).
+long double aliasing_sum_direct(const BoxSplineSpectrum& psi, const DualLattice& dual, const Vec& w, double radius);
+
+}  // namespace boxgen::analysis

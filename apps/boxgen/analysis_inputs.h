@@ -1,0 +1,23 @@
+// The bridge from the exact generator to the floating-point analysis (analysis/): a SPEC's
+// directions and lattice, its exact autocorrelation samples and prefilter taps, converted to
+// double once, here.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "analysis/dual_lattice.h"
+#include "analysis/error_kernel.h"
+#include "analysis/spectrum.h"
+#include "generator/autocorr.h"
+#include "generator/spec.h"
+
+namespace boxgen::cli {
+
+analysis::BoxSplineSpectrum spectrum_of(const BoxSplineSpec& spec);
+analysis::DualLattice dual_of(const BoxSplineSpec& spec);
+std::vector<analysis::LatticeTap> taps_of(const Autocorrelation& a);
+// "none" -> empty; "q1" -> shells 0,1; "q2" -> shells 0,1,2. Throws InputError otherwise
+// ("min" is handled by the caller).
+std::vector<analysis::LatticeTap> prefilter_taps_of(const BoxSplineSpec& spec, const std::string& name);
+
+}  // namespace boxgen::cli

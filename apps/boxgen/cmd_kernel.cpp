@@ -1,0 +1,124 @@
+// `boxgen kernel SPEC...`: the Blu-Unser error kernel E(w d) of each filter with a prefilter
+// (design.md 9 and 9b; the paper's Fig. 13), from the exact autocorrelation samples.
+#include <fmt/core.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <optional>
+
+#include "analysis/error_kernel.h"
+#include "analysis/gnuplot.h"
+#include "analysis/output_file.h"
+#include "apps/boxgen/analysis_args.h"
+#include "apps/boxgen/analysis_inputs.h"
+#include "apps/boxgen/commands.h"
+#include "generator/autocorr.h"
+#include "generator/error.h"
+
+namespace boxgen::cli {
+
+namespace {
+
+// The paper's colours: M7 red, M8 blue, M12 green, then others.
+std::string colour(std::size_t i) {
+  static const char* colours[] = {"#d62728", "#1f4fd6", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b"};
+  return colours[i % 7];
+}
+std::string dark_colour(std::size_t i) {
+  static const char* colours[] = {"#7f0000", "#00005f", "#004d00", "#3f1f5f", "#7f3f00", "#004f5f", "#3f2a20"};
+  return colours[i % 7];
+}
+
+std::vector<double> kernel_values(const analysis::ErrorKernel& e, const analysis::Vec& d, const std::vector<double>& w,
+                                  bool minimum) {
+  std::vector<double> out;
+  for (double x : w) {
+    const analysis::Vec p{x * d[0], x * d[1], x * d[2]};
+    out.push_back(static_cast<double>(minimum ? e.minimum(p) : e(p)));
+  }
+  return out;
+}
+
+}  // namespace
+
+int run_kernel(const AnalysisOptions& o) {
+  std::vector<BoxSplineSpec> specs;
+  for (const auto& s : o.specs) specs.push_back(parse_spec(s, o.lattice));
+  const int n = specs.front().dimension();
+  for (const auto& s : specs)
+    if (s.dimension() != n) fail_input("all SPECs of one kernel command must have the same dimension");
+  if (o.prefilter != "none" && o.prefilter != "q1" && o.prefilter != "q2" && o.prefilter != "min")
+    fail_input("unknown prefilter '" + o.prefilter.substr(0, 40) + "': expected none, q1, q2 or min");
+  const analysis::Vec d = parse_direction(o.direction, n, "--direction");
+  const bool plot = !o.plot.empty();
+  // A plot defaults to the low band of Fig. 13: w from 0.05 to pi/2 (the Nyquist boundary of
+  // BCC along (1,1,1)), log-spaced.
+  const std::vector<double> w = abscissae(o, plot, 0.05, std::numbers::pi / 2, 120, !plot);
+  std::optional<analysis::AtomicOutput> check;
+  if (plot) check.emplace(o.plot);  // an unwritable --plot fails before the derivations
+  check.reset();
+
+  struct Curves {
+    std::string key;
+    std::map<std::string, std::vector<double>> e;  // prefilter name -> E
+  };
+  std::vector<Curves> all;
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const auto& spec = specs[i];
+    const auto taps = taps_of(autocorrelation_refinement(spec));
+    const double det = static_cast<double>(spec.lattice.det_abs());
+    Curves c{o.specs[i], {}};
+    const std::vector<std::string> names =
+        plot ? std::vector<std::string>{"none", "q1", "q2", "min"} : std::vector<std::string>{o.prefilter};
+    for (const auto& name : names) {
+      const analysis::ErrorKernel e(spectrum_of(spec), det, taps,
+                                    name == "min" ? std::vector<analysis::LatticeTap>{} : prefilter_taps_of(spec, name));
+      c.e[name] = kernel_values(e, d, w, name == "min");
+    }
+    all.push_back(std::move(c));
+  }
+
+  if (plot) {
+    analysis::PlotPanel panel;
+    panel.title = fmt::format("Error kernels E(w ({}))", o.direction);
+    panel.xlabel = "w";
+    panel.ylabel = "E";
+    panel.log_x = panel.log_y = true;
+    panel.extra = "set key bottom right font ',8'\nset autoscale xfix\nset yrange [1e-16:2]";
+    const std::map<std::string, std::string> dash = {{"none", "dt 3"}, {"q1", "dt 2"}, {"q2", "dt 1"}};
+    const std::map<std::string, std::string> label = {{"none", "no prefilter"}, {"q1", "Q^I"}, {"q2", "Q^{II}"}};
+    for (std::size_t i = all.size(); i-- > 0;) {  // the first SPEC drawn last, on top
+      for (const std::string name : {"none", "q1", "q2"})
+        panel.series.push_back({fmt::format("{} {}", all[i].key, label.at(name)), w, all[i].e.at(name),
+                                fmt::format("lines lw 2 lc rgb '{}' {}", colour(i), dash.at(name))});
+      panel.series.push_back({fmt::format("{} E_{{min}}", all[i].key), w, all[i].e.at("min"),
+                              fmt::format("lines lw 2 lc rgb '{}' dt 1", dark_colour(i))});
+    }
+    analysis::plot_png(o.plot, {panel}, 1, 1, 900, 700);
+    return 0;
+  }
+  const std::string& name = o.prefilter;
+  if (o.json) {
+    if (all.size() == 1) {
+      print_json({{"w", w}, {"E", all.front().e.at(name)}});
+    } else {
+      nlohmann::json out = nlohmann::json::object();
+      for (const auto& c : all) out[c.key] = {{"w", w}, {"E", c.e.at(name)}};
+      print_json(out);
+    }
+    return 0;
+  }
+  fmt::print("error kernel E(w d), d = ({}), prefilter {}\n", o.direction, name);
+  fmt::print("{:>14}", "w");
+  for (const auto& c : all) fmt::print(" {:>14}", c.key);
+  fmt::print("\n");
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    fmt::print("{:>14.8g}", w[k]);
+    for (const auto& c : all) fmt::print(" {:>14.6e}", c.e.at(name)[k]);
+    fmt::print("\n");
+  }
+  return 0;
+}
+
+}  // namespace boxgen::cli

@@ -1,0 +1,183 @@
+// `boxgen spectrum SPEC... (--plane n | --line d)`: |psi_hat| on a plane through 0 (an image with
+// the Voronoi boundaries of the dual lattice and its points, the paper's Fig. 11) or along a line
+// (a plot with the Nyquist interval shaded and a x100 panel, Fig. 12).
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "analysis/gnuplot.h"
+#include "analysis/output_file.h"
+#include "analysis/png_image.h"
+#include "apps/boxgen/analysis_args.h"
+#include "apps/boxgen/analysis_inputs.h"
+#include "apps/boxgen/commands.h"
+#include "generator/error.h"
+
+namespace boxgen::cli {
+
+namespace {
+
+double dot(const analysis::Vec& a, const analysis::Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+std::string colour(std::size_t i) {
+  static const char* colours[] = {"#d62728", "#1f4fd6", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b"};
+  return colours[i % 7];
+}
+
+// The largest t with t d in the Voronoi cell.
+double nyquist_extent(const analysis::VoronoiCell& cell, const analysis::Vec& d) {
+  double t = 1e300;
+  for (const auto& f : cell.faces) {
+    const double a = dot(f.normal, d);
+    if (a > 1e-14) t = std::min(t, f.offset / a);
+  }
+  return t;
+}
+
+int run_line(const AnalysisOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
+  const analysis::Vec d = parse_direction(o.line, n, "--line");
+  const analysis::DualLattice dual = dual_of(specs.front());
+  for (const auto& s : specs)
+    if (s.lattice.generator() != specs.front().lattice.generator())
+      fail_input("all SPECs of one spectrum must be on the same lattice");
+  const double t = nyquist_extent(dual.cell(), d);
+  const std::vector<double> w = abscissae(o, false, 0, 4 * t, 801, false);
+  std::optional<analysis::AtomicOutput> check;
+  if (!o.plot.empty()) check.emplace(o.plot);
+  check.reset();
+  std::vector<std::vector<double>> magnitude;
+  for (const auto& spec : specs) {
+    const auto psi = spectrum_of(spec);
+    std::vector<double> m;
+    for (double x : w) m.push_back(std::abs(psi({x * d[0], x * d[1], x * d[2]})));
+    magnitude.push_back(std::move(m));
+  }
+  if (!o.plot.empty()) {
+    const std::string shade = fmt::format(
+        "set object 1 rect from {:.10g}, graph 0 to {:.10g}, graph 1 behind fc rgb '#d8d8d8' fs solid 1.0 noborder\n"
+        "set xrange [{:.10g}:{:.10g}]",
+        -t, t, w.front(), w.back());
+    analysis::PlotPanel full{fmt::format("|psi_hat(w ({}))|", o.line), "w", "|psi_hat|", false, false,
+                             shade + "\nset yrange [0:1.05]\nset key top right", {}};
+    analysis::PlotPanel zoom{"magnified x100", "w", "|psi_hat|", false, false, shade + "\nset yrange [0:0.0105]\nset key top right", {}};
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      const std::string style = fmt::format("lines lw 2 lc rgb '{}'", colour(i));
+      full.series.push_back({o.specs[i], w, magnitude[i], style});
+      zoom.series.push_back({o.specs[i], w, magnitude[i], style});
+    }
+    analysis::plot_png(o.plot, {full, zoom}, 1, 2, 1200, 450);
+    return 0;
+  }
+  if (o.json) {
+    if (specs.size() == 1) {
+      print_json({{"w", w}, {"magnitude", magnitude.front()}, {"nyquist_interval", {-t, t}}});
+    } else {
+      nlohmann::json out = nlohmann::json::object();
+      for (std::size_t i = 0; i < specs.size(); ++i)
+        out[o.specs[i]] = {{"w", w}, {"magnitude", magnitude[i]}, {"nyquist_interval", {-t, t}}};
+      print_json(out);
+    }
+    return 0;
+  }
+  fmt::print("|psi_hat(w d)|, d = ({}); Nyquist interval [{:.10g}, {:.10g}]\n{:>14}", o.line, -t, t, "w");
+  for (const auto& s : o.specs) fmt::print(" {:>14}", s);
+  fmt::print("\n");
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    fmt::print("{:>14.8g}", w[k]);
+    for (const auto& m : magnitude) fmt::print(" {:>14.6e}", m[k]);
+    fmt::print("\n");
+  }
+  return 0;
+}
+
+// One panel per filter, side by side: log10 |psi_hat| from -4 (dark) to 0 (yellow), the
+// boundaries of the dual lattice's Voronoi cells in the plane (white) and the dual lattice
+// points lying in the plane (white discs).
+int run_plane(const AnalysisOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
+  if (n != 3) fail_input("--plane needs 3-D filters (for 2-D filters use --line)");
+  if (o.plot.empty()) fail_input("--plane draws an image: give -o out.png");
+  if (o.json) fail_input("--json is for --line (a plane is an image)");
+  if (!o.w.empty() || o.steps != 0) fail_input("--plane takes --from/--to (the square's range), not --w or --steps");
+  analysis::Vec normal = parse_direction(o.plane, 3, "--plane");
+  const double len = std::sqrt(dot(normal, normal));
+  for (double& x : normal) x /= len;
+  // An orthonormal basis u, v of the plane.
+  analysis::Vec helper = std::abs(normal[0]) < 0.9 ? analysis::Vec{1, 0, 0} : analysis::Vec{0, 1, 0};
+  analysis::Vec u{normal[1] * helper[2] - normal[2] * helper[1], normal[2] * helper[0] - normal[0] * helper[2],
+                  normal[0] * helper[1] - normal[1] * helper[0]};
+  const double lu = std::sqrt(dot(u, u));
+  for (double& x : u) x /= lu;
+  const analysis::Vec v{normal[1] * u[2] - normal[2] * u[1], normal[2] * u[0] - normal[0] * u[2],
+                        normal[0] * u[1] - normal[1] * u[0]};
+  const analysis::DualLattice dual = dual_of(specs.front());
+  for (const auto& s : specs)
+    if (s.lattice.generator() != specs.front().lattice.generator())
+      fail_input("all SPECs of one spectrum must be on the same lattice");
+  double circumradius = 0;
+  for (const auto& x : dual.cell().vertices) circumradius = std::max(circumradius, std::sqrt(dot(x, x)));
+  if ((o.from.has_value()) != (o.to.has_value())) fail_input("--from and --to go together");
+  const double lo = o.from.value_or(-2.5 * circumradius), hi = o.to.value_or(2.5 * circumradius);
+  if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo))
+    fail_input(fmt::format("empty or inverted range: --from {} --to {} (need from < to)", lo, hi));
+  const int size = o.size != 0 ? o.size : 400;
+  if (size < 16 || size > 4096) fail_input(fmt::format("--size must be between 16 and 4096, got {}", size));
+  std::optional<analysis::AtomicOutput> check(o.plot);
+  check.reset();
+  const int gap = 8;
+  const int count = static_cast<int>(specs.size());
+  analysis::RgbImage image(count * size + (count - 1) * gap, size);
+  std::fill(image.pixels.begin(), image.pixels.end(), 255);
+  const double pixel = (hi - lo) / size;
+  // Dual lattice points in the plane.
+  std::vector<std::pair<double, double>> dots;
+  const double reach = std::max(std::abs(lo), std::abs(hi)) * std::sqrt(2.0) + pixel;
+  for (const auto& k : dual.points_within(reach))
+    if (std::abs(dot(k, normal)) < 1e-9 * (1 + reach)) dots.push_back({dot(k, u), dot(k, v)});
+  for (int s = 0; s < count; ++s) {
+    const auto psi = spectrum_of(specs[s]);
+    const int x0 = s * (size + gap);
+    for (int py = 0; py < size; ++py)
+      for (int px = 0; px < size; ++px) {
+        const double a = lo + (px + 0.5) * pixel, b = hi - (py + 0.5) * pixel;
+        const analysis::Vec w{a * u[0] + b * v[0], a * u[1] + b * v[1], a * u[2] + b * v[2]};
+        double g = 0;
+        dual.nearest(w, &g);
+        std::uint8_t r, gg, bb;
+        if (g < 1.2 * pixel) {
+          r = gg = bb = 255;
+        } else {
+          const double m = std::abs(psi(w));
+          analysis::colour_map((std::log10(std::max(m, 1e-300)) + 4) / 4, r, gg, bb);
+        }
+        image.set(x0 + px, py, r, gg, bb);
+      }
+    const double radius = std::max(2.0, size / 120.0);
+    for (const auto& [a, b] : dots) {
+      const double cx = (a - lo) / pixel, cy = (hi - b) / pixel;
+      for (int dy = -4 * static_cast<int>(radius); dy <= 4 * static_cast<int>(radius); ++dy)
+        for (int dx = -4 * static_cast<int>(radius); dx <= 4 * static_cast<int>(radius); ++dx) {
+          const int px = static_cast<int>(std::floor(cx)) + dx, py = static_cast<int>(std::floor(cy)) + dy;
+          if (px < 0 || px >= size || py < 0 || py >= size) continue;
+          if (std::hypot(px + 0.5 - cx, py + 0.5 - cy) <= radius) image.set(x0 + px, py, 255, 255, 255);
+        }
+    }
+  }
+  analysis::write_png(o.plot, image);
+  return 0;
+}
+
+}  // namespace
+
+int run_spectrum(const AnalysisOptions& o) {
+  std::vector<BoxSplineSpec> specs;
+  for (const auto& s : o.specs) specs.push_back(parse_spec(s, o.lattice));
+  const int n = specs.front().dimension();
+  for (const auto& s : specs)
+    if (s.dimension() != n) fail_input("all SPECs of one spectrum must have the same dimension");
+  if (o.plane.empty() == o.line.empty()) fail_input("give exactly one of --plane a,b,c or --line a,b,c");
+  return o.line.empty() ? run_plane(o, specs, n) : run_line(o, specs, n);
+}
+
+}  // namespace boxgen::cli

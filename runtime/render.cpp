@@ -1,0 +1,196 @@
+#include "runtime/render.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace boxgen::runtime {
+
+namespace {
+
+Vec3 add(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+Vec3 scale(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Vec3 normalise(const Vec3& a) { return scale(a, 1 / std::sqrt(dot(a, a))); }
+
+// A perceptual colour map (dark blue -> green -> yellow) for the cut faces.
+Vec3 value_colour(double t) {
+  static const double stops[5][3] = {{0.267, 0.005, 0.329}, {0.230, 0.322, 0.546}, {0.128, 0.567, 0.551},
+                                     {0.369, 0.789, 0.383}, {0.993, 0.906, 0.144}};
+  t = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * 4;
+  const int i = std::min(3, static_cast<int>(t));
+  const double f = t - i;
+  return {(1 - f) * stops[i][0] + f * stops[i + 1][0], (1 - f) * stops[i][1] + f * stops[i + 1][1],
+          (1 - f) * stops[i][2] + f * stops[i + 1][2]};
+}
+
+struct Camera {
+  Vec3 eye, forward, right, up;
+  double tan_half;
+};
+
+Camera camera_for(const Box& box, bool closeup) {
+  const Vec3 centre = scale(add(box.min, box.max), 0.5);
+  const double radius = 0.5 * std::sqrt(dot(add(box.max, scale(box.min, -1)), add(box.max, scale(box.min, -1))));
+  Vec3 eye, target;
+  double fov;
+  if (closeup) {  // Fig. 9: the first rims seen from above, at a grazing angle
+    target = add(centre, scale(Vec3{-0.3, -0.3, -0.12}, radius));
+    eye = add(centre, scale(Vec3{0.75, 0.55, 0.95}, radius));
+    fov = 38;
+  } else {  // Fig. 8: the whole cube from above one corner, looking into the cut-away
+    target = add(centre, Vec3{0, 0, -0.08 * radius});
+    eye = add(centre, scale(normalise(Vec3{1.0, 0.78, 0.82}), 3.2 * radius));
+    fov = 36;
+  }
+  Camera c;
+  c.eye = eye;
+  c.forward = normalise(add(target, scale(eye, -1)));
+  c.right = normalise(cross(c.forward, Vec3{0, 0, 1}));
+  c.up = cross(c.right, c.forward);
+  c.tan_half = std::tan(fov * 3.14159265358979 / 360);
+  return c;
+}
+
+// [t0, t1] of the ray inside the box; false if it misses.
+bool clip_to_box(const Vec3& o, const Vec3& d, const Box& box, double& t0, double& t1) {
+  t0 = 0;
+  t1 = 1e300;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(d[i]) < 1e-300) {
+      if (o[i] < box.min[i] || o[i] > box.max[i]) return false;
+      continue;
+    }
+    double a = (box.min[i] - o[i]) / d[i], b = (box.max[i] - o[i]) / d[i];
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, b);
+  }
+  return t1 > t0;
+}
+
+}  // namespace
+
+RayCaster::RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step, bool cutaway)
+    : spline_(spline), box_(box), iso_(iso), step_(step), cutaway_(cutaway) {
+  if (!std::isfinite(iso)) throw std::invalid_argument("--iso must be finite");
+  if (!(step > 0) || !std::isfinite(step)) throw std::invalid_argument("the marching step must be > 0");
+  for (int i = 0; i < 3; ++i)
+    if (!(box.max[i] > box.min[i])) throw std::invalid_argument("the render box is empty");
+  mid_ = scale(add(box.min, box.max), 0.5);
+  size_ = std::sqrt(dot(add(box.max, scale(box.min, -1)), add(box.max, scale(box.min, -1))));
+}
+
+bool RayCaster::in_region(const Vec3& p) const {
+  if (!cutaway_) return true;
+  return !(p[2] > mid_[2] && (p[0] > mid_[0] || p[1] > mid_[1]));
+}
+
+bool RayCaster::inside(const Vec3& p) const { return in_region(p) && spline_.value(p) >= iso_; }
+
+RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
+  RayHit h;
+  const Vec3 d = normalise(direction);
+  double t0, t1;
+  if (!clip_to_box(origin, d, box_, t0, t1)) return h;
+  t0 += 1e-9 * size_;
+  t1 -= 1e-9 * size_;
+  double prev = t0;
+  bool entry_face = false;
+  if (inside(add(origin, scale(d, t0)))) {
+    h.hit = entry_face = true;
+  } else {
+    for (double t = t0 + step_;; t += step_) {
+      const double tt = std::min(t, t1);
+      if (inside(add(origin, scale(d, tt)))) {
+        // Bisection on the spline between prev (outside) and tt (inside).
+        double lo = prev, hi = tt;
+        while (hi - lo > 1e-9 * size_) {
+          const double m = 0.5 * (lo + hi);
+          (inside(add(origin, scale(d, m))) ? hi : lo) = m;
+        }
+        prev = hi;
+        h.hit = true;
+        break;
+      }
+      prev = tt;
+      if (tt >= t1) break;
+    }
+  }
+  if (!h.hit) return h;
+  h.t = entry_face ? t0 : prev;
+  h.point = add(origin, scale(d, h.t));
+  Vec3 gradient{};
+  h.value = spline_.value(h.point, &gradient);
+  // The isosurface when the point just before the hit is still in the region, else a cut or box face.
+  h.on_cut = entry_face || !in_region(add(origin, scale(d, h.t - 2e-9 * size_)));
+  if (!h.on_cut && dot(gradient, gradient) > 0) {
+    h.normal = normalise(scale(gradient, -1));  // s grows into the solid
+  } else {
+    h.on_cut = true;
+    int axis = 0;
+    double best = 1e300;
+    for (int i = 0; i < 3; ++i) {
+      const double gap =
+          std::min({std::abs(h.point[i] - mid_[i]), std::abs(h.point[i] - box_.min[i]), std::abs(h.point[i] - box_.max[i])});
+      if (gap < best) {
+        best = gap;
+        axis = i;
+      }
+    }
+    h.normal = {0, 0, 0};
+    h.normal[axis] = d[axis] > 0 ? -1 : 1;
+  }
+  if (dot(h.normal, d) > 0) h.normal = scale(h.normal, -1);
+  return h;
+}
+
+RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box& box, const RenderOptions& o) {
+  if (o.width < 1 || o.height < 1 || o.width > 8192 || o.height > 8192)
+    throw std::invalid_argument(fmt::format("image size must be 1..8192 per side, got {} x {}", o.width, o.height));
+  const double step = o.step > 0 ? o.step : 0.5 * volume.spacing();
+  const Reconstructor<double> spline(volume, f);
+  const RayCaster caster(spline, box, o.iso, step, o.cutaway);
+  const Camera cam = camera_for(box, o.closeup);
+  const Vec3 light = normalise(add(scale(cam.forward, -1), add(scale(cam.up, 0.6), scale(cam.right, -0.3))));
+  RgbBuffer image{o.width, o.height, std::vector<std::uint8_t>(static_cast<std::size_t>(o.width) * o.height * 3)};
+  std::atomic<int> rows_done{0};
+  const bool bar = o.progress && ::isatty(STDERR_FILENO);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int y = 0; y < o.height; ++y) {
+    for (int x = 0; x < o.width; ++x) {
+      const double sx = (2 * (x + 0.5) / o.width - 1) * cam.tan_half * o.width / o.height;
+      const double sy = (1 - 2 * (y + 0.5) / o.height) * cam.tan_half;
+      const Vec3 d = normalise(add(cam.forward, add(scale(cam.right, sx), scale(cam.up, sy))));
+      // Background: a light vertical gradient.
+      Vec3 colour{0.93 - 0.12 * (y / static_cast<double>(o.height)), 0.94 - 0.1 * (y / static_cast<double>(o.height)), 0.96};
+      const RayHit h = caster.cast(cam.eye, d);
+      if (h.hit) {
+        const Vec3 base = h.on_cut ? value_colour(h.value) : Vec3{0.82, 0.80, 0.76};
+        const double diffuse = std::max(0.0, dot(h.normal, light));
+        const Vec3 half = normalise(add(light, scale(d, -1)));
+        const double specular = h.on_cut ? 0 : 0.25 * std::pow(std::max(0.0, dot(h.normal, half)), 40);
+        for (int c = 0; c < 3; ++c) colour[c] = std::min(1.0, base[c] * (0.28 + 0.72 * diffuse) + specular);
+      }
+      const std::size_t i = (static_cast<std::size_t>(y) * o.width + x) * 3;
+      for (int c = 0; c < 3; ++c) image.pixels[i + c] = static_cast<std::uint8_t>(std::lround(255 * std::clamp(colour[c], 0.0, 1.0)));
+    }
+    const int done = ++rows_done;
+    if (bar && (done % 8 == 0 || done == o.height)) {
+#pragma omp critical
+      std::fprintf(stderr, "\rrendering %3d%%", 100 * done / o.height);
+    }
+  }
+  if (bar) std::fprintf(stderr, "\n");
+  return image;
+}
+
+}  // namespace boxgen::runtime

@@ -1,0 +1,77 @@
+// The renderer's ray caster (runtime/render.h) on a reconstructed Gaussian, whose isosurface
+// s = 1/2 is close to the sphere |p| = 0.4 sqrt(2 ln 2): the hit lies on the spline's isosurface
+// (s = iso to rounding), near the exact sphere (within the reconstruction error), with the
+// normal of the analytic gradient; the cut-away turns the same ray into a hit on the cut face.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "runtime/render.h"
+#include "runtime/sampling.h"
+#include "runtime/test_functions.h"
+
+namespace boxgen::runtime {
+namespace {
+
+struct Scene {
+  BccVolume<double> volume = prefilter(sample_cube<double>(gaussian, 33, required_margin(Filter::M7, PrefilterChoice::Q1)),
+                                       prefilter_taps(Filter::M7, PrefilterChoice::Q1));
+  Reconstructor<double> spline{volume, Filter::M7};
+  Box box{{-1, -1, -1}, {1, 1, 1}};
+  double radius = kGaussianWidth * std::sqrt(2 * std::log(2.0));
+};
+
+TEST(RayCaster, HitsTheIsosurfaceWithTheGradientsNormal) {
+  Scene s;
+  const RayCaster caster(s.spline, s.box, 0.5, 0.5 * s.volume.spacing(), false);
+  const RayHit h = caster.cast({3, 0.1, 0.05}, {-1, 0, 0});
+  ASSERT_TRUE(h.hit);
+  EXPECT_FALSE(h.on_cut);
+  EXPECT_NEAR(h.value, 0.5, 1e-7);  // the root is on the spline itself
+  EXPECT_NEAR(h.point[0], std::sqrt(s.radius * s.radius - 0.0125), 2e-3);  // reconstruction error
+  EXPECT_DOUBLE_EQ(h.point[1], 0.1);
+  Vec3 g{};
+  s.spline.value(h.point, &g);
+  const double norm = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(h.normal[i], -g[i] / norm, 1e-12);  // the analytic gradient
+  const double r = std::sqrt(h.point[0] * h.point[0] + h.point[1] * h.point[1] + h.point[2] * h.point[2]);
+  EXPECT_GT(h.normal[0] * h.point[0] / r + h.normal[1] * h.point[1] / r + h.normal[2] * h.point[2] / r, 0.999);
+}
+
+TEST(RayCaster, MissesWhenTheRayPassesBesideTheSurface) {
+  Scene s;
+  const RayCaster caster(s.spline, s.box, 0.5, 0.5 * s.volume.spacing(), false);
+  EXPECT_FALSE(caster.cast({3, 0.8, 0.0}, {-1, 0, 0}).hit);
+  EXPECT_FALSE(caster.cast({3, 3, 3}, {1, 0, 0}).hit);  // away from the box
+}
+
+TEST(RayCaster, CutAwayShowsTheCrossSection) {
+  Scene s;
+  const RayCaster whole(s.spline, s.box, 0.5, 0.5 * s.volume.spacing(), false);
+  const RayCaster cut(s.spline, s.box, 0.5, 0.5 * s.volume.spacing(), true);
+  const RayHit a = whole.cast({0.1, 0.1, 3}, {0, 0, -1});
+  const RayHit b = cut.cast({0.1, 0.1, 3}, {0, 0, -1});
+  ASSERT_TRUE(a.hit && b.hit);
+  EXPECT_NEAR(a.point[2], std::sqrt(s.radius * s.radius - 0.02), 2e-3);
+  EXPECT_TRUE(b.on_cut);
+  EXPECT_NEAR(b.point[2], 0, 1e-8);  // the plane z = 0 bounds the removed 3/8
+  EXPECT_NEAR(b.normal[2], 1, 1e-12);
+  EXPECT_GT(b.value, 0.5);
+}
+
+TEST(Render, ImageHasTheRequestedSizeAndBadOptionsAreRefused) {
+  Scene s;
+  RenderOptions o;
+  o.width = 24;
+  o.height = 16;
+  const RgbBuffer img = render_isosurface(s.volume, Filter::M7, s.box, o);
+  EXPECT_EQ(img.pixels.size(), 24u * 16u * 3u);
+  o.width = 0;
+  EXPECT_THROW(render_isosurface(s.volume, Filter::M7, s.box, o), std::invalid_argument);
+  o.width = 8;
+  o.iso = std::nan("");
+  EXPECT_THROW(render_isosurface(s.volume, Filter::M7, s.box, o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace boxgen::runtime

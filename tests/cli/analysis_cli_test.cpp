@@ -1,0 +1,186 @@
+// boxgen metrics / kernel / spectrum as a user's script sees them: the JSON contract, the figures
+// (a real PNG appears, nothing else), and bad input giving one line on stderr, exit code 1 or 2
+// and no file left behind. Expected values: the paper's printed smoothing digits (an independent
+// computation), the exact a(0) of M7 from design.md 9b, and hand-derived facts (E(0) = 0,
+// |psi_hat(0)| = 1, the Nyquist interval of BCC along (1,0,0) is [-pi, pi]).
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "cli_support.h"
+#include "tests/support/scratch_directory.h"
+
+namespace boxgen::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class AnalysisCli : public ScratchDirectoryTest {
+ protected:
+  AnalysisCli() : ScratchDirectoryTest("boxgen-analysis-cli") {}
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+  std::vector<std::string> listing() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+  static bool is_png(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    char sig[8] = {};
+    in.read(sig, 8);
+    return in && std::string(sig + 1, 3) == "PNG" && static_cast<unsigned char>(sig[0]) == 0x89;
+  }
+};
+
+TEST_F(AnalysisCli, MetricsJsonHasTheDocumentedKeysAndThePapersSmoothing) {
+  const auto j = boxgen_json({"metrics", "m7", "m8", "m12", "--json"});
+  EXPECT_EQ(exact(j["m7"]["integral_squared"]), Q("39559/1064448"));  // design.md 9b
+  const std::map<std::string, double> paper_s = {{"m7", 0.85488}, {"m8", 0.85287}, {"m12", 0.94495}};
+  for (const auto& [key, s] : paper_s) {
+    ASSERT_TRUE(j.contains(key)) << key;
+    EXPECT_NEAR(j[key]["smoothing"].get<double>(), s, 0.5e-5) << key;
+    const double p = j[key]["postaliasing"].get<double>();
+    EXPECT_GT(p, 0) << key;
+    EXPECT_LT(p, 0.01) << key;
+    EXPECT_LT(j[key]["estimated_error"].get<double>(), 1e-9) << key;
+  }
+  // Measured: M7's postaliasing is below M8's (the paper's claim).
+  EXPECT_LT(j["m7"]["postaliasing"].get<double>(), j["m8"]["postaliasing"].get<double>());
+}
+
+TEST_F(AnalysisCli, MetricsAreKeyedBySpecAsGiven) {
+  const auto j = boxgen_json({"metrics", "1,0; 0,1; 1,1", "tricubic", "--json"});
+  EXPECT_TRUE(j.contains("1,0; 0,1; 1,1"));
+  EXPECT_TRUE(j.contains("tricubic"));
+  EXPECT_EQ(j["tricubic"]["lattice"], "cartesian");
+}
+
+TEST_F(AnalysisCli, KernelJsonVanishesAtZeroAndGrows) {
+  const auto j = boxgen_json({"kernel", "m7", "--prefilter", "q2", "--w", "0,0.1,0.5,1", "--json"});
+  ASSERT_EQ(j["w"].size(), 4u);
+  ASSERT_EQ(j["E"].size(), 4u);
+  EXPECT_NEAR(j["E"][0].get<double>(), 0, 1e-14);
+  for (int i = 1; i < 4; ++i) EXPECT_GT(j["E"][i].get<double>(), j["E"][i - 1].get<double>());
+  const auto r = boxgen_json({"kernel", "m8", "--prefilter", "min", "--from", "0.1", "--to", "1", "--steps", "10", "--json"});
+  EXPECT_EQ(r["w"].size(), 10u);
+  EXPECT_DOUBLE_EQ(r["w"][9].get<double>(), 1.0);
+}
+
+TEST_F(AnalysisCli, SpectrumLineJsonAndTheNyquistInterval) {
+  const auto j = boxgen_json({"spectrum", "m7", "--line", "1,0,0", "--from", "0", "--to", "6", "--steps", "7", "--json"});
+  EXPECT_NEAR(j["magnitude"][0].get<double>(), 1.0, 1e-15);
+  EXPECT_NEAR(j["nyquist_interval"][1].get<double>(), std::numbers::pi, 1e-12);
+  // psi_hat of M7 vanishes at w = 2 pi e_1, a dual lattice point (partition of unity).
+  const auto z = boxgen_json({"spectrum", "m7", "--line", "1,0,0", "--w", "6.283185307179586", "--json"});
+  EXPECT_NEAR(z["magnitude"][0].get<double>(), 0, 1e-12);
+}
+
+TEST_F(AnalysisCli, FiguresAreWrittenAsPngAndNothingElse) {
+  boxgen_ok({"kernel", "m7", "m8", "--plot", file("k.png")});
+  boxgen_ok({"spectrum", "m7", "--line", "1,1,0", "-o", file("l.png")});
+  boxgen_ok({"spectrum", "m12", "m7", "--plane", "1,1,1", "--size", "64", "-o", file("p.png")});
+  EXPECT_TRUE(is_png(file("k.png")));
+  EXPECT_TRUE(is_png(file("l.png")));
+  EXPECT_TRUE(is_png(file("p.png")));
+  EXPECT_EQ(listing(), (std::vector<std::string>{"k.png", "l.png", "p.png"}));
+}
+
+#ifndef BOXRECON_EXE
+#error "BOXRECON_EXE must name the boxrecon binary"
+#endif
+ProcessResult boxrecon(const std::vector<std::string>& args) { return run_process(BOXRECON_EXE, args, kDefaultTimeout); }
+
+TEST_F(AnalysisCli, RenderWritesAPngOfTheRequestedSize) {
+  const ProcessResult r = boxrecon({"render", "--function", "ml", "--n", "17", "--filter", "m7", "--prefilter", "q1",
+                                    "--cutaway", "--width", "40", "--height", "30", "--quiet", "-o", file("r.png")});
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << describe({"render"}, r);
+  EXPECT_EQ(r.err, "");
+  ASSERT_TRUE(is_png(file("r.png")));
+  std::ifstream in(file("r.png"), std::ios::binary);
+  unsigned char header[24] = {};
+  in.read(reinterpret_cast<char*>(header), 24);
+  const auto be32 = [&](int at) { return (header[at] << 24) | (header[at + 1] << 16) | (header[at + 2] << 8) | header[at + 3]; };
+  EXPECT_EQ(be32(16), 40);  // IHDR width
+  EXPECT_EQ(be32(20), 30);  // IHDR height
+  EXPECT_EQ(listing(), (std::vector<std::string>{"r.png"}));
+}
+
+TEST_F(AnalysisCli, ErrorTableJsonHasEveryRowAndKey) {
+  const ProcessResult r = boxrecon({"error", "--table", "--points", "200", "--json"});
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << describe({"error", "--table"}, r);
+  const auto j = nlohmann::json::parse(r.out);
+  // 5 densities x (3 filters x 3 prefilters + 2 tricubic rows).
+  ASSERT_EQ(j["rows"].size(), 55u);
+  for (const auto& row : j["rows"]) {
+    for (const char* key : {"n", "filter", "prefilter", "rms", "max", "gradient_rms", "samples"})
+      EXPECT_TRUE(row.contains(key)) << key << " in " << row.dump();
+    const int n = row["n"].get<int>();
+    EXPECT_LE(row["rms"].get<double>(), row["max"].get<double>());
+    if (row["filter"] == "tricubic") {
+      const int m = static_cast<int>(std::lround(std::cbrt(2.0) * n));
+      EXPECT_EQ(row["cartesian_n"].get<int>(), m);
+      EXPECT_EQ(row["samples"].get<std::uint64_t>(), static_cast<std::uint64_t>(m) * m * m);
+    } else {
+      EXPECT_FALSE(row.contains("cartesian_n"));
+      EXPECT_EQ(row["samples"].get<std::uint64_t>(), 2ull * n * n * n);
+    }
+  }
+}
+
+struct BadAnalysisInput {
+  const char* name;
+  std::vector<std::string> args;  // "@/" stands for the scratch directory
+  int exit_code;
+  const char* mentions;
+};
+void PrintTo(const BadAnalysisInput& c, std::ostream* os) { *os << c.name; }
+
+class AnalysisBadInput : public AnalysisCli, public ::testing::WithParamInterface<BadAnalysisInput> {};
+
+TEST_P(AnalysisBadInput, OneLineOnStderrNonZeroExitNoFile) {
+  const auto& c = GetParam();
+  std::vector<std::string> args = c.args;
+  for (auto& a : args)
+    if (a.starts_with("@/")) a = file(a.substr(2));
+  const bool recon = args.front() == "boxrecon";
+  if (recon) args.erase(args.begin());
+  const ProcessResult r = recon ? boxrecon(args) : boxgen(args);
+  const std::string what = describe(args, r);
+  ASSERT_TRUE(r.exited) << what;
+  EXPECT_EQ(r.exit_code, c.exit_code) << what;
+  EXPECT_EQ(r.out, "") << what;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what;
+  std::string lower = r.err;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  EXPECT_NE(lower.find(c.mentions), std::string::npos) << what;
+  EXPECT_TRUE(listing().empty()) << "a file was left behind\n" << what;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Boxgen, AnalysisBadInput,
+    ::testing::Values(
+        BadAnalysisInput{"UnknownPrefilter", {"kernel", "m7", "--prefilter", "q3", "--w", "1"}, 1, "prefilter"},
+        BadAnalysisInput{"ZeroDirection", {"kernel", "m7", "--direction", "0,0,0", "--w", "1"}, 1, "zero"},
+        BadAnalysisInput{"ShortDirection", {"kernel", "m7", "--direction", "1,1", "--w", "1"}, 1, "direction"},
+        BadAnalysisInput{"InvertedRange", {"kernel", "m7", "--from", "2", "--to", "1", "--steps", "5"}, 1, "range"},
+        BadAnalysisInput{"EmptyRange", {"spectrum", "m7", "--line", "1,0,0", "--from", "1", "--to", "1", "--steps", "5"}, 1, "range"},
+        BadAnalysisInput{"NoAbscissae", {"kernel", "m7"}, 1, "--w"},
+        BadAnalysisInput{"ZeroPlaneNormal", {"spectrum", "m7", "--plane", "0,0,0", "-o", "@/p.png"}, 1, "zero"},
+        BadAnalysisInput{"PlaneAndLine", {"spectrum", "m7", "--plane", "1,0,0", "--line", "1,0,0", "-o", "@/p.png"}, 1, "exactly one"},
+        BadAnalysisInput{"UnwritablePlot", {"kernel", "m7", "--plot", "@/missing/k.png"}, 1, "cannot write"},
+        BadAnalysisInput{"UnwritablePlane", {"spectrum", "m7", "--plane", "1,1,1", "-o", "@/missing/p.png"}, 1, "cannot write"},
+        BadAnalysisInput{"BadSpec", {"metrics", "m7", "m99"}, 1, "m99"},
+        BadAnalysisInput{"RenderCurvatureNotYetAvailable", {"boxrecon", "render", "--function", "ml", "--n", "9", "--shading", "curvature", "-o", "@/r.png"}, 1, "hessian"},
+        BadAnalysisInput{"RenderUnwritable", {"boxrecon", "render", "--function", "ml", "--n", "9", "-o", "@/missing/r.png"}, 1, "cannot write"},
+        BadAnalysisInput{"RenderUnknownPrefilter", {"boxrecon", "render", "--function", "ml", "--n", "9", "--prefilter", "q7", "-o", "@/r.png"}, 1, "prefilter"},
+        BadAnalysisInput{"RenderNoSource", {"boxrecon", "render", "-o", "@/r.png"}, 1, "--function"},
+        BadAnalysisInput{"RenderBadSize", {"boxrecon", "render", "--function", "ml", "--n", "9", "--width", "0", "-o", "@/r.png"}, 1, "width"},
+        BadAnalysisInput{"ErrorWithoutTableOrN", {"boxrecon", "error", "--filter", "m7"}, 2, "--table"},
+        BadAnalysisInput{"LogPlotFromZero", {"kernel", "m7", "--plot", "@/k.png", "--from", "0", "--to", "1", "--steps", "5"}, 1, "positive"}),
+    [](const ::testing::TestParamInfo<BadAnalysisInput>& p) { return std::string(p.param.name); });
+
+}  // namespace
+}  // namespace boxgen::test
