@@ -187,6 +187,15 @@ bool header_names_data_file(std::string_view head, bool& header_complete) {
   return false;
 }
 
+// The value of key/value `key`, or nothing.
+std::optional<std::string> key_value(const Nrrd* nrrd, const char* key) {
+  char* value = nrrdKeyValueGet(nrrd, key);
+  if (!value) return std::nullopt;
+  std::string text = value;
+  std::free(value);
+  return text;
+}
+
 struct VolumeHeader {
   CosetLattice lattice = CosetLattice::bcc();
   Sizes sizes;
@@ -198,6 +207,9 @@ struct VolumeHeader {
 
 // Checks that `nrrd` describes a BCC volume; returns what it says or an error text.
 std::string check_bcc_header(const Nrrd* nrrd, VolumeHeader& header) {
+  // A volume of another lattice is named as such first, before its sizes disagree with BCC's.
+  if (const auto lattice = key_value(nrrd, "lattice"); lattice && *lattice != "bcc")
+    return fmt::format("its lattice is '{}', not 'bcc'", printable(*lattice, 40));
   if (nrrd->dim != 4)
     return fmt::format("it has dimension {}; a BCC volume is a 4-D NRRD (sizes 2 N0 N1 N2, the coset axis first)", nrrd->dim);
   if (nrrd->axis[0].size != 2)
@@ -251,15 +263,6 @@ std::string check_bcc_header(const Nrrd* nrrd, VolumeHeader& header) {
   if (!present) return "the key/value 'lattice:=bcc' that marks a BCC volume is missing";
   if (value != "bcc") return fmt::format("its lattice is '{}', not 'bcc'", printable(value, 40));
   return {};
-}
-
-// The value of key/value `key`, or nothing.
-std::optional<std::string> key_value(const Nrrd* nrrd, const char* key) {
-  char* value = nrrdKeyValueGet(nrrd, key);
-  if (!value) return std::nullopt;
-  std::string text = value;
-  std::free(value);
-  return text;
 }
 
 // "(x,y,z) (x,y,z) ..." as written by CosetLattice::offsets_text.

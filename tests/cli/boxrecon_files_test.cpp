@@ -378,6 +378,10 @@ TEST_F(BoxreconFiles, SampleOnEveryLattice) {
       EXPECT_NEAR(values[s], cubic(x, y, z), 1e-12 * (1 + std::abs(cubic(x, y, z)))) << s;
     }
   }
+  // A BCC filter on the FCC volume is one error naming both lattices.
+  ok({"sample", "--function", "cubic", "--n", "4", "--lattice", "fcc", "-o", file("fcc.nrrd")});
+  write_bytes(file("p.txt"), "0 0 0\n");
+  refused({"eval", "--filter", "m7", "--volume", file("fcc.nrrd"), "--points", file("p.txt")}, {"'fcc', not 'bcc'"});
   // z = 0 mod 2 is the custom lattice above: its rows and offsets are in the file.
   EXPECT_EQ(field(read_bytes(file("v.nrrd")), "lattice_rows:="), "1,0,0; 0,1,0; 0,0,2");
   EXPECT_EQ(field(read_bytes(file("v.nrrd")), "coset_offsets:="), "(0,0,0) (1,0,0) (0,1,0) (1,1,0)");
