@@ -1,5 +1,7 @@
 #include "analysis/output_file.h"
 
+#include "runtime/output_file.h"
+
 #include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -14,6 +16,13 @@ namespace boxgen::analysis {
 AtomicOutput::AtomicOutput(std::string path) : path_(std::move(path)) {
   if (path_.empty()) throw std::invalid_argument("empty output path");
   if (std::filesystem::is_directory(path_)) throw std::invalid_argument(fmt::format("output '{}' is a directory", path_));
+  // Where the file lands, as for every output (runtime/output_file.h): through symbolic links,
+  // never onto a FIFO, device or socket.
+  try {
+    path_ = runtime::check_output_file(path_).string();
+  } catch (const runtime::OutputFileError& e) {
+    throw std::invalid_argument(e.what());
+  }
   std::vector<char> name(path_.begin(), path_.end());
   const std::string suffix = ".partial-XXXXXX";
   name.insert(name.end(), suffix.begin(), suffix.end());

@@ -60,6 +60,30 @@ void read_or_nrrd_error(const std::filesystem::path& path) {
   }
 }
 
+// The same through the reader of any lattice (lattice_volume.h).
+template <class T>
+void read_lattice_or_nrrd_error(const std::filesystem::path& path) {
+  try {
+    const LatticeVolume<T> v = read_lattice_nrrd<T>(path, kLimits);
+    const Sizes& n = v.sizes();
+    require(n[0] >= 1 && n[1] >= 1 && n[2] >= 1, "sizes at least 1");
+    require(v.sample_count() == static_cast<std::size_t>(v.coset_count()) * n[0] * n[1] * n[2], "sample count K N0 N1 N2");
+    require(std::isfinite(v.spacing()) && v.spacing() > 0, "h finite and positive");
+    // Every coset's first and last samples through the lattice accessor.
+    for (int c = 0; c < v.coset_count(); ++c) {
+      require(v.value(v.lattice_point(c, 0, 0, 0)) == v.at(c, 0, 0, 0), "first sample of a coset");
+      require(v.contains(v.lattice_point(c, n[0] - 1, n[1] - 1, n[2] - 1)), "last sample of a coset");
+    }
+  } catch (const NrrdError& e) {
+    const std::string_view message = e.what();
+    require(!message.empty(), "NrrdError message is empty");
+    require(message.find_first_of("\r\n") == std::string_view::npos, "NrrdError message spans several lines");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "fuzz_nrrd: unexpected exception: %s\n", e.what());
+    std::abort();
+  }
+}
+
 }  // namespace
 
 // Teem 1.12 leaks on some of its error paths (tests/runtime/lsan_teem.supp lists them): without
@@ -79,6 +103,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   read_or_nrrd_error<float>(path);
   read_or_nrrd_error<double>(path);
+  read_lattice_or_nrrd_error<double>(path);
   std::error_code ignored;
   std::filesystem::remove(path, ignored);
   return 0;

@@ -8,23 +8,40 @@
 
 namespace boxgen::runtime {
 
-template <class T>
-BccVolume<T>::BccVolume(Sizes sizes, double h, Vec3 origin) : sizes_(sizes), h_(h), origin_(origin) {
+namespace {
+
+// The number of samples 2 N0 N1 N2 of a valid volume; throws std::invalid_argument (one line).
+std::uint64_t checked_count(const Sizes& sizes, double h, const Vec3& origin) {
   std::uint64_t count = 2;
   for (int a = 0; a < 3; ++a) {
-    if (sizes[a] < 1 || sizes[a] > kMaxSize)
+    if (sizes[a] < 1 || sizes[a] > BccVolume<double>::kMaxSize)
       throw std::invalid_argument(fmt::format("BCC volume size {} x {} x {} per coset is out of range (each must be in 1..{})",
-                                              sizes[0], sizes[1], sizes[2], kMaxSize));
+                                              sizes[0], sizes[1], sizes[2], BccVolume<double>::kMaxSize));
     count *= static_cast<std::uint64_t>(sizes[a]);  // <= 2^34 * 2^24: no overflow
-    if (count > kMaxSamples)
+    if (count > BccVolume<double>::kMaxSamples)
       throw std::invalid_argument(fmt::format("BCC volume of 2 x {} x {} x {} samples is too large (at most {} samples)",
-                                              sizes[0], sizes[1], sizes[2], kMaxSamples));
+                                              sizes[0], sizes[1], sizes[2], BccVolume<double>::kMaxSamples));
   }
   if (!std::isfinite(h) || h <= 0) throw std::invalid_argument(fmt::format("BCC volume spacing h = {} must be finite and positive", h));
   for (double x : origin)
     if (!std::isfinite(x))
       throw std::invalid_argument(fmt::format("BCC volume origin ({}, {}, {}) must be finite", origin[0], origin[1], origin[2]));
-  samples_.assign(static_cast<std::size_t>(count), T{0});
+  return count;
+}
+
+}  // namespace
+
+template <class T>
+BccVolume<T>::BccVolume(Sizes sizes, double h, Vec3 origin) : sizes_(sizes), h_(h), origin_(origin) {
+  samples_.assign(static_cast<std::size_t>(checked_count(sizes, h, origin)), T{0});
+}
+
+template <class T>
+BccVolume<T>::BccVolume(Sizes sizes, double h, Vec3 origin, std::vector<T>&& samples) : sizes_(sizes), h_(h), origin_(origin) {
+  if (samples.size() != checked_count(sizes, h, origin))
+    throw std::invalid_argument(
+        fmt::format("BCC volume of 2 x {} x {} x {} samples given {} samples", sizes[0], sizes[1], sizes[2], samples.size()));
+  samples_ = std::move(samples);
 }
 
 template <class T>

@@ -20,6 +20,7 @@
 #include <limits>
 #include <span>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace boxgen::runtime {
@@ -55,6 +56,9 @@ class BccVolume {
   // A zero-filled volume. Throws std::invalid_argument (one line) unless every size is in
   // [1, kMaxSize], 2 N0 N1 N2 <= kMaxSamples, h is finite and > 0 and the origin is finite.
   BccVolume(Sizes sizes, double h, Vec3 origin);
+  // Takes `samples` (2 N0 N1 N2 of them, in storage order) instead of zeros; throws
+  // std::invalid_argument as above or when their number is wrong.
+  BccVolume(Sizes sizes, double h, Vec3 origin, std::vector<T>&& samples);
 
   const Sizes& sizes() const noexcept { return sizes_; }
   double spacing() const noexcept { return h_; }
@@ -63,6 +67,8 @@ class BccVolume {
   std::size_t sample_count() const noexcept { return samples_.size(); }
   std::span<T> samples() noexcept { return samples_; }
   std::span<const T> samples() const noexcept { return samples_; }
+  // The storage, for moving it into a LatticeVolume (lattice_volume.h); the volume is empty afterwards.
+  std::vector<T> release() && { return std::move(samples_); }
 
   // Position of sample (c, i, j, k) in samples(): c + 2 (i + N0 (j + N1 k)). Unchecked.
   std::size_t index(int c, int i, int j, int k) const noexcept {

@@ -9,16 +9,38 @@
 //   lattice:=bcc                   key/value that marks the file as a BCC volume
 // so sample (c, i, j, k) is at o + h (2i + c, 2j + c, 2k + c).
 //
+// A volume on any lattice L = G Z^3 (LatticeVolume, lattice_volume.h), stored as K cosets of
+// d Z^3, is a NRRD of dimension 4 (dimension 3 when K = 1):
+//   sizes: K N0 N1 N2              the coset axis fastest (N0 N1 N2 when K = 1)
+//   space directions: none (dh,0,0) (0,dh,0) (0,0,dh)    (no "none" when K = 1)
+//   space origin: o                the world position of lattice point (0, 0, 0)
+//   kinds: list domain domain domain
+//   lattice:=bcc|fcc|cartesian|custom
+//   lattice_rows:=a,b,c; d,e,f; g,h,i        (custom: the rows of G)
+//   coset_offsets:=(x,y,z) (x,y,z) ...        (custom, or a named lattice whose cosets are
+//                                             stored in another order: off_0 ... off_{K-1})
+// so sample (c, i, j, k) is at o + h (d i + off_c.x, d j + off_c.y, d k + off_c.z). The BCC
+// layout above is this layout with d = 2, K = 2, offsets (0,0,0) (1,1,1). A named lattice may
+// carry lattice_rows and coset_offsets too (they must then agree with it: the offsets may come in
+// another order, which is then the order of the coset axis).
+//
 // A Cartesian grid (CartesianVolume) is a plain 3-D NRRD: sizes N0 N1 N2 (x fastest), space
 // directions (sx,0,0) (0,sy,0) (0,0,sz), space origin, kinds domain domain domain; 3D Slicer,
 // ParaView and `unu` open it.
 //
-// Writing goes to a temporary file in the target's directory, which is renamed over the target
-// only once it is complete: a failed write never leaves a half-written file behind.
+// Writing follows output_file.h: symbolic links are written through, special files (FIFOs,
+// devices) refused, and the data goes to a temporary file in the target's directory, renamed over
+// the target only once it is complete: a failed write never leaves a half-written file behind.
 //
 // Reading checks everything (magic, dimension, sizes, type, space directions consistent with one
-// h, origin, the lattice key, and that the data is all there); any problem is a NrrdError whose
-// message is one line naming the file. Reading refuses detached data ("data file:" fields): Teem
+// h, origin, the lattice key) and believes no header that lies: the data must be exactly as long
+// as type and sizes say (raw: bytes, ascii: numbers, hex: digits, gzip and bzip2: decompressed
+// bytes, counted before Teem decodes them), it is read in the byte order the header
+// declares, and a file whose declared byte order is evidently wrong (at least half of the
+// non-zero samples not finite or beyond 1e+-150 for double, 1e+-20 for float, while the other
+// byte order makes every sample plausible) is refused. Non-finite samples (NaN, +-inf) are refused
+// unless NrrdReadLimits::allow_non_finite is set. Any problem is a NrrdError whose message is one
+// line naming the file. Reading refuses detached data ("data file:" fields): Teem
 // would open whatever file such a header names, even a FIFO or device. Compressed data (gzip,
 // bzip2) is Teem's to decode. Teem 1.12 leaks memory on some error paths (a few KB, or the
 // decompressor's state for corrupt compressed data: up to a few MB), once per failed read; see
@@ -27,10 +49,12 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <stdexcept>
 
 #include "runtime/bcc_volume.h"
 #include "runtime/cartesian_volume.h"
+#include "runtime/lattice_volume.h"
 
 namespace boxgen::runtime {
 
@@ -44,10 +68,15 @@ struct NrrdReadLimits {
   // checked against the file's size before anything is allocated; compressed data cannot be, so
   // this bounds what a small hostile file can make us allocate.
   std::uint64_t max_data_bytes = std::uint64_t{1} << 36;
+  // Accept NaN and infinite samples (a reconstruction near them is NaN or infinite too).
+  bool allow_non_finite = false;
 };
 
-// Throws NrrdError (one line) unless `path` names a file in an existing directory: lets a
+// Throws NrrdError (one line) unless `path` may be written (output_file.h: a regular file, or a
+// new file in an existing directory, after following links) and is none of `inputs`: lets a
 // program refuse a bad -o before it spends time computing what it would write.
+void require_output_file(const std::filesystem::path& path, std::span<const std::filesystem::path> inputs);
+// require_output_file(path, {}).
 void require_output_directory(const std::filesystem::path& path);
 
 // Throws NrrdError if the file cannot be written (the target is left as it was).
@@ -59,6 +88,16 @@ void write_bcc_nrrd(const std::filesystem::path& path, const BccVolume<T>& volum
 template <class T>
 BccVolume<T> read_bcc_nrrd(const std::filesystem::path& path, const NrrdReadLimits& limits = {});
 
+// A volume on any lattice (lattice_volume.h): the layout in the comment at the top. Throws
+// NrrdError if the file cannot be written.
+template <class T>
+void write_lattice_nrrd(const std::filesystem::path& path, const LatticeVolume<T>& volume);
+
+// Reads a lattice volume (any lattice; BCC files written by write_bcc_nrrd included; a 3-D NRRD
+// without a lattice key is a Cartesian volume). Checks as read_bcc_nrrd. Throws NrrdError.
+template <class T>
+LatticeVolume<T> read_lattice_nrrd(const std::filesystem::path& path, const NrrdReadLimits& limits = {});
+
 // Throws std::invalid_argument for an inconsistent grid (sizes < 1, values.size() different
 // from N0 N1 N2, spacing not finite and > 0, origin not finite) and NrrdError if the file
 // cannot be written.
@@ -69,6 +108,10 @@ extern template void write_bcc_nrrd<float>(const std::filesystem::path&, const B
 extern template void write_bcc_nrrd<double>(const std::filesystem::path&, const BccVolume<double>&);
 extern template BccVolume<float> read_bcc_nrrd<float>(const std::filesystem::path&, const NrrdReadLimits&);
 extern template BccVolume<double> read_bcc_nrrd<double>(const std::filesystem::path&, const NrrdReadLimits&);
+extern template void write_lattice_nrrd<float>(const std::filesystem::path&, const LatticeVolume<float>&);
+extern template void write_lattice_nrrd<double>(const std::filesystem::path&, const LatticeVolume<double>&);
+extern template LatticeVolume<float> read_lattice_nrrd<float>(const std::filesystem::path&, const NrrdReadLimits&);
+extern template LatticeVolume<double> read_lattice_nrrd<double>(const std::filesystem::path&, const NrrdReadLimits&);
 extern template void write_cartesian_nrrd<float>(const std::filesystem::path&, const CartesianVolume<float>&);
 extern template void write_cartesian_nrrd<double>(const std::filesystem::path&, const CartesianVolume<double>&);
 

@@ -107,6 +107,109 @@ BccVolume<T> prefilter(const BccVolume<T>& volume, const DiscreteFilter& q) {
   return out;
 }
 
+namespace {
+
+std::int64_t floor_div(std::int64_t a, std::int64_t b) {
+  const std::int64_t q = a / b;
+  return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+
+// delta(c, o) and the coset c' that tap o reads for output coset c (see prefilter.h).
+struct TapStep {
+  int coset;
+  std::array<std::int64_t, 3> delta;
+};
+
+TapStep tap_step(const CosetLattice& lattice, int c, const std::array<int, 3>& o) {
+  const Offset& from = lattice.offsets()[static_cast<std::size_t>(c)];
+  const std::int64_t p[3] = {static_cast<std::int64_t>(from[0]) - o[0], static_cast<std::int64_t>(from[1]) - o[1],
+                             static_cast<std::int64_t>(from[2]) - o[2]};
+  TapStep step{lattice.coset_of(p[0], p[1], p[2]), {}};
+  const Offset& to = lattice.offsets()[static_cast<std::size_t>(step.coset)];
+  for (int a = 0; a < 3; ++a) step.delta[a] = floor_div(p[a] - to[a], lattice.period());  // exact
+  return step;
+}
+
+void validate_on(const DiscreteFilter& q, const CosetLattice& lattice) {
+  if (q.empty()) throw std::invalid_argument("prefilter has no taps");
+  for (const auto& [o, w] : q) {
+    for (int x : o)
+      if (x < -kMaxOffset || x > kMaxOffset)
+        throw std::invalid_argument(fmt::format("prefilter offset ({}, {}, {}) is too far out (at most {} per coordinate)", o[0], o[1],
+                                                o[2], kMaxOffset));
+    if (!lattice.contains(o[0], o[1], o[2]))
+      throw std::invalid_argument(fmt::format("prefilter offset ({}, {}, {}) is not a vector of the {} lattice", o[0], o[1], o[2], lattice.name()));
+    if (!std::isfinite(w))
+      throw std::invalid_argument(fmt::format("prefilter weight {} at offset ({}, {}, {}) is not finite", w, o[0], o[1], o[2]));
+  }
+}
+
+}  // namespace
+
+PrefilterShrink prefilter_shrink(const DiscreteFilter& q, const CosetLattice& lattice) {
+  validate_on(q, lattice);
+  std::array<std::int64_t, 3> lowest{0, 0, 0}, highest{0, 0, 0};
+  for (int c = 0; c < lattice.coset_count(); ++c)
+    for (const auto& tap : q) {
+      const TapStep step = tap_step(lattice, c, tap.first);
+      for (int a = 0; a < 3; ++a) {
+        lowest[a] = std::min(lowest[a], step.delta[a]);
+        highest[a] = std::max(highest[a], step.delta[a]);
+      }
+    }
+  PrefilterShrink shrink{};
+  for (int a = 0; a < 3; ++a) {
+    shrink.lower[a] = static_cast<int>(-lowest[a]);  // |delta| <= 2^20 + 1: fits
+    shrink.upper[a] = static_cast<int>(highest[a]);
+  }
+  return shrink;
+}
+
+template <class T>
+LatticeVolume<T> prefilter(const LatticeVolume<T>& volume, const DiscreteFilter& q) {
+  const CosetLattice& lattice = volume.lattice();
+  const PrefilterShrink shrink = prefilter_shrink(q, lattice);
+  const Sizes& n = volume.sizes();
+  Sizes out_sizes{};
+  Vec3 out_origin{};
+  for (int a = 0; a < 3; ++a) {
+    out_sizes[a] = n[a] - shrink.lower[a] - shrink.upper[a];
+    if (out_sizes[a] < 1)
+      throw std::invalid_argument(fmt::format(
+          "volume of {} x {} x {} samples per coset is too small for the prefilter (it needs more than {} per axis to keep any sample)",
+          n[0], n[1], n[2], shrink.lower[a] + shrink.upper[a]));
+    out_origin[a] = volume.origin()[a] + lattice.period() * volume.spacing() * shrink.lower[a];
+  }
+  LatticeVolume<T> out(lattice, out_sizes, volume.spacing(), out_origin);
+
+  // Tap t of output coset c reads input coset c' at index (i + s + delta): a fixed step in storage
+  // from the input sample (c, i + s, j + s, k + s).
+  const int k_count = volume.coset_count();
+  const std::size_t taps = q.size();
+  std::vector<std::ptrdiff_t> step(static_cast<std::size_t>(k_count) * taps);
+  const std::ptrdiff_t stride_i = k_count, stride_j = stride_i * n[0], stride_k = stride_j * n[1];
+  for (int c = 0; c < k_count; ++c)
+    for (std::size_t t = 0; t < taps; ++t) {
+      const TapStep s = tap_step(lattice, c, q[t].first);
+      step[static_cast<std::size_t>(c) * taps + t] =
+          (s.coset - c) + stride_i * s.delta[0] + stride_j * s.delta[1] + stride_k * s.delta[2];
+    }
+  const T* in = volume.samples().data();
+  for (int k = 0; k < out_sizes[2]; ++k)
+    for (int j = 0; j < out_sizes[1]; ++j)
+      for (int i = 0; i < out_sizes[0]; ++i)
+        for (int c = 0; c < k_count; ++c) {
+          const auto base = static_cast<std::ptrdiff_t>(volume.index(c, i + shrink.lower[0], j + shrink.lower[1], k + shrink.lower[2]));
+          const std::ptrdiff_t* steps = &step[static_cast<std::size_t>(c) * taps];
+          double sum = 0;
+          for (std::size_t t = 0; t < taps; ++t) sum += q[t].second * static_cast<double>(in[base + steps[t]]);
+          out(c, i, j, k) = to_sample<T>(sum);
+        }
+  return out;
+}
+
+template LatticeVolume<float> prefilter<float>(const LatticeVolume<float>&, const DiscreteFilter&);
+template LatticeVolume<double> prefilter<double>(const LatticeVolume<double>&, const DiscreteFilter&);
 template BccVolume<float> prefilter<float>(const BccVolume<float>&, const DiscreteFilter&);
 template BccVolume<double> prefilter<double>(const BccVolume<double>&, const DiscreteFilter&);
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "runtime/bcc_volume.h"
+#include "runtime/lattice_volume.h"
 
 namespace boxgen::runtime {
 
@@ -41,6 +42,19 @@ int prefilter_margin(const DiscreteFilter& q);
 template <class T>
 BccVolume<T> prefilter(const BccVolume<T>& volume, const DiscreteFilter& q);
 
+// The same on any lattice (lattice_volume.h): taps are vectors of the volume's lattice, and the
+// result keeps the samples whose whole neighbourhood is inside, the largest such volume of K equal
+// cosets. With delta(c, o) = (off_c - o - off_c') / d, c' the coset of off_c - o, the result
+// starts s_a = max(0, -min delta_a) coset cells further in (origin o + d h s) and loses
+// max(0, max delta_a) cells at the upper end. On BCC this is the shrink described above.
+// Throws std::invalid_argument (one line) for a bad filter (an offset not in the lattice
+// included) or when no sample would remain.
+PrefilterShrink prefilter_shrink(const DiscreteFilter& q, const CosetLattice& lattice);
+template <class T>
+LatticeVolume<T> prefilter(const LatticeVolume<T>& volume, const DiscreteFilter& q);
+
+extern template LatticeVolume<float> prefilter<float>(const LatticeVolume<float>&, const DiscreteFilter&);
+extern template LatticeVolume<double> prefilter<double>(const LatticeVolume<double>&, const DiscreteFilter&);
 extern template BccVolume<float> prefilter<float>(const BccVolume<float>&, const DiscreteFilter&);
 extern template BccVolume<double> prefilter<double>(const BccVolume<double>&, const DiscreteFilter&);
 

@@ -33,6 +33,27 @@ BccVolume<T> sample_bcc(const ScalarFunction& f, const BccGrid& grid) {
   return volume;
 }
 
+LatticeGrid cube_lattice_grid(const CosetLattice& lattice, int n, int margin) {
+  const BccGrid bcc = cube_grid(n, margin);  // the same checks of n and margin
+  const double h = 2.0 / (lattice.period() * static_cast<double>(n - 1));
+  const double o = -1 - lattice.period() * h * margin;
+  return {lattice, bcc.sizes, h, {o, o, o}};
+}
+
+template <class T>
+LatticeVolume<T> sample_lattice(const ScalarFunction& f, const LatticeGrid& grid) {
+  LatticeVolume<T> volume(grid.lattice, grid.sizes, grid.h, grid.origin);
+  const Sizes& n = grid.sizes;
+  const int cosets = volume.coset_count();
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i)
+        for (int c = 0; c < cosets; ++c) volume(c, i, j, k) = to_sample<T>(f(volume.sample_position(c, i, j, k)));
+  return volume;
+}
+
+template LatticeVolume<float> sample_lattice<float>(const ScalarFunction&, const LatticeGrid&);
+template LatticeVolume<double> sample_lattice<double>(const ScalarFunction&, const LatticeGrid&);
 template BccVolume<float> sample_bcc<float>(const ScalarFunction&, const BccGrid&);
 template BccVolume<double> sample_bcc<double>(const ScalarFunction&, const BccGrid&);
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "runtime/bcc_volume.h"
+#include "runtime/lattice_volume.h"
 
 namespace boxgen::runtime {
 
@@ -43,6 +44,27 @@ template <class T>
 BccVolume<T> sample_cube(const ScalarFunction& f, int n, int margin) {
   return sample_bcc<T>(f, cube_grid(n, margin));
 }
+
+// Sampling on any lattice (lattice_volume.h). The cube [-1,1]^3 at density N: coset cells of
+// d h = 2/(N-1), so that each coset has N samples per axis over the cube (plus 2 margin), as for
+// BCC above: h = 2/(d (N-1)), origin -1 - d h margin. On BCC this is cube_grid exactly; on the
+// Cartesian lattice it is the N^3 grid of spacing 2/(N-1); FCC has 4 N^3 samples.
+struct LatticeGrid {
+  CosetLattice lattice;
+  Sizes sizes;
+  double h;
+  Vec3 origin;
+};
+
+// Throws std::invalid_argument (one line) unless n >= 2, margin >= 0 and n + 2 margin <= kMaxSize.
+LatticeGrid cube_lattice_grid(const CosetLattice& lattice, int n, int margin);
+
+// Every sample of the grid set to f at its world position (f evaluated in double, rounded to T).
+template <class T>
+LatticeVolume<T> sample_lattice(const ScalarFunction& f, const LatticeGrid& grid);
+
+extern template LatticeVolume<float> sample_lattice<float>(const ScalarFunction&, const LatticeGrid&);
+extern template LatticeVolume<double> sample_lattice<double>(const ScalarFunction&, const LatticeGrid&);
 
 extern template BccVolume<float> sample_bcc<float>(const ScalarFunction&, const BccGrid&);
 extern template BccVolume<double> sample_bcc<double>(const ScalarFunction&, const BccGrid&);

@@ -11,6 +11,7 @@ PACKAGES=(
   libgtest-dev googletest               # unit tests
   libbenchmark-dev                      # benchmarks
   libteem-dev                           # NRRD volume files (runtime)
+  zlib1g-dev libbz2-dev                 # length check of gzip/bzip2 NRRD data (runtime/nrrd_io.cpp)
   libhwy-dev                            # portable SIMD with dynamic dispatch (runtime batch path)
   gnuplot-nox                           # line plots of kernels and spectra (boxgen kernel/spectrum)
   libpng-dev                            # PNG images of spectra and renders

@@ -1,6 +1,6 @@
 // boxrecon: reconstruction of BCC volumes with the generated M7, M8 and M12 evaluators.
-//   boxrecon sample --function ml --n N [--h H] [--precision float|double] -o vol.nrrd
-//   boxrecon eval --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd --points pts.txt [--gradient] [--hessian]
+//   boxrecon sample --function ml --n N [--h H] [--lattice bcc|fcc|cartesian|ROWS] [--precision float|double] -o vol.nrrd
+//   boxrecon eval --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd --points pts.txt|- [--gradient] [--hessian]
 //   boxrecon error --function ml --n N --filter m7 --prefilter q2 [--points K] [--seed S] [--gradient] [--json]
 //   boxrecon bench [--quick] [--json] [--points K] [--repeats R]
 //   (every command: --threads N caps the batch paths' threads, like BOXGEN_THREADS)
@@ -13,10 +13,10 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <filesystem>
+#include <optional>
 #include <iostream>
 #include <random>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,9 +24,12 @@
 #include "apps/boxrecon/cmd_error_table.h"
 #include "apps/boxrecon/cmd_render.h"
 #include "apps/boxrecon/cmd_bench.h"
+#include "apps/boxrecon/input_checks.h"
+#include "apps/boxrecon/sample_command.h"
 #include "apps/common/exit_status.h"
 #include "runtime/batch_threads.h"
 #include "runtime/nrrd_io.h"
+#include "runtime/points_file.h"
 #include "runtime/reconstruction.h"
 #include "runtime/resample.h"
 #include "runtime/sampling.h"
@@ -52,40 +55,24 @@ int exit_code_for(const std::exception& e) {
 // Largest --n of resample: 512^3 double values are 1 GiB.
 constexpr int kMaxResampleN = 512;
 
-BccGrid grid_for(int n, double h, int margin) {
+// The sampling grid of `error`'s --n, checked to fit in memory before anything is allocated.
+BccGrid grid_for(int n, int margin) {
   if (n < 2 || n > 1024) throw InputError(fmt::format("--n must be between 2 and 1024, got {}", n));
   BccGrid grid = cube_grid(n, margin);
-  if (h > 0) {  // --h overrides the spacing; the grid still starts margin cells below -1
-    grid.h = h;
-    for (auto& o : grid.origin) o = -1 - 2 * h * margin;
-  }
+  boxgen::app::check_volume_memory(2 * static_cast<std::uint64_t>(grid.sizes[0]) * grid.sizes[1] * grid.sizes[2], sizeof(double),
+                                   fmt::format("--n {}", n));
   return grid;
-}
-
-std::vector<Vec3> read_points(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("cannot read points file '{}'", path));
-  std::vector<Vec3> points;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    std::istringstream is(line);
-    Vec3 p;
-    std::string extra;
-    if (!(is >> p[0] >> p[1] >> p[2]) || (is >> extra))
-      throw InputError(fmt::format("{}:{}: expected three numbers 'x y z'", path, number));
-    points.push_back(p);
-  }
-  return points;
 }
 
 template <class T>
 int run_eval(const std::string& filter, const std::string& pre, const std::string& volume_path,
-             const std::string& points_path, bool gradient, bool hessian) {
+             const std::string& points_path, bool gradient, bool hessian,
+             const NrrdReadLimits& limits) {
   const Filter f = parse_filter(filter);
   const PrefilterChoice q = parse_prefilter(pre);
-  BccVolume<T> volume = read_bcc_nrrd<T>(volume_path);
+  BccVolume<T> volume = read_bcc_nrrd<T>(volume_path, limits);
   if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
-  const auto points = read_points(points_path);
+  const auto points = read_points_file(points_path);
   std::vector<T> values(points.size());
   std::vector<Vec3> gradients(gradient || hessian ? points.size() : 0);
   std::vector<Hessian> hessians(hessian ? points.size() : 0);
@@ -109,7 +96,7 @@ int run_error(const std::string& function, int n, const std::string& filter, con
   const Filter f = parse_filter(filter);
   const PrefilterChoice q = parse_prefilter(pre);
   if (count < 1 || count > 100000000) throw InputError("--points must be between 1 and 100000000");
-  BccVolume<double> volume = sample_bcc<double>(fn.value, grid_for(n, 0, required_margin(f, q)));
+  BccVolume<double> volume = sample_bcc<double>(fn.value, grid_for(n, required_margin(f, q)));
   if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -145,12 +132,13 @@ int run_error(const std::string& function, int n, const std::string& filter, con
 // Resampling onto a Cartesian grid: n points per axis over the box (default_box when none given).
 template <class T>
 int run_resample(const std::string& filter, const std::string& pre, const std::string& volume_path, const std::string& output,
-                 int n, const std::vector<double>& min, const std::vector<double>& max) {
+                 int n, const std::vector<double>& min, const std::vector<double>& max, const NrrdReadLimits& limits) {
   const Filter f = parse_filter(filter);
   const PrefilterChoice q = parse_prefilter(pre);
   if (n < 2 || n > kMaxResampleN) throw InputError(fmt::format("--n must be between 2 and {}, got {}", kMaxResampleN, n));
-  require_output_directory(output);  // before the work, not after it
-  BccVolume<T> volume = read_bcc_nrrd<T>(volume_path);
+  const std::filesystem::path input = volume_path;
+  require_output_file(output, {&input, 1});  // before the work, not after it; never the input
+  BccVolume<T> volume = read_bcc_nrrd<T>(volume_path, limits);
   if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
   const Box box = min.empty() ? default_box(volume, f) : Box{{min[0], min[1], min[2]}, {max[0], max[1], max[2]}};
   write_cartesian_nrrd(output, resample(volume, f, grid_over(box, {n, n, n})));
@@ -160,11 +148,11 @@ int run_resample(const std::string& filter, const std::string& pre, const std::s
 int run(int argc, char** argv) {
   CLI::App app{"boxrecon: reconstruct BCC volumes with the generated box-spline evaluators"};
   app.require_subcommand(1);
-  std::string function = "ml", output, filter = "m7", pre = "none", volume, points_path, precision = "double";
+  std::string function = "ml", lattice = "bcc", output, filter = "m7", pre = "none", volume, points_path, precision = "double";
   int n = 33, count = 100000;
-  double h = 0;
-  std::uint64_t seed = 1;
-  bool gradient = false, json = false;
+  std::optional<double> h;
+  std::string seed = "1";
+  bool gradient = false, json = false, allow_nonfinite = false;
   int resample_n = 64;
   std::vector<double> box_min, box_max;
   int threads = 0;
@@ -173,19 +161,21 @@ int run(int argc, char** argv) {
 
   auto* sample = app.add_subcommand("sample", "sample a test function on N^3 x 2 BCC points over [-1,1]^3");
   sample->add_option("--function", function, "ml | cubic | sphere | gaussian");
-  sample->add_option("--n", n, "N: N^3 x 2 samples, h = 1/(N-1)")->required();
-  sample->add_option("--h", h, "spacing override");
+  sample->add_option("--n", n, "N: N^3 x K samples, K cosets of N^3 with cells of 2/(N-1)")->required();
+  sample->add_option("--h", h, "spacing override (finite, > 0)");
+  sample->add_option("--lattice", lattice, "bcc (default) | fcc | cartesian | \"a,b,c; d,e,f; g,h,i\" (rows of G)");
   sample->add_option("--precision", precision, "float | double");
   sample->add_option("-o,--output", output, "output NRRD file")->required();
   auto* eval = app.add_subcommand("eval", "evaluate the reconstruction at the points of a file");
   eval->add_option("--filter", filter, "m7 | m8 | m12")->required();
   eval->add_option("--prefilter", pre, "none | q1 | q2");
   eval->add_option("--volume", volume, "BCC NRRD volume")->required();
-  eval->add_option("--points", points_path, "file with one 'x y z' (world) per line")->required();
+  eval->add_option("--points", points_path, "file with one 'x y z' (world) per line, '#' comments; - reads stdin")->required();
   eval->add_flag("--gradient", gradient, "also print the three partial derivatives");
   bool hessian = false;
   eval->add_flag("--hessian", hessian, "then the second derivatives h_xx h_xy h_xz h_yy h_yz h_zz");
   eval->add_option("--precision", precision, "float | double");
+  eval->add_flag("--allow-nonfinite", allow_nonfinite, "accept NaN and infinite samples in the volume (refused by default)");
   auto* error = app.add_subcommand("error", "RMS and max error of a reconstruction over random points of [-1,1]^3");
   error->add_option("--function", function, "ml | cubic | sphere | gaussian");
   auto* error_n = error->add_option("--n", n, "N (required unless --table)");
@@ -194,7 +184,7 @@ int run(int argc, char** argv) {
   error->add_flag("--table", table, "ML errors for N in {17,25,33,41,57} x {m7,m8,m12} x {none,q1,q2} and the tricubic on Cartesian");
   error->add_option("--prefilter", pre, "none | q1 | q2");
   error->add_option("--points", count, "number of random points");
-  error->add_option("--seed", seed, "random seed");
+  error->add_option("--seed", seed, "random seed, 0..2^64-1");
   error->add_flag("--gradient", gradient, "also the RMS error of the gradient");
   error->add_flag("--json", json, "JSON with keys rms, max, gradient_rms");
   auto* resample = app.add_subcommand("resample", "resample the reconstruction onto a Cartesian grid (a plain 3-D NRRD)");
@@ -211,6 +201,7 @@ int run(int argc, char** argv) {
   min_option->needs(max_option);
   max_option->needs(min_option);
   resample->add_option("--precision", precision, "float | double");
+  resample->add_flag("--allow-nonfinite", allow_nonfinite, "accept NaN and infinite samples in the volume (refused by default)");
   auto* render = boxgen::recon::add_render_command(app);
   boxrecon::BenchOptions bench_options;
   auto* bench = app.add_subcommand("bench", "evaluation speed: the paper's Table 2, fetch floors, tricubic, threads");
@@ -226,27 +217,22 @@ int run(int argc, char** argv) {
     if (bench->parsed()) return boxrecon::run_bench(bench_options);
     if (precision != "float" && precision != "double")
       throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) + "'");
-    if (sample->parsed()) {
-      const TestFunction& fn = find_test_function(function);
-      require_output_directory(output);
-      const BccGrid grid = grid_for(n, h, 3);  // margin 3: enough for every filter with Q^I or Q^II
-      if (precision == "float") write_bcc_nrrd(output, sample_bcc<float>(fn.value, grid));
-      else write_bcc_nrrd(output, sample_bcc<double>(fn.value, grid));
-      return 0;
-    }
+    if (sample->parsed()) return boxgen::app::run_sample(function, n, h, lattice, precision, output);
+    NrrdReadLimits limits;
+    limits.allow_non_finite = allow_nonfinite;
     if (eval->parsed())
-      return precision == "float" ? run_eval<float>(filter, pre, volume, points_path, gradient, hessian)
-                                  : run_eval<double>(filter, pre, volume, points_path, gradient, hessian);
+      return precision == "float" ? run_eval<float>(filter, pre, volume, points_path, gradient, hessian, limits)
+                                  : run_eval<double>(filter, pre, volume, points_path, gradient, hessian, limits);
     if (render->parsed()) return boxgen::recon::run_render();
-    if (error->parsed() && table) return boxgen::recon::run_error_table(count, seed, json);
+    if (error->parsed() && table) return boxgen::recon::run_error_table(count, boxgen::app::parse_seed(seed), json);
     if (error->parsed() && (error_n->count() == 0 || error_filter->count() == 0)) {
       std::cerr << "boxrecon: usage error: error needs --n and --filter (or --table) (see boxrecon --help)\n";
       return 2;
     }
-    if (error->parsed()) return run_error(function, n, filter, pre, count, seed, gradient, json);
+    if (error->parsed()) return run_error(function, n, filter, pre, count, boxgen::app::parse_seed(seed), gradient, json);
     if (resample->parsed())
-      return precision == "float" ? run_resample<float>(filter, pre, volume, output, resample_n, box_min, box_max)
-                                  : run_resample<double>(filter, pre, volume, output, resample_n, box_min, box_max);
+      return precision == "float" ? run_resample<float>(filter, pre, volume, output, resample_n, box_min, box_max, limits)
+                                  : run_resample<double>(filter, pre, volume, output, resample_n, box_min, box_max, limits);
   } catch (const std::exception& e) {
     const int code = exit_code_for(e);
     std::cerr << (code == 1 ? "boxrecon: error: " : "boxrecon: internal error: ") << e.what() << '\n';

@@ -7,6 +7,11 @@
 //      on our own image storage through a fetch functor: constant data give 1 (partition of
 //      unity) and linear data are reproduced with their gradient (the spline is centred and its
 //      approximation order is 4 >= 2).
+//  (c) a 3-D box spline of our own matrix (six directions on the FCC lattice), emitted at build
+//      time, through the runtime: sampled on FCC (LatticeVolume), prefiltered with its own
+//      generated Q^I and reconstructed with LatticeReconstructor. Its approximation order is 3,
+//      so every quadratic comes back exactly up to rounding; an FCC filter on a BCC volume is
+//      refused.
 // Every check prints one line; the first failure goes to stderr as one line, exit code 1.
 #include <algorithm>
 #include <cmath>
@@ -20,6 +25,9 @@
 #include "runtime/reconstruction.h"  // boxgen::runtime
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
+#include "fcc_six.hpp"             // emitted by boxgen_emit() at build time
+#include "fcc_six_prefilters.hpp"
+#include "runtime/lattice_reconstruction.h"
 #include "three_direction.hpp"     // emitted by boxgen_emit() at build time
 
 namespace rt = boxgen::runtime;
@@ -105,10 +113,37 @@ void own_box_spline() {
 
 }  // namespace
 
+// (c) Our own 3-D filter on its lattice, through the runtime's volumes, sampling and prefilters.
+void own_filter_through_the_runtime() {
+  namespace six = boxgen::generated::fcc_six;
+  const rt::CosetLattice lattice = rt::filter_lattice<six::Traits>();  // FCC, read from the header
+  const auto quadratic = [](const rt::Vec3& p) { return 2 * p[0] * p[0] - p[0] * p[1] + 3 * p[2] * p[2] - p[1] + 0.5; };
+  rt::LatticeVolume<double> volume = rt::sample_lattice<double>(quadratic, rt::cube_lattice_grid(lattice, 9, 4));
+  volume = rt::prefilter(volume, rt::prefilter_from(six::q1));
+  const rt::LatticeReconstructor<six::Traits, double> spline(volume);
+  double error = 0;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j)
+      for (int k = 0; k < 5; ++k) {
+        const rt::Vec3 p{-0.89 + 0.45 * i, -0.93 + 0.45 * j, -0.91 + 0.45 * k};
+        error = std::max(error, std::abs(spline.value(p) - quadratic(p)));
+      }
+  check("own FCC filter + its Q^I reproduces a quadratic (125 points)", error, 1e-10);
+  const rt::LatticeVolume<double> bcc = rt::sample_lattice<double>(quadratic, rt::cube_lattice_grid(rt::CosetLattice::bcc(), 5, 4));
+  bool refused = false;
+  try {
+    const rt::LatticeReconstructor<six::Traits, double> wrong(bcc);
+  } catch (const std::invalid_argument&) {
+    refused = true;
+  }
+  check("own FCC filter on a BCC volume is refused", refused ? 0 : 1, 0);
+}
+
 int main() {
   try {
     bcc_reconstruction();
     own_box_spline();
+    own_filter_through_the_runtime();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "boxgen_consumer: %s\n", e.what());
     return 1;

@@ -48,7 +48,8 @@ void record_status(int status, ProcessResult& r) {
 }  // namespace
 
 ProcessResult run_process(const std::string& program, const std::vector<std::string>& args,
-                          std::chrono::seconds timeout, const std::string& stdout_file) {
+                          std::chrono::seconds timeout, const std::string& stdout_file,
+                          const std::string& stdin_file) {
   ProcessResult r;
   r.program = program.substr(program.find_last_of('/') + 1);
   const auto start = Clock::now();
@@ -63,7 +64,7 @@ ProcessResult run_process(const std::string& program, const std::vector<std::str
 
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 0, stdin_file.empty() ? "/dev/null" : stdin_file.c_str(), O_RDONLY, 0);
   if (stdout_file.empty())
     posix_spawn_file_actions_adddup2(&actions, out_pipe[1], 1);  // dup2 clears O_CLOEXEC on 1 and 2
   else  // the stdout pipe then only sees end of file: its write end is close-on-exec

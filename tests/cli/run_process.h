@@ -19,10 +19,12 @@ struct ProcessResult {
   std::string out, err;
 };
 
-// stdin is /dev/null, so a program waiting for input cannot block the test. With stdout_file set,
-// stdout goes to that file (e.g. /dev/full to simulate a full disk) and `out` stays empty.
+// stdin is /dev/null (or the file stdin_file), so a program waiting for input cannot block the
+// test. With stdout_file set, stdout goes to that file (e.g. /dev/full to simulate a full disk)
+// and `out` stays empty.
 ProcessResult run_process(const std::string& program, const std::vector<std::string>& args,
-                          std::chrono::seconds timeout, const std::string& stdout_file = "");
+                          std::chrono::seconds timeout, const std::string& stdout_file = "",
+                          const std::string& stdin_file = "");
 
 // One readable paragraph for assertion messages: command, how it ended, stdout and stderr.
 std::string describe(const std::vector<std::string>& args, const ProcessResult& r);

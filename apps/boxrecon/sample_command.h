@@ -1,0 +1,15 @@
+// boxrecon sample: a test function sampled on any lattice (runtime/lattice_volume.h) over
+// [-1,1]^3, written as a lattice NRRD. On BCC the file is the one write_bcc_nrrd writes.
+#pragma once
+#include <optional>
+#include <string>
+
+namespace boxgen::app {
+
+// --function, --n, --h, --lattice (bcc | fcc | cartesian | "a,b,c; d,e,f; g,h,i"), --precision,
+// -o. Every argument is checked before anything is allocated or written; a bad one throws
+// std::invalid_argument (or runtime::NrrdError for -o), one line.
+int run_sample(const std::string& function, int n, const std::optional<double>& h, const std::string& lattice,
+               const std::string& precision, const std::string& output);
+
+}  // namespace boxgen::app
