@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "apps/common/exit_status.h"
+#include "boxgen/version.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/reconstruction.h"
 #include "runtime/resample.h"
@@ -150,6 +151,7 @@ int run_resample(const std::string& filter, const std::string& pre, const std::s
 int run(int argc, char** argv) {
   CLI::App app{"boxrecon: reconstruct BCC volumes with the generated box-spline evaluators"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("boxrecon ") + boxgen::kVersion);
   std::string function = "ml", output, filter = "m7", pre = "none", volume, points_path, precision = "double";
   int n = 33, count = 100000;
   double h = 0;
