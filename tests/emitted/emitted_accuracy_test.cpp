@@ -68,7 +68,7 @@ struct IntegerPoly {
       }
       sum = sum + cln::ash(term, shift * (degree - total));  // times D^(degree - |e|)
     }
-    return Rational(sum) / Rational(cln::ash(denominator, shift * degree));
+    return Rational(sum) / Rational(cln::ash(denominator, static_cast<long>(shift) * degree));
   }
 };
 
