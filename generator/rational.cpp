@@ -88,7 +88,7 @@ std::optional<Rational> parse_decimal(std::string_view s, std::string_view text,
     if (!e) return std::nullopt;
     scale += *e;
   }
-  const Rational ten_power = cln::expt(Rational(10), static_cast<long>(scale < 0 ? -scale : scale));
+  const Rational ten_power = cln::expt(Rational(10), static_cast<int>(scale < 0 ? -scale : scale));
   return scale < 0 ? value / ten_power : value * ten_power;
 }
 
