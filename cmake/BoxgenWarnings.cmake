@@ -17,11 +17,11 @@ function(boxgen_warnings target)
 endfunction()
 
 # Every executable of a sanitized build carries the LeakSanitizer suppression for CLN's one-off
-# start-up allocation (tests/support/lsan_suppressions.cpp); without it GoogleTest discovery and
+# start-up allocation and Teem's leaks on failed reads (support/lsan_suppressions.cpp); without it GoogleTest discovery and
 # every CLI run would fail at exit.
 function(boxgen_executable target)
   boxgen_warnings(${target})
   if(BOXGEN_SANITIZE)
-    target_sources(${target} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support/lsan_suppressions.cpp)
+    target_sources(${target} PRIVATE ${PROJECT_SOURCE_DIR}/support/lsan_suppressions.cpp)
   endif()
 endfunction()

@@ -86,13 +86,8 @@ void read_lattice_or_nrrd_error(const std::filesystem::path& path) {
 
 }  // namespace
 
-// Teem 1.12 leaks on some of its error paths (tests/runtime/lsan_teem.supp lists them): without
-// these lines every such input would count as a crash. They name Teem-internal frames only, so
-// leaks of our own objects (including a Nrrd or NrrdIoState we failed to free) are still reported.
-extern "C" const char* __lsan_default_suppressions();
-extern "C" const char* __lsan_default_suppressions() {
-  return "leak:airArrayNew\nleak:airArrayLenSet\nleak:_nrrdGzOpen\nleak:libz.so\nleak:libbz2.so\n";
-}
+// Teem 1.12 leaks on some of its error paths: support/lsan_suppressions.cpp, linked in, names
+// them, or every such input would count as a crash.
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::filesystem::path& path = input_path();

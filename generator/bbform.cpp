@@ -78,7 +78,7 @@ Poly bb_polynomial(const std::vector<Rational>& coefficients, const std::vector<
   const int n = static_cast<int>(simplex[0].size());
   auto [a, v0] = simplex_frame(simplex);
   // lambda(x) = A^{-1}(x - v0), lambda_0 = 1 - sum lambda_i
-  std::vector<RatVec> aug(n, RatVec(2 * n));
+  std::vector<RatVec> aug(n, RatVec(2 * static_cast<std::size_t>(n)));
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       aug[i][j] = a[i][j];

@@ -3,12 +3,13 @@
 #pragma once
 #include <string>
 
+#include "boxgen/version.h"
 #include "generator/analysis.h"
 #include "generator/polynomial_code.h"
 
 namespace boxgen {
 
-inline constexpr const char* kGeneratorVersion = "boxgen 0.1.0";
+inline constexpr const char* kGeneratorVersion = kVersionBanner;  // boxgen/version.h (CMake)
 
 
 struct EmittedFile {

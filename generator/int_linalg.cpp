@@ -78,7 +78,7 @@ std::optional<IntVec> hyperplane_normal(const IntColumns& c, int n) {
 RatMatrix inverse(const IntColumns& a) {
   const int n = static_cast<int>(a.size());
   // Augmented Gauss-Jordan on row-major A = [a_ij] with a_ij = a[j][i].
-  std::vector<RatVec> m(n, RatVec(2 * n));
+  std::vector<RatVec> m(n, RatVec(2 * static_cast<std::size_t>(n)));
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) m[i][j] = rational_from(a[j][i]);
     for (int j = 0; j < n; ++j) m[i][n + j] = i == j ? 1 : 0;

@@ -23,8 +23,8 @@ class Zonotope {
 };
 
 struct PiecewiseForm {
-  PiecewiseForm(BoxSplineSpec s, DerivationMethod m, CellComplex c)
-      : spec(std::move(s)), method(m), complex(std::move(c)), zero_(spec.dimension(), 0) {}
+  PiecewiseForm(const BoxSplineSpec& s, DerivationMethod m, CellComplex c)
+      : spec(s), method(m), complex(std::move(c)), zero_(spec.dimension(), 0) {}
 
   BoxSplineSpec spec;
   DerivationMethod method;

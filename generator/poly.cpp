@@ -207,14 +207,14 @@ Rational Poly::eval(const RatVec& x) const {
   return s;
 }
 
-Poly Poly::translated(const RatVec& s) const {
-  // Expand prod_k (x_k - s_k)^{e_k} monomial by monomial.
-  const int d = std::max(degree(), 0);
-  Poly r(n_, d);
-  const auto& ex = monomial_exponents(n_, d);
-  // binomial(e, j) (-s)^j tables
-  std::vector<std::vector<RatVec>> table(n_, std::vector<RatVec>(d + 1));
-  for (int k = 0; k < n_; ++k) {
+namespace {
+
+// table[k][e][j] = binomial(e, j) (-s_k)^j: the coefficients of (x_k - s_k)^e.
+using ShiftTable = std::vector<std::vector<RatVec>>;
+
+ShiftTable shift_table(const RatVec& s, int n, int d) {
+  ShiftTable table(n, std::vector<RatVec>(d + 1));
+  for (int k = 0; k < n; ++k) {
     RatVec negpow(d + 1);
     negpow[0] = 1;
     for (int j = 1; j <= d; ++j) negpow[j] = negpow[j - 1] * Rational(-s[k]);
@@ -223,38 +223,56 @@ Poly Poly::translated(const RatVec& s) const {
       for (int j = 0; j <= e; ++j) table[k][e][j] = Rational(static_cast<long>(binom(e, j))) * negpow[j];
     }
   }
-  const std::size_t count = monomial_count(n_, d);
-  for (std::size_t i = 0; i < count; ++i) {
-    const Rational& v = c_[i];
-    if (cln::zerop(v)) continue;
-    const Exponent& e = ex[i];
-    if (n_ == 2) {
-      for (int j0 = 0; j0 <= e[0]; ++j0) {
-        const Rational a = v * table[0][e[0]][j0];
-        if (cln::zerop(a)) continue;
-        for (int j1 = 0; j1 <= e[1]; ++j1) {
-          const Rational& b = table[1][e[1]][j1];
-          if (cln::zerop(b)) continue;
-          auto& slot = r.c_[monomial_index(2, {e[0] - j0, e[1] - j1, 0})];
-          slot = slot + a * b;
-        }
-      }
-    } else {
-      for (int j0 = 0; j0 <= e[0]; ++j0) {
-        const Rational a = v * table[0][e[0]][j0];
-        if (cln::zerop(a)) continue;
-        for (int j1 = 0; j1 <= e[1]; ++j1) {
-          if (cln::zerop(table[1][e[1]][j1])) continue;
-          const Rational b = a * table[1][e[1]][j1];
-          for (int j2 = 0; j2 <= e[2]; ++j2) {
-            const Rational& c = table[2][e[2]][j2];
-            if (cln::zerop(c)) continue;
-            auto& slot = r.c_[monomial_index(3, {e[0] - j0, e[1] - j1, e[2] - j2})];
-            slot = slot + b * c;
-          }
-        }
+  return table;
+}
+
+// Adds v (x - s_0)^e0 (y - s_1)^e1, expanded, to the coefficients `out` (2 variables).
+void add_shifted_monomial_2d(const Rational& v, const Exponent& e, const ShiftTable& table, std::vector<Rational>& out) {
+  for (int j0 = 0; j0 <= e[0]; ++j0) {
+    const Rational a = v * table[0][e[0]][j0];
+    if (cln::zerop(a)) continue;
+    for (int j1 = 0; j1 <= e[1]; ++j1) {
+      const Rational& b = table[1][e[1]][j1];
+      if (cln::zerop(b)) continue;
+      auto& slot = out[monomial_index(2, {e[0] - j0, e[1] - j1, 0})];
+      slot = slot + a * b;
+    }
+  }
+}
+
+// The same in 3 variables.
+void add_shifted_monomial_3d(const Rational& v, const Exponent& e, const ShiftTable& table, std::vector<Rational>& out) {
+  for (int j0 = 0; j0 <= e[0]; ++j0) {
+    const Rational a = v * table[0][e[0]][j0];
+    if (cln::zerop(a)) continue;
+    for (int j1 = 0; j1 <= e[1]; ++j1) {
+      if (cln::zerop(table[1][e[1]][j1])) continue;
+      const Rational b = a * table[1][e[1]][j1];
+      for (int j2 = 0; j2 <= e[2]; ++j2) {
+        const Rational& c = table[2][e[2]][j2];
+        if (cln::zerop(c)) continue;
+        auto& slot = out[monomial_index(3, {e[0] - j0, e[1] - j1, e[2] - j2})];
+        slot = slot + b * c;
       }
     }
+  }
+}
+
+}  // namespace
+
+Poly Poly::translated(const RatVec& s) const {
+  // Expand prod_k (x_k - s_k)^{e_k} monomial by monomial.
+  const int d = std::max(degree(), 0);
+  Poly r(n_, d);
+  const auto& ex = monomial_exponents(n_, d);
+  const ShiftTable table = shift_table(s, n_, d);
+  const std::size_t count = monomial_count(n_, d);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (cln::zerop(c_[i])) continue;
+    if (n_ == 2)
+      add_shifted_monomial_2d(c_[i], ex[i], table, r.c_);
+    else
+      add_shifted_monomial_3d(c_[i], ex[i], table, r.c_);
   }
   return r;
 }

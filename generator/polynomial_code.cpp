@@ -226,7 +226,7 @@ std::string horner(const std::map<Exponent, std::string>& terms, int var, int n)
   for (int a = top - 1; a >= 0; --a) {
     const auto it = by_power.find(a);
     const std::string inner = it == by_power.end() ? "" : horner(it->second, var + 1, n);
-    acc = (inner.empty() ? "" : inner + " + ") + fmt::format("x[{}] * ({})", var, acc);
+    acc = fmt::format("{}{}x[{}] * ({})", inner, inner.empty() ? "" : " + ", var, acc);
   }
   return acc;
 }

@@ -1,5 +1,7 @@
 #include "generator/rational.h"
 
+#include <optional>
+
 #include <cln/integer_io.h>
 #include <cln/rational_io.h>
 #include <cln/real.h>
@@ -37,60 +39,78 @@ Integer parse_digits(std::string_view s) {
 
 }  // namespace
 
+namespace {
+
+// "p/q" (sign already removed); nullopt if it is not one.
+std::optional<Rational> parse_fraction(std::string_view s, std::string_view text, std::string_view what) {
+  const auto slash = s.find('/');
+  const std::string_view num = s.substr(0, slash), den = s.substr(slash + 1);
+  if (!all_digits(num) || !all_digits(den)) return std::nullopt;
+  const Integer d = parse_digits(den);
+  if (cln::zerop(d)) fail_input(std::string(what) + " '" + echo(text) + "' has a zero denominator");
+  return Rational(parse_digits(num)) / Rational(d);
+}
+
+// The power of ten of an exponent "[+-]digits"; nullopt if it is not one.
+std::optional<long> parse_exponent(std::string_view exponent, std::string_view text, std::string_view what) {
+  bool negative = false;
+  if (!exponent.empty() && (exponent.front() == '+' || exponent.front() == '-')) {
+    negative = exponent.front() == '-';
+    exponent.remove_prefix(1);
+  }
+  if (!all_digits(exponent) || exponent.size() > 4) return std::nullopt;
+  const long e = std::stol(std::string(exponent));
+  if (e > 400) fail_input(std::string(what) + " '" + echo(text) + "' has an exponent out of range (|e| <= 400)");
+  return negative ? -e : e;
+}
+
+// "12", "1.5", ".5", "3e-2", "1.5E+3" (sign already removed), exactly; nullopt if it is none.
+std::optional<Rational> parse_decimal(std::string_view s, std::string_view text, std::string_view what) {
+  std::string_view mantissa = s, exponent;
+  if (auto e = s.find_first_of("eE"); e != std::string_view::npos) {
+    mantissa = s.substr(0, e);
+    exponent = s.substr(e + 1);
+    if (exponent.empty()) return std::nullopt;
+  }
+  std::string_view int_part = mantissa, frac_part;
+  if (auto dot_pos = mantissa.find('.'); dot_pos != std::string_view::npos) {
+    int_part = mantissa.substr(0, dot_pos);
+    frac_part = mantissa.substr(dot_pos + 1);
+  }
+  if (int_part.empty() && frac_part.empty()) return std::nullopt;
+  if (!int_part.empty() && !all_digits(int_part)) return std::nullopt;
+  if (!frac_part.empty() && !all_digits(frac_part)) return std::nullopt;
+  const std::string digits = std::string(int_part) + std::string(frac_part);
+  const Rational value = Rational(parse_digits(digits.empty() ? "0" : digits));
+  long scale = -static_cast<long>(frac_part.size());
+  if (!exponent.empty()) {
+    const auto e = parse_exponent(exponent, text, what);
+    if (!e) return std::nullopt;
+    scale += *e;
+  }
+  const Rational ten_power = cln::expt(Rational(10), static_cast<int>(scale < 0 ? -scale : scale));
+  return scale < 0 ? value / ten_power : value * ten_power;
+}
+
+}  // namespace
+
 Rational parse_rational(std::string_view text, std::string_view what) {
-  auto bad = [&]() -> Rational {
-    fail_input(std::string("invalid ") + std::string(what) + " '" + echo(text) +
-               "': expected an integer, a fraction p/q or a decimal such as -0.25");
-  };
   std::string_view s = text;
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  if (s.empty() || s.size() > 200) return bad();
+  const bool plausible = !s.empty() && s.size() <= 200;
   bool negative = false;
-  if (s.front() == '+' || s.front() == '-') {
+  if (plausible && (s.front() == '+' || s.front() == '-')) {
     negative = s.front() == '-';
     s.remove_prefix(1);
   }
-  Rational value;
-  if (auto slash = s.find('/'); slash != std::string_view::npos) {
-    std::string_view num = s.substr(0, slash), den = s.substr(slash + 1);
-    if (!all_digits(num) || !all_digits(den)) return bad();
-    Integer d = parse_digits(den);
-    if (cln::zerop(d)) fail_input(std::string(what) + " '" + echo(text) + "' has a zero denominator");
-    value = Rational(parse_digits(num)) / Rational(d);
-  } else {
-    std::string_view mantissa = s, exponent;
-    if (auto e = s.find_first_of("eE"); e != std::string_view::npos) {
-      mantissa = s.substr(0, e);
-      exponent = s.substr(e + 1);
-      if (exponent.empty()) return bad();
-    }
-    std::string_view int_part = mantissa, frac_part;
-    if (auto dot_pos = mantissa.find('.'); dot_pos != std::string_view::npos) {
-      int_part = mantissa.substr(0, dot_pos);
-      frac_part = mantissa.substr(dot_pos + 1);
-    }
-    if (int_part.empty() && frac_part.empty()) return bad();
-    if (!int_part.empty() && !all_digits(int_part)) return bad();
-    if (!frac_part.empty() && !all_digits(frac_part)) return bad();
-    std::string digits = std::string(int_part) + std::string(frac_part);
-    value = Rational(parse_digits(digits.empty() ? "0" : digits));
-    long scale = -static_cast<long>(frac_part.size());
-    if (!exponent.empty()) {
-      bool eneg = false;
-      if (exponent.front() == '+' || exponent.front() == '-') {
-        eneg = exponent.front() == '-';
-        exponent.remove_prefix(1);
-      }
-      if (!all_digits(exponent) || exponent.size() > 4) return bad();
-      long e = std::stol(std::string(exponent));
-      if (e > 400) fail_input(std::string(what) + " '" + echo(text) + "' has an exponent out of range (|e| <= 400)");
-      scale += eneg ? -e : e;
-    }
-    Rational ten_power = cln::expt(Rational(10), static_cast<long>(scale < 0 ? -scale : scale));
-    value = scale < 0 ? value / ten_power : value * ten_power;
-  }
-  return negative ? Rational(-value) : value;
+  std::optional<Rational> value;
+  if (plausible && !s.empty())
+    value = s.find('/') != std::string_view::npos ? parse_fraction(s, text, what) : parse_decimal(s, text, what);
+  if (!value)
+    fail_input(std::string("invalid ") + std::string(what) + " '" + echo(text) +
+               "': expected an integer, a fraction p/q or a decimal such as -0.25");
+  return negative ? Rational(-*value) : *value;
 }
 
 RatVec parse_point(std::string_view text, int dimension, std::string_view what) {

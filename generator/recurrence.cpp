@@ -166,7 +166,7 @@ struct BoxSplineRecurrence::Impl {
       IntColumns rest;
       for (std::size_t e = 0; e < p; ++e)
         if (e != d && s.counts[e] > 0) rest.push_back(distinct[e]);
-      s.removable[d] = !rest.empty() && rank(rest, n) == n;
+      s.removable[d] = static_cast<char>(!rest.empty() && rank(rest, n) == n);
     }
     s.lo.assign(prune_dirs.size(), 0);
     s.hi.assign(prune_dirs.size(), 0);

@@ -44,7 +44,7 @@
 // would open whatever file such a header names, even a FIFO or device. Compressed data (gzip,
 // bzip2) is Teem's to decode. Teem 1.12 leaks memory on some error paths (a few KB, or the
 // decompressor's state for corrupt compressed data: up to a few MB), once per failed read; see
-// tests/runtime/lsan_teem.supp. Teem's state (biff error messages) is global, so every call here
+// support/lsan_suppressions.cpp. Teem's state (biff error messages) is global, so every call here
 // holds one process-wide lock.
 #pragma once
 #include <cstdint>

@@ -4,7 +4,7 @@
 set -euo pipefail
 PACKAGES=(
   build-essential cmake pkg-config git
-  libginac-dev libcln-dev ginac-tools   # exact symbolic/rational arithmetic (generator)
+  libginac-dev libcln-dev               # exact rationals (CLN) in the generator; GiNaC prints `boxgen pieces`
   libfmt-dev                            # code templates and formatting
   nlohmann-json3-dev                    # --json output
   libcli11-dev                          # command-line parsing
@@ -16,6 +16,7 @@ PACKAGES=(
   gnuplot-nox                           # line plots of kernels and spectra (boxgen kernel/spectrum)
   libpng-dev                            # PNG images of spectra and renders
   clang libclang-rt-14-dev              # libFuzzer targets (label: fuzz)
+  clang-format-14 clang-tidy-14         # formatting and static analysis (scripts/lint.sh, in CI)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -1,18 +1,25 @@
 #!/usr/bin/env bash
-# The whole test suite: install the Debian packages, then build and run every test twice,
-# optimised (Release) and under AddressSanitizer + UndefinedBehaviorSanitizer.
-# Long checks carry the CTest label `slow` and fuzzers the label `fuzz`; neither runs here
-# (see README: Tests).
+# The whole test suite, as CI runs it: install the Debian packages, then
+#  1. build and run every test optimised (preset release, GCC);
+#  2. lint: clang-format and clang-tidy on the project's own sources (scripts/lint.sh);
+#  3. build and run every test under AddressSanitizer + UndefinedBehaviorSanitizer (preset asan);
+#  4. build the libFuzzer targets with clang and run each for 10 seconds (preset fuzz).
+# Long checks carry the CTest label `slow` and are not run here (see README: Tests).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 jobs="$(nproc)"
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j"$jobs"
-ctest --test-dir build -j"$jobs" --output-on-failure --label-exclude 'slow|fuzz'
+cmake --preset release
+cmake --build --preset release -j"$jobs"
+ctest --preset release -j"$jobs"
 
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBOXGEN_SANITIZE=ON -DBOXGEN_BUILD_BENCH=OFF
-cmake --build build-asan -j"$jobs"
-ASAN_OPTIONS=abort_on_error=1:detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build-asan -j"$jobs" --output-on-failure --label-exclude 'slow|fuzz'
+scripts/lint.sh build
+
+cmake --preset asan
+cmake --build --preset asan -j"$jobs"
+ctest --preset asan -j"$jobs"
+
+cmake --preset fuzz
+cmake --build --preset fuzz -j"$jobs"
+ctest --preset fuzz  # one fuzzer at a time: each gets the whole machine for its 10 s

@@ -7,6 +7,7 @@
 
 #include "apps/boxgen/commands.h"
 #include "apps/common/exit_status.h"
+#include "boxgen/version.h"
 #include "generator/error.h"
 
 namespace {
@@ -28,7 +29,7 @@ int main(int argc, char** argv) { return boxgen::app::finish(run(argc, argv), "b
 int run(int argc, char** argv) {
   CLI::App app{"boxgen: exact analysis of box splines on lattices and code generation for their evaluators"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "boxgen 0.1.0");
+  app.set_version_flag("--version", boxgen::kVersionBanner);
   boxgen::cli::Common c;
   bool verify = true, no_verify = false;
   std::vector<std::string> points;

@@ -28,6 +28,7 @@
 #include "apps/boxrecon/sample_command.h"
 #include "apps/common/exit_status.h"
 #include "runtime/batch_threads.h"
+#include "boxgen/version.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/points_file.h"
 #include "runtime/reconstruction.h"
@@ -148,6 +149,7 @@ int run_resample(const std::string& filter, const std::string& pre, const std::s
 int run(int argc, char** argv) {
   CLI::App app{"boxrecon: reconstruct BCC volumes with the generated box-spline evaluators"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("boxrecon ") + boxgen::kVersion);
   std::string function = "ml", lattice = "bcc", output, filter = "m7", pre = "none", volume, points_path, precision = "double";
   int n = 33, count = 100000;
   std::optional<double> h;

@@ -39,22 +39,10 @@ Point cubic_gradient(const Point& p) {
   return {3 * p[0] * p[0] - 2 * p[1] * p[2], -2 * p[0] * p[2] + 6 * p[1], -2 * p[0] * p[1] - 1};
 }
 
-// Some failing NRRD reads leak inside Teem (tests/runtime/lsan_teem.supp): of the cases below,
-// the corrupt gzip volume does. In a sanitized build boxrecon would then report the leak at exit
-// and break its one-line stderr. The child inherits this process's environment, so the
-// suppressions go there (LSan reads them at start-up; this process's own LSan is unaffected).
-void suppress_teem_leaks_in_children() {
-  static const bool done = [] {
-    std::string options = std::getenv("LSAN_OPTIONS") ? std::getenv("LSAN_OPTIONS") : "";
-    if (!options.empty()) options += ':';
-    options += "suppressions=" BOXRECON_LSAN_SUPPRESSIONS;
-    return ::setenv("LSAN_OPTIONS", options.c_str(), 1) == 0;
-  }();
-  (void)done;
-}
-
+// Some failing NRRD reads leak inside Teem (of the cases below, the corrupt gzip volume does); a
+// sanitized boxrecon suppresses those itself (support/lsan_suppressions.cpp), so its stderr stays
+// one line.
 ProcessResult boxrecon(const std::vector<std::string>& args, const std::string& stdout_file = "") {
-  suppress_teem_leaks_in_children();
   return run_process(BOXRECON_EXE, args, std::chrono::seconds(60 * kSlowdown), stdout_file);
 }
 

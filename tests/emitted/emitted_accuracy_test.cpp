@@ -75,9 +75,9 @@ struct IntegerPoly {
         term = term * pw[i][exponents[t][i]];
         total += exponents[t][i];
       }
-      sum = sum + cln::ash(term, shift * (degree - total));  // times D^(degree - |e|)
+      sum = sum + cln::ash(term, static_cast<long>(shift) * (degree - total));  // times D^(degree - |e|)
     }
-    return Rational(sum) / Rational(cln::ash(denominator, shift * degree));
+    return Rational(sum) / Rational(cln::ash(denominator, static_cast<long>(shift) * degree));
   }
 };
 

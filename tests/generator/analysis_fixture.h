@@ -1,7 +1,7 @@
 // One analysis per preset, derived once per test binary process. analysis_of() skips the default
 // exact checks (they dominate the time and every test process would repeat them); the checks run
 // in verified_analysis_of(), which AnalyzePreset.MatchesTheLiterature uses for every preset, and
-// are themselves tested on broken forms in piecewise_test.cpp.
+// are themselves tested on broken forms in piece_checks_test.cpp.
 #pragma once
 #include <map>
 #include <memory>

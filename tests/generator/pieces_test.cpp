@@ -98,7 +98,7 @@ RatVec generic_interior_point(const std::vector<RatVec>& vertices, const BoxSpli
     std::vector<Rational> w;
     Rational total = 0;
     for (std::size_t i = 0; i < vertices.size(); ++i) {
-      w.push_back(Rational(1) + Rational(static_cast<long>((i * 7 + seed * 13 + attempt * 5) % 17 + 1)) / 1000003);
+      w.push_back(Rational(1) + Rational(static_cast<long>((i * 7 + static_cast<std::size_t>(seed) * 13 + static_cast<std::size_t>(attempt) * 5) % 17 + 1)) / 1000003);
       total = total + w.back();
     }
     RatVec x(c.size(), Rational(0)), u(c.size());

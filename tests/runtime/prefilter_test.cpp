@@ -124,14 +124,14 @@ TEST(BccPrefilter, ShrinkIsNoLargerThanNeeded) {
       return true;
     };
     if (s.lower[a] > 0) {
-      EXPECT_FALSE(neighbourhood_inside(2 * (s.lower[a] - 1))) << "axis " << a;
+      EXPECT_FALSE(neighbourhood_inside(2 * std::int64_t{s.lower[a] - 1})) << "axis " << a;
     }
     const int last = v.sizes()[a] - s.upper[a];  // first coset index past the output
     if (s.upper[a] > 0) {
-      EXPECT_FALSE(neighbourhood_inside(2 * last)) << "axis " << a;
+      EXPECT_FALSE(neighbourhood_inside(2 * std::int64_t{last})) << "axis " << a;
     }
-    EXPECT_TRUE(neighbourhood_inside(2 * s.lower[a])) << "axis " << a;
-    EXPECT_TRUE(neighbourhood_inside(2 * (last - 1))) << "axis " << a;
+    EXPECT_TRUE(neighbourhood_inside(2 * std::int64_t{s.lower[a]})) << "axis " << a;
+    EXPECT_TRUE(neighbourhood_inside(2 * std::int64_t{last - 1})) << "axis " << a;
   }
 }
 
