@@ -36,12 +36,26 @@ class Fundamental {
  public:
   explicit Fundamental(const PiecewiseForm& form) : form_(form), n_(form.dimension()) {
     for (const auto& rep : form.spec.lattice.coset_representatives())
-      for (auto& c : CellComplex::split_cube(form.complex.normals(), rep)) {
+      for (auto& c : split_cube(form.complex.normals(), rep)) {
         index_.emplace(c.key, static_cast<int>(cells_.size()));
         FundamentalCell fc;
         fc.cell = std::move(c);
         cells_.push_back(std::move(fc));
       }
+    // The lattice points any cube of F may fetch, enumerated once (a scaled lattice has few
+    // points in a large box, and enumerating the box per cell would dominate).
+    corner_lo_ = corner_hi_ = IntVec(cells_.front().cell.key.begin(), cells_.front().cell.key.begin() + n_);
+    for (const auto& fc : cells_)
+      for (int i = 0; i < n_; ++i) {
+        corner_lo_[i] = std::min<std::int64_t>(corner_lo_[i], fc.cell.key[i]);
+        corner_hi_[i] = std::max<std::int64_t>(corner_hi_[i], fc.cell.key[i]);
+      }
+    IntVec lo(n_), hi(n_);
+    for (int i = 0; i < n_; ++i) {
+      lo[i] = corner_lo_[i] - form.complex.hi()[i];
+      hi[i] = corner_hi_[i] - form.complex.lo()[i] + 1;
+    }
+    near_points_ = form.spec.lattice.points_in_box(lo, hi);
   }
   std::vector<FundamentalCell>& cells() { return cells_; }
   const std::vector<IntVec>& normals() const { return form_.complex.normals(); }
@@ -60,25 +74,43 @@ class Fundamental {
   // Lattice points j with a chance of M_Xi(u - j) != 0 for u in the unit cube at `corner`.
   std::vector<IntVec> candidates(const IntVec& corner, int margin) const {
     IntVec lo(n_), hi(n_);
+    bool cached = margin <= 1;
     for (int i = 0; i < n_; ++i) {
       lo[i] = corner[i] - form_.complex.hi()[i] + 1 - margin;
       hi[i] = corner[i] - form_.complex.lo()[i] + margin;
+      cached = cached && corner[i] >= corner_lo_[i] && corner[i] <= corner_hi_[i];
     }
-    return form_.spec.lattice.points_in_box(lo, hi);
-  }
-
-  std::vector<IntVec> stencil_of_key(const CellKey& key) const {
+    if (!cached) return form_.spec.lattice.points_in_box(lo, hi);
     std::vector<IntVec> out;
-    for (const auto& j : candidates(IntVec(key.begin(), key.begin() + n_), 0))
-      if (!form_.poly_for_key(shifted_key(key, normals(), j)).is_zero()) out.push_back(j);
+    for (const auto& j : near_points_) {
+      bool in = true;
+      for (int i = 0; i < n_ && in; ++i) in = j[i] >= lo[i] && j[i] <= hi[i];
+      if (in) out.push_back(j);
+    }
     return out;
   }
 
-  // True if the spline has one polynomial on the two adjacent cells (absolute keys).
-  bool same_spline_piece(const CellKey& a, const CellKey& b) const {
-    for (const auto& j : candidates(IntVec(a.begin(), a.begin() + n_), 1))
-      if (form_.poly_for_key(shifted_key(a, normals(), j)) != form_.poly_for_key(shifted_key(b, normals(), j)))
-        return false;
+  // The stencil of a fine cell: the lattice points j with M_Xi(u - j) != 0 there, each with the
+  // knot cell of M_Xi whose polynomial it takes (the fine cell holding u - j lies in it).
+  void set_stencil(FundamentalCell& fc) const {
+    const ShiftLocator locate(form_.knots, fc.cell.interior);
+    for (const auto& j : candidates(IntVec(fc.cell.key.begin(), fc.cell.key.begin() + n_), 0))
+      if (const int k = locate.cell_at(j); k >= 0 && !form_.polys[k].is_zero()) {
+        fc.stencil.push_back(j);
+        fc.stencil_knot_cells.push_back(k);
+      }
+  }
+
+  // True if the spline has one polynomial on fine cell a and on fine cell b translated by l
+  // (adjacent cells): the same j with the same polynomial on both, for every j.
+  bool same_spline_piece(const FundamentalCell& a, const FundamentalCell& b, const IntVec& l) const {
+    if (a.stencil.size() != b.stencil.size()) return false;
+    for (size_t k = 0; k < a.stencil.size(); ++k) {
+      for (int i = 0; i < n_; ++i)
+        if (a.stencil[k][i] != b.stencil[k][i] + l[i]) return false;
+      const int ka = a.stencil_knot_cells[k], kb = b.stencil_knot_cells[k];
+      if (ka != kb && form_.polys[ka] != form_.polys[kb]) return false;
+    }
     return true;
   }
 
@@ -87,6 +119,8 @@ class Fundamental {
   int n_;
   std::vector<FundamentalCell> cells_;
   std::unordered_map<CellKey, int, CellKeyHash> index_;
+  IntVec corner_lo_, corner_hi_;     // range of the cubes of F
+  std::vector<IntVec> near_points_;  // lattice points any of them may fetch (margin 1)
 };
 
 void add_unique(std::vector<RatVec>& pts, const RatVec& p) {
@@ -134,11 +168,11 @@ std::vector<SplineRegion> merge_regions(Fundamental& fund, const RatVec& c, int 
         CellKey other = cells[i].cell.key;
         other[f.normal] += f.upper ? 1 : -1;
         const IntVec& nu = fund.normals()[f.normal];
-        if (!fund.same_spline_piece(cells[i].cell.key, other)) {
+        auto [j, l] = fund.locate(other);
+        if (!fund.same_spline_piece(cells[i], cells[j], l)) {
           add_unique_plane(region.planes, {nu, Rational(f.level) + Rational(dot(nu, p)) - dot(nu, c)});
           continue;
         }
-        auto [j, l] = fund.locate(other);
         IntVec where(n);
         for (int k = 0; k < n; ++k) where[k] = p[k] + l[k];
         if (!placed[j]) {
@@ -192,7 +226,7 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
   s.centre = spline_centre(form.spec);
   s.group = symmetry_group(form.spec);
   Fundamental fund(form);
-  for (auto& fc : fund.cells()) fc.stencil = fund.stencil_of_key(fc.cell.key);
+  for (auto& fc : fund.cells()) fund.set_stencil(fc);
   s.regions = merge_regions(fund, s.centre, n);
   s.cells = fund.cells();
   s.stencil_min = s.stencil_max = static_cast<int>(s.cells.front().stencil.size());
@@ -300,11 +334,11 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
       u[k] = ref.interior[k] + s.centre[k];
       corner[k] = floor_to_int64(u[k]);
     }
+    const ShiftLocator locate(form.knots, u);
     for (const auto& j : fund.candidates(corner, 0)) {
-      RatVec uj = u;
-      for (int k = 0; k < n; ++k) uj[k] = uj[k] - Rational(j[k]);
-      const Poly& p = form.poly_for_key(floor_key(form.complex.normals(), uj));
-      if (p.is_zero()) continue;
+      const int cell = locate.cell_at(j);
+      if (cell < 0 || form.polys[cell].is_zero()) continue;
+      const Poly& p = form.polys[cell];
       RatVec shift(n);
       for (int k = 0; k < n; ++k) shift[k] = Rational(j[k]) - s.centre[k];
       ref.stencil.push_back(j);
@@ -318,8 +352,8 @@ void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& 
   const Poly expected = Poly::constant(form.dimension(), Rational(1) / Rational(form.spec.lattice.det_abs()));
   for (const auto& fc : s.cells) {
     Poly sum(form.dimension(), 0);
-    for (const auto& j : fc.stencil)
-      sum += form.poly_for_key(shifted_key(fc.cell.key, form.complex.normals(), j)).translated(to_ratvec(j));
+    for (size_t k = 0; k < fc.stencil.size(); ++k)
+      sum += form.polys[fc.stencil_knot_cells[k]].translated(to_ratvec(fc.stencil[k]));
     if (sum != expected) fail_internal("partition of unity fails on a cell of the fundamental region");
   }
 }
