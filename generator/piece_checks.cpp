@@ -105,34 +105,62 @@ int count_pieces(const PiecewiseForm& form) {
   return static_cast<int>(roots.size());
 }
 
-Rational total_integral(const PiecewiseForm& form) {
+static Rational integral_of_cell(const PiecewiseForm& form, int i) {
+  const auto& cell = form.knots.cells()[i];
+  const Poly& p = form.polys[i];
+  if (p.is_zero()) return 0;
+  RatVec lo, hi;
+  if (box_corners(cell, lo, hi)) return integrate_over_box(p, lo, hi);
   Rational total = 0;
-  const auto& cells = form.knots.cells();
-  for (size_t i = 0; i < cells.size(); ++i) {
-    if (form.polys[i].is_zero()) continue;
-    RatVec lo, hi;
-    if (box_corners(cells[i], lo, hi)) {
-      total = total + integrate_over_box(form.polys[i], lo, hi);
-      continue;
-    }
-    for (const auto& simplex : triangulate(cells[i], form.knots))
-      total = total + integrate_over_simplex(form.polys[i], simplex);
-  }
+  for (const auto& simplex : triangulate(cell, form.knots)) total = total + integrate_over_simplex(p, simplex);
   return total;
 }
 
-ContinuityReport check_continuity(const PiecewiseForm& form, int order) {
+Rational total_integral(const PiecewiseForm& form) {
+  Rational total = 0;
+  for (size_t i = 0; i < form.knots.cells().size(); ++i) total = total + integral_of_cell(form, static_cast<int>(i));
+  return total;
+}
+
+Rational total_integral(const PiecewiseForm& form, const CellOrbits& orbits) {
+  Rational total = 0;
+  for (size_t o = 0; o < orbits.representatives.size(); ++o)
+    total = total + Rational(orbits.sizes[o]) * integral_of_cell(form, orbits.representatives[o]);
+  return total;
+}
+
+CellOrbits cell_orbits(const PiecewiseForm& form, const std::vector<SignedPermutation>& group) {
+  const RatVec c = spline_centre(form.spec);
+  const auto& cells = form.knots.cells();
+  std::vector<bool> seen(cells.size(), false);
+  CellOrbits orbits;
+  for (size_t i = 0; i < cells.size(); ++i) {
+    if (seen[i]) continue;
+    int size = 0;
+    for (const auto& g : group) {
+      const int j = form.knots.locate(symmetry_image(g, cells[i].interior, c));
+      if (j < 0) fail_internal("symmetry check failed: the image of a cell of the support lies outside it");
+      if (!seen[j]) seen[j] = true, ++size;
+    }
+    orbits.representatives.push_back(static_cast<int>(i));
+    orbits.sizes.push_back(size);
+  }
+  return orbits;
+}
+
+ContinuityReport check_continuity(const PiecewiseForm& form, int order, const std::vector<int>& subset) {
   ContinuityReport report;
   report.smoothness = order;
   const auto& cells = form.knots.cells();
   const auto& normals = form.knots.planes().normals;
   const Poly zero(form.dimension(), 0);
-  for (size_t i = 0; i < cells.size(); ++i) {
+  const bool all = subset.size() == cells.size();
+  for (int i : subset) {
     if (form.polys[i].is_zero()) continue;
     for (const auto& f : facets_of(cells[i], form.knots.planes())) {
       const int j = form.knots.find(neighbour_key(cells[i], f));
       const Poly& other = j >= 0 ? form.polys[j] : zero;
-      if (!f.upper && !other.is_zero()) continue;  // that face is checked from the other side
+      if (all && !f.upper && !other.is_zero()) continue;  // that face is checked from the other side
       ++report.faces_checked;
       const IntVec& nu = normals[f.normal];
       int var = 0;
@@ -154,6 +182,12 @@ ContinuityReport check_continuity(const PiecewiseForm& form, int order) {
     }
   }
   return report;
+}
+
+ContinuityReport check_continuity(const PiecewiseForm& form, int order) {
+  std::vector<int> all(form.knots.cells().size());
+  std::iota(all.begin(), all.end(), 0);
+  return check_continuity(form, order, all);
 }
 
 std::vector<SignedPermutation> generators(const std::vector<SignedPermutation>& group) {
@@ -185,18 +219,23 @@ void check_symmetry(const PiecewiseForm& form, const std::vector<SignedPermutati
   checks.push_back({std::vector<int>(n), std::vector<int>(n, -1)});
   std::iota(checks.back().perm.begin(), checks.back().perm.end(), 0);
   const auto& cells = form.knots.cells();
-  for (const auto& g : checks) {
-    // b = c - g c: the uncentred image of y is g y + b.
-    RatVec gc = g.apply(c), minus_b(n);
-    for (int i = 0; i < n; ++i) minus_b[i] = gc[i] - c[i];
+  // Centred pieces Q_i(y) = P_i(y + c), once each; then M^c(g y) = M^c(y) on cell i reads
+  // Q_t(g y) = Q_i(y) with t the cell holding the image.
+  RatVec minus_c(n);
+  for (int i = 0; i < n; ++i) minus_c[i] = -c[i];
+  std::vector<Poly> centred;
+  centred.reserve(cells.size());
+  for (const auto& p : form.polys) centred.push_back(p.translated(minus_c));
+  for (const auto& g : checks)
     for (size_t i = 0; i < cells.size(); ++i) {
-      const RatVec image = symmetry_image(g, cells[i].interior, c);
-      const Poly& target = form.poly_at(image);
-      if (form.polys[i].is_zero() && target.is_zero()) continue;
-      const Poly mapped = target.translated(minus_b).signed_permuted(g.perm, g.sign);
-      if (mapped != form.polys[i]) fail_internal("symmetry check failed: M^c(g x) != M^c(x) on a cell");
+      const int t = form.knots.locate(symmetry_image(g, cells[i].interior, c));
+      if (t < 0) {
+        if (form.polys[i].is_zero()) continue;
+        fail_internal("symmetry check failed: the image of a cell of the support lies outside it");
+      }
+      if (centred[t].signed_permuted(g.perm, g.sign) != centred[i])
+        fail_internal("symmetry check failed: M^c(g x) != M^c(x) on a cell");
     }
-  }
 }
 
 }  // namespace boxgen

@@ -39,6 +39,13 @@ int run(int argc, char** argv) {
   auto* analyze = app.add_subcommand("analyze", "derive the properties and structure of a box spline");
   add_common(analyze, c);
   analyze->add_flag("--no-verify", no_verify, "skip the exact checks (second derivation, integral, symmetry, ...)");
+  boxgen::cli::AnalyzeOptions analyze_options;
+  analyze->add_option("--checks", analyze_options.checks,
+                      "default (integral and continuity on one cell per symmetry orbit) or full (every cell)");
+  analyze->add_flag("--estimate", analyze_options.estimate_only, "predict time and memory without deriving");
+  analyze->add_option("--max-seconds", analyze_options.max_seconds,
+                      "refuse up front if the predicted time exceeds this (default 600)");
+  analyze->add_flag("--progress", analyze_options.progress, "progress on stderr even when it is not a terminal");
   auto* eval = app.add_subcommand("eval", "exact value of the filter M = |det G| M^c at points");
   add_common(eval, c);
   eval->add_option("--at", points, "a point \"x y z\" (fractions or decimals); repeatable")->required();
@@ -65,7 +72,10 @@ int run(int argc, char** argv) {
   verify = !no_verify;
   try {
     if (presets->parsed()) return boxgen::cli::run_presets(c.json);
-    if (analyze->parsed()) return boxgen::cli::run_analyze(c, verify);
+    if (analyze->parsed()) {
+      analyze_options.verify = verify;
+      return boxgen::cli::run_analyze(c, analyze_options);
+    }
     if (eval->parsed()) return boxgen::cli::run_eval(c, points, derivative);
     if (bbform->parsed()) return boxgen::cli::run_bbform(c, region);
     if (prefilter->parsed()) return boxgen::cli::run_prefilter(c, shells);
