@@ -22,6 +22,8 @@ namespace {
 
 // Number of levels strictly below v.
 std::int32_t levels_below(const std::vector<std::int64_t>& levels, const Rational& v) {
+  if (levels.empty() || v <= Rational(levels.front())) return 0;  // also far outside the 64-bit range
+  if (v > Rational(levels.back())) return static_cast<std::int32_t>(levels.size());
   const std::int64_t f = floor_to_int64(v);
   // Below v means <= floor(v), except when v is itself an integer.
   auto it = is_integer(v) ? std::lower_bound(levels.begin(), levels.end(), f)

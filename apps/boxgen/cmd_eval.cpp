@@ -7,6 +7,10 @@
 
 namespace boxgen::cli {
 
+namespace {
+constexpr long kMaxEvalCoordinate = 1000000;  // far beyond any support (entries <= 64, <= 32 columns)
+}  // namespace
+
 int run_eval(const Common& c, const std::vector<std::string>& points, const std::string& derivative) {
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
   const int n = spec.dimension();
@@ -20,7 +24,15 @@ int run_eval(const Common& c, const std::vector<std::string>& points, const std:
     }
   }
   std::vector<RatVec> xs;
-  for (const auto& p : points) xs.push_back(parse_point(p, n, "point"));
+  for (const auto& p : points) {
+    xs.push_back(parse_point(p, n, "point"));
+    // Cells are keyed by 32-bit levels of nu . x: refuse what that frame cannot hold.
+    for (const auto& v : xs.back())
+      if (cln::abs(v) > Rational(kMaxEvalCoordinate))
+        fail_input(fmt::format("point '{}' has a coordinate too large for the exact frame: coordinates must be at "
+                               "most {} in magnitude",
+                               p, kMaxEvalCoordinate));
+  }
   const PiecewiseForm form = derive_piecewise(spec, DerivationMethod::TruncatedPower);
   const RatVec centre = spline_centre(spec);
   const Rational scale = Rational(spec.lattice.det_abs());
@@ -33,7 +45,10 @@ int run_eval(const Common& c, const std::vector<std::string>& points, const std:
   }
   for (size_t k = 0; k < xs.size(); ++k) {
     if (c.json)
-      out.push_back({{"x", rational_list(xs[k])}, {"value", to_string(values[k])}, {"value_float", to_double(values[k])}});
+      out.push_back({{"x", rational_list(xs[k])},
+                     {"derivative", std::vector<int>(orders.begin(), orders.begin() + n)},
+                     {"value", to_string(values[k])},
+                     {"value_float", to_double(values[k])}});
     else
       fmt::print("{}\n", to_string(values[k]));
   }

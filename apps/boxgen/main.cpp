@@ -13,9 +13,13 @@ namespace {
 
 void add_common(CLI::App* cmd, boxgen::cli::Common& c, bool needs_spec = true) {
   if (needs_spec)
-    cmd->add_option("SPEC", c.spec, "preset name (see `boxgen presets`) or directions \"1,1,1; 1,-1,-1; ...\"")
+    cmd->add_option("SPEC", c.spec,
+                    "preset name (see `boxgen presets`) or the directions, i.e. the COLUMNS of Xi, one per ';': "
+                    "\"1,1,1; 1,-1,-1; ...\"")
         ->required();
-  cmd->add_option("--lattice", c.lattice, "bcc | fcc | cartesian | \"<rows of G>\" (default: the preset's, else cartesian)");
+  cmd->add_option("--lattice", c.lattice,
+                  "bcc | fcc | cartesian | the ROWS of G, one per ';', whose columns are the lattice basis: "
+                  "\"2,0; 0,1\" (default: the preset's, else cartesian)");
   cmd->add_flag("--json", c.json, "machine-readable output");
 }
 
@@ -68,6 +72,15 @@ int run(int argc, char** argv) {
   auto* table1 = app.add_subcommand("table1", "derive M12, M8, M7 and print the paper's Table 1 beside ours");
   table1->add_flag("--json", c.json, "machine-readable output");
 
+  // Name an unknown command instead of CLI11's "A subcommand is required".
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string first = argv[1];
+    const auto known = app.get_subcommands([&](CLI::App* s) { return s->check_name(first); });
+    if (known.empty()) {
+      std::cerr << "boxgen: usage error: unknown command '" << first << "' (see boxgen --help)\n";
+      return 2;
+    }
+  }
   if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxgen")) return *stop;
   verify = !no_verify;
   try {
