@@ -29,7 +29,7 @@ Analysis analyze(const BoxSplineSpec& spec, const AnalysisOptions& options) {
   auto stage = [&](const char* what) {
     if (progress) progress(what, 0, 0);
   };
-  Analysis a{spec, box_spline_properties(spec), derive_piecewise(spec, DerivationMethod::TruncatedPower, progress),
+  Analysis a{spec, box_spline_properties(spec), derive_piecewise(spec, DerivationMethod::TruncatedPower, progress, options.max_seconds),
              {}, 0, {}, 0};
   stage("merging pieces");
   a.pieces = count_pieces(a.form);

@@ -36,6 +36,7 @@ struct AnalysisOptions {
   // since symmetry itself is checked on every cell); full visits every cell.
   bool full_checks = false;
   ProgressFn progress;  // stage, done, total; empty for none
+  double max_seconds = 0;  // refuse what the cost estimate puts beyond this (0: the default limit)
 };
 
 Analysis analyze(const BoxSplineSpec& spec, const AnalysisOptions& options = {});

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "generator/box_spline_properties.h"
 #include "generator/cell_complex.h"
@@ -15,14 +16,20 @@ namespace boxgen {
 
 namespace {
 
-// Calibration (seconds and bytes per unit of work), fitted on the issue-11 table and the
-// presets; see bench/bench_derivation.cpp, which measures them.
-constexpr double kSecondsPerKnotWork = 4.0e-7;   // per knot cell x monomial x difference shift
-constexpr double kSecondsPerCheckWork = 2.0e-6;  // per knot cell x monomial (checks)
-constexpr double kSecondsPerStencilWork = 4.0e-7;  // per fine cell of F x stencil point x monomial
-constexpr double kBytesBase = 8e6;
-constexpr double kBytesPerCoefficient = 120;     // a stored exact coefficient and its share of maps
-constexpr double kEnumerableCells = 2e6;         // above this bound, do not enumerate
+// Calibration: a least-squares fit (in log time) of the user CPU seconds of `boxgen analyze`
+// with its default checks on the issue-11 table and the presets (bench/bench_derivation.cpp
+// measures them; README, "Derivation cost"). The work terms follow the code:
+//  - truncated power: per knot cell, every difference shift adds a translated piece;
+//  - directional integration and the checks: per knot cell, coefficient work times the degree;
+//  - spline regions: per fine cell of F, every stencil point is located and compared.
+constexpr double kSecondsPerShiftCoefficient = 7.0e-8;  // knot cell x shift x monomial
+constexpr double kSecondsPerDegreeCoefficient = 1.34e-6;  // knot cell x monomial x degree
+constexpr double kSecondsPerStencilPoint = 5.2e-6;       // fine cell of F x stencil point
+constexpr double kSecondsStart = 0.045;
+constexpr double kBytesBase = 7e6;
+constexpr double kBytesPerCoefficient = 300;  // memoised pieces and translates per knot-cell coefficient
+constexpr double kBytesPerStencilPoint = 300;  // a fine cell's stencil entry and its share of the basis
+constexpr double kEnumerableCells = 2e6;       // above this bound, do not enumerate
 
 double binomial(double p, int k) {
   double r = 1;
@@ -30,36 +37,69 @@ double binomial(double p, int k) {
   return std::max(r, 0.0);
 }
 
-// Distinct shifts sum(S) with a nonzero weight in M = sum_S (-1)^|S| T(. - sum S), counted
-// through their projections as an upper bound (no 2^m enumeration).
+// Distinct shifts sum(S) with a nonzero weight in M = sum_S (-1)^|S| T(. - sum S), as the
+// truncated-power derivation groups them; an upper bound when there could be too many to list.
 double difference_shifts(const IntColumns& directions, int n) {
-  double shifts = 1;
+  double box = 1;
   for (int i = 0; i < n; ++i) {
     std::int64_t range = 0;
     for (const auto& xi : directions) range += std::llabs(xi[i]);
-    shifts *= static_cast<double>(range + 1);
+    box *= static_cast<double>(range + 1);
   }
-  return std::min(shifts, std::pow(2.0, static_cast<double>(directions.size())));
+  const double bound = std::min(box, std::pow(2.0, static_cast<double>(directions.size())));
+  if (bound > 1e5) return bound;
+  std::map<IntVec, long> w{{IntVec(n, 0), 1}};
+  for (const auto& xi : directions) {
+    std::map<IntVec, long> next = w;
+    for (const auto& [s, c] : w) {
+      IntVec t = s;
+      for (int i = 0; i < n; ++i) t[i] += xi[i];
+      next[t] -= c;
+    }
+    w.clear();
+    for (const auto& [s, c] : next)
+      if (c != 0) w.emplace(s, c);
+  }
+  return static_cast<double>(w.size());
 }
 
-}  // namespace
-
-CostEstimate estimate_cost(const BoxSplineSpec& spec, bool verify, bool full_checks) {
-  const int n = spec.dimension();
-  const int degree = spec.count() - n;
-  CostEstimate e;
-  const KnotPlanes planes = knot_planes(spec.directions, n);
+double knot_cell_bound(const KnotPlanes& planes, int n) {
   double inner_planes = 0;
   for (const auto& levels : planes.levels) inner_planes += static_cast<double>(levels.size()) - 2;
   double bound = 0;
   for (int k = 0; k <= n; ++k) bound += binomial(inner_planes, k);
-  Zonotope box(spec.directions, n);
-  if (bound <= kEnumerableCells) {
-    e.knot_cells = KnotComplex(planes, box.box_lo(), box.box_hi()).cells().size();
-    e.cells_exact = true;
-  } else {
-    e.knot_cells = static_cast<std::size_t>(bound);
+  return bound;
+}
+
+}  // namespace
+
+void refuse_if_too_many_cells(const BoxSplineSpec& spec) {
+  const double bound = knot_cell_bound(knot_planes(spec.directions, spec.dimension()), spec.dimension());
+  if (bound > kEnumerableCells * 50)
+    fail_input(fmt::format("too costly to derive exactly: up to {:.3g} knot cells (limit {:.3g}); use fewer directions "
+                           "or smaller entries",
+                           bound, kEnumerableCells * 50));
+}
+
+CostEstimate estimate_cost(const BoxSplineSpec& spec, bool verify, bool full_checks) {
+  const int n = spec.dimension();
+  const KnotPlanes planes = knot_planes(spec.directions, n);
+  const double bound = knot_cell_bound(planes, n);
+  if (bound > kEnumerableCells) {
+    CostEstimate e = estimate_cost(spec, static_cast<std::size_t>(bound), verify, full_checks);
+    e.cells_exact = false;
+    return e;
   }
+  Zonotope box(spec.directions, n);
+  return estimate_cost(spec, KnotComplex(planes, box.box_lo(), box.box_hi()).cells().size(), verify, full_checks);
+}
+
+CostEstimate estimate_cost(const BoxSplineSpec& spec, std::size_t knot_cells, bool verify, bool full_checks) {
+  const int n = spec.dimension();
+  const int degree = spec.count() - n;
+  CostEstimate e;
+  e.knot_cells = knot_cells;
+  e.cells_exact = true;
   // The fine arrangement is periodic under integer shifts: one unit cube has the cells of each.
   IntVec origin(n, 0);
   const double per_cube = static_cast<double>(split_cube(arrangement_normals(spec.directions, n), origin).size());
@@ -68,11 +108,13 @@ CostEstimate estimate_cost(const BoxSplineSpec& spec, bool verify, bool full_che
   const double stencil = cln::double_approx(box_spline_properties(spec).stencil_size);
   const double shifts = difference_shifts(spec.directions, n);
   const double cells = static_cast<double>(e.knot_cells), fine = static_cast<double>(e.fundamental_cells);
-  double work = cells * monomials * shifts * kSecondsPerKnotWork + fine * stencil * monomials * kSecondsPerStencilWork;
-  if (verify) work += cells * monomials * kSecondsPerCheckWork * (full_checks ? 8 : 1) +
-                      fine * stencil * monomials * kSecondsPerStencilWork;
-  e.seconds = work;
-  e.bytes = kBytesBase + kBytesPerCoefficient * monomials * (cells * 3 + fine * std::min(stencil, 64.0));
+  // The default checks cost about what the derivation does (their terms are in the fit); the
+  // full ones visit every cell of every symmetry orbit and every fine cell's stencil.
+  const double checks = verify ? (full_checks ? 4.0 : 1.0) : 0.5;
+  e.seconds = kSecondsStart + cells * shifts * monomials * kSecondsPerShiftCoefficient +
+              checks * cells * monomials * degree * kSecondsPerDegreeCoefficient +
+              (verify && full_checks ? 2.0 : 1.0) * fine * stencil * kSecondsPerStencilPoint;
+  e.bytes = kBytesBase + kBytesPerCoefficient * cells * monomials + kBytesPerStencilPoint * fine * stencil;
   return e;
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "generator/cost_estimate.h"
 #include "generator/error.h"
 #include "generator/knot_normals.h"
 
@@ -79,13 +80,16 @@ std::vector<Poly> derive_on_cells(const BoxSplineSpec& spec, const KnotComplex& 
 
 }  // namespace
 
-PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method, const ProgressFn& progress) {
+PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method, const ProgressFn& progress,
+                               double max_seconds) {
   const auto start = std::chrono::steady_clock::now();
   const int n = spec.dimension();
+  refuse_if_too_many_cells(spec);
   Zonotope support(spec.directions, n);
   if (progress) progress("knot-plane cells", 0, 0);
   PiecewiseForm form(spec, method, KnotComplex(knot_planes(spec.directions, n), support.box_lo(), support.box_hi()),
                      FineArrangement(arrangement_normals(spec.directions, n), support.box_lo(), support.box_hi()));
+  refuse_if_too_costly(estimate_cost(spec, form.knots.cells().size(), false, false), max_seconds);
   form.polys = derive_on_cells(spec, form.knots, method, progress);
   form.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return form;

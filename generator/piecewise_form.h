@@ -64,7 +64,10 @@ struct PiecewiseForm {
 // Reports progress of a long derivation: stage, cells done, cells in total.
 using ProgressFn = std::function<void(const char* stage, std::size_t done, std::size_t total)>;
 
-PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method, const ProgressFn& progress = {});
+// Refuses (InputError, before deriving any polynomial) what the cost estimate puts beyond
+// max_seconds; 0 means the default limit (cost_estimate.h).
+PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method, const ProgressFn& progress = {},
+                               double max_seconds = 0);
 // The same pieces by the other method, on the cells of `form` (the second, independent derivation).
 std::vector<Poly> rederive(const PiecewiseForm& form, DerivationMethod method, const ProgressFn& progress = {});
 

@@ -37,6 +37,7 @@ int run_analyze(const Common& c, const AnalyzeOptions& o) {
   options.verify = o.verify;
   options.full_checks = full;
   options.progress = progress.callback();
+  options.max_seconds = o.max_seconds;
   const Analysis a = analyze(spec, options);
   if (c.json)
     print_json(to_json(a));
