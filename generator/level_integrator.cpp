@@ -41,6 +41,16 @@ CellKey LevelIntegrator::key(int level, const RatVec& p) const {
 
 const Poly& LevelIntegrator::top(const RatVec& p) { return cell(static_cast<int>(levels_.size()) - 1, p).poly; }
 
+const Poly& LevelIntegrator::top(const CellKey& k, const RatVec& p) {
+  const int level = static_cast<int>(levels_.size()) - 1;
+  auto& cells = levels_[level].cells;
+  if (auto it = cells.find(k); it != cells.end()) return it->second.poly;
+  Poly poly = derive(level, p);
+  auto [it, inserted] = cells.emplace(k, Cell{});
+  it->second.poly = std::move(poly);
+  return it->second.poly;
+}
+
 LevelIntegrator::Cell& LevelIntegrator::cell(int level, const RatVec& p) {
   CellKey k = key(level, p);
   auto& cells = levels_[level].cells;

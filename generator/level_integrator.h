@@ -32,6 +32,9 @@ class LevelIntegrator {
   // The top-level polynomial on the cell containing p (p must lie on no plane of the top level).
   const Poly& top(const RatVec& p);
   CellKey top_key(const RatVec& p) const { return key(static_cast<int>(levels_.size()) - 1, p); }
+  // The same when the caller has the key of p already (computed in integers, say).
+  const Poly& top(const CellKey& key, const RatVec& p);
+  const KnotPlanes& top_planes() const { return levels_.back().planes; }
 
  private:
   struct Cell {
