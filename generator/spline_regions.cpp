@@ -217,25 +217,9 @@ std::vector<RatVec> image_of(const SpaceGroupElement& e, const std::vector<RatVe
   return out;
 }
 
-}  // namespace
-
-SplineStructure spline_structure(const PiecewiseForm& form) {
-  const int n = form.dimension();
-  const Lattice& lattice = form.spec.lattice;
-  SplineStructure s;
-  s.centre = spline_centre(form.spec);
-  s.group = symmetry_group(form.spec);
-  Fundamental fund(form);
-  for (auto& fc : fund.cells()) fund.set_stencil(fc);
-  s.regions = merge_regions(fund, s.centre, n);
-  s.cells = fund.cells();
-  s.stencil_min = s.stencil_max = static_cast<int>(s.cells.front().stencil.size());
-  for (const auto& fc : s.cells) {
-    s.stencil_min = std::min(s.stencil_min, static_cast<int>(fc.stencil.size()));
-    s.stencil_max = std::max(s.stencil_max, static_cast<int>(fc.stencil.size()));
-  }
-
-  // Orbits: the image of a region's first cell under each symmetry lands in another region.
+// Orbits of the regions under the space group: the image of a region's first cell under each
+// symmetry lands in a region of the same orbit. Creates one (empty) reference per orbit.
+void assign_orbits(SplineStructure& s, const Fundamental& fund) {
   UnionFind orbits(s.regions.size());
   for (size_t r = 0; r < s.regions.size(); ++r) {
     const auto& fc = s.cells[s.regions[r].cells.front()];
@@ -254,10 +238,12 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
     s.regions[r].orbit = orbit_of_root[root];
     ++s.references[s.regions[r].orbit].regions_in_orbit;
   }
+}
 
-  // Reference region of each orbit: the image g R + l whose centroid is nearest the origin,
-  // ties broken towards the lexicographically largest centroid (x >= y >= z >= 0 when the
-  // group allows it). For M7 this is the paper's tetrahedron (0,0,0),(1,1,1),(1,0,0),(1,1,0).
+// Reference region of each orbit: the image g R + l whose centroid is nearest the origin, ties
+// broken towards the lexicographically largest centroid (x >= y >= z >= 0 when the group allows
+// it). For M7 this is the paper's tetrahedron (0,0,0),(1,1,1),(1,0,0),(1,1,0).
+void choose_references(SplineStructure& s, const Lattice& lattice, int n) {
   std::int64_t reach = 2;
   for (const auto& col : lattice.generator())
     for (auto v : col) reach = std::max<std::int64_t>(reach, std::llabs(v) + 1);
@@ -300,7 +286,10 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
     ref.interior = best_map.apply(x);
   }
 
-  // Every region's map onto its reference: g R + l = R_ref (vertex sets equal).
+}
+
+// Every region's map onto its reference: g R + l = R_ref (vertex sets equal).
+void map_regions_to_references(SplineStructure& s, const Lattice& lattice, int n) {
   for (auto& region : s.regions) {
     const ReferenceRegion& ref = s.references[region.orbit];
     const RatVec target = mean(ref.vertices);
@@ -325,7 +314,12 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
     if (!found) fail_internal("a region does not map onto its orbit's reference region");
   }
 
-  // Stencil and basis polynomials of each reference region (centred frame).
+}
+
+// Stencil and basis polynomials of each reference region (centred frame).
+void reference_bases(SplineStructure& s, const PiecewiseForm& form, const Fundamental& fund) {
+  const int n = form.dimension();
+  const Lattice& lattice = form.spec.lattice;
   const Rational scale = Rational(lattice.det_abs());
   for (auto& ref : s.references) {
     RatVec u(n);
@@ -345,6 +339,28 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
       ref.basis.push_back(p.translated(shift) * scale);
     }
   }
+}
+
+}  // namespace
+
+SplineStructure spline_structure(const PiecewiseForm& form) {
+  const int n = form.dimension();
+  SplineStructure s;
+  s.centre = spline_centre(form.spec);
+  s.group = symmetry_group(form.spec);
+  Fundamental fund(form);
+  for (auto& fc : fund.cells()) fund.set_stencil(fc);
+  s.regions = merge_regions(fund, s.centre, n);
+  s.cells = fund.cells();
+  s.stencil_min = s.stencil_max = static_cast<int>(s.cells.front().stencil.size());
+  for (const auto& fc : s.cells) {
+    s.stencil_min = std::min(s.stencil_min, static_cast<int>(fc.stencil.size()));
+    s.stencil_max = std::max(s.stencil_max, static_cast<int>(fc.stencil.size()));
+  }
+  assign_orbits(s, fund);
+  choose_references(s, form.spec.lattice, n);
+  map_regions_to_references(s, form.spec.lattice, n);
+  reference_bases(s, form, fund);
   return s;
 }
 
