@@ -20,15 +20,17 @@ namespace {
 // with its default checks on the issue-11 table and the presets (bench/bench_derivation.cpp
 // measures them; README, "Derivation cost"). The work terms follow the code:
 //  - truncated power: per knot cell, every difference shift adds a translated piece;
-//  - directional integration and the checks: per knot cell, coefficient work times the degree;
+//  - directional integration and the checks: per knot cell, coefficient work times the number of
+//    knot planes (the crossings a path meets);
 //  - spline regions: per fine cell of F, every stencil point is located and compared.
-constexpr double kSecondsPerShiftCoefficient = 7.0e-8;  // knot cell x shift x monomial
-constexpr double kSecondsPerDegreeCoefficient = 1.34e-6;  // knot cell x monomial x degree
-constexpr double kSecondsPerStencilPoint = 5.2e-6;       // fine cell of F x stencil point
-constexpr double kSecondsStart = 0.045;
+constexpr double kSecondsPerShiftCoefficient = 6.1e-9;  // knot cell x shift x monomial
+constexpr double kSecondsPerPlaneCoefficient = 1.5e-7;  // knot cell x monomial x knot plane
+constexpr double kSecondsPerStencilPoint = 5.4e-6;      // fine cell of F x stencil point
+constexpr double kSecondsStart = 0.027;
 constexpr double kBytesBase = 7e6;
-constexpr double kBytesPerCoefficient = 300;  // memoised pieces and translates per knot-cell coefficient
+constexpr double kBytesPerCoefficient = 300;   // memoised pieces and translates per knot-cell coefficient
 constexpr double kBytesPerStencilPoint = 300;  // a fine cell's stencil entry and its share of the basis
+constexpr double kBytesPerFineCell = 3500;     // its exact vertices, key and stencil vectors
 constexpr double kEnumerableCells = 2e6;       // above this bound, do not enumerate
 
 double binomial(double p, int k) {
@@ -107,14 +109,17 @@ CostEstimate estimate_cost(const BoxSplineSpec& spec, std::size_t knot_cells, bo
   const double monomials = static_cast<double>(monomial_count(n, degree));
   const double stencil = cln::double_approx(box_spline_properties(spec).stencil_size);
   const double shifts = difference_shifts(spec.directions, n);
+  double knot_planes_count = 0;
+  for (const auto& levels : knot_planes(spec.directions, n).levels) knot_planes_count += static_cast<double>(levels.size());
   const double cells = static_cast<double>(e.knot_cells), fine = static_cast<double>(e.fundamental_cells);
-  // The default checks cost about what the derivation does (their terms are in the fit); the
-  // full ones visit every cell of every symmetry orbit and every fine cell's stencil.
-  const double checks = verify ? (full_checks ? 4.0 : 1.0) : 0.5;
+  // The fit is for the default checks; without them about half the plane work remains, and the
+  // full checks visit every cell of every symmetry orbit and every fine cell's stencil.
+  const double checks = verify ? (full_checks ? 2.0 : 1.0) : 0.5;
   e.seconds = kSecondsStart + cells * shifts * monomials * kSecondsPerShiftCoefficient +
-              checks * cells * monomials * degree * kSecondsPerDegreeCoefficient +
+              checks * cells * monomials * knot_planes_count * kSecondsPerPlaneCoefficient +
               (verify && full_checks ? 2.0 : 1.0) * fine * stencil * kSecondsPerStencilPoint;
-  e.bytes = kBytesBase + kBytesPerCoefficient * cells * monomials + kBytesPerStencilPoint * fine * stencil;
+  e.bytes = kBytesBase + kBytesPerCoefficient * cells * monomials + kBytesPerStencilPoint * fine * stencil +
+            kBytesPerFineCell * fine;
   return e;
 }
 
