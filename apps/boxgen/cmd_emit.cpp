@@ -5,6 +5,7 @@
 #include <set>
 
 #include "apps/boxgen/commands.h"
+#include "apps/boxgen/progress.h"
 #include "generator/emitter.h"
 #include "generator/error.h"
 
@@ -43,7 +44,10 @@ int run_emit(const Common& c, const std::string& name, const std::string& out, c
   check_emit_name(name);
   const EmissionStrategy chosen = parse_strategy(strategy);  // before the derivation: fail fast
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
-  const Analysis a = analyze(spec);  // the exact checks run before anything is emitted
+  ProgressPrinter progress(false);  // on a terminal, for derivations beyond two seconds
+  AnalysisOptions options;
+  options.progress = progress.callback();
+  const Analysis a = analyze(spec, options);  // the exact checks run before anything is emitted
   EmissionRequest request{name,
                           fmt::format("boxgen emit {} {}--name {} --strategy {} --out <dir>",
                                       spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,

@@ -1,6 +1,7 @@
 #include <fmt/core.h>
 
 #include "apps/boxgen/commands.h"
+#include "apps/boxgen/progress.h"
 #include "generator/error.h"
 #include "generator/piece_checks.h"
 #include "generator/piecewise_form.h"
@@ -33,7 +34,8 @@ int run_eval(const Common& c, const std::vector<std::string>& points, const std:
                                "most {} in magnitude",
                                p, kMaxEvalCoordinate));
   }
-  const PiecewiseForm form = derive_piecewise(spec, DerivationMethod::TruncatedPower);
+  ProgressPrinter progress(false);  // on a terminal, for derivations beyond two seconds
+  const PiecewiseForm form = derive_piecewise(spec, DerivationMethod::TruncatedPower, progress.callback());
   const RatVec centre = spline_centre(spec);
   const Rational scale = Rational(spec.lattice.det_abs());
   nlohmann::json out = nlohmann::json::array();
