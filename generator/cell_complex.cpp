@@ -222,7 +222,8 @@ int ShiftLocator::cell_at(const IntVec& j) const {
     return knots_->locate(q);
   }
   const KnotPlanes& planes = knots_->planes();
-  CellKey key(planes.normals.size());
+  CellKey& key = key_;
+  key.resize(planes.normals.size());
   for (size_t i = 0; i < planes.normals.size(); ++i) {
     const std::int64_t v = nu_p_[i] - d_ * dot(planes.normals[i], j);  // d nu.(p - j)
     const auto& levels = planes.levels[i];

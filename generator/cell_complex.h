@@ -61,6 +61,7 @@ class ShiftLocator {
   bool small_ = false;
   std::int64_t d_ = 1;
   std::vector<std::int64_t> nu_p_;
+  mutable CellKey key_;  // reused: cell_at runs for every stencil candidate of every fine cell
 };
 
 // Facets of a cell: for each normal index and side (level or level + 1) holding an (n-1)-face.

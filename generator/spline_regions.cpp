@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <map>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -321,6 +322,13 @@ void reference_bases(SplineStructure& s, const PiecewiseForm& form, const Fundam
   const int n = form.dimension();
   const Lattice& lattice = form.spec.lattice;
   const Rational scale = Rational(lattice.det_abs());
+  // M(x - j) = |det G| P_k(x + c - j): each knot piece is centred once (Q_k(y) = P_k(y + c), times
+  // |det G|), then moved by the integer j, which keeps the translation's tables integral.
+  RatVec minus_c(n);
+  for (int k = 0; k < n; ++k) minus_c[k] = -s.centre[k];
+  std::vector<std::optional<Poly>> centred(form.polys.size());
+  // Neighbouring regions share most (knot piece, stencil point) pairs: translate each pair once.
+  std::map<std::pair<int, IntVec>, Poly> moved;
   for (auto& ref : s.references) {
     RatVec u(n);
     IntVec corner(n);
@@ -332,11 +340,13 @@ void reference_bases(SplineStructure& s, const PiecewiseForm& form, const Fundam
     for (const auto& j : fund.candidates(corner, 0)) {
       const int cell = locate.cell_at(j);
       if (cell < 0 || form.polys[cell].is_zero()) continue;
-      const Poly& p = form.polys[cell];
-      RatVec shift(n);
-      for (int k = 0; k < n; ++k) shift[k] = Rational(j[k]) - s.centre[k];
+      auto it = moved.find({cell, j});
+      if (it == moved.end()) {
+        if (!centred[cell]) centred[cell] = form.polys[cell].translated(minus_c) * scale;
+        it = moved.emplace(std::make_pair(cell, j), centred[cell]->translated(to_ratvec(j))).first;
+      }
       ref.stencil.push_back(j);
-      ref.basis.push_back(p.translated(shift) * scale);
+      ref.basis.push_back(it->second);
     }
   }
 }
