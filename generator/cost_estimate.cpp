@@ -22,14 +22,16 @@ namespace {
 //  - truncated power: per knot cell, every difference shift adds a translated piece;
 //  - directional integration and the checks: per knot cell, coefficient work times the number of
 //    knot planes (the crossings a path meets);
-//  - spline regions: per fine cell of F, every stencil point is located and compared.
+//  - spline regions: per fine cell of F, every stencil point is located and compared, and the
+//    cell itself is split, its facets found and merged.
 constexpr double kSecondsPerShiftCoefficient = 6.1e-9;  // knot cell x shift x monomial
 constexpr double kSecondsPerPlaneCoefficient = 1.5e-7;  // knot cell x monomial x knot plane
-constexpr double kSecondsPerStencilPoint = 5.4e-6;      // fine cell of F x stencil point
+constexpr double kSecondsPerStencilPoint = 2.55e-6;     // fine cell of F x stencil point
+constexpr double kSecondsPerFineCell = 1.55e-5;         // splitting, facets and merging of a fine cell
 constexpr double kSecondsStart = 0.027;
 constexpr double kBytesBase = 7e6;
 constexpr double kBytesPerCoefficient = 300;   // memoised pieces and translates per knot-cell coefficient
-constexpr double kBytesPerStencilPoint = 300;  // a fine cell's stencil entry and its share of the basis
+constexpr double kBytesPerStencilPoint = 185;  // a fine cell's stencil entry and its share of the basis
 constexpr double kBytesPerFineCell = 3500;     // its exact vertices, key and stencil vectors
 constexpr double kEnumerableCells = 2e6;       // above this bound, do not enumerate
 
@@ -117,7 +119,8 @@ CostEstimate estimate_cost(const BoxSplineSpec& spec, std::size_t knot_cells, bo
   const double checks = verify ? (full_checks ? 2.0 : 1.0) : 0.5;
   e.seconds = kSecondsStart + cells * shifts * monomials * kSecondsPerShiftCoefficient +
               checks * cells * monomials * knot_planes_count * kSecondsPerPlaneCoefficient +
-              (verify && full_checks ? 2.0 : 1.0) * fine * stencil * kSecondsPerStencilPoint;
+              (verify && full_checks ? 2.0 : 1.0) * fine * stencil * kSecondsPerStencilPoint +
+              fine * kSecondsPerFineCell;
   e.bytes = kBytesBase + kBytesPerCoefficient * cells * monomials + kBytesPerStencilPoint * fine * stencil +
             kBytesPerFineCell * fine;
   return e;
