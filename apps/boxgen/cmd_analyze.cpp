@@ -39,6 +39,7 @@ int run_analyze(const Common& c, const AnalyzeOptions& o) {
   options.progress = progress.callback();
   options.max_seconds = o.max_seconds;
   const Analysis a = analyze(spec, options);
+  progress.finish();
   if (c.json)
     print_json(to_json(a));
   else

@@ -48,6 +48,7 @@ int run_emit(const Common& c, const std::string& name, const std::string& out, c
   AnalysisOptions options;
   options.progress = progress.callback();
   const Analysis a = analyze(spec, options);  // the exact checks run before anything is emitted
+  progress.finish();
   EmissionRequest request{name,
                           fmt::format("boxgen emit {} {}--name {} --strategy {} --out <dir>",
                                       spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,

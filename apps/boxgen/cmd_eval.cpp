@@ -36,6 +36,7 @@ int run_eval(const Common& c, const std::vector<std::string>& points, const std:
   }
   ProgressPrinter progress(false);  // on a terminal, for derivations beyond two seconds
   const PiecewiseForm form = derive_piecewise(spec, DerivationMethod::TruncatedPower, progress.callback());
+  progress.finish();
   const RatVec centre = spline_centre(spec);
   const Rational scale = Rational(spec.lattice.det_abs());
   nlohmann::json out = nlohmann::json::array();

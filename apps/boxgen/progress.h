@@ -16,8 +16,12 @@ class ProgressPrinter {
  public:
   explicit ProgressPrinter(bool forced)
       : tty_(isatty(STDERR_FILENO) != 0), enabled_(forced || tty_), start_(std::chrono::steady_clock::now()) {}
-  ~ProgressPrinter() {
-    if (printed_ && tty_) std::fputs("\r\033[K", stderr);  // leave the terminal clean
+  ~ProgressPrinter() { finish(); }
+  // Clears the progress line on a terminal: call before printing the result.
+  void finish() {
+    if (printed_ && tty_) std::fputs("\r\033[K", stderr);
+    std::fflush(stderr);
+    printed_ = false;
   }
   ProgressPrinter(const ProgressPrinter&) = delete;
   ProgressPrinter& operator=(const ProgressPrinter&) = delete;
