@@ -11,6 +11,7 @@
 namespace boxgen {
 
 struct AnalysisChecks {
+  bool full = false;                 // every check on every cell (else reduced by symmetry)
   bool methods_agree = false;        // truncated power == directional integration, cell by cell
   bool integral_is_one = false;
   bool symmetric = false;
@@ -31,6 +32,11 @@ struct Analysis {
 
 struct AnalysisOptions {
   bool verify = true;  // run the exact checks (a failure throws InternalError)
+  // By default the integral and continuity checks visit one cell per symmetry orbit (exact,
+  // since symmetry itself is checked on every cell); full visits every cell.
+  bool full_checks = false;
+  ProgressFn progress;  // stage, done, total; empty for none
+  double max_seconds = 0;  // refuse what the cost estimate puts beyond this (0: the default limit)
 };
 
 Analysis analyze(const BoxSplineSpec& spec, const AnalysisOptions& options = {});

@@ -5,10 +5,6 @@
 
 namespace boxgen {
 
-const char* method_name(DerivationMethod m) {
-  return m == DerivationMethod::TruncatedPower ? "truncated-power" : "directional-integration";
-}
-
 std::unique_ptr<BoxSplineDerivation> BoxSplineDerivation::make(const IntColumns& directions, int n,
                                                                DerivationMethod m) {
   if (m == DerivationMethod::TruncatedPower) return std::make_unique<TruncatedPowerDerivation>(directions, n);
@@ -59,21 +55,42 @@ std::map<IntVec, Integer> difference_shifts(const HalfSpaceFlip& f) {
 }  // namespace
 
 TruncatedPowerDerivation::TruncatedPowerDerivation(const IntColumns& directions, int n)
-    : n_(n),
-      integrator_(basis_first(flip_into_half_space(directions, n).columns, n), n, IntegrationPath::Ray),
-      shifts_(difference_shifts(flip_into_half_space(directions, n))) {}
+    : n_(n), integrator_(basis_first(flip_into_half_space(directions, n).columns, n), n, IntegrationPath::Ray) {
+  for (auto& [s, w] : difference_shifts(flip_into_half_space(directions, n))) {
+    std::vector<std::int64_t> dots;
+    for (const auto& nu : integrator_.top_planes().normals) dots.push_back(dot(nu, s));
+    normal_dot_shift_.push_back(std::move(dots));
+    shifts_.emplace_back(s, w);
+  }
+}
 
 Poly TruncatedPowerDerivation::polynomial_at(const RatVec& p) {
+  // T's cells are keyed by the signs of nu . (p - s); with p = P / d, P integral, that is the
+  // sign of nu . P - d nu . s, computed once per normal and then in integers per shift.
+  const auto& normals = integrator_.top_planes().normals;
+  Integer d = 1;
+  for (const auto& x : p) d = cln::lcm(d, cln::denominator(x));
+  std::vector<Integer> nu_p;
+  for (const auto& nu : normals) {
+    Integer v = 0;
+    for (int i = 0; i < n_; ++i) v = v + nu[i] * cln::numerator(p[i] * d);
+    nu_p.push_back(v);
+  }
   Poly sum(n_, 0);
-  for (const auto& [s, w] : shifts_) {
-    RatVec q = p;
-    for (int i = 0; i < n_; ++i) q[i] = q[i] - Rational(s[i]);
-    const Poly& t = integrator_.top(q);
-    if (t.is_zero()) continue;
-    auto memo_key = std::make_pair(integrator_.top_key(q), s);
+  CellKey key(normals.size());
+  for (size_t k = 0; k < shifts_.size(); ++k) {
+    for (size_t i = 0; i < normals.size(); ++i)
+      key[i] = cln::plusp(nu_p[i] - d * normal_dot_shift_[k][i]) ? 0 : -1;  // sign_key convention
+    auto memo_key = std::make_pair(key, static_cast<int>(k));
     auto it = translated_.find(memo_key);
-    if (it == translated_.end()) it = translated_.emplace(memo_key, t.translated(to_ratvec(s))).first;
-    sum += it->second * Rational(w);
+    if (it == translated_.end()) {
+      const auto& [s, w] = shifts_[k];
+      RatVec q = p;
+      for (int i = 0; i < n_; ++i) q[i] = q[i] - Rational(s[i]);
+      const Poly& t = integrator_.top(key, q);
+      it = translated_.emplace(memo_key, t.is_zero() ? t : t.translated(to_ratvec(s)) * Rational(w)).first;
+    }
+    if (!it->second.is_zero()) sum += it->second;
   }
   sum.trim();
   return sum;

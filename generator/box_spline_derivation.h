@@ -8,6 +8,7 @@
 #pragma once
 #include <map>
 #include <memory>
+#include <unordered_map>
 
 #include "generator/level_integrator.h"
 #include "generator/spec.h"
@@ -15,7 +16,6 @@
 namespace boxgen {
 
 enum class DerivationMethod { TruncatedPower, DirectionalIntegration };
-const char* method_name(DerivationMethod m);
 
 class BoxSplineDerivation {
  public:
@@ -38,14 +38,18 @@ class TruncatedPowerDerivation final : public BoxSplineDerivation {
  public:
   TruncatedPowerDerivation(const IntColumns& directions, int n);
   Poly polynomial_at(const RatVec& p) override;
-  // The truncated power T of the sign-flipped matrix (exposed for tests).
-  const Poly& truncated_power_at(const RatVec& p) { return integrator_.top(p); }
 
  private:
+  struct KeyHash {
+    std::size_t operator()(const std::pair<CellKey, int>& k) const noexcept {
+      return CellKeyHash{}(k.first) * 31u + static_cast<std::size_t>(k.second);
+    }
+  };
   int n_;
   LevelIntegrator integrator_;
-  std::map<IntVec, Integer> shifts_;  // M_Xi(x) = sum_s w_s T(x - s)
-  std::map<std::pair<CellKey, IntVec>, Poly> translated_;
+  std::vector<std::pair<IntVec, Integer>> shifts_;  // M_Xi(x) = sum_s w_s T(x - s)
+  std::vector<std::vector<std::int64_t>> normal_dot_shift_;  // per shift: nu . s for every normal of T
+  std::unordered_map<std::pair<CellKey, int>, Poly, KeyHash> translated_;  // T's piece moved by shift k
 };
 
 // Columns flipped into the open half-space h.x > 0 (h generic), and the sum of the flipped

@@ -1,6 +1,7 @@
 #include "generator/cell_complex.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "generator/error.h"
 #include "generator/int_linalg.h"
@@ -11,13 +12,13 @@ namespace {
 
 struct Slab {
   IntVec nu;
-  std::int64_t level;  // level <= nu.x <= level + 1
+  Rational lo, hi;  // lo <= nu.x <= hi
 };
 
 bool inside(const std::vector<Slab>& slabs, const RatVec& x) {
   for (const auto& s : slabs) {
     Rational v = dot(s.nu, x);
-    if (v < Rational(s.level) || v > Rational(s.level + 1)) return false;
+    if (v < s.lo || v > s.hi) return false;
   }
   return true;
 }
@@ -26,13 +27,114 @@ int tight_rank(const std::vector<Slab>& slabs, const RatVec& x, int n) {
   IntColumns tight;
   for (const auto& s : slabs) {
     Rational v = dot(s.nu, x);
-    if (v == Rational(s.level) || v == Rational(s.level + 1)) tight.push_back(s.nu);
+    if (v == s.lo || v == s.hi) tight.push_back(s.nu);
   }
   return tight.empty() ? 0 : rank(tight, n);
 }
 
 void add_unique(std::vector<RatVec>& pts, RatVec p) {
   if (std::find(pts.begin(), pts.end(), p) == pts.end()) pts.push_back(std::move(p));
+}
+
+// A convex polytope during splitting: its defining slabs, exact vertices and key so far.
+struct Polytope {
+  std::vector<Slab> slabs;
+  std::vector<RatVec> vertices;
+  CellKey key;
+};
+
+// One interval lo <= nu.x <= hi of an arrangement, with its key entry.
+struct Interval {
+  std::int32_t key;
+  Rational lo, hi;
+};
+
+// The box [lo, hi] as a polytope: its 2^n corners and the axis slabs.
+Polytope box_polytope(const IntVec& lo, const IntVec& hi) {
+  const int n = static_cast<int>(lo.size());
+  Polytope box;
+  for (int i = 0; i < n; ++i) {
+    IntVec e(n, 0);
+    e[i] = 1;
+    box.slabs.push_back({e, Rational(lo[i]), Rational(hi[i])});
+  }
+  for (int mask = 0; mask < (1 << n); ++mask) {
+    RatVec v(n);
+    for (int i = 0; i < n; ++i) v[i] = Rational(((mask >> i) & 1) ? hi[i] : lo[i]);
+    box.vertices.push_back(v);
+  }
+  return box;
+}
+
+// Points of the segment a-b on the plane nu.x = c, if it crosses the plane strictly.
+void add_crossing(const IntVec& nu, const Rational& c, const RatVec& a, const RatVec& b,
+                  std::vector<RatVec>& out) {
+  const Rational da = dot(nu, a) - c, db = dot(nu, b) - c;
+  if (!(cln::minusp(da) && cln::plusp(db)) && !(cln::plusp(da) && cln::minusp(db))) return;
+  const Rational s = da / (da - db);
+  RatVec x(a.size());
+  for (size_t i = 0; i < a.size(); ++i) x[i] = a[i] + s * (b[i] - a[i]);
+  add_unique(out, std::move(x));
+}
+
+// The part of w inside the slab `cut` (nullopt if it is not n-dimensional). Its vertices are
+// w's vertices in the slab and the crossings of the slab's planes with segments between w's
+// vertices, filtered to those where n independent constraints are tight.
+std::optional<Polytope> slice(const Polytope& w, const IntVec& nu, const Interval& cut, int n) {
+  Polytope sub;
+  sub.slabs = w.slabs;
+  sub.slabs.push_back({nu, cut.lo, cut.hi});
+  sub.key = w.key;
+  sub.key.push_back(cut.key);
+  std::vector<RatVec> candidates;
+  for (const auto& v : w.vertices)
+    if (inside(sub.slabs, v)) add_unique(candidates, v);
+  for (const Rational& c : {cut.lo, cut.hi})
+    for (size_t a = 0; a < w.vertices.size(); ++a)
+      for (size_t b = a + 1; b < w.vertices.size(); ++b) {
+        std::vector<RatVec> hit;
+        add_crossing(nu, c, w.vertices[a], w.vertices[b], hit);
+        for (auto& x : hit)
+          if (inside(sub.slabs, x)) add_unique(candidates, std::move(x));
+      }
+  for (const auto& x : candidates)
+    if (tight_rank(sub.slabs, x, n) == n) sub.vertices.push_back(x);
+  if (affine_rank(sub.vertices) != n) return std::nullopt;
+  return sub;
+}
+
+// Cuts every polytope by the intervals of each normal in turn; `intervals(i, lo, hi)` lists
+// the intervals of normal i that meet the open range (lo, hi) of nu_i.x over a polytope.
+template <typename Intervals>
+std::vector<FineCell> split(Polytope start, const std::vector<IntVec>& normals, Intervals intervals) {
+  const int n = static_cast<int>(start.vertices[0].size());
+  std::vector<Polytope> work{std::move(start)};
+  for (size_t i = 0; i < normals.size(); ++i) {
+    std::vector<Polytope> next;
+    for (const auto& w : work) {
+      Rational lo = dot(normals[i], w.vertices[0]), hi = lo;
+      for (const auto& v : w.vertices) {
+        const Rational d = dot(normals[i], v);
+        lo = cln::min(lo, d);
+        hi = cln::max(hi, d);
+      }
+      for (const Interval& cut : intervals(i, lo, hi))
+        if (auto sub = slice(w, normals[i], cut, n)) next.push_back(std::move(*sub));
+    }
+    work = std::move(next);
+  }
+  std::vector<FineCell> out;
+  for (auto& w : work) {
+    FineCell c;
+    c.key = std::move(w.key);
+    c.vertices = std::move(w.vertices);
+    c.interior.assign(n, Rational(0));
+    for (const auto& v : c.vertices)
+      for (int k = 0; k < n; ++k) c.interior[k] = c.interior[k] + v[k];
+    for (auto& x : c.interior) x = x / Rational(static_cast<long>(c.vertices.size()));
+    out.push_back(std::move(c));
+  }
+  return out;
 }
 
 }  // namespace
@@ -63,99 +165,73 @@ int affine_rank(const std::vector<RatVec>& points) {
   return r;
 }
 
-std::vector<FineCell> CellComplex::split_cube(const std::vector<IntVec>& normals, const IntVec& corner) {
-  const int n = static_cast<int>(corner.size());
-  struct Work {
-    std::vector<Slab> slabs;
-    std::vector<RatVec> vertices;
-    CellKey key;
+std::vector<FineCell> split_cube(const std::vector<IntVec>& normals, const IntVec& corner) {
+  IntVec upper = corner;
+  for (auto& v : upper) ++v;
+  // Integer levels l <= nu.x <= l + 1, keyed by l.
+  auto unit_intervals = [](size_t, const Rational& lo, const Rational& hi) {
+    std::vector<Interval> out;
+    std::int64_t last = floor_to_int64(hi);
+    if (Rational(last) == hi) --last;
+    for (std::int64_t l = floor_to_int64(lo); l <= last; ++l)
+      out.push_back({static_cast<std::int32_t>(l), Rational(l), Rational(l + 1)});
+    return out;
   };
-  Work cube;
-  for (int mask = 0; mask < (1 << n); ++mask) {
-    RatVec v(n);
-    for (int i = 0; i < n; ++i) v[i] = Rational(corner[i] + ((mask >> i) & 1));
-    cube.vertices.push_back(v);
-  }
-  std::vector<Work> work{cube};
-  for (const auto& nu : normals) {
-    std::vector<Work> next;
-    for (auto& w : work) {
-      Rational lo = dot(nu, w.vertices[0]), hi = lo;
-      for (const auto& v : w.vertices) {
-        Rational d = dot(nu, v);
-        lo = cln::min(lo, d);
-        hi = cln::max(hi, d);
-      }
-      const std::int64_t first = floor_to_int64(lo);
-      std::int64_t last = floor_to_int64(hi);
-      if (Rational(last) == hi) --last;
-      for (std::int64_t l = first; l <= last; ++l) {
-        Work sub;
-        sub.slabs = w.slabs;
-        sub.slabs.push_back({nu, l});
-        sub.key = w.key;
-        sub.key.push_back(static_cast<std::int32_t>(l));
-        std::vector<RatVec> candidates;
-        for (const auto& v : w.vertices)
-          if (inside(sub.slabs, v)) add_unique(candidates, v);
-        for (std::int64_t plane : {l, l + 1}) {
-          const Rational c = Rational(plane);
-          for (size_t a = 0; a < w.vertices.size(); ++a)
-            for (size_t b = a + 1; b < w.vertices.size(); ++b) {
-              const Rational da = dot(nu, w.vertices[a]) - c, db = dot(nu, w.vertices[b]) - c;
-              if (!(cln::minusp(da) && cln::plusp(db)) && !(cln::plusp(da) && cln::minusp(db))) continue;
-              const Rational s = da / (da - db);
-              RatVec x(n);
-              for (int i = 0; i < n; ++i) x[i] = w.vertices[a][i] + s * (w.vertices[b][i] - w.vertices[a][i]);
-              if (inside(sub.slabs, x)) add_unique(candidates, x);
-            }
-        }
-        // Keep true vertices only: points where n independent constraints (cube faces included) are tight.
-        std::vector<Slab> all = sub.slabs;
-        for (int i = 0; i < n; ++i) {
-          IntVec e(n, 0);
-          e[i] = 1;
-          all.push_back({e, corner[i]});
-        }
-        for (const auto& x : candidates)
-          if (tight_rank(all, x, n) == n) sub.vertices.push_back(x);
-        if (affine_rank(sub.vertices) == n) next.push_back(std::move(sub));
-      }
-    }
-    work = std::move(next);
-  }
-  std::vector<FineCell> out;
-  for (auto& w : work) {
-    FineCell c;
-    c.key = std::move(w.key);
-    c.vertices = std::move(w.vertices);
-    c.interior.assign(n, Rational(0));
-    for (const auto& v : c.vertices)
-      for (int i = 0; i < n; ++i) c.interior[i] = c.interior[i] + v[i];
-    for (auto& x : c.interior) x = x / Rational(static_cast<long>(c.vertices.size()));
-    out.push_back(std::move(c));
-  }
-  return out;
+  return split(box_polytope(corner, upper), normals, unit_intervals);
 }
 
-CellComplex::CellComplex(std::vector<IntVec> normals, IntVec lo, IntVec hi)
-    : n_(static_cast<int>(lo.size())), normals_(std::move(normals)), lo_(std::move(lo)), hi_(std::move(hi)) {
-  IntVec corner = lo_;
-  for (;;) {
-    for (auto& c : split_cube(normals_, corner)) {
-      index_.emplace(c.key, static_cast<int>(cells_.size()));
-      cells_.push_back(std::move(c));
-    }
-    int i = 0;
-    while (i < n_ && corner[i] + 1 >= hi_[i]) corner[i] = lo_[i], ++i;
-    if (i == n_) break;
-    ++corner[i];
-  }
+KnotComplex::KnotComplex(KnotPlanes planes, IntVec lo, IntVec hi)
+    : planes_(std::move(planes)), lo_(std::move(lo)), hi_(std::move(hi)) {
+  // Between consecutive knot levels L_(k-1) <= nu.x <= L_k, keyed by k; outside the first and
+  // last level the box spline vanishes, so those intervals are never cells.
+  auto knot_intervals = [this](size_t i, const Rational& from, const Rational& to) {
+    const auto& levels = planes_.levels[i];
+    std::vector<Interval> out;
+    for (size_t k = 1; k < levels.size(); ++k)
+      if (Rational(levels[k - 1]) < to && Rational(levels[k]) > from)
+        out.push_back({static_cast<std::int32_t>(k), Rational(levels[k - 1]), Rational(levels[k])});
+    return out;
+  };
+  cells_ = split(box_polytope(lo_, hi_), planes_.normals, knot_intervals);
+  for (size_t i = 0; i < cells_.size(); ++i) index_.emplace(cells_[i].key, static_cast<int>(i));
 }
 
-int CellComplex::find(const CellKey& key) const {
+int KnotComplex::find(const CellKey& key) const {
   auto it = index_.find(key);
   return it == index_.end() ? -1 : it->second;
+}
+
+ShiftLocator::ShiftLocator(const KnotComplex& knots, const RatVec& p) : knots_(&knots), p_(p) {
+  Integer d = 1;
+  for (const auto& x : p) d = cln::lcm(d, cln::denominator(x));
+  const Integer limit = cln::expt_pos(Integer(2), 40);
+  small_ = d < cln::expt_pos(Integer(2), 20);
+  for (const auto& nu : knots.planes().normals) {
+    Integer v = 0;
+    for (size_t k = 0; k < p.size(); ++k) v = v + nu[k] * cln::numerator(p[k] * d);
+    small_ = small_ && cln::abs(v) < limit;
+    nu_p_.push_back(small_ ? cln::cl_I_to_long(v) : 0);
+  }
+  if (small_) d_ = cln::cl_I_to_long(d);
+}
+
+int ShiftLocator::cell_at(const IntVec& j) const {
+  if (!small_) {
+    RatVec q = p_;
+    for (size_t k = 0; k < q.size(); ++k) q[k] = q[k] - Rational(j[k]);
+    return knots_->locate(q);
+  }
+  const KnotPlanes& planes = knots_->planes();
+  CellKey& key = key_;
+  key.resize(planes.normals.size());
+  for (size_t i = 0; i < planes.normals.size(); ++i) {
+    const std::int64_t v = nu_p_[i] - d_ * dot(planes.normals[i], j);  // d nu.(p - j)
+    const auto& levels = planes.levels[i];
+    const auto below = std::partition_point(levels.begin(), levels.end(), [&](std::int64_t l) { return d_ * l < v; });
+    if (below == levels.begin() || below == levels.end()) return -1;  // outside the support
+    key[i] = static_cast<std::int32_t>(below - levels.begin());
+  }
+  return knots_->find(key);
 }
 
 std::vector<Facet> facets_of(const FineCell& cell, const std::vector<IntVec>& normals) {
@@ -163,10 +239,24 @@ std::vector<Facet> facets_of(const FineCell& cell, const std::vector<IntVec>& no
   std::vector<Facet> out;
   for (int i = 0; i < static_cast<int>(normals.size()); ++i)
     for (bool upper : {false, true}) {
-      const std::int32_t level = cell.key[i] + (upper ? 1 : 0);
+      const std::int64_t level = cell.key[i] + (upper ? 1 : 0);
       Facet f{i, level, upper, {}};
       for (const auto& v : cell.vertices)
         if (dot(normals[i], v) == Rational(level)) f.vertices.push_back(v);
+      if (affine_rank(f.vertices) == n - 1) out.push_back(std::move(f));
+    }
+  return out;
+}
+
+std::vector<Facet> facets_of(const FineCell& cell, const KnotPlanes& planes) {
+  const int n = static_cast<int>(cell.interior.size());
+  std::vector<Facet> out;
+  for (int i = 0; i < static_cast<int>(planes.normals.size()); ++i)
+    for (bool upper : {false, true}) {
+      const std::int64_t level = planes.levels[i][cell.key[i] - (upper ? 0 : 1)];
+      Facet f{i, level, upper, {}};
+      for (const auto& v : cell.vertices)
+        if (dot(planes.normals[i], v) == Rational(level)) f.vertices.push_back(v);
       if (affine_rank(f.vertices) == n - 1) out.push_back(std::move(f));
     }
   return out;
@@ -208,11 +298,18 @@ std::vector<std::vector<RatVec>> triangulate_polytope(const std::vector<RatVec>&
   return out;
 }
 
-std::vector<std::vector<RatVec>> triangulate(const FineCell& cell, const std::vector<IntVec>& normals) {
-  std::vector<Plane> planes;
-  for (size_t i = 0; i < normals.size(); ++i)
-    for (int up = 0; up <= 1; ++up) planes.push_back({normals[i], Rational(cell.key[i] + up)});
-  return triangulate_polytope(cell.vertices, planes);
+std::vector<std::vector<RatVec>> triangulate(const FineCell& cell, const KnotComplex& complex) {
+  const auto& planes = complex.planes();
+  const int n = complex.dimension();
+  std::vector<Plane> faces;
+  for (size_t i = 0; i < planes.normals.size(); ++i)
+    for (int up = 0; up <= 1; ++up) faces.push_back({planes.normals[i], Rational(planes.levels[i][cell.key[i] - 1 + up])});
+  for (int i = 0; i < n; ++i) {  // the box's faces, where they bound a cell
+    IntVec e(n, 0);
+    e[i] = 1;
+    faces.push_back({e, Rational(complex.lo()[i])});
+    faces.push_back({e, Rational(complex.hi()[i])});
+  }
+  return triangulate_polytope(cell.vertices, faces);
 }
-
 }  // namespace boxgen

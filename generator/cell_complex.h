@@ -1,56 +1,83 @@
-// The fine cell complex of docs/design.md §4: integer levels of every knot normal plus the coordinate
-// axes. Each cell is a convex polytope inside one unit cube, kept with its exact vertices and
-// the slab constraints level <= nu.x <= level + 1 that define it.
+// Cell complexes of docs/design.md §4, each cell a convex polytope kept with its exact vertices:
+//  - KnotComplex: the arrangement of the true knot planes of M_Xi (KnotPlanes) inside its
+//    support, where each cell carries one polynomial piece; the derivation works on it;
+//  - split_cube: the fine cells of one unit cube cut by every integer level of the normals plus
+//    the axes, the refinement the emitter's lookup table uses (each fine cell lies in one
+//    knot cell, whose polynomial it takes).
 #pragma once
 #include <unordered_map>
 #include <vector>
 
 #include "generator/cell_key.h"
+#include "generator/knot_normals.h"
 #include "generator/poly.h"
 
 namespace boxgen {
 
 struct FineCell {
-  CellKey key;                   // floor(nu . x) for every arrangement normal
+  CellKey key;                   // per normal: floor(nu . x) (fine) or the interval index (knot)
   std::vector<RatVec> vertices;  // exact, distinct
   RatVec interior;               // vertex mean: strictly inside
 };
 
-class CellComplex {
- public:
-  // Cells of all unit cubes with lower corners in [lo, hi) (componentwise).
-  CellComplex(std::vector<IntVec> normals, IntVec lo, IntVec hi);
+// Cells of one unit cube in the arrangement of integer levels of `normals` (axes first).
+std::vector<FineCell> split_cube(const std::vector<IntVec>& normals, const IntVec& corner);
 
-  int dimension() const { return n_; }
-  const std::vector<IntVec>& normals() const { return normals_; }
+class KnotComplex {
+ public:
+  // Cells of the knot-plane arrangement inside the box [lo, hi] and between the first and last
+  // level of every normal (the support zonotope).
+  KnotComplex(KnotPlanes planes, IntVec lo, IntVec hi);
+
+  int dimension() const { return static_cast<int>(lo_.size()); }
+  const KnotPlanes& planes() const { return planes_; }
   const std::vector<FineCell>& cells() const { return cells_; }
   const IntVec& lo() const { return lo_; }
   const IntVec& hi() const { return hi_; }
-  // Index of the cell with this key, or -1 if it is not in the box.
+  // Index of the cell with this key, or -1 (an empty cell or one outside the support).
   int find(const CellKey& key) const;
-  // Cells of one unit cube (exposed for point location of arbitrary points).
-  static std::vector<FineCell> split_cube(const std::vector<IntVec>& normals, const IntVec& corner);
+  // Index of the cell holding a point that lies on no knot plane, or -1 outside the support.
+  int locate(const RatVec& x) const { return find(interval_key(planes_, x)); }
 
  private:
-  int n_;
-  std::vector<IntVec> normals_;
+  KnotPlanes planes_;
   IntVec lo_, hi_;
   std::vector<FineCell> cells_;
   std::unordered_map<CellKey, int, CellKeyHash> index_;
 };
 
+// Exact point location of p - j in a knot complex for many integer shifts j (the stencil of a
+// cell): with p = P / d, P integral, nu.(p - j) lies above the level L iff nu.P - d nu.j > d L,
+// all in machine integers (falls back to rational arithmetic if they could overflow).
+class ShiftLocator {
+ public:
+  ShiftLocator(const KnotComplex& knots, const RatVec& p);
+  // Index of the knot cell holding p - j, or -1 outside the support. p - j must lie on no knot plane.
+  int cell_at(const IntVec& j) const;
+
+ private:
+  const KnotComplex* knots_;
+  RatVec p_;
+  bool small_ = false;
+  std::int64_t d_ = 1;
+  std::vector<std::int64_t> nu_p_;
+  mutable CellKey key_;  // reused: cell_at runs for every stencil candidate of every fine cell
+};
+
 // Facets of a cell: for each normal index and side (level or level + 1) holding an (n-1)-face.
 struct Facet {
   int normal;
-  std::int32_t level;   // the plane nu . x = level
+  std::int64_t level;   // the plane nu . x = level
   bool upper;           // true if the plane is the cell's upper side (key + 1)
   std::vector<RatVec> vertices;
 };
 std::vector<Facet> facets_of(const FineCell& cell, const std::vector<IntVec>& normals);
+// The same for a cell of the knot complex (level = the knot level of the facet's plane).
+std::vector<Facet> facets_of(const FineCell& cell, const KnotPlanes& planes);
 // Affine rank of a point set (0 for one point).
 int affine_rank(const std::vector<RatVec>& points);
 // Pulling triangulation of a convex cell into simplices (each n+1 vertices).
-std::vector<std::vector<RatVec>> triangulate(const FineCell& cell, const std::vector<IntVec>& normals);
+std::vector<std::vector<RatVec>> triangulate(const FineCell& cell, const KnotComplex& complex);
 // A plane nu . x = level.
 struct Plane {
   IntVec nu;

@@ -1,9 +1,12 @@
 // Cells of a hyperplane arrangement are identified by integer keys: for integer-level
-// arrangements key_i = floor(nu_i . x); for central arrangements key_i = 0 if nu_i . x > 0 else -1.
+// arrangements key_i = floor(nu_i . x); for knot-plane arrangements (levels L_0 < ... < L_r of
+// normal i) key_i = the number of levels below nu_i . x, so that key_i = k means
+// L_(k-1) < nu_i . x < L_k; for central arrangements key_i = 0 if nu_i . x > 0 else -1.
 #pragma once
 #include <cstdint>
 #include <vector>
 
+#include "generator/knot_normals.h"
 #include "generator/rational.h"
 
 namespace boxgen {
@@ -20,6 +23,10 @@ struct CellKeyHash {
 
 CellKey floor_key(const std::vector<IntVec>& normals, const RatVec& x);
 CellKey sign_key(const std::vector<IntVec>& normals, const RatVec& x);
+// Key in the knot-plane arrangement (levels below nu_i . x, per normal).
+CellKey interval_key(const KnotPlanes& planes, const RatVec& x);
+// True if x lies on no knot plane.
+bool off_knot_planes(const KnotPlanes& planes, const RatVec& x);
 // True if no nu . x is an integer (x lies on no plane of the integer-level arrangement).
 bool off_integer_planes(const std::vector<IntVec>& normals, const RatVec& x);
 

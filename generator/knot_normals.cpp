@@ -21,6 +21,25 @@ std::vector<IntVec> knot_normals(const IntColumns& columns, int n) {
   return {found.begin(), found.end()};
 }
 
+std::vector<std::int64_t> subset_sum_levels(const IntVec& nu, const IntColumns& columns) {
+  std::set<std::int64_t> sums{0};
+  for (const auto& xi : columns) {
+    const std::int64_t d = dot(nu, xi);
+    if (d == 0) continue;
+    std::set<std::int64_t> next = sums;
+    for (auto s : sums) next.insert(s + d);
+    sums = std::move(next);
+  }
+  return {sums.begin(), sums.end()};
+}
+
+KnotPlanes knot_planes(const IntColumns& columns, int n) {
+  KnotPlanes k;
+  k.normals = knot_normals(columns, n);
+  for (const auto& nu : k.normals) k.levels.push_back(subset_sum_levels(nu, columns));
+  return k;
+}
+
 std::vector<IntVec> arrangement_normals(const IntColumns& columns, int n) {
   std::vector<IntVec> out;
   for (int i = 0; i < n; ++i) {

@@ -8,6 +8,19 @@
 
 namespace boxgen {
 
+// The true knot planes of M_Xi (design.md 4): for each normal nu, the planes nu . x = nu . sum(S)
+// over the sub-multisets S of the columns. Only these carry breaks of the polynomial pieces, so
+// an arrangement of them grows with the pieces M_Xi really has, not with the length of the
+// columns (the integer levels of a normal (1,-20) would give 400 planes where 8 are knots).
+struct KnotPlanes {
+  std::vector<IntVec> normals;
+  std::vector<std::vector<std::int64_t>> levels;  // per normal: sorted, distinct
+};
+// Knot planes of `columns`: normals of the hyperplanes they span, levels their sub-sums.
+KnotPlanes knot_planes(const IntColumns& columns, int n);
+// Sorted distinct values nu . sum(S) over the sub-multisets S of `columns`.
+std::vector<std::int64_t> subset_sum_levels(const IntVec& nu, const IntColumns& columns);
+
 // Distinct primitive normals of the hyperplanes spanned by columns, sorted.
 std::vector<IntVec> knot_normals(const IntColumns& columns, int n);
 // knot_normals plus the coordinate axes (so every cell lies in one unit cube), axes first.

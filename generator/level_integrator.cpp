@@ -27,29 +27,29 @@ LevelIntegrator::LevelIntegrator(IntColumns columns, int n, IntegrationPath path
   basis_inverse_ = inverse(basis);
   base_value_ = Rational(1) / Rational(std::llabs(d));
   for (int k = n_; k <= m; ++k) {
+    // Level n: the parallelepiped (or cone) is bounded by the planes spanned by n-1 basis columns.
     Level level;
-    if (k == n_) {
-      // The parallelepiped (or cone) is bounded by the planes spanned by n-1 basis columns.
-      level.normals = knot_normals(basis, n_);
-    } else {
-      level.normals = knot_normals(IntColumns(columns_.begin(), columns_.begin() + k), n_);
-    }
+    level.planes = knot_planes(IntColumns(columns_.begin(), columns_.begin() + k), n_);
     levels_.push_back(std::move(level));
   }
 }
 
-std::size_t LevelIntegrator::cells_derived() const {
-  std::size_t s = 0;
-  for (const auto& l : levels_) s += l.cells.size();
-  return s;
-}
-
 CellKey LevelIntegrator::key(int level, const RatVec& p) const {
-  return path_ == IntegrationPath::UnitSegment ? floor_key(levels_[level].normals, p)
-                                               : sign_key(levels_[level].normals, p);
+  return path_ == IntegrationPath::UnitSegment ? interval_key(levels_[level].planes, p)
+                                               : sign_key(levels_[level].planes.normals, p);
 }
 
 const Poly& LevelIntegrator::top(const RatVec& p) { return cell(static_cast<int>(levels_.size()) - 1, p).poly; }
+
+const Poly& LevelIntegrator::top(const CellKey& k, const RatVec& p) {
+  const int level = static_cast<int>(levels_.size()) - 1;
+  auto& cells = levels_[level].cells;
+  if (auto it = cells.find(k); it != cells.end()) return it->second.poly;
+  Poly poly = derive(level, p);
+  auto [it, inserted] = cells.emplace(k, Cell{});
+  it->second.poly = std::move(poly);
+  return it->second.poly;
+}
 
 LevelIntegrator::Cell& LevelIntegrator::cell(int level, const RatVec& p) {
   CellKey k = key(level, p);
@@ -80,7 +80,7 @@ RatVec LevelIntegrator::perturbed(int level, const RatVec& p, int attempt) const
     const Rational scale = Rational(1) / cln::expt(Rational(2), 16 + shrink);
     for (int i = 0; i < n_; ++i)
       q[i] = q[i] + scale * Rational(1 + attempt) / Rational(primes[(i + attempt) % 6]);
-    const bool generic = path_ == IntegrationPath::UnitSegment ? off_integer_planes(levels_[level].normals, q)
+    const bool generic = path_ == IntegrationPath::UnitSegment ? off_knot_planes(levels_[level].planes, q)
                                                                : true;
     if (generic && key(level, q) == k) return q;
   }
@@ -90,7 +90,8 @@ RatVec LevelIntegrator::perturbed(int level, const RatVec& p, int attempt) const
 Poly LevelIntegrator::derive(int level, RatVec p) {
   if (level == 0) return base(p);
   const IntVec& xi = columns_[n_ + level - 1];
-  const auto& lower = levels_[level - 1].normals;
+  const auto& lower = levels_[level - 1].planes.normals;
+  const auto& lower_levels = levels_[level - 1].planes.levels;
   std::vector<Crossing> crossings;
   for (int attempt = 0;; ++attempt) {
     crossings.clear();
@@ -104,8 +105,8 @@ Poly LevelIntegrator::derive(int level, RatVec p) {
       } else {
         const Rational s1 = s0 - Rational(d);
         const Rational lo = cln::min(s0, s1), hi = cln::max(s0, s1);
-        for (Integer c = cln::floor1(lo) + 1; Rational(c) < hi; c = c + 1)
-          crossings.push_back({(s0 - Rational(c)) / Rational(d), i, cln::cl_I_to_Q(c)});
+        for (std::int64_t c : lower_levels[i])
+          if (Rational(c) > lo && Rational(c) < hi) crossings.push_back({(s0 - Rational(c)) / Rational(d), i, c});
       }
     }
     std::sort(crossings.begin(), crossings.end(), [](const Crossing& a, const Crossing& b) { return a.t < b.t; });

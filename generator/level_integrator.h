@@ -8,6 +8,8 @@
 //   F_{k+1}(x) = sum_j (G_{j-1} - G_j)(x, t_j(x)) [+ G_last(x, 1) on a segment],
 // with G(x, t) = integral_0^t P(x - s xi) ds. The expression is exact on all of C.
 // Cells are memoised by (level, key); the composed jump terms by the pair of cells they join.
+// The unit-segment levels are keyed on the true knot planes of their columns (KnotPlanes), so
+// the work follows the pieces of each M_k, not the length of the columns.
 #pragma once
 #include <memory>
 #include <unordered_map>
@@ -15,6 +17,7 @@
 
 #include "generator/cell_key.h"
 #include "generator/int_linalg.h"
+#include "generator/knot_normals.h"
 #include "generator/poly.h"
 
 namespace boxgen {
@@ -28,9 +31,10 @@ class LevelIntegrator {
 
   // The top-level polynomial on the cell containing p (p must lie on no plane of the top level).
   const Poly& top(const RatVec& p);
-  const std::vector<IntVec>& top_normals() const { return levels_.back().normals; }
   CellKey top_key(const RatVec& p) const { return key(static_cast<int>(levels_.size()) - 1, p); }
-  std::size_t cells_derived() const;
+  // The same when the caller has the key of p already (computed in integers, say).
+  const Poly& top(const CellKey& key, const RatVec& p);
+  const KnotPlanes& top_planes() const { return levels_.back().planes; }
 
  private:
   struct Cell {
@@ -44,7 +48,7 @@ class LevelIntegrator {
     }
   };
   struct Level {
-    std::vector<IntVec> normals;
+    KnotPlanes planes;  // for Ray only the normals count (the arrangement is central)
     std::unordered_map<CellKey, Cell, CellKeyHash> cells;
     std::unordered_map<std::pair<CellKey, CellKey>, Poly, PairHash> jumps;
   };

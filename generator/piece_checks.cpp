@@ -23,7 +23,7 @@ CellKey neighbour_key(const FineCell& cell, const Facet& f) {
   return k;
 }
 
-std::string describe_face(const IntVec& nu, std::int32_t level) {
+std::string describe_face(const IntVec& nu, std::int64_t level) {
   std::string s = "(";
   for (size_t i = 0; i < nu.size(); ++i) {
     if (i) s += ',';
@@ -34,31 +34,38 @@ std::string describe_face(const IntVec& nu, std::int32_t level) {
   return s;
 }
 
-// Whole unit cubes (every cell of a tensor-product spline) integrate monomial by monomial.
-// A cell lies in one unit cube (the axes are in the arrangement); it is that whole cube exactly
-// when it has 2^n vertices, all integral. (2^n vertices alone is not enough: a line of slope 1/2
-// cuts a unit square into a triangle and a quadrilateral.)
-bool is_unit_cube(const FineCell& cell) {
-  if (cell.vertices.size() != (std::size_t{1} << cell.interior.size())) return false;
+// Axis-aligned boxes (every cell of a tensor-product spline) integrate monomial by monomial. A
+// cell is such a box exactly when it has 2^n vertices, all on the corners of the box spanned by
+// its extreme coordinates. (2^n vertices alone is not enough: a line of slope 1/2 cuts a unit
+// square into a triangle and a quadrilateral.)
+bool box_corners(const FineCell& cell, RatVec& lo, RatVec& hi) {
+  const size_t n = cell.interior.size();
+  if (cell.vertices.size() != (std::size_t{1} << n)) return false;
+  lo = hi = cell.vertices[0];
   for (const auto& v : cell.vertices)
-    for (const auto& x : v)
-      if (!is_integer(x)) return false;
+    for (size_t k = 0; k < n; ++k) {
+      lo[k] = cln::min(lo[k], v[k]);
+      hi[k] = cln::max(hi[k], v[k]);
+    }
+  for (const auto& v : cell.vertices)
+    for (size_t k = 0; k < n; ++k)
+      if (v[k] != lo[k] && v[k] != hi[k]) return false;
+  for (size_t k = 0; k < n; ++k)
+    if (lo[k] == hi[k]) return false;
   return true;
 }
 
-Rational integrate_over_unit_cube(const Poly& p, const FineCell& cell) {
-  const int n = static_cast<int>(cell.interior.size());
-  RatVec corner(n);
-  for (int i = 0; i < n; ++i) corner[i] = floor_rational(cell.interior[i]);
+Rational integrate_over_box(const Poly& p, const RatVec& lo, const RatVec& hi) {
+  const int n = static_cast<int>(lo.size());
   RatVec minus_corner(n);
-  for (int i = 0; i < n; ++i) minus_corner[i] = -corner[i];
-  const Poly local = p.translated(minus_corner);  // local(y) = p(y + corner), y in [0,1]^n
+  for (int i = 0; i < n; ++i) minus_corner[i] = -lo[i];
+  const Poly local = p.translated(minus_corner);  // local(y) = p(y + lo), y in [0, hi - lo]
   const auto& ex = monomial_exponents(n, local.capacity());
   Rational total = 0;
   for (std::size_t i = 0; i < local.coefficients().size(); ++i) {
     if (cln::zerop(local.coefficients()[i])) continue;
     Rational t = local.coefficients()[i];
-    for (int k = 0; k < n; ++k) t = t / Rational(ex[i][k] + 1);
+    for (int k = 0; k < n; ++k) t = t * cln::expt(hi[k] - lo[k], ex[i][k] + 1) / Rational(ex[i][k] + 1);
     total = total + t;
   }
   return total;
@@ -83,12 +90,12 @@ RatVec symmetry_image(const SignedPermutation& g, const RatVec& y, const RatVec&
 }
 
 int count_pieces(const PiecewiseForm& form) {
-  const auto& cells = form.complex.cells();
+  const auto& cells = form.knots.cells();
   UnionFind uf(cells.size());
   for (size_t i = 0; i < cells.size(); ++i) {
     if (form.polys[i].is_zero()) continue;
-    for (const auto& f : facets_of(cells[i], form.complex.normals())) {
-      const int j = form.complex.find(neighbour_key(cells[i], f));
+    for (const auto& f : facets_of(cells[i], form.knots.planes())) {
+      const int j = form.knots.find(neighbour_key(cells[i], f));
       if (j >= 0 && !form.polys[j].is_zero() && form.polys[j] == form.polys[i]) uf.unite(static_cast<int>(i), j);
     }
   }
@@ -98,33 +105,62 @@ int count_pieces(const PiecewiseForm& form) {
   return static_cast<int>(roots.size());
 }
 
-Rational total_integral(const PiecewiseForm& form) {
+static Rational integral_of_cell(const PiecewiseForm& form, int i) {
+  const auto& cell = form.knots.cells()[i];
+  const Poly& p = form.polys[i];
+  if (p.is_zero()) return 0;
+  RatVec lo, hi;
+  if (box_corners(cell, lo, hi)) return integrate_over_box(p, lo, hi);
   Rational total = 0;
-  const auto& cells = form.complex.cells();
-  for (size_t i = 0; i < cells.size(); ++i) {
-    if (form.polys[i].is_zero()) continue;
-    if (is_unit_cube(cells[i])) {
-      total = total + integrate_over_unit_cube(form.polys[i], cells[i]);
-      continue;
-    }
-    for (const auto& simplex : triangulate(cells[i], form.complex.normals()))
-      total = total + integrate_over_simplex(form.polys[i], simplex);
-  }
+  for (const auto& simplex : triangulate(cell, form.knots)) total = total + integrate_over_simplex(p, simplex);
   return total;
 }
 
-ContinuityReport check_continuity(const PiecewiseForm& form, int order) {
+Rational total_integral(const PiecewiseForm& form) {
+  Rational total = 0;
+  for (size_t i = 0; i < form.knots.cells().size(); ++i) total = total + integral_of_cell(form, static_cast<int>(i));
+  return total;
+}
+
+Rational total_integral(const PiecewiseForm& form, const CellOrbits& orbits) {
+  Rational total = 0;
+  for (size_t o = 0; o < orbits.representatives.size(); ++o)
+    total = total + Rational(orbits.sizes[o]) * integral_of_cell(form, orbits.representatives[o]);
+  return total;
+}
+
+CellOrbits cell_orbits(const PiecewiseForm& form, const std::vector<SignedPermutation>& group) {
+  const RatVec c = spline_centre(form.spec);
+  const auto& cells = form.knots.cells();
+  std::vector<bool> seen(cells.size(), false);
+  CellOrbits orbits;
+  for (size_t i = 0; i < cells.size(); ++i) {
+    if (seen[i]) continue;
+    int size = 0;
+    for (const auto& g : group) {
+      const int j = form.knots.locate(symmetry_image(g, cells[i].interior, c));
+      if (j < 0) fail_internal("symmetry check failed: the image of a cell of the support lies outside it");
+      if (!seen[j]) seen[j] = true, ++size;
+    }
+    orbits.representatives.push_back(static_cast<int>(i));
+    orbits.sizes.push_back(size);
+  }
+  return orbits;
+}
+
+ContinuityReport check_continuity(const PiecewiseForm& form, int order, const std::vector<int>& subset) {
   ContinuityReport report;
   report.smoothness = order;
-  const auto& cells = form.complex.cells();
-  const auto& normals = form.complex.normals();
+  const auto& cells = form.knots.cells();
+  const auto& normals = form.knots.planes().normals;
   const Poly zero(form.dimension(), 0);
-  for (size_t i = 0; i < cells.size(); ++i) {
+  const bool all = subset.size() == cells.size();
+  for (int i : subset) {
     if (form.polys[i].is_zero()) continue;
-    for (const auto& f : facets_of(cells[i], normals)) {
-      const int j = form.complex.find(neighbour_key(cells[i], f));
+    for (const auto& f : facets_of(cells[i], form.knots.planes())) {
+      const int j = form.knots.find(neighbour_key(cells[i], f));
       const Poly& other = j >= 0 ? form.polys[j] : zero;
-      if (!f.upper && !other.is_zero()) continue;  // that face is checked from the other side
+      if (all && !f.upper && !other.is_zero()) continue;  // that face is checked from the other side
       ++report.faces_checked;
       const IntVec& nu = normals[f.normal];
       int var = 0;
@@ -146,6 +182,12 @@ ContinuityReport check_continuity(const PiecewiseForm& form, int order) {
     }
   }
   return report;
+}
+
+ContinuityReport check_continuity(const PiecewiseForm& form, int order) {
+  std::vector<int> all(form.knots.cells().size());
+  std::iota(all.begin(), all.end(), 0);
+  return check_continuity(form, order, all);
 }
 
 std::vector<SignedPermutation> generators(const std::vector<SignedPermutation>& group) {
@@ -176,19 +218,24 @@ void check_symmetry(const PiecewiseForm& form, const std::vector<SignedPermutati
   std::vector<SignedPermutation> checks = generators(group);
   checks.push_back({std::vector<int>(n), std::vector<int>(n, -1)});
   std::iota(checks.back().perm.begin(), checks.back().perm.end(), 0);
-  const auto& cells = form.complex.cells();
-  for (const auto& g : checks) {
-    // b = c - g c: the uncentred image of y is g y + b.
-    RatVec gc = g.apply(c), minus_b(n);
-    for (int i = 0; i < n; ++i) minus_b[i] = gc[i] - c[i];
+  const auto& cells = form.knots.cells();
+  // Centred pieces Q_i(y) = P_i(y + c), once each; then M^c(g y) = M^c(y) on cell i reads
+  // Q_t(g y) = Q_i(y) with t the cell holding the image.
+  RatVec minus_c(n);
+  for (int i = 0; i < n; ++i) minus_c[i] = -c[i];
+  std::vector<Poly> centred;
+  centred.reserve(cells.size());
+  for (const auto& p : form.polys) centred.push_back(p.translated(minus_c));
+  for (const auto& g : checks)
     for (size_t i = 0; i < cells.size(); ++i) {
-      const RatVec image = symmetry_image(g, cells[i].interior, c);
-      const Poly& target = form.poly_for_key(floor_key(form.complex.normals(), image));
-      if (form.polys[i].is_zero() && target.is_zero()) continue;
-      const Poly mapped = target.translated(minus_b).signed_permuted(g.perm, g.sign);
-      if (mapped != form.polys[i]) fail_internal("symmetry check failed: M^c(g x) != M^c(x) on a cell");
+      const int t = form.knots.locate(symmetry_image(g, cells[i].interior, c));
+      if (t < 0) {
+        if (form.polys[i].is_zero()) continue;
+        fail_internal("symmetry check failed: the image of a cell of the support lies outside it");
+      }
+      if (centred[t].signed_permuted(g.perm, g.sign) != centred[i])
+        fail_internal("symmetry check failed: M^c(g x) != M^c(x) on a cell");
     }
-  }
 }
 
 }  // namespace boxgen

@@ -6,10 +6,21 @@
 
 namespace boxgen {
 
+// Orbits of the knot cells under the symmetry group of the centred spline, x -> g(x - c) + c
+// (the complex is symmetric, so each image of a cell is a cell): representatives and sizes.
+struct CellOrbits {
+  std::vector<int> representatives;  // one cell per orbit
+  std::vector<int> sizes;            // cells in that orbit
+};
+CellOrbits cell_orbits(const PiecewiseForm& form, const std::vector<SignedPermutation>& group);
+
 // Maximal connected unions of cells with one polynomial (nonzero cells only).
 int count_pieces(const PiecewiseForm& form);
 // Sum of the integrals of the pieces (1 for a box spline).
 Rational total_integral(const PiecewiseForm& form);
+// The same from one cell per orbit, weighted by the orbit's size (valid once the spline's
+// symmetry is checked: the maps preserve volume and carry pieces onto pieces).
+Rational total_integral(const PiecewiseForm& form, const CellOrbits& orbits);
 
 struct ContinuityReport {
   int faces_checked = 0;
@@ -19,6 +30,8 @@ struct ContinuityReport {
 // Checks that across every face nu.x = c the jump is divisible by (nu.x - c)^order;
 // throws InternalError naming the face if not. Reports whether order is sharp.
 ContinuityReport check_continuity(const PiecewiseForm& form, int order);
+// The same on the faces of the given cells only (one per orbit suffices once symmetry is checked).
+ContinuityReport check_continuity(const PiecewiseForm& form, int order, const std::vector<int>& cells);
 
 // Throws InternalError unless M^c(g x) = M^c(x) on every cell for g in `group` (checked on a
 // generating set, which implies the whole group) and for x -> -x.

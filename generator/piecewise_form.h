@@ -1,6 +1,9 @@
-// The piecewise polynomial form of a box spline: every fine cell of the bounding box of its
-// support with the exact polynomial of the UNCENTRED M_Xi there (zero outside the support).
+// The piecewise polynomial form of a box spline: every cell of the arrangement of its true knot
+// planes inside its support, with the exact polynomial of the UNCENTRED M_Xi there (zero outside
+// the support). The integer-level refinement of the same normals (FineArrangement) is what the
+// emitter's lookup table uses; its cells take their polynomials from the knot cell holding them.
 #pragma once
+#include <functional>
 #include <optional>
 
 #include "generator/box_spline_derivation.h"
@@ -9,32 +12,47 @@
 
 namespace boxgen {
 
+// The bounding box [lo, hi] of the support Xi [0,1]^m.
 class Zonotope {
  public:
   explicit Zonotope(const IntColumns& directions, int n);
-  bool contains_interior(const RatVec& x) const;  // strictly inside
   const IntVec& box_lo() const { return lo_; }
   const IntVec& box_hi() const { return hi_; }
 
  private:
+  IntVec lo_, hi_;
+};
+
+// The fine arrangement: every integer level of the knot normals plus the axes (axes first), on
+// the bounding box [lo, hi) of the support. Only described here; split_cube builds its cells.
+class FineArrangement {
+ public:
+  FineArrangement(std::vector<IntVec> normals, IntVec lo, IntVec hi)
+      : normals_(std::move(normals)), lo_(std::move(lo)), hi_(std::move(hi)) {}
+  const std::vector<IntVec>& normals() const { return normals_; }
+  const IntVec& lo() const { return lo_; }
+  const IntVec& hi() const { return hi_; }
+
+ private:
   std::vector<IntVec> normals_;
-  std::vector<Rational> centre_dot_, half_width_;
   IntVec lo_, hi_;
 };
 
 struct PiecewiseForm {
-  PiecewiseForm(const BoxSplineSpec& s, DerivationMethod m, CellComplex c)
-      : spec(s), method(m), complex(std::move(c)), zero_(spec.dimension(), 0) {}
+  PiecewiseForm(BoxSplineSpec s, DerivationMethod m, KnotComplex k, FineArrangement f)
+      : spec(std::move(s)), method(m), knots(std::move(k)), complex(std::move(f)), zero_(spec.dimension(), 0) {}
 
   BoxSplineSpec spec;
   DerivationMethod method;
-  CellComplex complex;
-  std::vector<Poly> polys;  // M_Xi on complex.cells()[i]
+  KnotComplex knots;        // where the pieces are derived
+  FineArrangement complex;  // the emitter's refinement
+  std::vector<Poly> polys;  // M_Xi on knots.cells()[i]
   double seconds = 0;
 
   int dimension() const { return spec.dimension(); }
-  // Polynomial of the cell with this key; zero polynomial for keys outside the box.
-  const Poly& poly_for_key(const CellKey& key) const;
+  // Polynomial at a point on no knot plane (every interior point of a fine cell is one); zero
+  // outside the support.
+  const Poly& poly_at(const RatVec& x) const;
   // Exact value of M_Xi (uncentred) at any point. Throws InputError if the adjacent pieces
   // disagree there (a discontinuity of the value or of the requested derivative).
   Rational value_at(const RatVec& x, const std::array<int, 3>& derivative = {0, 0, 0}) const;
@@ -43,8 +61,14 @@ struct PiecewiseForm {
   Poly zero_;
 };
 
-// Throws InputError if the derivation would be too large to finish in reasonable time.
-void check_derivation_size(const BoxSplineSpec& spec);
-PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method);
+// Reports progress of a long derivation: stage, cells done, cells in total.
+using ProgressFn = std::function<void(const char* stage, std::size_t done, std::size_t total)>;
+
+// Refuses (InputError, before deriving any polynomial) what the cost estimate puts beyond
+// max_seconds; 0 means the default limit (cost_estimate.h).
+PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method, const ProgressFn& progress = {},
+                               double max_seconds = 0);
+// The same pieces by the other method, on the cells of `form` (the second, independent derivation).
+std::vector<Poly> rederive(const PiecewiseForm& form, DerivationMethod method, const ProgressFn& progress = {});
 
 }  // namespace boxgen

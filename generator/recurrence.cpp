@@ -313,7 +313,6 @@ Rational BoxSplineRecurrence::value(const RatVec& x) {
   return at_shift(IntVec(x.size(), 0));
 }
 
-std::size_t BoxSplineRecurrence::memo_size() const { return impl_->memo.size(); }
 
 Rational box_spline_recurrence(const IntColumns& xi, const RatVec& x) { return BoxSplineRecurrence(xi).value(x); }
 

@@ -40,7 +40,6 @@ class BoxSplineRecurrence {
   Rational value(const RatVec& x);            // M_Xi(x), with a fresh memo
   void set_base(const RatVec& base);          // clears the memo; throws InputError if not generic
   Rational at_shift(const IntVec& shift);     // M_Xi(base + shift), sharing the memo
-  std::size_t memo_size() const;              // for measurements
 
  private:
   struct Impl;

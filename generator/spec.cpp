@@ -164,8 +164,11 @@ std::string entries(std::size_t count) { return fmt::format("{} {}", count, coun
 int common_dimension(const IntRows& rows, const RowSyntax& syntax) {
   const auto n = rows.front().size();
   if (n != 2 && n != 3)
-    fail_input(fmt::format("invalid {0}: {1} 1 has {2}, but {1}s must have 2 or 3 entries (2-D or 3-D)", syntax.list,
-                           syntax.row, entries(n)));
+    fail_input(fmt::format("invalid {0}: {1} 1 has {2}, but {1}s must have 2 or 3 entries (2-D or 3-D){3}",
+                           syntax.list, syntax.row, entries(n),
+                           std::string(syntax.list) == "SPEC"
+                               ? "; a SPEC lists the directions (the columns of Xi), one per ';'"
+                               : "; --lattice takes the rows of G (its columns are the lattice basis), one per ';'"));
   for (std::size_t r = 1; r < rows.size(); ++r)
     if (rows[r].size() != n)
       fail_input(fmt::format("invalid {0}: {1} {2} has {3} but {1} 1 has {4}; all must have the same dimension",
@@ -192,10 +195,29 @@ void check_directions(const IntColumns& xi, int n) {
     if (std::all_of(xi[k].begin(), xi[k].end(), [](std::int64_t v) { return v == 0; }))
       fail_input(fmt::format("direction {} ({}) is the zero vector: every direction must be nonzero", k + 1,
                              join_row(xi[k])));
-  if (int r = rank(xi, n); r < n)
+  if (int r = rank(xi, n); r < n) {
+    // A user who wrote Xi by rows gets its transpose: say so when that would be a valid SPEC.
+    std::string hint;
+    const int m = static_cast<int>(xi.size());
+    if (m == 2 || m == 3) {
+      IntColumns transposed(static_cast<std::size_t>(n), IntVec(static_cast<std::size_t>(m)));
+      for (int i = 0; i < n; ++i)
+        for (int k = 0; k < m; ++k) transposed[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = xi[k][i];
+      const bool nonzero = std::none_of(transposed.begin(), transposed.end(), [](const IntVec& c) {
+        return std::all_of(c.begin(), c.end(), [](std::int64_t v) { return v == 0; });
+      });
+      if (nonzero && rank(transposed, m) == m) {
+        std::vector<std::string> cols;
+        for (const auto& c : transposed) cols.push_back(join_row(c));
+        hint = fmt::format("; a SPEC lists the directions (the columns of Xi), one per ';': if you wrote the rows of "
+                           "Xi, its transpose '{}' is a valid {}-D SPEC",
+                           fmt::join(cols, "; "), m);
+      }
+    }
     fail_input(fmt::format("rank-deficient direction matrix: the {} directions span only {} dimension(s); {} linearly "
-                           "independent directions are needed in {}-D",
-                           xi.size(), r, n, n));
+                           "independent directions are needed in {}-D{}",
+                           xi.size(), r, n, n, hint));
+  }
   // The support Xi[0,1]^m has the bounding-box side sum_k |xi_k[i]| in coordinate i; the
   // derivation visits every unit cell of that box. Sides are <= 32 * 64, so no overflow.
   std::int64_t cells = 1;

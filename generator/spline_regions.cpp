@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <map>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -36,12 +37,26 @@ class Fundamental {
  public:
   explicit Fundamental(const PiecewiseForm& form) : form_(form), n_(form.dimension()) {
     for (const auto& rep : form.spec.lattice.coset_representatives())
-      for (auto& c : CellComplex::split_cube(form.complex.normals(), rep)) {
+      for (auto& c : split_cube(form.complex.normals(), rep)) {
         index_.emplace(c.key, static_cast<int>(cells_.size()));
         FundamentalCell fc;
         fc.cell = std::move(c);
         cells_.push_back(std::move(fc));
       }
+    // The lattice points any cube of F may fetch, enumerated once (a scaled lattice has few
+    // points in a large box, and enumerating the box per cell would dominate).
+    corner_lo_ = corner_hi_ = IntVec(cells_.front().cell.key.begin(), cells_.front().cell.key.begin() + n_);
+    for (const auto& fc : cells_)
+      for (int i = 0; i < n_; ++i) {
+        corner_lo_[i] = std::min<std::int64_t>(corner_lo_[i], fc.cell.key[i]);
+        corner_hi_[i] = std::max<std::int64_t>(corner_hi_[i], fc.cell.key[i]);
+      }
+    IntVec lo(n_), hi(n_);
+    for (int i = 0; i < n_; ++i) {
+      lo[i] = corner_lo_[i] - form.complex.hi()[i];
+      hi[i] = corner_hi_[i] - form.complex.lo()[i] + 1;
+    }
+    near_points_ = form.spec.lattice.points_in_box(lo, hi);
   }
   std::vector<FundamentalCell>& cells() { return cells_; }
   const std::vector<IntVec>& normals() const { return form_.complex.normals(); }
@@ -60,25 +75,43 @@ class Fundamental {
   // Lattice points j with a chance of M_Xi(u - j) != 0 for u in the unit cube at `corner`.
   std::vector<IntVec> candidates(const IntVec& corner, int margin) const {
     IntVec lo(n_), hi(n_);
+    bool cached = margin <= 1;
     for (int i = 0; i < n_; ++i) {
       lo[i] = corner[i] - form_.complex.hi()[i] + 1 - margin;
       hi[i] = corner[i] - form_.complex.lo()[i] + margin;
+      cached = cached && corner[i] >= corner_lo_[i] && corner[i] <= corner_hi_[i];
     }
-    return form_.spec.lattice.points_in_box(lo, hi);
-  }
-
-  std::vector<IntVec> stencil_of_key(const CellKey& key) const {
+    if (!cached) return form_.spec.lattice.points_in_box(lo, hi);
     std::vector<IntVec> out;
-    for (const auto& j : candidates(IntVec(key.begin(), key.begin() + n_), 0))
-      if (!form_.poly_for_key(shifted_key(key, normals(), j)).is_zero()) out.push_back(j);
+    for (const auto& j : near_points_) {
+      bool in = true;
+      for (int i = 0; i < n_ && in; ++i) in = j[i] >= lo[i] && j[i] <= hi[i];
+      if (in) out.push_back(j);
+    }
     return out;
   }
 
-  // True if the spline has one polynomial on the two adjacent cells (absolute keys).
-  bool same_spline_piece(const CellKey& a, const CellKey& b) const {
-    for (const auto& j : candidates(IntVec(a.begin(), a.begin() + n_), 1))
-      if (form_.poly_for_key(shifted_key(a, normals(), j)) != form_.poly_for_key(shifted_key(b, normals(), j)))
-        return false;
+  // The stencil of a fine cell: the lattice points j with M_Xi(u - j) != 0 there, each with the
+  // knot cell of M_Xi whose polynomial it takes (the fine cell holding u - j lies in it).
+  void set_stencil(FundamentalCell& fc) const {
+    const ShiftLocator locate(form_.knots, fc.cell.interior);
+    for (const auto& j : candidates(IntVec(fc.cell.key.begin(), fc.cell.key.begin() + n_), 0))
+      if (const int k = locate.cell_at(j); k >= 0 && !form_.polys[k].is_zero()) {
+        fc.stencil.push_back(j);
+        fc.stencil_knot_cells.push_back(k);
+      }
+  }
+
+  // True if the spline has one polynomial on fine cell a and on fine cell b translated by l
+  // (adjacent cells): the same j with the same polynomial on both, for every j.
+  bool same_spline_piece(const FundamentalCell& a, const FundamentalCell& b, const IntVec& l) const {
+    if (a.stencil.size() != b.stencil.size()) return false;
+    for (size_t k = 0; k < a.stencil.size(); ++k) {
+      for (int i = 0; i < n_; ++i)
+        if (a.stencil[k][i] != b.stencil[k][i] + l[i]) return false;
+      const int ka = a.stencil_knot_cells[k], kb = b.stencil_knot_cells[k];
+      if (ka != kb && form_.polys[ka] != form_.polys[kb]) return false;
+    }
     return true;
   }
 
@@ -87,6 +120,8 @@ class Fundamental {
   int n_;
   std::vector<FundamentalCell> cells_;
   std::unordered_map<CellKey, int, CellKeyHash> index_;
+  IntVec corner_lo_, corner_hi_;     // range of the cubes of F
+  std::vector<IntVec> near_points_;  // lattice points any of them may fetch (margin 1)
 };
 
 void add_unique(std::vector<RatVec>& pts, const RatVec& p) {
@@ -134,11 +169,11 @@ std::vector<SplineRegion> merge_regions(Fundamental& fund, const RatVec& c, int 
         CellKey other = cells[i].cell.key;
         other[f.normal] += f.upper ? 1 : -1;
         const IntVec& nu = fund.normals()[f.normal];
-        if (!fund.same_spline_piece(cells[i].cell.key, other)) {
+        auto [j, l] = fund.locate(other);
+        if (!fund.same_spline_piece(cells[i], cells[j], l)) {
           add_unique_plane(region.planes, {nu, Rational(f.level) + Rational(dot(nu, p)) - dot(nu, c)});
           continue;
         }
-        auto [j, l] = fund.locate(other);
         IntVec where(n);
         for (int k = 0; k < n; ++k) where[k] = p[k] + l[k];
         if (!placed[j]) {
@@ -183,25 +218,9 @@ std::vector<RatVec> image_of(const SpaceGroupElement& e, const std::vector<RatVe
   return out;
 }
 
-}  // namespace
-
-SplineStructure spline_structure(const PiecewiseForm& form) {
-  const int n = form.dimension();
-  const Lattice& lattice = form.spec.lattice;
-  SplineStructure s;
-  s.centre = spline_centre(form.spec);
-  s.group = symmetry_group(form.spec);
-  Fundamental fund(form);
-  for (auto& fc : fund.cells()) fc.stencil = fund.stencil_of_key(fc.cell.key);
-  s.regions = merge_regions(fund, s.centre, n);
-  s.cells = fund.cells();
-  s.stencil_min = s.stencil_max = static_cast<int>(s.cells.front().stencil.size());
-  for (const auto& fc : s.cells) {
-    s.stencil_min = std::min(s.stencil_min, static_cast<int>(fc.stencil.size()));
-    s.stencil_max = std::max(s.stencil_max, static_cast<int>(fc.stencil.size()));
-  }
-
-  // Orbits: the image of a region's first cell under each symmetry lands in another region.
+// Orbits of the regions under the space group: the image of a region's first cell under each
+// symmetry lands in a region of the same orbit. Creates one (empty) reference per orbit.
+void assign_orbits(SplineStructure& s, const Fundamental& fund) {
   UnionFind orbits(s.regions.size());
   for (size_t r = 0; r < s.regions.size(); ++r) {
     const auto& fc = s.cells[s.regions[r].cells.front()];
@@ -220,10 +239,12 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
     s.regions[r].orbit = orbit_of_root[root];
     ++s.references[s.regions[r].orbit].regions_in_orbit;
   }
+}
 
-  // Reference region of each orbit: the image g R + l whose centroid is nearest the origin,
-  // ties broken towards the lexicographically largest centroid (x >= y >= z >= 0 when the
-  // group allows it). For M7 this is the paper's tetrahedron (0,0,0),(1,1,1),(1,0,0),(1,1,0).
+// Reference region of each orbit: the image g R + l whose centroid is nearest the origin, ties
+// broken towards the lexicographically largest centroid (x >= y >= z >= 0 when the group allows
+// it). For M7 this is the paper's tetrahedron (0,0,0),(1,1,1),(1,0,0),(1,1,0).
+void choose_references(SplineStructure& s, const Lattice& lattice, int n) {
   std::int64_t reach = 2;
   for (const auto& col : lattice.generator())
     for (auto v : col) reach = std::max<std::int64_t>(reach, std::llabs(v) + 1);
@@ -266,7 +287,10 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
     ref.interior = best_map.apply(x);
   }
 
-  // Every region's map onto its reference: g R + l = R_ref (vertex sets equal).
+}
+
+// Every region's map onto its reference: g R + l = R_ref (vertex sets equal).
+void map_regions_to_references(SplineStructure& s, const Lattice& lattice, int n) {
   for (auto& region : s.regions) {
     const ReferenceRegion& ref = s.references[region.orbit];
     const RatVec target = mean(ref.vertices);
@@ -291,8 +315,20 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
     if (!found) fail_internal("a region does not map onto its orbit's reference region");
   }
 
-  // Stencil and basis polynomials of each reference region (centred frame).
+}
+
+// Stencil and basis polynomials of each reference region (centred frame).
+void reference_bases(SplineStructure& s, const PiecewiseForm& form, const Fundamental& fund) {
+  const int n = form.dimension();
+  const Lattice& lattice = form.spec.lattice;
   const Rational scale = Rational(lattice.det_abs());
+  // M(x - j) = |det G| P_k(x + c - j): each knot piece is centred once (Q_k(y) = P_k(y + c), times
+  // |det G|), then moved by the integer j, which keeps the translation's tables integral.
+  RatVec minus_c(n);
+  for (int k = 0; k < n; ++k) minus_c[k] = -s.centre[k];
+  std::vector<std::optional<Poly>> centred(form.polys.size());
+  // Neighbouring regions share most (knot piece, stencil point) pairs: translate each pair once.
+  std::map<std::pair<int, IntVec>, Poly> moved;
   for (auto& ref : s.references) {
     RatVec u(n);
     IntVec corner(n);
@@ -300,26 +336,59 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
       u[k] = ref.interior[k] + s.centre[k];
       corner[k] = floor_to_int64(u[k]);
     }
+    const ShiftLocator locate(form.knots, u);
     for (const auto& j : fund.candidates(corner, 0)) {
-      RatVec uj = u;
-      for (int k = 0; k < n; ++k) uj[k] = uj[k] - Rational(j[k]);
-      const Poly& p = form.poly_for_key(floor_key(form.complex.normals(), uj));
-      if (p.is_zero()) continue;
-      RatVec shift(n);
-      for (int k = 0; k < n; ++k) shift[k] = Rational(j[k]) - s.centre[k];
+      const int cell = locate.cell_at(j);
+      if (cell < 0 || form.polys[cell].is_zero()) continue;
+      auto it = moved.find({cell, j});
+      if (it == moved.end()) {
+        if (!centred[cell]) centred[cell] = form.polys[cell].translated(minus_c) * scale;
+        it = moved.emplace(std::make_pair(cell, j), centred[cell]->translated(to_ratvec(j))).first;
+      }
       ref.stencil.push_back(j);
-      ref.basis.push_back(p.translated(shift) * scale);
+      ref.basis.push_back(it->second);
     }
   }
+}
+
+}  // namespace
+
+SplineStructure spline_structure(const PiecewiseForm& form) {
+  const int n = form.dimension();
+  SplineStructure s;
+  s.centre = spline_centre(form.spec);
+  s.group = symmetry_group(form.spec);
+  Fundamental fund(form);
+  for (auto& fc : fund.cells()) fund.set_stencil(fc);
+  s.regions = merge_regions(fund, s.centre, n);
+  s.cells = fund.cells();
+  s.stencil_min = s.stencil_max = static_cast<int>(s.cells.front().stencil.size());
+  for (const auto& fc : s.cells) {
+    s.stencil_min = std::min(s.stencil_min, static_cast<int>(fc.stencil.size()));
+    s.stencil_max = std::max(s.stencil_max, static_cast<int>(fc.stencil.size()));
+  }
+  assign_orbits(s, fund);
+  choose_references(s, form.spec.lattice, n);
+  map_regions_to_references(s, form.spec.lattice, n);
+  reference_bases(s, form, fund);
   return s;
 }
 
-void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& s) {
+void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& s, bool full) {
+  if (!full) {
+    const Poly one = Poly::constant(form.dimension(), 1);
+    for (const auto& ref : s.references) {
+      Poly sum(form.dimension(), 0);
+      for (const auto& b : ref.basis) sum += b;
+      if (sum != one) fail_internal("partition of unity fails on a reference region");
+    }
+    return;
+  }
   const Poly expected = Poly::constant(form.dimension(), Rational(1) / Rational(form.spec.lattice.det_abs()));
   for (const auto& fc : s.cells) {
     Poly sum(form.dimension(), 0);
-    for (const auto& j : fc.stencil)
-      sum += form.poly_for_key(shifted_key(fc.cell.key, form.complex.normals(), j)).translated(to_ratvec(j));
+    for (size_t k = 0; k < fc.stencil.size(); ++k)
+      sum += form.polys[fc.stencil_knot_cells[k]].translated(to_ratvec(fc.stencil[k]));
     if (sum != expected) fail_internal("partition of unity fails on a cell of the fundamental region");
   }
 }

@@ -19,6 +19,7 @@ namespace boxgen {
 struct FundamentalCell {
   FineCell cell;                // uncentred frame, inside F
   std::vector<IntVec> stencil;  // lattice points j with M_Xi(u - j) != 0 on the cell, sorted
+  std::vector<int> stencil_knot_cells;  // per stencil point: the knot cell of M_Xi holding u - j
   int region = -1;
   IntVec placement;             // cell + placement is where the cell sits in its region's geometry
 };
@@ -58,7 +59,10 @@ struct SplineStructure {
 
 SplineStructure spline_structure(const PiecewiseForm& form);
 
-// Throws InternalError unless sum_j M(x - j) = 1 identically on every fundamental cell.
-void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& s);
+// Throws InternalError unless sum_j M(x - j) = 1 identically on every fundamental cell (full), or
+// on every reference region (the default: each fine cell lies in a region, where the stencil's
+// pieces are those of its reference region mapped by a symmetry and a lattice translation,
+// both of which keep the sum).
+void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& s, bool full = true);
 
 }  // namespace boxgen

@@ -1,13 +1,45 @@
+#include <fmt/format.h>
+
 #include <iostream>
 
 #include "apps/boxgen/commands.h"
+#include "apps/boxgen/progress.h"
 #include "generator/analysis.h"
+#include "generator/cost_estimate.h"
+#include "generator/error.h"
 
 namespace boxgen::cli {
 
-int run_analyze(const Common& c, bool verify) {
+int run_analyze(const Common& c, const AnalyzeOptions& o) {
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
-  const Analysis a = analyze(spec, {verify});
+  if (o.checks != "default" && o.checks != "full")
+    fail_input(fmt::format("--checks must be default or full, got '{}'", o.checks));
+  const bool full = o.checks == "full";
+  const CostEstimate estimate = estimate_cost(spec, o.verify, full);
+  if (o.estimate_only) {
+    if (c.json) {
+      print_json({{"spec", spec.name},
+                  {"estimated_seconds", estimate.seconds},
+                  {"estimated_bytes", estimate.bytes},
+                  {"knot_cells", estimate.knot_cells},
+                  {"fundamental_cells", estimate.fundamental_cells},
+                  {"cells_exact", estimate.cells_exact}});
+    } else {
+      fmt::print("estimated time    {:.3g} s (this machine's calibration)\n", estimate.seconds);
+      fmt::print("estimated memory  {:.3g} MB\n", estimate.bytes / 1e6);
+      fmt::print("knot cells        {}{}\n", estimate.knot_cells, estimate.cells_exact ? "" : " (upper bound)");
+    }
+    return 0;
+  }
+  refuse_if_too_costly(estimate, o.max_seconds);
+  ProgressPrinter progress(o.progress);
+  AnalysisOptions options;
+  options.verify = o.verify;
+  options.full_checks = full;
+  options.progress = progress.callback();
+  options.max_seconds = o.max_seconds;
+  const Analysis a = analyze(spec, options);
+  progress.finish();
   if (c.json)
     print_json(to_json(a));
   else

@@ -1,8 +1,12 @@
 #include <fmt/core.h>
 
 #include <filesystem>
+#include <algorithm>
+#include <cctype>
+#include <set>
 
 #include "apps/boxgen/commands.h"
+#include "apps/boxgen/progress.h"
 #include "generator/emitter.h"
 #include "generator/error.h"
 #include "runtime/output_file.h"
@@ -37,13 +41,43 @@ void print_report(const EmissionReport& r) {
                r.orbits[o].gradient.total(), r.orbits[o].hessian.total());
 }
 
+// --name becomes a namespace: a C++ identifier that is not a keyword (checked before deriving).
+void check_emit_name(const std::string& name) {
+  static const std::set<std::string> keywords = {
+      "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
+      "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval", "constexpr",
+      "constinit", "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype", "default", "delete",
+      "do", "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern", "false", "float", "for",
+      "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
+      "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register", "reinterpret_cast",
+      "requires", "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast", "struct",
+      "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename",
+      "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq"};
+  const auto letter = [](char ch) { return std::isalpha(static_cast<unsigned char>(ch)) || ch == '_'; };
+  const bool identifier = !name.empty() && letter(name[0]) &&
+                          std::all_of(name.begin(), name.end(), [&](char ch) {
+                            return letter(ch) || std::isdigit(static_cast<unsigned char>(ch));
+                          });
+  if (!identifier)
+    fail_input(fmt::format("--name '{}' is not a C++ identifier: use letters, digits and '_', not starting with a digit",
+                           name));
+  if (keywords.count(name)) fail_input(fmt::format("--name '{}' is a C++ keyword: choose another name", name));
+  if (name.find("__") != std::string::npos || (name.size() > 1 && name[0] == '_' && std::isupper(name[1])))
+    fail_input(fmt::format("--name '{}' is reserved for the implementation in C++ ('__' or '_' and a capital)", name));
+}
+
 }  // namespace
 
 int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy, bool report,
              const std::vector<std::string>& registry) {
+  check_emit_name(name);
   const EmissionStrategy chosen = parse_strategy(strategy);  // before the derivation: fail fast
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
-  const Analysis a = analyze(spec);  // the exact checks run before anything is emitted
+  ProgressPrinter progress(false);  // on a terminal, for derivations beyond two seconds
+  AnalysisOptions options;
+  options.progress = progress.callback();
+  const Analysis a = analyze(spec, options);  // the exact checks run before anything is emitted
+  progress.finish();
   EmissionRequest request{name,
                           fmt::format("boxgen emit {} {}--name {} --strategy {} --out <dir>",
                                       spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,

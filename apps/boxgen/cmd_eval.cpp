@@ -1,11 +1,16 @@
 #include <fmt/core.h>
 
 #include "apps/boxgen/commands.h"
+#include "apps/boxgen/progress.h"
 #include "generator/error.h"
 #include "generator/piece_checks.h"
 #include "generator/piecewise_form.h"
 
 namespace boxgen::cli {
+
+namespace {
+constexpr long kMaxEvalCoordinate = 1000000;  // far beyond any support (entries <= 64, <= 32 columns)
+}  // namespace
 
 int run_eval(const Common& c, const std::vector<std::string>& points, const std::string& derivative) {
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
@@ -20,8 +25,18 @@ int run_eval(const Common& c, const std::vector<std::string>& points, const std:
     }
   }
   std::vector<RatVec> xs;
-  for (const auto& p : points) xs.push_back(parse_point(p, n, "point"));
-  const PiecewiseForm form = derive_piecewise(spec, DerivationMethod::TruncatedPower);
+  for (const auto& p : points) {
+    xs.push_back(parse_point(p, n, "point"));
+    // Cells are keyed by 32-bit levels of nu . x: refuse what that frame cannot hold.
+    for (const auto& v : xs.back())
+      if (cln::abs(v) > Rational(kMaxEvalCoordinate))
+        fail_input(fmt::format("point '{}' has a coordinate too large for the exact frame: coordinates must be at "
+                               "most {} in magnitude",
+                               p, kMaxEvalCoordinate));
+  }
+  ProgressPrinter progress(false);  // on a terminal, for derivations beyond two seconds
+  const PiecewiseForm form = derive_piecewise(spec, DerivationMethod::TruncatedPower, progress.callback());
+  progress.finish();
   const RatVec centre = spline_centre(spec);
   const Rational scale = Rational(spec.lattice.det_abs());
   nlohmann::json out = nlohmann::json::array();
@@ -33,7 +48,10 @@ int run_eval(const Common& c, const std::vector<std::string>& points, const std:
   }
   for (size_t k = 0; k < xs.size(); ++k) {
     if (c.json)
-      out.push_back({{"x", rational_list(xs[k])}, {"value", to_string(values[k])}, {"value_float", to_double(values[k])}});
+      out.push_back({{"x", rational_list(xs[k])},
+                     {"derivative", std::vector<int>(orders.begin(), orders.begin() + n)},
+                     {"value", to_string(values[k])},
+                     {"value_float", to_double(values[k])}});
     else
       fmt::print("{}\n", to_string(values[k]));
   }

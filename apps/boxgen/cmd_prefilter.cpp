@@ -1,5 +1,6 @@
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <map>
 
 #include "apps/boxgen/commands.h"
@@ -9,33 +10,49 @@ namespace boxgen::cli {
 
 namespace {
 
-// "5/3 - 1/12 sum(S1)" style: the z-transform grouped by equal weights, as in the paper's Table 1.
+// "5/3 - 1/12 sum_{S1} z^-xi" style: the z-transform grouped by equal weights, as in the paper's
+// Table 1. A shell appears in a sum only if every one of its points has that weight; taps of a
+// shell that is not uniform are listed one by one, so the summary matches the taps exactly.
 std::string formula(const Prefilter& q, const Lattice& lattice) {
   const auto shells = lattice.shells(q.shells.back() + 1);
-  auto shell_of = [&](const IntVec& p) {
-    for (size_t s = 0; s < shells.size(); ++s)
-      for (const auto& x : shells[s])
-        if (x == p) return static_cast<int>(s);
-    return -1;
+  std::map<IntVec, Rational> tap;
+  for (const auto& w : q.weights) tap[w.offset] = w.weight;
+  auto weight_at = [&](const IntVec& p) {
+    auto it = tap.find(p);
+    return it == tap.end() ? Rational(0) : it->second;
   };
-  std::map<std::string, std::vector<int>> groups;  // weight -> shells (common parametrisation)
-  std::string centre = "0";
-  for (const auto& w : q.weights) {
-    if (w.offset == IntVec(w.offset.size(), 0)) {
-      centre = to_string(w.weight);
+  std::string centre = to_string(weight_at(IntVec(lattice.dimension(), 0)));
+  std::map<std::string, std::vector<std::string>> groups;  // weight -> "S1", "z^-(1,0,0)", ...
+  std::map<std::string, std::vector<std::string>> points;  // weight -> taps of non-uniform shells
+  std::map<std::string, Rational> value_of;
+  for (size_t s = 1; s < shells.size(); ++s) {
+    const Rational first = weight_at(shells[s].front());
+    const bool uniform = std::all_of(shells[s].begin(), shells[s].end(),
+                                     [&](const IntVec& p) { return weight_at(p) == first; });
+    if (uniform) {
+      if (cln::zerop(first)) continue;
+      groups[to_string(first)].push_back("S" + std::to_string(s));
+      value_of[to_string(first)] = first;
       continue;
     }
-    auto& g = groups[to_string(w.weight)];
-    int s = shell_of(w.offset);
-    if (std::find(g.begin(), g.end(), s) == g.end()) g.push_back(s);
+    for (const auto& p : shells[s]) {
+      const Rational w = weight_at(p);
+      if (cln::zerop(w)) continue;
+      points[to_string(w)].push_back(format_point(p));
+      value_of[to_string(w)] = w;
+    }
+  }
+  for (auto& [weight, pts] : points) {
+    std::string set;
+    for (size_t i = 0; i < pts.size(); ++i) set += (i ? ", " : "") + pts[i];
+    groups[weight].push_back("{" + set + "}");
   }
   std::string out = centre;
-  for (const auto& [weight, sh] : groups) {
-    if (weight == "0") continue;
+  for (const auto& [weight, terms] : groups) {
     std::string set;
-    for (size_t i = 0; i < sh.size(); ++i) set += (i ? " u S" : "S") + std::to_string(sh[i]);
-    const bool negative = weight[0] == '-';
-    out += fmt::format(" {} {} sum_{{{}}} z^-xi", negative ? "-" : "+", negative ? weight.substr(1) : weight, set);
+    for (size_t i = 0; i < terms.size(); ++i) set += (i ? " u " : "") + terms[i];
+    const bool negative = cln::minusp(value_of[weight]);
+    out += fmt::format(" {} {} sum_{{xi in {}}} z^-xi", negative ? "-" : "+", negative ? weight.substr(1) : weight, set);
   }
   return out;
 }

@@ -18,7 +18,14 @@ struct Common {
 };
 
 int run_presets(bool json);
-int run_analyze(const Common& c, bool verify);
+struct AnalyzeOptions {
+  bool verify = true;
+  std::string checks = "default";  // default | full
+  bool estimate_only = false;      // --estimate: predict time and memory, derive nothing
+  double max_seconds = 0;          // refuse up front beyond this predicted time (0: the default limit)
+  bool progress = false;           // progress on stderr even when it is not a terminal
+};
+int run_analyze(const Common& c, const AnalyzeOptions& options);
 int run_eval(const Common& c, const std::vector<std::string>& points, const std::string& derivative);
 int run_bbform(const Common& c, const std::string& region);
 int run_prefilter(const Common& c, const std::string& shells);

@@ -14,9 +14,13 @@ namespace {
 
 void add_common(CLI::App* cmd, boxgen::cli::Common& c, bool needs_spec = true) {
   if (needs_spec)
-    cmd->add_option("SPEC", c.spec, "preset name (see `boxgen presets`) or directions \"1,1,1; 1,-1,-1; ...\"")
+    cmd->add_option("SPEC", c.spec,
+                    "preset name (see `boxgen presets`) or the directions, i.e. the COLUMNS of Xi, one per ';': "
+                    "\"1,1,1; 1,-1,-1; ...\"")
         ->required();
-  cmd->add_option("--lattice", c.lattice, "bcc | fcc | cartesian | \"<rows of G>\" (default: the preset's, else cartesian)");
+  cmd->add_option("--lattice", c.lattice,
+                  "bcc | fcc | cartesian | the ROWS of G, one per ';', whose columns are the lattice basis: "
+                  "\"2,0; 0,1\" (default: the preset's, else cartesian)");
   cmd->add_flag("--json", c.json, "machine-readable output");
 }
 
@@ -40,6 +44,13 @@ int run(int argc, char** argv) {
   auto* analyze = app.add_subcommand("analyze", "derive the properties and structure of a box spline");
   add_common(analyze, c);
   analyze->add_flag("--no-verify", no_verify, "skip the exact checks (second derivation, integral, symmetry, ...)");
+  boxgen::cli::AnalyzeOptions analyze_options;
+  analyze->add_option("--checks", analyze_options.checks,
+                      "default (integral and continuity on one cell per symmetry orbit) or full (every cell)");
+  analyze->add_flag("--estimate", analyze_options.estimate_only, "predict time and memory without deriving");
+  analyze->add_option("--max-seconds", analyze_options.max_seconds,
+                      "refuse up front if the predicted time exceeds this (default 600)");
+  analyze->add_flag("--progress", analyze_options.progress, "progress on stderr even when it is not a terminal");
   auto* eval = app.add_subcommand("eval", "exact value of the filter M = |det G| M^c at points");
   add_common(eval, c);
   eval->add_option("--at", points, "a point \"x y z\" (fractions or decimals); repeatable")->required();
@@ -104,11 +115,23 @@ int run(int argc, char** argv) {
   spectrum->add_option("--size", ao.size, "plane image: pixels per filter panel side (default 400)");
   spectrum->add_option("-o,--output", ao.plot, "PNG to write");
 
+  // Name an unknown command instead of CLI11's "A subcommand is required".
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string first = argv[1];
+    const auto known = app.get_subcommands([&](CLI::App* s) { return s->check_name(first); });
+    if (known.empty()) {
+      std::cerr << "boxgen: usage error: unknown command '" << first << "' (see boxgen --help)\n";
+      return 2;
+    }
+  }
   if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxgen")) return *stop;
   verify = !no_verify;
   try {
     if (presets->parsed()) return boxgen::cli::run_presets(c.json);
-    if (analyze->parsed()) return boxgen::cli::run_analyze(c, verify);
+    if (analyze->parsed()) {
+      analyze_options.verify = verify;
+      return boxgen::cli::run_analyze(c, analyze_options);
+    }
     if (eval->parsed()) return boxgen::cli::run_eval(c, points, derivative);
     if (bbform->parsed()) return boxgen::cli::run_bbform(c, region);
     if (prefilter->parsed()) return boxgen::cli::run_prefilter(c, shells);

@@ -56,7 +56,7 @@ std::vector<BadInput> bad_inputs() {
       {"EmptyPoint", {"eval", "m7", "--at", ""}, {"point", "coordinate"}},
       {"BadPointAfterGoodOne", {"eval", "m7", "--at", "0 0 0", "--at", "0 0 zero"}, {"zero"}},
       // usage
-      {"UnknownSubcommand", {"frobnicate", "m7"}, {"frobnicate", "subcommand"}},
+      {"UnknownSubcommand", {"frobnicate", "m7"}, {"unknown command 'frobnicate'"}},
       {"NoArguments", {}, {"subcommand"}},
       {"MissingSpec", {"analyze"}, {"spec"}},
       {"MissingAt", {"eval", "m7"}, {"--at"}},
@@ -86,6 +86,13 @@ std::vector<BadInput> bad_inputs() {
       // emit (both fail before anything is derived or written)
       {"UnknownEmitStrategy", {"emit", "zp", "--name", "z", "--out", "/nonexistent/boxgen", "--strategy", "foo"}, {"foo", "horner"}},
       {"EmitNameNotAnIdentifier", {"emit", "zp", "--name", "9z", "--out", "/nonexistent/boxgen"}, {"9z"}},
+      {"EmitNameWithAHyphen", {"emit", "zp", "--name", "my-spline", "--out", "/nonexistent/boxgen"}, {"identifier"}},
+      {"EmitNameIsAKeyword", {"emit", "zp", "--name", "namespace", "--out", "/nonexistent/boxgen"}, {"keyword"}},
+      // issue 11 conventions
+      {"RankDeficientButTransposeValid", {"analyze", "1,0,1; 0,1,1"}, {"transpose '1,0; 0,1; 1,1'"}},
+      {"PointTooLargeForTheExactFrame", {"eval", "hex3", "--at", "1e30 0"}, {"too large"}},
+      {"UnknownChecksMode", {"analyze", "zp", "--checks", "some"}, {"'some'"}},
+      {"PredictedBeyondMaxSeconds", {"analyze", "m7", "--max-seconds", "0.000001"}, {"--max-seconds"}},
   };
 }
 

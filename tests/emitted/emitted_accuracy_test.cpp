@@ -112,7 +112,7 @@ class Reference {
     for (const auto& j : spec_.lattice.points_in_box(lo, hi)) {
       RatVec u(n);
       for (int i = 0; i < n; ++i) u[i] = x[i] - Rational(j[i]) + centre_[i];
-      const int cell = form_.complex.find(floor_key(form_.complex.normals(), u));
+      const int cell = form_.knots.locate(u);
       if (cell < 0 || form_.polys[cell].is_zero()) continue;
       // The splines tested are C^1, so any cell whose closure holds u gives the value and gradient.
       const Rational v = Rational(static_cast<long>(data_value(j))) * det;

@@ -29,7 +29,7 @@ std::vector<RatVec> generic_points(const PiecewiseForm& form, int count) {
   for (int k = 0; k < count; ++k) {
     RatVec x(n);
     if (k % 2 == 0) {  // near the interior point of a cell of the support
-      const auto& cell = form.complex.cells()[support_cells[static_cast<size_t>(next()) % support_cells.size()]];
+      const auto& cell = form.knots.cells()[support_cells[static_cast<size_t>(next()) % support_cells.size()]];
       for (int i = 0; i < n; ++i) x[i] = cell.interior[i] + Rational(1) / Rational(50 * primes[(k + i) % 6]);
       out.push_back(x);
       continue;

@@ -1,0 +1,158 @@
+// The derivation on the true knot planes (issue 11): the knot levels, the cell keys, exact point
+// location of shifts, scale invariance, the symmetry-reduced checks against the full ones (and
+// against broken forms, so they can fail), and the cost estimate's cell count.
+#include <gtest/gtest.h>
+
+#include "generator/cost_estimate.h"
+#include "generator/error.h"
+#include "generator/piece_checks.h"
+#include "generator/recurrence.h"
+#include "tests/generator/analysis_fixture.h"
+
+namespace boxgen {
+namespace {
+
+using testing::analysis_of;
+
+TEST(KnotPlanes, LevelsAreTheSubSumsAlongEachNormal) {
+  // Directions (20,1), (1,20), (7,5), (-9,4). The normal of (20,1) is +-(1,-20); the dot products
+  // of the four directions with (1,-20) are 0, -399, -93, -89 (by hand), whose sub-sums are
+  // 0, -89, -93, -182, -399, -488, -492, -581: 8 knot lines where the integer levels would be 582.
+  const IntColumns xi{{20, 1}, {1, 20}, {7, 5}, {-9, 4}};
+  const KnotPlanes planes = knot_planes(xi, 2);
+  ASSERT_EQ(planes.normals.size(), 4u);
+  bool found = false;
+  for (size_t i = 0; i < planes.normals.size(); ++i) {
+    if (planes.normals[i] == IntVec{1, -20}) {
+      EXPECT_EQ(planes.levels[i], (std::vector<std::int64_t>{-581, -492, -488, -399, -182, -93, -89, 0}));
+      found = true;
+    }
+    if (planes.normals[i] == IntVec{-1, 20}) {
+      EXPECT_EQ(planes.levels[i], (std::vector<std::int64_t>{0, 89, 93, 182, 399, 488, 492, 581}));
+      found = true;
+    }
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(KnotPlanes, IntervalKeyCountsTheLevelsStrictlyBelow) {
+  const KnotPlanes planes{{{1, 0}}, {{0, 1, 2}}};
+  EXPECT_EQ(interval_key(planes, {Rational(1) / 2, 0}), CellKey{1});
+  EXPECT_EQ(interval_key(planes, {1, 0}), CellKey{1});  // on the level 1: the cell below
+  EXPECT_EQ(interval_key(planes, {-5, 0}), CellKey{0});
+  // Far outside: no 64-bit conversion (this once threw an internal error).
+  EXPECT_EQ(interval_key(planes, {Rational(cln::expt_pos(Integer(10), 30)), 0}), CellKey{3});
+  EXPECT_FALSE(off_knot_planes(planes, {2, 7}));
+  EXPECT_TRUE(off_knot_planes(planes, {Rational(3) / 2, 7}));
+}
+
+TEST(KnotComplex, ShiftLocatorAgreesWithRationalLocation) {
+  const PiecewiseForm& form = analysis_of("m7").form;
+  int inside = 0;
+  for (size_t c = 0; c < form.knots.cells().size(); c += 7) {
+    const RatVec& p = form.knots.cells()[c].interior;
+    const ShiftLocator locate(form.knots, p);
+    for (const IntVec& j : {IntVec{0, 0, 0}, IntVec{1, 1, 1}, IntVec{-1, 1, -1}, IntVec{2, 0, 0}, IntVec{0, -2, 0}}) {
+      RatVec q = p;
+      for (int k = 0; k < 3; ++k) q[k] = q[k] - Rational(j[k]);
+      EXPECT_EQ(locate.cell_at(j), form.knots.locate(q));
+      inside += locate.cell_at(j) >= 0;
+    }
+  }
+  EXPECT_GT(inside, 50);
+}
+
+// A scaled direction matrix on the correspondingly scaled lattice is the same spline: the knot
+// complex, the pieces and the structure must not grow with the scale.
+TEST(KnotComplex, ScaledMatrixOnScaledLatticeHasTheSameCells) {
+  const Analysis& hat = analysis_of("hex3");
+  AnalysisOptions options;
+  const Analysis scaled = analyze(parse_spec("64,0; 0,64; 64,64", "64,0; 0,64"), options);
+  EXPECT_EQ(scaled.form.knots.cells().size(), hat.form.knots.cells().size());
+  EXPECT_EQ(scaled.pieces, hat.pieces);
+  EXPECT_EQ(scaled.structure.regions.size(), hat.structure.regions.size());
+  EXPECT_EQ(scaled.structure.references.size(), hat.structure.references.size());
+  EXPECT_TRUE(scaled.checks.methods_agree);
+}
+
+// Long directions: values of the piecewise form against the independent recurrence.
+TEST(KnotComplex, LongDirectionsAgreeWithTheRecurrence) {
+  for (const char* spec : {"20,1; 1,20; 7,5; -9,4", "1,2,3; 3,1,2; 2,3,1; -1,2,3", "3,1; 1,3; 2,-5"}) {
+    const BoxSplineSpec s = parse_spec(spec);
+    const PiecewiseForm form = derive_piecewise(s, DerivationMethod::TruncatedPower);
+    BoxSplineRecurrence recurrence(s.directions);
+    int nonzero = 0;
+    for (size_t c = 0; c < form.knots.cells().size(); ++c) {
+      RatVec x = form.knots.cells()[c].interior;
+      static const long primes[] = {1000003, 1000033, 1000037};
+      for (size_t k = 0; k < x.size(); ++k) x[k] = x[k] + Rational(1) / primes[k];  // generic, nearby
+      const Rational expected = recurrence.value(x);
+      EXPECT_EQ(form.value_at(x), expected) << spec << " cell " << c;
+      nonzero += !cln::zerop(expected);
+    }
+    EXPECT_GT(nonzero, 0) << spec;
+    EXPECT_EQ(total_integral(form), 1) << spec;
+  }
+}
+
+TEST(ReducedChecks, AgreeWithTheFullChecks) {
+  for (const char* preset : {"m7", "cart7", "zp"}) {
+    const Analysis& a = analysis_of(preset);
+    const CellOrbits orbits = cell_orbits(a.form, a.structure.group);
+    std::size_t cells = 0;
+    for (int s : orbits.sizes) cells += static_cast<std::size_t>(s);
+    EXPECT_EQ(cells, a.form.knots.cells().size()) << preset;  // the orbits partition the cells
+    EXPECT_LT(orbits.representatives.size(), a.form.knots.cells().size()) << preset;
+    EXPECT_EQ(total_integral(a.form, orbits), total_integral(a.form)) << preset;
+    const int order = a.properties.approximation_order - 1;
+    EXPECT_EQ(check_continuity(a.form, order, orbits.representatives).sharp, check_continuity(a.form, order).sharp);
+    EXPECT_NO_THROW(check_partition_of_unity(a.form, a.structure, false)) << preset;
+    EXPECT_NO_THROW(check_partition_of_unity(a.form, a.structure, true)) << preset;
+  }
+}
+
+TEST(ReducedChecks, DetectABrokenPiece) {
+  const Analysis& a = analysis_of("m7");
+  PiecewiseForm broken = a.form;
+  broken.polys[0] += Poly::constant(3, Rational(1) / 1000);  // cell 0 represents its orbit
+  const CellOrbits orbits = cell_orbits(a.form, a.structure.group);
+  EXPECT_NE(total_integral(broken, orbits), 1);
+  EXPECT_THROW(check_continuity(broken, 3, orbits.representatives), InternalError);
+  EXPECT_THROW(check_symmetry(broken, a.structure.group), InternalError);
+}
+
+TEST(ReducedChecks, PartitionOfUnityOnReferencesDetectsABrokenBasis) {
+  SplineStructure s = analysis_of("m7").structure;
+  s.references[0].basis[0] += Poly::constant(3, Rational(1) / 1000);
+  EXPECT_THROW(check_partition_of_unity(analysis_of("m7").form, s, false), InternalError);
+}
+
+TEST(CostEstimate, CountsTheKnotCellsExactly) {
+  for (const char* preset : {"m7", "fcc6", "zp"}) {
+    const CostEstimate e = estimate_cost(parse_spec(preset));
+    EXPECT_TRUE(e.cells_exact) << preset;
+    EXPECT_EQ(e.knot_cells, analysis_of(preset).form.knots.cells().size()) << preset;
+    EXPECT_EQ(e.fundamental_cells, analysis_of(preset).structure.cells.size()) << preset;
+    EXPECT_GT(e.seconds, 0) << preset;
+    EXPECT_GT(e.bytes, 1e6) << preset;
+  }
+}
+
+TEST(CostEstimate, RefusalNamesThePredictionAndTheLimit) {
+  CostEstimate e;
+  e.seconds = 1234;
+  e.bytes = 5e8;
+  e.knot_cells = 99;
+  try {
+    refuse_if_too_costly(e, 100);
+    FAIL() << "not refused";
+  } catch (const InputError& err) {
+    const std::string what = err.what();
+    EXPECT_NE(what.find("1.23e+03 s"), std::string::npos) << what;
+    EXPECT_NE(what.find("--max-seconds"), std::string::npos) << what;
+  }
+  EXPECT_NO_THROW(refuse_if_too_costly(e, 2000));
+}
+
+}  // namespace
+}  // namespace boxgen
