@@ -92,7 +92,7 @@ void spline_basis_at(const PiecewiseForm& form, const RatVec& centre, const RatV
     hi[k] = corner - form.complex.lo()[k];
   }
   for (const auto& j : form.spec.lattice.points_in_box(lo, hi)) {
-    const Poly& p = form.poly_for_key(floor_key(form.complex.normals(), plus(u, to_ratvec(j), -1)));
+    const Poly& p = form.poly_at(plus(u, to_ratvec(j), -1));
     if (p.is_zero()) continue;
     piece.stencil.push_back(j);
     piece.polynomials.push_back(p.translated(plus(to_ratvec(j), centre, -1)) * scale);
@@ -136,14 +136,14 @@ CellKey neighbour_key(const FineCell& cell, const Facet& f) {
 // (some boundary plane has cell vertices strictly on both sides).
 bool region_of(const PiecewiseForm& form, const std::vector<int>& members, const RatVec& centre, Piece& piece) {
   const int n = form.dimension();
-  const auto& cells = form.complex.cells();
-  const auto& normals = form.complex.normals();
+  const auto& cells = form.knots.cells();
+  const auto& normals = form.knots.planes().normals;
   std::vector<Plane> planes;
   std::vector<RatVec> points;
   for (int i : members) {
     for (const auto& v : cells[i].vertices) points.push_back(plus(v, centre, -1));
-    for (const auto& f : facets_of(cells[i], normals)) {
-      const int j = form.complex.find(neighbour_key(cells[i], f));
+    for (const auto& f : facets_of(cells[i], form.knots.planes())) {
+      const int j = form.knots.find(neighbour_key(cells[i], f));
       if (j >= 0 && std::find(members.begin(), members.end(), j) != members.end()) continue;
       const Plane plane{normals[f.normal], Rational(f.level) - dot(normals[f.normal], centre)};
       if (std::none_of(planes.begin(), planes.end(),
@@ -169,12 +169,12 @@ bool region_of(const PiecewiseForm& form, const std::vector<int>& members, const
 // Connected unions of nonzero cells with one polynomial (as count_pieces), each split into its
 // cells if it is not convex, so that every piece is a convex polytope.
 std::vector<CellUnion> filter_cell_unions(const PiecewiseForm& form) {
-  const auto& cells = form.complex.cells();
+  const auto& cells = form.knots.cells();
   UnionFind uf(cells.size());
   for (size_t i = 0; i < cells.size(); ++i) {
     if (form.polys[i].is_zero()) continue;
-    for (const auto& f : facets_of(cells[i], form.complex.normals())) {
-      const int j = form.complex.find(neighbour_key(cells[i], f));
+    for (const auto& f : facets_of(cells[i], form.knots.planes())) {
+      const int j = form.knots.find(neighbour_key(cells[i], f));
       if (j >= 0 && form.polys[j] == form.polys[i]) uf.unite(static_cast<int>(i), j);
     }
   }
@@ -225,7 +225,7 @@ Pieces spline_pieces(const PiecewiseForm& form, const SplineStructure& s, const 
 Pieces filter_pieces(const PiecewiseForm& form, const PieceSelection& selection) {
   const RatVec centre = spline_centre(form.spec);
   const Rational scale = Rational(form.spec.lattice.det_abs());
-  const auto& cells = form.complex.cells();
+  const auto& cells = form.knots.cells();
   RatVec minus_centre = centre;
   for (auto& v : minus_centre) v = -v;
   // Every piece with its region and polynomial; pieces of a split union stay alone in their orbit.
@@ -253,7 +253,7 @@ Pieces filter_pieces(const PiecewiseForm& form, const PieceSelection& selection)
   for (size_t i = 0; i < all.size(); ++i) {
     if (alone[i]) continue;
     for (const auto& g : group) {
-      const int cell = form.complex.find(floor_key(form.complex.normals(), plus(g.apply(all[i].interior), centre)));
+      const int cell = form.knots.locate(plus(g.apply(all[i].interior), centre));
       const int image = cell >= 0 ? piece_of_cell[cell] : -1;
       if (image < 0) fail_internal("a symmetry maps a piece of the filter outside its support");
       if (!alone[image]) orbits.unite(static_cast<int>(i), image);

@@ -33,7 +33,7 @@ analysis::Vec parse_direction(const std::string& text, int dimension, const std:
   return d;
 }
 
-std::vector<double> abscissae(const AnalysisOptions& o, bool log, double fallback_from, double fallback_to,
+std::vector<double> abscissae(const FrequencyOptions& o, bool log, double fallback_from, double fallback_to,
                               int fallback_steps, bool required) {
   const bool range = o.from || o.to || o.steps != 0;
   if (!o.w.empty() && range) fail_input("give either --w or --from/--to/--steps, not both");

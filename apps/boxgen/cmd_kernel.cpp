@@ -42,7 +42,7 @@ std::vector<double> kernel_values(const analysis::ErrorKernel& e, const analysis
 
 }  // namespace
 
-int run_kernel(const AnalysisOptions& o) {
+int run_kernel(const FrequencyOptions& o) {
   std::vector<BoxSplineSpec> specs;
   for (const auto& s : o.specs) specs.push_back(parse_spec(s, o.lattice));
   const int n = specs.front().dimension();

@@ -36,7 +36,7 @@ double nyquist_extent(const analysis::VoronoiCell& cell, const analysis::Vec& d)
   return t;
 }
 
-int run_line(const AnalysisOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
+int run_line(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
   const analysis::Vec d = parse_direction(o.line, n, "--line");
   const analysis::DualLattice dual = dual_of(specs.front());
   for (const auto& s : specs)
@@ -95,7 +95,7 @@ int run_line(const AnalysisOptions& o, const std::vector<BoxSplineSpec>& specs, 
 // One panel per filter, side by side: log10 |psi_hat| from -4 (dark) to 0 (yellow), the
 // boundaries of the dual lattice's Voronoi cells in the plane (white) and the dual lattice
 // points lying in the plane (white discs).
-int run_plane(const AnalysisOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
+int run_plane(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
   if (n != 3) fail_input("--plane needs 3-D filters (for 2-D filters use --line)");
   if (o.plot.empty()) fail_input("--plane draws an image: give -o out.png");
   if (o.json) fail_input("--json is for --line (a plane is an image)");
@@ -170,7 +170,7 @@ int run_plane(const AnalysisOptions& o, const std::vector<BoxSplineSpec>& specs,
 
 }  // namespace
 
-int run_spectrum(const AnalysisOptions& o) {
+int run_spectrum(const FrequencyOptions& o) {
   std::vector<BoxSplineSpec> specs;
   for (const auto& s : o.specs) specs.push_back(parse_spec(s, o.lattice));
   const int n = specs.front().dimension();

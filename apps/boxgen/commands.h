@@ -36,7 +36,7 @@ int run_emit(const Common& c, const std::string& name, const std::string& out, c
 
 // The frequency-domain analysis (analysis/, docs/design.md §10): cmd_metrics.cpp, cmd_kernel.cpp,
 // cmd_spectrum.cpp.
-struct AnalysisOptions {
+struct FrequencyOptions {
   std::vector<std::string> specs;
   std::string lattice;
   bool json = false;
@@ -50,8 +50,8 @@ struct AnalysisOptions {
   int size = 0;                          // spectrum plane: image side in pixels
 };
 int run_metrics(const std::vector<std::string>& specs, const std::string& lattice, bool json);
-int run_kernel(const AnalysisOptions& o);
-int run_spectrum(const AnalysisOptions& o);
+int run_kernel(const FrequencyOptions& o);
+int run_spectrum(const FrequencyOptions& o);
 int run_pieces(const Common& c, const std::string& of, const std::string& region, const std::string& format);
 
 // Shared output helpers.

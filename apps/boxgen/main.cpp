@@ -86,7 +86,7 @@ int run(int argc, char** argv) {
   table1->add_flag("--json", c.json, "machine-readable output");
 
   // Frequency-domain analysis of one or more filters (analysis/).
-  boxgen::cli::AnalysisOptions ao;
+  boxgen::cli::FrequencyOptions ao;
   auto add_specs = [&](CLI::App* cmd) {
     cmd->add_option("SPEC", ao.specs, "one or more presets or direction lists")->required();
     cmd->add_option("--lattice", ao.lattice, "bcc | fcc | cartesian | \"<rows of G>\" (default: each preset's)");

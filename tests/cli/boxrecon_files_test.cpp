@@ -32,22 +32,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Teem leaks on some failed reads (tests/runtime/lsan_teem.supp); a sanitized boxrecon child gets
-// the suppressions through the environment it inherits, as in boxrecon_cli_test.cpp.
-void suppress_teem_leaks_in_children() {
-  static const bool done = [] {
-    std::string options = std::getenv("LSAN_OPTIONS") ? std::getenv("LSAN_OPTIONS") : "";
-    if (!options.empty()) options += ':';
-    options += "suppressions=" BOXRECON_LSAN_SUPPRESSIONS;
-    return ::setenv("LSAN_OPTIONS", options.c_str(), 1) == 0;
-  }();
-  (void)done;
-}
-
 // BOXRECON_UNDER_TEST runs these tests against another boxrecon (a sanitized or installed one, or
 // an older build to show that it fails them).
 ProcessResult boxrecon(const std::vector<std::string>& args, const std::string& stdin_file = "") {
-  suppress_teem_leaks_in_children();
   const char* other = std::getenv("BOXRECON_UNDER_TEST");
   return run_process(other && *other ? other : BOXRECON_EXE, args, std::chrono::seconds(60 * kSlowdown), "", stdin_file);
 }

@@ -16,7 +16,7 @@ std::set<RatVec> vertex_set(const FineCell& c) { return {c.vertices.begin(), c.v
 
 TEST(CellComplex, OneDiagonalCutsTheSquareIntoTwoTriangles) {
   const auto normals = arrangement_normals({{1, 0}, {0, 1}, {1, 1}}, 2);
-  const auto cells = CellComplex::split_cube(normals, {0, 0});
+  const auto cells = split_cube(normals, {0, 0});
   ASSERT_EQ(cells.size(), 2u);
   std::set<std::set<RatVec>> got{vertex_set(cells[0]), vertex_set(cells[1])};
   EXPECT_EQ(got, (std::set<std::set<RatVec>>{{{0, 0}, {1, 0}, {1, 1}}, {{0, 0}, {0, 1}, {1, 1}}}));
@@ -25,7 +25,7 @@ TEST(CellComplex, OneDiagonalCutsTheSquareIntoTwoTriangles) {
 
 TEST(CellComplex, TwoDiagonalsMeetAtTheCentre) {
   const auto normals = arrangement_normals({{1, 0}, {0, 1}, {1, 1}, {-1, 1}}, 2);
-  const auto cells = CellComplex::split_cube(normals, {3, -2});
+  const auto cells = split_cube(normals, {3, -2});
   ASSERT_EQ(cells.size(), 4u);
   Rational area = 0;
   for (const auto& c : cells) {
@@ -36,13 +36,19 @@ TEST(CellComplex, TwoDiagonalsMeetAtTheCentre) {
   EXPECT_EQ(area, 1);
 }
 
-TEST(CellComplex, FindsEveryCellByItsKey) {
-  const auto normals = arrangement_normals({{1, 0}, {0, 1}, {1, 1}}, 2);
-  const CellComplex complex(normals, {0, 0}, {2, 2});
-  ASSERT_EQ(complex.cells().size(), 8u);  // four squares, two triangles each
-  for (std::size_t i = 0; i < complex.cells().size(); ++i)
+TEST(KnotComplexCells, FindsEveryCellByItsKeyAndTilesTheHexagon) {
+  // The hat function's directions (1,0), (0,1), (1,1): its support is the hexagon of area
+  // |det(e1,e2)| + |det(e1,d)| + |det(e2,d)| = 3, cut by x = 1, y = 1 and x = y.
+  const KnotComplex complex(knot_planes({{1, 0}, {0, 1}, {1, 1}}, 2), {0, 0}, {2, 2});
+  Rational area = 0;
+  for (std::size_t i = 0; i < complex.cells().size(); ++i) {
     EXPECT_EQ(complex.find(complex.cells()[i].key), static_cast<int>(i));
-  EXPECT_EQ(complex.find(floor_key(normals, {Rational(5) / 2, Rational(1) / 3})), -1);  // outside
+    for (const auto& simplex : triangulate(complex.cells()[i], complex)) area = area + simplex_volume(simplex);
+  }
+  EXPECT_EQ(complex.cells().size(), 6u);
+  EXPECT_EQ(area, 3);
+  EXPECT_EQ(complex.locate({Rational(19) / 10, Rational(1) / 10}), -1);  // in the box, outside the hexagon
+  EXPECT_GE(complex.locate({Rational(1) / 3, Rational(1) / 7}), 0);
 }
 
 TEST(CellComplex, AffineRankAndTriangulation) {

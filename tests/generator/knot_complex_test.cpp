@@ -1,9 +1,8 @@
 // The derivation on the true knot planes (issue 11): the knot levels, the cell keys, exact point
 // location of shifts, scale invariance, the symmetry-reduced checks against the full ones (and
-// against broken forms, so they can fail), and the cost estimate's cell count.
+// against broken forms, so they can fail).
 #include <gtest/gtest.h>
 
-#include "generator/cost_estimate.h"
 #include "generator/error.h"
 #include "generator/piece_checks.h"
 #include "generator/recurrence.h"
@@ -125,33 +124,6 @@ TEST(ReducedChecks, PartitionOfUnityOnReferencesDetectsABrokenBasis) {
   SplineStructure s = analysis_of("m7").structure;
   s.references[0].basis[0] += Poly::constant(3, Rational(1) / 1000);
   EXPECT_THROW(check_partition_of_unity(analysis_of("m7").form, s, false), InternalError);
-}
-
-TEST(CostEstimate, CountsTheKnotCellsExactly) {
-  for (const char* preset : {"m7", "fcc6", "zp"}) {
-    const CostEstimate e = estimate_cost(parse_spec(preset));
-    EXPECT_TRUE(e.cells_exact) << preset;
-    EXPECT_EQ(e.knot_cells, analysis_of(preset).form.knots.cells().size()) << preset;
-    EXPECT_EQ(e.fundamental_cells, analysis_of(preset).structure.cells.size()) << preset;
-    EXPECT_GT(e.seconds, 0) << preset;
-    EXPECT_GT(e.bytes, 1e6) << preset;
-  }
-}
-
-TEST(CostEstimate, RefusalNamesThePredictionAndTheLimit) {
-  CostEstimate e;
-  e.seconds = 1234;
-  e.bytes = 5e8;
-  e.knot_cells = 99;
-  try {
-    refuse_if_too_costly(e, 100);
-    FAIL() << "not refused";
-  } catch (const InputError& err) {
-    const std::string what = err.what();
-    EXPECT_NE(what.find("1.23e+03 s"), std::string::npos) << what;
-    EXPECT_NE(what.find("--max-seconds"), std::string::npos) << what;
-  }
-  EXPECT_NO_THROW(refuse_if_too_costly(e, 2000));
 }
 
 }  // namespace

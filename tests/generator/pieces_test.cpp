@@ -84,7 +84,7 @@ TEST_P(PiecesOfPreset, TextReadsBackAsTheDerivedPolynomials) {
   for (std::size_t i = 0; i < m_lines.size(); ++i) {
     RatVec u = filter.pieces[i].interior;
     for (int k = 0; k < n; ++k) u[k] = u[k] + c[k];
-    const Poly derived = a.form.poly_for_key(floor_key(a.form.complex.normals(), u)).translated(minus_c) *
+    const Poly derived = a.form.poly_at(u).translated(minus_c) *
                          Rational(a.spec.lattice.det_abs());
     EXPECT_EQ(to_poly(parse(m_lines[i], n, {}), coordinate_symbols(n)), derived) << "piece " << i;
   }

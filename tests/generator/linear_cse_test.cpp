@@ -1,13 +1,12 @@
-// The emission forms' exact building blocks: shared partial sums reproduce every linear
-// combination exactly and save operations; the separable form exists exactly for tensor products
-// (M12, tricubic: full grids per coset) and not for M7.
+// Shared partial sums (generator/linear_cse): they reproduce every linear combination of M7's
+// reference polynomial exactly and save operations.
+#include "generator/linear_cse.h"
+
 #include <gtest/gtest.h>
 
 #include <map>
 
 #include "generator/analysis.h"
-#include "generator/linear_cse.h"
-#include "generator/separable_form.h"
 #include "generator/spec.h"
 
 namespace boxgen {
@@ -49,7 +48,7 @@ std::vector<LinearRow> m7_rows(int& inputs) {
   return rows;
 }
 
-TEST(EmissionForms, SharedPartialSumsReproduceEveryRowExactlyWithFewerTerms) {
+TEST(LinearCse, SharedPartialSumsReproduceEveryRowExactlyWithFewerTerms) {
   int inputs = 0;
   const auto rows = m7_rows(inputs);
   const SharedRows s = share_partial_sums(rows, inputs);
@@ -66,23 +65,6 @@ TEST(EmissionForms, SharedPartialSumsReproduceEveryRowExactlyWithFewerTerms) {
   // Beyond the entry limit the rows come back unchanged.
   const SharedRows none = share_partial_sums(rows, inputs, 10);
   EXPECT_TRUE(none.temporaries.empty());
-}
-
-TEST(EmissionForms, SeparableFormExactlyForTensorProducts) {
-  for (const char* preset : {"m12", "tricubic"}) {
-    const Analysis a = analyze(parse_spec(preset));
-    const auto grids = separable_form(a.structure.references.at(0), 3);
-    ASSERT_TRUE(grids.has_value()) << preset;
-    std::size_t points = 0;
-    for (const auto& g : *grids) {
-      EXPECT_EQ(g.sizes, (std::vector<int>{4, 4, 4})) << preset;
-      points += g.stencil.size();
-    }
-    EXPECT_EQ(points, a.structure.references[0].stencil.size()) << preset;
-    EXPECT_EQ(grids->size(), std::string(preset) == "m12" ? 2u : 1u) << preset;  // BCC: one grid per coset
-  }
-  const Analysis m7 = analyze(parse_spec("m7"));
-  EXPECT_FALSE(separable_form(m7.structure.references.at(0), 3).has_value());
 }
 
 }  // namespace
