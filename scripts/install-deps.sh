@@ -12,7 +12,6 @@ PACKAGES=(
   libbenchmark-dev                      # benchmarks
   libteem-dev                           # NRRD volume files (runtime)
   zlib1g-dev libbz2-dev                 # length check of gzip/bzip2 NRRD data (runtime/nrrd_io.cpp)
-  libhwy-dev                            # portable SIMD with dynamic dispatch (runtime batch path)
   gnuplot-nox                           # line plots of kernels and spectra (boxgen kernel/spectrum)
   libpng-dev                            # PNG images of spectra and renders
   clang libclang-rt-14-dev              # libFuzzer targets (label: fuzz)
