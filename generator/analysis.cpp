@@ -29,7 +29,8 @@ Analysis analyze(const BoxSplineSpec& spec, const AnalysisOptions& options) {
   auto stage = [&](const char* what) {
     if (progress) progress(what, 0, 0);
   };
-  Analysis a{spec, box_spline_properties(spec), derive_piecewise(spec, DerivationMethod::TruncatedPower, progress, options.max_seconds),
+  Analysis a{spec, box_spline_properties(spec), derive_piecewise(spec, DerivationMethod::TruncatedPower, progress,
+                                                                   {options.max_seconds, options.verify, options.full_checks}),
              {}, 0, {}, 0};
   stage("merging pieces");
   a.pieces = count_pieces(a.form);

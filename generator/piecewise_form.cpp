@@ -81,7 +81,7 @@ std::vector<Poly> derive_on_cells(const BoxSplineSpec& spec, const KnotComplex& 
 }  // namespace
 
 PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method, const ProgressFn& progress,
-                               double max_seconds) {
+                               const DerivationBudget& budget) {
   const auto start = std::chrono::steady_clock::now();
   const int n = spec.dimension();
   refuse_if_too_many_cells(spec);
@@ -89,7 +89,8 @@ PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod metho
   if (progress) progress("knot-plane cells", 0, 0);
   PiecewiseForm form(spec, method, KnotComplex(knot_planes(spec.directions, n), support.box_lo(), support.box_hi()),
                      FineArrangement(arrangement_normals(spec.directions, n), support.box_lo(), support.box_hi()));
-  refuse_if_too_costly(estimate_cost(spec, form.knots.cells().size(), false, false), max_seconds);
+  refuse_if_too_costly(estimate_cost(spec, form.knots.cells().size(), budget.with_checks, budget.full_checks),
+                       budget.max_seconds);
   form.polys = derive_on_cells(spec, form.knots, method, progress);
   form.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return form;

@@ -65,9 +65,15 @@ struct PiecewiseForm {
 using ProgressFn = std::function<void(const char* stage, std::size_t done, std::size_t total)>;
 
 // Refuses (InputError, before deriving any polynomial) what the cost estimate puts beyond
-// max_seconds; 0 means the default limit (cost_estimate.h).
+// max_seconds; 0 means the default limit (cost_estimate.h). The estimate covers the analysis
+// with its checks (default or full) when the caller will run them.
+struct DerivationBudget {
+  double max_seconds = 0;
+  bool with_checks = false;
+  bool full_checks = false;
+};
 PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method, const ProgressFn& progress = {},
-                               double max_seconds = 0);
+                               const DerivationBudget& budget = {});
 // The same pieces by the other method, on the cells of `form` (the second, independent derivation).
 std::vector<Poly> rederive(const PiecewiseForm& form, DerivationMethod method, const ProgressFn& progress = {});
 

@@ -15,8 +15,8 @@ int run_analyze(const Common& c, const AnalyzeOptions& o) {
   if (o.checks != "default" && o.checks != "full")
     fail_input(fmt::format("--checks must be default or full, got '{}'", o.checks));
   const bool full = o.checks == "full";
-  const CostEstimate estimate = estimate_cost(spec, o.verify, full);
   if (o.estimate_only) {
+    const CostEstimate estimate = estimate_cost(spec, o.verify, full);
     if (c.json) {
       print_json({{"spec", spec.name},
                   {"estimated_seconds", estimate.seconds},
@@ -31,7 +31,7 @@ int run_analyze(const Common& c, const AnalyzeOptions& o) {
     }
     return 0;
   }
-  refuse_if_too_costly(estimate, o.max_seconds);
+  // The derivation refuses up front, on the same estimate, what it predicts beyond the limit.
   ProgressPrinter progress(o.progress);
   AnalysisOptions options;
   options.verify = o.verify;
