@@ -45,7 +45,8 @@ bool VoronoiCell::contains(const Vec& w, double tolerance) const {
   return true;
 }
 
-std::vector<Vec> polytope_vertices(const std::vector<HalfSpace>& constraints, int n, double tolerance) {
+std::vector<Vec> polytope_vertices(const std::vector<HalfSpace>& constraints, int n,
+                                   double tolerance) {
   std::vector<Vec> out;
   const int m = static_cast<int>(constraints.size());
   std::vector<int> pick(n);
@@ -56,7 +57,8 @@ std::vector<Vec> polytope_vertices(const std::vector<HalfSpace>& constraints, in
   };
   auto add = [&](const Vec& x) {
     for (const auto& v : out)
-      if (std::abs(v[0] - x[0]) + std::abs(v[1] - x[1]) + std::abs(v[2] - x[2]) < 1e-9 * (1 + std::abs(x[0]) + std::abs(x[1]) + std::abs(x[2])))
+      if (std::abs(v[0] - x[0]) + std::abs(v[1] - x[1]) + std::abs(v[2] - x[2]) <
+          1e-9 * (1 + std::abs(x[0]) + std::abs(x[1]) + std::abs(x[2])))
         return;
     out.push_back(x);
   };
@@ -88,18 +90,22 @@ DualLattice::DualLattice(const IntDirections& generator) {
   // G as a double matrix g[row][col]; its inverse by the adjugate.
   double g[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   for (int c = 0; c < n_; ++c) {
-    if (static_cast<int>(generator[c].size()) != n_) throw std::invalid_argument("the lattice generator must be square");
+    if (static_cast<int>(generator[c].size()) != n_)
+      throw std::invalid_argument("the lattice generator must be square");
     for (int r = 0; r < n_; ++r) g[r][c] = static_cast<double>(generator[c][r]);
   }
-  const double det = g[0][0] * (g[1][1] * g[2][2] - g[1][2] * g[2][1]) - g[0][1] * (g[1][0] * g[2][2] - g[1][2] * g[2][0]) +
+  const double det = g[0][0] * (g[1][1] * g[2][2] - g[1][2] * g[2][1]) -
+                     g[0][1] * (g[1][0] * g[2][2] - g[1][2] * g[2][0]) +
                      g[0][2] * (g[1][0] * g[2][1] - g[1][1] * g[2][0]);
   if (std::abs(det) < 0.5) throw std::invalid_argument("the lattice generator is singular");
   det_g_ = std::abs(det);
   // Dual basis d_i with d_i . g_j = 2 pi delta_ij: the rows of 2 pi G^-1.
-  const Vec c0{g[0][0], g[1][0], g[2][0]}, c1{g[0][1], g[1][1], g[2][1]}, c2{g[0][2], g[1][2], g[2][2]};
+  const Vec c0{g[0][0], g[1][0], g[2][0]}, c1{g[0][1], g[1][1], g[2][1]},
+      c2{g[0][2], g[1][2], g[2][2]};
   const double two_pi = 2 * std::numbers::pi;
   const Vec r0 = cross(c1, c2), r1 = cross(c2, c0), r2 = cross(c0, c1);  // rows of det * G^-1
-  basis_ = {Vec{two_pi * r0[0] / det, two_pi * r0[1] / det, 0}, Vec{two_pi * r1[0] / det, two_pi * r1[1] / det, 0}};
+  basis_ = {Vec{two_pi * r0[0] / det, two_pi * r0[1] / det, 0},
+            Vec{two_pi * r1[0] / det, two_pi * r1[1] / det, 0}};
   if (n_ == 3) {
     basis_ = {Vec{two_pi * r0[0] / det, two_pi * r0[1] / det, two_pi * r0[2] / det},
               Vec{two_pi * r1[0] / det, two_pi * r1[1] / det, two_pi * r1[2] / det},
@@ -119,24 +125,30 @@ DualLattice::DualLattice(const IntDirections& generator) {
     if (i == n_) break;
     ++c[i];
   }
-  std::sort(candidates.begin(), candidates.end(), [](const Vec& a, const Vec& b) { return dot(a, a) < dot(b, b); });
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Vec& a, const Vec& b) { return dot(a, a) < dot(b, b); });
   std::size_t used = std::min<std::size_t>(candidates.size(), n_ == 3 ? 26 : 8);
   std::vector<Vec> vertices;
   while (true) {
-    while (used < candidates.size() && std::abs(dot(candidates[used], candidates[used]) - dot(candidates[used - 1], candidates[used - 1])) < 1e-9)
+    while (used < candidates.size() &&
+           std::abs(dot(candidates[used], candidates[used]) -
+                    dot(candidates[used - 1], candidates[used - 1])) < 1e-9)
       ++used;  // whole shells
     std::vector<HalfSpace> hs;
-    for (std::size_t i = 0; i < used; ++i) hs.push_back({candidates[i], 0.5 * dot(candidates[i], candidates[i])});
+    for (std::size_t i = 0; i < used; ++i)
+      hs.push_back({candidates[i], 0.5 * dot(candidates[i], candidates[i])});
     vertices = polytope_vertices(hs, n_);
     double r = 0;
     for (const auto& v : vertices) r = std::max(r, std::sqrt(dot(v, v)));
-    if (used == candidates.size() || std::sqrt(dot(candidates[used], candidates[used])) > 2 * r * (1 + 1e-9)) {
+    if (used == candidates.size() ||
+        std::sqrt(dot(candidates[used], candidates[used])) > 2 * r * (1 + 1e-9)) {
       covering_radius_ = r;
       // Keep the facet-defining half-spaces: those touched by n affinely independent vertices.
       for (const auto& h : hs) {
         std::vector<int> on;
         for (int v = 0; v < static_cast<int>(vertices.size()); ++v)
-          if (std::abs(dot(h.normal, vertices[v]) - h.offset) < 1e-9 * (1 + h.offset)) on.push_back(v);
+          if (std::abs(dot(h.normal, vertices[v]) - h.offset) < 1e-9 * (1 + h.offset))
+            on.push_back(v);
         if (static_cast<int>(on.size()) < n_) continue;
         cell_.faces.push_back(h);
         if (n_ == 3) {  // order around the face's centroid

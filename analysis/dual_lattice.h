@@ -52,6 +52,7 @@ class DualLattice {
 
 // Vertices of the polytope {a_i . w <= b_i} in R^n (n = 1, 2, 3) by intersecting every n of
 // its constraints; duplicates merged. Exposed for the quadrature's slices.
-std::vector<Vec> polytope_vertices(const std::vector<HalfSpace>& constraints, int n, double tolerance = 1e-10);
+std::vector<Vec> polytope_vertices(const std::vector<HalfSpace>& constraints, int n,
+                                   double tolerance = 1e-10);
 
 }  // namespace boxgen::analysis

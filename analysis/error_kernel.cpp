@@ -10,21 +10,27 @@ namespace {
 
 long double phase(const Vec& w, const std::vector<std::int64_t>& j) {
   long double t = 0;
-  for (std::size_t i = 0; i < j.size(); ++i) t += static_cast<long double>(w[i]) * static_cast<long double>(j[i]);
+  for (std::size_t i = 0; i < j.size(); ++i)
+    t += static_cast<long double>(w[i]) * static_cast<long double>(j[i]);
   return t;
 }
 
 }  // namespace
 
-ErrorKernel::ErrorKernel(BoxSplineSpectrum psi, double det_g, std::vector<LatticeTap> autocorrelation,
-                         std::vector<LatticeTap> prefilter)
-    : psi_(std::move(psi)), det_g_(det_g), autocorrelation_(std::move(autocorrelation)), prefilter_(std::move(prefilter)) {
-  if (autocorrelation_.empty()) throw std::invalid_argument("the error kernel needs the autocorrelation samples");
+ErrorKernel::ErrorKernel(BoxSplineSpectrum psi, double det_g,
+                         std::vector<LatticeTap> autocorrelation, std::vector<LatticeTap> prefilter)
+    : psi_(std::move(psi)),
+      det_g_(det_g),
+      autocorrelation_(std::move(autocorrelation)),
+      prefilter_(std::move(prefilter)) {
+  if (autocorrelation_.empty())
+    throw std::invalid_argument("the error kernel needs the autocorrelation samples");
 }
 
 long double ErrorKernel::aliasing_sum(const Vec& w) const {
   long double a = 0;
-  for (const auto& t : autocorrelation_) a += static_cast<long double>(t.value) * std::cos(phase(w, t.point));
+  for (const auto& t : autocorrelation_)
+    a += static_cast<long double>(t.value) * std::cos(phase(w, t.point));
   return det_g_ * a;
 }
 
@@ -49,7 +55,8 @@ long double ErrorKernel::operator()(const Vec& w) const {
   return 1 - p * p / a + a * (dr * dr + qi * qi);
 }
 
-long double aliasing_sum_direct(const BoxSplineSpectrum& psi, const DualLattice& dual, const Vec& w, double radius) {
+long double aliasing_sum_direct(const BoxSplineSpectrum& psi, const DualLattice& dual, const Vec& w,
+                                double radius) {
   long double sum = 0;
   for (const Vec& k : dual.points_within(radius)) {
     const long double p = psi.precise({w[0] + k[0], w[1] + k[1], w[2] + k[2]});

@@ -24,8 +24,8 @@ class ErrorKernel {
   // `prefilter` empty: no prefilter (Q = 1, the samples used as coefficients).
   ErrorKernel(BoxSplineSpectrum psi, double det_g, std::vector<LatticeTap> autocorrelation,
               std::vector<LatticeTap> prefilter);
-  long double operator()(const Vec& w) const;  // E(w)
-  long double minimum(const Vec& w) const;     // E_min(w)
+  long double operator()(const Vec& w) const;    // E(w)
+  long double minimum(const Vec& w) const;       // E_min(w)
   long double aliasing_sum(const Vec& w) const;  // A(w) from the autocorrelation samples
 
  private:
@@ -36,6 +36,7 @@ class ErrorKernel {
 
 // A(w) as the truncated sum over the dual lattice points with |k| <= radius (for tests: an
 // independent route to A through the spectrum alone).
-long double aliasing_sum_direct(const BoxSplineSpectrum& psi, const DualLattice& dual, const Vec& w, double radius);
+long double aliasing_sum_direct(const BoxSplineSpectrum& psi, const DualLattice& dual, const Vec& w,
+                                double radius);
 
 }  // namespace boxgen::analysis

@@ -22,7 +22,7 @@ struct PlotPanel {
 // Draws the panels (rows x columns, in reading order) into a PNG of the given size at `path`,
 // atomically. Throws std::invalid_argument for an unwritable path and std::runtime_error if
 // gnuplot is missing or fails.
-void plot_png(const std::string& path, const std::vector<PlotPanel>& panels, int rows, int columns, int width,
-              int height, const std::string& title = "");
+void plot_png(const std::string& path, const std::vector<PlotPanel>& panels, int rows, int columns,
+              int width, int height, const std::string& title = "");
 
 }  // namespace boxgen::analysis

@@ -15,7 +15,8 @@ namespace boxgen::analysis {
 
 AtomicOutput::AtomicOutput(std::string path) : path_(std::move(path)) {
   if (path_.empty()) throw std::invalid_argument("empty output path");
-  if (std::filesystem::is_directory(path_)) throw std::invalid_argument(fmt::format("output '{}' is a directory", path_));
+  if (std::filesystem::is_directory(path_))
+    throw std::invalid_argument(fmt::format("output '{}' is a directory", path_));
   // Where the file lands, as for every output (runtime/output_file.h): through symbolic links,
   // never onto a FIFO, device or socket.
   try {
@@ -28,7 +29,9 @@ AtomicOutput::AtomicOutput(std::string path) : path_(std::move(path)) {
   name.insert(name.end(), suffix.begin(), suffix.end());
   name.push_back('\0');
   const int fd = ::mkstemp(name.data());
-  if (fd < 0) throw std::invalid_argument(fmt::format("cannot write '{}' (missing directory or no permission)", path_));
+  if (fd < 0)
+    throw std::invalid_argument(
+        fmt::format("cannot write '{}' (missing directory or no permission)", path_));
   ::close(fd);
   temporary_ = name.data();
 }

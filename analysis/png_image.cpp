@@ -29,11 +29,13 @@ void write_png(const std::string& path, const RgbImage& image) {
     throw std::runtime_error("libpng failed to write '" + path + "'");
   }
   png_init_io(png, file);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height), 8,
-               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
+               static_cast<png_uint_32>(image.height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   for (int y = 0; y < image.height; ++y)
-    png_write_row(png, const_cast<png_bytep>(image.pixels.data() + static_cast<std::size_t>(y) * image.width * 3));
+    png_write_row(png, const_cast<png_bytep>(image.pixels.data() +
+                                             static_cast<std::size_t>(y) * image.width * 3));
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
   const bool closed = std::fclose(file) == 0;
@@ -52,7 +54,10 @@ void colour_map(double t, std::uint8_t& r, std::uint8_t& g, std::uint8_t& b) {
   t = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * (stops.size() - 1);
   const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(t), stops.size() - 2);
   const double f = t - static_cast<double>(i);
-  auto mix = [&](int c) { return static_cast<std::uint8_t>(std::lround(255 * ((1 - f) * stops[i][c] + f * stops[i + 1][c]))); };
+  auto mix = [&](int c) {
+    return static_cast<std::uint8_t>(
+        std::lround(255 * ((1 - f) * stops[i][c] + f * stops[i + 1][c])));
+  };
   r = mix(0);
   g = mix(1);
   b = mix(2);

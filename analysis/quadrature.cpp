@@ -48,8 +48,10 @@ double iterate(const VoronoiCell& cell, const Integrand& f, const GaussRule& g, 
     for (const auto& h : cons) {
       const double a = h.normal[0];
       if (std::abs(a) < 1e-14) continue;
-      if (a > 0) hi = std::min(hi, h.offset / a);
-      else lo = std::max(lo, h.offset / a);
+      if (a > 0)
+        hi = std::min(hi, h.offset / a);
+      else
+        lo = std::max(lo, h.offset / a);
     }
     if (!(hi > lo)) return 0;
     breaks = {lo, hi};
@@ -73,7 +75,8 @@ double iterate(const VoronoiCell& cell, const Integrand& f, const GaussRule& g, 
 }  // namespace
 
 GaussRule gauss_legendre(int order) {
-  if (order < 1 || order > 1000) throw std::invalid_argument("Gauss-Legendre order must be 1..1000");
+  if (order < 1 || order > 1000)
+    throw std::invalid_argument("Gauss-Legendre order must be 1..1000");
   GaussRule r;
   r.nodes.resize(order);
   r.weights.resize(order);

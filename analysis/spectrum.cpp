@@ -21,7 +21,8 @@ BoxSplineSpectrum::BoxSplineSpectrum(const IntDirections& directions) {
   n_ = static_cast<int>(directions.front().size());
   if (n_ < 1 || n_ > 3) throw std::invalid_argument("directions must have 1 to 3 components");
   for (const auto& d : directions) {
-    if (static_cast<int>(d.size()) != n_) throw std::invalid_argument("directions of different lengths");
+    if (static_cast<int>(d.size()) != n_)
+      throw std::invalid_argument("directions of different lengths");
     Vec v{0, 0, 0};
     for (int i = 0; i < n_; ++i) v[i] = static_cast<double>(d[i]);
     xi_.push_back(v);
@@ -37,8 +38,9 @@ double BoxSplineSpectrum::operator()(const Vec& w) const {
 long double BoxSplineSpectrum::precise(const Vec& w) const {
   long double p = 1;
   for (const Vec& x : xi_) {
-    const long double t = 0.5L * (static_cast<long double>(x[0]) * w[0] + static_cast<long double>(x[1]) * w[1] +
-                                  static_cast<long double>(x[2]) * w[2]);
+    const long double t =
+        0.5L * (static_cast<long double>(x[0]) * w[0] + static_cast<long double>(x[1]) * w[1] +
+                static_cast<long double>(x[2]) * w[2]);
     p *= sinc(t);
   }
   return p;

@@ -17,8 +17,8 @@ class BoxSplineSpectrum {
   // `directions`: the columns xi of Xi (each of length n = 2 or 3).
   explicit BoxSplineSpectrum(const IntDirections& directions);
   int dimension() const { return n_; }
-  double operator()(const Vec& w) const;                 // psi_hat(w)
-  long double precise(const Vec& w) const;               // the same in long double
+  double operator()(const Vec& w) const;    // psi_hat(w)
+  long double precise(const Vec& w) const;  // the same in long double
 
  private:
   int n_;

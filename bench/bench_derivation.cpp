@@ -42,10 +42,13 @@ void analyze_case(benchmark::State& state, Case c) {
     int status = 0;
     rusage usage{};
     wait4(child, &status, 0, &usage);
-    state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) state.SkipWithError("the derivation or a check failed");
+    state.SetIterationTime(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+      state.SkipWithError("the derivation or a check failed");
     peak_mb = std::max(peak_mb, static_cast<double>(usage.ru_maxrss) / 1024.0);
-    user_s = static_cast<double>(usage.ru_utime.tv_sec) + static_cast<double>(usage.ru_utime.tv_usec) * 1e-6;
+    user_s = static_cast<double>(usage.ru_utime.tv_sec) +
+             static_cast<double>(usage.ru_utime.tv_usec) * 1e-6;
   }
   state.counters["target_s"] = c.target_seconds;
   state.counters["user_s"] = user_s;  // CPU time: less noisy than wall clock on a shared machine
@@ -55,9 +58,11 @@ void analyze_case(benchmark::State& state, Case c) {
   state.counters["knot_cells"] = static_cast<double>(estimate.knot_cells);
 }
 
-#define BOXGEN_DERIVATION_BENCHMARK(name, spec, lattice, target)                                \
-  BENCHMARK_CAPTURE(analyze_case, name, Case{spec, lattice, target})->Unit(benchmark::kSecond) \
-      ->UseManualTime()->Iterations(1)
+#define BOXGEN_DERIVATION_BENCHMARK(name, spec, lattice, target)     \
+  BENCHMARK_CAPTURE(analyze_case, name, Case{spec, lattice, target}) \
+      ->Unit(benchmark::kSecond)                                     \
+      ->UseManualTime()                                              \
+      ->Iterations(1)
 
 // Presets (issue 3's limits).
 BOXGEN_DERIVATION_BENCHMARK(m7, "m7", "", 10);
@@ -67,12 +72,15 @@ BOXGEN_DERIVATION_BENCHMARK(fcc6, "fcc6", "", 20);
 BOXGEN_DERIVATION_BENCHMARK(cart7, "cart7", "", 20);
 // Issue 11's table.
 BOXGEN_DERIVATION_BENCHMARK(cartesian_and_face_diagonals,
-                            "1,0,0; 0,1,0; 0,0,1; 1,1,0; 1,-1,0; 1,0,1; 1,0,-1; 0,1,1; 0,1,-1", "cartesian", 10);
-BOXGEN_DERIVATION_BENCHMARK(fcc6_twice,
-                            "1,1,0; 1,-1,0; 1,0,1; 1,0,-1; 0,1,1; 0,1,-1; 1,1,0; 1,-1,0; 1,0,1; 1,0,-1; 0,1,1; 0,1,-1",
-                            "fcc", 10);
-BOXGEN_DERIVATION_BENCHMARK(cart7_and_axes, "1,0,0; 0,1,0; 0,0,1; 1,1,1; 1,1,-1; 1,-1,1; -1,1,1; 1,0,0; 0,1,0; 0,0,1",
+                            "1,0,0; 0,1,0; 0,0,1; 1,1,0; 1,-1,0; 1,0,1; 1,0,-1; 0,1,1; 0,1,-1",
                             "cartesian", 10);
+BOXGEN_DERIVATION_BENCHMARK(
+    fcc6_twice,
+    "1,1,0; 1,-1,0; 1,0,1; 1,0,-1; 0,1,1; 0,1,-1; 1,1,0; 1,-1,0; 1,0,1; 1,0,-1; 0,1,1; 0,1,-1",
+    "fcc", 10);
+BOXGEN_DERIVATION_BENCHMARK(
+    cart7_and_axes, "1,0,0; 0,1,0; 0,0,1; 1,1,1; 1,1,-1; 1,-1,1; -1,1,1; 1,0,0; 0,1,0; 0,0,1",
+    "cartesian", 10);
 BOXGEN_DERIVATION_BENCHMARK(scaled_hat, "64,0; 0,64; 64,64", "64,0; 0,64", 1);
 BOXGEN_DERIVATION_BENCHMARK(long_directions, "20,1; 1,20; 7,5; -9,4", "cartesian", 1);
 

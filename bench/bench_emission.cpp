@@ -13,14 +13,17 @@ void derive_and_emit(benchmark::State& state, const char* preset, double target_
   std::size_t bytes = 0;
   for (auto _ : state) {
     const boxgen::Analysis a = boxgen::analyze(boxgen::parse_spec(preset));
-    for (const auto& f : boxgen::emit(a, {preset, "bench", boxgen::EmissionStrategy::Auto})) bytes += f.text.size();
+    for (const auto& f : boxgen::emit(a, {preset, "bench", boxgen::EmissionStrategy::Auto}))
+      bytes += f.text.size();
     benchmark::DoNotOptimize(bytes);
   }
   state.counters["target_s"] = target_seconds;
 }
 
-#define BOXGEN_EMISSION_BENCHMARK(preset, target) \
-  BENCHMARK_CAPTURE(derive_and_emit, preset, #preset, target)->Unit(benchmark::kSecond)->Iterations(1)
+#define BOXGEN_EMISSION_BENCHMARK(preset, target)             \
+  BENCHMARK_CAPTURE(derive_and_emit, preset, #preset, target) \
+      ->Unit(benchmark::kSecond)                              \
+      ->Iterations(1)
 
 BOXGEN_EMISSION_BENCHMARK(m7, 10);
 BOXGEN_EMISSION_BENCHMARK(m8, 20);

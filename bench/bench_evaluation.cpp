@@ -29,7 +29,8 @@ using Point3 = std::array<std::int64_t, 3>;
 // A cheap fetch: values of a fixed pseudo-random field, so the optimiser cannot fold them.
 struct HashFetch {
   double operator()(const Point3& j) const {
-    std::uint64_t h = static_cast<std::uint64_t>(j[0] * 73856093) ^ static_cast<std::uint64_t>(j[1] * 19349663) ^
+    std::uint64_t h = static_cast<std::uint64_t>(j[0] * 73856093) ^
+                      static_cast<std::uint64_t>(j[1] * 19349663) ^
                       static_cast<std::uint64_t>(j[2] * 83492791);
     h ^= h >> 13;
     return static_cast<double>(h & 1023) / 1024.0;
@@ -60,11 +61,15 @@ void run(benchmark::State& state, Evaluate evaluate, int order) {
   state.SetItemsProcessed(state.iterations());
 }
 
-#define BOXGEN_SCALAR_BENCHMARK(NS)                                                                           \
-  void NS##_scalar(benchmark::State& s) {                                                                      \
-    run(s, [](const auto& x, auto* g, auto* h) { return boxgen::generated::NS::evaluate<double>(x, HashFetch{}, g, h); }, \
-        static_cast<int>(s.range(0)));                                                                         \
-  }                                                                                                            \
+#define BOXGEN_SCALAR_BENCHMARK(NS)                                             \
+  void NS##_scalar(benchmark::State& s) {                                       \
+    run(                                                                        \
+        s,                                                                      \
+        [](const auto& x, auto* g, auto* h) {                                   \
+          return boxgen::generated::NS::evaluate<double>(x, HashFetch{}, g, h); \
+        },                                                                      \
+        static_cast<int>(s.range(0)));                                          \
+  }                                                                             \
   BENCHMARK(NS##_scalar)->Name("scalar/" #NS)->ArgName("order")->DenseRange(0, 2)
 
 BOXGEN_SCALAR_BENCHMARK(m7);
@@ -98,9 +103,16 @@ void batch(benchmark::State& state, boxgen::runtime::Filter f) {
 void batch_float(benchmark::State& state, boxgen::runtime::Filter f) { batch<float>(state, f); }
 void batch_double(benchmark::State& state, boxgen::runtime::Filter f) { batch<double>(state, f); }
 
-#define BOXGEN_BATCH_BENCHMARK(F, T)                                                                   \
-  BENCHMARK_CAPTURE(batch_##T, F##_##T, boxgen::runtime::Filter::F)                                    \
-      ->Name("batch/" #F "/" #T)->ArgName("N")->Arg(21)->Arg(32)->Arg(45)->Arg(77)->Arg(117)->Unit(benchmark::kMillisecond)
+#define BOXGEN_BATCH_BENCHMARK(F, T)                                \
+  BENCHMARK_CAPTURE(batch_##T, F##_##T, boxgen::runtime::Filter::F) \
+      ->Name("batch/" #F "/" #T)                                    \
+      ->ArgName("N")                                                \
+      ->Arg(21)                                                     \
+      ->Arg(32)                                                     \
+      ->Arg(45)                                                     \
+      ->Arg(77)                                                     \
+      ->Arg(117)                                                    \
+      ->Unit(benchmark::kMillisecond)
 
 BOXGEN_BATCH_BENCHMARK(M7, float);
 BOXGEN_BATCH_BENCHMARK(M8, float);

@@ -1,11 +1,12 @@
 // A program to count instructions per point under valgrind (shared machines make times noisy):
 //   valgrind --tool=callgrind --toggle-collect='*Reconstructor<float>::evaluate*'
 //            build/bench/bench_instructions m7 20000
-//   valgrind --tool=callgrind --toggle-collect='*fetch_floor*' build/bench/bench_instructions m7 20000 floor
-// evaluates `points` random points of a 32^3 x 2 float volume through Reconstructor<float>::evaluate
-// (BOXGEN_THREADS=1 is set here), or runs the filter's fetch floor: per point the corner and its
-// base index, then the filter's own stencil shape (cell 0's offsets) fetched and summed. Divide
-// the collected count by `points`.
+//   valgrind --tool=callgrind --toggle-collect='*fetch_floor*' build/bench/bench_instructions m7
+//   20000 floor
+// evaluates `points` random points of a 32^3 x 2 float volume through
+// Reconstructor<float>::evaluate (BOXGEN_THREADS=1 is set here), or runs the filter's fetch floor:
+// per point the corner and its base index, then the filter's own stencil shape (cell 0's offsets)
+// fetched and summed. Divide the collected count by `points`.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -20,19 +21,22 @@
 using namespace boxgen::runtime;
 
 template <class Tr>
-__attribute__((noinline)) void fetch_floor(const BccVolume<float>& volume, const std::vector<Vec3>& points,
+__attribute__((noinline)) void fetch_floor(const BccVolume<float>& volume,
+                                           const std::vector<Vec3>& points,
                                            std::vector<float>& out) {
   const std::int64_t n0 = volume.sizes()[0], n1 = volume.sizes()[1];
   std::int32_t offsets[Tr::kStencilSize];
   for (int k = 0; k < Tr::kStencilSize; ++k) {
     const auto& d = Tr::kOffsets[0][k];
-    offsets[k] = static_cast<std::int32_t>(d[0] + n0 * d[1] + n0 * n1 * d[2] - (d[0] & 1) * (n0 + n0 * n1));
+    offsets[k] =
+        static_cast<std::int32_t>(d[0] + n0 * d[1] + n0 * n1 * d[2] - (d[0] & 1) * (n0 + n0 * n1));
   }
   const float* samples = volume.samples().data();
   for (std::size_t i = 0; i < points.size(); ++i) {
     std::int64_t corner[3];
     for (int a = 0; a < 3; ++a)
-      corner[a] = static_cast<std::int64_t>(std::floor(static_cast<float>(points[i][a]) + static_cast<float>(Tr::kCentre[a]))) &
+      corner[a] = static_cast<std::int64_t>(std::floor(static_cast<float>(points[i][a]) +
+                                                       static_cast<float>(Tr::kCentre[a]))) &
                   ~std::int64_t{1};  // an even corner keeps every offset on the lattice
     const float* base = samples + (corner[0] + n0 * corner[1] + n0 * n1 * corner[2]);
     float sum = 0;
@@ -59,8 +63,9 @@ int main(int argc, char** argv) {
   for (auto& p : points) p = {u(rng), u(rng), u(rng)};
   std::vector<float> values(points.size());
   if (floor)
-    boxgen::generated::with_filter(static_cast<int>(f),
-                                   [&](auto entry) { fetch_floor<typename decltype(entry)::Traits>(volume, points, values); });
+    boxgen::generated::with_filter(static_cast<int>(f), [&](auto entry) {
+      fetch_floor<typename decltype(entry)::Traits>(volume, points, values);
+    });
   else
     Reconstructor<float>(volume, f).evaluate(points, values);
   double sum = 0;

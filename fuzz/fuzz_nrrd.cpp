@@ -31,7 +31,8 @@ void require(bool condition, const char* what) {
 // One file per process, removed after each input (libFuzzer may end with _Exit, skipping atexit).
 const std::filesystem::path& input_path() {
   static const std::filesystem::path path =
-      std::filesystem::temp_directory_path() / ("boxgen-fuzz-nrrd-" + std::to_string(::getpid()) + ".nrrd");
+      std::filesystem::temp_directory_path() /
+      ("boxgen-fuzz-nrrd-" + std::to_string(::getpid()) + ".nrrd");
   return path;
 }
 
@@ -44,7 +45,8 @@ void read_or_nrrd_error(const std::filesystem::path& path) {
     const BccVolume<T> v = read_bcc_nrrd<T>(path, kLimits);
     const Sizes& n = v.sizes();
     require(n[0] >= 1 && n[1] >= 1 && n[2] >= 1, "sizes at least 1");
-    require(v.sample_count() == 2 * static_cast<std::size_t>(n[0]) * n[1] * n[2], "sample count 2 N0 N1 N2");
+    require(v.sample_count() == 2 * static_cast<std::size_t>(n[0]) * n[1] * n[2],
+            "sample count 2 N0 N1 N2");
     require(std::isfinite(v.spacing()) && v.spacing() > 0, "h finite and positive");
     for (double o : v.origin()) require(std::isfinite(o), "origin finite");
     // Touch the first and last samples through the lattice accessor.
@@ -53,7 +55,8 @@ void read_or_nrrd_error(const std::filesystem::path& path) {
   } catch (const NrrdError& e) {
     const std::string_view message = e.what();
     require(!message.empty(), "NrrdError message is empty");
-    require(message.find_first_of("\r\n") == std::string_view::npos, "NrrdError message spans several lines");
+    require(message.find_first_of("\r\n") == std::string_view::npos,
+            "NrrdError message spans several lines");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fuzz_nrrd: unexpected exception: %s\n", e.what());
     std::abort();
@@ -67,17 +70,20 @@ void read_lattice_or_nrrd_error(const std::filesystem::path& path) {
     const LatticeVolume<T> v = read_lattice_nrrd<T>(path, kLimits);
     const Sizes& n = v.sizes();
     require(n[0] >= 1 && n[1] >= 1 && n[2] >= 1, "sizes at least 1");
-    require(v.sample_count() == static_cast<std::size_t>(v.coset_count()) * n[0] * n[1] * n[2], "sample count K N0 N1 N2");
+    require(v.sample_count() == static_cast<std::size_t>(v.coset_count()) * n[0] * n[1] * n[2],
+            "sample count K N0 N1 N2");
     require(std::isfinite(v.spacing()) && v.spacing() > 0, "h finite and positive");
     // Every coset's first and last samples through the lattice accessor.
     for (int c = 0; c < v.coset_count(); ++c) {
       require(v.value(v.lattice_point(c, 0, 0, 0)) == v.at(c, 0, 0, 0), "first sample of a coset");
-      require(v.contains(v.lattice_point(c, n[0] - 1, n[1] - 1, n[2] - 1)), "last sample of a coset");
+      require(v.contains(v.lattice_point(c, n[0] - 1, n[1] - 1, n[2] - 1)),
+              "last sample of a coset");
     }
   } catch (const NrrdError& e) {
     const std::string_view message = e.what();
     require(!message.empty(), "NrrdError message is empty");
-    require(message.find_first_of("\r\n") == std::string_view::npos, "NrrdError message spans several lines");
+    require(message.find_first_of("\r\n") == std::string_view::npos,
+            "NrrdError message spans several lines");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fuzz_nrrd: unexpected exception: %s\n", e.what());
     std::abort();

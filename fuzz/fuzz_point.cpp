@@ -32,7 +32,8 @@ void valid_or_input_error(std::string_view input, Parse parse) {
     const std::string_view message = e.what();
     require(!message.empty(), "InputError message is empty");
     if (input.find_first_of("\r\n") == std::string_view::npos)
-      require(message.find_first_of("\r\n") == std::string_view::npos, "InputError message spans several lines");
+      require(message.find_first_of("\r\n") == std::string_view::npos,
+              "InputError message spans several lines");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fuzz_point: unexpected exception: %s\n", e.what());
     std::abort();

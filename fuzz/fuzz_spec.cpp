@@ -31,7 +31,8 @@ void valid_or_input_error(Parse parse) {
   } catch (const InputError& e) {
     const std::string_view message = e.what();
     require(!message.empty(), "InputError message is empty");
-    require(message.find('\n') == std::string_view::npos && message.find('\r') == std::string_view::npos,
+    require(message.find('\n') == std::string_view::npos &&
+                message.find('\r') == std::string_view::npos,
             "InputError message spans more than one line");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fuzz_spec: unexpected exception: %s\n", e.what());
@@ -66,7 +67,8 @@ void check_spec(const BoxSplineSpec& spec) {
   }
   require(rank(spec.directions, n) == n, "directions span R^n");
   // The canonical text reproduces the spec.
-  const BoxSplineSpec again = parse_spec(spec.directions_text(), rows_text(spec.lattice.generator_rows()));
+  const BoxSplineSpec again =
+      parse_spec(spec.directions_text(), rows_text(spec.lattice.generator_rows()));
   require(again.directions == spec.directions, "directions_text round trip");
   require(again.lattice.generator() == spec.lattice.generator(), "lattice rows round trip");
 }
@@ -77,11 +79,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   valid_or_input_error([&] { check_spec(parse_spec(text)); });
   if (const auto bar = text.find('|'); bar != std::string::npos)
-    valid_or_input_error([&] { check_spec(parse_spec(text.substr(0, bar), text.substr(bar + 1))); });
+    valid_or_input_error(
+        [&] { check_spec(parse_spec(text.substr(0, bar), text.substr(bar + 1))); });
   for (int n : {2, 3})
     valid_or_input_error([&] {
       const Lattice lattice = parse_lattice(text, n);
-      require(lattice.dimension() == n && lattice.det_abs() > 0, "parsed lattice has the requested dimension");
+      require(lattice.dimension() == n && lattice.det_abs() > 0,
+              "parsed lattice has the requested dimension");
     });
   return 0;
 }

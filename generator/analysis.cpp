@@ -29,9 +29,14 @@ Analysis analyze(const BoxSplineSpec& spec, const AnalysisOptions& options) {
   auto stage = [&](const char* what) {
     if (progress) progress(what, 0, 0);
   };
-  Analysis a{spec, box_spline_properties(spec), derive_piecewise(spec, DerivationMethod::TruncatedPower, progress,
-                                                                   {options.max_seconds, options.verify, options.full_checks}),
-             {}, 0, {}, 0};
+  Analysis a{spec,
+             box_spline_properties(spec),
+             derive_piecewise(spec, DerivationMethod::TruncatedPower, progress,
+                              {options.max_seconds, options.verify, options.full_checks}),
+             {},
+             0,
+             {},
+             0};
   stage("merging pieces");
   a.pieces = count_pieces(a.form);
   stage("spline regions");
@@ -39,10 +44,12 @@ Analysis analyze(const BoxSplineSpec& spec, const AnalysisOptions& options) {
   if (options.verify) {
     const auto check_start = std::chrono::steady_clock::now();
     a.checks.full = options.full_checks;
-    const std::vector<Poly> other = rederive(a.form, DerivationMethod::DirectionalIntegration, progress);
+    const std::vector<Poly> other =
+        rederive(a.form, DerivationMethod::DirectionalIntegration, progress);
     for (size_t i = 0; i < other.size(); ++i)
       if (other[i] != a.form.polys[i])
-        fail_internal("the two derivations disagree on a cell (truncated power vs directional integration)");
+        fail_internal(
+            "the two derivations disagree on a cell (truncated power vs directional integration)");
     a.checks.methods_agree = true;
     stage("checking symmetry");
     check_symmetry(a.form, a.structure.group);
@@ -56,7 +63,8 @@ Analysis analyze(const BoxSplineSpec& spec, const AnalysisOptions& options) {
     } else {
       const CellOrbits orbits = cell_orbits(a.form, a.structure.group);
       stage("checking the integral");
-      if (total_integral(a.form, orbits) != 1) fail_internal("the derived pieces do not integrate to 1");
+      if (total_integral(a.form, orbits) != 1)
+        fail_internal("the derived pieces do not integrate to 1");
       stage("checking continuity");
       a.checks.continuity = check_continuity(a.form, order, orbits.representatives);
     }
@@ -122,18 +130,21 @@ std::string to_table(const Analysis& a) {
   row("continuity", "C^" + std::to_string(p.continuity));
   row("approximation order", std::to_string(p.approximation_order));
   row("support volume", integer_string(p.support_volume));
-  row("stencil size", integer_string(p.stencil_size) + " (per region: " + std::to_string(a.structure.stencil_min) +
-                          ".." + std::to_string(a.structure.stencil_max) + ")");
+  row("stencil size", integer_string(p.stencil_size) +
+                          " (per region: " + std::to_string(a.structure.stencil_min) + ".." +
+                          std::to_string(a.structure.stencil_max) + ")");
   row("linearly independent shifts", p.linearly_independent ? "yes" : "no");
   row("polynomial pieces of M", std::to_string(a.pieces));
   row("regions per fundamental region", std::to_string(a.structure.regions.size()));
   row("symmetry group order", std::to_string(a.structure.group.size()));
   row("regions up to symmetry", std::to_string(a.structure.references.size()));
-  row("exact checks", a.checks.methods_agree ? "passed (two derivations agree, integral 1, symmetry, "
-                                               "partition of unity, C^" + std::to_string(p.continuity) +
-                                               " on " + std::to_string(a.checks.continuity.faces_checked) + " faces" +
-                                               (a.checks.full ? "; full)" : "; one cell per symmetry orbit)")
-                                             : "skipped");
+  row("exact checks", a.checks.methods_agree
+                          ? "passed (two derivations agree, integral 1, symmetry, "
+                            "partition of unity, C^" +
+                                std::to_string(p.continuity) + " on " +
+                                std::to_string(a.checks.continuity.faces_checked) + " faces" +
+                                (a.checks.full ? "; full)" : "; one cell per symmetry orbit)")
+                          : "skipped");
   std::ostringstream t;
   t.precision(3);
   t << std::fixed << a.derivation_seconds << " s";

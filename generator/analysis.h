@@ -1,5 +1,6 @@
 // `boxgen analyze`: everything the generator derives about a box spline on its lattice, with the
-// exact checks that run by default (docs/design.md §3-§5, §7). Every number here is derived, not looked up.
+// exact checks that run by default (docs/design.md §3-§5, §7). Every number here is derived, not
+// looked up.
 #pragma once
 #include <nlohmann/json.hpp>
 
@@ -11,8 +12,8 @@
 namespace boxgen {
 
 struct AnalysisChecks {
-  bool full = false;                 // every check on every cell (else reduced by symmetry)
-  bool methods_agree = false;        // truncated power == directional integration, cell by cell
+  bool full = false;           // every check on every cell (else reduced by symmetry)
+  bool methods_agree = false;  // truncated power == directional integration, cell by cell
   bool integral_is_one = false;
   bool symmetric = false;
   bool partition_of_unity = false;
@@ -35,7 +36,7 @@ struct AnalysisOptions {
   // By default the integral and continuity checks visit one cell per symmetry orbit (exact,
   // since symmetry itself is checked on every cell); full visits every cell.
   bool full_checks = false;
-  ProgressFn progress;  // stage, done, total; empty for none
+  ProgressFn progress;     // stage, done, total; empty for none
   double max_seconds = 0;  // refuse what the cost estimate puts beyond this (0: the default limit)
 };
 

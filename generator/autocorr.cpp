@@ -51,7 +51,8 @@ std::vector<IntVec> interior_lattice_points(const IntColumns& w, const Lattice& 
   std::vector<IntVec> out;
   for (const auto& y : lattice_points_in_centred_box(w, lattice)) {
     bool inside = true;
-    for (std::size_t k = 0; k < normals.size() && inside; ++k) inside = 2 * std::llabs(dot(normals[k], y)) < twice_extent[k];
+    for (std::size_t k = 0; k < normals.size() && inside; ++k)
+      inside = 2 * std::llabs(dot(normals[k], y)) < twice_extent[k];
     if (inside) out.push_back(y);
   }
   return out;
@@ -82,7 +83,8 @@ CentredMask centred_mask(const IntColumns& w, const Lattice& lattice) {
     if (v % 2 != 0) fail_internal("refinement: the centre of the doubled matrix is not integer");
     v /= 2;
   }
-  if (!lattice.contains(centre)) fail_internal("refinement: the centre of the doubled matrix is not a lattice point");
+  if (!lattice.contains(centre))
+    fail_internal("refinement: the centre of the doubled matrix is not a lattice point");
   CentredMask mask;
   mask.denominator = cln::expt_pos(Integer(2), static_cast<unsigned>(w.size() - n));
   for (const auto& [e, coeff] : product) {
@@ -93,8 +95,10 @@ CentredMask centred_mask(const IntColumns& w, const Lattice& lattice) {
   return mask;
 }
 
-// Rank of an integer matrix modulo the prime p (dense elimination, skipping zeros of the pivot row).
-std::size_t rank_mod_p(std::vector<std::vector<std::uint64_t>> a, std::size_t cols, std::uint64_t p) {
+// Rank of an integer matrix modulo the prime p (dense elimination, skipping zeros of the pivot
+// row).
+std::size_t rank_mod_p(std::vector<std::vector<std::uint64_t>> a, std::size_t cols,
+                       std::uint64_t p) {
   auto power = [p](std::uint64_t b, std::uint64_t e) {
     std::uint64_t r = 1;
     for (b %= p; e; e >>= 1, b = b * b % p)
@@ -123,20 +127,24 @@ std::size_t rank_mod_p(std::vector<std::vector<std::uint64_t>> a, std::size_t co
 }
 
 Autocorrelation finish(std::vector<AutocorrSample> samples, int n) {
-  std::sort(samples.begin(), samples.end(), [](const auto& a, const auto& b) { return a.point < b.point; });
+  std::sort(samples.begin(), samples.end(),
+            [](const auto& a, const auto& b) { return a.point < b.point; });
   Autocorrelation out;
   const IntVec origin(n, 0);
-  auto it = std::find_if(samples.begin(), samples.end(), [&](const auto& s) { return s.point == origin; });
+  auto it = std::find_if(samples.begin(), samples.end(),
+                         [&](const auto& s) { return s.point == origin; });
   if (it == samples.end()) fail_internal("autocorrelation: no sample at the origin");
   out.integral_squared = it->value;
   out.samples = std::move(samples);
   return out;
 }
 
-// Newton divided differences through (x_k, y_k), k < count: the interpolating polynomial's value at `at`.
+// Newton divided differences through (x_k, y_k), k < count: the interpolating polynomial's value at
+// `at`.
 Rational newton_value(const RatVec& x, RatVec y, std::size_t count, const Rational& at) {
   for (std::size_t level = 1; level < count; ++level)
-    for (std::size_t k = count - 1; k >= level; --k) y[k] = (y[k] - y[k - 1]) / (x[k] - x[k - level]);
+    for (std::size_t k = count - 1; k >= level; --k)
+      y[k] = (y[k] - y[k - 1]) / (x[k] - x[k - level]);
   Rational value = y[count - 1];
   for (std::size_t k = count - 1; k-- > 0;) value = value * (at - x[k]) + y[k];
   return value;
@@ -168,16 +176,21 @@ void verify_on_all_points(const Subdivision& s, const std::vector<Rational>& v) 
   const std::size_t count = s.points.size();
   for (std::size_t k = 0; k < count; ++k) {
     Rational image = 0;
-    s.for_each_term(s.points[k], [&](std::size_t j, const Integer& c) { image = image + Rational(c) * v[j]; });
+    s.for_each_term(s.points[k],
+                    [&](std::size_t j, const Integer& c) { image = image + Rational(c) * v[j]; });
     if (image / Rational(s.mask.denominator) != v[k])
       fail_internal("refinement: the samples are not an eigenvector of the subdivision operator");
   }
   std::size_t nullity = 0;
   for (std::uint64_t p : {2147483647ULL, 2147483629ULL, 2147483587ULL}) {
-    const auto residue = [p](const Integer& x) { return static_cast<std::uint64_t>(cln::cl_I_to_UQ(cln::mod(x, Integer(p)))); };
+    const auto residue = [p](const Integer& x) {
+      return static_cast<std::uint64_t>(cln::cl_I_to_UQ(cln::mod(x, Integer(p))));
+    };
     std::vector<std::vector<std::uint64_t>> a(count, std::vector<std::uint64_t>(count, 0));
     for (std::size_t k = 0; k < count; ++k) {
-      s.for_each_term(s.points[k], [&](std::size_t j, const Integer& c) { a[k][j] = (a[k][j] + residue(c)) % p; });
+      s.for_each_term(s.points[k], [&](std::size_t j, const Integer& c) {
+        a[k][j] = (a[k][j] + residue(c)) % p;
+      });
       a[k][k] = (a[k][k] + p - residue(s.mask.denominator)) % p;
     }
     nullity = count - rank_mod_p(std::move(a), count, p);
@@ -192,7 +205,8 @@ void verify_on_all_points(const Subdivision& s, const std::vector<Rational>& v) 
 BoxSplineSpec checked_doubled_spec(const BoxSplineSpec& spec) {
   for (const auto& c : spec.directions)
     if (static_cast<int>(c.size()) != spec.dimension() || !spec.lattice.contains(c))
-      fail_input("autocorrelation: a direction is not a vector of the " + spec.lattice.name() + " lattice");
+      fail_input("autocorrelation: a direction is not a vector of the " + spec.lattice.name() +
+                 " lattice");
   return doubled_spec(spec);
 }
 
@@ -205,7 +219,8 @@ BoxSplineSpec doubled_spec(const BoxSplineSpec& spec) {
   return d;
 }
 
-Autocorrelation autocorrelation_refinement(const BoxSplineSpec& spec, const RefinementOptions& options) {
+Autocorrelation autocorrelation_refinement(const BoxSplineSpec& spec,
+                                           const RefinementOptions& options) {
   const BoxSplineSpec doubled = checked_doubled_spec(spec);
   const int n = spec.dimension();
   const IntColumns& w = doubled.directions;
@@ -227,7 +242,8 @@ Autocorrelation autocorrelation_refinement(const BoxSplineSpec& spec, const Refi
     orbit_of[k] = id;
     for (const auto& g : group) {
       auto it = s.index.find(g.apply(s.points[k]));
-      if (it == s.index.end()) fail_internal("refinement: the symmetry group does not preserve the support");
+      if (it == s.index.end())
+        fail_internal("refinement: the symmetry group does not preserve the support");
       if (orbit_of[it->second] == SIZE_MAX) {
         orbit_of[it->second] = id;
         ++orbit_size[id];
@@ -249,8 +265,8 @@ Autocorrelation autocorrelation_refinement(const BoxSplineSpec& spec, const Refi
   const auto kernel = null_space(std::move(system), static_cast<int>(unknowns));
   if (kernel.size() != 1)
     fail_internal("refinement: eigenvalue 1 of the subdivision operator has multiplicity " +
-                  std::to_string(kernel.size()) + (options.reduce_by_symmetry ? " on symmetric vectors" : "") +
-                  ", expected 1");
+                  std::to_string(kernel.size()) +
+                  (options.reduce_by_symmetry ? " on symmetric vectors" : "") + ", expected 1");
 
   Rational total = 0;
   for (std::size_t o = 0; o < unknowns; ++o)
@@ -282,16 +298,18 @@ Autocorrelation autocorrelation_continuity(const BoxSplineSpec& spec) {
   std::map<IntVec, std::uint64_t> multiplicity;
   for (const auto& c : w) ++multiplicity[c];
   std::uint64_t sub_multisets = 1;
-  for (const auto& [c, count] : multiplicity) sub_multisets = std::min<std::uint64_t>(sub_multisets * (count + 1), 1u << 30);
+  for (const auto& [c, count] : multiplicity)
+    sub_multisets = std::min<std::uint64_t>(sub_multisets * (count + 1), 1u << 30);
   if (sub_multisets > kContinuityMaxSubMultisets)
     fail_input("the continuity method is limited to " + std::to_string(kContinuityMaxSubMultisets) +
                " sub-multisets of the doubled directions (this spline has " +
-               (sub_multisets >= (1u << 30) ? std::string("more than 2^30") : std::to_string(sub_multisets)) +
+               (sub_multisets >= (1u << 30) ? std::string("more than 2^30")
+                                            : std::to_string(sub_multisets)) +
                "); use the refinement method");
 
   // v = (1, P, P^2) with P > max|nu_i| gives nu.v != 0 for every knot normal (nu_0 = 0 mod P,
-  // then nu_1 = 0 mod P, ...); then eps |nu.v| < 1 keeps x0 + eps v, eps in (0, eps_max], inside one
-  // cell of every integer arrangement, hence generic and on one polynomial piece.
+  // then nu_1 = 0 mod P, ...); then eps |nu.v| < 1 keeps x0 + eps v, eps in (0, eps_max], inside
+  // one cell of every integer arrangement, hence generic and on one polynomial piece.
   const auto normals = knot_plane_normals(w);
   std::int64_t max_entry = 1;
   for (const auto& nu : normals)
@@ -318,7 +336,8 @@ Autocorrelation autocorrelation_continuity(const BoxSplineSpec& spec) {
   for (int k = 0; k < samples_needed; ++k) {
     eps[k] = eps_unit * (k + 1);
     RatVec base(n);
-    for (int i = 0; i < n; ++i) base[i] = Rational(rational_from(sum_w[i])) / 2 + eps[k] * rational_from(v[i]);
+    for (int i = 0; i < n; ++i)
+      base[i] = Rational(rational_from(sum_w[i])) / 2 + eps[k] * rational_from(v[i]);
     rec.set_base(base);  // one memo for all lattice points at this eps
     for (std::size_t j = 0; j < points.size(); ++j) values[j][k] = rec.at_shift(points[j]);
   }

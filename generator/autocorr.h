@@ -1,7 +1,7 @@
-// Lattice samples of the doubled box spline, a(j) = M^c_{Xi ∪ Xi}(j) (docs/design.md §9, paper 3.5):
-// the autocorrelation of M^c at lattice points, which the error kernel and the filter metrics
-// need; a(0) = ∫ (M^c)^2 for the normalisation ∫ M = 1. The doubled spline has degree 2m - n
-// (21 for M12), so deriving its piecewise form is avoided; two cheap exact methods, independent
+// Lattice samples of the doubled box spline, a(j) = M^c_{Xi ∪ Xi}(j) (docs/design.md §9,
+// paper 3.5): the autocorrelation of M^c at lattice points, which the error kernel and the filter
+// metrics need; a(0) = ∫ (M^c)^2 for the normalisation ∫ M = 1. The doubled spline has degree 2m -
+// n (21 for M12), so deriving its piecewise form is avoided; two cheap exact methods, independent
 // of each other, compute the samples and are required to agree in the tests.
 #pragma once
 #include <vector>
@@ -16,8 +16,8 @@ struct AutocorrSample {
 };
 
 struct Autocorrelation {
-  Rational integral_squared;             // a(0)
-  std::vector<AutocorrSample> samples;   // every lattice point with a != 0, sorted by point
+  Rational integral_squared;            // a(0)
+  std::vector<AutocorrSample> samples;  // every lattice point with a != 0, sorted by point
 };
 
 // Xi ∪ Xi on the same lattice.
@@ -39,7 +39,8 @@ struct RefinementOptions {
 // The eigenvector of eigenvalue 1 of the subdivision operator restricted to the lattice points
 // in the open support, normalised so the samples sum to 1/|det G|. Throws InternalError if the
 // eigenvalue is not simple or a sample is not positive.
-Autocorrelation autocorrelation_refinement(const BoxSplineSpec& spec, const RefinementOptions& options = {});
+Autocorrelation autocorrelation_refinement(const BoxSplineSpec& spec,
+                                           const RefinementOptions& options = {});
 
 // The limit of M^c_{Xi ∪ Xi}(x0 + eps v) as eps -> 0 along a generic direction v, from exact
 // recurrence values at deg+1 small eps (one polynomial cell) interpolated in eps, confirmed by

@@ -74,7 +74,8 @@ std::vector<Rational> bb_coefficients(const Poly& p, const std::vector<RatVec>& 
   return out;
 }
 
-Poly bb_polynomial(const std::vector<Rational>& coefficients, const std::vector<RatVec>& simplex, int d) {
+Poly bb_polynomial(const std::vector<Rational>& coefficients, const std::vector<RatVec>& simplex,
+                   int d) {
   const int n = static_cast<int>(simplex[0].size());
   auto [a, v0] = simplex_frame(simplex);
   // lambda(x) = A^{-1}(x - v0), lambda_0 = 1 - sum lambda_i

@@ -11,17 +11,20 @@ namespace boxgen {
 
 using MultiIndex = std::vector<int>;  // b_0..b_n, |b| = d
 
-// All multi-indices of n+1 parts summing to d, b_0 descending first (lexicographically largest first).
+// All multi-indices of n+1 parts summing to d, b_0 descending first (lexicographically largest
+// first).
 std::vector<MultiIndex> bb_multi_indices(int n, int d);
 // Exact BB coefficients of p (degree <= d) on the simplex, in bb_multi_indices order.
 std::vector<Rational> bb_coefficients(const Poly& p, const std::vector<RatVec>& simplex, int d);
 // The polynomial with these BB coefficients (the inverse of bb_coefficients).
-Poly bb_polynomial(const std::vector<Rational>& coefficients, const std::vector<RatVec>& simplex, int d);
+Poly bb_polynomial(const std::vector<Rational>& coefficients, const std::vector<RatVec>& simplex,
+                   int d);
 
 struct SimplexBBForm {
-  std::vector<RatVec> vertices;                       // centred frame
+  std::vector<RatVec> vertices;  // centred frame
   std::vector<MultiIndex> indices;
-  std::vector<std::vector<Rational>> weights;          // weights[b][k]: c_b = sum_k weights[b][k] V(stencil[k])
+  std::vector<std::vector<Rational>>
+      weights;  // weights[b][k]: c_b = sum_k weights[b][k] V(stencil[k])
 };
 
 struct RegionBBForm {

@@ -7,11 +7,13 @@ namespace boxgen {
 
 std::unique_ptr<BoxSplineDerivation> BoxSplineDerivation::make(const IntColumns& directions, int n,
                                                                DerivationMethod m) {
-  if (m == DerivationMethod::TruncatedPower) return std::make_unique<TruncatedPowerDerivation>(directions, n);
+  if (m == DerivationMethod::TruncatedPower)
+    return std::make_unique<TruncatedPowerDerivation>(directions, n);
   return std::make_unique<DirectionalIntegrationDerivation>(directions, n);
 }
 
-DirectionalIntegrationDerivation::DirectionalIntegrationDerivation(const IntColumns& directions, int n)
+DirectionalIntegrationDerivation::DirectionalIntegrationDerivation(const IntColumns& directions,
+                                                                   int n)
     : integrator_(basis_first(directions, n), n, IntegrationPath::UnitSegment) {}
 
 HalfSpaceFlip flip_into_half_space(const IntColumns& directions, int n) {
@@ -55,7 +57,9 @@ std::map<IntVec, Integer> difference_shifts(const HalfSpaceFlip& f) {
 }  // namespace
 
 TruncatedPowerDerivation::TruncatedPowerDerivation(const IntColumns& directions, int n)
-    : n_(n), integrator_(basis_first(flip_into_half_space(directions, n).columns, n), n, IntegrationPath::Ray) {
+    : n_(n),
+      integrator_(basis_first(flip_into_half_space(directions, n).columns, n), n,
+                  IntegrationPath::Ray) {
   for (auto& [s, w] : difference_shifts(flip_into_half_space(directions, n))) {
     std::vector<std::int64_t> dots;
     for (const auto& nu : integrator_.top_planes().normals) dots.push_back(dot(nu, s));
@@ -88,7 +92,8 @@ Poly TruncatedPowerDerivation::polynomial_at(const RatVec& p) {
       RatVec q = p;
       for (int i = 0; i < n_; ++i) q[i] = q[i] - Rational(s[i]);
       const Poly& t = integrator_.top(key, q);
-      it = translated_.emplace(memo_key, t.is_zero() ? t : t.translated(to_ratvec(s)) * Rational(w)).first;
+      it = translated_.emplace(memo_key, t.is_zero() ? t : t.translated(to_ratvec(s)) * Rational(w))
+               .first;
     }
     if (!it->second.is_zero()) sum += it->second;
   }

@@ -3,7 +3,8 @@
 //  - DirectionalIntegration: the box-spline recurrence M_{Xi+xi}(x) = int_0^1 M_Xi(x - t xi) dt
 //    (docs/design.md §5), lazily from the parallelepiped up;
 //  - TruncatedPower: finite differences of the truncated power (docs/design.md §5),
-//    M_Xi(x) = sum_S (-1)^|S| T_Xi(x - sum S), with T derived along rays on the central arrangement.
+//    M_Xi(x) = sum_S (-1)^|S| T_Xi(x - sum S), with T derived along rays on the central
+//    arrangement.
 // Both answer "the polynomial of M_Xi on the cell containing the generic point p".
 #pragma once
 #include <map>
@@ -22,7 +23,8 @@ class BoxSplineDerivation {
   virtual ~BoxSplineDerivation() = default;
   // p must lie on no plane nu.x = integer of the knot normals.
   virtual Poly polynomial_at(const RatVec& p) = 0;
-  static std::unique_ptr<BoxSplineDerivation> make(const IntColumns& directions, int n, DerivationMethod m);
+  static std::unique_ptr<BoxSplineDerivation> make(const IntColumns& directions, int n,
+                                                   DerivationMethod m);
 };
 
 class DirectionalIntegrationDerivation final : public BoxSplineDerivation {
@@ -48,8 +50,10 @@ class TruncatedPowerDerivation final : public BoxSplineDerivation {
   int n_;
   LevelIntegrator integrator_;
   std::vector<std::pair<IntVec, Integer>> shifts_;  // M_Xi(x) = sum_s w_s T(x - s)
-  std::vector<std::vector<std::int64_t>> normal_dot_shift_;  // per shift: nu . s for every normal of T
-  std::unordered_map<std::pair<CellKey, int>, Poly, KeyHash> translated_;  // T's piece moved by shift k
+  std::vector<std::vector<std::int64_t>>
+      normal_dot_shift_;  // per shift: nu . s for every normal of T
+  std::unordered_map<std::pair<CellKey, int>, Poly, KeyHash>
+      translated_;  // T's piece moved by shift k
 };
 
 // Columns flipped into the open half-space h.x > 0 (h generic), and the sum of the flipped

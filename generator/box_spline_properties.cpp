@@ -29,7 +29,8 @@ BoxSplineProperties box_spline_properties(const BoxSplineSpec& spec) {
       }
       for (int c = b + 1; c < m; ++c) visit({xi[a], xi[b], xi[c]});
     }
-  p.stencil_size = cln::exquo(p.support_volume, Integer(static_cast<long long>(spec.lattice.det_abs())));
+  p.stencil_size =
+      cln::exquo(p.support_volume, Integer(static_cast<long long>(spec.lattice.det_abs())));
   return p;
 }
 

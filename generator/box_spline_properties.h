@@ -7,11 +7,11 @@
 namespace boxgen {
 
 struct BoxSplineProperties {
-  int degree = 0;               // m - n
-  int approximation_order = 0;  // rho
-  int continuity = 0;           // rho - 2 (C^k)
-  Integer support_volume;       // sum over n-subsets of |det|
-  Integer stencil_size;         // volume / |det G|
+  int degree = 0;                     // m - n
+  int approximation_order = 0;        // rho
+  int continuity = 0;                 // rho - 2 (C^k)
+  Integer support_volume;             // sum over n-subsets of |det|
+  Integer stencil_size;               // volume / |det G|
   bool linearly_independent = false;  // every n-subset has |det| in {0, |det G|}
 };
 

@@ -106,7 +106,8 @@ std::optional<Polytope> slice(const Polytope& w, const IntVec& nu, const Interva
 // Cuts every polytope by the intervals of each normal in turn; `intervals(i, lo, hi)` lists
 // the intervals of normal i that meet the open range (lo, hi) of nu_i.x over a polytope.
 template <typename Intervals>
-std::vector<FineCell> split(Polytope start, const std::vector<IntVec>& normals, Intervals intervals) {
+std::vector<FineCell> split(Polytope start, const std::vector<IntVec>& normals,
+                            Intervals intervals) {
   const int n = static_cast<int>(start.vertices[0].size());
   std::vector<Polytope> work{std::move(start)};
   for (size_t i = 0; i < normals.size(); ++i) {
@@ -152,7 +153,10 @@ int affine_rank(const std::vector<RatVec>& points) {
   for (size_t col = 0; col < n && r < static_cast<int>(rows.size()); ++col) {
     int pivot = -1;
     for (size_t i = r; i < rows.size(); ++i)
-      if (!cln::zerop(rows[i][col])) { pivot = static_cast<int>(i); break; }
+      if (!cln::zerop(rows[i][col])) {
+        pivot = static_cast<int>(i);
+        break;
+      }
     if (pivot < 0) continue;
     std::swap(rows[pivot], rows[r]);
     for (size_t i = r + 1; i < rows.size(); ++i) {
@@ -227,7 +231,8 @@ int ShiftLocator::cell_at(const IntVec& j) const {
   for (size_t i = 0; i < planes.normals.size(); ++i) {
     const std::int64_t v = nu_p_[i] - d_ * dot(planes.normals[i], j);  // d nu.(p - j)
     const auto& levels = planes.levels[i];
-    const auto below = std::partition_point(levels.begin(), levels.end(), [&](std::int64_t l) { return d_ * l < v; });
+    const auto below = std::partition_point(levels.begin(), levels.end(),
+                                            [&](std::int64_t l) { return d_ * l < v; });
     if (below == levels.begin() || below == levels.end()) return -1;  // outside the support
     key[i] = static_cast<std::int32_t>(below - levels.begin());
   }
@@ -278,7 +283,8 @@ void pull(const std::vector<RatVec>& pts, int d, const std::vector<Plane>& plane
     std::vector<RatVec> face;
     for (const auto& p : pts)
       if (dot(nu, p) == level) face.push_back(p);
-    if (face.size() == pts.size() || std::find(face.begin(), face.end(), v0) != face.end()) continue;
+    if (face.size() == pts.size() || std::find(face.begin(), face.end(), v0) != face.end())
+      continue;
     if (affine_rank(face) != d - 1) continue;
     std::sort(face.begin(), face.end());
     if (std::find(seen.begin(), seen.end(), face) != seen.end()) continue;
@@ -303,7 +309,8 @@ std::vector<std::vector<RatVec>> triangulate(const FineCell& cell, const KnotCom
   const int n = complex.dimension();
   std::vector<Plane> faces;
   for (size_t i = 0; i < planes.normals.size(); ++i)
-    for (int up = 0; up <= 1; ++up) faces.push_back({planes.normals[i], Rational(planes.levels[i][cell.key[i] - 1 + up])});
+    for (int up = 0; up <= 1; ++up)
+      faces.push_back({planes.normals[i], Rational(planes.levels[i][cell.key[i] - 1 + up])});
   for (int i = 0; i < n; ++i) {  // the box's faces, where they bound a cell
     IntVec e(n, 0);
     e[i] = 1;

@@ -52,7 +52,8 @@ class KnotComplex {
 class ShiftLocator {
  public:
   ShiftLocator(const KnotComplex& knots, const RatVec& p);
-  // Index of the knot cell holding p - j, or -1 outside the support. p - j must lie on no knot plane.
+  // Index of the knot cell holding p - j, or -1 outside the support. p - j must lie on no knot
+  // plane.
   int cell_at(const IntVec& j) const;
 
  private:
@@ -67,8 +68,8 @@ class ShiftLocator {
 // Facets of a cell: for each normal index and side (level or level + 1) holding an (n-1)-face.
 struct Facet {
   int normal;
-  std::int64_t level;   // the plane nu . x = level
-  bool upper;           // true if the plane is the cell's upper side (key + 1)
+  std::int64_t level;  // the plane nu . x = level
+  bool upper;          // true if the plane is the cell's upper side (key + 1)
   std::vector<RatVec> vertices;
 };
 std::vector<Facet> facets_of(const FineCell& cell, const std::vector<IntVec>& normals);

@@ -22,7 +22,8 @@ namespace {
 
 // Number of levels strictly below v.
 std::int32_t levels_below(const std::vector<std::int64_t>& levels, const Rational& v) {
-  if (levels.empty() || v <= Rational(levels.front())) return 0;  // also far outside the 64-bit range
+  if (levels.empty() || v <= Rational(levels.front()))
+    return 0;  // also far outside the 64-bit range
   if (v > Rational(levels.back())) return static_cast<std::int32_t>(levels.size());
   const std::int64_t f = floor_to_int64(v);
   // Below v means <= floor(v), except when v is itself an integer.
@@ -36,14 +37,16 @@ std::int32_t levels_below(const std::vector<std::int64_t>& levels, const Rationa
 CellKey interval_key(const KnotPlanes& planes, const RatVec& x) {
   CellKey k;
   k.reserve(planes.normals.size());
-  for (size_t i = 0; i < planes.normals.size(); ++i) k.push_back(levels_below(planes.levels[i], dot(planes.normals[i], x)));
+  for (size_t i = 0; i < planes.normals.size(); ++i)
+    k.push_back(levels_below(planes.levels[i], dot(planes.normals[i], x)));
   return k;
 }
 
 bool off_knot_planes(const KnotPlanes& planes, const RatVec& x) {
   for (size_t i = 0; i < planes.normals.size(); ++i) {
     const Rational v = dot(planes.normals[i], x);
-    if (is_integer(v) && std::binary_search(planes.levels[i].begin(), planes.levels[i].end(), floor_to_int64(v)))
+    if (is_integer(v) &&
+        std::binary_search(planes.levels[i].begin(), planes.levels[i].end(), floor_to_int64(v)))
       return false;
   }
   return true;

@@ -27,13 +27,15 @@ namespace {
 constexpr double kSecondsPerShiftCoefficient = 6.1e-9;  // knot cell x shift x monomial
 constexpr double kSecondsPerPlaneCoefficient = 1.5e-7;  // knot cell x monomial x knot plane
 constexpr double kSecondsPerStencilPoint = 2.55e-6;     // fine cell of F x stencil point
-constexpr double kSecondsPerFineCell = 1.55e-5;         // splitting, facets and merging of a fine cell
+constexpr double kSecondsPerFineCell = 1.55e-5;  // splitting, facets and merging of a fine cell
 constexpr double kSecondsStart = 0.027;
 constexpr double kBytesBase = 7e6;
-constexpr double kBytesPerCoefficient = 300;   // memoised pieces and translates per knot-cell coefficient
-constexpr double kBytesPerStencilPoint = 185;  // a fine cell's stencil entry and its share of the basis
-constexpr double kBytesPerFineCell = 3500;     // its exact vertices, key and stencil vectors
-constexpr double kEnumerableCells = 2e6;       // above this bound, do not enumerate
+constexpr double kBytesPerCoefficient =
+    300;  // memoised pieces and translates per knot-cell coefficient
+constexpr double kBytesPerStencilPoint =
+    185;  // a fine cell's stencil entry and its share of the basis
+constexpr double kBytesPerFineCell = 3500;  // its exact vertices, key and stencil vectors
+constexpr double kEnumerableCells = 2e6;    // above this bound, do not enumerate
 
 double binomial(double p, int k) {
   double r = 1;
@@ -78,11 +80,14 @@ double knot_cell_bound(const KnotPlanes& planes, int n) {
 }  // namespace
 
 void refuse_if_too_many_cells(const BoxSplineSpec& spec) {
-  const double bound = knot_cell_bound(knot_planes(spec.directions, spec.dimension()), spec.dimension());
+  const double bound =
+      knot_cell_bound(knot_planes(spec.directions, spec.dimension()), spec.dimension());
   if (bound > kEnumerableCells * 50)
-    fail_input(fmt::format("too costly to derive exactly: up to {:.3g} knot cells (limit {:.3g}); use fewer directions "
-                           "or smaller entries",
-                           bound, kEnumerableCells * 50));
+    fail_input(
+        fmt::format("too costly to derive exactly: up to {:.3g} knot cells (limit {:.3g}); use "
+                    "fewer directions "
+                    "or smaller entries",
+                    bound, kEnumerableCells * 50));
 }
 
 CostEstimate estimate_cost(const BoxSplineSpec& spec, bool verify, bool full_checks) {
@@ -95,10 +100,12 @@ CostEstimate estimate_cost(const BoxSplineSpec& spec, bool verify, bool full_che
     return e;
   }
   Zonotope box(spec.directions, n);
-  return estimate_cost(spec, KnotComplex(planes, box.box_lo(), box.box_hi()).cells().size(), verify, full_checks);
+  return estimate_cost(spec, KnotComplex(planes, box.box_lo(), box.box_hi()).cells().size(), verify,
+                       full_checks);
 }
 
-CostEstimate estimate_cost(const BoxSplineSpec& spec, std::size_t knot_cells, bool verify, bool full_checks) {
+CostEstimate estimate_cost(const BoxSplineSpec& spec, std::size_t knot_cells, bool verify,
+                           bool full_checks) {
   const int n = spec.dimension();
   const int degree = spec.count() - n;
   CostEstimate e;
@@ -106,14 +113,18 @@ CostEstimate estimate_cost(const BoxSplineSpec& spec, std::size_t knot_cells, bo
   e.cells_exact = true;
   // The fine arrangement is periodic under integer shifts: one unit cube has the cells of each.
   IntVec origin(n, 0);
-  const double per_cube = static_cast<double>(split_cube(arrangement_normals(spec.directions, n), origin).size());
-  e.fundamental_cells = static_cast<std::size_t>(per_cube * static_cast<double>(spec.lattice.det_abs()));
+  const double per_cube =
+      static_cast<double>(split_cube(arrangement_normals(spec.directions, n), origin).size());
+  e.fundamental_cells =
+      static_cast<std::size_t>(per_cube * static_cast<double>(spec.lattice.det_abs()));
   const double monomials = static_cast<double>(monomial_count(n, degree));
   const double stencil = cln::double_approx(box_spline_properties(spec).stencil_size);
   const double shifts = difference_shifts(spec.directions, n);
   double knot_planes_count = 0;
-  for (const auto& levels : knot_planes(spec.directions, n).levels) knot_planes_count += static_cast<double>(levels.size());
-  const double cells = static_cast<double>(e.knot_cells), fine = static_cast<double>(e.fundamental_cells);
+  for (const auto& levels : knot_planes(spec.directions, n).levels)
+    knot_planes_count += static_cast<double>(levels.size());
+  const double cells = static_cast<double>(e.knot_cells),
+               fine = static_cast<double>(e.fundamental_cells);
   // The fit is for the default checks; without them about half the plane work remains, and the
   // full checks visit every cell of every symmetry orbit and every fine cell's stencil.
   const double checks = verify ? (full_checks ? 2.0 : 1.0) : 0.5;
@@ -121,17 +132,18 @@ CostEstimate estimate_cost(const BoxSplineSpec& spec, std::size_t knot_cells, bo
               checks * cells * monomials * knot_planes_count * kSecondsPerPlaneCoefficient +
               (verify && full_checks ? 2.0 : 1.0) * fine * stencil * kSecondsPerStencilPoint +
               fine * kSecondsPerFineCell;
-  e.bytes = kBytesBase + kBytesPerCoefficient * cells * monomials + kBytesPerStencilPoint * fine * stencil +
-            kBytesPerFineCell * fine;
+  e.bytes = kBytesBase + kBytesPerCoefficient * cells * monomials +
+            kBytesPerStencilPoint * fine * stencil + kBytesPerFineCell * fine;
   return e;
 }
 
 void refuse_if_too_costly(const CostEstimate& e, double max_seconds) {
   const double limit = max_seconds > 0 ? max_seconds : kDefaultMaxSeconds;
   if (e.seconds > limit)
-    fail_input(fmt::format("too costly to derive exactly: predicted {:.3g} s and {:.3g} MB ({} knot cells{}), "
-                           "beyond the limit of {:.3g} s; raise it with --max-seconds, or use fewer directions",
-                           e.seconds, e.bytes / 1e6, e.knot_cells, e.cells_exact ? "" : " at most", limit));
+    fail_input(fmt::format(
+        "too costly to derive exactly: predicted {:.3g} s and {:.3g} MB ({} knot cells{}), "
+        "beyond the limit of {:.3g} s; raise it with --max-seconds, or use fewer directions",
+        e.seconds, e.bytes / 1e6, e.knot_cells, e.cells_exact ? "" : " at most", limit));
 }
 
 }  // namespace boxgen

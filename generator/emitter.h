@@ -11,7 +11,6 @@ namespace boxgen {
 
 inline constexpr const char* kGeneratorVersion = kVersionBanner;  // boxgen/version.h (CMake)
 
-
 struct EmittedFile {
   std::string filename;
   std::string text;
@@ -38,7 +37,8 @@ struct EmissionReport {
 // <name>.hpp (evaluator) and <name>_prefilters.hpp (Q^I on shells 0,1 and Q^II on 0,1,2 where
 // they exist). Throws InputError for a name that is not a C++ identifier.
 // With `report`, also fills it.
-std::vector<EmittedFile> emit(const Analysis& analysis, const EmissionRequest& request, EmissionReport* report = nullptr);
+std::vector<EmittedFile> emit(const Analysis& analysis, const EmissionRequest& request,
+                              EmissionReport* report = nullptr);
 
 // registry.hpp: boxgen::generated::with_filter over the named filters (each with its evaluator and
 // both prefilters in the same directory), in the order given; the last one is the switch's default.

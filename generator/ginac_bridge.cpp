@@ -18,7 +18,8 @@ std::string text_of(const GiNaC::ex& e) {
 }  // namespace
 
 const std::vector<GiNaC::symbol>& coordinate_symbols(int n) {
-  static const std::vector<GiNaC::symbol> xyz{GiNaC::symbol("x"), GiNaC::symbol("y"), GiNaC::symbol("z")};
+  static const std::vector<GiNaC::symbol> xyz{GiNaC::symbol("x"), GiNaC::symbol("y"),
+                                              GiNaC::symbol("z")};
   static const std::vector<GiNaC::symbol> xy{xyz[0], xyz[1]};
   if (n == 2) return xy;
   if (n == 3) return xyz;
@@ -53,10 +54,12 @@ GiNaC::ex to_ex(const Poly& p) { return to_ex(p, coordinate_symbols(p.vars())); 
 namespace {
 
 // One term c * x^a * y^b * ...: adds its exponents to e and returns c.
-GiNaC::numeric split_monomial(const GiNaC::ex& term, const std::vector<GiNaC::symbol>& vars, Exponent& e) {
+GiNaC::numeric split_monomial(const GiNaC::ex& term, const std::vector<GiNaC::symbol>& vars,
+                              Exponent& e) {
   GiNaC::numeric coefficient = 1;
-  const GiNaC::exvector factors =
-      GiNaC::is_a<GiNaC::mul>(term) ? GiNaC::exvector(term.begin(), term.end()) : GiNaC::exvector{term};
+  const GiNaC::exvector factors = GiNaC::is_a<GiNaC::mul>(term)
+                                      ? GiNaC::exvector(term.begin(), term.end())
+                                      : GiNaC::exvector{term};
   for (const auto& f : factors) {
     if (GiNaC::is_a<GiNaC::numeric>(f)) {
       coefficient *= GiNaC::ex_to<GiNaC::numeric>(f);
@@ -67,11 +70,13 @@ GiNaC::numeric split_monomial(const GiNaC::ex& term, const std::vector<GiNaC::sy
     if (GiNaC::is_a<GiNaC::power>(f)) {
       base = f.op(0);
       const GiNaC::ex exponent = f.op(1);
-      if (!GiNaC::is_a<GiNaC::numeric>(exponent) || !GiNaC::ex_to<GiNaC::numeric>(exponent).is_pos_integer())
+      if (!GiNaC::is_a<GiNaC::numeric>(exponent) ||
+          !GiNaC::ex_to<GiNaC::numeric>(exponent).is_pos_integer())
         fail_input("not a polynomial: " + text_of(f));
       power = GiNaC::ex_to<GiNaC::numeric>(exponent).to_int();
     }
-    const auto it = std::find_if(vars.begin(), vars.end(), [&](const GiNaC::symbol& s) { return base.is_equal(s); });
+    const auto it = std::find_if(vars.begin(), vars.end(),
+                                 [&](const GiNaC::symbol& s) { return base.is_equal(s); });
     if (it == vars.end()) fail_input("unexpected factor in a polynomial: " + text_of(f));
     e[static_cast<std::size_t>(it - vars.begin())] += power;
   }
@@ -83,8 +88,9 @@ GiNaC::numeric split_monomial(const GiNaC::ex& term, const std::vector<GiNaC::sy
 Poly to_poly(const GiNaC::ex& e, const std::vector<GiNaC::symbol>& vars) {
   const int n = static_cast<int>(vars.size());
   const GiNaC::ex expanded = e.expand();
-  const GiNaC::exvector terms =
-      GiNaC::is_a<GiNaC::add>(expanded) ? GiNaC::exvector(expanded.begin(), expanded.end()) : GiNaC::exvector{expanded};
+  const GiNaC::exvector terms = GiNaC::is_a<GiNaC::add>(expanded)
+                                    ? GiNaC::exvector(expanded.begin(), expanded.end())
+                                    : GiNaC::exvector{expanded};
   std::vector<std::pair<Exponent, Rational>> monomials;
   int degree = 0;
   for (const auto& term : terms) {

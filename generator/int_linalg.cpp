@@ -11,7 +11,8 @@ std::int64_t det(const IntColumns& a) {
   if (n == 1) return a[0][0];
   if (n == 2) return a[0][0] * a[1][1] - a[1][0] * a[0][1];
   if (n == 3)
-    return a[0][0] * (a[1][1] * a[2][2] - a[2][1] * a[1][2]) - a[1][0] * (a[0][1] * a[2][2] - a[2][1] * a[0][2]) +
+    return a[0][0] * (a[1][1] * a[2][2] - a[2][1] * a[1][2]) -
+           a[1][0] * (a[0][1] * a[2][2] - a[2][1] * a[0][2]) +
            a[2][0] * (a[0][1] * a[1][2] - a[1][1] * a[0][2]);
   fail_internal("det: only dimensions 1 to 3 are supported");
 }
@@ -25,7 +26,10 @@ int rank(const IntColumns& columns, int n) {
   for (size_t col = 0; col < columns.size() && r < n; ++col) {
     int pivot = -1;
     for (int i = r; i < n; ++i)
-      if (!cln::zerop(m[i][col])) { pivot = i; break; }
+      if (!cln::zerop(m[i][col])) {
+        pivot = i;
+        break;
+      }
     if (pivot < 0) continue;
     std::swap(m[pivot], m[r]);
     for (int i = r + 1; i < n; ++i) {
@@ -86,7 +90,10 @@ RatMatrix inverse(const IntColumns& a) {
   for (int col = 0; col < n; ++col) {
     int pivot = -1;
     for (int i = col; i < n; ++i)
-      if (!cln::zerop(m[i][col])) { pivot = i; break; }
+      if (!cln::zerop(m[i][col])) {
+        pivot = i;
+        break;
+      }
     if (pivot < 0) fail_internal("inverse of a singular matrix");
     std::swap(m[pivot], m[col]);
     Rational p = m[col][col];

@@ -62,7 +62,8 @@ IntColumns basis_first(const IntColumns& columns, int n) {
     else
       rest.push_back(c);
   }
-  if (static_cast<int>(basis.size()) < n) fail_input("the directions do not span the space (rank deficient)");
+  if (static_cast<int>(basis.size()) < n)
+    fail_input("the directions do not span the space (rank deficient)");
   basis.insert(basis.end(), rest.begin(), rest.end());
   return basis;
 }

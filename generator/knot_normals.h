@@ -8,9 +8,9 @@
 
 namespace boxgen {
 
-// The true knot planes of M_Xi (docs/design.md §4): for each normal nu, the planes nu . x = nu . sum(S)
-// over the sub-multisets S of the columns. Only these carry breaks of the polynomial pieces, so
-// an arrangement of them grows with the pieces M_Xi really has, not with the length of the
+// The true knot planes of M_Xi (docs/design.md §4): for each normal nu, the planes nu . x = nu .
+// sum(S) over the sub-multisets S of the columns. Only these carry breaks of the polynomial pieces,
+// so an arrangement of them grows with the pieces M_Xi really has, not with the length of the
 // columns (the integer levels of a normal (1,-20) would give 400 planes where 8 are knots).
 struct KnotPlanes {
   std::vector<IntVec> normals;

@@ -23,7 +23,8 @@ IntColumns hermite_form(IntColumns h, int n) {
     for (;;) {
       int best = -1;
       for (int j = row; j < n; ++j)
-        if (h[j][row] != 0 && (best < 0 || std::llabs(h[j][row]) < std::llabs(h[best][row]))) best = j;
+        if (h[j][row] != 0 && (best < 0 || std::llabs(h[j][row]) < std::llabs(h[best][row])))
+          best = j;
       if (best < 0) fail_internal("hermite_form: singular lattice");
       std::swap(h[best], h[row]);
       bool done = true;
@@ -43,14 +44,17 @@ IntColumns hermite_form(IntColumns h, int n) {
 
 }  // namespace
 
-Lattice::Lattice(std::string name, IntColumns generator) : name_(std::move(name)), g_(std::move(generator)) {
+Lattice::Lattice(std::string name, IntColumns generator)
+    : name_(std::move(name)), g_(std::move(generator)) {
   n_ = static_cast<int>(g_.size());
-  if (n_ < 2 || n_ > 3) fail_input("lattice must be 2- or 3-dimensional, got dimension " + std::to_string(n_));
+  if (n_ < 2 || n_ > 3)
+    fail_input("lattice must be 2- or 3-dimensional, got dimension " + std::to_string(n_));
   for (const auto& c : g_)
     if (static_cast<int>(c.size()) != n_) fail_input("lattice generator must be square");
   for (const auto& c : g_)
     for (auto v : c)
-      if (std::llabs(v) > 1000) fail_input("lattice generator entries must be at most 1000 in magnitude");
+      if (std::llabs(v) > 1000)
+        fail_input("lattice generator entries must be at most 1000 in magnitude");
   std::int64_t d = det(g_);
   if (d == 0) fail_input("singular lattice: the generator matrix has determinant 0");
   det_abs_ = std::llabs(d);

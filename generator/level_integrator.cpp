@@ -39,7 +39,9 @@ CellKey LevelIntegrator::key(int level, const RatVec& p) const {
                                                : sign_key(levels_[level].planes.normals, p);
 }
 
-const Poly& LevelIntegrator::top(const RatVec& p) { return cell(static_cast<int>(levels_.size()) - 1, p).poly; }
+const Poly& LevelIntegrator::top(const RatVec& p) {
+  return cell(static_cast<int>(levels_.size()) - 1, p).poly;
+}
 
 const Poly& LevelIntegrator::top(const CellKey& k, const RatVec& p) {
   const int level = static_cast<int>(levels_.size()) - 1;
@@ -80,8 +82,8 @@ RatVec LevelIntegrator::perturbed(int level, const RatVec& p, int attempt) const
     const Rational scale = Rational(1) / cln::expt(Rational(2), 16 + shrink);
     for (int i = 0; i < n_; ++i)
       q[i] = q[i] + scale * Rational(1 + attempt) / Rational(primes[(i + attempt) % 6]);
-    const bool generic = path_ == IntegrationPath::UnitSegment ? off_knot_planes(levels_[level].planes, q)
-                                                               : true;
+    const bool generic =
+        path_ == IntegrationPath::UnitSegment ? off_knot_planes(levels_[level].planes, q) : true;
     if (generic && key(level, q) == k) return q;
   }
   fail_internal("could not perturb a point inside its cell");
@@ -106,10 +108,12 @@ Poly LevelIntegrator::derive(int level, RatVec p) {
         const Rational s1 = s0 - Rational(d);
         const Rational lo = cln::min(s0, s1), hi = cln::max(s0, s1);
         for (std::int64_t c : lower_levels[i])
-          if (Rational(c) > lo && Rational(c) < hi) crossings.push_back({(s0 - Rational(c)) / Rational(d), i, c});
+          if (Rational(c) > lo && Rational(c) < hi)
+            crossings.push_back({(s0 - Rational(c)) / Rational(d), i, c});
       }
     }
-    std::sort(crossings.begin(), crossings.end(), [](const Crossing& a, const Crossing& b) { return a.t < b.t; });
+    std::sort(crossings.begin(), crossings.end(),
+              [](const Crossing& a, const Crossing& b) { return a.t < b.t; });
     bool distinct = true;
     for (size_t j = 1; j < crossings.size(); ++j)
       if (crossings[j].t == crossings[j - 1].t) distinct = false;
@@ -165,7 +169,8 @@ const std::vector<Poly>& LevelIntegrator::integrated(int level, Cell& c) {
   if (!c.poly.is_zero()) {
     auto q = c.poly.along_direction(xi);
     c.integrated.emplace_back(n_, 0);
-    for (size_t e = 0; e < q.size(); ++e) c.integrated.push_back(q[e] * (Rational(1) / Rational(static_cast<long>(e + 1))));
+    for (size_t e = 0; e < q.size(); ++e)
+      c.integrated.push_back(q[e] * (Rational(1) / Rational(static_cast<long>(e + 1))));
   }
   c.has_integrated = true;
   return c.integrated;

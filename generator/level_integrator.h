@@ -2,7 +2,8 @@
 // directional integration, one column at a time, cell by cell.
 //
 // Level k uses the first k columns. On a cell C of level k+1 the function is
-//   F_{k+1}(x) = integral over t of F_k(x - t xi), t in [0, 1] (box spline) or [0, inf) (truncated power).
+//   F_{k+1}(x) = integral over t of F_k(x - t xi), t in [0, 1] (box spline) or [0, inf) (truncated
+//   power).
 // At a generic interior point p of C the path p - t xi crosses level-k planes at parameters
 // t_j(x) = (nu.x - c)/(nu.xi), affine in x; between crossings F_k is one polynomial P, so
 //   F_{k+1}(x) = sum_j (G_{j-1} - G_j)(x, t_j(x)) [+ G_last(x, 1) on a segment],
@@ -39,7 +40,8 @@ class LevelIntegrator {
  private:
   struct Cell {
     Poly poly;
-    std::vector<Poly> integrated;  // G_e: G(x, t) = sum_e t^e G_e(x) along the next level's direction
+    std::vector<Poly>
+        integrated;  // G_e: G(x, t) = sum_e t^e G_e(x) along the next level's direction
     bool has_integrated = false;
   };
   struct PairHash {
@@ -58,7 +60,8 @@ class LevelIntegrator {
   Poly derive(int level, RatVec p);
   Poly base(const RatVec& p) const;
   const std::vector<Poly>& integrated(int level, Cell& c);
-  const Poly& jump(int level, const CellKey& a, Cell& ca, const CellKey& b, Cell& cb, const RatVec& tau);
+  const Poly& jump(int level, const CellKey& a, Cell& ca, const CellKey& b, Cell& cb,
+                   const RatVec& tau);
   RatVec perturbed(int level, const RatVec& p, int attempt) const;
 
   int n_;

@@ -7,7 +7,8 @@
 
 namespace boxgen {
 
-SharedRows share_partial_sums(const std::vector<LinearRow>& rows, int inputs, std::size_t max_entries) {
+SharedRows share_partial_sums(const std::vector<LinearRow>& rows, int inputs,
+                              std::size_t max_entries) {
   SharedRows out{{}, rows};
   std::size_t entries = 0;
   for (const auto& row : rows) entries += row.size();
@@ -28,7 +29,8 @@ SharedRows share_partial_sums(const std::vector<LinearRow>& rows, int inputs, st
       if (best == count.end() || it->second > best->second) best = it;
     if (best == count.end() || best->second < 2) break;
     const auto [a, b, ratio] = best->first;
-    // The exact ratio from the first row holding the pair; rows with another exact ratio keep theirs.
+    // The exact ratio from the first row holding the pair; rows with another exact ratio keep
+    // theirs.
     std::optional<Rational> r;
     int replaced = 0;
     for (auto& row : out.rows) {

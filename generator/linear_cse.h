@@ -14,8 +14,8 @@ namespace boxgen {
 using LinearRow = std::vector<std::pair<int, Rational>>;  // (input, weight), weight != 0
 
 struct SharedSum {
-  int a, b;     // inputs (stencil values or earlier temporaries)
-  Rational r;   // t = x_a + r x_b
+  int a, b;    // inputs (stencil values or earlier temporaries)
+  Rational r;  // t = x_a + r x_b
 };
 
 struct SharedRows {
@@ -25,6 +25,7 @@ struct SharedRows {
 
 // rows over `inputs` inputs; gives up sharing (returns the rows unchanged) beyond `max_entries`
 // non-zeros, where the pair search would cost more than the emission is worth.
-SharedRows share_partial_sums(const std::vector<LinearRow>& rows, int inputs, std::size_t max_entries = 4000);
+SharedRows share_partial_sums(const std::vector<LinearRow>& rows, int inputs,
+                              std::size_t max_entries = 4000);
 
 }  // namespace boxgen

@@ -65,7 +65,8 @@ Rational integrate_over_box(const Poly& p, const RatVec& lo, const RatVec& hi) {
   for (std::size_t i = 0; i < local.coefficients().size(); ++i) {
     if (cln::zerop(local.coefficients()[i])) continue;
     Rational t = local.coefficients()[i];
-    for (int k = 0; k < n; ++k) t = t * cln::expt(hi[k] - lo[k], ex[i][k] + 1) / Rational(ex[i][k] + 1);
+    for (int k = 0; k < n; ++k)
+      t = t * cln::expt(hi[k] - lo[k], ex[i][k] + 1) / Rational(ex[i][k] + 1);
     total = total + t;
   }
   return total;
@@ -96,7 +97,8 @@ int count_pieces(const PiecewiseForm& form) {
     if (form.polys[i].is_zero()) continue;
     for (const auto& f : facets_of(cells[i], form.knots.planes())) {
       const int j = form.knots.find(neighbour_key(cells[i], f));
-      if (j >= 0 && !form.polys[j].is_zero() && form.polys[j] == form.polys[i]) uf.unite(static_cast<int>(i), j);
+      if (j >= 0 && !form.polys[j].is_zero() && form.polys[j] == form.polys[i])
+        uf.unite(static_cast<int>(i), j);
     }
   }
   std::set<int> roots;
@@ -112,13 +114,15 @@ static Rational integral_of_cell(const PiecewiseForm& form, int i) {
   RatVec lo, hi;
   if (box_corners(cell, lo, hi)) return integrate_over_box(p, lo, hi);
   Rational total = 0;
-  for (const auto& simplex : triangulate(cell, form.knots)) total = total + integrate_over_simplex(p, simplex);
+  for (const auto& simplex : triangulate(cell, form.knots))
+    total = total + integrate_over_simplex(p, simplex);
   return total;
 }
 
 Rational total_integral(const PiecewiseForm& form) {
   Rational total = 0;
-  for (size_t i = 0; i < form.knots.cells().size(); ++i) total = total + integral_of_cell(form, static_cast<int>(i));
+  for (size_t i = 0; i < form.knots.cells().size(); ++i)
+    total = total + integral_of_cell(form, static_cast<int>(i));
   return total;
 }
 
@@ -139,7 +143,8 @@ CellOrbits cell_orbits(const PiecewiseForm& form, const std::vector<SignedPermut
     int size = 0;
     for (const auto& g : group) {
       const int j = form.knots.locate(symmetry_image(g, cells[i].interior, c));
-      if (j < 0) fail_internal("symmetry check failed: the image of a cell of the support lies outside it");
+      if (j < 0)
+        fail_internal("symmetry check failed: the image of a cell of the support lies outside it");
       if (!seen[j]) seen[j] = true, ++size;
     }
     orbits.representatives.push_back(static_cast<int>(i));
@@ -148,7 +153,8 @@ CellOrbits cell_orbits(const PiecewiseForm& form, const std::vector<SignedPermut
   return orbits;
 }
 
-ContinuityReport check_continuity(const PiecewiseForm& form, int order, const std::vector<int>& subset) {
+ContinuityReport check_continuity(const PiecewiseForm& form, int order,
+                                  const std::vector<int>& subset) {
   ContinuityReport report;
   report.smoothness = order;
   const auto& cells = form.knots.cells();
@@ -160,7 +166,8 @@ ContinuityReport check_continuity(const PiecewiseForm& form, int order, const st
     for (const auto& f : facets_of(cells[i], form.knots.planes())) {
       const int j = form.knots.find(neighbour_key(cells[i], f));
       const Poly& other = j >= 0 ? form.polys[j] : zero;
-      if (all && !f.upper && !other.is_zero()) continue;  // that face is checked from the other side
+      if (all && !f.upper && !other.is_zero())
+        continue;  // that face is checked from the other side
       ++report.faces_checked;
       const IntVec& nu = normals[f.normal];
       int var = 0;
@@ -192,7 +199,8 @@ ContinuityReport check_continuity(const PiecewiseForm& form, int order) {
 
 std::vector<SignedPermutation> generators(const std::vector<SignedPermutation>& group) {
   std::vector<SignedPermutation> gens;
-  std::set<std::pair<std::vector<int>, std::vector<int>>> closure{{group.front().perm, group.front().sign}};
+  std::set<std::pair<std::vector<int>, std::vector<int>>> closure{
+      {group.front().perm, group.front().sign}};
   for (const auto& g : group) {
     if (closure.count({g.perm, g.sign})) continue;
     gens.push_back(g);

@@ -31,7 +31,8 @@ struct ContinuityReport {
 // throws InternalError naming the face if not. Reports whether order is sharp.
 ContinuityReport check_continuity(const PiecewiseForm& form, int order);
 // The same on the faces of the given cells only (one per orbit suffices once symmetry is checked).
-ContinuityReport check_continuity(const PiecewiseForm& form, int order, const std::vector<int>& cells);
+ContinuityReport check_continuity(const PiecewiseForm& form, int order,
+                                  const std::vector<int>& cells);
 
 // Throws InternalError unless M^c(g x) = M^c(x) on every cell for g in `group` (checked on a
 // generating set, which implies the whole group) and for x -> -x.

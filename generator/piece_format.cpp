@@ -23,13 +23,15 @@ std::string stencil_name(std::size_t k) { return "v" + std::to_string(k); }
 std::vector<GiNaC::symbol> stencil_symbols(std::size_t count, bool c_names) {
   std::vector<GiNaC::symbol> out;
   for (std::size_t k = 0; k < count; ++k)
-    out.emplace_back(c_names ? fmt::format("v[{}]", k) : stencil_name(k), fmt::format("v_{{{}}}", k));
+    out.emplace_back(c_names ? fmt::format("v[{}]", k) : stencil_name(k),
+                     fmt::format("v_{{{}}}", k));
   return out;
 }
 
 GiNaC::ex piece_expression(const Piece& piece, const std::vector<GiNaC::symbol>& stencil) {
   if (piece.stencil.empty()) return to_ex(piece.polynomials.front());
-  if (stencil.size() != piece.polynomials.size()) fail_internal("piece_expression: one symbol per stencil point is needed");
+  if (stencil.size() != piece.polynomials.size())
+    fail_internal("piece_expression: one symbol per stencil point is needed");
   GiNaC::ex sum = 0;
   for (std::size_t k = 0; k < stencil.size(); ++k) sum += stencil[k] * to_ex(piece.polynomials[k]);
   GiNaC::lst vars;
@@ -65,12 +67,15 @@ std::string point_text(const IntVec& p) {
 // normal.x <= bound, written as (-normal).x >= -bound when the normal's first nonzero entry is
 // negative, so that "x >= 2" reads as such.
 std::string inequality_text(const Inequality& q, Printer printer) {
-  const auto first = std::find_if(q.normal.begin(), q.normal.end(), [](std::int64_t v) { return v != 0; });
+  const auto first =
+      std::find_if(q.normal.begin(), q.normal.end(), [](std::int64_t v) { return v != 0; });
   const long sign = first != q.normal.end() && *first < 0 ? -1 : 1;
   GiNaC::ex lhs = 0;
   const auto& vars = coordinate_symbols(static_cast<int>(q.normal.size()));
-  for (std::size_t i = 0; i < q.normal.size(); ++i) lhs += GiNaC::numeric(sign * static_cast<long>(q.normal[i])) * vars[i];
-  const char* relation = printer == Printer::Latex ? (sign > 0 ? " \\le " : " \\ge ") : (sign > 0 ? " <= " : " >= ");
+  for (std::size_t i = 0; i < q.normal.size(); ++i)
+    lhs += GiNaC::numeric(sign * static_cast<long>(q.normal[i])) * vars[i];
+  const char* relation =
+      printer == Printer::Latex ? (sign > 0 ? " \\le " : " \\ge ") : (sign > 0 ? " <= " : " >= ");
   return print(lhs, printer) + relation + print(to_numeric(q.bound * Rational(sign)), printer);
 }
 
@@ -83,14 +88,16 @@ std::string what_text(const Pieces& p) {
 
 std::string piece_heading(const Pieces& all, const Piece& p, std::size_t index) {
   return all.of == PiecesOf::Spline
-             ? fmt::format("piece {}: orbit {}, {} region(s) per fundamental region map onto it", index, p.orbit,
-                           p.orbit_size)
-             : fmt::format("piece {}: orbit {}, {} congruent piece(s) in the orbit", index, p.orbit, p.orbit_size);
+             ? fmt::format("piece {}: orbit {}, {} region(s) per fundamental region map onto it",
+                           index, p.orbit, p.orbit_size)
+             : fmt::format("piece {}: orbit {}, {} congruent piece(s) in the orbit", index, p.orbit,
+                           p.orbit_size);
 }
 
 std::string text_pieces(const Pieces& all, const std::string& title) {
-  std::string out = fmt::format("# {}\n# {} in the centred frame of `boxgen eval`; degree {}, {} orbit(s)\n", title,
-                                what_text(all), all.degree, all.orbits);
+  std::string out =
+      fmt::format("# {}\n# {} in the centred frame of `boxgen eval`; degree {}, {} orbit(s)\n",
+                  title, what_text(all), all.degree, all.orbits);
   for (std::size_t i = 0; i < all.pieces.size(); ++i) {
     const Piece& p = all.pieces[i];
     out += piece_heading(all, p, i) + "\n  vertices:";
@@ -105,8 +112,9 @@ std::string text_pieces(const Pieces& all, const std::string& title) {
         out += fmt::format("    {} = V{}\n", stencil_name(k), point_text(p.stencil[k]));
     }
     const std::string lhs = all.of == PiecesOf::Spline ? "s" : "M";
-    out += fmt::format("  {}({}) = {}\n", lhs, variables_text(all.dimension),
-                       print(piece_expression(p, stencil_symbols(p.stencil.size())), Printer::Text));
+    out +=
+        fmt::format("  {}({}) = {}\n", lhs, variables_text(all.dimension),
+                    print(piece_expression(p, stencil_symbols(p.stencil.size())), Printer::Text));
   }
   return out;
 }
@@ -123,7 +131,8 @@ std::string latex_pieces(const Pieces& all, const std::string& title) {
       out += fmt::format("{} ${}$", k ? "," : "", point_text(p.vertices[k], Printer::Latex));
     out += "; region";
     for (std::size_t k = 0; k < p.inequalities.size(); ++k)
-      out += fmt::format("{} ${}$", k ? "," : "", inequality_text(p.inequalities[k], Printer::Latex));
+      out +=
+          fmt::format("{} ${}$", k ? "," : "", inequality_text(p.inequalities[k], Printer::Latex));
     out += ".\n";
     if (!p.stencil.empty()) {
       out += "Stencil";
@@ -131,19 +140,23 @@ std::string latex_pieces(const Pieces& all, const std::string& title) {
         out += fmt::format("{} $v_{{{}}} = V{}$", k ? "," : "", k, point_text(p.stencil[k]));
       out += ".\n";
     }
-    out += fmt::format("\\begin{{dmath*}}\n{}({}) = {}\n\\end{{dmath*}}\n", all.of == PiecesOf::Spline ? "s" : "M",
-                       variables_text(all.dimension),
-                       print(piece_expression(p, stencil_symbols(p.stencil.size())), Printer::Latex));
+    out +=
+        fmt::format("\\begin{{dmath*}}\n{}({}) = {}\n\\end{{dmath*}}\n",
+                    all.of == PiecesOf::Spline ? "s" : "M", variables_text(all.dimension),
+                    print(piece_expression(p, stencil_symbols(p.stencil.size())), Printer::Latex));
   }
   return out;
 }
 
 std::string c_pieces(const Pieces& all, const std::string& title) {
-  std::string out = fmt::format("/* {}\n   {} in the centred frame of `boxgen eval`; degree {}, {} orbit(s).\n", title,
-                                what_text(all), all.degree, all.orbits);
-  out += all.of == PiecesOf::Spline ? "   piece_N(x, v) = s(x) on piece N's region, v[k] = V(j_k). */\n"
-                                    : "   piece_N(x) = M(x) on piece N's region. */\n";
-  const std::string coordinates = all.dimension == 2 ? "double x, double y" : "double x, double y, double z";
+  std::string out =
+      fmt::format("/* {}\n   {} in the centred frame of `boxgen eval`; degree {}, {} orbit(s).\n",
+                  title, what_text(all), all.degree, all.orbits);
+  out += all.of == PiecesOf::Spline
+             ? "   piece_N(x, v) = s(x) on piece N's region, v[k] = V(j_k). */\n"
+             : "   piece_N(x) = M(x) on piece N's region. */\n";
+  const std::string coordinates =
+      all.dimension == 2 ? "double x, double y" : "double x, double y, double z";
   for (std::size_t i = 0; i < all.pieces.size(); ++i) {
     const Piece& p = all.pieces[i];
     out += fmt::format("\n/* {}\n   region:", piece_heading(all, p, i));
@@ -154,9 +167,11 @@ std::string c_pieces(const Pieces& all, const std::string& title) {
     for (std::size_t k = 0; k < p.stencil.size(); ++k)
       out += fmt::format("{}v[{}] = V{}", k % 6 ? ", " : "\n   ", k, point_text(p.stencil[k]));
     std::ostringstream body;
-    piece_expression(p, stencil_symbols(p.stencil.size(), true)).print(GiNaC::print_csrc_double(body));
-    out += fmt::format(" */\ndouble piece_{}({}{}) {{\n  return {};\n}}\n", i, coordinates,
-                       p.stencil.empty() ? "" : fmt::format(", const double v[{}]", p.stencil.size()), body.str());
+    piece_expression(p, stencil_symbols(p.stencil.size(), true))
+        .print(GiNaC::print_csrc_double(body));
+    out += fmt::format(
+        " */\ndouble piece_{}({}{}) {{\n  return {};\n}}\n", i, coordinates,
+        p.stencil.empty() ? "" : fmt::format(", const double v[{}]", p.stencil.size()), body.str());
   }
   return out;
 }
@@ -177,7 +192,8 @@ nlohmann::json polynomial_json(const Piece& p, int n) {
     for (int k = 0; k < n; ++k) exponents.push_back(e[k]);
     if (p.stencil.empty()) {
       const Rational& c = p.polynomials.front().coefficient(e);
-      if (!cln::zerop(c)) terms.push_back({{"exponents", exponents}, {"coefficient", to_string(c)}});
+      if (!cln::zerop(c))
+        terms.push_back({{"exponents", exponents}, {"coefficient", to_string(c)}});
       continue;
     }
     nlohmann::json coefficient = nlohmann::json::object();
@@ -185,9 +201,11 @@ nlohmann::json polynomial_json(const Piece& p, int n) {
       const Rational& c = p.polynomials[k].coefficient(e);
       if (!cln::zerop(c)) coefficient[stencil_name(k)] = to_string(c);
     }
-    if (!coefficient.empty()) terms.push_back({{"exponents", exponents}, {"coefficient", coefficient}});
+    if (!coefficient.empty())
+      terms.push_back({{"exponents", exponents}, {"coefficient", coefficient}});
   }
-  return {{"variables", n == 2 ? nlohmann::json{"x", "y"} : nlohmann::json{"x", "y", "z"}}, {"terms", terms}};
+  return {{"variables", n == 2 ? nlohmann::json{"x", "y"} : nlohmann::json{"x", "y", "z"}},
+          {"terms", terms}};
 }
 
 }  // namespace
@@ -195,9 +213,11 @@ nlohmann::json polynomial_json(const Piece& p, int n) {
 nlohmann::json pieces_json(const Pieces& all, const std::string& title) {
   nlohmann::json pieces = nlohmann::json::array();
   for (const auto& p : all.pieces) {
-    nlohmann::json region{{"vertices", nlohmann::json::array()}, {"inequalities", nlohmann::json::array()}};
+    nlohmann::json region{{"vertices", nlohmann::json::array()},
+                          {"inequalities", nlohmann::json::array()}};
     for (const auto& v : p.vertices) region["vertices"].push_back(rationals(v));
-    for (const auto& q : p.inequalities) region["inequalities"].push_back({{"normal", q.normal}, {"bound", to_string(q.bound)}});
+    for (const auto& q : p.inequalities)
+      region["inequalities"].push_back({{"normal", q.normal}, {"bound", to_string(q.bound)}});
     nlohmann::json piece{{"orbit", p.orbit}, {"orbit_size", p.orbit_size}, {"region", region}};
     if (!p.stencil.empty()) {
       piece["stencil"] = nlohmann::json::array();
@@ -207,20 +227,21 @@ nlohmann::json pieces_json(const Pieces& all, const std::string& title) {
     piece["polynomial"] = polynomial_json(p, all.dimension);
     pieces.push_back(piece);
   }
-  return {{"command", title},
-          {"of", all.of == PiecesOf::Spline ? "spline" : "filter"},
-          {"frame", "centred"},
-          {"degree", all.degree},
-          {"orbits", all.orbits},
-          {"pieces", pieces}};
+  return {{"command", title},     {"of", all.of == PiecesOf::Spline ? "spline" : "filter"},
+          {"frame", "centred"},   {"degree", all.degree},
+          {"orbits", all.orbits}, {"pieces", pieces}};
 }
 
 std::string format_pieces(const Pieces& pieces, PieceFormat format, const std::string& title) {
   switch (format) {
-    case PieceFormat::Text: return text_pieces(pieces, title);
-    case PieceFormat::Latex: return latex_pieces(pieces, title);
-    case PieceFormat::C: return c_pieces(pieces, title);
-    case PieceFormat::Json: return pieces_json(pieces, title).dump(2) + "\n";
+    case PieceFormat::Text:
+      return text_pieces(pieces, title);
+    case PieceFormat::Latex:
+      return latex_pieces(pieces, title);
+    case PieceFormat::C:
+      return c_pieces(pieces, title);
+    case PieceFormat::Json:
+      return pieces_json(pieces, title).dump(2) + "\n";
   }
   fail_internal("unknown piece format");
 }

@@ -20,9 +20,12 @@ PiecesOf parse_pieces_of(std::string_view text) {
 PieceSelection parse_piece_selection(std::string_view text) {
   if (text == "reference") return {PieceSelection::Reference, 0};
   if (text == "all") return {PieceSelection::All, 0};
-  const bool digits = !text.empty() && text.size() <= 6 &&
-                      std::all_of(text.begin(), text.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
-  if (!digits) fail_input(fmt::format("--region must be 'reference', 'all' or an orbit index, got '{}'", text));
+  const bool digits =
+      !text.empty() && text.size() <= 6 &&
+      std::all_of(text.begin(), text.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+  if (!digits)
+    fail_input(
+        fmt::format("--region must be 'reference', 'all' or an orbit index, got '{}'", text));
   return {PieceSelection::Orbit, std::stoi(std::string(text))};
 }
 
@@ -65,13 +68,15 @@ std::vector<Inequality> inequalities(const std::vector<Plane>& planes, const Rat
 
 // The points of `candidates` where n linearly independent planes are tight: the vertices of the
 // convex polytope bounded by `planes`, if the candidates include them.
-std::vector<RatVec> polytope_vertices(const std::vector<RatVec>& candidates, const std::vector<Plane>& planes, int n) {
+std::vector<RatVec> polytope_vertices(const std::vector<RatVec>& candidates,
+                                      const std::vector<Plane>& planes, int n) {
   std::vector<RatVec> out;
   for (const auto& x : candidates) {
     IntColumns tight;
     for (const auto& pl : planes)
       if (dot(pl.nu, x) == pl.level) tight.push_back(pl.nu);
-    if (!tight.empty() && rank(tight, n) == n && std::find(out.begin(), out.end(), x) == out.end()) out.push_back(x);
+    if (!tight.empty() && rank(tight, n) == n && std::find(out.begin(), out.end(), x) == out.end())
+      out.push_back(x);
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -81,7 +86,8 @@ std::vector<RatVec> polytope_vertices(const std::vector<RatVec>& candidates, con
 
 // M(x - j) on the spline region around the centred point x, for every lattice point j where it
 // is not zero (the same search as the reference regions of spline_structure).
-void spline_basis_at(const PiecewiseForm& form, const RatVec& centre, const RatVec& x, Piece& piece) {
+void spline_basis_at(const PiecewiseForm& form, const RatVec& centre, const RatVec& x,
+                     Piece& piece) {
   const int n = form.dimension();
   const Rational scale = Rational(form.spec.lattice.det_abs());
   const RatVec u = plus(x, centre);
@@ -115,7 +121,9 @@ Piece reference_spline_piece(const SplineStructure& s, int orbit) {
 
 void check_orbit(int orbit, int orbits) {
   if (orbit >= orbits)
-    fail_input(fmt::format("--region must be 'reference', 'all' or an orbit index from 0 to {}, got {}", orbits - 1, orbit));
+    fail_input(
+        fmt::format("--region must be 'reference', 'all' or an orbit index from 0 to {}, got {}",
+                    orbits - 1, orbit));
 }
 
 // --- the filter ---------------------------------------------------------------------------
@@ -134,7 +142,8 @@ CellKey neighbour_key(const FineCell& cell, const Facet& f) {
 
 // The region of a union of cells in the centred frame, or false if the union is not convex
 // (some boundary plane has cell vertices strictly on both sides).
-bool region_of(const PiecewiseForm& form, const std::vector<int>& members, const RatVec& centre, Piece& piece) {
+bool region_of(const PiecewiseForm& form, const std::vector<int>& members, const RatVec& centre,
+               Piece& piece) {
   const int n = form.dimension();
   const auto& cells = form.knots.cells();
   const auto& normals = form.knots.planes().normals;
@@ -182,7 +191,8 @@ std::vector<CellUnion> filter_cell_unions(const PiecewiseForm& form) {
   std::vector<CellUnion> unions;
   for (size_t i = 0; i < cells.size(); ++i) {
     if (form.polys[i].is_zero()) continue;
-    const auto [it, fresh] = union_of_root.emplace(uf.find(static_cast<int>(i)), static_cast<int>(unions.size()));
+    const auto [it, fresh] =
+        union_of_root.emplace(uf.find(static_cast<int>(i)), static_cast<int>(unions.size()));
     if (fresh) unions.emplace_back();
     unions[it->second].cells.push_back(static_cast<int>(i));
   }
@@ -191,7 +201,8 @@ std::vector<CellUnion> filter_cell_unions(const PiecewiseForm& form) {
 
 }  // namespace
 
-Pieces spline_pieces(const PiecewiseForm& form, const SplineStructure& s, const PieceSelection& selection) {
+Pieces spline_pieces(const PiecewiseForm& form, const SplineStructure& s,
+                     const PieceSelection& selection) {
   Pieces out;
   out.of = PiecesOf::Spline;
   out.dimension = form.dimension();
@@ -240,7 +251,8 @@ Pieces filter_pieces(const PiecewiseForm& form, const PieceSelection& selection)
       for (int c : u.cells) parts.push_back({c});
     }
     for (const auto& part : parts) {
-      if (parts.size() > 1 && !region_of(form, part, centre, p)) fail_internal("a fine cell is not convex");
+      if (parts.size() > 1 && !region_of(form, part, centre, p))
+        fail_internal("a fine cell is not convex");
       p.polynomials = {form.polys[part.front()].translated(minus_centre) * scale};
       for (int c : part) piece_of_cell[c] = static_cast<int>(all.size());
       all.push_back(p);
@@ -265,7 +277,8 @@ Pieces filter_pieces(const PiecewiseForm& form, const PieceSelection& selection)
   std::vector<int> reference;
   std::vector<int> size;
   for (size_t i = 0; i < all.size(); ++i) {
-    const auto [it, fresh] = orbit_of_root.emplace(orbits.find(static_cast<int>(i)), static_cast<int>(reference.size()));
+    const auto [it, fresh] =
+        orbit_of_root.emplace(orbits.find(static_cast<int>(i)), static_cast<int>(reference.size()));
     if (fresh) {
       reference.push_back(static_cast<int>(i));
       size.push_back(0);

@@ -22,8 +22,8 @@ struct PieceSelection {
   enum Kind { Reference, All, Orbit } kind = Reference;
   int orbit = 0;
 };
-PiecesOf parse_pieces_of(std::string_view text);                 // spline | filter
-PieceSelection parse_piece_selection(std::string_view text);     // reference | all | N
+PiecesOf parse_pieces_of(std::string_view text);              // spline | filter
+PieceSelection parse_piece_selection(std::string_view text);  // reference | all | N
 
 // normal . x <= bound
 struct Inequality {
@@ -32,13 +32,13 @@ struct Inequality {
 };
 
 struct Piece {
-  std::vector<RatVec> vertices;         // sorted
+  std::vector<RatVec> vertices;          // sorted
   std::vector<Inequality> inequalities;  // one per boundary facet's plane
   RatVec interior;                       // strictly inside
   int orbit = 0;
-  int orbit_size = 0;                   // pieces (spline: per fundamental region) in the orbit
-  std::vector<IntVec> stencil;          // spline only: lattice points j_k, sorted
-  std::vector<Poly> polynomials;        // spline: M(x - j_k) per stencil point; filter: one, M(x)
+  int orbit_size = 0;             // pieces (spline: per fundamental region) in the orbit
+  std::vector<IntVec> stencil;    // spline only: lattice points j_k, sorted
+  std::vector<Poly> polynomials;  // spline: M(x - j_k) per stencil point; filter: one, M(x)
 };
 
 struct Pieces {
@@ -50,7 +50,8 @@ struct Pieces {
 };
 
 // Throws InputError for an orbit index out of range.
-Pieces spline_pieces(const PiecewiseForm& form, const SplineStructure& structure, const PieceSelection& selection);
+Pieces spline_pieces(const PiecewiseForm& form, const SplineStructure& structure,
+                     const PieceSelection& selection);
 Pieces filter_pieces(const PiecewiseForm& form, const PieceSelection& selection);
 
 }  // namespace boxgen

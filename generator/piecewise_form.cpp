@@ -29,7 +29,8 @@ Rational PiecewiseForm::value_at(const RatVec& x, const std::array<int, 3>& deri
   std::vector<size_t> on_plane;
   for (size_t i = 0; i < planes.normals.size(); ++i) {
     const Rational v = dot(planes.normals[i], x);
-    if (is_integer(v) && std::binary_search(planes.levels[i].begin(), planes.levels[i].end(), floor_to_int64(v)))
+    if (is_integer(v) &&
+        std::binary_search(planes.levels[i].begin(), planes.levels[i].end(), floor_to_int64(v)))
       on_plane.push_back(i);
   }
   std::optional<Rational> value;
@@ -54,7 +55,8 @@ Rational PiecewiseForm::value_at(const RatVec& x, const std::array<int, 3>& deri
     if (value && *value != val)
       fail_input("the point lies on a knot plane where this " +
                  std::string(derivative == std::array<int, 3>{0, 0, 0} ? "value" : "derivative") +
-                 " is discontinuous (one-sided values " + to_string(*value) + " and " + to_string(val) + ")");
+                 " is discontinuous (one-sided values " + to_string(*value) + " and " +
+                 to_string(val) + ")");
     value = val;
   }
   if (!value) fail_internal("value_at: no cell holds the point");
@@ -63,12 +65,13 @@ Rational PiecewiseForm::value_at(const RatVec& x, const std::array<int, 3>& deri
 
 namespace {
 
-std::vector<Poly> derive_on_cells(const BoxSplineSpec& spec, const KnotComplex& knots, DerivationMethod method,
-                                  const ProgressFn& progress) {
+std::vector<Poly> derive_on_cells(const BoxSplineSpec& spec, const KnotComplex& knots,
+                                  DerivationMethod method, const ProgressFn& progress) {
   auto derivation = BoxSplineDerivation::make(spec.directions, spec.dimension(), method);
   const auto& cells = knots.cells();
-  const char* stage = method == DerivationMethod::TruncatedPower ? "deriving (truncated power)"
-                                                                 : "deriving (directional integration)";
+  const char* stage = method == DerivationMethod::TruncatedPower
+                          ? "deriving (truncated power)"
+                          : "deriving (directional integration)";
   std::vector<Poly> polys;
   polys.reserve(cells.size());
   for (const auto& cell : cells) {
@@ -80,23 +83,27 @@ std::vector<Poly> derive_on_cells(const BoxSplineSpec& spec, const KnotComplex& 
 
 }  // namespace
 
-PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method, const ProgressFn& progress,
-                               const DerivationBudget& budget) {
+PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method,
+                               const ProgressFn& progress, const DerivationBudget& budget) {
   const auto start = std::chrono::steady_clock::now();
   const int n = spec.dimension();
   refuse_if_too_many_cells(spec);
   Zonotope support(spec.directions, n);
   if (progress) progress("knot-plane cells", 0, 0);
-  PiecewiseForm form(spec, method, KnotComplex(knot_planes(spec.directions, n), support.box_lo(), support.box_hi()),
-                     FineArrangement(arrangement_normals(spec.directions, n), support.box_lo(), support.box_hi()));
-  refuse_if_too_costly(estimate_cost(spec, form.knots.cells().size(), budget.with_checks, budget.full_checks),
-                       budget.max_seconds);
+  PiecewiseForm form(
+      spec, method,
+      KnotComplex(knot_planes(spec.directions, n), support.box_lo(), support.box_hi()),
+      FineArrangement(arrangement_normals(spec.directions, n), support.box_lo(), support.box_hi()));
+  refuse_if_too_costly(
+      estimate_cost(spec, form.knots.cells().size(), budget.with_checks, budget.full_checks),
+      budget.max_seconds);
   form.polys = derive_on_cells(spec, form.knots, method, progress);
   form.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return form;
 }
 
-std::vector<Poly> rederive(const PiecewiseForm& form, DerivationMethod method, const ProgressFn& progress) {
+std::vector<Poly> rederive(const PiecewiseForm& form, DerivationMethod method,
+                           const ProgressFn& progress) {
   return derive_on_cells(form.spec, form.knots, method, progress);
 }
 

@@ -40,7 +40,11 @@ class FineArrangement {
 
 struct PiecewiseForm {
   PiecewiseForm(BoxSplineSpec s, DerivationMethod m, KnotComplex k, FineArrangement f)
-      : spec(std::move(s)), method(m), knots(std::move(k)), complex(std::move(f)), zero_(spec.dimension(), 0) {}
+      : spec(std::move(s)),
+        method(m),
+        knots(std::move(k)),
+        complex(std::move(f)),
+        zero_(spec.dimension(), 0) {}
 
   BoxSplineSpec spec;
   DerivationMethod method;
@@ -72,9 +76,11 @@ struct DerivationBudget {
   bool with_checks = false;
   bool full_checks = false;
 };
-PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method, const ProgressFn& progress = {},
+PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method,
+                               const ProgressFn& progress = {},
                                const DerivationBudget& budget = {});
 // The same pieces by the other method, on the cells of `form` (the second, independent derivation).
-std::vector<Poly> rederive(const PiecewiseForm& form, DerivationMethod method, const ProgressFn& progress = {});
+std::vector<Poly> rederive(const PiecewiseForm& form, DerivationMethod method,
+                           const ProgressFn& progress = {});
 
 }  // namespace boxgen

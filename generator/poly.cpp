@@ -14,7 +14,8 @@ constexpr int kMaxDegree = 64;
 std::size_t binom(int a, int b) {
   if (b < 0 || b > a) return 0;
   std::size_t r = 1;
-  for (int i = 1; i <= b; ++i) r = r * static_cast<std::size_t>(a - b + i) / static_cast<std::size_t>(i);
+  for (int i = 1; i <= b; ++i)
+    r = r * static_cast<std::size_t>(a - b + i) / static_cast<std::size_t>(i);
   return r;
 }
 
@@ -57,7 +58,8 @@ const std::vector<Exponent>& monomial_exponents(int n, int degree) {
   return it->second;
 }
 
-Poly::Poly(int n, int capacity) : n_(n), cap_(capacity), c_(monomial_count(n, capacity), Rational(0)) {}
+Poly::Poly(int n, int capacity)
+    : n_(n), cap_(capacity), c_(monomial_count(n, capacity), Rational(0)) {}
 
 Poly Poly::constant(int n, const Rational& c) {
   Poly p(n, 0);
@@ -220,14 +222,16 @@ ShiftTable shift_table(const RatVec& s, int n, int d) {
     for (int j = 1; j <= d; ++j) negpow[j] = negpow[j - 1] * Rational(-s[k]);
     for (int e = 0; e <= d; ++e) {
       table[k][e].resize(e + 1);
-      for (int j = 0; j <= e; ++j) table[k][e][j] = Rational(static_cast<long>(binom(e, j))) * negpow[j];
+      for (int j = 0; j <= e; ++j)
+        table[k][e][j] = Rational(static_cast<long>(binom(e, j))) * negpow[j];
     }
   }
   return table;
 }
 
 // Adds v (x - s_0)^e0 (y - s_1)^e1, expanded, to the coefficients `out` (2 variables).
-void add_shifted_monomial_2d(const Rational& v, const Exponent& e, const ShiftTable& table, std::vector<Rational>& out) {
+void add_shifted_monomial_2d(const Rational& v, const Exponent& e, const ShiftTable& table,
+                             std::vector<Rational>& out) {
   for (int j0 = 0; j0 <= e[0]; ++j0) {
     const Rational a = v * table[0][e[0]][j0];
     if (cln::zerop(a)) continue;
@@ -241,7 +245,8 @@ void add_shifted_monomial_2d(const Rational& v, const Exponent& e, const ShiftTa
 }
 
 // The same in 3 variables.
-void add_shifted_monomial_3d(const Rational& v, const Exponent& e, const ShiftTable& table, std::vector<Rational>& out) {
+void add_shifted_monomial_3d(const Rational& v, const Exponent& e, const ShiftTable& table,
+                             std::vector<Rational>& out) {
   for (int j0 = 0; j0 <= e[0]; ++j0) {
     const Rational a = v * table[0][e[0]][j0];
     if (cln::zerop(a)) continue;
@@ -372,7 +377,8 @@ std::vector<Poly> Poly::along_direction(const IntVec& dir) const {
     const Rational& v = c_[i];
     if (cln::zerop(v)) continue;
     const Exponent& e = ex[i];
-    const int j0max = dir[0] ? e[0] : 0, j1max = dir[1] ? e[1] : 0, j2max = (n_ == 3 && dir[2]) ? e[2] : 0;
+    const int j0max = dir[0] ? e[0] : 0, j1max = dir[1] ? e[1] : 0,
+              j2max = (n_ == 3 && dir[2]) ? e[2] : 0;
     for (int j0 = 0; j0 <= j0max; ++j0)
       for (int j1 = 0; j1 <= j1max; ++j1)
         for (int j2 = 0; j2 <= j2max; ++j2) {

@@ -22,15 +22,20 @@ EmissionStrategy parse_strategy(std::string_view name) {
   if (name == "monomial") return EmissionStrategy::Monomial;
   if (name == "horner") return EmissionStrategy::Horner;
   if (name == "separable") return EmissionStrategy::Separable;
-  fail_input("--strategy must be auto, horner, separable or monomial, got '" + std::string(name.substr(0, 40)) + "'");
+  fail_input("--strategy must be auto, horner, separable or monomial, got '" +
+             std::string(name.substr(0, 40)) + "'");
 }
 
 const char* strategy_name(EmissionStrategy s) {
   switch (s) {
-    case EmissionStrategy::Auto: return "auto";
-    case EmissionStrategy::Monomial: return "monomial";
-    case EmissionStrategy::Horner: return "horner";
-    case EmissionStrategy::Separable: return "separable";
+    case EmissionStrategy::Auto:
+      return "auto";
+    case EmissionStrategy::Monomial:
+      return "monomial";
+    case EmissionStrategy::Horner:
+      return "horner";
+    case EmissionStrategy::Separable:
+      return "separable";
   }
   return "?";
 }
@@ -58,7 +63,6 @@ std::vector<Exponent> derivative_indices(int n, int order) {
   return out;
 }
 
-
 std::string orbit_vertices(const ReferenceRegion& ref) {
   std::vector<std::string> verts;
   for (const auto& v : ref.vertices) verts.push_back(code::vertex_text(v));
@@ -68,7 +72,8 @@ std::string orbit_vertices(const ReferenceRegion& ref) {
 // ---- Coefficients of the monomials: fixed rational combinations of the stencil values. ----
 
 // sum_i w_i x_i over named inputs; with `grouped`, inputs sharing |w| share one multiplication.
-std::string linear_combination(const LinearRow& row, const std::vector<std::string>& names, bool grouped) {
+std::string linear_combination(const LinearRow& row, const std::vector<std::string>& names,
+                               bool grouped) {
   struct Group {
     Rational weight;  // > 0
     std::string sum;
@@ -83,7 +88,8 @@ std::string linear_combination(const LinearRow& row, const std::vector<std::stri
     }
     const Rational magnitude = cln::abs(w);
     const bool negative = cln::minusp(w);
-    auto it = std::find_if(groups.begin(), groups.end(), [&](const Group& g) { return g.weight == magnitude; });
+    auto it = std::find_if(groups.begin(), groups.end(),
+                           [&](const Group& g) { return g.weight == magnitude; });
     if (it == groups.end()) {
       groups.push_back({magnitude, fmt::format("{}{}", negative ? "-" : "", names[input]), 1});
     } else {
@@ -93,7 +99,7 @@ std::string linear_combination(const LinearRow& row, const std::vector<std::stri
   }
   if (grouped)
     for (const auto& g : groups)
-      terms.push_back(g.weight == 1   ? "(" + g.sum + ")"
+      terms.push_back(g.weight == 1  ? "(" + g.sum + ")"
                       : g.count == 1 ? fmt::format("T({}) * {}", literal(g.weight), g.sum)
                                      : fmt::format("T({}) * ({})", literal(g.weight), g.sum));
   return join(terms, " + ");
@@ -128,9 +134,10 @@ Coefficients coefficients(const ReferenceRegion& ref, int n, int degree, bool sh
   for (int k = 0; k < inputs; ++k) names.push_back(fmt::format("v[{}]", k));
   for (std::size_t j = 0; j < s.temporaries.size(); ++j) {
     const SharedSum& t = s.temporaries[j];
-    const std::string expr = t.r == 1    ? fmt::format("{} + {}", names[t.a], names[t.b])
-                             : t.r == -1 ? fmt::format("{} - {}", names[t.a], names[t.b])
-                                         : fmt::format("{} + T({}) * {}", names[t.a], literal(t.r), names[t.b]);
+    const std::string expr =
+        t.r == 1    ? fmt::format("{} + {}", names[t.a], names[t.b])
+        : t.r == -1 ? fmt::format("{} - {}", names[t.a], names[t.b])
+                    : fmt::format("{} + T({}) * {}", names[t.a], literal(t.r), names[t.b]);
     names.push_back(fmt::format("s{}", j));
     c.definitions += fmt::format("  const T {} = {};\n", names.back(), expr);
     c.cost += count_operations(expr);
@@ -167,9 +174,11 @@ void assign_path_costs(OrbitCode& code, const OperationCount& shared, const Oper
 }
 
 // The derivative assignments "d[i] = ...;" of one order, each in its own text.
-std::string derivative_block(const std::vector<std::string>& exprs, std::size_t from, std::size_t to) {
+std::string derivative_block(const std::vector<std::string>& exprs, std::size_t from,
+                             std::size_t to) {
   std::string out;
-  for (std::size_t i = from; i < to; ++i) out += fmt::format("    d[{}] = {};\n", i, exprs[i].empty() ? "T(0)" : exprs[i]);
+  for (std::size_t i = from; i < to; ++i)
+    out += fmt::format("    d[{}] = {};\n", i, exprs[i].empty() ? "T(0)" : exprs[i]);
   if (!out.empty()) out.pop_back();
   return out;
 }
@@ -195,7 +204,8 @@ OrbitCode monomial_code(const ReferenceRegion& ref, int orbit, int n, int degree
       Exponent lowered{0, 0, 0};
       const long factor = derivative_factor(exps[m], derivatives[k], lowered);
       if (!factor) continue;
-      d_exprs[k] += fmt::format("{}T({}) * c{}{}", d_exprs[k].empty() ? "" : "\n        + ", factor, m, power_product(lowered, n));
+      d_exprs[k] += fmt::format("{}T({}) * c{}{}", d_exprs[k].empty() ? "" : "\n        + ", factor,
+                                m, power_product(lowered, n));
     }
   }
   OrbitCode code{EmissionStrategy::Monomial, "", {}, {}, {}};
@@ -204,11 +214,12 @@ OrbitCode monomial_code(const ReferenceRegion& ref, int orbit, int n, int degree
   OperationCount shared = c.cost;
   shared.muls += static_cast<long>(n) * degree;  // the table of powers
   assign_path_costs(code, shared, count_operations(value), d_costs, n);
-  code.text = fmt::format(fmt::runtime(templates::orbit_monomial), fmt::arg("orbit", orbit),
-                          fmt::arg("vertices", orbit_vertices(ref)), fmt::arg("monomials", c.used.size()),
-                          fmt::arg("stencil", ref.stencil.size()), fmt::arg("coefficients", c.definitions),
-                          fmt::arg("gradient", derivative_block(d_exprs, 0, n)),
-                          fmt::arg("hessian", derivative_block(d_exprs, n, d_exprs.size())), fmt::arg("value", value));
+  code.text = fmt::format(
+      fmt::runtime(templates::orbit_monomial), fmt::arg("orbit", orbit),
+      fmt::arg("vertices", orbit_vertices(ref)), fmt::arg("monomials", c.used.size()),
+      fmt::arg("stencil", ref.stencil.size()), fmt::arg("coefficients", c.definitions),
+      fmt::arg("gradient", derivative_block(d_exprs, 0, n)),
+      fmt::arg("hessian", derivative_block(d_exprs, n, d_exprs.size())), fmt::arg("value", value));
   return code;
 }
 
@@ -242,7 +253,9 @@ OrbitCode horner_code(const ReferenceRegion& ref, int orbit, int n, int degree) 
     for (std::size_t k = 0; k < derivatives.size(); ++k) {
       Exponent lowered{0, 0, 0};
       const long factor = derivative_factor(exps[m], derivatives[k], lowered);
-      if (factor) d_terms[k].emplace(lowered, factor == 1 ? fmt::format("c{}", m) : fmt::format("T({}) * c{}", factor, m));
+      if (factor)
+        d_terms[k].emplace(
+            lowered, factor == 1 ? fmt::format("c{}", m) : fmt::format("T({}) * c{}", factor, m));
     }
   }
   std::vector<std::string> d_exprs;
@@ -255,12 +268,13 @@ OrbitCode horner_code(const ReferenceRegion& ref, int orbit, int n, int degree) 
   if (value.empty()) value = "T(0)";
   OrbitCode code{EmissionStrategy::Horner, "", {}, {}, {}};
   assign_path_costs(code, c.cost, count_operations(value), d_costs, n);
-  code.text = fmt::format(fmt::runtime(templates::orbit_horner), fmt::arg("orbit", orbit),
-                          fmt::arg("vertices", orbit_vertices(ref)), fmt::arg("monomials", c.used.size()),
-                          fmt::arg("shared", c.shared_sums),
-                          fmt::arg("stencil", ref.stencil.size()), fmt::arg("coefficients", c.definitions),
-                          fmt::arg("gradient", derivative_block(d_exprs, 0, n)),
-                          fmt::arg("hessian", derivative_block(d_exprs, n, d_exprs.size())), fmt::arg("value", value));
+  code.text = fmt::format(
+      fmt::runtime(templates::orbit_horner), fmt::arg("orbit", orbit),
+      fmt::arg("vertices", orbit_vertices(ref)), fmt::arg("monomials", c.used.size()),
+      fmt::arg("shared", c.shared_sums), fmt::arg("stencil", ref.stencil.size()),
+      fmt::arg("coefficients", c.definitions),
+      fmt::arg("gradient", derivative_block(d_exprs, 0, n)),
+      fmt::arg("hessian", derivative_block(d_exprs, n, d_exprs.size())), fmt::arg("value", value));
   return code;
 }
 
@@ -282,7 +296,8 @@ UnivariatePoly derivative(UnivariatePoly f, int order) {
 std::string univariate_horner(const UnivariatePoly& f, int axis) {
   std::string acc = fmt::format("T({})", literal(f.back()));
   for (int a = static_cast<int>(f.size()) - 2; a >= 0; --a)
-    acc = (cln::zerop(f[a]) ? "" : fmt::format("T({}) + ", literal(f[a]))) + fmt::format("x[{}] * ({})", axis, acc);
+    acc = (cln::zerop(f[a]) ? "" : fmt::format("T({}) + ", literal(f[a]))) +
+          fmt::format("x[{}] * ({})", axis, acc);
   return acc;
 }
 
@@ -294,7 +309,8 @@ std::string names(const std::vector<int>& v) {
 
 // Straight-line code for the value and the derivatives up to `order`: 1-D weights per grid and
 // axis, then the contraction axis by axis, sharing partial sums across derivatives.
-std::string separable_body(const std::vector<TensorGrid>& grids, int n, int order, OperationCount& cost) {
+std::string separable_body(const std::vector<TensorGrid>& grids, int n, int order,
+                           OperationCount& cost) {
   std::string out;
   auto define = [&](const std::string& name, const std::string& expr) {
     out += fmt::format("    const T {} = {};\n", name, expr);
@@ -317,7 +333,8 @@ std::string separable_body(const std::vector<TensorGrid>& grids, int n, int orde
             continue;
           }
           const std::string name = fmt::format("w{}_{}_{}_{}", g, i, a, o);
-          define(name, f.size() == 1 ? fmt::format("T({})", literal(f[0])) : univariate_horner(f, i));
+          define(name,
+                 f.size() == 1 ? fmt::format("T({})", literal(f[0])) : univariate_horner(f, i));
           weight[i][a].push_back(name);
         }
       }
@@ -347,7 +364,8 @@ std::string separable_body(const std::vector<TensorGrid>& grids, int n, int orde
         }
       }
       for (const auto& [key, list] : terms) {
-        const std::string name = fmt::format("s{}_{}_{}_{}", g, axis, names(key.first), names(key.second));
+        const std::string name =
+            fmt::format("s{}_{}_{}_{}", g, axis, names(key.first), names(key.second));
         define(name, join(list, " + "));
         next[key] = name;
       }
@@ -367,7 +385,8 @@ std::string separable_body(const std::vector<TensorGrid>& grids, int n, int orde
   };
   out += fmt::format("    const T value = {};\n", sum_of(Exponent{0, 0, 0}));
   const auto derivatives = derivative_indices(n, order);
-  for (std::size_t k = 0; k < derivatives.size(); ++k) out += fmt::format("    d[{}] = {};\n", k, sum_of(derivatives[k]));
+  for (std::size_t k = 0; k < derivatives.size(); ++k)
+    out += fmt::format("    d[{}] = {};\n", k, sum_of(derivatives[k]));
   out += "    return value;";
   return out;
 }
@@ -380,39 +399,52 @@ std::optional<OrbitCode> separable_code(const ReferenceRegion& ref, int orbit, i
   const std::string gradient = separable_body(*grids, n, 1, code.gradient);
   const std::string hessian = separable_body(*grids, n, 2, code.hessian);
   std::vector<std::string> shapes;
-  for (const auto& g : *grids) shapes.push_back(join([&] {
-    std::vector<std::string> s;
-    for (int x : g.sizes) s.push_back(std::to_string(x));
-    return s;
-  }(), "x"));
+  for (const auto& g : *grids)
+    shapes.push_back(join(
+        [&] {
+          std::vector<std::string> s;
+          for (int x : g.sizes) s.push_back(std::to_string(x));
+          return s;
+        }(),
+        "x"));
   code.text = fmt::format(fmt::runtime(templates::orbit_separable), fmt::arg("orbit", orbit),
-                          fmt::arg("vertices", orbit_vertices(ref)), fmt::arg("stencil", ref.stencil.size()),
-                          fmt::arg("grids", join(shapes)), fmt::arg("value", value), fmt::arg("gradient", gradient),
+                          fmt::arg("vertices", orbit_vertices(ref)),
+                          fmt::arg("stencil", ref.stencil.size()), fmt::arg("grids", join(shapes)),
+                          fmt::arg("value", value), fmt::arg("gradient", gradient),
                           fmt::arg("hessian", hessian));
   return code;
 }
 
 }  // namespace
 
-std::optional<OrbitCode> orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree, EmissionStrategy strategy) {
+std::optional<OrbitCode> orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree,
+                                    EmissionStrategy strategy) {
   switch (strategy) {
-    case EmissionStrategy::Monomial: return monomial_code(ref, orbit, n, degree);
-    case EmissionStrategy::Horner: return horner_code(ref, orbit, n, degree);
-    case EmissionStrategy::Separable: return separable_code(ref, orbit, n);
-    case EmissionStrategy::Auto: break;
+    case EmissionStrategy::Monomial:
+      return monomial_code(ref, orbit, n, degree);
+    case EmissionStrategy::Horner:
+      return horner_code(ref, orbit, n, degree);
+    case EmissionStrategy::Separable:
+      return separable_code(ref, orbit, n);
+    case EmissionStrategy::Auto:
+      break;
   }
   return std::nullopt;
 }
 
-OrbitCode choose_orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree, EmissionStrategy strategy) {
+OrbitCode choose_orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree,
+                            EmissionStrategy strategy) {
   if (strategy != EmissionStrategy::Auto) {
     auto code = orbit_code(ref, orbit, n, degree, strategy);
     if (!code)
-      fail_input(fmt::format("--strategy {}: orbit {} is not a tensor product of univariate factors", strategy_name(strategy), orbit));
+      fail_input(
+          fmt::format("--strategy {}: orbit {} is not a tensor product of univariate factors",
+                      strategy_name(strategy), orbit));
     return *code;
   }
   std::optional<OrbitCode> best;
-  for (auto s : {EmissionStrategy::Horner, EmissionStrategy::Separable, EmissionStrategy::Monomial}) {
+  for (auto s :
+       {EmissionStrategy::Horner, EmissionStrategy::Separable, EmissionStrategy::Monomial}) {
     auto code = orbit_code(ref, orbit, n, degree, s);
     if (code && (!best || code->gradient.total() < best->gradient.total())) best = std::move(code);
   }

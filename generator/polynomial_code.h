@@ -1,5 +1,5 @@
-// C++ code for one orbit's reference polynomial (docs/design.md §11): the spline on the reference region
-// is sum_k v[k] p_k(x) over its stencil, and a strategy decides how that sum and its exact
+// C++ code for one orbit's reference polynomial (docs/design.md §11): the spline on the reference
+// region is sum_k v[k] p_k(x) over its stencil, and a strategy decides how that sum and its exact
 // derivatives are written out. Each strategy counts the arithmetic it emits, so the emitter can
 // choose the cheapest (`auto`) and record the counts in the header.
 #pragma once
@@ -47,11 +47,13 @@ struct OrbitCode {
 
 // The code of one orbit in a given strategy (not Auto); nullopt when the strategy does not apply
 // (separable code for a polynomial that is not a tensor product).
-std::optional<OrbitCode> orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree, EmissionStrategy strategy);
+std::optional<OrbitCode> orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree,
+                                    EmissionStrategy strategy);
 
 // Auto: every applicable strategy, the one with the fewest value + gradient operations (ties
 // keep the earlier of horner, separable, monomial). Otherwise the strategy asked for; InputError
 // if it does not apply.
-OrbitCode choose_orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree, EmissionStrategy strategy);
+OrbitCode choose_orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree,
+                            EmissionStrategy strategy);
 
 }  // namespace boxgen

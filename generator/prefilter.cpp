@@ -86,7 +86,8 @@ Series times_linear_form(const MonomialIndex& index, const Series& s, const RatV
 }
 
 // s * g(t) with t = form.w, for an even univariate series g(t) = sum_k g[k] t^(2k).
-Series times_even_series(const MonomialIndex& index, const Series& s, const RatVec& form, const RatVec& g) {
+Series times_even_series(const MonomialIndex& index, const Series& s, const RatVec& form,
+                         const RatVec& g) {
   Series out(s.size(), Rational(0)), power = s;
   for (size_t k = 0; k < g.size() && !is_zero(power); ++k) {
     for (size_t i = 0; i < out.size(); ++i) out[i] = out[i] + g[k] * power[i];
@@ -135,7 +136,8 @@ class OrderConditions {
  public:
   OrderConditions(const IntColumns& directions, int n, int order)
       : index_(n, order), terms_(order / 2 + 1), target_(unit_series(index_)) {
-    // 1/hat(M^c)(w) = prod_xi 1/sinc(xi.w/2); equal directions up to sign share one power of 1/sinc.
+    // 1/hat(M^c)(w) = prod_xi 1/sinc(xi.w/2); equal directions up to sign share one power of
+    // 1/sinc.
     std::map<IntVec, int> multiplicity;
     for (const auto& xi : directions) ++multiplicity[sign_canonical(xi)];
     const RatVec reciprocal = reciprocal_sinc_coefficients(terms_);
@@ -234,7 +236,8 @@ Parametrisation group_by(std::string name, const std::vector<ShellPoint>& points
 
 Parametrisation common_weight(const std::vector<ShellPoint>& points) {
   std::vector<std::string> keys;
-  for (const auto& p : points) keys.push_back(p.shell == 0 ? "the origin" : "the common neighbour weight");
+  for (const auto& p : points)
+    keys.push_back(p.shell == 0 ? "the origin" : "the common neighbour weight");
   return group_by("common", points, keys);
 }
 
@@ -245,11 +248,13 @@ Parametrisation weight_per_shell(const std::vector<ShellPoint>& points) {
 }
 
 // Signed permutations preserve the norm, so orbits never leave a shell.
-Parametrisation weight_per_orbit(const std::vector<ShellPoint>& points, const std::vector<SignedPermutation>& group) {
+Parametrisation weight_per_orbit(const std::vector<ShellPoint>& points,
+                                 const std::vector<SignedPermutation>& group) {
   std::map<IntVec, std::string> orbit_of;
   for (const auto& p : points) {  // points are sorted: the first of an orbit names it
     if (orbit_of.count(p.offset)) continue;
-    const std::string name = "shell " + std::to_string(p.shell) + " orbit of " + point_text(p.offset);
+    const std::string name =
+        "shell " + std::to_string(p.shell) + " orbit of " + point_text(p.offset);
     for (const auto& g : group) orbit_of[g.apply(p.offset)] = name;
   }
   std::vector<std::string> keys;
@@ -257,7 +262,8 @@ Parametrisation weight_per_orbit(const std::vector<ShellPoint>& points, const st
   return group_by("per_orbit", points, keys);
 }
 
-std::vector<ShellPoint> points_of(const std::vector<std::vector<IntVec>>& all_shells, const std::vector<int>& shells) {
+std::vector<ShellPoint> points_of(const std::vector<std::vector<IntVec>>& all_shells,
+                                  const std::vector<int>& shells) {
   std::vector<ShellPoint> points;
   for (int s : shells) {
     std::vector<IntVec> offsets = all_shells[s];
@@ -274,20 +280,24 @@ void validate_shells(const std::vector<int>& shells) {
     if (s < 0 || s > kMaxPrefilterShell)
       fail_input("--shells: shell " + std::to_string(s) + " is out of range (shells 0 to " +
                  std::to_string(kMaxPrefilterShell) + ")");
-    if (!seen.insert(s).second) fail_input("--shells: shell " + std::to_string(s) + " is listed twice");
+    if (!seen.insert(s).second)
+      fail_input("--shells: shell " + std::to_string(s) + " is listed twice");
   }
   if (!seen.count(0)) fail_input("--shells: shell 0 (the origin) is required, e.g. --shells 0,1");
 }
 
 // The error for an unsolvable request: the best order these shells reach (per orbit is the most
 // general parametrisation, so its failure is final) and the fewest leading shells that suffice.
-[[noreturn]] void fail_unsupported(const BoxSplineSpec& spec, const std::vector<std::vector<IntVec>>& all_shells,
-                                   const std::vector<int>& shells, const std::vector<SignedPermutation>& group,
+[[noreturn]] void fail_unsupported(const BoxSplineSpec& spec,
+                                   const std::vector<std::vector<IntVec>>& all_shells,
+                                   const std::vector<int>& shells,
+                                   const std::vector<SignedPermutation>& group,
                                    const OrderConditions& conditions, int order) {
   const auto points = points_of(all_shells, shells);
   int reached = 1;
   for (int r = order - 1; r >= 1; --r)
-    if (OrderConditions(spec.directions, spec.dimension(), r).fit(weight_per_orbit(points, group).groups)) {
+    if (OrderConditions(spec.directions, spec.dimension(), r)
+            .fit(weight_per_orbit(points, group).groups)) {
       reached = r;
       break;
     }
@@ -303,8 +313,8 @@ void validate_shells(const std::vector<int>& shells) {
     }
   }
   fail_input("no prefilter of approximation order " + std::to_string(order) + " for " + spec.name +
-             " is supported on shells " + shells_text(shells) + " (only order " + std::to_string(reached) +
-             " is reachable there; " + hint + ")");
+             " is supported on shells " + shells_text(shells) + " (only order " +
+             std::to_string(reached) + " is reachable there; " + hint + ")");
 }
 
 }  // namespace
@@ -314,11 +324,16 @@ std::vector<int> parse_shells(std::string_view text) {
   size_t start = 0;
   for (;;) {
     const size_t comma = text.find(',', start);
-    std::string_view item = text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
-    while (!item.empty() && std::isspace(static_cast<unsigned char>(item.front()))) item.remove_prefix(1);
-    while (!item.empty() && std::isspace(static_cast<unsigned char>(item.back()))) item.remove_suffix(1);
-    const bool digits = !item.empty() && item.size() <= 2 &&
-                        std::all_of(item.begin(), item.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+    std::string_view item = text.substr(
+        start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    while (!item.empty() && std::isspace(static_cast<unsigned char>(item.front())))
+      item.remove_prefix(1);
+    while (!item.empty() && std::isspace(static_cast<unsigned char>(item.back())))
+      item.remove_suffix(1);
+    const bool digits =
+        !item.empty() && item.size() <= 2 && std::all_of(item.begin(), item.end(), [](char c) {
+          return std::isdigit(static_cast<unsigned char>(c));
+        });
     if (!digits || std::stoi(std::string(item)) > kMaxPrefilterShell)
       fail_input("--shells: '" + std::string(item) + "' is not a shell index (expected 0 to " +
                  std::to_string(kMaxPrefilterShell) + ", as in --shells 0,1,2)");
@@ -338,7 +353,8 @@ Prefilter derive_prefilter(const BoxSplineSpec& spec, const std::vector<int>& re
 
   const int n = spec.dimension();
   const int order = approximation_order(spec.directions, n);
-  if (order == 0) fail_input("the directions of " + spec.name + " do not span R^" + std::to_string(n));
+  if (order == 0)
+    fail_input("the directions of " + spec.name + " do not span R^" + std::to_string(n));
 
   const auto all_shells = spec.lattice.shells(kMaxPrefilterShell + 1);
   const auto points = points_of(all_shells, shells);
@@ -348,7 +364,8 @@ Prefilter derive_prefilter(const BoxSplineSpec& spec, const std::vector<int>& re
   std::vector<Parametrisation> candidates{common_weight(points)};
   // A finer parametrisation that induces the same partition would give the same system: skip it.
   for (auto finer : {weight_per_shell(points), weight_per_orbit(points, group)})
-    if (finer.groups.size() > candidates.back().groups.size()) candidates.push_back(std::move(finer));
+    if (finer.groups.size() > candidates.back().groups.size())
+      candidates.push_back(std::move(finer));
 
   for (const auto& par : candidates) {
     const auto solution = conditions.fit(par.groups);

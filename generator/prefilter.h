@@ -22,8 +22,8 @@ struct PrefilterWeight {
 };
 
 struct Prefilter {
-  int order = 0;              // rho: hat(q) hat(M^c) = 1 + O(|w|^order)
-  std::vector<int> shells;    // ascending, always contains 0
+  int order = 0;            // rho: hat(q) hat(M^c) = 1 + O(|w|^order)
+  std::vector<int> shells;  // ascending, always contains 0
   // Which parametrisation was solvable, tried in this order:
   //   "common":    one weight at the origin, one shared by every point of the nonzero shells
   //                (the paper's Q^I and Q^II);

@@ -20,7 +20,8 @@ namespace {
 // so an error stays one line whatever was typed.
 std::string echo(std::string_view s) {
   std::string out;
-  for (char c : s.substr(0, 40)) out.push_back(std::isprint(static_cast<unsigned char>(c)) ? c : '?');
+  for (char c : s.substr(0, 40))
+    out.push_back(std::isprint(static_cast<unsigned char>(c)) ? c : '?');
   if (s.size() > 40) out += "...";
   return out;
 }
@@ -42,7 +43,8 @@ Integer parse_digits(std::string_view s) {
 namespace {
 
 // "p/q" (sign already removed); nullopt if it is not one.
-std::optional<Rational> parse_fraction(std::string_view s, std::string_view text, std::string_view what) {
+std::optional<Rational> parse_fraction(std::string_view s, std::string_view text,
+                                       std::string_view what) {
   const auto slash = s.find('/');
   const std::string_view num = s.substr(0, slash), den = s.substr(slash + 1);
   if (!all_digits(num) || !all_digits(den)) return std::nullopt;
@@ -52,7 +54,8 @@ std::optional<Rational> parse_fraction(std::string_view s, std::string_view text
 }
 
 // The power of ten of an exponent "[+-]digits"; nullopt if it is not one.
-std::optional<long> parse_exponent(std::string_view exponent, std::string_view text, std::string_view what) {
+std::optional<long> parse_exponent(std::string_view exponent, std::string_view text,
+                                   std::string_view what) {
   bool negative = false;
   if (!exponent.empty() && (exponent.front() == '+' || exponent.front() == '-')) {
     negative = exponent.front() == '-';
@@ -60,12 +63,15 @@ std::optional<long> parse_exponent(std::string_view exponent, std::string_view t
   }
   if (!all_digits(exponent) || exponent.size() > 4) return std::nullopt;
   const long e = std::stol(std::string(exponent));
-  if (e > 400) fail_input(std::string(what) + " '" + echo(text) + "' has an exponent out of range (|e| <= 400)");
+  if (e > 400)
+    fail_input(std::string(what) + " '" + echo(text) +
+               "' has an exponent out of range (|e| <= 400)");
   return negative ? -e : e;
 }
 
 // "12", "1.5", ".5", "3e-2", "1.5E+3" (sign already removed), exactly; nullopt if it is none.
-std::optional<Rational> parse_decimal(std::string_view s, std::string_view text, std::string_view what) {
+std::optional<Rational> parse_decimal(std::string_view s, std::string_view text,
+                                      std::string_view what) {
   std::string_view mantissa = s, exponent;
   if (auto e = s.find_first_of("eE"); e != std::string_view::npos) {
     mantissa = s.substr(0, e);
@@ -106,7 +112,8 @@ Rational parse_rational(std::string_view text, std::string_view what) {
   }
   std::optional<Rational> value;
   if (plausible && !s.empty())
-    value = s.find('/') != std::string_view::npos ? parse_fraction(s, text, what) : parse_decimal(s, text, what);
+    value = s.find('/') != std::string_view::npos ? parse_fraction(s, text, what)
+                                                  : parse_decimal(s, text, what);
   if (!value)
     fail_input(std::string("invalid ") + std::string(what) + " '" + echo(text) +
                "': expected an integer, a fraction p/q or a decimal such as -0.25");
@@ -123,8 +130,10 @@ RatVec parse_point(std::string_view text, int dimension, std::string_view what) 
     }
   };
   for (char c : text) {
-    if (std::isspace(static_cast<unsigned char>(c)) || c == ',') flush();
-    else token.push_back(c);
+    if (std::isspace(static_cast<unsigned char>(c)) || c == ',')
+      flush();
+    else
+      token.push_back(c);
   }
   flush();
   if (static_cast<int>(out.size()) != dimension)
@@ -145,7 +154,8 @@ Rational exact_rational(double d) {
   int e = 0;
   const double f = std::frexp(d, &e);  // d = f 2^e, |f| in [0.5, 1): f 2^53 is an integer
   const Rational mantissa = Rational(static_cast<long long>(std::ldexp(f, 53)));
-  return e >= 53 ? Rational(mantissa * cln::expt(Rational(2), e - 53)) : Rational(mantissa / cln::expt(Rational(2), 53 - e));
+  return e >= 53 ? Rational(mantissa * cln::expt(Rational(2), e - 53))
+                 : Rational(mantissa / cln::expt(Rational(2), 53 - e));
 }
 
 bool is_integer(const Rational& r) { return cln::denominator(r) == 1; }

@@ -116,8 +116,8 @@ struct BoxSplineRecurrence::Impl {
   // Per base point.
   bool has_base = false;
   RatVec base;
-  IntVec base_floor, base_ceil;     // floor / ceil of dir.base per prune direction
-  std::vector<RatVec> t_base;       // per basis id: t for shift 0 (empty until needed)
+  IntVec base_floor, base_ceil;  // floor / ceil of dir.base per prune direction
+  std::vector<RatVec> t_base;    // per basis id: t for shift 0 (empty until needed)
   std::unordered_map<Key, Rational, KeyHash> memo;
 
   std::size_t basis_id_of(const IntColumns& basis) {
@@ -128,7 +128,8 @@ struct BoxSplineRecurrence::Impl {
     b.inverse_det = Rational(1) / rational_from(basis_det);
     b.adjugate_rows.assign(n, IntVec(n));
     for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) b.adjugate_rows[j][i] = floor_to_int64(inv[j][i] * rational_from(basis_det));
+      for (int i = 0; i < n; ++i)
+        b.adjugate_rows[j][i] = floor_to_int64(inv[j][i] * rational_from(basis_det));
     bases.push_back(std::move(b));
     basis_ids.emplace(basis, bases.size() - 1);
     return bases.size() - 1;
@@ -139,7 +140,8 @@ struct BoxSplineRecurrence::Impl {
     const std::size_t p = distinct.size();
     s.counts.resize(p);
     for (std::size_t d = 0; d < p; ++d) {
-      s.counts[d] = static_cast<int>((code / stride[d]) % static_cast<std::uint64_t>(full_counts[d] + 1));
+      s.counts[d] =
+          static_cast<int>((code / stride[d]) % static_cast<std::uint64_t>(full_counts[d] + 1));
       s.total += s.counts[d];
     }
     // The first independent columns, in a fixed order, give t with Xi t = x (t = 0 elsewhere).
@@ -154,7 +156,8 @@ struct BoxSplineRecurrence::Impl {
         basis = std::move(trial);
       }
     }
-    if (static_cast<int>(basis.size()) != n) fail_internal("box spline recurrence reached a rank-deficient state");
+    if (static_cast<int>(basis.size()) != n)
+      fail_internal("box spline recurrence reached a rank-deficient state");
     s.basis_id = basis_id_of(basis);
     s.removable.assign(p, 0);
     for (std::size_t d = 0; d < p; ++d) {
@@ -195,7 +198,8 @@ struct BoxSplineRecurrence::Impl {
     RatVec& t = t_base[id];
     if (t.empty()) {
       t.assign(n, 0);
-      for (int j = 0; j < n; ++j) t[j] = dot(bases[id].adjugate_rows[j], base) * bases[id].inverse_det;
+      for (int j = 0; j < n; ++j)
+        t[j] = dot(bases[id].adjugate_rows[j], base) * bases[id].inverse_det;
     }
     return t;
   }
@@ -224,7 +228,8 @@ struct BoxSplineRecurrence::Impl {
     if (s.total == n) {
       // Half-open parallelepiped: at generic points no t_j is 0 or 1, so the choice of open or
       // closed faces does not matter.
-      const bool inside = std::all_of(t.begin(), t.end(), [](const Rational& v) { return v >= 0 && v < 1; });
+      const bool inside =
+          std::all_of(t.begin(), t.end(), [](const Rational& v) { return v >= 0 && v < 1; });
       result = inside ? s.parallelepiped_value : Rational(0);
     } else {
       // (m-n) M_Xi(x) = sum_k t_k M_{Xi\k}(x) + (1-t_k) M_{Xi\k}(x - xi_k); the copies of one
@@ -283,10 +288,12 @@ BoxSplineRecurrence& BoxSplineRecurrence::operator=(BoxSplineRecurrence&&) noexc
 void BoxSplineRecurrence::set_base(const RatVec& base) {
   Impl& m = *impl_;
   if (static_cast<int>(base.size()) != m.n)
-    fail_input("box spline recurrence: the point has " + std::to_string(base.size()) + " coordinates, expected " +
-               std::to_string(m.n));
+    fail_input("box spline recurrence: the point has " + std::to_string(base.size()) +
+               " coordinates, expected " + std::to_string(m.n));
   if (!is_generic_point(m.xi, base))
-    fail_input("box spline recurrence: the point lies on a knot plane; the recurrence needs a generic point");
+    fail_input(
+        "box spline recurrence: the point lies on a knot plane; the recurrence needs a generic "
+        "point");
   m.base = base;
   m.base_floor.clear();
   m.base_ceil.clear();
@@ -302,7 +309,8 @@ void BoxSplineRecurrence::set_base(const RatVec& base) {
 
 Rational BoxSplineRecurrence::at_shift(const IntVec& shift) {
   if (!impl_->has_base) fail_internal("box spline recurrence: at_shift before set_base");
-  if (static_cast<int>(shift.size()) != impl_->n) fail_input("box spline recurrence: shift of the wrong dimension");
+  if (static_cast<int>(shift.size()) != impl_->n)
+    fail_input("box spline recurrence: shift of the wrong dimension");
   Shift s{};
   std::copy(shift.begin(), shift.end(), s.begin());
   return impl_->value(impl_->full_code, s);
@@ -313,15 +321,17 @@ Rational BoxSplineRecurrence::value(const RatVec& x) {
   return at_shift(IntVec(x.size(), 0));
 }
 
-
-Rational box_spline_recurrence(const IntColumns& xi, const RatVec& x) { return BoxSplineRecurrence(xi).value(x); }
+Rational box_spline_recurrence(const IntColumns& xi, const RatVec& x) {
+  return BoxSplineRecurrence(xi).value(x);
+}
 
 Rational box_spline_centred_recurrence(const IntColumns& xi, const RatVec& x) {
   validate_columns(xi);
   if (x.size() != xi[0].size()) fail_input("box spline recurrence: point of the wrong dimension");
   RatVec shifted = x;
   for (const auto& c : xi)
-    for (std::size_t i = 0; i < x.size(); ++i) shifted[i] = shifted[i] + Rational(rational_from(c[i])) / 2;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      shifted[i] = shifted[i] + Rational(rational_from(c[i])) / 2;
   return box_spline_recurrence(xi, shifted);
 }
 

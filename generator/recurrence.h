@@ -1,6 +1,6 @@
 // An exact point evaluator of the uncentred box spline M_Xi by the de Boor-Hoellig recurrence
-// (docs/design.md §2). It shares nothing with the piecewise derivation, which is why it exists: it is
-// the independent reference that the piecewise form and the autocorrelation are checked against.
+// (docs/design.md §2). It shares nothing with the piecewise derivation, which is why it exists: it
+// is the independent reference that the piecewise form and the autocorrelation are checked against.
 //
 // Validity: the recurrence drops the terms whose remaining columns no longer span R^n (they are
 // measures on hyperplanes, zero off them) and uses the half-open base case. Both are right only
@@ -37,9 +37,9 @@ class BoxSplineRecurrence {
   BoxSplineRecurrence(BoxSplineRecurrence&&) noexcept;
   BoxSplineRecurrence& operator=(BoxSplineRecurrence&&) noexcept;
 
-  Rational value(const RatVec& x);            // M_Xi(x), with a fresh memo
-  void set_base(const RatVec& base);          // clears the memo; throws InputError if not generic
-  Rational at_shift(const IntVec& shift);     // M_Xi(base + shift), sharing the memo
+  Rational value(const RatVec& x);         // M_Xi(x), with a fresh memo
+  void set_base(const RatVec& base);       // clears the memo; throws InputError if not generic
+  Rational at_shift(const IntVec& shift);  // M_Xi(base + shift), sharing the memo
 
  private:
   struct Impl;

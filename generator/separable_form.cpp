@@ -92,7 +92,8 @@ std::optional<TensorGrid> grid_of(const ReferenceRegion& ref, const std::vector<
     int flat = 0;
     for (int i = n - 1; i >= 0; --i) {
       const auto& v = values[i];
-      position[m][i] = static_cast<int>(std::lower_bound(v.begin(), v.end(), ref.stencil[members[m]][i]) - v.begin());
+      position[m][i] = static_cast<int>(
+          std::lower_bound(v.begin(), v.end(), ref.stencil[members[m]][i]) - v.begin());
       flat = flat * grid.sizes[i] + position[m][i];
     }
     grid.stencil[flat] = members[m];
@@ -104,8 +105,10 @@ std::optional<TensorGrid> grid_of(const ReferenceRegion& ref, const std::vector<
     for (int i = 0; i < n; ++i) {
       auto& w = grid.weights[i][position[m][i]];
       const auto& f = factored[members[m]].factors[i];
-      if (w.empty()) w = f;
-      else if (w != f) return std::nullopt;
+      if (w.empty())
+        w = f;
+      else if (w != f)
+        return std::nullopt;
     }
   // The scales must factor as C prod_i alpha_i(a_i): read them off the axes through grid point 0.
   auto scale_at = [&](const std::vector<int>& a) {

@@ -44,7 +44,8 @@ const Rule& rule(int n, int s) {
   const int d = 2 * s + 1;
   for (int i = 0; i <= s; ++i) {
     const int denom = d + n - 2 * i;
-    Rational w = cln::expt(Rational(denom), d) / (Rational(factorial(i)) * Rational(factorial(d + n - i)));
+    Rational w =
+        cln::expt(Rational(denom), d) / (Rational(factorial(i)) * Rational(factorial(d + n - i)));
     w = w / cln::expt(Rational(2), 2 * s);
     if (i % 2) w = -w;
     std::vector<std::vector<int>> betas;

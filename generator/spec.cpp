@@ -16,10 +16,10 @@ namespace boxgen {
 namespace {
 
 // Limits that keep a derivation feasible; beyond them we refuse instead of running for hours.
-constexpr std::int64_t kMaxComponent = 64;           // |xi_k[i]|
-constexpr std::int64_t kMaxLatticeEntry = 1000;      // |G_ij|, as enforced by Lattice
+constexpr std::int64_t kMaxComponent = 64;            // |xi_k[i]|
+constexpr std::int64_t kMaxLatticeEntry = 1000;       // |G_ij|, as enforced by Lattice
 constexpr std::int64_t kMaxSupportCells = 2'000'000;  // unit cells in the support's bounding box
-constexpr std::size_t kMaxEchoedChars = 40;          // how much of a bad token a message repeats
+constexpr std::size_t kMaxEchoedChars = 40;           // how much of a bad token a message repeats
 
 using IntRows = std::vector<IntVec>;
 
@@ -75,8 +75,8 @@ std::string preset_names() {
 
 // What one kind of row list is called in messages and how large its entries may be.
 struct RowSyntax {
-  std::string_view list;       // "SPEC" or "lattice"
-  std::string_view row;        // "direction" or "lattice row"
+  std::string_view list;  // "SPEC" or "lattice"
+  std::string_view row;   // "direction" or "lattice row"
   std::int64_t max_abs;
   std::string_view too_large;  // why larger entries are refused
 };
@@ -115,16 +115,19 @@ IntRows parse_rows(std::string_view text, const RowSyntax& syntax, std::size_t m
   }
   while (!pieces.empty() && trim(pieces.back()).empty()) pieces.pop_back();
   if (pieces.empty())
-    fail_input(fmt::format("empty {}: expected integer {}s separated by ';', such as '1,0; 0,1; 1,1'", syntax.list,
-                           syntax.row));
+    fail_input(
+        fmt::format("empty {}: expected integer {}s separated by ';', such as '1,0; 0,1; 1,1'",
+                    syntax.list, syntax.row));
   if (pieces.size() > max_rows)
-    fail_input(fmt::format("{} {}s given: at most {} are supported", pieces.size(), syntax.row, max_rows));
+    fail_input(
+        fmt::format("{} {}s given: at most {} are supported", pieces.size(), syntax.row, max_rows));
 
   IntRows rows;
   for (std::size_t r = 0; r < pieces.size(); ++r) {
     const std::string where = fmt::format("{} {}", syntax.row, r + 1);
     std::string_view row = trim(pieces[r]);
-    if (row.empty()) fail_input(fmt::format("invalid {}: {} is empty (two ';' in a row?)", syntax.list, where));
+    if (row.empty())
+      fail_input(fmt::format("invalid {}: {} is empty (two ';' in a row?)", syntax.list, where));
     IntVec values;
     for (;;) {
       auto comma = row.find(',');
@@ -139,17 +142,19 @@ IntRows parse_rows(std::string_view text, const RowSyntax& syntax, std::size_t m
         part.remove_prefix(static_cast<std::size_t>(end));
         auto value = parse_integer(token);
         if (!value)
-          fail_input(fmt::format("invalid {}: {} has the entry '{}', which is not an integer", syntax.list, where,
-                                 echo(token)));
+          fail_input(fmt::format("invalid {}: {} has the entry '{}', which is not an integer",
+                                 syntax.list, where, echo(token)));
         if (std::llabs(*value) > syntax.max_abs)
-          fail_input(fmt::format("{} has the entry '{}', which is too large {}: entries must be at most {} in magnitude",
-                                 where, echo(token), syntax.too_large, syntax.max_abs));
+          fail_input(
+              fmt::format("{} has the entry '{}', which is too large {}: entries must be at most "
+                          "{} in magnitude",
+                          where, echo(token), syntax.too_large, syntax.max_abs));
         values.push_back(*value);
         any = true;
       }
       if (!any)
-        fail_input(fmt::format("invalid {}: {} ('{}') has an empty entry (stray ',')", syntax.list, where,
-                               echo(trim(pieces[r]))));
+        fail_input(fmt::format("invalid {}: {} ('{}') has an empty entry (stray ',')", syntax.list,
+                               where, echo(trim(pieces[r]))));
       if (comma == std::string_view::npos) break;
       row.remove_prefix(comma + 1);
     }
@@ -158,21 +163,25 @@ IntRows parse_rows(std::string_view text, const RowSyntax& syntax, std::size_t m
   return rows;
 }
 
-std::string entries(std::size_t count) { return fmt::format("{} {}", count, count == 1 ? "entry" : "entries"); }
+std::string entries(std::size_t count) {
+  return fmt::format("{} {}", count, count == 1 ? "entry" : "entries");
+}
 
 // Checks that all rows have one length, 2 or 3, and returns it.
 int common_dimension(const IntRows& rows, const RowSyntax& syntax) {
   const auto n = rows.front().size();
   if (n != 2 && n != 3)
-    fail_input(fmt::format("invalid {0}: {1} 1 has {2}, but {1}s must have 2 or 3 entries (2-D or 3-D){3}",
-                           syntax.list, syntax.row, entries(n),
-                           std::string(syntax.list) == "SPEC"
-                               ? "; a SPEC lists the directions (the columns of Xi), one per ';'"
-                               : "; --lattice takes the rows of G (its columns are the lattice basis), one per ';'"));
+    fail_input(fmt::format(
+        "invalid {0}: {1} 1 has {2}, but {1}s must have 2 or 3 entries (2-D or 3-D){3}",
+        syntax.list, syntax.row, entries(n),
+        std::string(syntax.list) == "SPEC"
+            ? "; a SPEC lists the directions (the columns of Xi), one per ';'"
+            : "; --lattice takes the rows of G (its columns are the lattice basis), one per ';'"));
   for (std::size_t r = 1; r < rows.size(); ++r)
     if (rows[r].size() != n)
-      fail_input(fmt::format("invalid {0}: {1} {2} has {3} but {1} 1 has {4}; all must have the same dimension",
-                             syntax.list, syntax.row, r + 1, entries(rows[r].size()), n));
+      fail_input(fmt::format(
+          "invalid {0}: {1} {2} has {3} but {1} 1 has {4}; all must have the same dimension",
+          syntax.list, syntax.row, r + 1, entries(rows[r].size()), n));
   return static_cast<int>(n);
 }
 
@@ -193,8 +202,9 @@ const PresetInfo* find_preset(std::string_view name) {
 void check_directions(const IntColumns& xi, int n) {
   for (std::size_t k = 0; k < xi.size(); ++k)
     if (std::all_of(xi[k].begin(), xi[k].end(), [](std::int64_t v) { return v == 0; }))
-      fail_input(fmt::format("direction {} ({}) is the zero vector: every direction must be nonzero", k + 1,
-                             join_row(xi[k])));
+      fail_input(
+          fmt::format("direction {} ({}) is the zero vector: every direction must be nonzero",
+                      k + 1, join_row(xi[k])));
   if (int r = rank(xi, n); r < n) {
     // A user who wrote Xi by rows gets its transpose: say so when that would be a valid SPEC.
     std::string hint;
@@ -202,21 +212,25 @@ void check_directions(const IntColumns& xi, int n) {
     if (m == 2 || m == 3) {
       IntColumns transposed(static_cast<std::size_t>(n), IntVec(static_cast<std::size_t>(m)));
       for (int i = 0; i < n; ++i)
-        for (int k = 0; k < m; ++k) transposed[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = xi[k][i];
+        for (int k = 0; k < m; ++k)
+          transposed[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = xi[k][i];
       const bool nonzero = std::none_of(transposed.begin(), transposed.end(), [](const IntVec& c) {
         return std::all_of(c.begin(), c.end(), [](std::int64_t v) { return v == 0; });
       });
       if (nonzero && rank(transposed, m) == m) {
         std::vector<std::string> cols;
         for (const auto& c : transposed) cols.push_back(join_row(c));
-        hint = fmt::format("; a SPEC lists the directions (the columns of Xi), one per ';': if you wrote the rows of "
-                           "Xi, its transpose '{}' is a valid {}-D SPEC",
-                           fmt::join(cols, "; "), m);
+        hint = fmt::format(
+            "; a SPEC lists the directions (the columns of Xi), one per ';': if you wrote the rows "
+            "of "
+            "Xi, its transpose '{}' is a valid {}-D SPEC",
+            fmt::join(cols, "; "), m);
       }
     }
-    fail_input(fmt::format("rank-deficient direction matrix: the {} directions span only {} dimension(s); {} linearly "
-                           "independent directions are needed in {}-D{}",
-                           xi.size(), r, n, n, hint));
+    fail_input(fmt::format(
+        "rank-deficient direction matrix: the {} directions span only {} dimension(s); {} linearly "
+        "independent directions are needed in {}-D{}",
+        xi.size(), r, n, n, hint));
   }
   // The support Xi[0,1]^m has the bounding-box side sum_k |xi_k[i]| in coordinate i; the
   // derivation visits every unit cell of that box. Sides are <= 32 * 64, so no overflow.
@@ -229,9 +243,10 @@ void check_directions(const IntColumns& xi, int n) {
     sides.push_back(side);
   }
   if (cells > kMaxSupportCells)
-    fail_input(fmt::format("support too large to derive: its bounding box is {} = {} unit cells, more than the limit "
-                           "of {}",
-                           fmt::join(sides, " x "), cells, kMaxSupportCells));
+    fail_input(fmt::format(
+        "support too large to derive: its bounding box is {} = {} unit cells, more than the limit "
+        "of {}",
+        fmt::join(sides, " x "), cells, kMaxSupportCells));
 }
 
 }  // namespace
@@ -243,14 +258,19 @@ const std::vector<PresetInfo>& presets() {
       {"m8", "1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1", "bcc",
        "quintic eight-direction box spline M8 on BCC (Entezari et al. 2004/2008)"},
       {"m12",
-       "2,0,0; 0,2,0; 0,0,2; 2,0,0; 0,2,0; 0,0,2; -2,0,0; 0,-2,0; 0,0,-2; -2,0,0; 0,-2,0; 0,0,-2", "bcc",
-       "tricubic B-spline M12 on BCC: 12 directions, total degree 9 (Csebfalvi-Hadwiger; Kim 2013)"},
+       "2,0,0; 0,2,0; 0,0,2; 2,0,0; 0,2,0; 0,0,2; -2,0,0; 0,-2,0; 0,0,-2; -2,0,0; 0,-2,0; 0,0,-2",
+       "bcc",
+       "tricubic B-spline M12 on BCC: 12 directions, total degree 9 (Csebfalvi-Hadwiger; Kim "
+       "2013)"},
       {"cart7", "1,0,0; 0,1,0; 0,0,1; 1,1,1; 1,1,-1; 1,-1,1; -1,1,1", "cartesian",
-       "quartic seven-direction box spline on the Cartesian lattice (Peters; Entezari-Moeller 2006)"},
+       "quartic seven-direction box spline on the Cartesian lattice (Peters; Entezari-Moeller "
+       "2006)"},
       {"fcc6", "1,1,0; 1,-1,0; 1,0,1; 1,0,-1; 0,1,1; 0,1,-1", "fcc",
        "cubic six-direction box spline on FCC (Kim, Entezari, Peters 2008)"},
-      {"tricubic", "1,0,0; 0,1,0; 0,0,1; 1,0,0; 0,1,0; 0,0,1; 1,0,0; 0,1,0; 0,0,1; 1,0,0; 0,1,0; 0,0,1",
-       "cartesian", "tricubic B-spline [I I I I], tensor product of cubic B-splines on the Cartesian lattice"},
+      {"tricubic",
+       "1,0,0; 0,1,0; 0,0,1; 1,0,0; 0,1,0; 0,0,1; 1,0,0; 0,1,0; 0,0,1; 1,0,0; 0,1,0; 0,0,1",
+       "cartesian",
+       "tricubic B-spline [I I I I], tensor product of cubic B-splines on the Cartesian lattice"},
       {"hex3", "1,0; 0,1; 1,1", "cartesian",
        "linear three-direction box spline (Courant hat function) on Z^2"},
       {"zp", "1,0; 0,1; 1,1; -1,1", "cartesian", "quadratic C^1 Zwart-Powell element on Z^2"},
@@ -272,27 +292,33 @@ Lattice parse_lattice(std::string_view text, int dimension) {
     fail_input(fmt::format("lattice dimension must be 2 or 3, got {}", dimension));
   const std::string_view t = trim(text);
   if (t.empty())
-    fail_input("empty lattice: expected bcc, fcc, cartesian or the rows of G such as '1,1,0; 1,0,1; 0,1,1'");
+    fail_input(
+        "empty lattice: expected bcc, fcc, cartesian or the rows of G such as '1,1,0; 1,0,1; "
+        "0,1,1'");
   if (std::isalpha(static_cast<unsigned char>(t.front()))) {
     const std::string name = lower(t);
     if (name == "cartesian") return Lattice::cartesian(dimension);
     if (name == "bcc" || name == "fcc") {
       if (dimension != 3)
-        fail_input(fmt::format("the {} lattice is 3-dimensional but the directions are {}-dimensional", name,
-                               dimension));
+        fail_input(
+            fmt::format("the {} lattice is 3-dimensional but the directions are {}-dimensional",
+                        name, dimension));
       return name == "bcc" ? Lattice::bcc() : Lattice::fcc();
     }
-    fail_input(fmt::format("unknown lattice '{}': expected bcc, fcc, cartesian or the rows of G such as '2,0; 0,1'",
-                           echo(t)));
+    fail_input(fmt::format(
+        "unknown lattice '{}': expected bcc, fcc, cartesian or the rows of G such as '2,0; 0,1'",
+        echo(t)));
   }
   const RowSyntax syntax{"lattice", "lattice row", kMaxLatticeEntry, "for a lattice generator"};
   const IntRows rows = parse_rows(t, syntax, 3);
   const int n = common_dimension(rows, syntax);
   if (n != dimension)
-    fail_input(fmt::format("the lattice is {}-dimensional but the directions are {}-dimensional", n, dimension));
+    fail_input(fmt::format("the lattice is {}-dimensional but the directions are {}-dimensional", n,
+                           dimension));
   if (static_cast<int>(rows.size()) != n)
-    fail_input(fmt::format("the lattice generator must be square: got {} rows of {} entries, expected {} rows",
-                           rows.size(), n, n));
+    fail_input(fmt::format(
+        "the lattice generator must be square: got {} rows of {} entries, expected {} rows",
+        rows.size(), n, n));
   // The user writes G by rows; Lattice takes its columns.
   IntColumns columns(rows.size(), IntVec(rows.size()));
   for (std::size_t i = 0; i < rows.size(); ++i)
@@ -303,8 +329,9 @@ Lattice parse_lattice(std::string_view text, int dimension) {
 BoxSplineSpec parse_spec(std::string_view spec, std::string_view lattice_text) {
   const std::string_view t = trim(spec);
   if (t.empty())
-    fail_input(fmt::format("empty SPEC: expected a preset name ({}) or a direction list such as '1,0; 0,1; 1,1'",
-                           preset_names()));
+    fail_input(fmt::format(
+        "empty SPEC: expected a preset name ({}) or a direction list such as '1,0; 0,1; 1,1'",
+        preset_names()));
 
   std::string name = "custom";
   std::string_view directions_text = t;
@@ -312,16 +339,18 @@ BoxSplineSpec parse_spec(std::string_view spec, std::string_view lattice_text) {
   if (std::isalpha(static_cast<unsigned char>(t.front()))) {
     const PresetInfo* preset = find_preset(t);
     if (!preset)
-      fail_input(fmt::format("unknown preset '{}': valid presets are {}; or give a direction list such as "
-                             "'1,0; 0,1; 1,1'",
-                             echo(t), preset_names()));
+      fail_input(
+          fmt::format("unknown preset '{}': valid presets are {}; or give a direction list such as "
+                      "'1,0; 0,1; 1,1'",
+                      echo(t), preset_names()));
     name = preset->name;
     directions_text = preset->directions;
     default_lattice = preset->lattice;
   }
 
   const RowSyntax syntax{"SPEC", "direction", kMaxComponent, "to derive"};
-  const IntRows directions = parse_rows(directions_text, syntax, static_cast<std::size_t>(kMaxDirections));
+  const IntRows directions =
+      parse_rows(directions_text, syntax, static_cast<std::size_t>(kMaxDirections));
   const int n = common_dimension(directions, syntax);
   check_directions(directions, n);
 
@@ -329,8 +358,9 @@ BoxSplineSpec parse_spec(std::string_view spec, std::string_view lattice_text) {
   Lattice lattice = chosen.empty() ? Lattice::cartesian(n) : parse_lattice(chosen, n);
   for (std::size_t k = 0; k < directions.size(); ++k)
     if (!lattice.contains(directions[k]))
-      fail_input(fmt::format("direction {} ({}) is not a point of {}: every direction must lie in the lattice", k + 1,
-                             join_row(directions[k]), describe(lattice)));
+      fail_input(fmt::format(
+          "direction {} ({}) is not a point of {}: every direction must lie in the lattice", k + 1,
+          join_row(directions[k]), describe(lattice)));
 
   return BoxSplineSpec{name, std::string(spec), directions, std::move(lattice)};
 }

@@ -14,9 +14,9 @@ namespace boxgen {
 inline constexpr int kMaxDirections = 32;
 
 struct BoxSplineSpec {
-  std::string name;        // preset name, or "custom"
-  std::string text;        // the SPEC as the user gave it
-  IntColumns directions;   // the columns xi of Xi, in the given order
+  std::string name;       // preset name, or "custom"
+  std::string text;       // the SPEC as the user gave it
+  IntColumns directions;  // the columns xi of Xi, in the given order
   Lattice lattice;
 
   int dimension() const { return lattice.dimension(); }

@@ -22,7 +22,8 @@ namespace {
 
 CellKey shifted_key(const CellKey& k, const std::vector<IntVec>& normals, const IntVec& j) {
   CellKey out = k;
-  for (size_t i = 0; i < normals.size(); ++i) out[i] -= static_cast<std::int32_t>(dot(normals[i], j));
+  for (size_t i = 0; i < normals.size(); ++i)
+    out[i] -= static_cast<std::int32_t>(dot(normals[i], j));
   return out;
 }
 
@@ -45,7 +46,8 @@ class Fundamental {
       }
     // The lattice points any cube of F may fetch, enumerated once (a scaled lattice has few
     // points in a large box, and enumerating the box per cell would dominate).
-    corner_lo_ = corner_hi_ = IntVec(cells_.front().cell.key.begin(), cells_.front().cell.key.begin() + n_);
+    corner_lo_ = corner_hi_ =
+        IntVec(cells_.front().cell.key.begin(), cells_.front().cell.key.begin() + n_);
     for (const auto& fc : cells_)
       for (int i = 0; i < n_; ++i) {
         corner_lo_[i] = std::min<std::int64_t>(corner_lo_[i], fc.cell.key[i]);
@@ -61,16 +63,20 @@ class Fundamental {
   std::vector<FundamentalCell>& cells() { return cells_; }
   const std::vector<IntVec>& normals() const { return form_.complex.normals(); }
 
-  // The fundamental cell and lattice vector l such that the cell with this absolute key is F cell + l.
+  // The fundamental cell and lattice vector l such that the cell with this absolute key is F cell +
+  // l.
   std::pair<int, IntVec> locate(const CellKey& absolute) const {
     IntVec corner(absolute.begin(), absolute.begin() + n_);
     IntVec rep = form_.spec.lattice.reduce(corner);
     IntVec l = sub(corner, rep);
     auto it = index_.find(shifted_key(absolute, normals(), l));
-    if (it == index_.end()) fail_internal("a cell of the arrangement is missing from the fundamental region");
+    if (it == index_.end())
+      fail_internal("a cell of the arrangement is missing from the fundamental region");
     return {it->second, l};
   }
-  std::pair<int, IntVec> locate_point(const RatVec& u) const { return locate(floor_key(normals(), u)); }
+  std::pair<int, IntVec> locate_point(const RatVec& u) const {
+    return locate(floor_key(normals(), u));
+  }
 
   // Lattice points j with a chance of M_Xi(u - j) != 0 for u in the unit cube at `corner`.
   std::vector<IntVec> candidates(const IntVec& corner, int margin) const {
@@ -104,7 +110,8 @@ class Fundamental {
 
   // True if the spline has one polynomial on fine cell a and on fine cell b translated by l
   // (adjacent cells): the same j with the same polynomial on both, for every j.
-  bool same_spline_piece(const FundamentalCell& a, const FundamentalCell& b, const IntVec& l) const {
+  bool same_spline_piece(const FundamentalCell& a, const FundamentalCell& b,
+                         const IntVec& l) const {
     if (a.stencil.size() != b.stencil.size()) return false;
     for (size_t k = 0; k < a.stencil.size(); ++k) {
       for (int i = 0; i < n_; ++i)
@@ -171,7 +178,8 @@ std::vector<SplineRegion> merge_regions(Fundamental& fund, const RatVec& c, int 
         const IntVec& nu = fund.normals()[f.normal];
         auto [j, l] = fund.locate(other);
         if (!fund.same_spline_piece(cells[i], cells[j], l)) {
-          add_unique_plane(region.planes, {nu, Rational(f.level) + Rational(dot(nu, p)) - dot(nu, c)});
+          add_unique_plane(region.planes,
+                           {nu, Rational(f.level) + Rational(dot(nu, p)) - dot(nu, c)});
           continue;
         }
         IntVec where(n);
@@ -283,10 +291,10 @@ void choose_references(SplineStructure& s, const Lattice& lattice, int n) {
     }
     const auto& first = s.cells[src.cells.front()];
     RatVec x(n);
-    for (int k = 0; k < n; ++k) x[k] = first.cell.interior[k] + Rational(first.placement[k]) - s.centre[k];
+    for (int k = 0; k < n; ++k)
+      x[k] = first.cell.interior[k] + Rational(first.placement[k]) - s.centre[k];
     ref.interior = best_map.apply(x);
   }
-
 }
 
 // Every region's map onto its reference: g R + l = R_ref (vertex sets equal).
@@ -301,8 +309,10 @@ void map_regions_to_references(SplineStructure& s, const Lattice& lattice, int n
       bool integral = true;
       for (int i = 0; i < n; ++i) {
         Rational d = target[i] - z[i];
-        if (!is_integer(d)) integral = false;
-        else l[i] = floor_to_int64(d);
+        if (!is_integer(d))
+          integral = false;
+        else
+          l[i] = floor_to_int64(d);
       }
       if (!integral || !lattice.contains(l)) continue;
       SpaceGroupElement e{g, l};
@@ -314,7 +324,6 @@ void map_regions_to_references(SplineStructure& s, const Lattice& lattice, int n
     }
     if (!found) fail_internal("a region does not map onto its orbit's reference region");
   }
-
 }
 
 // Stencil and basis polynomials of each reference region (centred frame).
@@ -384,12 +393,14 @@ void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& 
     }
     return;
   }
-  const Poly expected = Poly::constant(form.dimension(), Rational(1) / Rational(form.spec.lattice.det_abs()));
+  const Poly expected =
+      Poly::constant(form.dimension(), Rational(1) / Rational(form.spec.lattice.det_abs()));
   for (const auto& fc : s.cells) {
     Poly sum(form.dimension(), 0);
     for (size_t k = 0; k < fc.stencil.size(); ++k)
       sum += form.polys[fc.stencil_knot_cells[k]].translated(to_ratvec(fc.stencil[k]));
-    if (sum != expected) fail_internal("partition of unity fails on a cell of the fundamental region");
+    if (sum != expected)
+      fail_internal("partition of unity fails on a cell of the fundamental region");
   }
 }
 

@@ -21,7 +21,7 @@ struct FundamentalCell {
   std::vector<IntVec> stencil;  // lattice points j with M_Xi(u - j) != 0 on the cell, sorted
   std::vector<int> stencil_knot_cells;  // per stencil point: the knot cell of M_Xi holding u - j
   int region = -1;
-  IntVec placement;             // cell + placement is where the cell sits in its region's geometry
+  IntVec placement;  // cell + placement is where the cell sits in its region's geometry
 };
 
 struct SpaceGroupElement {
@@ -31,10 +31,10 @@ struct SpaceGroupElement {
 };
 
 struct SplineRegion {
-  std::vector<int> cells;          // fundamental cells (with their placements)
-  std::vector<RatVec> vertices;    // centred frame, vertices of the (convex) region
-  std::vector<Plane> planes;       // centred frame, the planes of its boundary facets
-  RatVec centroid;                 // centred, mean of the vertices
+  std::vector<int> cells;        // fundamental cells (with their placements)
+  std::vector<RatVec> vertices;  // centred frame, vertices of the (convex) region
+  std::vector<Plane> planes;     // centred frame, the planes of its boundary facets
+  RatVec centroid;               // centred, mean of the vertices
   int orbit = -1;
   SpaceGroupElement to_reference;  // maps this region onto its orbit's reference region
 };
@@ -42,10 +42,10 @@ struct SplineRegion {
 struct ReferenceRegion {
   std::vector<RatVec> vertices;  // centred frame
   std::vector<Plane> planes;
-  RatVec interior;               // a point strictly inside (centred)
-  std::vector<IntVec> stencil;   // lattice points j, sorted
-  std::vector<Poly> basis;       // M(x - j) on the region, x centred, M = |det G| M^c
-  int regions_in_orbit = 0;      // per fundamental region
+  RatVec interior;              // a point strictly inside (centred)
+  std::vector<IntVec> stencil;  // lattice points j, sorted
+  std::vector<Poly> basis;      // M(x - j) on the region, x centred, M = |det G| M^c
+  int regions_in_orbit = 0;     // per fundamental region
 };
 
 struct SplineStructure {
@@ -63,6 +63,7 @@ SplineStructure spline_structure(const PiecewiseForm& form);
 // on every reference region (the default: each fine cell lies in a region, where the stencil's
 // pieces are those of its reference region mapped by a symmetry and a lattice translation,
 // both of which keep the sum).
-void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& s, bool full = true);
+void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& s,
+                              bool full = true);
 
 }  // namespace boxgen

@@ -27,7 +27,8 @@ SignedPermutation SignedPermutation::inverse() const {
 }
 
 SignedPermutation SignedPermutation::compose(const SignedPermutation& inner) const {
-  // (this o inner)(x)_i = sign[i] * inner(x)[perm[i]] = sign[i] * inner.sign[perm[i]] * x[inner.perm[perm[i]]]
+  // (this o inner)(x)_i = sign[i] * inner(x)[perm[i]] = sign[i] * inner.sign[perm[i]] *
+  // x[inner.perm[perm[i]]]
   SignedPermutation out{perm, sign};
   for (size_t i = 0; i < perm.size(); ++i) {
     out.perm[i] = inner.perm[perm[i]];
@@ -78,8 +79,9 @@ std::vector<SignedPermutation> symmetry_group(const BoxSplineSpec& spec) {
   const auto reference = canonical_multiset(spec.directions);
   std::vector<SignedPermutation> group;
   for (const auto& g : all_signed_permutations(spec.dimension())) {
-    bool keeps_lattice = std::all_of(spec.lattice.generator().begin(), spec.lattice.generator().end(),
-                                     [&](const IntVec& c) { return spec.lattice.contains(g.apply(c)); });
+    bool keeps_lattice =
+        std::all_of(spec.lattice.generator().begin(), spec.lattice.generator().end(),
+                    [&](const IntVec& c) { return spec.lattice.contains(g.apply(c)); });
     if (!keeps_lattice) continue;
     IntColumns image;
     for (const auto& c : spec.directions) image.push_back(g.apply(c));

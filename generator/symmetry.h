@@ -8,14 +8,14 @@
 namespace boxgen {
 
 struct SignedPermutation {
-  std::vector<int> perm;   // (g x)_i = sign[i] * x[perm[i]]
+  std::vector<int> perm;  // (g x)_i = sign[i] * x[perm[i]]
   std::vector<int> sign;
 
   IntVec apply(const IntVec& x) const;
   RatVec apply(const RatVec& x) const;
   SignedPermutation inverse() const;
   SignedPermutation compose(const SignedPermutation& inner) const;  // this o inner
-  IntColumns matrix() const;                                       // as columns
+  IntColumns matrix() const;                                        // as columns
   bool is_identity() const;
 };
 

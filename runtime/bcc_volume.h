@@ -43,7 +43,8 @@ T to_sample(double x) noexcept {
 
 template <class T>
 class BccVolume {
-  static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>, "BccVolume holds float or double");
+  static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>,
+                "BccVolume holds float or double");
 
  public:
   using value_type = T;
@@ -67,7 +68,8 @@ class BccVolume {
   std::size_t sample_count() const noexcept { return samples_.size(); }
   std::span<T> samples() noexcept { return samples_; }
   std::span<const T> samples() const noexcept { return samples_; }
-  // The storage, for moving it into a LatticeVolume (lattice_volume.h); the volume is empty afterwards.
+  // The storage, for moving it into a LatticeVolume (lattice_volume.h); the volume is empty
+  // afterwards.
   std::vector<T> release() && { return std::move(samples_); }
 
   // Position of sample (c, i, j, k) in samples(): c + 2 (i + N0 (j + N1 k)). Unchecked.
@@ -75,11 +77,14 @@ class BccVolume {
     return static_cast<std::size_t>(c) +
            2 * (static_cast<std::size_t>(i) +
                 static_cast<std::size_t>(sizes_[0]) *
-                    (static_cast<std::size_t>(j) + static_cast<std::size_t>(sizes_[1]) * static_cast<std::size_t>(k)));
+                    (static_cast<std::size_t>(j) +
+                     static_cast<std::size_t>(sizes_[1]) * static_cast<std::size_t>(k)));
   }
   // Unchecked access by coset and coset index.
   T& operator()(int c, int i, int j, int k) noexcept { return samples_[index(c, i, j, k)]; }
-  const T& operator()(int c, int i, int j, int k) const noexcept { return samples_[index(c, i, j, k)]; }
+  const T& operator()(int c, int i, int j, int k) const noexcept {
+    return samples_[index(c, i, j, k)];
+  }
   // Checked access: throws std::out_of_range (one line) unless c in {0,1}, 0 <= i < N0, ...
   T& at(int c, int i, int j, int k);
   const T& at(int c, int i, int j, int k) const;
@@ -90,7 +95,8 @@ class BccVolume {
   }
   // Is (x, y, z) a lattice point held by this volume?
   bool contains(std::int64_t x, std::int64_t y, std::int64_t z) const noexcept {
-    return is_lattice_point(x, y, z) && in_range(x, sizes_[0]) && in_range(y, sizes_[1]) && in_range(z, sizes_[2]);
+    return is_lattice_point(x, y, z) && in_range(x, sizes_[0]) && in_range(y, sizes_[1]) &&
+           in_range(z, sizes_[2]);
   }
   bool contains(const LatticePoint& p) const noexcept { return contains(p[0], p[1], p[2]); }
   // Does the volume hold every lattice point of the box lo <= p <= hi (componentwise)? True for
@@ -107,30 +113,40 @@ class BccVolume {
   T value(const LatticePoint& p) const { return value(p[0], p[1], p[2]); }
   // The sample at a BCC lattice point the caller has already shown to be inside (contains_box
   // around a whole stencil): no check, for the reconstruction's inner loop.
-  T value_unchecked(const LatticePoint& p) const noexcept { return samples_[lattice_index(p[0], p[1], p[2])]; }
+  T value_unchecked(const LatticePoint& p) const noexcept {
+    return samples_[lattice_index(p[0], p[1], p[2])];
+  }
   // The sample at (x, y, z), or `outside` where value() would throw.
   T value_or(std::int64_t x, std::int64_t y, std::int64_t z, T outside) const noexcept {
     return contains(x, y, z) ? samples_[lattice_index(x, y, z)] : outside;
   }
-  T value_or(const LatticePoint& p, T outside) const noexcept { return value_or(p[0], p[1], p[2], outside); }
+  T value_or(const LatticePoint& p, T outside) const noexcept {
+    return value_or(p[0], p[1], p[2], outside);
+  }
 
   // World <-> lattice coordinates: lattice = (world - o) / h, world = o + h * lattice.
   Vec3 to_lattice(const Vec3& world) const noexcept {
-    return {(world[0] - origin_[0]) / h_, (world[1] - origin_[1]) / h_, (world[2] - origin_[2]) / h_};
+    return {(world[0] - origin_[0]) / h_, (world[1] - origin_[1]) / h_,
+            (world[2] - origin_[2]) / h_};
   }
   Vec3 to_world(const Vec3& lattice) const noexcept {
-    return {origin_[0] + h_ * lattice[0], origin_[1] + h_ * lattice[1], origin_[2] + h_ * lattice[2]};
+    return {origin_[0] + h_ * lattice[0], origin_[1] + h_ * lattice[1],
+            origin_[2] + h_ * lattice[2]};
   }
   // World position of sample (c, i, j, k).
   Vec3 sample_position(int c, int i, int j, int k) const noexcept {
-    return to_world({static_cast<double>(2 * i + c), static_cast<double>(2 * j + c), static_cast<double>(2 * k + c)});
+    return to_world({static_cast<double>(2 * i + c), static_cast<double>(2 * j + c),
+                     static_cast<double>(2 * k + c)});
   }
 
  private:
-  static bool in_range(std::int64_t x, int n) noexcept { return x >= 0 && x <= 2 * static_cast<std::int64_t>(n) - 1; }
+  static bool in_range(std::int64_t x, int n) noexcept {
+    return x >= 0 && x <= 2 * static_cast<std::int64_t>(n) - 1;
+  }
   // x = 2i + c with c = x & 1 (C++20 integers are two's complement, so this also holds for x < 0).
   std::size_t lattice_index(std::int64_t x, std::int64_t y, std::int64_t z) const noexcept {
-    return index(static_cast<int>(x & 1), static_cast<int>(x >> 1), static_cast<int>(y >> 1), static_cast<int>(z >> 1));
+    return index(static_cast<int>(x & 1), static_cast<int>(x >> 1), static_cast<int>(y >> 1),
+                 static_cast<int>(z >> 1));
   }
   [[noreturn]] void throw_outside(std::int64_t x, std::int64_t y, std::int64_t z) const;
 

@@ -12,7 +12,8 @@ namespace boxgen::runtime {
 
 template <class T>
 struct CartesianVolume {
-  static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>, "CartesianVolume holds float or double");
+  static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>,
+                "CartesianVolume holds float or double");
   Sizes sizes{};  // samples along x, y, z
   Vec3 spacing{};
   Vec3 origin{};
@@ -20,7 +21,9 @@ struct CartesianVolume {
 
   std::size_t index(int i, int j, int k) const noexcept {
     return static_cast<std::size_t>(i) +
-           static_cast<std::size_t>(sizes[0]) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(sizes[1]) * static_cast<std::size_t>(k));
+           static_cast<std::size_t>(sizes[0]) *
+               (static_cast<std::size_t>(j) +
+                static_cast<std::size_t>(sizes[1]) * static_cast<std::size_t>(k));
   }
   Vec3 position(int i, int j, int k) const noexcept {
     return {origin[0] + i * spacing[0], origin[1] + j * spacing[1], origin[2] + k * spacing[2]};

@@ -15,7 +15,8 @@ namespace {
 constexpr std::int64_t kMaxEntry = std::int64_t{1} << 20;
 
 std::int64_t det3(const IntRows& g) {
-  return g[0][0] * (g[1][1] * g[2][2] - g[1][2] * g[2][1]) - g[0][1] * (g[1][0] * g[2][2] - g[1][2] * g[2][0]) +
+  return g[0][0] * (g[1][1] * g[2][2] - g[1][2] * g[2][1]) -
+         g[0][1] * (g[1][0] * g[2][2] - g[1][2] * g[2][0]) +
          g[0][2] * (g[1][0] * g[2][1] - g[1][1] * g[2][0]);
 }
 
@@ -25,7 +26,8 @@ IntRows adjugate(const IntRows& g) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const int r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
-      a[i][j] = g[r0][c0] * g[r1][c1] - g[r0][c1] * g[r1][c0];  // cofactor of (j, i), signs by the cyclic order
+      a[i][j] = g[r0][c0] * g[r1][c1] -
+                g[r0][c1] * g[r1][c0];  // cofactor of (j, i), signs by the cyclic order
     }
   return a;
 }
@@ -38,7 +40,8 @@ std::string trimmed(std::string_view s) {
 
 std::string shown(std::string_view s) {
   std::string out;
-  for (char ch : s.substr(0, 80)) out += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
+  for (char ch : s.substr(0, 80))
+    out += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
   return s.size() > 80 ? out + "..." : out;
 }
 
@@ -81,9 +84,11 @@ CosetLattice CosetLattice::from_rows(const IntRows& rows) {
   for (const auto& row : rows)
     for (std::int64_t v : row)
       if (v < -kMaxEntry || v > kMaxEntry)
-        throw std::invalid_argument(fmt::format("lattice matrix entry {} is too large (at most {} in magnitude)", v, kMaxEntry));
+        throw std::invalid_argument(fmt::format(
+            "lattice matrix entry {} is too large (at most {} in magnitude)", v, kMaxEntry));
   const std::int64_t det = det3(rows);
-  if (det == 0) throw std::invalid_argument("the lattice matrix is singular (its rows do not span 3-D space)");
+  if (det == 0)
+    throw std::invalid_argument("the lattice matrix is singular (its rows do not span 3-D space)");
   const std::int64_t det_abs = det < 0 ? -det : det;
   const IntRows adj = adjugate(rows);
   std::int64_t g = det_abs;
@@ -91,7 +96,9 @@ CosetLattice CosetLattice::from_rows(const IntRows& rows) {
     for (std::int64_t v : row) g = std::gcd(g, v);
   const std::int64_t d = det_abs / g;  // the smallest d with d adj(G) = 0 (mod det)
   if (d > kMaxPeriod)
-    throw std::invalid_argument(fmt::format("the lattice's coset period d = {} exceeds {} (d^3 residues are tabulated)", d, kMaxPeriod));
+    throw std::invalid_argument(
+        fmt::format("the lattice's coset period d = {} exceeds {} (d^3 residues are tabulated)", d,
+                    kMaxPeriod));
 
   CosetLattice l;
   l.rows_ = rows;
@@ -101,15 +108,16 @@ CosetLattice CosetLattice::from_rows(const IntRows& rows) {
     for (int y = 0; y < d; ++y)
       for (int x = 0; x < d; ++x) {
         bool member = true;
-        for (int i = 0; i < 3 && member; ++i) member = (adj[i][0] * x + adj[i][1] * y + adj[i][2] * z) % det == 0;
+        for (int i = 0; i < 3 && member; ++i)
+          member = (adj[i][0] * x + adj[i][1] * y + adj[i][2] * z) % det == 0;
         if (member) l.offsets_.push_back({x, y, z});
       }
   l.tabulate();
   // The named lattices keep their documented offsets and order.
   for (const CosetLattice& named : {bcc(), fcc(), cartesian()})
-    if (named.d_ == l.d_ && named.det_ == l.det_ && std::all_of(named.offsets_.begin(), named.offsets_.end(), [&](const Offset& o) {
-          return l.contains(o[0], o[1], o[2]);
-        })) {
+    if (named.d_ == l.d_ && named.det_ == l.det_ &&
+        std::all_of(named.offsets_.begin(), named.offsets_.end(),
+                    [&](const Offset& o) { return l.contains(o[0], o[1], o[2]); })) {
       CosetLattice same = named;
       same.rows_ = rows;
       return same;
@@ -124,8 +132,9 @@ CosetLattice CosetLattice::parse(std::string_view text) {
   if (t == "fcc") return fcc();
   if (t == "cartesian") return cartesian();
   auto fail = [&](const std::string& why) {
-    throw std::invalid_argument(fmt::format("lattice '{}': {} (expected bcc, fcc, cartesian or the rows of G, \"a,b,c; d,e,f; g,h,i\")",
-                                            shown(text), why));
+    throw std::invalid_argument(fmt::format(
+        "lattice '{}': {} (expected bcc, fcc, cartesian or the rows of G, \"a,b,c; d,e,f; g,h,i\")",
+        shown(text), why));
   };
   IntRows rows{};
   std::string_view rest = text;
@@ -136,7 +145,8 @@ CosetLattice CosetLattice::parse(std::string_view text) {
     rest.remove_prefix(semicolon == std::string_view::npos ? rest.size() : semicolon + 1);
     for (int c = 0; c < 3; ++c) {
       const std::size_t comma = row.find(',');
-      if ((comma == std::string_view::npos) != (c == 2)) fail(fmt::format("row {} does not have 3 entries", r + 1));
+      if ((comma == std::string_view::npos) != (c == 2))
+        fail(fmt::format("row {} does not have 3 entries", r + 1));
       const std::string entry = trimmed(row.substr(0, comma));
       row.remove_prefix(comma == std::string_view::npos ? row.size() : comma + 1);
       const char* begin = entry.data() + (entry.starts_with('+') ? 1 : 0);
@@ -150,15 +160,22 @@ CosetLattice CosetLattice::parse(std::string_view text) {
 
 CosetLattice CosetLattice::with_offsets(const std::vector<Offset>& offsets) const {
   if (offsets.size() != offsets_.size())
-    throw std::invalid_argument(fmt::format("{} coset offsets given; the lattice has {} cosets of {} Z^3", offsets.size(), offsets_.size(), d_));
+    throw std::invalid_argument(
+        fmt::format("{} coset offsets given; the lattice has {} cosets of {} Z^3", offsets.size(),
+                    offsets_.size(), d_));
   std::set<int> seen;
   for (const Offset& o : offsets) {
     for (int v : o)
-      if (v < -kMaxEntry || v > kMaxEntry) throw std::invalid_argument(fmt::format("coset offset coordinate {} is too large", v));
+      if (v < -kMaxEntry || v > kMaxEntry)
+        throw std::invalid_argument(fmt::format("coset offset coordinate {} is too large", v));
     const int c = coset_of(o[0], o[1], o[2]);
-    if (c < 0) throw std::invalid_argument(fmt::format("coset offset ({},{},{}) is not a lattice point", o[0], o[1], o[2]));
+    if (c < 0)
+      throw std::invalid_argument(
+          fmt::format("coset offset ({},{},{}) is not a lattice point", o[0], o[1], o[2]));
     if (!seen.insert(c).second)
-      throw std::invalid_argument(fmt::format("coset offset ({},{},{}) lies in the same coset of {} Z^3 as another", o[0], o[1], o[2], d_));
+      throw std::invalid_argument(
+          fmt::format("coset offset ({},{},{}) lies in the same coset of {} Z^3 as another", o[0],
+                      o[1], o[2], d_));
   }
   CosetLattice l = *this;
   l.offsets_ = offsets;
@@ -170,18 +187,20 @@ void CosetLattice::tabulate() {
   table_.assign(static_cast<std::size_t>(d_) * d_ * d_, -1);
   for (std::size_t c = 0; c < offsets_.size(); ++c) {
     const Offset& o = offsets_[c];
-    table_[static_cast<std::size_t>(residue(o[0]) + d_ * (residue(o[1]) + d_ * residue(o[2])))] = static_cast<int>(c);
+    table_[static_cast<std::size_t>(residue(o[0]) + d_ * (residue(o[1]) + d_ * residue(o[2])))] =
+        static_cast<int>(c);
   }
 }
 
 std::string CosetLattice::rows_text() const {
-  return fmt::format("{},{},{}; {},{},{}; {},{},{}", rows_[0][0], rows_[0][1], rows_[0][2], rows_[1][0], rows_[1][1], rows_[1][2],
-                     rows_[2][0], rows_[2][1], rows_[2][2]);
+  return fmt::format("{},{},{}; {},{},{}; {},{},{}", rows_[0][0], rows_[0][1], rows_[0][2],
+                     rows_[1][0], rows_[1][1], rows_[1][2], rows_[2][0], rows_[2][1], rows_[2][2]);
 }
 
 std::string CosetLattice::offsets_text() const {
   std::string text;
-  for (const Offset& o : offsets_) text += fmt::format("{}({},{},{})", text.empty() ? "" : " ", o[0], o[1], o[2]);
+  for (const Offset& o : offsets_)
+    text += fmt::format("{}({},{},{})", text.empty() ? "" : " ", o[0], o[1], o[2]);
   return text;
 }
 

@@ -3,9 +3,9 @@
 // K = d^3 / |det G|. Coset c is the set off_c + d Z^3 (offsets in lattice units).
 //
 //   bcc        G rows (-1,1,1; 1,-1,1; 1,1,-1)  d = 2, K = 2, offsets (0,0,0) (1,1,1)
-//   fcc        G rows (1,1,0; 1,0,1; 0,1,1)     d = 2, K = 4, offsets (0,0,0) (1,1,0) (1,0,1) (0,1,1)
-//   cartesian  G = I                            d = 1, K = 1, offset (0,0,0)
-//   custom     any G: d, K and the offsets (every point of L in [0, d)^3, in lexicographic order
+//   fcc        G rows (1,1,0; 1,0,1; 0,1,1)     d = 2, K = 4, offsets (0,0,0) (1,1,0) (1,0,1)
+//   (0,1,1) cartesian  G = I                            d = 1, K = 1, offset (0,0,0) custom     any
+//   G: d, K and the offsets (every point of L in [0, d)^3, in lexicographic order
 //              by z, then y, then x) are derived here.
 //
 // The same lattices as the generator's (generator/lattice.h; G's rows are written the same way,
@@ -45,7 +45,7 @@ class CosetLattice {
 
   const std::string& name() const noexcept { return name_; }
   const IntRows& rows() const noexcept { return rows_; }
-  int period() const noexcept { return d_; }                            // d
+  int period() const noexcept { return d_; }                                      // d
   int coset_count() const noexcept { return static_cast<int>(offsets_.size()); }  // K
   const std::vector<Offset>& offsets() const noexcept { return offsets_; }
   std::int64_t determinant() const noexcept { return det_; }  // |det G|
@@ -54,7 +54,9 @@ class CosetLattice {
   int coset_of(std::int64_t x, std::int64_t y, std::int64_t z) const noexcept {
     return table_[static_cast<std::size_t>(residue(x) + d_ * (residue(y) + d_ * residue(z)))];
   }
-  bool contains(std::int64_t x, std::int64_t y, std::int64_t z) const noexcept { return coset_of(x, y, z) >= 0; }
+  bool contains(std::int64_t x, std::int64_t y, std::int64_t z) const noexcept {
+    return coset_of(x, y, z) >= 0;
+  }
 
   // "a,b,c; d,e,f; g,h,i" and "(x,y,z) (x,y,z) ...": the NRRD key/values lattice_rows and
   // coset_offsets.
@@ -62,7 +64,9 @@ class CosetLattice {
   std::string offsets_text() const;
 
   // Same points and the same offsets in the same order.
-  bool operator==(const CosetLattice& other) const noexcept { return offsets_ == other.offsets_ && d_ == other.d_ && det_ == other.det_; }
+  bool operator==(const CosetLattice& other) const noexcept {
+    return offsets_ == other.offsets_ && d_ == other.d_ && det_ == other.det_;
+  }
 
  private:
   CosetLattice() = default;

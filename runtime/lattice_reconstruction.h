@@ -5,10 +5,10 @@
 //
 //   #include "my_filter.hpp"              // boxgen emit "<your matrix>" --name my_filter
 //   #include "my_filter_prefilters.hpp"
-//   LatticeVolume<double> v = sample_lattice<double>(f, cube_lattice_grid(filter_lattice<my_filter::Traits>(), 33, 4));
-//   v = prefilter(v, prefilter_from(my_filter::q1));
-//   LatticeReconstructor<my_filter::Traits, double> r(v);
-//   double s = r.value({0.1, 0.2, 0.3});
+//   LatticeVolume<double> v = sample_lattice<double>(f,
+//   cube_lattice_grid(filter_lattice<my_filter::Traits>(), 33, 4)); v = prefilter(v,
+//   prefilter_from(my_filter::q1)); LatticeReconstructor<my_filter::Traits, double> r(v); double s
+//   = r.value({0.1, 0.2, 0.3});
 //
 // The filter's lattice is read from the evaluator's Hermite basis (Traits::kHermite); a volume
 // on another lattice is refused with one line (std::invalid_argument). Border policy as
@@ -67,23 +67,27 @@ class LatticeReconstructor {
   explicit LatticeReconstructor(const LatticeVolume<T>& volume) : volume_(volume) {
     const CosetLattice lattice = filter_lattice<Tr>();
     if (!same_points(lattice, volume.lattice()))
-      throw std::invalid_argument(fmt::format("filter {} is for the {} lattice, but the volume is on the {} lattice", Tr::kName,
-                                              lattice.name(), volume.lattice().name()));
+      throw std::invalid_argument(
+          fmt::format("filter {} is for the {} lattice, but the volume is on the {} lattice",
+                      Tr::kName, lattice.name(), volume.lattice().name()));
   }
 
   // The spline at a world point; with `gradient` its gradient and with `hessian` its second
   // derivatives {xx, xy, xz, yy, yz, zz}, in world units.
-  T value(const Vec3& world, Vec3* gradient = nullptr, std::array<double, 6>* hessian = nullptr) const {
+  T value(const Vec3& world, Vec3* gradient = nullptr,
+          std::array<double, 6>* hessian = nullptr) const {
     if (hessian) return point<generated::support::kHessian>(world, gradient, hessian);
     if (gradient) return point<generated::support::kGradient>(world, gradient, nullptr);
     return point<generated::support::kValue>(world, nullptr, nullptr);
   }
 
   // value() for many points (`gradients` empty: values only). Throws the first error.
-  void evaluate(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients = {}) const {
+  void evaluate(std::span<const Vec3> points, std::span<T> values,
+                std::span<Vec3> gradients = {}) const {
     if (values.size() != points.size() || (!gradients.empty() && gradients.size() != points.size()))
       throw std::invalid_argument("evaluate: values and gradients must be as long as points");
-    for (std::size_t i = 0; i < points.size(); ++i) values[i] = value(points[i], gradients.empty() ? nullptr : &gradients[i]);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      values[i] = value(points[i], gradients.empty() ? nullptr : &gradients[i]);
   }
 
  private:
@@ -96,9 +100,12 @@ class LatticeReconstructor {
     // Far outside, stop before floor(x) becomes an integer that could overflow.
     constexpr double kFar = 64;
     for (int a = 0; a < 3; ++a)
-      if (!(lattice[a] > -kFar && lattice[a] < static_cast<double>(volume_.period()) * (volume_.sizes()[a] + 1) + kFar))
-        throw std::out_of_range(fmt::format("world point ({}, {}, {}) is outside the volume", world[0], world[1], world[2]));
-    const std::array<T, 3> x{static_cast<T>(lattice[0]), static_cast<T>(lattice[1]), static_cast<T>(lattice[2])};
+      if (!(lattice[a] > -kFar &&
+            lattice[a] < static_cast<double>(volume_.period()) * (volume_.sizes()[a] + 1) + kFar))
+        throw std::out_of_range(fmt::format("world point ({}, {}, {}) is outside the volume",
+                                            world[0], world[1], world[2]));
+    const std::array<T, 3> x{static_cast<T>(lattice[0]), static_cast<T>(lattice[1]),
+                             static_cast<T>(lattice[2])};
     const support::Located<3, T> located = support::locate<Tr>(x);
     const int size = Tr::kOrbitStencilSize[Tr::kCells[located.cell].orbit];
     T v[kStencil];
@@ -116,7 +123,8 @@ class LatticeReconstructor {
       }
     } catch (const std::out_of_range& e) {  // name the point the user asked for, then the sample
       throw std::out_of_range(
-          fmt::format("world point ({}, {}, {}) needs a sample outside the volume: {}", world[0], world[1], world[2], e.what()));
+          fmt::format("world point ({}, {}, {}) needs a sample outside the volume: {}", world[0],
+                      world[1], world[2], e.what()));
     }
     T d[3 + 6] = {};
     const T value = support::evaluate_located<Order, Tr>(located, v, d);

@@ -11,24 +11,29 @@ namespace boxgen::runtime {
 
 namespace {
 
-std::uint64_t checked_count(const CosetLattice& lattice, const Sizes& sizes, double h, const Vec3& origin) {
+std::uint64_t checked_count(const CosetLattice& lattice, const Sizes& sizes, double h,
+                            const Vec3& origin) {
   const int k = lattice.coset_count();
   std::uint64_t count = static_cast<std::uint64_t>(k);
   for (int a = 0; a < 3; ++a) {
     if (sizes[a] < 1 || sizes[a] > LatticeVolume<double>::kMaxSize)
-      throw std::invalid_argument(fmt::format("{} volume size {} x {} x {} per coset is out of range (each must be in 1..{})",
-                                              lattice.name(), sizes[0], sizes[1], sizes[2], LatticeVolume<double>::kMaxSize));
-    count *= static_cast<std::uint64_t>(sizes[a]);  // K <= 64^3, sizes <= 2^24: checked before overflow
+      throw std::invalid_argument(fmt::format(
+          "{} volume size {} x {} x {} per coset is out of range (each must be in 1..{})",
+          lattice.name(), sizes[0], sizes[1], sizes[2], LatticeVolume<double>::kMaxSize));
+    count *=
+        static_cast<std::uint64_t>(sizes[a]);  // K <= 64^3, sizes <= 2^24: checked before overflow
     if (count > LatticeVolume<double>::kMaxSamples)
-      throw std::invalid_argument(fmt::format("{} volume of {} x {} x {} x {} samples is too large (at most {} samples)", lattice.name(),
-                                              k, sizes[0], sizes[1], sizes[2], LatticeVolume<double>::kMaxSamples));
+      throw std::invalid_argument(fmt::format(
+          "{} volume of {} x {} x {} x {} samples is too large (at most {} samples)",
+          lattice.name(), k, sizes[0], sizes[1], sizes[2], LatticeVolume<double>::kMaxSamples));
   }
   if (!std::isfinite(h) || h <= 0)
-    throw std::invalid_argument(fmt::format("{} volume spacing h = {} must be finite and positive", lattice.name(), h));
+    throw std::invalid_argument(
+        fmt::format("{} volume spacing h = {} must be finite and positive", lattice.name(), h));
   for (double x : origin)
     if (!std::isfinite(x))
-      throw std::invalid_argument(
-          fmt::format("{} volume origin ({}, {}, {}) must be finite", lattice.name(), origin[0], origin[1], origin[2]));
+      throw std::invalid_argument(fmt::format("{} volume origin ({}, {}, {}) must be finite",
+                                              lattice.name(), origin[0], origin[1], origin[2]));
   return count;
 }
 
@@ -36,16 +41,26 @@ std::uint64_t checked_count(const CosetLattice& lattice, const Sizes& sizes, dou
 
 template <class T>
 LatticeVolume<T>::LatticeVolume(CosetLattice lattice, Sizes sizes, double h, Vec3 origin)
-    : lattice_(std::move(lattice)), k_(lattice_.coset_count()), sizes_(sizes), h_(h), origin_(origin) {
+    : lattice_(std::move(lattice)),
+      k_(lattice_.coset_count()),
+      sizes_(sizes),
+      h_(h),
+      origin_(origin) {
   samples_.assign(static_cast<std::size_t>(checked_count(lattice_, sizes, h, origin)), T{0});
 }
 
 template <class T>
-LatticeVolume<T>::LatticeVolume(CosetLattice lattice, Sizes sizes, double h, Vec3 origin, std::vector<T>&& samples)
-    : lattice_(std::move(lattice)), k_(lattice_.coset_count()), sizes_(sizes), h_(h), origin_(origin) {
+LatticeVolume<T>::LatticeVolume(CosetLattice lattice, Sizes sizes, double h, Vec3 origin,
+                                std::vector<T>&& samples)
+    : lattice_(std::move(lattice)),
+      k_(lattice_.coset_count()),
+      sizes_(sizes),
+      h_(h),
+      origin_(origin) {
   if (samples.size() != checked_count(lattice_, sizes, h, origin))
-    throw std::invalid_argument(fmt::format("{} volume of {} x {} x {} x {} samples given {} samples", lattice_.name(), k_, sizes[0],
-                                            sizes[1], sizes[2], samples.size()));
+    throw std::invalid_argument(
+        fmt::format("{} volume of {} x {} x {} x {} samples given {} samples", lattice_.name(), k_,
+                    sizes[0], sizes[1], sizes[2], samples.size()));
   samples_ = std::move(samples);
 }
 
@@ -56,9 +71,11 @@ T& LatticeVolume<T>::at(int c, int i, int j, int k) {
 
 template <class T>
 const T& LatticeVolume<T>::at(int c, int i, int j, int k) const {
-  if (c < 0 || c >= k_ || i < 0 || i >= sizes_[0] || j < 0 || j >= sizes_[1] || k < 0 || k >= sizes_[2])
-    throw std::out_of_range(fmt::format("sample (coset {}, {}, {}, {}) is outside the {} volume ({} cosets of {} x {} x {})", c, i, j, k,
-                                        lattice_.name(), k_, sizes_[0], sizes_[1], sizes_[2]));
+  if (c < 0 || c >= k_ || i < 0 || i >= sizes_[0] || j < 0 || j >= sizes_[1] || k < 0 ||
+      k >= sizes_[2])
+    throw std::out_of_range(fmt::format(
+        "sample (coset {}, {}, {}, {}) is outside the {} volume ({} cosets of {} x {} x {})", c, i,
+        j, k, lattice_.name(), k_, sizes_[0], sizes_[1], sizes_[2]));
   return samples_[index(c, i, j, k)];
 }
 
@@ -94,13 +111,15 @@ bool LatticeVolume<T>::contains_box(const LatticePoint& lo, const LatticePoint& 
     std::int64_t first[3], last[3];
     bool empty = false;
     for (int a = 0; a < 3; ++a) {
-      first[a] = o[a] + d * floor_div(lo[a] - o[a] + d - 1, d);  // smallest x >= lo with x = off (mod d)
-      last[a] = o[a] + d * floor_div(hi[a] - o[a], d);           // largest x <= hi
+      first[a] =
+          o[a] + d * floor_div(lo[a] - o[a] + d - 1, d);  // smallest x >= lo with x = off (mod d)
+      last[a] = o[a] + d * floor_div(hi[a] - o[a], d);    // largest x <= hi
       if (first[a] > last[a]) empty = true;
     }
     if (empty) continue;
     for (int a = 0; a < 3; ++a)
-      if (first[a] < o[a] || last[a] > o[a] + d * (static_cast<std::int64_t>(sizes_[a]) - 1)) return false;
+      if (first[a] < o[a] || last[a] > o[a] + d * (static_cast<std::int64_t>(sizes_[a]) - 1))
+        return false;
   }
   return true;
 }
@@ -108,9 +127,11 @@ bool LatticeVolume<T>::contains_box(const LatticePoint& lo, const LatticePoint& 
 template <class T>
 void LatticeVolume<T>::throw_outside(std::int64_t x, std::int64_t y, std::int64_t z) const {
   if (!lattice_.contains(x, y, z))
-    throw std::out_of_range(fmt::format("({}, {}, {}) is not a point of the {} lattice", x, y, z, lattice_.name()));
-  throw std::out_of_range(fmt::format("{} lattice point ({}, {}, {}) is outside the volume ({} cosets of {} x {} x {})", lattice_.name(), x,
-                                      y, z, k_, sizes_[0], sizes_[1], sizes_[2]));
+    throw std::out_of_range(
+        fmt::format("({}, {}, {}) is not a point of the {} lattice", x, y, z, lattice_.name()));
+  throw std::out_of_range(
+      fmt::format("{} lattice point ({}, {}, {}) is outside the volume ({} cosets of {} x {} x {})",
+                  lattice_.name(), x, y, z, k_, sizes_[0], sizes_[1], sizes_[2]));
 }
 
 template <class T>
@@ -124,8 +145,9 @@ LatticeVolume<T> to_lattice_volume(BccVolume<T>&& volume) {
 template <class T>
 BccVolume<T> to_bcc_volume(LatticeVolume<T>&& volume) {
   if (!(volume.lattice() == CosetLattice::bcc()))
-    throw std::invalid_argument(fmt::format("the volume is on the {} lattice (offsets {}), not on BCC with offsets (0,0,0) (1,1,1)",
-                                            volume.lattice().name(), volume.lattice().offsets_text()));
+    throw std::invalid_argument(fmt::format(
+        "the volume is on the {} lattice (offsets {}), not on BCC with offsets (0,0,0) (1,1,1)",
+        volume.lattice().name(), volume.lattice().offsets_text()));
   const Sizes sizes = volume.sizes();
   const double h = volume.spacing();
   const Vec3 origin = volume.origin();

@@ -23,7 +23,8 @@ namespace boxgen::runtime {
 
 template <class T>
 class LatticeVolume {
-  static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>, "LatticeVolume holds float or double");
+  static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>,
+                "LatticeVolume holds float or double");
 
  public:
   using value_type = T;
@@ -53,17 +54,23 @@ class LatticeVolume {
     return static_cast<std::size_t>(c) +
            static_cast<std::size_t>(k_) *
                (static_cast<std::size_t>(i) +
-                static_cast<std::size_t>(sizes_[0]) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(sizes_[1]) * static_cast<std::size_t>(k)));
+                static_cast<std::size_t>(sizes_[0]) *
+                    (static_cast<std::size_t>(j) +
+                     static_cast<std::size_t>(sizes_[1]) * static_cast<std::size_t>(k)));
   }
   T& operator()(int c, int i, int j, int k) noexcept { return samples_[index(c, i, j, k)]; }
-  const T& operator()(int c, int i, int j, int k) const noexcept { return samples_[index(c, i, j, k)]; }
+  const T& operator()(int c, int i, int j, int k) const noexcept {
+    return samples_[index(c, i, j, k)];
+  }
   // Checked access: throws std::out_of_range (one line) unless 0 <= c < K, 0 <= i < N0, ...
   T& at(int c, int i, int j, int k);
   const T& at(int c, int i, int j, int k) const;
 
   // Lattice coordinates of sample (c, i, j, k): off_c + d (i, j, k).
   LatticePoint lattice_point(int c, int i, int j, int k) const noexcept;
-  bool is_lattice_point(std::int64_t x, std::int64_t y, std::int64_t z) const noexcept { return lattice_.contains(x, y, z); }
+  bool is_lattice_point(std::int64_t x, std::int64_t y, std::int64_t z) const noexcept {
+    return lattice_.contains(x, y, z);
+  }
   bool contains(std::int64_t x, std::int64_t y, std::int64_t z) const noexcept;
   bool contains(const LatticePoint& p) const noexcept { return contains(p[0], p[1], p[2]); }
   // Does the volume hold every lattice point of the box lo <= p <= hi? True for an empty box.
@@ -75,21 +82,28 @@ class LatticeVolume {
   }
   T value(const LatticePoint& p) const { return value(p[0], p[1], p[2]); }
   // A lattice point the caller has shown to be inside: no check.
-  T value_unchecked(const LatticePoint& p) const noexcept { return samples_[lattice_index(p[0], p[1], p[2])]; }
+  T value_unchecked(const LatticePoint& p) const noexcept {
+    return samples_[lattice_index(p[0], p[1], p[2])];
+  }
   T value_or(std::int64_t x, std::int64_t y, std::int64_t z, T outside) const noexcept {
     return contains(x, y, z) ? samples_[lattice_index(x, y, z)] : outside;
   }
-  T value_or(const LatticePoint& p, T outside) const noexcept { return value_or(p[0], p[1], p[2], outside); }
+  T value_or(const LatticePoint& p, T outside) const noexcept {
+    return value_or(p[0], p[1], p[2], outside);
+  }
 
   Vec3 to_lattice(const Vec3& world) const noexcept {
-    return {(world[0] - origin_[0]) / h_, (world[1] - origin_[1]) / h_, (world[2] - origin_[2]) / h_};
+    return {(world[0] - origin_[0]) / h_, (world[1] - origin_[1]) / h_,
+            (world[2] - origin_[2]) / h_};
   }
   Vec3 to_world(const Vec3& lattice) const noexcept {
-    return {origin_[0] + h_ * lattice[0], origin_[1] + h_ * lattice[1], origin_[2] + h_ * lattice[2]};
+    return {origin_[0] + h_ * lattice[0], origin_[1] + h_ * lattice[1],
+            origin_[2] + h_ * lattice[2]};
   }
   Vec3 sample_position(int c, int i, int j, int k) const noexcept {
     const LatticePoint p = lattice_point(c, i, j, k);
-    return to_world({static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2])});
+    return to_world(
+        {static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2])});
   }
 
  private:
@@ -102,7 +116,9 @@ class LatticeVolume {
     const int c = lattice_.coset_of(x, y, z);
     const Offset& o = lattice_.offsets()[static_cast<std::size_t>(c)];
     const int d = lattice_.period();
-    return index(c, static_cast<int>(floor_div(x - o[0], d)), static_cast<int>(floor_div(y - o[1], d)), static_cast<int>(floor_div(z - o[2], d)));
+    return index(c, static_cast<int>(floor_div(x - o[0], d)),
+                 static_cast<int>(floor_div(y - o[1], d)),
+                 static_cast<int>(floor_div(z - o[2], d)));
   }
   [[noreturn]] void throw_outside(std::int64_t x, std::int64_t y, std::int64_t z) const;
 

@@ -2,21 +2,21 @@
 
 #include "runtime/output_file.h"
 
+#include <bzlib.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <teem/biff.h>
-#include <bzlib.h>
 #include <teem/nrrd.h>
-#include <zlib.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
 #include <atomic>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -46,7 +46,8 @@ std::mutex& teem_mutex() {
 // and at most `limit` characters are kept.
 std::string printable(std::string_view text, std::size_t limit = 200) {
   std::string out;
-  for (char ch : text.substr(0, limit)) out += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
+  for (char ch : text.substr(0, limit))
+    out += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
   if (text.size() > limit) out += "...";
   return out;
 }
@@ -69,10 +70,14 @@ std::string teem_error() {
       const std::size_t bracket = line.find("] ");
       if (bracket != std::string_view::npos) line.remove_prefix(bracket + 2);
       const std::size_t colon = line.find(':');
-      if (colon != std::string_view::npos && line.substr(0, colon).find(' ') == std::string_view::npos) line.remove_prefix(colon + 1);
+      if (colon != std::string_view::npos &&
+          line.substr(0, colon).find(' ') == std::string_view::npos)
+        line.remove_prefix(colon + 1);
     }
-    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front()))) line.remove_prefix(1);
-    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.remove_suffix(1);
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front())))
+      line.remove_prefix(1);
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
+      line.remove_suffix(1);
     if (!line.empty()) best = std::string(line);
   }
   return best.empty() ? std::string("Teem reported an unspecified error") : printable(best);
@@ -150,7 +155,8 @@ NrrdShell wrap(const T* data, unsigned dim, const std::size_t* sizes) {
 
 void set_origin(Nrrd* nrrd, const Vec3& origin) {
   double o[3] = {origin[0], origin[1], origin[2]};
-  if (nrrdSpaceOriginSet(nrrd, o) != 0) throw NrrdError("cannot describe the volume to Teem: " + teem_error());
+  if (nrrdSpaceOriginSet(nrrd, o) != 0)
+    throw NrrdError("cannot describe the volume to Teem: " + teem_error());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -181,7 +187,8 @@ bool header_names_data_file(std::string_view head, bool& header_complete) {
     if (line.starts_with("#")) continue;
     std::string squeezed;
     for (char ch : line)
-      if (!std::isspace(static_cast<unsigned char>(ch))) squeezed += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+      if (!std::isspace(static_cast<unsigned char>(ch)))
+        squeezed += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (squeezed.find("datafile:") != std::string::npos) return true;
   }
   return false;
@@ -211,29 +218,37 @@ std::string check_bcc_header(const Nrrd* nrrd, VolumeHeader& header) {
   if (const auto lattice = key_value(nrrd, "lattice"); lattice && *lattice != "bcc")
     return fmt::format("its lattice is '{}', not 'bcc'", printable(*lattice, 40));
   if (nrrd->dim != 4)
-    return fmt::format("it has dimension {}; a BCC volume is a 4-D NRRD (sizes 2 N0 N1 N2, the coset axis first)", nrrd->dim);
+    return fmt::format(
+        "it has dimension {}; a BCC volume is a 4-D NRRD (sizes 2 N0 N1 N2, the coset axis first)",
+        nrrd->dim);
   if (nrrd->axis[0].size != 2)
-    return fmt::format("axis 0 has size {}; the coset axis of a BCC volume must have size 2", nrrd->axis[0].size);
+    return fmt::format("axis 0 has size {}; the coset axis of a BCC volume must have size 2",
+                       nrrd->axis[0].size);
   std::uint64_t count = 2;
   for (int a = 0; a < 3; ++a) {
     const std::size_t n = nrrd->axis[a + 1].size;
     if (n < 1 || n > static_cast<std::size_t>(BccVolume<double>::kMaxSize))
-      return fmt::format("axis {} has size {} (each must be in 1..{})", a + 1, n, BccVolume<double>::kMaxSize);
+      return fmt::format("axis {} has size {} (each must be in 1..{})", a + 1, n,
+                         BccVolume<double>::kMaxSize);
     header.sizes[a] = static_cast<int>(n);
     count *= n;
     if (count > BccVolume<double>::kMaxSamples)
-      return fmt::format("its {} x {} x {} x {} samples are too many (at most {})", nrrd->axis[0].size, nrrd->axis[1].size,
-                         nrrd->axis[2].size, nrrd->axis[3].size, BccVolume<double>::kMaxSamples);
+      return fmt::format("its {} x {} x {} x {} samples are too many (at most {})",
+                         nrrd->axis[0].size, nrrd->axis[1].size, nrrd->axis[2].size,
+                         nrrd->axis[3].size, BccVolume<double>::kMaxSamples);
   }
   if (nrrd->type != nrrdTypeFloat && nrrd->type != nrrdTypeDouble)
-    return fmt::format("its sample type '{}' is not supported (float or double)", printable(airEnumStr(nrrdType, nrrd->type)));
+    return fmt::format("its sample type '{}' is not supported (float or double)",
+                       printable(airEnumStr(nrrdType, nrrd->type)));
   header.type = nrrd->type;
   header.data_bytes = count * (nrrd->type == nrrdTypeFloat ? 4 : 8);
 
   if (nrrd->spaceDim != 3)
-    return "it has no 3-D space directions; a BCC volume needs 'space directions: none (2h,0,0) (0,2h,0) (0,0,2h)'";
+    return "it has no 3-D space directions; a BCC volume needs 'space directions: none (2h,0,0) "
+           "(0,2h,0) (0,0,2h)'";
   for (int b = 0; b < 3; ++b)
-    if (!std::isnan(nrrd->axis[0].spaceDirection[b])) return "axis 0 (the coset axis) must have the space direction 'none'";
+    if (!std::isnan(nrrd->axis[0].spaceDirection[b]))
+      return "axis 0 (the coset axis) must have the space direction 'none'";
   const double d = nrrd->axis[1].spaceDirection[0];
   bool consistent = std::isfinite(d) && d / 2 > 0;  // h = d/2 must not underflow to 0
   for (int a = 0; a < 3 && consistent; ++a)
@@ -245,10 +260,12 @@ std::string check_bcc_header(const Nrrd* nrrd, VolumeHeader& header) {
     }
   if (!consistent) {
     const auto& s = nrrd->axis;
-    return fmt::format("its space directions ({},{},{}) ({},{},{}) ({},{},{}) are not (2h,0,0) (0,2h,0) (0,0,2h) for one h > 0",
-                       s[1].spaceDirection[0], s[1].spaceDirection[1], s[1].spaceDirection[2], s[2].spaceDirection[0],
-                       s[2].spaceDirection[1], s[2].spaceDirection[2], s[3].spaceDirection[0], s[3].spaceDirection[1],
-                       s[3].spaceDirection[2]);
+    return fmt::format(
+        "its space directions ({},{},{}) ({},{},{}) ({},{},{}) are not (2h,0,0) (0,2h,0) (0,0,2h) "
+        "for one h > 0",
+        s[1].spaceDirection[0], s[1].spaceDirection[1], s[1].spaceDirection[2],
+        s[2].spaceDirection[0], s[2].spaceDirection[1], s[2].spaceDirection[2],
+        s[3].spaceDirection[0], s[3].spaceDirection[1], s[3].spaceDirection[2]);
   }
   header.h = d / 2;
   for (int b = 0; b < 3; ++b) {
@@ -282,10 +299,13 @@ std::optional<std::vector<Offset>> parse_offsets(std::string_view text) {
       if ((comma == std::string_view::npos) != (a == 2)) return std::nullopt;
       std::string_view entry = inner.substr(0, comma);
       inner.remove_prefix(comma == std::string_view::npos ? inner.size() : comma + 1);
-      while (!entry.empty() && std::isspace(static_cast<unsigned char>(entry.front()))) entry.remove_prefix(1);
-      while (!entry.empty() && std::isspace(static_cast<unsigned char>(entry.back()))) entry.remove_suffix(1);
+      while (!entry.empty() && std::isspace(static_cast<unsigned char>(entry.front())))
+        entry.remove_prefix(1);
+      while (!entry.empty() && std::isspace(static_cast<unsigned char>(entry.back())))
+        entry.remove_suffix(1);
       const auto [end, error] = std::from_chars(entry.data(), entry.data() + entry.size(), o[a]);
-      if (entry.empty() || error != std::errc() || end != entry.data() + entry.size()) return std::nullopt;
+      if (entry.empty() || error != std::errc() || end != entry.data() + entry.size())
+        return std::nullopt;
     }
     offsets.push_back(o);
     if (offsets.size() > 1u << 18) return std::nullopt;
@@ -301,23 +321,34 @@ std::string file_lattice(const Nrrd* nrrd, VolumeHeader& header) {
   const auto name = key_value(nrrd, "lattice");
   const auto rows = key_value(nrrd, "lattice_rows");
   const auto offsets = key_value(nrrd, "coset_offsets");
-  if (!name && nrrd->dim != 3) return "the key/value 'lattice:=bcc|fcc|cartesian|custom' that marks a lattice volume is missing";
+  if (!name && nrrd->dim != 3)
+    return "the key/value 'lattice:=bcc|fcc|cartesian|custom' that marks a lattice volume is "
+           "missing";
   const std::string value = name.value_or("cartesian");
   try {
     if (value == "custom") {
-      if (!rows) return "its lattice is 'custom' but the key/value 'lattice_rows:=a,b,c; d,e,f; g,h,i' is missing";
-      if (!offsets) return "its lattice is 'custom' but the key/value 'coset_offsets:=(x,y,z) ...' is missing";
+      if (!rows)
+        return "its lattice is 'custom' but the key/value 'lattice_rows:=a,b,c; d,e,f; g,h,i' is "
+               "missing";
+      if (!offsets)
+        return "its lattice is 'custom' but the key/value 'coset_offsets:=(x,y,z) ...' is missing";
     } else if (value != "bcc" && value != "fcc" && value != "cartesian") {
-      return fmt::format("its lattice is '{}', not bcc, fcc, cartesian or custom", printable(value, 40));
+      return fmt::format("its lattice is '{}', not bcc, fcc, cartesian or custom",
+                         printable(value, 40));
     }
-    CosetLattice lattice = value == "custom" ? CosetLattice::parse(*rows) : CosetLattice::parse(value);
+    CosetLattice lattice =
+        value == "custom" ? CosetLattice::parse(*rows) : CosetLattice::parse(value);
     if (value != "custom" && rows) {
       const CosetLattice declared = CosetLattice::parse(*rows);
-      if (declared.name() != value) return fmt::format("its lattice_rows '{}' do not generate the {} lattice", printable(*rows, 80), value);
+      if (declared.name() != value)
+        return fmt::format("its lattice_rows '{}' do not generate the {} lattice",
+                           printable(*rows, 80), value);
     }
     if (offsets) {
       const auto parsed = parse_offsets(*offsets);
-      if (!parsed) return fmt::format("its coset_offsets '{}' are not of the form '(x,y,z) (x,y,z) ...'", printable(*offsets, 80));
+      if (!parsed)
+        return fmt::format("its coset_offsets '{}' are not of the form '(x,y,z) (x,y,z) ...'",
+                           printable(*offsets, 80));
       lattice = lattice.with_offsets(*parsed);
     }
     header.lattice = lattice;
@@ -335,39 +366,53 @@ std::string check_lattice_header(const Nrrd* nrrd, VolumeHeader& header) {
   unsigned first = 0;  // the first domain axis
   if (nrrd->dim == 4) {
     if (nrrd->axis[0].size != static_cast<std::size_t>(k))
-      return fmt::format("axis 0 has size {}; the coset axis of a {} volume must have size K = {}", nrrd->axis[0].size, name, k);
+      return fmt::format("axis 0 has size {}; the coset axis of a {} volume must have size K = {}",
+                         nrrd->axis[0].size, name, k);
     first = 1;
   } else if (nrrd->dim != 3 || k != 1) {
-    return fmt::format("it has dimension {}; a {} volume is a 4-D NRRD (sizes {} N0 N1 N2, the coset axis first){}", nrrd->dim, name, k,
-                       k == 1 ? " or a 3-D one" : "");
+    return fmt::format(
+        "it has dimension {}; a {} volume is a 4-D NRRD (sizes {} N0 N1 N2, the coset axis "
+        "first){}",
+        nrrd->dim, name, k, k == 1 ? " or a 3-D one" : "");
   }
   std::uint64_t count = static_cast<std::uint64_t>(k);
   for (int a = 0; a < 3; ++a) {
     const std::size_t n = nrrd->axis[first + a].size;
     if (n < 1 || n > static_cast<std::size_t>(LatticeVolume<double>::kMaxSize))
-      return fmt::format("axis {} has size {} (each must be in 1..{})", first + a, n, LatticeVolume<double>::kMaxSize);
+      return fmt::format("axis {} has size {} (each must be in 1..{})", first + a, n,
+                         LatticeVolume<double>::kMaxSize);
     header.sizes[a] = static_cast<int>(n);
     count *= n;
     if (count > LatticeVolume<double>::kMaxSamples)
-      return fmt::format("its samples are too many (at most {})", LatticeVolume<double>::kMaxSamples);
+      return fmt::format("its samples are too many (at most {})",
+                         LatticeVolume<double>::kMaxSamples);
   }
   if (nrrd->type != nrrdTypeFloat && nrrd->type != nrrdTypeDouble)
-    return fmt::format("its sample type '{}' is not supported (float or double)", printable(airEnumStr(nrrdType, nrrd->type)));
+    return fmt::format("its sample type '{}' is not supported (float or double)",
+                       printable(airEnumStr(nrrdType, nrrd->type)));
   header.type = nrrd->type;
   header.data_bytes = count * (nrrd->type == nrrdTypeFloat ? 4 : 8);
-  if (nrrd->spaceDim != 3) return fmt::format("it has no 3-D space directions; a {} volume needs (dh,0,0) (0,dh,0) (0,0,dh), d = {}", name, d);
+  if (nrrd->spaceDim != 3)
+    return fmt::format(
+        "it has no 3-D space directions; a {} volume needs (dh,0,0) (0,dh,0) (0,0,dh), d = {}",
+        name, d);
   if (first == 1)
     for (int b = 0; b < 3; ++b)
-      if (!std::isnan(nrrd->axis[0].spaceDirection[b])) return "axis 0 (the coset axis) must have the space direction 'none'";
+      if (!std::isnan(nrrd->axis[0].spaceDirection[b]))
+        return "axis 0 (the coset axis) must have the space direction 'none'";
   const double step = nrrd->axis[first].spaceDirection[0];
   bool consistent = std::isfinite(step) && step / d > 0;
   for (int a = 0; a < 3 && consistent; ++a)
     for (int b = 0; b < 3; ++b) {
       const double v = nrrd->axis[first + a].spaceDirection[b];
-      if (!std::isfinite(v) || std::fabs(v - (a == b ? step : 0.0)) > 1e-9 * step) consistent = false;
+      if (!std::isfinite(v) || std::fabs(v - (a == b ? step : 0.0)) > 1e-9 * step)
+        consistent = false;
     }
   if (!consistent)
-    return fmt::format("its space directions are not (dh,0,0) (0,dh,0) (0,0,dh) for one h > 0 (d = {} for the {} lattice)", d, name);
+    return fmt::format(
+        "its space directions are not (dh,0,0) (0,dh,0) (0,0,dh) for one h > 0 (d = {} for the {} "
+        "lattice)",
+        d, name);
   header.h = step / d;
   for (int b = 0; b < 3; ++b) {
     header.origin[b] = nrrd->spaceOrigin[b];
@@ -379,7 +424,7 @@ std::string check_lattice_header(const Nrrd* nrrd, VolumeHeader& header) {
 // Where and how the data of an attached NRRD is stored, as Teem read it from the header.
 struct DataLayout {
   const NrrdEncoding* encoding = nullptr;
-  long start = -1;                 // file offset of the first data byte (the header's end)
+  long start = -1;                // file offset of the first data byte (the header's end)
   int endian = airEndianUnknown;  // the byte order the header declares (binary encodings)
 };
 
@@ -391,9 +436,11 @@ std::string teem_read(std::FILE* file, Nrrd* nrrd, bool header_only, DataLayout&
   io->skipData = header_only ? 1 : 0;
   if (nrrdRead(nrrd, file, io.get()) != 0) return teem_error();
   if (io->format != nrrdFormatNRRD) return "not a NRRD file";
-  if (io->dataFNArr && io->dataFNArr->len != 0) return "detached data files are not supported; keep the data in the .nrrd file";
+  if (io->dataFNArr && io->dataFNArr->len != 0)
+    return "detached data files are not supported; keep the data in the .nrrd file";
   // Skipped lines or bytes would hide data the exact size check below could not account for.
-  if (io->lineSkip != 0 || io->byteSkip != 0) return "'line skip' and 'byte skip' are not supported; the data must follow the header";
+  if (io->lineSkip != 0 || io->byteSkip != 0)
+    return "'line skip' and 'byte skip' are not supported; the data must follow the header";
   layout.encoding = io->encoding;
   layout.endian = io->endian;
   layout.start = header_only ? std::ftell(file) : layout.start;
@@ -404,7 +451,8 @@ std::string teem_read(std::FILE* file, Nrrd* nrrd, bool header_only, DataLayout&
 // to `cap` bytes (counting stops beyond it). As Teem's reader does, gzip data without the gzip
 // magic is taken as stored uncompressed; concatenated gzip members or bzip2 streams count
 // together. Sets `problem` for data that does not decompress.
-void count_decompressed(std::FILE* file, bool gzip, std::uint64_t cap, std::uint64_t& count, std::string& problem) {
+void count_decompressed(std::FILE* file, bool gzip, std::uint64_t cap, std::uint64_t& count,
+                        std::string& problem) {
   std::vector<unsigned char> in(1 << 16), out(1 << 16);
   std::size_t have = std::fread(in.data(), 1, in.size(), file), used = 0;
   count = 0;
@@ -443,7 +491,8 @@ void count_decompressed(std::FILE* file, bool gzip, std::uint64_t cap, std::uint
       }
       inflateEnd(&z);
       if (status != Z_STREAM_END && count <= cap) {
-        problem = status == Z_OK || status == Z_BUF_ERROR ? "its gzip data end too early" : "its gzip data are corrupt";
+        problem = status == Z_OK || status == Z_BUF_ERROR ? "its gzip data end too early"
+                                                          : "its gzip data are corrupt";
         return;
       }
     } else {
@@ -476,16 +525,18 @@ void count_decompressed(std::FILE* file, bool gzip, std::uint64_t cap, std::uint
 // The amount of data after the header, counted in the unit the encoding stores: bytes (raw,
 // and decompressed bytes for gzip and bzip2, counted up to `cap`), numbers (ascii: whitespace-
 // separated tokens) or hex digits (hex). Returns false for an encoding it cannot count.
-bool count_stored_data(std::FILE* file, const DataLayout& layout, std::uint64_t file_size, std::uint64_t cap, std::uint64_t& count,
-                       std::string& problem) {
+bool count_stored_data(std::FILE* file, const DataLayout& layout, std::uint64_t file_size,
+                       std::uint64_t cap, std::uint64_t& count, std::string& problem) {
   const auto start = static_cast<std::uint64_t>(std::max(0L, layout.start));
   if (layout.encoding == nrrdEncodingRaw) {
     count = file_size - std::min(file_size, start);
     return true;
   }
   if (layout.encoding == nrrdEncodingGzip || layout.encoding == nrrdEncodingBzip2) {
-    if (std::fseek(file, layout.start, SEEK_SET) != 0) problem = std::strerror(errno);
-    else count_decompressed(file, layout.encoding == nrrdEncodingGzip, cap, count, problem);
+    if (std::fseek(file, layout.start, SEEK_SET) != 0)
+      problem = std::strerror(errno);
+    else
+      count_decompressed(file, layout.encoding == nrrdEncodingGzip, cap, count, problem);
     return true;
   }
   const bool ascii = layout.encoding == nrrdEncodingAscii;
@@ -547,10 +598,13 @@ std::string check_byte_order(const T* data, std::size_t count, int endian) {
     swapped += implausible(byte_swapped(data[s])) ? 1 : 0;
   }
   if (declared == 0 || swapped != 0 || 2 * declared < nonzero) return {};
-  return fmt::format("its data do not match the byte order its header declares ('endian: {}'): read so, {} of its {} non-zero "
-                     "samples are not finite or beyond 1e+-{}, and none are in the other byte order; correct its 'endian' field",
-                     printable(airEnumStr(airEndian, endian)), declared, nonzero,
-                     std::is_same_v<T, float> ? 20 : 150);
+  return fmt::format(
+      "its data do not match the byte order its header declares ('endian: {}'): read so, {} of its "
+      "{} non-zero "
+      "samples are not finite or beyond 1e+-{}, and none are in the other byte order; correct its "
+      "'endian' field",
+      printable(airEnumStr(airEndian, endian)), declared, nonzero,
+      std::is_same_v<T, float> ? 20 : 150);
 }
 
 }  // namespace
@@ -559,15 +613,18 @@ template <class T>
 void write_bcc_nrrd(const fs::path& path, const BccVolume<T>& volume) {
   std::lock_guard lock(teem_mutex());
   const Sizes& n = volume.sizes();
-  const std::size_t sizes[4] = {2, static_cast<std::size_t>(n[0]), static_cast<std::size_t>(n[1]), static_cast<std::size_t>(n[2])};
+  const std::size_t sizes[4] = {2, static_cast<std::size_t>(n[0]), static_cast<std::size_t>(n[1]),
+                                static_cast<std::size_t>(n[2])};
   NrrdShell nrrd = wrap(volume.samples().data(), 4, sizes);
   nrrd->axis[0].kind = nrrdKindList;
   for (int a = 0; a < 3; ++a) {
     nrrd->axis[a + 1].kind = nrrdKindDomain;
-    for (int b = 0; b < 3; ++b) nrrd->axis[a + 1].spaceDirection[b] = a == b ? 2 * volume.spacing() : 0.0;
+    for (int b = 0; b < 3; ++b)
+      nrrd->axis[a + 1].spaceDirection[b] = a == b ? 2 * volume.spacing() : 0.0;
   }
   set_origin(nrrd.get(), volume.origin());
-  if (nrrdKeyValueAdd(nrrd.get(), "lattice", "bcc") != 0) throw NrrdError("cannot describe the volume to Teem: " + teem_error());
+  if (nrrdKeyValueAdd(nrrd.get(), "lattice", "bcc") != 0)
+    throw NrrdError("cannot describe the volume to Teem: " + teem_error());
   write_atomically(path, [&](std::FILE* file) { return write_nrrd(file, nrrd.get()); });
 }
 
@@ -580,8 +637,9 @@ void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume) {
   const double step = lattice.period() * volume.spacing();
   // K = 1: a plain 3-D NRRD, which any NRRD reader takes for what it is.
   const unsigned first = k == 1 ? 0 : 1, dim = 3 + first;
-  const std::size_t sizes[4] = {static_cast<std::size_t>(k == 1 ? n[0] : k), static_cast<std::size_t>(k == 1 ? n[1] : n[0]),
-                                static_cast<std::size_t>(k == 1 ? n[2] : n[1]), static_cast<std::size_t>(n[2])};
+  const std::size_t sizes[4] = {
+      static_cast<std::size_t>(k == 1 ? n[0] : k), static_cast<std::size_t>(k == 1 ? n[1] : n[0]),
+      static_cast<std::size_t>(k == 1 ? n[2] : n[1]), static_cast<std::size_t>(n[2])};
   NrrdShell nrrd = wrap(volume.samples().data(), dim, sizes);
   if (first == 1) nrrd->axis[0].kind = nrrdKindList;
   for (unsigned a = 0; a < 3; ++a) {
@@ -591,7 +649,8 @@ void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume) {
   set_origin(nrrd.get(), volume.origin());
   bool ok = nrrdKeyValueAdd(nrrd.get(), "lattice", lattice.name().c_str()) == 0;
   const bool custom = lattice.name() == "custom";
-  if (ok && custom) ok = nrrdKeyValueAdd(nrrd.get(), "lattice_rows", lattice.rows_text().c_str()) == 0;
+  if (ok && custom)
+    ok = nrrdKeyValueAdd(nrrd.get(), "lattice_rows", lattice.rows_text().c_str()) == 0;
   // A named lattice's offsets are implied unless the volume stores its cosets in another order.
   if (ok && (custom || !(lattice == CosetLattice::parse(lattice.name()))))
     ok = nrrdKeyValueAdd(nrrd.get(), "coset_offsets", lattice.offsets_text().c_str()) == 0;
@@ -603,17 +662,23 @@ template <class T>
 void write_cartesian_nrrd(const fs::path& path, const CartesianVolume<T>& grid) {
   std::uint64_t count = 1;
   for (int a = 0; a < 3; ++a) {
-    if (grid.sizes[a] < 1) throw std::invalid_argument(fmt::format("Cartesian grid size {} on axis {} must be at least 1", grid.sizes[a], a));
+    if (grid.sizes[a] < 1)
+      throw std::invalid_argument(
+          fmt::format("Cartesian grid size {} on axis {} must be at least 1", grid.sizes[a], a));
     count *= static_cast<std::uint64_t>(grid.sizes[a]);
     if (!std::isfinite(grid.spacing[a]) || grid.spacing[a] <= 0)
-      throw std::invalid_argument(fmt::format("Cartesian grid spacing {} on axis {} must be finite and positive", grid.spacing[a], a));
-    if (!std::isfinite(grid.origin[a])) throw std::invalid_argument(fmt::format("Cartesian grid origin on axis {} is not finite", a));
+      throw std::invalid_argument(fmt::format(
+          "Cartesian grid spacing {} on axis {} must be finite and positive", grid.spacing[a], a));
+    if (!std::isfinite(grid.origin[a]))
+      throw std::invalid_argument(fmt::format("Cartesian grid origin on axis {} is not finite", a));
   }
   if (count != grid.values.size())
-    throw std::invalid_argument(fmt::format("Cartesian grid of {} x {} x {} holds {} values", grid.sizes[0], grid.sizes[1], grid.sizes[2],
+    throw std::invalid_argument(fmt::format("Cartesian grid of {} x {} x {} holds {} values",
+                                            grid.sizes[0], grid.sizes[1], grid.sizes[2],
                                             grid.values.size()));
   std::lock_guard lock(teem_mutex());
-  const std::size_t sizes[3] = {static_cast<std::size_t>(grid.sizes[0]), static_cast<std::size_t>(grid.sizes[1]),
+  const std::size_t sizes[3] = {static_cast<std::size_t>(grid.sizes[0]),
+                                static_cast<std::size_t>(grid.sizes[1]),
                                 static_cast<std::size_t>(grid.sizes[2])};
   NrrdShell nrrd = wrap(grid.values.data(), 3, sizes);
   for (int a = 0; a < 3; ++a) {
@@ -631,10 +696,12 @@ using HeaderCheck = std::string (*)(const Nrrd*, VolumeHeader&);
 // Reads the volume file `path` whose header `check` accepts (`kind` names it in messages):
 // everything but building the volume, which the caller does from the header and the samples.
 template <class T>
-std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, HeaderCheck check, const char* kind,
-                           VolumeHeader& full) {
+std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, HeaderCheck check,
+                           const char* kind, VolumeHeader& full) {
   const std::string shown = printable(path.string());
-  auto fail = [&](const std::string& why) { throw NrrdError(fmt::format("cannot read {} '{}': {}", kind, shown, why)); };
+  auto fail = [&](const std::string& why) {
+    throw NrrdError(fmt::format("cannot read {} '{}': {}", kind, shown, why));
+  };
 
   // Only regular files: opening a FIFO or a device could block or never end.
   std::error_code error;
@@ -654,12 +721,16 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, H
   // text tables) out, and a detached data file is refused before Teem would open it.
   std::string head(std::min<std::uint64_t>(file_size, kMaxHeaderBytes), '\0');
   head.resize(std::fread(head.data(), 1, head.size(), file.get()));
-  if (!head.starts_with("NRRD000") || head.size() < 8 || !std::isdigit(static_cast<unsigned char>(head[7])))
+  if (!head.starts_with("NRRD000") || head.size() < 8 ||
+      !std::isdigit(static_cast<unsigned char>(head[7])))
     fail("not a NRRD file (it does not start with the magic 'NRRD000x')");
   bool header_complete = false;
   if (header_names_data_file(head, header_complete))
-    fail("detached data files ('data file:' in the header) are not supported; keep the data in the .nrrd file");
-  if (!header_complete && file_size > head.size()) fail(fmt::format("its header is longer than {} bytes", kMaxHeaderBytes));
+    fail(
+        "detached data files ('data file:' in the header) are not supported; keep the data in the "
+        ".nrrd file");
+  if (!header_complete && file_size > head.size())
+    fail(fmt::format("its header is longer than {} bytes", kMaxHeaderBytes));
 
   std::lock_guard lock(teem_mutex());
   VolumeHeader header{};
@@ -670,7 +741,8 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, H
     if (std::string why = check(nrrd.get(), header); !why.empty()) fail(why);
   }
   if (header.data_bytes > limits.max_data_bytes)
-    fail(fmt::format("its data of {} bytes exceeds the limit of {} bytes", header.data_bytes, limits.max_data_bytes));
+    fail(fmt::format("its data of {} bytes exceeds the limit of {} bytes", header.data_bytes,
+                     limits.max_data_bytes));
   // The data must be exactly what the header describes: a wrong type or too few sizes over the
   // right data would otherwise read as other numbers.
   const std::uint64_t sample_count = header.data_bytes / (header.type == nrrdTypeFloat ? 4 : 8);
@@ -678,26 +750,38 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, H
   std::string problem;
   const bool raw = layout.encoding == nrrdEncodingRaw, ascii = layout.encoding == nrrdEncodingAscii,
              hex = layout.encoding == nrrdEncodingHex;
-  const std::uint64_t expected = ascii ? sample_count : hex ? 2 * header.data_bytes : header.data_bytes;
+  const std::uint64_t expected = ascii ? sample_count
+                                 : hex ? 2 * header.data_bytes
+                                       : header.data_bytes;
   if (count_stored_data(file.get(), layout, file_size, expected, stored, problem)) {
     if (!problem.empty()) fail(problem);
-    const char* unit = raw ? "bytes of raw data" : ascii ? "numbers" : hex ? "hex digits" : "bytes of decompressed data";
+    const char* unit = raw     ? "bytes of raw data"
+                       : ascii ? "numbers"
+                       : hex   ? "hex digits"
+                               : "bytes of decompressed data";
     if (stored < expected)
-      fail(fmt::format("the file is truncated: its header announces {} {}, but only {} follow it", expected, unit, stored));
+      fail(fmt::format("the file is truncated: its header announces {} {}, but only {} follow it",
+                       expected, unit, stored));
     if (stored > expected)
-      fail(fmt::format("{}{} {} follow its header, which announces {} (its type and sizes must describe the data exactly)",
-                       raw || ascii || hex ? "" : "more than ", raw || ascii || hex ? stored : expected, unit, expected));
+      fail(
+          fmt::format("{}{} {} follow its header, which announces {} (its type and sizes must "
+                      "describe the data exactly)",
+                      raw || ascii || hex ? "" : "more than ",
+                      raw || ascii || hex ? stored : expected, unit, expected));
   }
 
   NrrdOwner nrrd(nrrdNew());
   if (std::string why = teem_read(file.get(), nrrd.get(), false, layout); !why.empty()) fail(why);
-  if (std::string why = check(nrrd.get(), full); !why.empty()) fail(why);  // the file may have changed
+  if (std::string why = check(nrrd.get(), full); !why.empty())
+    fail(why);  // the file may have changed
   if (full.data_bytes != header.data_bytes) fail("the file changed while it was read");
   if (!nrrd->data) fail("Teem returned no data");
   const std::size_t count = static_cast<std::size_t>(sample_count);
   if (layout.encoding != nrrdEncodingAscii) {
-    const std::string why = full.type == nrrdTypeFloat ? check_byte_order(static_cast<const float*>(nrrd->data), count, layout.endian)
-                                                       : check_byte_order(static_cast<const double*>(nrrd->data), count, layout.endian);
+    const std::string why =
+        full.type == nrrdTypeFloat
+            ? check_byte_order(static_cast<const float*>(nrrd->data), count, layout.endian)
+            : check_byte_order(static_cast<const double*>(nrrd->data), count, layout.endian);
     if (!why.empty()) fail(why);
   }
 
@@ -711,7 +795,8 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, H
       const double x = static_cast<const double*>(nrrd->data)[s];
       // A finite double beyond float's range has no float value (converting it is undefined).
       if (std::isfinite(x) && std::fabs(x) > std::numeric_limits<float>::max())
-        fail(fmt::format("its sample {} = {} is beyond the range of float; read it in double precision", s, x));
+        fail(fmt::format(
+            "its sample {} = {} is beyond the range of float; read it in double precision", s, x));
       out[s] = static_cast<T>(x);
     }
   if (!limits.allow_non_finite)
@@ -719,10 +804,13 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, H
       if (!std::isfinite(out[s])) {
         const Sizes& n = full.sizes;
         const auto k = static_cast<std::size_t>(full.lattice.coset_count());
-        const std::size_t cell = s / k, n0 = static_cast<std::size_t>(n[0]), n1 = static_cast<std::size_t>(n[1]);
-        fail(fmt::format("its sample {} (coset {}, {}, {}, {}) is {}; non-finite samples are refused unless allowed "
-                         "(boxrecon --allow-nonfinite)",
-                         s, s % k, cell % n0, cell / n0 % n1, cell / n0 / n1, static_cast<double>(out[s])));
+        const std::size_t cell = s / k, n0 = static_cast<std::size_t>(n[0]),
+                          n1 = static_cast<std::size_t>(n[1]);
+        fail(fmt::format(
+            "its sample {} (coset {}, {}, {}, {}) is {}; non-finite samples are refused unless "
+            "allowed "
+            "(boxrecon --allow-nonfinite)",
+            s, s % k, cell % n0, cell / n0 % n1, cell / n0 / n1, static_cast<double>(out[s])));
       }
   return out;
 }
@@ -739,8 +827,10 @@ BccVolume<T> read_bcc_nrrd(const fs::path& path, const NrrdReadLimits& limits) {
 template <class T>
 LatticeVolume<T> read_lattice_nrrd(const fs::path& path, const NrrdReadLimits& limits) {
   VolumeHeader header{};
-  std::vector<T> samples = read_volume<T>(path, limits, check_lattice_header, "lattice volume", header);
-  return LatticeVolume<T>(header.lattice, header.sizes, header.h, header.origin, std::move(samples));
+  std::vector<T> samples =
+      read_volume<T>(path, limits, check_lattice_header, "lattice volume", header);
+  return LatticeVolume<T>(header.lattice, header.sizes, header.h, header.origin,
+                          std::move(samples));
 }
 
 template void write_bcc_nrrd<float>(const fs::path&, const BccVolume<float>&);

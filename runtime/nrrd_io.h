@@ -75,7 +75,8 @@ struct NrrdReadLimits {
 // Throws NrrdError (one line) unless `path` may be written (output_file.h: a regular file, or a
 // new file in an existing directory, after following links) and is none of `inputs`: lets a
 // program refuse a bad -o before it spends time computing what it would write.
-void require_output_file(const std::filesystem::path& path, std::span<const std::filesystem::path> inputs);
+void require_output_file(const std::filesystem::path& path,
+                         std::span<const std::filesystem::path> inputs);
 // require_output_file(path, {}).
 void require_output_directory(const std::filesystem::path& path);
 
@@ -96,7 +97,8 @@ void write_lattice_nrrd(const std::filesystem::path& path, const LatticeVolume<T
 // Reads a lattice volume (any lattice; BCC files written by write_bcc_nrrd included; a 3-D NRRD
 // without a lattice key is a Cartesian volume). Checks as read_bcc_nrrd. Throws NrrdError.
 template <class T>
-LatticeVolume<T> read_lattice_nrrd(const std::filesystem::path& path, const NrrdReadLimits& limits = {});
+LatticeVolume<T> read_lattice_nrrd(const std::filesystem::path& path,
+                                   const NrrdReadLimits& limits = {});
 
 // Throws std::invalid_argument for an inconsistent grid (sizes < 1, values.size() different
 // from N0 N1 N2, spacing not finite and > 0, origin not finite) and NrrdError if the file
@@ -106,13 +108,21 @@ void write_cartesian_nrrd(const std::filesystem::path& path, const CartesianVolu
 
 extern template void write_bcc_nrrd<float>(const std::filesystem::path&, const BccVolume<float>&);
 extern template void write_bcc_nrrd<double>(const std::filesystem::path&, const BccVolume<double>&);
-extern template BccVolume<float> read_bcc_nrrd<float>(const std::filesystem::path&, const NrrdReadLimits&);
-extern template BccVolume<double> read_bcc_nrrd<double>(const std::filesystem::path&, const NrrdReadLimits&);
-extern template void write_lattice_nrrd<float>(const std::filesystem::path&, const LatticeVolume<float>&);
-extern template void write_lattice_nrrd<double>(const std::filesystem::path&, const LatticeVolume<double>&);
-extern template LatticeVolume<float> read_lattice_nrrd<float>(const std::filesystem::path&, const NrrdReadLimits&);
-extern template LatticeVolume<double> read_lattice_nrrd<double>(const std::filesystem::path&, const NrrdReadLimits&);
-extern template void write_cartesian_nrrd<float>(const std::filesystem::path&, const CartesianVolume<float>&);
-extern template void write_cartesian_nrrd<double>(const std::filesystem::path&, const CartesianVolume<double>&);
+extern template BccVolume<float> read_bcc_nrrd<float>(const std::filesystem::path&,
+                                                      const NrrdReadLimits&);
+extern template BccVolume<double> read_bcc_nrrd<double>(const std::filesystem::path&,
+                                                        const NrrdReadLimits&);
+extern template void write_lattice_nrrd<float>(const std::filesystem::path&,
+                                               const LatticeVolume<float>&);
+extern template void write_lattice_nrrd<double>(const std::filesystem::path&,
+                                                const LatticeVolume<double>&);
+extern template LatticeVolume<float> read_lattice_nrrd<float>(const std::filesystem::path&,
+                                                              const NrrdReadLimits&);
+extern template LatticeVolume<double> read_lattice_nrrd<double>(const std::filesystem::path&,
+                                                                const NrrdReadLimits&);
+extern template void write_cartesian_nrrd<float>(const std::filesystem::path&,
+                                                 const CartesianVolume<float>&);
+extern template void write_cartesian_nrrd<double>(const std::filesystem::path&,
+                                                  const CartesianVolume<double>&);
 
 }  // namespace boxgen::runtime

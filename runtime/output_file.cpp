@@ -22,7 +22,8 @@ namespace fs = std::filesystem;
 std::string shown(const fs::path& path) {
   std::string out;
   const std::string text = path.string();
-  for (char ch : std::string_view(text).substr(0, 200)) out += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
+  for (char ch : std::string_view(text).substr(0, 200))
+    out += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
   if (text.size() > 200) out += "...";
   return out;
 }
@@ -72,7 +73,8 @@ fs::path check_output_file(const fs::path& path, std::span<const fs::path> input
   const fs::path target = follow_links(path, exists, info);
   if (exists) {
     if (!S_ISREG(info.st_mode))
-      refuse(path, fmt::format("{}{} is {}; only regular files are written", target == path ? "it" : "its link target '",
+      refuse(path, fmt::format("{}{} is {}; only regular files are written",
+                               target == path ? "it" : "its link target '",
                                target == path ? "" : shown(target) + "'", kind_of(info.st_mode)));
     for (const fs::path& input : inputs) {
       struct stat in {};
@@ -82,7 +84,8 @@ fs::path check_output_file(const fs::path& path, std::span<const fs::path> input
   } else {
     const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
     std::error_code ec;
-    if (!fs::is_directory(dir, ec)) refuse(path, fmt::format("the directory '{}' does not exist", shown(dir)));
+    if (!fs::is_directory(dir, ec))
+      refuse(path, fmt::format("the directory '{}' does not exist", shown(dir)));
     if (target.filename().empty()) refuse(path, "not a file name");
   }
   return target;
@@ -122,12 +125,14 @@ void write_output_file(const fs::path& path, const std::function<bool(std::FILE*
   std::string problem;
   if (!fill(file)) {
     problem = describe_failure ? describe_failure() : std::string();
-    if (problem.empty()) problem = std::ferror(file) ? std::strerror(errno) : "the data could not be written";
+    if (problem.empty())
+      problem = std::ferror(file) ? std::strerror(errno) : "the data could not be written";
   } else if (std::fflush(file) != 0 || std::ferror(file) || ::fsync(::fileno(file)) != 0) {
     problem = std::strerror(errno);
   }
   if (std::fclose(file) != 0 && problem.empty()) problem = std::strerror(errno);
-  if (problem.empty() && std::rename(temp.c_str(), target.c_str()) != 0) problem = std::strerror(errno);
+  if (problem.empty() && std::rename(temp.c_str(), target.c_str()) != 0)
+    problem = std::strerror(errno);
   if (!problem.empty()) {
     ::unlink(temp.c_str());
     refuse(path, problem);

@@ -36,7 +36,8 @@ std::filesystem::path check_output_file(const std::filesystem::path& path,
 // Writes the file through `fill`, which returns false on failure, and renames it into place as
 // described above. `describe_failure` (may be empty) gives the reason when `fill` returns false.
 // Throws OutputFileError (one line); the target is then left as it was and no temporary remains.
-void write_output_file(const std::filesystem::path& path, const std::function<bool(std::FILE*)>& fill,
+void write_output_file(const std::filesystem::path& path,
+                       const std::function<bool(std::FILE*)>& fill,
                        const std::function<std::string()>& describe_failure = {});
 
 }  // namespace boxgen::runtime

@@ -19,14 +19,17 @@ void validate(const DiscreteFilter& q) {
   for (const auto& [o, w] : q) {
     for (int x : o)
       if (x < -kMaxOffset || x > kMaxOffset)
-        throw std::invalid_argument(fmt::format("prefilter offset ({}, {}, {}) is too far out (at most {} per coordinate)", o[0], o[1],
-                                                o[2], kMaxOffset));
+        throw std::invalid_argument(
+            fmt::format("prefilter offset ({}, {}, {}) is too far out (at most {} per coordinate)",
+                        o[0], o[1], o[2], kMaxOffset));
     if (!BccVolume<double>::is_lattice_point(o[0], o[1], o[2]))
       throw std::invalid_argument(
-          fmt::format("prefilter offset ({}, {}, {}) is not a BCC lattice vector (coordinates must be all even or all odd)", o[0], o[1],
-                      o[2]));
+          fmt::format("prefilter offset ({}, {}, {}) is not a BCC lattice vector (coordinates must "
+                      "be all even or all odd)",
+                      o[0], o[1], o[2]));
     if (!std::isfinite(w))
-      throw std::invalid_argument(fmt::format("prefilter weight {} at offset ({}, {}, {}) is not finite", w, o[0], o[1], o[2]));
+      throw std::invalid_argument(fmt::format(
+          "prefilter weight {} at offset ({}, {}, {}) is not finite", w, o[0], o[1], o[2]));
   }
 }
 
@@ -67,9 +70,10 @@ BccVolume<T> prefilter(const BccVolume<T>& volume, const DiscreteFilter& q) {
   for (int a = 0; a < 3; ++a) {
     out_sizes[a] = n[a] - shrink.lower[a] - shrink.upper[a];
     if (out_sizes[a] < 1)
-      throw std::invalid_argument(fmt::format(
-          "volume of {} x {} x {} samples per coset is too small for the prefilter (it needs more than {} per axis to keep any sample)",
-          n[0], n[1], n[2], shrink.lower[a] + shrink.upper[a]));
+      throw std::invalid_argument(
+          fmt::format("volume of {} x {} x {} samples per coset is too small for the prefilter (it "
+                      "needs more than {} per axis to keep any sample)",
+                      n[0], n[1], n[2], shrink.lower[a] + shrink.upper[a]));
     out_origin[a] = volume.origin()[a] + 2 * volume.spacing() * shrink.lower[a];
   }
   BccVolume<T> out(out_sizes, volume.spacing(), out_origin);
@@ -98,10 +102,12 @@ BccVolume<T> prefilter(const BccVolume<T>& volume, const DiscreteFilter& q) {
     for (int j = 0; j < out_sizes[1]; ++j)
       for (int i = 0; i < out_sizes[0]; ++i)
         for (int c = 0; c < 2; ++c) {
-          const std::size_t base = volume.index(c, i + shrink.lower[0], j + shrink.lower[1], k + shrink.lower[2]);
+          const std::size_t base =
+              volume.index(c, i + shrink.lower[0], j + shrink.lower[1], k + shrink.lower[2]);
           double sum = 0;
           for (std::size_t t = 0; t < taps; ++t)
-            sum += weight[t] * static_cast<double>(in[static_cast<std::ptrdiff_t>(base) + step[2 * t + c]]);
+            sum += weight[t] *
+                   static_cast<double>(in[static_cast<std::ptrdiff_t>(base) + step[2 * t + c]]);
           out(c, i, j, k) = to_sample<T>(sum);
         }
   return out;
@@ -122,7 +128,8 @@ struct TapStep {
 
 TapStep tap_step(const CosetLattice& lattice, int c, const std::array<int, 3>& o) {
   const Offset& from = lattice.offsets()[static_cast<std::size_t>(c)];
-  const std::int64_t p[3] = {static_cast<std::int64_t>(from[0]) - o[0], static_cast<std::int64_t>(from[1]) - o[1],
+  const std::int64_t p[3] = {static_cast<std::int64_t>(from[0]) - o[0],
+                             static_cast<std::int64_t>(from[1]) - o[1],
                              static_cast<std::int64_t>(from[2]) - o[2]};
   TapStep step{lattice.coset_of(p[0], p[1], p[2]), {}};
   const Offset& to = lattice.offsets()[static_cast<std::size_t>(step.coset)];
@@ -135,12 +142,16 @@ void validate_on(const DiscreteFilter& q, const CosetLattice& lattice) {
   for (const auto& [o, w] : q) {
     for (int x : o)
       if (x < -kMaxOffset || x > kMaxOffset)
-        throw std::invalid_argument(fmt::format("prefilter offset ({}, {}, {}) is too far out (at most {} per coordinate)", o[0], o[1],
-                                                o[2], kMaxOffset));
+        throw std::invalid_argument(
+            fmt::format("prefilter offset ({}, {}, {}) is too far out (at most {} per coordinate)",
+                        o[0], o[1], o[2], kMaxOffset));
     if (!lattice.contains(o[0], o[1], o[2]))
-      throw std::invalid_argument(fmt::format("prefilter offset ({}, {}, {}) is not a vector of the {} lattice", o[0], o[1], o[2], lattice.name()));
+      throw std::invalid_argument(
+          fmt::format("prefilter offset ({}, {}, {}) is not a vector of the {} lattice", o[0], o[1],
+                      o[2], lattice.name()));
     if (!std::isfinite(w))
-      throw std::invalid_argument(fmt::format("prefilter weight {} at offset ({}, {}, {}) is not finite", w, o[0], o[1], o[2]));
+      throw std::invalid_argument(fmt::format(
+          "prefilter weight {} at offset ({}, {}, {}) is not finite", w, o[0], o[1], o[2]));
   }
 }
 
@@ -175,9 +186,10 @@ LatticeVolume<T> prefilter(const LatticeVolume<T>& volume, const DiscreteFilter&
   for (int a = 0; a < 3; ++a) {
     out_sizes[a] = n[a] - shrink.lower[a] - shrink.upper[a];
     if (out_sizes[a] < 1)
-      throw std::invalid_argument(fmt::format(
-          "volume of {} x {} x {} samples per coset is too small for the prefilter (it needs more than {} per axis to keep any sample)",
-          n[0], n[1], n[2], shrink.lower[a] + shrink.upper[a]));
+      throw std::invalid_argument(
+          fmt::format("volume of {} x {} x {} samples per coset is too small for the prefilter (it "
+                      "needs more than {} per axis to keep any sample)",
+                      n[0], n[1], n[2], shrink.lower[a] + shrink.upper[a]));
     out_origin[a] = volume.origin()[a] + lattice.period() * volume.spacing() * shrink.lower[a];
   }
   LatticeVolume<T> out(lattice, out_sizes, volume.spacing(), out_origin);
@@ -199,17 +211,20 @@ LatticeVolume<T> prefilter(const LatticeVolume<T>& volume, const DiscreteFilter&
     for (int j = 0; j < out_sizes[1]; ++j)
       for (int i = 0; i < out_sizes[0]; ++i)
         for (int c = 0; c < k_count; ++c) {
-          const auto base = static_cast<std::ptrdiff_t>(volume.index(c, i + shrink.lower[0], j + shrink.lower[1], k + shrink.lower[2]));
+          const auto base = static_cast<std::ptrdiff_t>(
+              volume.index(c, i + shrink.lower[0], j + shrink.lower[1], k + shrink.lower[2]));
           const std::ptrdiff_t* steps = &step[static_cast<std::size_t>(c) * taps];
           double sum = 0;
-          for (std::size_t t = 0; t < taps; ++t) sum += q[t].second * static_cast<double>(in[base + steps[t]]);
+          for (std::size_t t = 0; t < taps; ++t)
+            sum += q[t].second * static_cast<double>(in[base + steps[t]]);
           out(c, i, j, k) = to_sample<T>(sum);
         }
   return out;
 }
 
 template LatticeVolume<float> prefilter<float>(const LatticeVolume<float>&, const DiscreteFilter&);
-template LatticeVolume<double> prefilter<double>(const LatticeVolume<double>&, const DiscreteFilter&);
+template LatticeVolume<double> prefilter<double>(const LatticeVolume<double>&,
+                                                 const DiscreteFilter&);
 template BccVolume<float> prefilter<float>(const BccVolume<float>&, const DiscreteFilter&);
 template BccVolume<double> prefilter<double>(const BccVolume<double>&, const DiscreteFilter&);
 

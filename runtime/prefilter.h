@@ -53,9 +53,12 @@ PrefilterShrink prefilter_shrink(const DiscreteFilter& q, const CosetLattice& la
 template <class T>
 LatticeVolume<T> prefilter(const LatticeVolume<T>& volume, const DiscreteFilter& q);
 
-extern template LatticeVolume<float> prefilter<float>(const LatticeVolume<float>&, const DiscreteFilter&);
-extern template LatticeVolume<double> prefilter<double>(const LatticeVolume<double>&, const DiscreteFilter&);
+extern template LatticeVolume<float> prefilter<float>(const LatticeVolume<float>&,
+                                                      const DiscreteFilter&);
+extern template LatticeVolume<double> prefilter<double>(const LatticeVolume<double>&,
+                                                        const DiscreteFilter&);
 extern template BccVolume<float> prefilter<float>(const BccVolume<float>&, const DiscreteFilter&);
-extern template BccVolume<double> prefilter<double>(const BccVolume<double>&, const DiscreteFilter&);
+extern template BccVolume<double> prefilter<double>(const BccVolume<double>&,
+                                                    const DiscreteFilter&);
 
 }  // namespace boxgen::runtime

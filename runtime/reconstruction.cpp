@@ -45,39 +45,45 @@ StencilReach published_reach() {
 }
 
 constexpr const char* kRegistryOrder[] = {"m7", "m8", "m12"};  // Filter::M7, M8, M12
-static_assert(std::size(kRegistryOrder) == generated::kFilterCount, "Filter must list the registry's filters");
+static_assert(std::size(kRegistryOrder) == generated::kFilterCount,
+              "Filter must list the registry's filters");
 
 }  // namespace
 
 Filter parse_filter(std::string_view name) {
   for (int i = 0; i < generated::kFilterCount; ++i)
     if (name == generated::kFilterNames[i]) return static_cast<Filter>(i);
-  throw std::invalid_argument(fmt::format("unknown filter '{}': expected m7, m8 or m12", name.substr(0, 40)));
+  throw std::invalid_argument(
+      fmt::format("unknown filter '{}': expected m7, m8 or m12", name.substr(0, 40)));
 }
 
 PrefilterChoice parse_prefilter(std::string_view name) {
   if (name == "none") return PrefilterChoice::None;
   if (name == "q1") return PrefilterChoice::Q1;
   if (name == "q2") return PrefilterChoice::Q2;
-  throw std::invalid_argument(fmt::format("unknown prefilter '{}': expected none, q1 or q2", name.substr(0, 40)));
+  throw std::invalid_argument(
+      fmt::format("unknown prefilter '{}': expected none, q1 or q2", name.substr(0, 40)));
 }
 
 const char* filter_name(Filter f) {
   const int index = static_cast<int>(f);
   if (index < 0 || index >= generated::kFilterCount) return "?";
-  if (std::strcmp(generated::kFilterNames[index], kRegistryOrder[index]) != 0) throw std::logic_error("registry order");
+  if (std::strcmp(generated::kFilterNames[index], kRegistryOrder[index]) != 0)
+    throw std::logic_error("registry order");
   return generated::kFilterNames[index];
 }
 
 DiscreteFilter prefilter_taps(Filter f, PrefilterChoice q) {
   if (q == PrefilterChoice::None) return {{{0, 0, 0}, 1.0}};
-  return generated::with_filter(registry_index(f),
-                                [&](auto entry) { return q == PrefilterChoice::Q1 ? taps(entry.q1) : taps(entry.q2); });
+  return generated::with_filter(registry_index(f), [&](auto entry) {
+    return q == PrefilterChoice::Q1 ? taps(entry.q1) : taps(entry.q2);
+  });
 }
 
 StencilReach stencil_reach(Filter f) {
-  return generated::with_filter(registry_index(f),
-                                [](auto entry) { return published_reach<typename decltype(entry)::Traits>(); });
+  return generated::with_filter(registry_index(f), [](auto entry) {
+    return published_reach<typename decltype(entry)::Traits>();
+  });
 }
 
 int required_margin(Filter f, PrefilterChoice q) {
@@ -87,7 +93,8 @@ int required_margin(Filter f, PrefilterChoice q) {
   // prefilter's own reach.
   const StencilReach r = stencil_reach(f);
   double need = 0;
-  for (int a = 0; a < 3; ++a) need = std::max({need, -r.lo[a] - r.centre[a], r.hi[a] + r.centre[a] - 2});
+  for (int a = 0; a < 3; ++a)
+    need = std::max({need, -r.lo[a] - r.centre[a], r.hi[a] + r.centre[a] - 2});
   const int reconstruction = static_cast<int>(std::ceil((need + 1) / 2));
   return reconstruction + (q == PrefilterChoice::None ? 0 : prefilter_margin(prefilter_taps(f, q)));
 }
@@ -158,8 +165,10 @@ class FilterPath final : public EvaluationPath<T> {
     constexpr double kFar = 64;
     for (int a = 0; a < 3; ++a)
       if (!(lattice[a] > -kFar && lattice[a] < 2.0 * volume_.sizes()[a] + kFar))
-        throw std::out_of_range(fmt::format("world point ({}, {}, {}) is outside the volume", world[0], world[1], world[2]));
-    const std::array<T, 3> x{static_cast<T>(lattice[0]), static_cast<T>(lattice[1]), static_cast<T>(lattice[2])};
+        throw std::out_of_range(fmt::format("world point ({}, {}, {}) is outside the volume",
+                                            world[0], world[1], world[2]));
+    const std::array<T, 3> x{static_cast<T>(lattice[0]), static_cast<T>(lattice[1]),
+                             static_cast<T>(lattice[2])};
     const support::Located<3, T> located = support::locate<Tr>(x);
     T v[kStencil];
     const int size = Tr::kOrbitStencilSize[Tr::kCells[located.cell].orbit];
@@ -170,9 +179,10 @@ class FilterPath final : public EvaluationPath<T> {
     }
     if (volume_.contains_box(lo, hi)) {
       const T* samples = volume_.samples().data();
-      const std::int64_t base =
-          located.corner[0] * stride_[0] + located.corner[1] * stride_[1] + located.corner[2] * stride_[2];
-      const Offset* offsets = &offsets_[((located.corner[0] & 1) * Tr::kCellCount + located.cell) * kStencil];
+      const std::int64_t base = located.corner[0] * stride_[0] + located.corner[1] * stride_[1] +
+                                located.corner[2] * stride_[2];
+      const Offset* offsets =
+          &offsets_[((located.corner[0] & 1) * Tr::kCellCount + located.cell) * kStencil];
       for (int k = 0; k < size; ++k) v[k] = samples[base + offsets[k]];
     } else {
       try {
@@ -182,8 +192,9 @@ class FilterPath final : public EvaluationPath<T> {
           v[k] = volume_.value(j);
         }
       } catch (const std::out_of_range& e) {  // name the point the user asked for, then the sample
-        throw std::out_of_range(fmt::format("world point ({}, {}, {}) needs a sample outside the volume: {}", world[0],
-                                            world[1], world[2], e.what()));
+        throw std::out_of_range(
+            fmt::format("world point ({}, {}, {}) needs a sample outside the volume: {}", world[0],
+                        world[1], world[2], e.what()));
       }
     }
     T d[3 + 6] = {};
@@ -217,7 +228,8 @@ class FilterPath final : public EvaluationPath<T> {
         }
       }
     }
-    if (first_bad < count) throw std::out_of_range(fmt::format("point {}: {}", first_bad + 1, first_error));
+    if (first_bad < count)
+      throw std::out_of_range(fmt::format("point {}: {}", first_bad + 1, first_error));
   }
 
   const BccVolume<T>& volume_;
@@ -229,16 +241,18 @@ class FilterPath final : public EvaluationPath<T> {
 
 template <class T>
 Reconstructor<T>::Reconstructor(const BccVolume<T>& volume, Filter filter)
-    : path_(generated::with_filter(registry_index(filter), [&](auto entry) -> std::shared_ptr<const EvaluationPath<T>> {
-        using Tr = typename decltype(entry)::Traits;
-        // |offset| <= (max reach + 1) (1 + N0 + N0 N1): 32 bits suffice for all but huge slabs.
-        int reach = 0;
-        for (int a = 0; a < 3; ++a) reach = std::max({reach, -Tr::kStencilReachLo[a], Tr::kStencilReachHi[a]});
-        const double n0 = volume.sizes()[0], n1 = volume.sizes()[1];
-        if ((reach + 1.0) * (1.0 + n0 + n0 * n1) < 2147483647.0)
-          return std::make_shared<FilterPath<Tr, T, std::int32_t>>(volume);
-        return std::make_shared<FilterPath<Tr, T, std::int64_t>>(volume);
-      })) {}
+    : path_(generated::with_filter(
+          registry_index(filter), [&](auto entry) -> std::shared_ptr<const EvaluationPath<T>> {
+            using Tr = typename decltype(entry)::Traits;
+            // |offset| <= (max reach + 1) (1 + N0 + N0 N1): 32 bits suffice for all but huge slabs.
+            int reach = 0;
+            for (int a = 0; a < 3; ++a)
+              reach = std::max({reach, -Tr::kStencilReachLo[a], Tr::kStencilReachHi[a]});
+            const double n0 = volume.sizes()[0], n1 = volume.sizes()[1];
+            if ((reach + 1.0) * (1.0 + n0 + n0 * n1) < 2147483647.0)
+              return std::make_shared<FilterPath<Tr, T, std::int32_t>>(volume);
+            return std::make_shared<FilterPath<Tr, T, std::int64_t>>(volume);
+          })) {}
 
 template <class T>
 T Reconstructor<T>::value(const Vec3& world, Vec3* gradient) const {
@@ -246,20 +260,23 @@ T Reconstructor<T>::value(const Vec3& world, Vec3* gradient) const {
 }
 
 template <class T>
-T Reconstructor<T>::value_gradient_hessian(const Vec3& world, Vec3& gradient, Hessian& hessian) const {
+T Reconstructor<T>::value_gradient_hessian(const Vec3& world, Vec3& gradient,
+                                           Hessian& hessian) const {
   return path_->at(world, &gradient, &hessian);
 }
 
 template <class T>
-void Reconstructor<T>::evaluate(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients) const {
+void Reconstructor<T>::evaluate(std::span<const Vec3> points, std::span<T> values,
+                                std::span<Vec3> gradients) const {
   evaluate(points, values, gradients, {});
 }
 
 template <class T>
-void Reconstructor<T>::evaluate(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
-                                std::span<Hessian> hessians) const {
+void Reconstructor<T>::evaluate(std::span<const Vec3> points, std::span<T> values,
+                                std::span<Vec3> gradients, std::span<Hessian> hessians) const {
   if (values.size() != points.size() || (!gradients.empty() && gradients.size() != points.size()) ||
-      (!hessians.empty() && (hessians.size() != points.size() || gradients.size() != points.size())))
+      (!hessians.empty() &&
+       (hessians.size() != points.size() || gradients.size() != points.size())))
     throw std::invalid_argument("evaluate: output sizes differ from the number of points");
   path_->batch(points, values, gradients, hessians);
 }

@@ -58,7 +58,8 @@ class Reconstructor {
 
   // value() for many points on up to batch_threads() threads (runtime/batch_threads.h). Throws
   // the first error, naming the point's index. `gradients` may be empty (values only).
-  void evaluate(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients = {}) const;
+  void evaluate(std::span<const Vec3> points, std::span<T> values,
+                std::span<Vec3> gradients = {}) const;
   // The same with second derivatives; `hessians` (and `gradients`) as long as `points`.
   void evaluate(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
                 std::span<Hessian> hessians) const;

@@ -23,8 +23,11 @@ Vec3 normalise(const Vec3& a) { return scale(a, 1 / std::sqrt(dot(a, a))); }
 
 // A perceptual colour map (dark blue -> green -> yellow) for the cut faces.
 Vec3 value_colour(double t) {
-  static const double stops[5][3] = {{0.267, 0.005, 0.329}, {0.230, 0.322, 0.546}, {0.128, 0.567, 0.551},
-                                     {0.369, 0.789, 0.383}, {0.993, 0.906, 0.144}};
+  static const double stops[5][3] = {{0.267, 0.005, 0.329},
+                                     {0.230, 0.322, 0.546},
+                                     {0.128, 0.567, 0.551},
+                                     {0.369, 0.789, 0.383},
+                                     {0.993, 0.906, 0.144}};
   t = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * 4;
   const int i = std::min(3, static_cast<int>(t));
   const double f = t - i;
@@ -53,7 +56,8 @@ struct Camera {
 
 Camera camera_for(const Box& box, bool closeup) {
   const Vec3 centre = scale(add(box.min, box.max), 0.5);
-  const double radius = 0.5 * std::sqrt(dot(add(box.max, scale(box.min, -1)), add(box.max, scale(box.min, -1))));
+  const double radius =
+      0.5 * std::sqrt(dot(add(box.max, scale(box.min, -1)), add(box.max, scale(box.min, -1))));
   Vec3 eye, target;
   double fov;
   if (closeup) {  // Fig. 9: the first rims seen from above, at a grazing angle
@@ -93,11 +97,12 @@ bool clip_to_box(const Vec3& o, const Vec3& d, const Box& box, double& t0, doubl
 
 }  // namespace
 
-RayCaster::RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step, bool cutaway,
-                     bool curvature)
+RayCaster::RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step,
+                     bool cutaway, bool curvature)
     : spline_(spline), box_(box), iso_(iso), step_(step), cutaway_(cutaway), curvature_(curvature) {
   if (!std::isfinite(iso)) throw std::invalid_argument("--iso must be finite");
-  if (!(step > 0) || !std::isfinite(step)) throw std::invalid_argument("the marching step must be > 0");
+  if (!(step > 0) || !std::isfinite(step))
+    throw std::invalid_argument("the marching step must be > 0");
   for (int i = 0; i < 3; ++i)
     if (!(box.max[i] > box.min[i])) throw std::invalid_argument("the render box is empty");
   mid_ = scale(add(box.min, box.max), 0.5);
@@ -145,7 +150,8 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
   h.point = add(origin, scale(d, h.t));
   Vec3 gradient{};
   h.value = spline_.value(h.point, &gradient);
-  // The isosurface when the point just before the hit is still in the region, else a cut or box face.
+  // The isosurface when the point just before the hit is still in the region, else a cut or box
+  // face.
   h.on_cut = entry_face || !in_region(add(origin, scale(d, h.t - 2e-9 * size_)));
   if (!h.on_cut && dot(gradient, gradient) > 0) {
     h.normal = normalise(scale(gradient, -1));  // s grows into the solid
@@ -181,7 +187,8 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
     double best = 1e300;
     for (int i = 0; i < 3; ++i) {
       const double gap =
-          std::min({std::abs(h.point[i] - mid_[i]), std::abs(h.point[i] - box_.min[i]), std::abs(h.point[i] - box_.max[i])});
+          std::min({std::abs(h.point[i] - mid_[i]), std::abs(h.point[i] - box_.min[i]),
+                    std::abs(h.point[i] - box_.max[i])});
       if (gap < best) {
         best = gap;
         axis = i;
@@ -194,16 +201,20 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
   return h;
 }
 
-RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box& box, const RenderOptions& o) {
+RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box& box,
+                            const RenderOptions& o) {
   if (o.width < 1 || o.height < 1 || o.width > 8192 || o.height > 8192)
-    throw std::invalid_argument(fmt::format("image size must be 1..8192 per side, got {} x {}", o.width, o.height));
+    throw std::invalid_argument(
+        fmt::format("image size must be 1..8192 per side, got {} x {}", o.width, o.height));
   const double step = o.step > 0 ? o.step : 0.5 * volume.spacing();
   const Reconstructor<double> spline(volume, f);
   const RayCaster caster(spline, box, o.iso, step, o.cutaway, o.shading == Shading::Curvature);
   const double curvature_scale = 5 * volume.spacing();
   const Camera cam = camera_for(box, o.closeup);
-  const Vec3 light = normalise(add(scale(cam.forward, -1), add(scale(cam.up, 0.6), scale(cam.right, -0.3))));
-  RgbBuffer image{o.width, o.height, std::vector<std::uint8_t>(static_cast<std::size_t>(o.width) * o.height * 3)};
+  const Vec3 light =
+      normalise(add(scale(cam.forward, -1), add(scale(cam.up, 0.6), scale(cam.right, -0.3))));
+  RgbBuffer image{o.width, o.height,
+                  std::vector<std::uint8_t>(static_cast<std::size_t>(o.width) * o.height * 3)};
   std::atomic<int> rows_done{0};
   const bool bar = o.progress && ::isatty(STDERR_FILENO);
 #pragma omp parallel for schedule(dynamic, 1)
@@ -213,18 +224,24 @@ RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box
       const double sy = (1 - 2 * (y + 0.5) / o.height) * cam.tan_half;
       const Vec3 d = normalise(add(cam.forward, add(scale(cam.right, sx), scale(cam.up, sy))));
       // Background: a light vertical gradient.
-      Vec3 colour{0.93 - 0.12 * (y / static_cast<double>(o.height)), 0.94 - 0.1 * (y / static_cast<double>(o.height)), 0.96};
+      Vec3 colour{0.93 - 0.12 * (y / static_cast<double>(o.height)),
+                  0.94 - 0.1 * (y / static_cast<double>(o.height)), 0.96};
       const RayHit h = caster.cast(cam.eye, d);
       if (h.hit) {
         Vec3 base = h.on_cut ? value_colour(h.value) : Vec3{0.82, 0.80, 0.76};
-        if (!h.on_cut && o.shading == Shading::Curvature) base = curvature_colour(h.k1, h.k2, curvature_scale);
+        if (!h.on_cut && o.shading == Shading::Curvature)
+          base = curvature_colour(h.k1, h.k2, curvature_scale);
         const double diffuse = std::max(0.0, dot(h.normal, light));
         const Vec3 half = normalise(add(light, scale(d, -1)));
-        const double specular = h.on_cut ? 0 : 0.25 * std::pow(std::max(0.0, dot(h.normal, half)), 40);
-        for (int c = 0; c < 3; ++c) colour[c] = std::min(1.0, base[c] * (0.28 + 0.72 * diffuse) + specular);
+        const double specular =
+            h.on_cut ? 0 : 0.25 * std::pow(std::max(0.0, dot(h.normal, half)), 40);
+        for (int c = 0; c < 3; ++c)
+          colour[c] = std::min(1.0, base[c] * (0.28 + 0.72 * diffuse) + specular);
       }
       const std::size_t i = (static_cast<std::size_t>(y) * o.width + x) * 3;
-      for (int c = 0; c < 3; ++c) image.pixels[i + c] = static_cast<std::uint8_t>(std::lround(255 * std::clamp(colour[c], 0.0, 1.0)));
+      for (int c = 0; c < 3; ++c)
+        image.pixels[i + c] =
+            static_cast<std::uint8_t>(std::lround(255 * std::clamp(colour[c], 0.0, 1.0)));
     }
     const int done = ++rows_done;
     if (bar && (done % 8 == 0 || done == o.height)) {

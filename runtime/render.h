@@ -26,9 +26,9 @@ struct RenderOptions {
   Shading shading = Shading::Normal;  // Curvature: colour by the principal curvatures (k1, k2)
   double iso = 0.5;
   bool cutaway = false;
-  bool closeup = false;  // the camera of Fig. 9: close to the top rims
-  double step = 0;       // marching step (world); 0: half the volume's spacing
-  bool progress = false; // a progress bar on stderr
+  bool closeup = false;   // the camera of Fig. 9: close to the top rims
+  double step = 0;        // marching step (world); 0: half the volume's spacing
+  bool progress = false;  // a progress bar on stderr
 };
 
 struct RgbBuffer {
@@ -39,22 +39,22 @@ struct RgbBuffer {
 // The first boundary of the solid {s >= iso} (minus the cut-away) along a ray, inside the box.
 struct RayHit {
   bool hit = false;
-  bool on_cut = false;  // a cut-away or box face rather than the isosurface
-  double t = 0;         // distance along the normalised direction
+  bool on_cut = false;     // a cut-away or box face rather than the isosurface
+  double t = 0;            // distance along the normalised direction
   Vec3 point{}, normal{};  // normal: unit, facing the ray; on the isosurface -grad s / |grad s|
   double value = 0;        // s at the point
   // Principal curvatures k1 >= k2 of the isosurface at the point (when the caster was asked for
   // them and the hit is on the isosurface), from the exact gradient g and Hessian H:
-  // G = -P H P / |g| with P = I - n n^T, k = (tr G +- sqrt(2 |G|_F^2 - tr(G)^2)) / 2; positive where
-  // the solid {s >= iso} is convex (a ball of radius r: k1 = k2 = 1/r).
+  // G = -P H P / |g| with P = I - n n^T, k = (tr G +- sqrt(2 |G|_F^2 - tr(G)^2)) / 2; positive
+  // where the solid {s >= iso} is convex (a ball of radius r: k1 = k2 = 1/r).
   double k1 = 0, k2 = 0;
 };
 
 class RayCaster {
  public:
   // Throws std::invalid_argument for a non-finite iso, a step <= 0 or an empty box.
-  RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step, bool cutaway,
-            bool curvature = false);
+  RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step,
+            bool cutaway, bool curvature = false);
   RayHit cast(const Vec3& origin, const Vec3& direction) const;
 
  private:
@@ -71,6 +71,7 @@ class RayCaster {
 // Renders the isosurface s = iso of the spline reconstructed from `volume` with filter f (the
 // volume already prefiltered, as for Reconstructor) inside `box` (where the stencil fits, e.g.
 // default_box). Throws std::invalid_argument for a bad size, iso or step.
-RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box& box, const RenderOptions& options);
+RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box& box,
+                            const RenderOptions& options);
 
 }  // namespace boxgen::runtime

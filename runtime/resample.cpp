@@ -30,7 +30,8 @@ LatticeRegion lattice_region(const BccVolume<T>& volume, Filter f) {
     if (region.hi[a] <= region.lo[a]) {
       const int needed = (reach.hi[a] - reach.lo[a]) / 2 + 1;  // smallest N with 2N > hi - lo
       throw std::invalid_argument(fmt::format(
-          "BCC volume of 2 x {} x {} x {} samples is too small for the {} stencil (it needs at least {} samples per coset on axis {})",
+          "BCC volume of 2 x {} x {} x {} samples is too small for the {} stencil (it needs at "
+          "least {} samples per coset on axis {})",
           volume.sizes()[0], volume.sizes()[1], volume.sizes()[2], filter_name(f), needed, a));
     }
   }
@@ -43,7 +44,8 @@ Box to_world(const BccVolume<T>& volume, const Vec3& lo, const Vec3& hi) {
 }
 
 std::string describe(const Box& b) {
-  return fmt::format("[{}, {}] x [{}, {}] x [{}, {}]", b.min[0], b.max[0], b.min[1], b.max[1], b.min[2], b.max[2]);
+  return fmt::format("[{}, {}] x [{}, {}] x [{}, {}]", b.min[0], b.max[0], b.min[1], b.max[1],
+                     b.min[2], b.max[2]);
 }
 
 }  // namespace
@@ -65,15 +67,17 @@ Box default_box(const BccVolume<T>& volume, Filter f) {
     lattice_extent = std::max({lattice_extent, std::abs(region.lo[a]), std::abs(region.hi[a])});
     world_extent = std::max(world_extent, std::abs(volume.origin()[a]) / volume.spacing());
   }
-  const double guard = 16 * (std::numeric_limits<T>::epsilon() * (lattice_extent + 2) +
-                             std::numeric_limits<double>::epsilon() * (world_extent + lattice_extent + 2));
+  const double guard =
+      16 * (std::numeric_limits<T>::epsilon() * (lattice_extent + 2) +
+            std::numeric_limits<double>::epsilon() * (world_extent + lattice_extent + 2));
   Vec3 lo, hi;
   for (int a = 0; a < 3; ++a) {
     lo[a] = region.lo[a] + guard;
     hi[a] = region.hi[a] - guard;
     if (!(lo[a] < hi[a]))
-      throw std::invalid_argument(fmt::format("BCC volume of 2 x {} x {} x {} samples is too small for the {} stencil on axis {}",
-                                              volume.sizes()[0], volume.sizes()[1], volume.sizes()[2], filter_name(f), a));
+      throw std::invalid_argument(fmt::format(
+          "BCC volume of 2 x {} x {} x {} samples is too small for the {} stencil on axis {}",
+          volume.sizes()[0], volume.sizes()[1], volume.sizes()[2], filter_name(f), a));
   }
   return to_world(volume, lo, hi);
 }
@@ -83,20 +87,26 @@ CartesianGrid grid_over(const Box& box, Sizes n) {
   for (int a = 0; a < 3; ++a) {
     if (n[a] < 2 || n[a] > kMaxGridSize)
       throw std::invalid_argument(
-          fmt::format("Cartesian grid of {} x {} x {} points: each size must be in 2..{}", n[0], n[1], n[2], kMaxGridSize));
+          fmt::format("Cartesian grid of {} x {} x {} points: each size must be in 2..{}", n[0],
+                      n[1], n[2], kMaxGridSize));
     count *= static_cast<std::uint64_t>(n[a]);
   }
   if (count > kMaxGridPoints)
-    throw std::invalid_argument(fmt::format("Cartesian grid of {} x {} x {} points is too large (at most {})", n[0], n[1], n[2], kMaxGridPoints));
+    throw std::invalid_argument(
+        fmt::format("Cartesian grid of {} x {} x {} points is too large (at most {})", n[0], n[1],
+                    n[2], kMaxGridPoints));
   CartesianGrid grid{n, {}, box.min};
   for (int a = 0; a < 3; ++a) {
     if (!std::isfinite(box.min[a]) || !std::isfinite(box.max[a]))
       throw std::invalid_argument(fmt::format("resampling box {} is not finite", describe(box)));
     if (!(box.min[a] < box.max[a]))
-      throw std::invalid_argument(fmt::format("resampling box {} is empty or degenerate on axis {} (it needs min < max)", describe(box), a));
+      throw std::invalid_argument(
+          fmt::format("resampling box {} is empty or degenerate on axis {} (it needs min < max)",
+                      describe(box), a));
     grid.spacing[a] = (box.max[a] - box.min[a]) / (n[a] - 1);
     if (!std::isfinite(grid.spacing[a]) || grid.spacing[a] <= 0)
-      throw std::invalid_argument(fmt::format("resampling box {} gives no usable spacing on axis {}", describe(box), a));
+      throw std::invalid_argument(
+          fmt::format("resampling box {} gives no usable spacing on axis {}", describe(box), a));
   }
   return grid;
 }
@@ -106,15 +116,18 @@ CartesianVolume<T> resample(const BccVolume<T>& volume, Filter f, const Cartesia
   std::uint64_t count = 1;
   for (int a = 0; a < 3; ++a) {
     if (grid.sizes[a] < 2 || grid.sizes[a] > kMaxGridSize)
-      throw std::invalid_argument(fmt::format("Cartesian grid of {} x {} x {} points: each size must be in 2..{}", grid.sizes[0],
-                                              grid.sizes[1], grid.sizes[2], kMaxGridSize));
+      throw std::invalid_argument(
+          fmt::format("Cartesian grid of {} x {} x {} points: each size must be in 2..{}",
+                      grid.sizes[0], grid.sizes[1], grid.sizes[2], kMaxGridSize));
     count *= static_cast<std::uint64_t>(grid.sizes[a]);
     if (!std::isfinite(grid.spacing[a]) || grid.spacing[a] <= 0 || !std::isfinite(grid.origin[a]))
-      throw std::invalid_argument(fmt::format("Cartesian grid spacing and origin must be finite (and spacing > 0) on axis {}", a));
+      throw std::invalid_argument(fmt::format(
+          "Cartesian grid spacing and origin must be finite (and spacing > 0) on axis {}", a));
   }
   if (count > kMaxGridPoints)
-    throw std::invalid_argument(fmt::format("Cartesian grid of {} x {} x {} points is too large (at most {})", grid.sizes[0],
-                                            grid.sizes[1], grid.sizes[2], kMaxGridPoints));
+    throw std::invalid_argument(
+        fmt::format("Cartesian grid of {} x {} x {} points is too large (at most {})",
+                    grid.sizes[0], grid.sizes[1], grid.sizes[2], kMaxGridPoints));
 
   CartesianVolume<T> out;
   out.sizes = grid.sizes;
@@ -124,17 +137,22 @@ CartesianVolume<T> resample(const BccVolume<T>& volume, Filter f, const Cartesia
   // evaluable region; then every point between them does (the region is a box).
   const LatticeRegion region = lattice_region(volume, f);
   const Vec3 first = volume.to_lattice(out.position(0, 0, 0));
-  const Vec3 last = volume.to_lattice(out.position(grid.sizes[0] - 1, grid.sizes[1] - 1, grid.sizes[2] - 1));
+  const Vec3 last =
+      volume.to_lattice(out.position(grid.sizes[0] - 1, grid.sizes[1] - 1, grid.sizes[2] - 1));
   for (int a = 0; a < 3; ++a)
     if (!(first[a] >= region.lo[a] && last[a] < region.hi[a]))
-      throw std::out_of_range(fmt::format("resampling grid {} leaves the region where the {} stencil lies inside the volume, {}",
-                                          describe({out.position(0, 0, 0), out.position(grid.sizes[0] - 1, grid.sizes[1] - 1, grid.sizes[2] - 1)}),
-                                          filter_name(f), describe(to_world(volume, region.lo, region.hi))));
+      throw std::out_of_range(fmt::format(
+          "resampling grid {} leaves the region where the {} stencil lies inside the volume, {}",
+          describe({out.position(0, 0, 0),
+                    out.position(grid.sizes[0] - 1, grid.sizes[1] - 1, grid.sizes[2] - 1)}),
+          filter_name(f), describe(to_world(volume, region.lo, region.hi))));
 
   out.values.resize(static_cast<std::size_t>(count));
   // Whole z-slices per batch (about 2^16 points): all cores at work, bounded scratch memory.
-  const std::size_t slice = static_cast<std::size_t>(grid.sizes[0]) * static_cast<std::size_t>(grid.sizes[1]);
-  const int slices_per_batch = static_cast<int>(std::max<std::size_t>(1, (std::size_t{1} << 16) / slice));
+  const std::size_t slice =
+      static_cast<std::size_t>(grid.sizes[0]) * static_cast<std::size_t>(grid.sizes[1]);
+  const int slices_per_batch =
+      static_cast<int>(std::max<std::size_t>(1, (std::size_t{1} << 16) / slice));
   const Reconstructor<T> reconstructor(volume, f);
   std::vector<Vec3> points;
   for (int k0 = 0; k0 < grid.sizes[2]; k0 += slices_per_batch) {
@@ -147,7 +165,8 @@ CartesianVolume<T> resample(const BccVolume<T>& volume, Filter f, const Cartesia
     try {
       reconstructor.evaluate(points, values);
     } catch (const std::out_of_range& e) {  // a point within rounding of the region's face
-      throw std::out_of_range(fmt::format("resampling grid slices z = {}..{}: {}", k0, k1 - 1, e.what()));
+      throw std::out_of_range(
+          fmt::format("resampling grid slices z = {}..{}: {}", k0, k1 - 1, e.what()));
     }
   }
   return out;
@@ -157,7 +176,9 @@ template Box evaluable_region<float>(const BccVolume<float>&, Filter);
 template Box evaluable_region<double>(const BccVolume<double>&, Filter);
 template Box default_box<float>(const BccVolume<float>&, Filter);
 template Box default_box<double>(const BccVolume<double>&, Filter);
-template CartesianVolume<float> resample<float>(const BccVolume<float>&, Filter, const CartesianGrid&);
-template CartesianVolume<double> resample<double>(const BccVolume<double>&, Filter, const CartesianGrid&);
+template CartesianVolume<float> resample<float>(const BccVolume<float>&, Filter,
+                                                const CartesianGrid&);
+template CartesianVolume<double> resample<double>(const BccVolume<double>&, Filter,
+                                                  const CartesianGrid&);
 
 }  // namespace boxgen::runtime

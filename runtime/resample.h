@@ -6,9 +6,9 @@
 // point x in lattice coordinates, a stencil that depends only on the unit cube k = floor(x + c)
 // holding x and on the cell of that cube. Over all cells of all cubes the fetched lattice points
 // j satisfy  k_a + lo_a <= j_a <= k_a + hi_a  (StencilReach: the generator publishes lo and hi
-// with each evaluator as kStencilReachLo/Hi, and tests/runtime checks them against the fetches). The
-// volume holds 0 <= j_a <= 2 N_a - 1, and every cube type occurs on every face of a box at least
-// two units wide, so the exact region where every point evaluates is the half-open box
+// with each evaluator as kStencilReachLo/Hi, and tests/runtime checks them against the fetches).
+// The volume holds 0 <= j_a <= 2 N_a - 1, and every cube type occurs on every face of a box at
+// least two units wide, so the exact region where every point evaluates is the half-open box
 //   -lo_a - c_a  <=  x_a  <  2 N_a - hi_a - c_a        (lattice coordinates, per axis a).
 // The default box is that region, closed, and pulled in on each side by a rounding guard g (a few
 // ulps of the coordinates, in T and in double: see default_box) so that a grid point on its faces
@@ -68,7 +68,9 @@ extern template Box evaluable_region<float>(const BccVolume<float>&, Filter);
 extern template Box evaluable_region<double>(const BccVolume<double>&, Filter);
 extern template Box default_box<float>(const BccVolume<float>&, Filter);
 extern template Box default_box<double>(const BccVolume<double>&, Filter);
-extern template CartesianVolume<float> resample<float>(const BccVolume<float>&, Filter, const CartesianGrid&);
-extern template CartesianVolume<double> resample<double>(const BccVolume<double>&, Filter, const CartesianGrid&);
+extern template CartesianVolume<float> resample<float>(const BccVolume<float>&, Filter,
+                                                       const CartesianGrid&);
+extern template CartesianVolume<double> resample<double>(const BccVolume<double>&, Filter,
+                                                         const CartesianGrid&);
 
 }  // namespace boxgen::runtime

@@ -10,12 +10,16 @@
 namespace boxgen::runtime {
 
 BccGrid cube_grid(int n, int margin) {
-  if (n < 2) throw std::invalid_argument(fmt::format("density N = {} is too small: N^3 x 2 samples over [-1,1]^3 need N >= 2", n));
-  if (margin < 0) throw std::invalid_argument(fmt::format("margin {} must not be negative", margin));
+  if (n < 2)
+    throw std::invalid_argument(
+        fmt::format("density N = {} is too small: N^3 x 2 samples over [-1,1]^3 need N >= 2", n));
+  if (margin < 0)
+    throw std::invalid_argument(fmt::format("margin {} must not be negative", margin));
   const long long per_axis = static_cast<long long>(n) + 2 * static_cast<long long>(margin);
   if (per_axis > BccVolume<double>::kMaxSize)
-    throw std::invalid_argument(fmt::format("density N = {} with margin {} is too large ({} samples per coset and axis, at most {})", n,
-                                            margin, per_axis, BccVolume<double>::kMaxSize));
+    throw std::invalid_argument(fmt::format(
+        "density N = {} with margin {} is too large ({} samples per coset and axis, at most {})", n,
+        margin, per_axis, BccVolume<double>::kMaxSize));
   const double h = 1.0 / (n - 1);
   const double o = -1 - 2 * h * margin;
   const int size = static_cast<int>(per_axis);
@@ -29,7 +33,8 @@ BccVolume<T> sample_bcc(const ScalarFunction& f, const BccGrid& grid) {
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i)
-        for (int c = 0; c < 2; ++c) volume(c, i, j, k) = to_sample<T>(f(volume.sample_position(c, i, j, k)));
+        for (int c = 0; c < 2; ++c)
+          volume(c, i, j, k) = to_sample<T>(f(volume.sample_position(c, i, j, k)));
   return volume;
 }
 
@@ -48,7 +53,8 @@ LatticeVolume<T> sample_lattice(const ScalarFunction& f, const LatticeGrid& grid
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i)
-        for (int c = 0; c < cosets; ++c) volume(c, i, j, k) = to_sample<T>(f(volume.sample_position(c, i, j, k)));
+        for (int c = 0; c < cosets; ++c)
+          volume(c, i, j, k) = to_sample<T>(f(volume.sample_position(c, i, j, k)));
   return volume;
 }
 

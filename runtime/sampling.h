@@ -63,8 +63,10 @@ LatticeGrid cube_lattice_grid(const CosetLattice& lattice, int n, int margin);
 template <class T>
 LatticeVolume<T> sample_lattice(const ScalarFunction& f, const LatticeGrid& grid);
 
-extern template LatticeVolume<float> sample_lattice<float>(const ScalarFunction&, const LatticeGrid&);
-extern template LatticeVolume<double> sample_lattice<double>(const ScalarFunction&, const LatticeGrid&);
+extern template LatticeVolume<float> sample_lattice<float>(const ScalarFunction&,
+                                                           const LatticeGrid&);
+extern template LatticeVolume<double> sample_lattice<double>(const ScalarFunction&,
+                                                             const LatticeGrid&);
 
 extern template BccVolume<float> sample_bcc<float>(const ScalarFunction&, const BccGrid&);
 extern template BccVolume<double> sample_bcc<double>(const ScalarFunction&, const BccGrid&);

@@ -24,7 +24,8 @@ double sin_half_pi_r_over_r(double r) {
 // about 1e-16 * 12 pi / |phase - 12 pi| (measured against long double at r = 3e-5: 4e-8 direct,
 // below 1e-10 reduced).
 double marschner_lobb_phase(double r) {
-  static_assert(kMarschnerLobbFrequency == static_cast<int>(kMarschnerLobbFrequency), "the reduction needs an integer fM");
+  static_assert(kMarschnerLobbFrequency == static_cast<int>(kMarschnerLobbFrequency),
+                "the reduction needs an integer fM");
   const double s = std::sin(kPi * r / 4);
   return 2 * kPi * kMarschnerLobbFrequency * (-2 * s * s);
 }
@@ -41,7 +42,8 @@ Vec3 marschner_lobb_gradient(const Vec3& p) {
   const double a = kMarschnerLobbAlpha, fm = kMarschnerLobbFrequency;
   const double r = std::hypot(p[0], p[1]);
   // d/dx cos(2 pi fm u) = -sin(2 pi fm u) 2 pi fm du/dx,  du/dx = -(pi/2) sin(pi r/2) x / r.
-  const double radial = a * std::sin(marschner_lobb_phase(r)) * 2 * kPi * fm * (kPi / 2) * sin_half_pi_r_over_r(r) / (2 * (1 + a));
+  const double radial = a * std::sin(marschner_lobb_phase(r)) * 2 * kPi * fm * (kPi / 2) *
+                        sin_half_pi_r_over_r(r) / (2 * (1 + a));
   return {radial * p[0], radial * p[1], -(kPi / 2) * std::cos(kPi * p[2] / 2) / (2 * (1 + a))};
 }
 
@@ -89,9 +91,11 @@ const TestFunction& find_test_function(std::string_view name) {
     if (f.name == name) return f;
   // Echo at most 40 characters of the user's text, with control characters replaced.
   std::string shown;
-  for (char ch : name.substr(0, 40)) shown += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
+  for (char ch : name.substr(0, 40))
+    shown += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
   if (name.size() > 40) shown += "...";
-  throw std::invalid_argument("unknown test function '" + shown + "' (expected one of " + test_function_names() + ")");
+  throw std::invalid_argument("unknown test function '" + shown + "' (expected one of " +
+                              test_function_names() + ")");
 }
 
 std::string test_function_names() {

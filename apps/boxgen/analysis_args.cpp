@@ -20,12 +20,13 @@ analysis::Vec parse_direction(const std::string& text, int dimension, const std:
   std::string rest;
   is.clear();
   if ((is >> rest) || static_cast<int>(v.size()) != dimension)
-    fail_input(fmt::format("{} '{}' must be {} numbers such as {}", what, text.substr(0, 40), dimension,
-                           dimension == 3 ? "1,1,1" : "1,1"));
+    fail_input(fmt::format("{} '{}' must be {} numbers such as {}", what, text.substr(0, 40),
+                           dimension, dimension == 3 ? "1,1,1" : "1,1"));
   analysis::Vec d{0, 0, 0};
   double norm = 0;
   for (int i = 0; i < dimension; ++i) {
-    if (!std::isfinite(v[i])) fail_input(fmt::format("{} '{}' has a non-finite entry", what, text.substr(0, 40)));
+    if (!std::isfinite(v[i]))
+      fail_input(fmt::format("{} '{}' has a non-finite entry", what, text.substr(0, 40)));
     d[i] = v[i];
     norm += v[i] * v[i];
   }
@@ -33,8 +34,8 @@ analysis::Vec parse_direction(const std::string& text, int dimension, const std:
   return d;
 }
 
-std::vector<double> abscissae(const FrequencyOptions& o, bool log, double fallback_from, double fallback_to,
-                              int fallback_steps, bool required) {
+std::vector<double> abscissae(const FrequencyOptions& o, bool log, double fallback_from,
+                              double fallback_to, int fallback_steps, bool required) {
   const bool range = o.from || o.to || o.steps != 0;
   if (!o.w.empty() && range) fail_input("give either --w or --from/--to/--steps, not both");
   if (!o.w.empty()) {
@@ -50,8 +51,11 @@ std::vector<double> abscissae(const FrequencyOptions& o, bool log, double fallba
   const int steps = o.steps != 0 ? o.steps : fallback_steps;
   if (range && (!o.from || !o.to)) fail_input("--from and --to go together");
   if (!std::isfinite(from) || !std::isfinite(to)) fail_input("--from and --to must be finite");
-  if (!(to > from)) fail_input(fmt::format("empty or inverted range: --from {} --to {} (need from < to)", from, to));
-  if (steps < 2 || steps > 100000) fail_input(fmt::format("--steps must be between 2 and 100000, got {}", steps));
+  if (!(to > from))
+    fail_input(
+        fmt::format("empty or inverted range: --from {} --to {} (need from < to)", from, to));
+  if (steps < 2 || steps > 100000)
+    fail_input(fmt::format("--steps must be between 2 and 100000, got {}", steps));
   if (log && from <= 0) fail_input("--from must be positive for a log-axis plot");
   std::vector<double> out(steps);
   for (int i = 0; i < steps; ++i) {

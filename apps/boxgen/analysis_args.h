@@ -13,7 +13,7 @@ namespace boxgen::cli {
 analysis::Vec parse_direction(const std::string& text, int dimension, const std::string& what);
 // The abscissae from --w or from --from/--to/--steps (linear, or logarithmic when `log`); when
 // none is given, `fallback_from`..`fallback_to` with `fallback_steps` points.
-std::vector<double> abscissae(const FrequencyOptions& o, bool log, double fallback_from, double fallback_to,
-                              int fallback_steps, bool required);
+std::vector<double> abscissae(const FrequencyOptions& o, bool log, double fallback_from,
+                              double fallback_to, int fallback_steps, bool required);
 
 }  // namespace boxgen::cli

@@ -5,9 +5,13 @@
 
 namespace boxgen::cli {
 
-analysis::BoxSplineSpectrum spectrum_of(const BoxSplineSpec& spec) { return analysis::BoxSplineSpectrum(spec.directions); }
+analysis::BoxSplineSpectrum spectrum_of(const BoxSplineSpec& spec) {
+  return analysis::BoxSplineSpectrum(spec.directions);
+}
 
-analysis::DualLattice dual_of(const BoxSplineSpec& spec) { return analysis::DualLattice(spec.lattice.generator()); }
+analysis::DualLattice dual_of(const BoxSplineSpec& spec) {
+  return analysis::DualLattice(spec.lattice.generator());
+}
 
 std::vector<analysis::LatticeTap> taps_of(const Autocorrelation& a) {
   std::vector<analysis::LatticeTap> out;
@@ -15,14 +19,19 @@ std::vector<analysis::LatticeTap> taps_of(const Autocorrelation& a) {
   return out;
 }
 
-std::vector<analysis::LatticeTap> prefilter_taps_of(const BoxSplineSpec& spec, const std::string& name) {
+std::vector<analysis::LatticeTap> prefilter_taps_of(const BoxSplineSpec& spec,
+                                                    const std::string& name) {
   if (name == "none") return {};
   std::vector<int> shells;
-  if (name == "q1") shells = {0, 1};
-  else if (name == "q2") shells = {0, 1, 2};
-  else fail_input("unknown prefilter '" + name.substr(0, 40) + "': expected none, q1, q2 or min");
+  if (name == "q1")
+    shells = {0, 1};
+  else if (name == "q2")
+    shells = {0, 1, 2};
+  else
+    fail_input("unknown prefilter '" + name.substr(0, 40) + "': expected none, q1, q2 or min");
   std::vector<analysis::LatticeTap> out;
-  for (const auto& w : derive_prefilter(spec, shells).weights) out.push_back({w.offset, to_double(w.weight)});
+  for (const auto& w : derive_prefilter(spec, shells).weights)
+    out.push_back({w.offset, to_double(w.weight)});
   return out;
 }
 

@@ -18,6 +18,7 @@ analysis::DualLattice dual_of(const BoxSplineSpec& spec);
 std::vector<analysis::LatticeTap> taps_of(const Autocorrelation& a);
 // "none" -> empty; "q1" -> shells 0,1; "q2" -> shells 0,1,2. Throws InputError otherwise
 // ("min" is handled by the caller).
-std::vector<analysis::LatticeTap> prefilter_taps_of(const BoxSplineSpec& spec, const std::string& name);
+std::vector<analysis::LatticeTap> prefilter_taps_of(const BoxSplineSpec& spec,
+                                                    const std::string& name);
 
 }  // namespace boxgen::cli

@@ -27,7 +27,8 @@ int run_analyze(const Common& c, const AnalyzeOptions& o) {
     } else {
       fmt::print("estimated time    {:.3g} s (this machine's calibration)\n", estimate.seconds);
       fmt::print("estimated memory  {:.3g} MB\n", estimate.bytes / 1e6);
-      fmt::print("knot cells        {}{}\n", estimate.knot_cells, estimate.cells_exact ? "" : " (upper bound)");
+      fmt::print("knot cells        {}{}\n", estimate.knot_cells,
+                 estimate.cells_exact ? "" : " (upper bound)");
     }
     return 0;
   }

@@ -17,13 +17,17 @@ int run_autocorr(const Common& c, const std::string& method) {
     fail_input("unknown --method '" + method + "': expected refinement or continuity");
   if (c.json) {
     nlohmann::json samples = nlohmann::json::array();
-    for (const auto& s : a.samples) samples.push_back({{"point", s.point}, {"value", to_string(s.value)}});
-    print_json({{"method", method}, {"integral_squared", to_string(a.integral_squared)}, {"samples", samples}});
+    for (const auto& s : a.samples)
+      samples.push_back({{"point", s.point}, {"value", to_string(s.value)}});
+    print_json({{"method", method},
+                {"integral_squared", to_string(a.integral_squared)},
+                {"samples", samples}});
     return 0;
   }
   fmt::print("lattice samples of the doubled box spline of {} ({} method)\n", spec.name, method);
   fmt::print("  integral of (M^c)^2 = a(0) = {}\n", to_string(a.integral_squared));
-  for (const auto& s : a.samples) fmt::print("  {:<16} {}\n", format_point(s.point), to_string(s.value));
+  for (const auto& s : a.samples)
+    fmt::print("  {:<16} {}\n", format_point(s.point), to_string(s.value));
   return 0;
 }
 

@@ -28,14 +28,16 @@ std::vector<int> selected_orbits(const std::string& region, std::size_t count) {
   }
   const Rational r = parse_rational(region, "--region");
   if (!is_integer(r) || cln::minusp(r) || r >= Rational(static_cast<long>(count)))
-    fail_input(fmt::format("--region must be 'reference' or an orbit index from 0 to {}, got '{}'", count - 1, region));
+    fail_input(fmt::format("--region must be 'reference' or an orbit index from 0 to {}, got '{}'",
+                           count - 1, region));
   orbits.push_back(static_cast<int>(floor_to_int64(r)));
   return orbits;
 }
 
 // One simplex's BB-coefficients: appended to `text` and returned as JSON.
 nlohmann::json simplex_coefficients(const SimplexBBForm& sx, int degree, std::string& text) {
-  nlohmann::json js{{"vertices", nlohmann::json::array()}, {"coefficients", nlohmann::json::array()}};
+  nlohmann::json js{{"vertices", nlohmann::json::array()},
+                    {"coefficients", nlohmann::json::array()}};
   text += "  simplex:";
   for (const auto& v : sx.vertices) {
     js["vertices"].push_back(rational_list(v));
@@ -49,8 +51,10 @@ nlohmann::json simplex_coefficients(const SimplexBBForm& sx, int degree, std::st
       const Rational& w = sx.weights[b][k];
       if (cln::zerop(w)) continue;
       terms.push_back({{"stencil", k}, {"weight", to_string(w)}});
-      line += fmt::format("{}{} V_{}", line.empty() ? (cln::minusp(w) ? "-" : "") : (cln::minusp(w) ? " - " : " + "),
-                          to_string(cln::abs(w)), k);
+      line +=
+          fmt::format("{}{} V_{}",
+                      line.empty() ? (cln::minusp(w) ? "-" : "") : (cln::minusp(w) ? " - " : " + "),
+                      to_string(cln::abs(w)), k);
     }
     js["coefficients"].push_back({{"index", sx.indices[b]}, {"terms", terms}});
     std::string idx;
@@ -73,18 +77,23 @@ int run_bbform(const Common& c, const std::string& region) {
   for (int o : orbits) {
     const ReferenceRegion& ref = s.references[o];
     const RegionBBForm bb = region_bb_form(ref, degree);
-    nlohmann::json r{{"orbit", o}, {"regions_in_orbit", ref.regions_in_orbit}, {"triangulated", bb.triangulated}};
+    nlohmann::json r{{"orbit", o},
+                     {"regions_in_orbit", ref.regions_in_orbit},
+                     {"triangulated", bb.triangulated}};
     r["vertices"] = nlohmann::json::array();
     for (const auto& v : ref.vertices) r["vertices"].push_back(rational_list(v));
     r["stencil"] = bb.stencil;
-    text += fmt::format("reference region {} ({} regions per fundamental region map onto it)\n", o, ref.regions_in_orbit);
+    text += fmt::format("reference region {} ({} regions per fundamental region map onto it)\n", o,
+                        ref.regions_in_orbit);
     text += "  vertices:";
     for (const auto& v : ref.vertices) text += " " + vertex_text(v);
     text += fmt::format("\n  stencil ({} points, V_k = V(j_k)):\n", bb.stencil.size());
-    for (size_t k = 0; k < bb.stencil.size(); ++k) text += fmt::format("    j_{:<3} {}\n", k, format_point(bb.stencil[k]));
+    for (size_t k = 0; k < bb.stencil.size(); ++k)
+      text += fmt::format("    j_{:<3} {}\n", k, format_point(bb.stencil[k]));
     if (bb.triangulated)
-      text += fmt::format("  the region is not a simplex: BB-form on each of the {} simplices of a triangulation\n",
-                          bb.simplices.size());
+      text += fmt::format(
+          "  the region is not a simplex: BB-form on each of the {} simplices of a triangulation\n",
+          bb.simplices.size());
     nlohmann::json simplices = nlohmann::json::array();
     for (const auto& sx : bb.simplices) simplices.push_back(simplex_coefficients(sx, degree, text));
     r["simplices"] = simplices;

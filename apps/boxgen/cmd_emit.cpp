@@ -1,8 +1,8 @@
 #include <fmt/core.h>
 
-#include <filesystem>
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <set>
 
 #include "apps/boxgen/commands.h"
@@ -20,22 +20,30 @@ namespace {
 void write_emitted(const std::vector<EmittedFile>& files, const std::string& directory) {
   std::error_code ec;
   std::filesystem::create_directories(directory, ec);
-  if (ec || !std::filesystem::is_directory(directory)) boxgen::fail_input("cannot create output directory '" + directory + "'");
+  if (ec || !std::filesystem::is_directory(directory))
+    boxgen::fail_input("cannot create output directory '" + directory + "'");
   try {
-    for (const auto& f : files) (void)runtime::check_output_file(std::filesystem::path(directory) / f.filename);
     for (const auto& f : files)
-      runtime::write_output_file(std::filesystem::path(directory) / f.filename,
-                                 [&](std::FILE* out) { return std::fwrite(f.text.data(), 1, f.text.size(), out) == f.text.size(); });
+      (void)runtime::check_output_file(std::filesystem::path(directory) / f.filename);
+    for (const auto& f : files)
+      runtime::write_output_file(
+          std::filesystem::path(directory) / f.filename, [&](std::FILE* out) {
+            return std::fwrite(f.text.data(), 1, f.text.size(), out) == f.text.size();
+          });
   } catch (const runtime::OutputFileError& e) {
     boxgen::fail_input(e.what());
   }
 }
 
-nlohmann::json counts_json(const OperationCount& c) { return {{"adds", c.adds}, {"muls", c.muls}, {"total", c.total()}}; }
+nlohmann::json counts_json(const OperationCount& c) {
+  return {{"adds", c.adds}, {"muls", c.muls}, {"total", c.total()}};
+}
 
 void print_report(const EmissionReport& r) {
-  fmt::print("strategy {}: operations per point (adds + muls), value / value+gradient / +hessian: {} / {} / {}\n",
-             r.strategy, r.value.total(), r.gradient.total(), r.hessian.total());
+  fmt::print(
+      "strategy {}: operations per point (adds + muls), value / value+gradient / +hessian: {} / {} "
+      "/ {}\n",
+      r.strategy, r.value.total(), r.gradient.total(), r.hessian.total());
   for (std::size_t o = 0; o < r.orbits.size(); ++o)
     fmt::print("  orbit {}: {}, {} / {} / {}\n", o, r.orbits[o].strategy, r.orbits[o].value.total(),
                r.orbits[o].gradient.total(), r.orbits[o].hessian.total());
@@ -43,33 +51,61 @@ void print_report(const EmissionReport& r) {
 
 // --name becomes a namespace: a C++ identifier that is not a keyword (checked before deriving).
 void check_emit_name(const std::string& name) {
-  static const std::set<std::string> keywords = {
-      "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
-      "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval", "constexpr",
-      "constinit", "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype", "default", "delete",
-      "do", "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern", "false", "float", "for",
-      "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
-      "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register", "reinterpret_cast",
-      "requires", "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast", "struct",
-      "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename",
-      "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq"};
-  const auto letter = [](char ch) { return std::isalpha(static_cast<unsigned char>(ch)) || ch == '_'; };
-  const bool identifier = !name.empty() && letter(name[0]) &&
-                          std::all_of(name.begin(), name.end(), [&](char ch) {
-                            return letter(ch) || std::isdigit(static_cast<unsigned char>(ch));
-                          });
+  static const std::set<std::string> keywords = {"alignas",       "alignof",     "and",
+                                                 "and_eq",        "asm",         "auto",
+                                                 "bitand",        "bitor",       "bool",
+                                                 "break",         "case",        "catch",
+                                                 "char",          "char8_t",     "char16_t",
+                                                 "char32_t",      "class",       "compl",
+                                                 "concept",       "const",       "consteval",
+                                                 "constexpr",     "constinit",   "const_cast",
+                                                 "continue",      "co_await",    "co_return",
+                                                 "co_yield",      "decltype",    "default",
+                                                 "delete",        "do",          "double",
+                                                 "dynamic_cast",  "else",        "enum",
+                                                 "explicit",      "export",      "extern",
+                                                 "false",         "float",       "for",
+                                                 "friend",        "goto",        "if",
+                                                 "inline",        "int",         "long",
+                                                 "mutable",       "namespace",   "new",
+                                                 "noexcept",      "not",         "not_eq",
+                                                 "nullptr",       "operator",    "or",
+                                                 "or_eq",         "private",     "protected",
+                                                 "public",        "register",    "reinterpret_cast",
+                                                 "requires",      "return",      "short",
+                                                 "signed",        "sizeof",      "static",
+                                                 "static_assert", "static_cast", "struct",
+                                                 "switch",        "template",    "this",
+                                                 "thread_local",  "throw",       "true",
+                                                 "try",           "typedef",     "typeid",
+                                                 "typename",      "union",       "unsigned",
+                                                 "using",         "virtual",     "void",
+                                                 "volatile",      "wchar_t",     "while",
+                                                 "xor",           "xor_eq"};
+  const auto letter = [](char ch) {
+    return std::isalpha(static_cast<unsigned char>(ch)) || ch == '_';
+  };
+  const bool identifier =
+      !name.empty() && letter(name[0]) && std::all_of(name.begin(), name.end(), [&](char ch) {
+        return letter(ch) || std::isdigit(static_cast<unsigned char>(ch));
+      });
   if (!identifier)
-    fail_input(fmt::format("--name '{}' is not a C++ identifier: use letters, digits and '_', not starting with a digit",
-                           name));
-  if (keywords.count(name)) fail_input(fmt::format("--name '{}' is a C++ keyword: choose another name", name));
-  if (name.find("__") != std::string::npos || (name.size() > 1 && name[0] == '_' && std::isupper(name[1])))
-    fail_input(fmt::format("--name '{}' is reserved for the implementation in C++ ('__' or '_' and a capital)", name));
+    fail_input(
+        fmt::format("--name '{}' is not a C++ identifier: use letters, digits and '_', not "
+                    "starting with a digit",
+                    name));
+  if (keywords.count(name))
+    fail_input(fmt::format("--name '{}' is a C++ keyword: choose another name", name));
+  if (name.find("__") != std::string::npos ||
+      (name.size() > 1 && name[0] == '_' && std::isupper(name[1])))
+    fail_input(fmt::format(
+        "--name '{}' is reserved for the implementation in C++ ('__' or '_' and a capital)", name));
 }
 
 }  // namespace
 
-int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy, bool report,
-             const std::vector<std::string>& registry) {
+int run_emit(const Common& c, const std::string& name, const std::string& out,
+             const std::string& strategy, bool report, const std::vector<std::string>& registry) {
   check_emit_name(name);
   const EmissionStrategy chosen = parse_strategy(strategy);  // before the derivation: fail fast
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
@@ -78,17 +114,19 @@ int run_emit(const Common& c, const std::string& name, const std::string& out, c
   options.progress = progress.callback();
   const Analysis a = analyze(spec, options);  // the exact checks run before anything is emitted
   progress.finish();
-  EmissionRequest request{name,
-                          fmt::format("boxgen emit {} {}--name {} --strategy {} --out <dir>",
-                                      spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,
-                                      c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy),
-                          chosen};
+  EmissionRequest request{
+      name,
+      fmt::format("boxgen emit {} {}--name {} --strategy {} --out <dir>",
+                  spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,
+                  c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy),
+      chosen};
   EmissionReport r;
   auto files = emit(a, request, &r);
   if (!registry.empty()) {
     std::string names;
     for (const auto& n : registry) names += (names.empty() ? "" : ",") + n;
-    files.push_back(emit_registry(registry, fmt::format("boxgen emit ... --registry {} --out <dir>", names)));
+    files.push_back(
+        emit_registry(registry, fmt::format("boxgen emit ... --registry {} --out <dir>", names)));
   }
   write_emitted(files, out);
   if (c.json) {
@@ -98,10 +136,15 @@ int run_emit(const Common& c, const std::string& name, const std::string& out, c
     if (report) {
       nlohmann::json orbits = nlohmann::json::array();
       for (const auto& o : r.orbits)
-        orbits.push_back({{"strategy", o.strategy}, {"value", counts_json(o.value)}, {"gradient", counts_json(o.gradient)},
+        orbits.push_back({{"strategy", o.strategy},
+                          {"value", counts_json(o.value)},
+                          {"gradient", counts_json(o.gradient)},
                           {"hessian", counts_json(o.hessian)}});
-      result["report"] = {{"strategy", r.strategy}, {"value", counts_json(r.value)}, {"gradient", counts_json(r.gradient)},
-                          {"hessian", counts_json(r.hessian)}, {"orbits", orbits}};
+      result["report"] = {{"strategy", r.strategy},
+                          {"value", counts_json(r.value)},
+                          {"gradient", counts_json(r.gradient)},
+                          {"hessian", counts_json(r.hessian)},
+                          {"orbits", orbits}};
     }
     print_json(result);
   } else {

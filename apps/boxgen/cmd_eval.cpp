@@ -9,10 +9,12 @@
 namespace boxgen::cli {
 
 namespace {
-constexpr long kMaxEvalCoordinate = 1000000;  // far beyond any support (entries <= 64, <= 32 columns)
+constexpr long kMaxEvalCoordinate =
+    1000000;  // far beyond any support (entries <= 64, <= 32 columns)
 }  // namespace
 
-int run_eval(const Common& c, const std::vector<std::string>& points, const std::string& derivative) {
+int run_eval(const Common& c, const std::vector<std::string>& points,
+             const std::string& derivative) {
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
   const int n = spec.dimension();
   std::array<int, 3> orders{0, 0, 0};
@@ -30,12 +32,14 @@ int run_eval(const Common& c, const std::vector<std::string>& points, const std:
     // Cells are keyed by 32-bit levels of nu . x: refuse what that frame cannot hold.
     for (const auto& v : xs.back())
       if (cln::abs(v) > Rational(kMaxEvalCoordinate))
-        fail_input(fmt::format("point '{}' has a coordinate too large for the exact frame: coordinates must be at "
-                               "most {} in magnitude",
-                               p, kMaxEvalCoordinate));
+        fail_input(fmt::format(
+            "point '{}' has a coordinate too large for the exact frame: coordinates must be at "
+            "most {} in magnitude",
+            p, kMaxEvalCoordinate));
   }
   ProgressPrinter progress(false);  // on a terminal, for derivations beyond two seconds
-  const PiecewiseForm form = derive_piecewise(spec, DerivationMethod::TruncatedPower, progress.callback());
+  const PiecewiseForm form =
+      derive_piecewise(spec, DerivationMethod::TruncatedPower, progress.callback());
   progress.finish();
   const RatVec centre = spline_centre(spec);
   const Rational scale = Rational(spec.lattice.det_abs());

@@ -22,16 +22,18 @@ namespace {
 
 // The paper's colours: M7 red, M8 blue, M12 green, then others.
 std::string colour(std::size_t i) {
-  static const char* colours[] = {"#d62728", "#1f4fd6", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b"};
+  static const char* colours[] = {"#d62728", "#1f4fd6", "#2ca02c", "#9467bd",
+                                  "#ff7f0e", "#17becf", "#8c564b"};
   return colours[i % 7];
 }
 std::string dark_colour(std::size_t i) {
-  static const char* colours[] = {"#7f0000", "#00005f", "#004d00", "#3f1f5f", "#7f3f00", "#004f5f", "#3f2a20"};
+  static const char* colours[] = {"#7f0000", "#00005f", "#004d00", "#3f1f5f",
+                                  "#7f3f00", "#004f5f", "#3f2a20"};
   return colours[i % 7];
 }
 
-std::vector<double> kernel_values(const analysis::ErrorKernel& e, const analysis::Vec& d, const std::vector<double>& w,
-                                  bool minimum) {
+std::vector<double> kernel_values(const analysis::ErrorKernel& e, const analysis::Vec& d,
+                                  const std::vector<double>& w, bool minimum) {
   std::vector<double> out;
   for (double x : w) {
     const analysis::Vec p{x * d[0], x * d[1], x * d[2]};
@@ -47,9 +49,11 @@ int run_kernel(const FrequencyOptions& o) {
   for (const auto& s : o.specs) specs.push_back(parse_spec(s, o.lattice));
   const int n = specs.front().dimension();
   for (const auto& s : specs)
-    if (s.dimension() != n) fail_input("all SPECs of one kernel command must have the same dimension");
+    if (s.dimension() != n)
+      fail_input("all SPECs of one kernel command must have the same dimension");
   if (o.prefilter != "none" && o.prefilter != "q1" && o.prefilter != "q2" && o.prefilter != "min")
-    fail_input("unknown prefilter '" + o.prefilter.substr(0, 40) + "': expected none, q1, q2 or min");
+    fail_input("unknown prefilter '" + o.prefilter.substr(0, 40) +
+               "': expected none, q1, q2 or min");
   const std::string direction = !o.direction.empty() ? o.direction : (n == 3 ? "1,1,1" : "1,1");
   const analysis::Vec d = parse_direction(direction, n, "--direction");
   const bool plot = !o.plot.empty();
@@ -70,11 +74,13 @@ int run_kernel(const FrequencyOptions& o) {
     const auto taps = taps_of(autocorrelation_refinement(spec));
     const double det = static_cast<double>(spec.lattice.det_abs());
     Curves c{o.specs[i], {}};
-    const std::vector<std::string> names =
-        plot ? std::vector<std::string>{"none", "q1", "q2", "min"} : std::vector<std::string>{o.prefilter};
+    const std::vector<std::string> names = plot
+                                               ? std::vector<std::string>{"none", "q1", "q2", "min"}
+                                               : std::vector<std::string>{o.prefilter};
     for (const auto& name : names) {
-      const analysis::ErrorKernel e(spectrum_of(spec), det, taps,
-                                    name == "min" ? std::vector<analysis::LatticeTap>{} : prefilter_taps_of(spec, name));
+      const analysis::ErrorKernel e(
+          spectrum_of(spec), det, taps,
+          name == "min" ? std::vector<analysis::LatticeTap>{} : prefilter_taps_of(spec, name));
       c.e[name] = kernel_values(e, d, w, name == "min");
     }
     all.push_back(std::move(c));
@@ -87,12 +93,15 @@ int run_kernel(const FrequencyOptions& o) {
     panel.ylabel = "E";
     panel.log_x = panel.log_y = true;
     panel.extra = "set key bottom right font ',8'\nset autoscale xfix\nset yrange [1e-16:2]";
-    const std::map<std::string, std::string> dash = {{"none", "dt 3"}, {"q1", "dt 2"}, {"q2", "dt 1"}};
-    const std::map<std::string, std::string> label = {{"none", "no prefilter"}, {"q1", "Q^I"}, {"q2", "Q^{II}"}};
+    const std::map<std::string, std::string> dash = {
+        {"none", "dt 3"}, {"q1", "dt 2"}, {"q2", "dt 1"}};
+    const std::map<std::string, std::string> label = {
+        {"none", "no prefilter"}, {"q1", "Q^I"}, {"q2", "Q^{II}"}};
     for (std::size_t i = all.size(); i-- > 0;) {  // the first SPEC drawn last, on top
       for (const std::string name : {"none", "q1", "q2"})
-        panel.series.push_back({fmt::format("{} {}", all[i].key, label.at(name)), w, all[i].e.at(name),
-                                fmt::format("lines lw 2 lc rgb '{}' {}", colour(i), dash.at(name))});
+        panel.series.push_back(
+            {fmt::format("{} {}", all[i].key, label.at(name)), w, all[i].e.at(name),
+             fmt::format("lines lw 2 lc rgb '{}' {}", colour(i), dash.at(name))});
       panel.series.push_back({fmt::format("{} E_{{min}}", all[i].key), w, all[i].e.at("min"),
                               fmt::format("lines lw 2 lc rgb '{}' dt 1", dark_colour(i))});
     }

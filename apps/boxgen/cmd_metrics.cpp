@@ -54,7 +54,8 @@ int run_metrics(const std::vector<std::string>& specs, const std::string& lattic
     for (const auto& r : rows) {
       nlohmann::json steps = nlohmann::json::array();
       for (const auto& s : r.m.steps)
-        steps.push_back({{"order", s.order}, {"iterated", s.iterated}, {"simplex_fan", s.simplex_fan}});
+        steps.push_back(
+            {{"order", s.order}, {"iterated", s.iterated}, {"simplex_fan", s.simplex_fan}});
       out[r.key] = {{"smoothing", r.m.smoothing},
                     {"postaliasing", r.m.postaliasing},
                     {"integral_squared", to_string(r.a0)},
@@ -68,23 +69,28 @@ int run_metrics(const std::vector<std::string>& specs, const std::string& lattic
     print_json(out);
     return 0;
   }
-  fmt::print("Marschner-Lobb filter metrics of psi = M^c (S = 1 - (1/|N|) int_N |psi_hat|^2, "
-             "P = (1/|N|) int_outside N |psi_hat|^2)\n");
-  fmt::print("{:<10} {:<10} {:>12} {:>12} {:>9} {:>10} {:>10}  {}\n", "filter", "lattice", "smoothing", "postaliasing",
-             "error<=", "paper S", "paper P", "int (M^c)^2 = a(0)");
+  fmt::print(
+      "Marschner-Lobb filter metrics of psi = M^c (S = 1 - (1/|N|) int_N |psi_hat|^2, "
+      "P = (1/|N|) int_outside N |psi_hat|^2)\n");
+  fmt::print("{:<10} {:<10} {:>12} {:>12} {:>9} {:>10} {:>10}  {}\n", "filter", "lattice",
+             "smoothing", "postaliasing", "error<=", "paper S", "paper P", "int (M^c)^2 = a(0)");
   for (const auto& r : rows) {
     // The paper's row only for the preset on its own lattice.
     const auto paper = r.spec.lattice.name() == "bcc" ? paper_table3(r.spec.name) : std::nullopt;
-    fmt::print("{:<10} {:<10} {:>12.7g} {:>12.7g} {:>9.1e} {:>10} {:>10}  {}\n", r.key, r.spec.lattice.name(),
-               r.m.smoothing, r.m.postaliasing, r.m.estimated_error,
+    fmt::print("{:<10} {:<10} {:>12.7g} {:>12.7g} {:>9.1e} {:>10} {:>10}  {}\n", r.key,
+               r.spec.lattice.name(), r.m.smoothing, r.m.postaliasing, r.m.estimated_error,
                paper ? fmt::format("{:.5f}", paper->smoothing) : "-",
                paper ? fmt::format("{:.5f}", paper->postaliasing) : "-", to_string(r.a0));
   }
-  fmt::print("\nquadrature of int_N |psi_hat|^2 (Gauss-Legendre of the given order per variable; two independent "
-             "rules)\n");
+  fmt::print(
+      "\nquadrature of int_N |psi_hat|^2 (Gauss-Legendre of the given order per variable; two "
+      "independent "
+      "rules)\n");
   for (const auto& r : rows) {
-    fmt::print("{} (|N| = {:.12g}, (2 pi)^n a(0) = {:.15g}, {:.2f} s)\n", r.key, r.m.nyquist_volume, r.m.total, r.seconds);
-    fmt::print("  {:>5} {:>22} {:>22} {:>10}\n", "order", "iterated (breakpoints)", "simplex fan (Duffy)", "difference");
+    fmt::print("{} (|N| = {:.12g}, (2 pi)^n a(0) = {:.15g}, {:.2f} s)\n", r.key, r.m.nyquist_volume,
+               r.m.total, r.seconds);
+    fmt::print("  {:>5} {:>22} {:>22} {:>10}\n", "order", "iterated (breakpoints)",
+               "simplex fan (Duffy)", "difference");
     for (const auto& s : r.m.steps)
       fmt::print("  {:>5} {:>22.15f} {:>22.15f} {:>10.1e}\n", s.order, s.iterated, s.simplex_fan,
                  std::abs(s.iterated - s.simplex_fan));

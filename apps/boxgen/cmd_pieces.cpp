@@ -9,7 +9,8 @@
 
 namespace boxgen::cli {
 
-int run_pieces(const Common& c, const std::string& of, const std::string& region, const std::string& format) {
+int run_pieces(const Common& c, const std::string& of, const std::string& region,
+               const std::string& format) {
   const PiecesOf what = parse_pieces_of(of);
   const PieceSelection selection = parse_piece_selection(region);
   const PieceFormat printer = c.json ? PieceFormat::Json : parse_piece_format(format);
@@ -19,8 +20,9 @@ int run_pieces(const Common& c, const std::string& of, const std::string& region
                   spec.name == "custom" ? fmt::format("\"{}\"", spec.directions_text()) : spec.name,
                   c.lattice.empty() ? "" : fmt::format(" --lattice \"{}\"", c.lattice), of, region);
   const PiecewiseForm form = derive_piecewise(spec, DerivationMethod::TruncatedPower);
-  const Pieces pieces = what == PiecesOf::Spline ? spline_pieces(form, spline_structure(form), selection)
-                                                 : filter_pieces(form, selection);
+  const Pieces pieces = what == PiecesOf::Spline
+                            ? spline_pieces(form, spline_structure(form), selection)
+                            : filter_pieces(form, selection);
   fmt::print("{}", format_pieces(pieces, printer, title));
   return 0;
 }

@@ -52,7 +52,8 @@ std::string formula(const Prefilter& q, const Lattice& lattice) {
     std::string set;
     for (size_t i = 0; i < terms.size(); ++i) set += (i ? " u " : "") + terms[i];
     const bool negative = cln::minusp(value_of[weight]);
-    out += fmt::format(" {} {} sum_{{xi in {}}} z^-xi", negative ? "-" : "+", negative ? weight.substr(1) : weight, set);
+    out += fmt::format(" {} {} sum_{{xi in {}}} z^-xi", negative ? "-" : "+",
+                       negative ? weight.substr(1) : weight, set);
   }
   return out;
 }
@@ -65,7 +66,8 @@ int run_prefilter(const Common& c, const std::string& shells_text) {
   const Prefilter q = derive_prefilter(spec, shells);
   if (c.json) {
     nlohmann::json w = nlohmann::json::array();
-    for (const auto& x : q.weights) w.push_back({{"offset", x.offset}, {"weight", to_string(x.weight)}});
+    for (const auto& x : q.weights)
+      w.push_back({{"offset", x.offset}, {"weight", to_string(x.weight)}});
     nlohmann::json out{{"order", q.order},
                        {"shells", q.shells},
                        {"parametrisation", q.parametrisation},
@@ -74,10 +76,12 @@ int run_prefilter(const Common& c, const std::string& shells_text) {
     print_json(out);
     return 0;
   }
-  fmt::print("prefilter of approximation order {} for {} on shells {}\n", q.order, spec.name, shells_text);
+  fmt::print("prefilter of approximation order {} for {} on shells {}\n", q.order, spec.name,
+             shells_text);
   fmt::print("  Q(z) = {}\n", formula(q, spec.lattice));
   if (!q.note.empty()) fmt::print("  note: {}\n", q.note);
-  for (const auto& x : q.weights) fmt::print("  {:<14} {}\n", format_point(x.offset), to_string(x.weight));
+  for (const auto& x : q.weights)
+    fmt::print("  {:<14} {}\n", format_point(x.offset), to_string(x.weight));
   return 0;
 }
 

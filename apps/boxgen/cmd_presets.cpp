@@ -9,7 +9,10 @@ int run_presets(bool json) {
   if (json) {
     nlohmann::json out = nlohmann::json::array();
     for (const auto& p : presets())
-      out.push_back({{"name", p.name}, {"directions", p.directions}, {"lattice", p.lattice}, {"description", p.description}});
+      out.push_back({{"name", p.name},
+                     {"directions", p.directions},
+                     {"lattice", p.lattice},
+                     {"description", p.description}});
     print_json(out);
     return 0;
   }

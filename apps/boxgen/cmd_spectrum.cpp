@@ -19,10 +19,13 @@ namespace boxgen::cli {
 
 namespace {
 
-double dot(const analysis::Vec& a, const analysis::Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double dot(const analysis::Vec& a, const analysis::Vec& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 std::string colour(std::size_t i) {
-  static const char* colours[] = {"#d62728", "#1f4fd6", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b"};
+  static const char* colours[] = {"#d62728", "#1f4fd6", "#2ca02c", "#9467bd",
+                                  "#ff7f0e", "#17becf", "#8c564b"};
   return colours[i % 7];
 }
 
@@ -56,12 +59,20 @@ int run_line(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs,
   }
   if (!o.plot.empty()) {
     const std::string shade = fmt::format(
-        "set object 1 rect from {:.10g}, graph 0 to {:.10g}, graph 1 behind fc rgb '#d8d8d8' fs solid 1.0 noborder\n"
+        "set object 1 rect from {:.10g}, graph 0 to {:.10g}, graph 1 behind fc rgb '#d8d8d8' fs "
+        "solid 1.0 noborder\n"
         "set xrange [{:.10g}:{:.10g}]",
         -t, t, w.front(), w.back());
-    analysis::PlotPanel full{fmt::format("|psi_hat(w ({}))|", o.line), "w", "|psi_hat|", false, false,
-                             shade + "\nset yrange [0:1.05]\nset key top right", {}};
-    analysis::PlotPanel zoom{"magnified x100", "w", "|psi_hat|", false, false, shade + "\nset yrange [0:0.0105]\nset key top right", {}};
+    analysis::PlotPanel full{
+        fmt::format("|psi_hat(w ({}))|", o.line),           "w", "|psi_hat|", false, false,
+        shade + "\nset yrange [0:1.05]\nset key top right", {}};
+    analysis::PlotPanel zoom{"magnified x100",
+                             "w",
+                             "|psi_hat|",
+                             false,
+                             false,
+                             shade + "\nset yrange [0:0.0105]\nset key top right",
+                             {}};
     for (std::size_t i = 0; i < specs.size(); ++i) {
       const std::string style = fmt::format("lines lw 2 lc rgb '{}'", colour(i));
       full.series.push_back({o.specs[i], w, magnitude[i], style});
@@ -81,7 +92,8 @@ int run_line(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs,
     }
     return 0;
   }
-  fmt::print("|psi_hat(w d)|, d = ({}); Nyquist interval [{:.10g}, {:.10g}]\n{:>14}", o.line, -t, t, "w");
+  fmt::print("|psi_hat(w d)|, d = ({}); Nyquist interval [{:.10g}, {:.10g}]\n{:>14}", o.line, -t, t,
+             "w");
   for (const auto& s : o.specs) fmt::print(" {:>14}", s);
   fmt::print("\n");
   for (std::size_t k = 0; k < w.size(); ++k) {
@@ -99,13 +111,16 @@ int run_plane(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs
   if (n != 3) fail_input("--plane needs 3-D filters (for 2-D filters use --line)");
   if (o.plot.empty()) fail_input("--plane draws an image: give -o out.png");
   if (o.json) fail_input("--json is for --line (a plane is an image)");
-  if (!o.w.empty() || o.steps != 0) fail_input("--plane takes --from/--to (the square's range), not --w or --steps");
+  if (!o.w.empty() || o.steps != 0)
+    fail_input("--plane takes --from/--to (the square's range), not --w or --steps");
   analysis::Vec normal = parse_direction(o.plane, 3, "--plane");
   const double len = std::sqrt(dot(normal, normal));
   for (double& x : normal) x /= len;
   // An orthonormal basis u, v of the plane.
-  analysis::Vec helper = std::abs(normal[0]) < 0.9 ? analysis::Vec{1, 0, 0} : analysis::Vec{0, 1, 0};
-  analysis::Vec u{normal[1] * helper[2] - normal[2] * helper[1], normal[2] * helper[0] - normal[0] * helper[2],
+  analysis::Vec helper =
+      std::abs(normal[0]) < 0.9 ? analysis::Vec{1, 0, 0} : analysis::Vec{0, 1, 0};
+  analysis::Vec u{normal[1] * helper[2] - normal[2] * helper[1],
+                  normal[2] * helper[0] - normal[0] * helper[2],
                   normal[0] * helper[1] - normal[1] * helper[0]};
   const double lu = std::sqrt(dot(u, u));
   for (double& x : u) x /= lu;
@@ -116,13 +131,15 @@ int run_plane(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs
     if (s.lattice.generator() != specs.front().lattice.generator())
       fail_input("all SPECs of one spectrum must be on the same lattice");
   double circumradius = 0;
-  for (const auto& x : dual.cell().vertices) circumradius = std::max(circumradius, std::sqrt(dot(x, x)));
+  for (const auto& x : dual.cell().vertices)
+    circumradius = std::max(circumradius, std::sqrt(dot(x, x)));
   if ((o.from.has_value()) != (o.to.has_value())) fail_input("--from and --to go together");
   const double lo = o.from.value_or(-2.5 * circumradius), hi = o.to.value_or(2.5 * circumradius);
   if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo))
     fail_input(fmt::format("empty or inverted range: --from {} --to {} (need from < to)", lo, hi));
   const int size = o.size != 0 ? o.size : 400;
-  if (size < 16 || size > 4096) fail_input(fmt::format("--size must be between 16 and 4096, got {}", size));
+  if (size < 16 || size > 4096)
+    fail_input(fmt::format("--size must be between 16 and 4096, got {}", size));
   std::optional<analysis::AtomicOutput> check(o.plot);
   check.reset();
   const int gap = 8;
@@ -158,9 +175,11 @@ int run_plane(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs
       const double cx = (a - lo) / pixel, cy = (hi - b) / pixel;
       for (int dy = -4 * static_cast<int>(radius); dy <= 4 * static_cast<int>(radius); ++dy)
         for (int dx = -4 * static_cast<int>(radius); dx <= 4 * static_cast<int>(radius); ++dx) {
-          const int px = static_cast<int>(std::floor(cx)) + dx, py = static_cast<int>(std::floor(cy)) + dy;
+          const int px = static_cast<int>(std::floor(cx)) + dx,
+                    py = static_cast<int>(std::floor(cy)) + dy;
           if (px < 0 || px >= size || py < 0 || py >= size) continue;
-          if (std::hypot(px + 0.5 - cx, py + 0.5 - cy) <= radius) image.set(x0 + px, py, 255, 255, 255);
+          if (std::hypot(px + 0.5 - cx, py + 0.5 - cy) <= radius)
+            image.set(x0 + px, py, 255, 255, 255);
         }
     }
   }
@@ -176,7 +195,8 @@ int run_spectrum(const FrequencyOptions& o) {
   const int n = specs.front().dimension();
   for (const auto& s : specs)
     if (s.dimension() != n) fail_input("all SPECs of one spectrum must have the same dimension");
-  if (o.plane.empty() == o.line.empty()) fail_input("give exactly one of --plane a,b,c or --line a,b,c");
+  if (o.plane.empty() == o.line.empty())
+    fail_input("give exactly one of --plane a,b,c or --line a,b,c");
   return o.line.empty() ? run_plane(o, specs, n) : run_line(o, specs, n);
 }
 

@@ -32,9 +32,12 @@ std::pair<std::string, std::string> two_weights(const Prefilter& q) {
   for (const auto& w : q.weights) {
     const bool origin = w.offset == IntVec(w.offset.size(), 0);
     std::string v = to_string(w.weight);
-    if (origin) centre = v;
-    else if (neighbour.empty()) neighbour = v;
-    else if (neighbour != v) neighbour = "varies";
+    if (origin)
+      centre = v;
+    else if (neighbour.empty())
+      neighbour = v;
+    else if (neighbour != v)
+      neighbour = "varies";
   }
   return {centre, neighbour};
 }
@@ -73,7 +76,8 @@ int run_table1(bool json) {
     // The paper counts pieces up to symmetry for M12 (one cube type) and per fundamental
     // region for M8 and M7; the generator derives both counts.
     add(3, std::to_string(a.structure.references.size()), col.pieces == 1 ? "1" : "-");
-    add(4, std::to_string(a.structure.regions.size()), col.pieces == 1 ? "-" : std::to_string(col.pieces));
+    add(4, std::to_string(a.structure.regions.size()),
+        col.pieces == 1 ? "-" : std::to_string(col.pieces));
     add(5, to_string(Rational(a.properties.support_volume)), std::to_string(col.volume));
     add(6, to_string(Rational(a.properties.stencil_size)), std::to_string(col.stencil));
     add(7, a.properties.linearly_independent ? "yes" : "no", col.riesz ? "yes" : "no");
@@ -92,13 +96,17 @@ int run_table1(bool json) {
         row[kPaper[i].label] = {{"derived", r.derived[i]}, {"paper", r.paper[i]}};
       out["rows"].push_back(row);
     }
-    for (size_t i = 0; i < seconds.size(); ++i) out["derivation_seconds"][kPaper[i].label] = seconds[i];
+    for (size_t i = 0; i < seconds.size(); ++i)
+      out["derivation_seconds"][kPaper[i].label] = seconds[i];
     print_json(out);
     return all_match ? 0 : 1;
   }
-  fmt::print("Table 1 of Kim 2013 (paper) beside the values boxgen derives from the direction matrices\n\n");
+  fmt::print(
+      "Table 1 of Kim 2013 (paper) beside the values boxgen derives from the direction "
+      "matrices\n\n");
   fmt::print("{:<45}", "");
-  for (const auto& col : kPaper) fmt::print("{:>15} {:>15}", std::string(col.label) + " derived", "paper");
+  for (const auto& col : kPaper)
+    fmt::print("{:>15} {:>15}", std::string(col.label) + " derived", "paper");
   fmt::print("\n");
   for (const auto& r : rows) {
     fmt::print("{:<45}", r.property);
@@ -108,11 +116,14 @@ int run_table1(bool json) {
     }
     fmt::print("\n");
   }
-  fmt::print("\nderivation time with exact checks: M12 {:.2f} s, M8 {:.2f} s, M7 {:.2f} s\n", seconds[0], seconds[1],
-             seconds[2]);
-  fmt::print("The paper's \"# of shift-invariant pieces\" is 1 for M12 (one cube type up to symmetry) and\n"
-             "6 and 24 per fundamental region for M8 and M7; '-' marks the count it does not give.\n");
-  fmt::print("{}\n", all_match ? "All derived values agree with the paper." : "Values marked * differ from the paper.");
+  fmt::print("\nderivation time with exact checks: M12 {:.2f} s, M8 {:.2f} s, M7 {:.2f} s\n",
+             seconds[0], seconds[1], seconds[2]);
+  fmt::print(
+      "The paper's \"# of shift-invariant pieces\" is 1 for M12 (one cube type up to symmetry) "
+      "and\n"
+      "6 and 24 per fundamental region for M8 and M7; '-' marks the count it does not give.\n");
+  fmt::print("{}\n", all_match ? "All derived values agree with the paper."
+                               : "Values marked * differ from the paper.");
   return all_match ? 0 : 1;
 }
 

@@ -22,17 +22,18 @@ struct AnalyzeOptions {
   bool verify = true;
   std::string checks = "default";  // default | full
   bool estimate_only = false;      // --estimate: predict time and memory, derive nothing
-  double max_seconds = 0;          // refuse up front beyond this predicted time (0: the default limit)
-  bool progress = false;           // progress on stderr even when it is not a terminal
+  double max_seconds = 0;  // refuse up front beyond this predicted time (0: the default limit)
+  bool progress = false;   // progress on stderr even when it is not a terminal
 };
 int run_analyze(const Common& c, const AnalyzeOptions& options);
-int run_eval(const Common& c, const std::vector<std::string>& points, const std::string& derivative);
+int run_eval(const Common& c, const std::vector<std::string>& points,
+             const std::string& derivative);
 int run_bbform(const Common& c, const std::string& region);
 int run_prefilter(const Common& c, const std::string& shells);
 int run_autocorr(const Common& c, const std::string& method);
 int run_table1(bool json);
-int run_emit(const Common& c, const std::string& name, const std::string& out, const std::string& strategy,
-             bool report, const std::vector<std::string>& registry);
+int run_emit(const Common& c, const std::string& name, const std::string& out,
+             const std::string& strategy, bool report, const std::vector<std::string>& registry);
 
 // The frequency-domain analysis (analysis/, docs/design.md §10): cmd_metrics.cpp, cmd_kernel.cpp,
 // cmd_spectrum.cpp.
@@ -40,19 +41,20 @@ struct FrequencyOptions {
   std::vector<std::string> specs;
   std::string lattice;
   bool json = false;
-  std::string prefilter = "q2";          // kernel: none | q1 | q2 | min
-  std::string direction;                 // kernel: w * direction (default: all ones)
-  std::vector<double> w;                 // explicit abscissae
-  std::optional<double> from, to;        // or a range
+  std::string prefilter = "q2";    // kernel: none | q1 | q2 | min
+  std::string direction;           // kernel: w * direction (default: all ones)
+  std::vector<double> w;           // explicit abscissae
+  std::optional<double> from, to;  // or a range
   int steps = 0;
-  std::string plot;                      // kernel --plot, spectrum -o
-  std::string plane, line;               // spectrum
-  int size = 0;                          // spectrum plane: image side in pixels
+  std::string plot;         // kernel --plot, spectrum -o
+  std::string plane, line;  // spectrum
+  int size = 0;             // spectrum plane: image side in pixels
 };
 int run_metrics(const std::vector<std::string>& specs, const std::string& lattice, bool json);
 int run_kernel(const FrequencyOptions& o);
 int run_spectrum(const FrequencyOptions& o);
-int run_pieces(const Common& c, const std::string& of, const std::string& region, const std::string& format);
+int run_pieces(const Common& c, const std::string& of, const std::string& region,
+               const std::string& format);
 
 // Shared output helpers.
 nlohmann::json rational_list(const RatVec& v);

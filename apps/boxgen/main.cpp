@@ -15,12 +15,14 @@ namespace {
 void add_common(CLI::App* cmd, boxgen::cli::Common& c, bool needs_spec = true) {
   if (needs_spec)
     cmd->add_option("SPEC", c.spec,
-                    "preset name (see `boxgen presets`) or the directions, i.e. the COLUMNS of Xi, one per ';': "
+                    "preset name (see `boxgen presets`) or the directions, i.e. the COLUMNS of Xi, "
+                    "one per ';': "
                     "\"1,1,1; 1,-1,-1; ...\"")
         ->required();
-  cmd->add_option("--lattice", c.lattice,
-                  "bcc | fcc | cartesian | the ROWS of G, one per ';', whose columns are the lattice basis: "
-                  "\"2,0; 0,1\" (default: the preset's, else cartesian)");
+  cmd->add_option(
+      "--lattice", c.lattice,
+      "bcc | fcc | cartesian | the ROWS of G, one per ';', whose columns are the lattice basis: "
+      "\"2,0; 0,1\" (default: the preset's, else cartesian)");
   cmd->add_flag("--json", c.json, "machine-readable output");
 }
 
@@ -31,7 +33,8 @@ int run(int argc, char** argv);
 int main(int argc, char** argv) { return boxgen::app::finish(run(argc, argv), "boxgen"); }
 
 int run(int argc, char** argv) {
-  CLI::App app{"boxgen: exact analysis of box splines on lattices and code generation for their evaluators"};
+  CLI::App app{
+      "boxgen: exact analysis of box splines on lattices and code generation for their evaluators"};
   app.require_subcommand(1);
   app.set_version_flag("--version", boxgen::kVersionBanner);
   boxgen::cli::Common c;
@@ -41,55 +44,75 @@ int run(int argc, char** argv) {
 
   auto* presets = app.add_subcommand("presets", "list the preset direction matrices");
   presets->add_flag("--json", c.json, "machine-readable output");
-  auto* analyze = app.add_subcommand("analyze", "derive the properties and structure of a box spline");
+  auto* analyze =
+      app.add_subcommand("analyze", "derive the properties and structure of a box spline");
   add_common(analyze, c);
-  analyze->add_flag("--no-verify", no_verify, "skip the exact checks (second derivation, integral, symmetry, ...)");
+  analyze->add_flag("--no-verify", no_verify,
+                    "skip the exact checks (second derivation, integral, symmetry, ...)");
   boxgen::cli::AnalyzeOptions analyze_options;
-  analyze->add_option("--checks", analyze_options.checks,
-                      "default (integral and continuity on one cell per symmetry orbit) or full (every cell)");
-  analyze->add_flag("--estimate", analyze_options.estimate_only, "predict time and memory without deriving");
+  analyze->add_option(
+      "--checks", analyze_options.checks,
+      "default (integral and continuity on one cell per symmetry orbit) or full (every cell)");
+  analyze->add_flag("--estimate", analyze_options.estimate_only,
+                    "predict time and memory without deriving");
   analyze->add_option("--max-seconds", analyze_options.max_seconds,
                       "refuse up front if the predicted time exceeds this (default 600)");
-  analyze->add_flag("--progress", analyze_options.progress, "progress on stderr even when it is not a terminal");
+  analyze->add_flag("--progress", analyze_options.progress,
+                    "progress on stderr even when it is not a terminal");
   auto* eval = app.add_subcommand("eval", "exact value of the filter M = |det G| M^c at points");
   add_common(eval, c);
-  eval->add_option("--at", points, "a point \"x y z\" (fractions or decimals); repeatable")->required();
+  eval->add_option("--at", points, "a point \"x y z\" (fractions or decimals); repeatable")
+      ->required();
   eval->add_option("--derivative", derivative, "orders \"a b c\" of the partial derivative");
-  auto* bbform = app.add_subcommand("bbform", "stencil and exact BB-coefficients on the reference region");
+  auto* bbform =
+      app.add_subcommand("bbform", "stencil and exact BB-coefficients on the reference region");
   add_common(bbform, c);
-  bbform->add_option("--region", region, "reference (every orbit's reference region) or an orbit index");
-  auto* prefilter = app.add_subcommand("prefilter", "exact quasi-interpolation prefilter on lattice shells");
+  bbform->add_option("--region", region,
+                     "reference (every orbit's reference region) or an orbit index");
+  auto* prefilter =
+      app.add_subcommand("prefilter", "exact quasi-interpolation prefilter on lattice shells");
   add_common(prefilter, c);
   prefilter->add_option("--shells", shells, "shells of the lattice, e.g. 0,1 or 0,1,2")->required();
-  auto* autocorr = app.add_subcommand("autocorr", "lattice samples of the doubled box spline (autocorrelation)");
+  auto* autocorr =
+      app.add_subcommand("autocorr", "lattice samples of the doubled box spline (autocorrelation)");
   add_common(autocorr, c);
   autocorr->add_option("--method", method, "refinement (default) or continuity");
   std::string emit_name, emit_out, emit_strategy = "auto";
   bool emit_report = false;
   std::vector<std::string> emit_registry;
-  auto* emit = app.add_subcommand("emit", "emit the C++ evaluator and prefilter headers of a box spline");
+  auto* emit =
+      app.add_subcommand("emit", "emit the C++ evaluator and prefilter headers of a box spline");
   add_common(emit, c);
-  emit->add_option("--name", emit_name, "C++ identifier: namespace boxgen::generated::<name>")->required();
+  emit->add_option("--name", emit_name, "C++ identifier: namespace boxgen::generated::<name>")
+      ->required();
   emit->add_option("--out", emit_out, "output directory")->required();
-  emit->add_option("--strategy", emit_strategy,
-                   "how polynomials are written: auto (default: the cheapest), horner, separable or monomial");
+  emit->add_option(
+      "--strategy", emit_strategy,
+      "how polynomials are written: auto (default: the cheapest), horner, separable or monomial");
   emit->add_flag("--report", emit_report, "also print the strategy and operation counts per orbit");
-  emit->add_option("--registry", emit_registry, "also write registry.hpp listing these filters (comma-separated)")
+  emit->add_option("--registry", emit_registry,
+                   "also write registry.hpp listing these filters (comma-separated)")
       ->delimiter(',');
   std::string pieces_of = "spline", pieces_region = "reference", pieces_format = "text";
-  auto* pieces = app.add_subcommand("pieces", "explicit piecewise polynomials of the spline or the filter, with their regions");
+  auto* pieces = app.add_subcommand(
+      "pieces", "explicit piecewise polynomials of the spline or the filter, with their regions");
   add_common(pieces, c);
-  pieces->add_option("--of", pieces_of, "spline (default): s(x) = sum_j V(j) M(x - j); filter: M itself");
-  pieces->add_option("--region", pieces_region, "reference (one piece per orbit, default), all, or an orbit index");
-  pieces->add_option("--format", pieces_format, "text (default), latex, c or json (--json is --format json)");
-  auto* table1 = app.add_subcommand("table1", "derive M12, M8, M7 and print the paper's Table 1 beside ours");
+  pieces->add_option("--of", pieces_of,
+                     "spline (default): s(x) = sum_j V(j) M(x - j); filter: M itself");
+  pieces->add_option("--region", pieces_region,
+                     "reference (one piece per orbit, default), all, or an orbit index");
+  pieces->add_option("--format", pieces_format,
+                     "text (default), latex, c or json (--json is --format json)");
+  auto* table1 =
+      app.add_subcommand("table1", "derive M12, M8, M7 and print the paper's Table 1 beside ours");
   table1->add_flag("--json", c.json, "machine-readable output");
 
   // Frequency-domain analysis of one or more filters (analysis/).
   boxgen::cli::FrequencyOptions ao;
   auto add_specs = [&](CLI::App* cmd) {
     cmd->add_option("SPEC", ao.specs, "one or more presets or direction lists")->required();
-    cmd->add_option("--lattice", ao.lattice, "bcc | fcc | cartesian | \"<rows of G>\" (default: each preset's)");
+    cmd->add_option("--lattice", ao.lattice,
+                    "bcc | fcc | cartesian | \"<rows of G>\" (default: each preset's)");
     cmd->add_flag("--json", ao.json, "machine-readable output");
   };
   auto add_range = [&](CLI::App* cmd) {
@@ -97,22 +120,28 @@ int run(int argc, char** argv) {
     cmd->add_option("--to", ao.to, "last abscissa");
     cmd->add_option("--steps", ao.steps, "number of abscissae from --from to --to");
   };
-  auto* metrics = app.add_subcommand("metrics", "Marschner-Lobb smoothing and postaliasing (the paper's Table 3)");
+  auto* metrics = app.add_subcommand(
+      "metrics", "Marschner-Lobb smoothing and postaliasing (the paper's Table 3)");
   add_specs(metrics);
-  auto* kernel = app.add_subcommand("kernel", "Blu-Unser frequency error kernel E(w * direction) (the paper's Fig. 13)");
+  auto* kernel = app.add_subcommand(
+      "kernel", "Blu-Unser frequency error kernel E(w * direction) (the paper's Fig. 13)");
   add_specs(kernel);
   kernel->add_option("--prefilter", ao.prefilter, "none | q1 | q2 | min (E_min), default q2");
-  kernel->add_option("--direction", ao.direction, "direction d of w * d (default 1,1,1, or 1,1 in 2-D)");
+  kernel->add_option("--direction", ao.direction,
+                     "direction d of w * d (default 1,1,1, or 1,1 in 2-D)");
   kernel->add_option("--w", ao.w, "abscissae w (comma or space separated)")->delimiter(',');
   add_range(kernel);
-  kernel->add_option("--plot", ao.plot, "draw every prefilter and E_min of each SPEC, log axes (PNG)");
-  auto* spectrum = app.add_subcommand("spectrum", "|psi_hat| on a plane or along a line (the paper's Figs. 11-12)");
+  kernel->add_option("--plot", ao.plot,
+                     "draw every prefilter and E_min of each SPEC, log axes (PNG)");
+  auto* spectrum = app.add_subcommand(
+      "spectrum", "|psi_hat| on a plane or along a line (the paper's Figs. 11-12)");
   add_specs(spectrum);
   spectrum->add_option("--plane", ao.plane, "normal a,b,c of a plane through 0 (image)");
   spectrum->add_option("--line", ao.line, "direction a,b,c of a line through 0 (plot)");
   spectrum->add_option("--w", ao.w, "line: abscissae w (comma or space separated)")->delimiter(',');
   add_range(spectrum);
-  spectrum->add_option("--size", ao.size, "plane image: pixels per filter panel side (default 400)");
+  spectrum->add_option("--size", ao.size,
+                       "plane image: pixels per filter panel side (default 400)");
   spectrum->add_option("-o,--output", ao.plot, "PNG to write");
 
   // Name an unknown command instead of CLI11's "A subcommand is required".
@@ -140,12 +169,16 @@ int run(int argc, char** argv) {
     if (metrics->parsed()) return boxgen::cli::run_metrics(ao.specs, ao.lattice, ao.json);
     if (kernel->parsed()) return boxgen::cli::run_kernel(ao);
     if (spectrum->parsed()) return boxgen::cli::run_spectrum(ao);
-    if (emit->parsed()) return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy, emit_report, emit_registry);
-    if (pieces->parsed()) return boxgen::cli::run_pieces(c, pieces_of, pieces_region, pieces_format);
+    if (emit->parsed())
+      return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy, emit_report,
+                                   emit_registry);
+    if (pieces->parsed())
+      return boxgen::cli::run_pieces(c, pieces_of, pieces_region, pieces_format);
   } catch (const boxgen::InputError& e) {
     std::cerr << "boxgen: error: " << e.what() << '\n';
     return 1;
-  } catch (const std::invalid_argument& e) {  // the analysis module's bad input (an unwritable -o, ...)
+  } catch (
+      const std::invalid_argument& e) {  // the analysis module's bad input (an unwritable -o, ...)
     std::cerr << "boxgen: error: " << e.what() << '\n';
     return 1;
   } catch (const std::exception& e) {

@@ -15,7 +15,9 @@ namespace boxgen::cli {
 class ProgressPrinter {
  public:
   explicit ProgressPrinter(bool forced)
-      : tty_(isatty(STDERR_FILENO) != 0), enabled_(forced || tty_), start_(std::chrono::steady_clock::now()) {}
+      : tty_(isatty(STDERR_FILENO) != 0),
+        enabled_(forced || tty_),
+        start_(std::chrono::steady_clock::now()) {}
   ~ProgressPrinter() { finish(); }
   // Clears the progress line on a terminal: call before printing the result.
   void finish() {
@@ -28,18 +30,22 @@ class ProgressPrinter {
 
   ProgressFn callback() {
     if (!enabled_) return {};
-    return [this](const char* stage, std::size_t done, std::size_t total) { report(stage, done, total); };
+    return [this](const char* stage, std::size_t done, std::size_t total) {
+      report(stage, done, total);
+    };
   }
 
  private:
   void report(const char* stage, std::size_t done, std::size_t total) {
-    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double t =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const bool new_stage = stage_ != stage;
     if (t < 2 || (!new_stage && t - last_ < (tty_ ? 0.2 : 1.0) && done != total)) return;
     stage_ = stage;
     last_ = t;
     printed_ = true;
-    std::string cells = total ? " " + std::to_string(done) + "/" + std::to_string(total) + " cells" : "";
+    std::string cells =
+        total ? " " + std::to_string(done) + "/" + std::to_string(total) + " cells" : "";
     if (tty_)
       std::fprintf(stderr, "\r\033[Kboxgen: %s%s, %.1f s", stage, cells.c_str(), t);
     else

@@ -49,7 +49,8 @@ double fastest_seconds(int repeats, F&& run) {
   for (int r = 0; r < repeats; ++r) {
     const auto t0 = std::chrono::steady_clock::now();
     run();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    best = std::min(best,
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
   return best;
 }
@@ -103,7 +104,9 @@ void fetch_floor(const BccVolume<T>& volume, const std::vector<Vec3>& points, st
   const T* samples = volume.samples().data();
   for (std::size_t i = 0; i < points.size(); ++i) {
     std::int64_t corner[3];
-    for (int a = 0; a < 3; ++a) corner[a] = static_cast<std::int64_t>(std::floor(static_cast<T>(points[i][a]) + static_cast<T>(Tr::kCentre[a])));
+    for (int a = 0; a < 3; ++a)
+      corner[a] = static_cast<std::int64_t>(
+          std::floor(static_cast<T>(points[i][a]) + static_cast<T>(Tr::kCentre[a])));
     corner[0] &= ~std::int64_t{1};  // an even corner keeps every offset on the lattice
     corner[1] &= ~std::int64_t{1};
     corner[2] &= ~std::int64_t{1};
@@ -115,16 +118,20 @@ void fetch_floor(const BccVolume<T>& volume, const std::vector<Vec3>& points, st
 }
 
 template <class T>
-double floor_seconds(Filter f, const BccVolume<T>& volume, const std::vector<Vec3>& points, int repeats) {
+double floor_seconds(Filter f, const BccVolume<T>& volume, const std::vector<Vec3>& points,
+                     int repeats) {
   std::vector<T> out(points.size());
   namespace g = boxgen::generated;
   return fastest_seconds(repeats, [&] {
-    g::with_filter(static_cast<int>(f), [&](auto entry) { fetch_floor<typename decltype(entry)::Traits>(volume, points, out); });
+    g::with_filter(static_cast<int>(f), [&](auto entry) {
+      fetch_floor<typename decltype(entry)::Traits>(volume, points, out);
+    });
   });
 }
 
 template <class T>
-double filter_seconds(Filter f, const BccVolume<T>& volume, const std::vector<Vec3>& points, int repeats) {
+double filter_seconds(Filter f, const BccVolume<T>& volume, const std::vector<Vec3>& points,
+                      int repeats) {
   std::vector<T> values(points.size());
   const Reconstructor<T> r(volume, f);
   return fastest_seconds(repeats, [&] { r.evaluate(points, values); });
@@ -150,16 +157,19 @@ double tricubic_seconds(int n, const std::vector<Vec3>& bcc_points, int repeats)
   const double scale = (m - 6.0) / (2.0 * n - 13.0);
   std::vector<std::array<T, 3>> points(bcc_points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
-    for (int a = 0; a < 3; ++a) points[i][a] = static_cast<T>(3.0 + (bcc_points[i][a] - 6.0) * scale);
+    for (int a = 0; a < 3; ++a)
+      points[i][a] = static_cast<T>(3.0 + (bcc_points[i][a] - 6.0) * scale);
   std::vector<T> out(points.size());
   return fastest_seconds(repeats, [&] {
     for (std::size_t i = 0; i < points.size(); ++i) {
       const auto at = tc::locate<T>(points[i]);
-      const std::int64_t base = at.corner[0] + m * (at.corner[1] + static_cast<std::int64_t>(m) * at.corner[2]);
+      const std::int64_t base =
+          at.corner[0] + m * (at.corner[1] + static_cast<std::int64_t>(m) * at.corner[2]);
       const std::int64_t* off = &offsets[at.cell * Tr::kStencilSize];
       T v[Tr::kStencilSize];
       for (int k = 0; k < Tr::kStencilSize; ++k) v[k] = samples[base + off[k]];
-      out[i] = tc::evaluate_located<boxgen::generated::support::kValue>(at, v, static_cast<T*>(nullptr));
+      out[i] =
+          tc::evaluate_located<boxgen::generated::support::kValue>(at, v, static_cast<T*>(nullptr));
     }
   });
 }
@@ -227,28 +237,40 @@ int run_bench(const BenchOptions& o) {
   if (!o.quick) {
     nlohmann::json table = nlohmann::json::array();
     for (int n : {21, 27, 32, 37, 45, 57, 77, 93, 117, 256}) {
-      for (const Row& row : {table2_row<float>(n, count, repeats), table2_row<double>(n, count, repeats)}) {
-        table.push_back({{"n", row.n}, {"precision", row.precision}, {"m7_s", row.t[0]}, {"m8_s", row.t[1]},
-                         {"m12_s", row.t[2]}, {"t7_over_t8", row.t[0] / row.t[1]}, {"t12_over_t8", row.t[2] / row.t[1]}});
+      for (const Row& row :
+           {table2_row<float>(n, count, repeats), table2_row<double>(n, count, repeats)}) {
+        table.push_back({{"n", row.n},
+                         {"precision", row.precision},
+                         {"m7_s", row.t[0]},
+                         {"m8_s", row.t[1]},
+                         {"m12_s", row.t[2]},
+                         {"t7_over_t8", row.t[0] / row.t[1]},
+                         {"t12_over_t8", row.t[2] / row.t[1]}});
         if (!o.json)
-          fmt::print("N={:>3} {:<6}  M7 {:8.3f} s  M8 {:8.3f} s  M12 {:8.3f} s  t7/t8 {:.2f}  t12/t8 {:.2f}\n", row.n,
-                     row.precision, row.t[0], row.t[1], row.t[2], row.t[0] / row.t[1], row.t[2] / row.t[1]);
+          fmt::print(
+              "N={:>3} {:<6}  M7 {:8.3f} s  M8 {:8.3f} s  M12 {:8.3f} s  t7/t8 {:.2f}  t12/t8 "
+              "{:.2f}\n",
+              row.n, row.precision, row.t[0], row.t[1], row.t[2], row.t[0] / row.t[1],
+              row.t[2] / row.t[1]);
       }
     }
     result["table2"] = table;
     result["table2_points"] = count;
   }
-  result["machine"] = {{"cpu", cpu_model()},
-                       {"cores", std::thread::hardware_concurrency()},
-                       {"simd_target", "scalar (no SIMD batch path yet; compiled for baseline x86-64)"}};
+  result["machine"] = {
+      {"cpu", cpu_model()},
+      {"cores", std::thread::hardware_concurrency()},
+      {"simd_target", "scalar (no SIMD batch path yet; compiled for baseline x86-64)"}};
   if (o.json) {
     fmt::print("{}\n", result.dump());
   } else {
-    for (const char* key : {"t7_over_t8", "t12_over_t8", "m7_over_floor", "m8_over_floor", "m12_over_floor",
-                            "speedup_2_threads", "m7_over_tricubic"})
+    for (const char* key : {"t7_over_t8", "t12_over_t8", "m7_over_floor", "m8_over_floor",
+                            "m12_over_floor", "speedup_2_threads", "m7_over_tricubic"})
       fmt::print("{:<18} {:.3f}\n", key, result[key].get<double>());
-    for (const auto& [key, value] : result["ns_per_point"].items()) fmt::print("{:<18} {:.1f} ns/point\n", key, value.get<double>());
-    fmt::print("machine: {}, {} cores\n", result["machine"]["cpu"].get<std::string>(), result["machine"]["cores"].get<unsigned>());
+    for (const auto& [key, value] : result["ns_per_point"].items())
+      fmt::print("{:<18} {:.1f} ns/point\n", key, value.get<double>());
+    fmt::print("machine: {}, {} cores\n", result["machine"]["cpu"].get<std::string>(),
+               result["machine"]["cores"].get<unsigned>());
   }
   return 0;
 }

@@ -7,8 +7,8 @@ namespace boxrecon {
 struct BenchOptions {
   bool quick = false;  // one cache-resident volume, few points: under a minute
   bool json = false;
-  long points = 0;     // points per measurement; 0: 10^7 (full) or 2 10^5 (quick)
-  int repeats = 3;     // the fastest of this many runs is reported
+  long points = 0;  // points per measurement; 0: 10^7 (full) or 2 10^5 (quick)
+  int repeats = 3;  // the fastest of this many runs is reported
 };
 
 int run_bench(const BenchOptions& options);

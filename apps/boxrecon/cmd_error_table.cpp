@@ -45,8 +45,10 @@ struct Errors {
   }
 };
 
-Row bcc_row(int n, Filter f, PrefilterChoice q, const char* qname, const std::vector<Vec3>& points) {
-  BccVolume<double> volume = sample_bcc<double>(marschner_lobb, cube_grid(n, required_margin(f, q)));
+Row bcc_row(int n, Filter f, PrefilterChoice q, const char* qname,
+            const std::vector<Vec3>& points) {
+  BccVolume<double> volume =
+      sample_bcc<double>(marschner_lobb, cube_grid(n, required_margin(f, q)));
   if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
   std::vector<double> values(points.size());
   std::vector<Vec3> gradients(points.size());
@@ -54,8 +56,14 @@ Row bcc_row(int n, Filter f, PrefilterChoice q, const char* qname, const std::ve
   Errors e;
   for (std::size_t i = 0; i < points.size(); ++i) e.add(values[i], gradients[i], points[i]);
   const double k = static_cast<double>(points.size());
-  return {n, filter_name(f), qname, std::sqrt(e.sum2 / k), e.worst, std::sqrt(e.gsum2 / k),
-          2 * static_cast<std::uint64_t>(n) * n * n, 0};
+  return {n,
+          filter_name(f),
+          qname,
+          std::sqrt(e.sum2 / k),
+          e.worst,
+          std::sqrt(e.gsum2 / k),
+          2 * static_cast<std::uint64_t>(n) * n * n,
+          0};
 }
 
 // The tricubic B-spline on the Cartesian grid of m^3 samples over [-1,1]^3 (spacing 2/(m-1)),
@@ -66,19 +74,24 @@ Row cartesian_row(int n, int m, bool q1, const std::vector<Vec3>& points) {
   const int margin = 4;  // stencil reach 2 (centred cubic) + prefilter 1, rounded up
   const int size = m + 2 * margin;
   auto index = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-    return static_cast<std::size_t>(i + margin) + static_cast<std::size_t>(size) * (static_cast<std::size_t>(j + margin) + static_cast<std::size_t>(size) * static_cast<std::size_t>(k + margin));
+    return static_cast<std::size_t>(i + margin) +
+           static_cast<std::size_t>(size) *
+               (static_cast<std::size_t>(j + margin) +
+                static_cast<std::size_t>(size) * static_cast<std::size_t>(k + margin));
   };
   std::vector<double> samples(static_cast<std::size_t>(size) * size * size);
   for (int k = -margin; k < m + margin; ++k)
     for (int j = -margin; j < m + margin; ++j)
-      for (int i = -margin; i < m + margin; ++i) samples[index(i, j, k)] = marschner_lobb({-1 + h * i, -1 + h * j, -1 + h * k});
+      for (int i = -margin; i < m + margin; ++i)
+        samples[index(i, j, k)] = marschner_lobb({-1 + h * i, -1 + h * j, -1 + h * k});
   std::vector<double> coefficients = samples;
   if (q1) {
     for (int k = 1 - margin; k < m + margin - 1; ++k)
       for (int j = 1 - margin; j < m + margin - 1; ++j)
         for (int i = 1 - margin; i < m + margin - 1; ++i) {
           double c = 0;
-          for (const auto& t : cubic::q1) c += t.weight * samples[index(i - t.offset[0], j - t.offset[1], k - t.offset[2])];
+          for (const auto& t : cubic::q1)
+            c += t.weight * samples[index(i - t.offset[0], j - t.offset[1], k - t.offset[2])];
           coefficients[index(i, j, k)] = c;
         }
   }
@@ -90,21 +103,29 @@ Row cartesian_row(int n, int m, bool q1, const std::vector<Vec3>& points) {
         u,
         [&](const cubic::Point& j) {
           for (int d = 0; d < 3; ++d)
-            if (j[d] < 1 - margin || j[d] > m + margin - 2) throw std::logic_error("tricubic stencil outside the grid");
+            if (j[d] < 1 - margin || j[d] > m + margin - 2)
+              throw std::logic_error("tricubic stencil outside the grid");
           return coefficients[index(j[0], j[1], j[2])];
         },
         &g);
     e.add(v, {g[0] / h, g[1] / h, g[2] / h}, p);
   }
   const double k = static_cast<double>(points.size());
-  return {n, "tricubic", q1 ? "q1" : "none", std::sqrt(e.sum2 / k), e.worst, std::sqrt(e.gsum2 / k),
-          static_cast<std::uint64_t>(m) * m * m, m};
+  return {n,
+          "tricubic",
+          q1 ? "q1" : "none",
+          std::sqrt(e.sum2 / k),
+          e.worst,
+          std::sqrt(e.gsum2 / k),
+          static_cast<std::uint64_t>(m) * m * m,
+          m};
 }
 
 }  // namespace
 
 int run_error_table(int points, std::uint64_t seed, bool json) {
-  if (points < 1 || points > 10000000) throw std::invalid_argument("--points must be between 1 and 10000000");
+  if (points < 1 || points > 10000000)
+    throw std::invalid_argument("--points must be between 1 and 10000000");
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<Vec3> at(points);
@@ -112,30 +133,40 @@ int run_error_table(int points, std::uint64_t seed, bool json) {
   std::vector<Row> rows;
   for (int n : kDensities) {
     for (Filter f : {Filter::M7, Filter::M8, Filter::M12})
-      for (auto [q, name] : {std::pair{PrefilterChoice::None, "none"}, std::pair{PrefilterChoice::Q1, "q1"},
-                             std::pair{PrefilterChoice::Q2, "q2"}})
+      for (auto [q, name] :
+           {std::pair{PrefilterChoice::None, "none"}, std::pair{PrefilterChoice::Q1, "q1"},
+            std::pair{PrefilterChoice::Q2, "q2"}})
         rows.push_back(bcc_row(n, f, q, name, at));
     const int m = static_cast<int>(std::lround(std::cbrt(2.0) * n));  // the same number of samples
     rows.push_back(cartesian_row(n, m, false, at));
     rows.push_back(cartesian_row(n, m, true, at));
   }
   if (json) {
-    nlohmann::json out{{"function", "ml"}, {"points", points}, {"seed", seed}, {"rows", nlohmann::json::array()}};
+    nlohmann::json out{
+        {"function", "ml"}, {"points", points}, {"seed", seed}, {"rows", nlohmann::json::array()}};
     for (const auto& r : rows) {
-      nlohmann::json j{{"n", r.n}, {"filter", r.filter}, {"prefilter", r.prefilter}, {"rms", r.rms}, {"max", r.max},
-                       {"gradient_rms", r.gradient_rms}, {"samples", r.samples}};
+      nlohmann::json j{{"n", r.n},
+                       {"filter", r.filter},
+                       {"prefilter", r.prefilter},
+                       {"rms", r.rms},
+                       {"max", r.max},
+                       {"gradient_rms", r.gradient_rms},
+                       {"samples", r.samples}};
       if (r.cartesian_n) j["cartesian_n"] = r.cartesian_n;
       out["rows"].push_back(j);
     }
     std::cout << out.dump(2) << '\n';
     return 0;
   }
-  std::string text = fmt::format("Marschner-Lobb reconstruction error over {} random points of [-1,1]^3 (seed {})\n", points, seed);
-  text += fmt::format("{:>4} {:<9} {:<6} {:>10} {:>12} {:>12} {:>13}\n", "N", "filter", "pre", "samples", "rms", "max",
-                      "gradient_rms");
+  std::string text = fmt::format(
+      "Marschner-Lobb reconstruction error over {} random points of [-1,1]^3 (seed {})\n", points,
+      seed);
+  text += fmt::format("{:>4} {:<9} {:<6} {:>10} {:>12} {:>12} {:>13}\n", "N", "filter", "pre",
+                      "samples", "rms", "max", "gradient_rms");
   for (const auto& r : rows)
-    text += fmt::format("{:>4} {:<9} {:<6} {:>10} {:>12.5e} {:>12.5e} {:>13.5e}{}\n", r.n, r.filter, r.prefilter, r.samples,
-                        r.rms, r.max, r.gradient_rms, r.cartesian_n ? fmt::format("  (Cartesian {}^3)", r.cartesian_n) : "");
+    text += fmt::format("{:>4} {:<9} {:<6} {:>10} {:>12.5e} {:>12.5e} {:>13.5e}{}\n", r.n, r.filter,
+                        r.prefilter, r.samples, r.rms, r.max, r.gradient_rms,
+                        r.cartesian_n ? fmt::format("  (Cartesian {}^3)", r.cartesian_n) : "");
   std::cout << text;
   return 0;
 }

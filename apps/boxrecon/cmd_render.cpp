@@ -34,20 +34,24 @@ RenderArgs args;
 }  // namespace
 
 CLI::App* add_render_command(CLI::App& app) {
-  auto* r = app.add_subcommand("render", "ray-cast an isosurface of the reconstruction into a PNG (Figs. 8-9)");
-  auto* fn = r->add_option("--function", args.function, "sample this test function (ml | cubic | sphere | gaussian)");
+  auto* r = app.add_subcommand(
+      "render", "ray-cast an isosurface of the reconstruction into a PNG (Figs. 8-9)");
+  auto* fn = r->add_option("--function", args.function,
+                           "sample this test function (ml | cubic | sphere | gaussian)");
   r->add_option("--n", args.n, "N for --function: N^3 x 2 samples over [-1,1]^3");
   auto* vol = r->add_option("--volume", args.volume, "a BCC NRRD volume instead of --function");
   fn->excludes(vol);
   r->add_option("--filter", args.filter, "m7 | m8 | m12 (default m7)");
   r->add_option("--prefilter", args.prefilter, "none | q1 | q2 (default q2, as in Fig. 8)");
   r->add_option("--iso", args.iso, "iso value (default 0.5)");
-  r->add_flag("--cutaway", args.cutaway, "remove 3/8 of the volume {z > 0 and (x > 0 or y > 0)} (Fig. 8)");
+  r->add_flag("--cutaway", args.cutaway,
+              "remove 3/8 of the volume {z > 0 and (x > 0 or y > 0)} (Fig. 8)");
   r->add_flag("--closeup", args.closeup, "the close-up camera of Fig. 9");
   r->add_option("--shading", args.shading, "normal (default) | curvature");
   r->add_option("--width", args.width, "pixels (default 512)");
   r->add_option("--height", args.height, "pixels (default 512)");
-  r->add_option("--step", args.step, "ray-marching step in world units (default: half the lattice spacing)");
+  r->add_option("--step", args.step,
+                "ray-marching step in world units (default: half the lattice spacing)");
   r->add_flag("--quiet", args.quiet, "no progress bar");
   r->add_option("-o,--output", args.output, "PNG to write")->required();
   return r;
@@ -57,17 +61,23 @@ int run_render() {
   const Filter f = parse_filter(args.filter);
   const PrefilterChoice q = parse_prefilter(args.prefilter);
   if (args.shading != "normal" && args.shading != "curvature")
-    throw std::invalid_argument("--shading must be normal or curvature, got '" + args.shading.substr(0, 40) + "'");
-  if (args.function.empty() == args.volume.empty()) throw std::invalid_argument("give --function NAME --n N or --volume FILE");
+    throw std::invalid_argument("--shading must be normal or curvature, got '" +
+                                args.shading.substr(0, 40) + "'");
+  if (args.function.empty() == args.volume.empty())
+    throw std::invalid_argument("give --function NAME --n N or --volume FILE");
   if (!args.function.empty() && (args.n < 2 || args.n > 1024))
     throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", args.n));
   if (args.width < 1 || args.height < 1 || args.width > 8192 || args.height > 8192)
-    throw std::invalid_argument(fmt::format("--width and --height must be 1..8192, got {} x {}", args.width, args.height));
-  if (!(args.step >= 0) || !std::isfinite(args.step)) throw std::invalid_argument("--step must be >= 0");
-  std::optional<analysis::AtomicOutput> check(args.output);  // an unwritable -o fails before the work
+    throw std::invalid_argument(
+        fmt::format("--width and --height must be 1..8192, got {} x {}", args.width, args.height));
+  if (!(args.step >= 0) || !std::isfinite(args.step))
+    throw std::invalid_argument("--step must be >= 0");
+  std::optional<analysis::AtomicOutput> check(
+      args.output);  // an unwritable -o fails before the work
   check.reset();
   BccVolume<double> volume = args.volume.empty()
-                                 ? sample_bcc<double>(find_test_function(args.function).value, cube_grid(args.n, required_margin(f, q)))
+                                 ? sample_bcc<double>(find_test_function(args.function).value,
+                                                      cube_grid(args.n, required_margin(f, q)))
                                  : read_bcc_nrrd<double>(args.volume);
   if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
   const Box box = args.volume.empty() ? Box{{-1, -1, -1}, {1, 1, 1}} : default_box(volume, f);
@@ -86,8 +96,9 @@ int run_render() {
   png.pixels = image.pixels;
   analysis::write_png(args.output, png);
   if (!args.quiet)
-    std::cerr << fmt::format("rendered {} x {} in {:.2f} s\n", image.width, image.height,
-                             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    std::cerr << fmt::format(
+        "rendered {} x {} in {:.2f} s\n", image.width, image.height,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return 0;
 }
 

@@ -13,7 +13,8 @@ namespace boxgen::app {
 
 void check_spacing(const std::optional<double>& h) {
   if (h && !(std::isfinite(*h) && *h > 0))
-    throw std::invalid_argument(fmt::format("--h must be a finite spacing greater than 0, got {}", *h));
+    throw std::invalid_argument(
+        fmt::format("--h must be a finite spacing greater than 0, got {}", *h));
 }
 
 std::uint64_t parse_seed(const std::string& text) {
@@ -21,27 +22,33 @@ std::uint64_t parse_seed(const std::string& text) {
   const char* end = text.data() + text.size();
   const auto [stop, error] = std::from_chars(text.data(), end, seed);
   if (text.empty() || error == std::errc::invalid_argument || stop != end)
-    throw std::invalid_argument(fmt::format("--seed must be an integer from 0 to {}, got '{}'", std::numeric_limits<std::uint64_t>::max(),
+    throw std::invalid_argument(fmt::format("--seed must be an integer from 0 to {}, got '{}'",
+                                            std::numeric_limits<std::uint64_t>::max(),
                                             text.substr(0, 40)));
   if (error == std::errc::result_out_of_range)
-    throw std::invalid_argument(fmt::format("--seed {} is out of range (0 to {})", text.substr(0, 40), std::numeric_limits<std::uint64_t>::max()));
+    throw std::invalid_argument(fmt::format("--seed {} is out of range (0 to {})",
+                                            text.substr(0, 40),
+                                            std::numeric_limits<std::uint64_t>::max()));
   return seed;
 }
 
 std::uint64_t volume_memory_budget() {
   const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page_size <= 0) return std::numeric_limits<std::uint64_t>::max();  // unknown: let the allocation decide
+  if (pages <= 0 || page_size <= 0)
+    return std::numeric_limits<std::uint64_t>::max();  // unknown: let the allocation decide
   return static_cast<std::uint64_t>(pages) / 2 * static_cast<std::uint64_t>(page_size);
 }
 
-void check_volume_memory(std::uint64_t samples, std::uint64_t bytes_per_sample, const std::string& what) {
+void check_volume_memory(std::uint64_t samples, std::uint64_t bytes_per_sample,
+                         const std::string& what) {
   const std::uint64_t budget = volume_memory_budget();
   if (samples > budget / bytes_per_sample) {
     constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
-    throw std::invalid_argument(fmt::format("{} needs {:.1f} GiB for its {} samples, more than the {:.1f} GiB allowed (half of this "
-                                            "machine's memory); use a smaller --n",
-                                            what, static_cast<double>(samples) * static_cast<double>(bytes_per_sample) / kGiB, samples,
-                                            static_cast<double>(budget) / kGiB));
+    throw std::invalid_argument(fmt::format(
+        "{} needs {:.1f} GiB for its {} samples, more than the {:.1f} GiB allowed (half of this "
+        "machine's memory); use a smaller --n",
+        what, static_cast<double>(samples) * static_cast<double>(bytes_per_sample) / kGiB, samples,
+        static_cast<double>(budget) / kGiB));
   }
 }
 

@@ -17,7 +17,8 @@ std::uint64_t parse_seed(const std::string& text);
 // The memory a volume of `samples` values of `bytes_per_sample` bytes needs must be at most half
 // of the machine's physical memory (the other half leaves room for the prefiltered copy that
 // eval, error and resample make). `what` names the request in the message, e.g. "--n 1024".
-void check_volume_memory(std::uint64_t samples, std::uint64_t bytes_per_sample, const std::string& what);
+void check_volume_memory(std::uint64_t samples, std::uint64_t bytes_per_sample,
+                         const std::string& what);
 
 // Half of the physical memory (the budget check_volume_memory allows), in bytes.
 std::uint64_t volume_memory_budget();

@@ -1,34 +1,35 @@
 // boxrecon: reconstruction of BCC volumes with the generated M7, M8 and M12 evaluators.
-//   boxrecon sample --function ml --n N [--h H] [--lattice bcc|fcc|cartesian|ROWS] [--precision float|double] -o vol.nrrd
-//   boxrecon eval --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd --points pts.txt|- [--gradient] [--hessian]
-//   boxrecon error --function ml --n N --filter m7 --prefilter q2 [--points K] [--seed S] [--gradient] [--json]
-//   boxrecon bench [--quick] [--json] [--points K] [--repeats R]
-//   (every command: --threads N caps the batch paths' threads, like BOXGEN_THREADS)
-//   boxrecon resample --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd -o grid.nrrd [--n N]
+//   boxrecon sample --function ml --n N [--h H] [--lattice bcc|fcc|cartesian|ROWS] [--precision
+//   float|double] -o vol.nrrd boxrecon eval --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd
+//   --points pts.txt|- [--gradient] [--hessian] boxrecon error --function ml --n N --filter m7
+//   --prefilter q2 [--points K] [--seed S] [--gradient] [--json] boxrecon bench [--quick] [--json]
+//   [--points K] [--repeats R] (every command: --threads N caps the batch paths' threads, like
+//   BOXGEN_THREADS) boxrecon resample --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd -o
+//   grid.nrrd [--n N]
 //                     [--min X Y Z --max X Y Z] [--precision float|double]
 // Errors are one line on stderr with a non-zero exit (1: bad input, 2: bad usage, 3: internal).
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "apps/boxrecon/cmd_bench.h"
 #include "apps/boxrecon/cmd_error_table.h"
 #include "apps/boxrecon/cmd_render.h"
-#include "apps/boxrecon/cmd_bench.h"
 #include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/sample_command.h"
 #include "apps/common/exit_status.h"
-#include "runtime/batch_threads.h"
 #include "boxgen/version.h"
+#include "runtime/batch_threads.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/points_file.h"
 #include "runtime/reconstruction.h"
@@ -48,7 +49,8 @@ struct InputError : std::invalid_argument {
 // Exit code for an exception: 1 when the input was at fault (a bad argument or file, a point or
 // box outside the volume), 3 for anything else (an internal error).
 int exit_code_for(const std::exception& e) {
-  const bool bad_input = dynamic_cast<const std::invalid_argument*>(&e) || dynamic_cast<const std::out_of_range*>(&e) ||
+  const bool bad_input = dynamic_cast<const std::invalid_argument*>(&e) ||
+                         dynamic_cast<const std::out_of_range*>(&e) ||
                          dynamic_cast<const NrrdError*>(&e);
   return bad_input ? 1 : 3;
 }
@@ -60,8 +62,9 @@ constexpr int kMaxResampleN = 512;
 BccGrid grid_for(int n, int margin) {
   if (n < 2 || n > 1024) throw InputError(fmt::format("--n must be between 2 and 1024, got {}", n));
   BccGrid grid = cube_grid(n, margin);
-  boxgen::app::check_volume_memory(2 * static_cast<std::uint64_t>(grid.sizes[0]) * grid.sizes[1] * grid.sizes[2], sizeof(double),
-                                   fmt::format("--n {}", n));
+  boxgen::app::check_volume_memory(
+      2 * static_cast<std::uint64_t>(grid.sizes[0]) * grid.sizes[1] * grid.sizes[2], sizeof(double),
+      fmt::format("--n {}", n));
   return grid;
 }
 
@@ -77,12 +80,16 @@ int run_eval(const std::string& filter, const std::string& pre, const std::strin
   std::vector<T> values(points.size());
   std::vector<Vec3> gradients(gradient || hessian ? points.size() : 0);
   std::vector<Hessian> hessians(hessian ? points.size() : 0);
-  if (hessian) Reconstructor<T>(volume, f).evaluate(points, values, gradients, hessians);
-  else Reconstructor<T>(volume, f).evaluate(points, values, gradients);
+  if (hessian)
+    Reconstructor<T>(volume, f).evaluate(points, values, gradients, hessians);
+  else
+    Reconstructor<T>(volume, f).evaluate(points, values, gradients);
   std::string out;
   for (std::size_t i = 0; i < points.size(); ++i) {
     out += fmt::format("{:.17g}", static_cast<double>(values[i]));
-    if (gradient) out += fmt::format(" {:.17g} {:.17g} {:.17g}", gradients[i][0], gradients[i][1], gradients[i][2]);
+    if (gradient)
+      out += fmt::format(" {:.17g} {:.17g} {:.17g}", gradients[i][0], gradients[i][1],
+                         gradients[i][2]);
     if (hessian)  // h_xx h_xy h_xz h_yy h_yz h_zz
       for (double h : hessians[i]) out += fmt::format(" {:.17g}", h);
     out += '\n';
@@ -91,8 +98,8 @@ int run_eval(const std::string& filter, const std::string& pre, const std::strin
   return 0;
 }
 
-int run_error(const std::string& function, int n, const std::string& filter, const std::string& pre, int count,
-              std::uint64_t seed, bool gradient, bool json) {
+int run_error(const std::string& function, int n, const std::string& filter, const std::string& pre,
+              int count, std::uint64_t seed, bool gradient, bool json) {
   const TestFunction& fn = find_test_function(function);
   const Filter f = parse_filter(filter);
   const PrefilterChoice q = parse_prefilter(pre);
@@ -118,8 +125,8 @@ int run_error(const std::string& function, int n, const std::string& filter, con
   }
   const double rms = std::sqrt(sum2 / count), grms = std::sqrt(gsum2 / count);
   if (json) {
-    nlohmann::json j{{"function", function}, {"n", n}, {"filter", filter}, {"prefilter", pre},
-                     {"points", count}, {"seed", seed}, {"rms", rms}, {"max", worst}};
+    nlohmann::json j{{"function", function}, {"n", n},       {"filter", filter}, {"prefilter", pre},
+                     {"points", count},      {"seed", seed}, {"rms", rms},       {"max", worst}};
     if (gradient) j["gradient_rms"] = grms;
     std::cout << j.dump(2) << '\n';
   } else {
@@ -132,16 +139,19 @@ int run_error(const std::string& function, int n, const std::string& filter, con
 
 // Resampling onto a Cartesian grid: n points per axis over the box (default_box when none given).
 template <class T>
-int run_resample(const std::string& filter, const std::string& pre, const std::string& volume_path, const std::string& output,
-                 int n, const std::vector<double>& min, const std::vector<double>& max, const NrrdReadLimits& limits) {
+int run_resample(const std::string& filter, const std::string& pre, const std::string& volume_path,
+                 const std::string& output, int n, const std::vector<double>& min,
+                 const std::vector<double>& max, const NrrdReadLimits& limits) {
   const Filter f = parse_filter(filter);
   const PrefilterChoice q = parse_prefilter(pre);
-  if (n < 2 || n > kMaxResampleN) throw InputError(fmt::format("--n must be between 2 and {}, got {}", kMaxResampleN, n));
+  if (n < 2 || n > kMaxResampleN)
+    throw InputError(fmt::format("--n must be between 2 and {}, got {}", kMaxResampleN, n));
   const std::filesystem::path input = volume_path;
   require_output_file(output, {&input, 1});  // before the work, not after it; never the input
   BccVolume<T> volume = read_bcc_nrrd<T>(volume_path, limits);
   if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
-  const Box box = min.empty() ? default_box(volume, f) : Box{{min[0], min[1], min[2]}, {max[0], max[1], max[2]}};
+  const Box box = min.empty() ? default_box(volume, f)
+                              : Box{{min[0], min[1], min[2]}, {max[0], max[1], max[2]}};
   write_cartesian_nrrd(output, resample(volume, f, grid_over(box, {n, n, n})));
   return 0;
 }
@@ -150,7 +160,8 @@ int run(int argc, char** argv) {
   CLI::App app{"boxrecon: reconstruct BCC volumes with the generated box-spline evaluators"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("boxrecon ") + boxgen::kVersion);
-  std::string function = "ml", lattice = "bcc", output, filter = "m7", pre = "none", volume, points_path, precision = "double";
+  std::string function = "ml", lattice = "bcc", output, filter = "m7", pre = "none", volume,
+              points_path, precision = "double";
   int n = 33, count = 100000;
   std::optional<double> h;
   std::string seed = "1";
@@ -158,86 +169,119 @@ int run(int argc, char** argv) {
   int resample_n = 64;
   std::vector<double> box_min, box_max;
   int threads = 0;
-  app.add_option("--threads", threads, "threads of the batch paths (default: BOXGEN_THREADS, else all cores)")
+  app.add_option("--threads", threads,
+                 "threads of the batch paths (default: BOXGEN_THREADS, else all cores)")
       ->check(CLI::Range(1, 4096));
 
-  auto* sample = app.add_subcommand("sample", "sample a test function on N^3 x 2 BCC points over [-1,1]^3");
+  auto* sample =
+      app.add_subcommand("sample", "sample a test function on N^3 x 2 BCC points over [-1,1]^3");
   sample->add_option("--function", function, "ml | cubic | sphere | gaussian");
-  sample->add_option("--n", n, "N: N^3 x K samples, K cosets of N^3 with cells of 2/(N-1)")->required();
+  sample->add_option("--n", n, "N: N^3 x K samples, K cosets of N^3 with cells of 2/(N-1)")
+      ->required();
   sample->add_option("--h", h, "spacing override (finite, > 0)");
-  sample->add_option("--lattice", lattice, "bcc (default) | fcc | cartesian | \"a,b,c; d,e,f; g,h,i\" (rows of G)");
+  sample->add_option("--lattice", lattice,
+                     "bcc (default) | fcc | cartesian | \"a,b,c; d,e,f; g,h,i\" (rows of G)");
   sample->add_option("--precision", precision, "float | double");
   sample->add_option("-o,--output", output, "output NRRD file")->required();
   auto* eval = app.add_subcommand("eval", "evaluate the reconstruction at the points of a file");
   eval->add_option("--filter", filter, "m7 | m8 | m12")->required();
   eval->add_option("--prefilter", pre, "none | q1 | q2");
   eval->add_option("--volume", volume, "BCC NRRD volume")->required();
-  eval->add_option("--points", points_path, "file with one 'x y z' (world) per line, '#' comments; - reads stdin")->required();
+  eval->add_option("--points", points_path,
+                   "file with one 'x y z' (world) per line, '#' comments; - reads stdin")
+      ->required();
   eval->add_flag("--gradient", gradient, "also print the three partial derivatives");
   bool hessian = false;
   eval->add_flag("--hessian", hessian, "then the second derivatives h_xx h_xy h_xz h_yy h_yz h_zz");
   eval->add_option("--precision", precision, "float | double");
-  eval->add_flag("--allow-nonfinite", allow_nonfinite, "accept NaN and infinite samples in the volume (refused by default)");
-  auto* error = app.add_subcommand("error", "RMS and max error of a reconstruction over random points of [-1,1]^3");
+  eval->add_flag("--allow-nonfinite", allow_nonfinite,
+                 "accept NaN and infinite samples in the volume (refused by default)");
+  auto* error = app.add_subcommand(
+      "error", "RMS and max error of a reconstruction over random points of [-1,1]^3");
   error->add_option("--function", function, "ml | cubic | sphere | gaussian");
   auto* error_n = error->add_option("--n", n, "N (required unless --table)");
-  auto* error_filter = error->add_option("--filter", filter, "m7 | m8 | m12 (required unless --table)");
+  auto* error_filter =
+      error->add_option("--filter", filter, "m7 | m8 | m12 (required unless --table)");
   bool table = false;
-  error->add_flag("--table", table, "ML errors for N in {17,25,33,41,57} x {m7,m8,m12} x {none,q1,q2} and the tricubic on Cartesian");
+  error->add_flag("--table", table,
+                  "ML errors for N in {17,25,33,41,57} x {m7,m8,m12} x {none,q1,q2} and the "
+                  "tricubic on Cartesian");
   error->add_option("--prefilter", pre, "none | q1 | q2");
   error->add_option("--points", count, "number of random points");
   error->add_option("--seed", seed, "random seed, 0..2^64-1");
   error->add_flag("--gradient", gradient, "also the RMS error of the gradient");
   error->add_flag("--json", json, "JSON with keys rms, max, gradient_rms");
-  auto* resample = app.add_subcommand("resample", "resample the reconstruction onto a Cartesian grid (a plain 3-D NRRD)");
+  auto* resample = app.add_subcommand(
+      "resample", "resample the reconstruction onto a Cartesian grid (a plain 3-D NRRD)");
   resample->add_option("--filter", filter, "m7 | m8 | m12")->required();
   resample->add_option("--prefilter", pre, "none | q1 | q2");
   resample->add_option("--volume", volume, "BCC NRRD volume")->required();
   resample->add_option("-o,--output", output, "output NRRD file (Cartesian grid)")->required();
-  resample->add_option("--n", resample_n, fmt::format("grid points per axis, 2..{} (default 64)", kMaxResampleN));
-  auto* min_option = resample->add_option("--min", box_min,
-                                          "X Y Z: lower corner of the box (world); default (without --min/--max): the largest box "
-                                          "in which the filter's stencil lies inside the volume")
+  resample->add_option("--n", resample_n,
+                       fmt::format("grid points per axis, 2..{} (default 64)", kMaxResampleN));
+  auto* min_option = resample
+                         ->add_option("--min", box_min,
+                                      "X Y Z: lower corner of the box (world); default (without "
+                                      "--min/--max): the largest box "
+                                      "in which the filter's stencil lies inside the volume")
                          ->expected(3);
-  auto* max_option = resample->add_option("--max", box_max, "X Y Z: upper corner of the box (world)")->expected(3);
+  auto* max_option =
+      resample->add_option("--max", box_max, "X Y Z: upper corner of the box (world)")->expected(3);
   min_option->needs(max_option);
   max_option->needs(min_option);
   resample->add_option("--precision", precision, "float | double");
-  resample->add_flag("--allow-nonfinite", allow_nonfinite, "accept NaN and infinite samples in the volume (refused by default)");
+  resample->add_flag("--allow-nonfinite", allow_nonfinite,
+                     "accept NaN and infinite samples in the volume (refused by default)");
   auto* render = boxgen::recon::add_render_command(app);
   boxrecon::BenchOptions bench_options;
-  auto* bench = app.add_subcommand("bench", "evaluation speed: the paper's Table 2, fetch floors, tricubic, threads");
-  bench->add_flag("--quick", bench_options.quick, "only the ratios, on one cache-resident volume (under a minute)");
+  auto* bench = app.add_subcommand(
+      "bench", "evaluation speed: the paper's Table 2, fetch floors, tricubic, threads");
+  bench->add_flag("--quick", bench_options.quick,
+                  "only the ratios, on one cache-resident volume (under a minute)");
   bench->add_flag("--json", bench_options.json, "one JSON object");
-  bench->add_option("--points", bench_options.points, "points per measurement (default 10^7, quick 2 10^5)")
+  bench
+      ->add_option("--points", bench_options.points,
+                   "points per measurement (default 10^7, quick 2 10^5)")
       ->check(CLI::Range(1L, 1000000000L));
-  bench->add_option("--repeats", bench_options.repeats, "runs per measurement; the fastest counts (default 3)")
+  bench
+      ->add_option("--repeats", bench_options.repeats,
+                   "runs per measurement; the fastest counts (default 3)")
       ->check(CLI::Range(1, 100));
   if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxrecon")) return *stop;
   try {
     if (threads > 0) set_batch_threads(threads);
     if (bench->parsed()) return boxrecon::run_bench(bench_options);
     if (precision != "float" && precision != "double")
-      throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) + "'");
-    if (sample->parsed()) return boxgen::app::run_sample(function, n, h, lattice, precision, output);
+      throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) +
+                       "'");
+    if (sample->parsed())
+      return boxgen::app::run_sample(function, n, h, lattice, precision, output);
     NrrdReadLimits limits;
     limits.allow_non_finite = allow_nonfinite;
     if (eval->parsed())
-      return precision == "float" ? run_eval<float>(filter, pre, volume, points_path, gradient, hessian, limits)
-                                  : run_eval<double>(filter, pre, volume, points_path, gradient, hessian, limits);
+      return precision == "float"
+                 ? run_eval<float>(filter, pre, volume, points_path, gradient, hessian, limits)
+                 : run_eval<double>(filter, pre, volume, points_path, gradient, hessian, limits);
     if (render->parsed()) return boxgen::recon::run_render();
-    if (error->parsed() && table) return boxgen::recon::run_error_table(count, boxgen::app::parse_seed(seed), json);
+    if (error->parsed() && table)
+      return boxgen::recon::run_error_table(count, boxgen::app::parse_seed(seed), json);
     if (error->parsed() && (error_n->count() == 0 || error_filter->count() == 0)) {
-      std::cerr << "boxrecon: usage error: error needs --n and --filter (or --table) (see boxrecon --help)\n";
+      std::cerr << "boxrecon: usage error: error needs --n and --filter (or --table) (see boxrecon "
+                   "--help)\n";
       return 2;
     }
-    if (error->parsed()) return run_error(function, n, filter, pre, count, boxgen::app::parse_seed(seed), gradient, json);
+    if (error->parsed())
+      return run_error(function, n, filter, pre, count, boxgen::app::parse_seed(seed), gradient,
+                       json);
     if (resample->parsed())
-      return precision == "float" ? run_resample<float>(filter, pre, volume, output, resample_n, box_min, box_max, limits)
-                                  : run_resample<double>(filter, pre, volume, output, resample_n, box_min, box_max, limits);
+      return precision == "float" ? run_resample<float>(filter, pre, volume, output, resample_n,
+                                                        box_min, box_max, limits)
+                                  : run_resample<double>(filter, pre, volume, output, resample_n,
+                                                         box_min, box_max, limits);
   } catch (const std::exception& e) {
     const int code = exit_code_for(e);
-    std::cerr << (code == 1 ? "boxrecon: error: " : "boxrecon: internal error: ") << e.what() << '\n';
+    std::cerr << (code == 1 ? "boxrecon: error: " : "boxrecon: internal error: ") << e.what()
+              << '\n';
     return code;
   }
   return 2;

@@ -17,29 +17,35 @@ namespace {
 constexpr int kSampleMargin = 3;
 
 template <class T>
-void sample_and_write(const runtime::TestFunction& fn, const runtime::LatticeGrid& grid, const std::string& output) {
+void sample_and_write(const runtime::TestFunction& fn, const runtime::LatticeGrid& grid,
+                      const std::string& output) {
   runtime::write_lattice_nrrd(output, runtime::sample_lattice<T>(fn.value, grid));
 }
 
 }  // namespace
 
-int run_sample(const std::string& function, int n, const std::optional<double>& h, const std::string& lattice_text,
-               const std::string& precision, const std::string& output) {
+int run_sample(const std::string& function, int n, const std::optional<double>& h,
+               const std::string& lattice_text, const std::string& precision,
+               const std::string& output) {
   const runtime::TestFunction& fn = runtime::find_test_function(function);
   const runtime::CosetLattice lattice = runtime::CosetLattice::parse(lattice_text);
-  if (n < 2 || n > 1024) throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", n));
+  if (n < 2 || n > 1024)
+    throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", n));
   check_spacing(h);
   runtime::require_output_directory(output);
   runtime::LatticeGrid grid = runtime::cube_lattice_grid(lattice, n, kSampleMargin);
   const auto per_axis = static_cast<std::uint64_t>(grid.sizes[0]);
-  check_volume_memory(static_cast<std::uint64_t>(lattice.coset_count()) * per_axis * per_axis * per_axis,
-                      precision == "float" ? sizeof(float) : sizeof(double), fmt::format("--n {}", n));
+  check_volume_memory(
+      static_cast<std::uint64_t>(lattice.coset_count()) * per_axis * per_axis * per_axis,
+      precision == "float" ? sizeof(float) : sizeof(double), fmt::format("--n {}", n));
   if (h) {  // --h overrides the spacing; the grid still starts margin cells below -1
     grid.h = *h;
     for (auto& o : grid.origin) o = -1 - lattice.period() * *h * kSampleMargin;
   }
-  if (precision == "float") sample_and_write<float>(fn, grid, output);
-  else sample_and_write<double>(fn, grid, output);
+  if (precision == "float")
+    sample_and_write<float>(fn, grid, output);
+  else
+    sample_and_write<double>(fn, grid, output);
   return 0;
 }
 

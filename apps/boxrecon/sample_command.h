@@ -9,7 +9,7 @@ namespace boxgen::app {
 // --function, --n, --h, --lattice (bcc | fcc | cartesian | "a,b,c; d,e,f; g,h,i"), --precision,
 // -o. Every argument is checked before anything is allocated or written; a bad one throws
 // std::invalid_argument (or runtime::NrrdError for -o), one line.
-int run_sample(const std::string& function, int n, const std::optional<double>& h, const std::string& lattice,
-               const std::string& precision, const std::string& output);
+int run_sample(const std::string& function, int n, const std::optional<double>& h,
+               const std::string& lattice, const std::string& precision, const std::string& output);
 
 }  // namespace boxgen::app

@@ -13,7 +13,8 @@ namespace boxgen::app {
 
 // Parses the command line. Returns an exit code when the program should stop here (--help or
 // --version printed: 0; a usage error printed as one line: 2), nothing when it should go on.
-inline std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv, const char* program) {
+inline std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv,
+                                             const char* program) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -21,14 +21,14 @@
 #include <stdexcept>
 #include <vector>
 
-#include "generated/m7.hpp"        // boxgen::generated
+#include "fcc_six.hpp"  // emitted by boxgen_emit() at build time
+#include "fcc_six_prefilters.hpp"
+#include "generated/m7.hpp"  // boxgen::generated
+#include "runtime/lattice_reconstruction.h"
 #include "runtime/reconstruction.h"  // boxgen::runtime
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
-#include "fcc_six.hpp"             // emitted by boxgen_emit() at build time
-#include "fcc_six_prefilters.hpp"
-#include "runtime/lattice_reconstruction.h"
-#include "three_direction.hpp"     // emitted by boxgen_emit() at build time
+#include "three_direction.hpp"  // emitted by boxgen_emit() at build time
 
 namespace rt = boxgen::runtime;
 namespace tri = boxgen::generated::three_direction;
@@ -53,7 +53,8 @@ void bcc_reconstruction() {
   const rt::Filter filter = rt::Filter::M7;
   const rt::PrefilterChoice q = rt::PrefilterChoice::Q1;
   const int n = 9;  // 9^3 x 2 samples over [-1,1]^3, plus the margin M7 and Q^I need
-  const rt::BccVolume<double> samples = rt::sample_cube<double>(rt::cubic, n, rt::required_margin(filter, q));
+  const rt::BccVolume<double> samples =
+      rt::sample_cube<double>(rt::cubic, n, rt::required_margin(filter, q));
   const rt::BccVolume<double> volume = rt::prefilter(samples, rt::prefilter_taps(filter, q));
   const rt::Reconstructor<double> m7(volume, filter);
 
@@ -74,21 +75,25 @@ void bcc_reconstruction() {
   check("generated::m7::evaluate agrees with the runtime", direct_error, 1e-12);
 }
 
-// (b) The user's storage: a size x size image whose pixel (0, 0) sits at lattice point (first, first).
+// (b) The user's storage: a size x size image whose pixel (0, 0) sits at lattice point (first,
+// first).
 struct Image {
   int size;
   std::int64_t first;
   std::vector<double> pixels;
 
   template <class F>
-  Image(int n, std::int64_t origin, F f) : size(n), first(origin), pixels(static_cast<std::size_t>(n) * n) {
+  Image(int n, std::int64_t origin, F f)
+      : size(n), first(origin), pixels(static_cast<std::size_t>(n) * n) {
     for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) pixels[static_cast<std::size_t>(y) * n + x] = f(double(x + first), double(y + first));
+      for (int x = 0; x < n; ++x)
+        pixels[static_cast<std::size_t>(y) * n + x] = f(double(x + first), double(y + first));
   }
   // The fetch policy of the emitted evaluator: the sample at lattice point j.
   double operator()(const tri::Point& j) const {
     const std::int64_t x = j[0] - first, y = j[1] - first;
-    if (x < 0 || y < 0 || x >= size || y >= size) throw std::out_of_range("stencil leaves the image");
+    if (x < 0 || y < 0 || x >= size || y >= size)
+      throw std::out_of_range("stencil leaves the image");
     return pixels[static_cast<std::size_t>(y * size + x)];
   }
 };
@@ -99,7 +104,8 @@ void own_box_spline() {
   double unity_error = 0, value_error = 0, gradient_error = 0;
   for (int i = 0; i <= 12; ++i)
     for (int j = 0; j <= 12; ++j) {
-      const std::array<double, 2> x{-3.01 + 0.5 * i, -2.97 + 0.5 * j};  // stencils stay in the image
+      const std::array<double, 2> x{-3.01 + 0.5 * i,
+                                    -2.97 + 0.5 * j};  // stencils stay in the image
       unity_error = std::max(unity_error, std::abs(tri::evaluate<double>(x, ones) - 1));
       std::array<double, 2> g{};
       const double v = tri::evaluate<double>(x, linear, &g);
@@ -117,8 +123,11 @@ void own_box_spline() {
 void own_filter_through_the_runtime() {
   namespace six = boxgen::generated::fcc_six;
   const rt::CosetLattice lattice = rt::filter_lattice<six::Traits>();  // FCC, read from the header
-  const auto quadratic = [](const rt::Vec3& p) { return 2 * p[0] * p[0] - p[0] * p[1] + 3 * p[2] * p[2] - p[1] + 0.5; };
-  rt::LatticeVolume<double> volume = rt::sample_lattice<double>(quadratic, rt::cube_lattice_grid(lattice, 9, 4));
+  const auto quadratic = [](const rt::Vec3& p) {
+    return 2 * p[0] * p[0] - p[0] * p[1] + 3 * p[2] * p[2] - p[1] + 0.5;
+  };
+  rt::LatticeVolume<double> volume =
+      rt::sample_lattice<double>(quadratic, rt::cube_lattice_grid(lattice, 9, 4));
   volume = rt::prefilter(volume, rt::prefilter_from(six::q1));
   const rt::LatticeReconstructor<six::Traits, double> spline(volume);
   double error = 0;
@@ -129,7 +138,8 @@ void own_filter_through_the_runtime() {
         error = std::max(error, std::abs(spline.value(p) - quadratic(p)));
       }
   check("own FCC filter + its Q^I reproduces a quadratic (125 points)", error, 1e-10);
-  const rt::LatticeVolume<double> bcc = rt::sample_lattice<double>(quadratic, rt::cube_lattice_grid(rt::CosetLattice::bcc(), 5, 4));
+  const rt::LatticeVolume<double> bcc =
+      rt::sample_lattice<double>(quadratic, rt::cube_lattice_grid(rt::CosetLattice::bcc(), 5, 4));
   bool refused = false;
   try {
     const rt::LatticeReconstructor<six::Traits, double> wrong(bcc);

@@ -23,7 +23,8 @@ TEST(DualLattice, BasisIsTwoPiTimesInverseTranspose) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       double dot = 0;
-      for (int r = 0; r < 3; ++r) dot += d.basis()[i][r] * static_cast<double>(bcc.generator()[j][r]);
+      for (int r = 0; r < 3; ++r)
+        dot += d.basis()[i][r] * static_cast<double>(bcc.generator()[j][r]);
       EXPECT_NEAR(dot, i == j ? 2 * kPi : 0, 1e-12);
     }
 }

@@ -15,8 +15,10 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 ErrorKernel kernel_of(const BoxSplineSpec& spec, std::vector<int> shells) {
-  return ErrorKernel(BoxSplineSpectrum(spec.directions), static_cast<double>(spec.lattice.det_abs()),
-                     test::autocorrelation_taps(spec), shells.empty() ? std::vector<LatticeTap>{} : test::prefilter_taps(spec, shells));
+  return ErrorKernel(
+      BoxSplineSpectrum(spec.directions), static_cast<double>(spec.lattice.det_abs()),
+      test::autocorrelation_taps(spec),
+      shells.empty() ? std::vector<LatticeTap>{} : test::prefilter_taps(spec, shells));
 }
 
 Vec along(const Vec& d, double w) { return {w * d[0], w * d[1], w * d[2]}; }
@@ -28,9 +30,11 @@ TEST(ErrorKernel, DtftOfTheExactAutocorrelationEqualsTheTruncatedDualLatticeSum)
     const DualLattice dual(spec.lattice.generator());
     for (const Vec& w : {Vec{0.3, 0.1, -0.2}, Vec{1.0, 1.0, 1.0}, Vec{2.5, 0.0, 0.4}}) {
       const long double exact = e.aliasing_sum(w);
-      const long double direct = aliasing_sum_direct(BoxSplineSpectrum(spec.directions), dual, w, 40 * kPi);
+      const long double direct =
+          aliasing_sum_direct(BoxSplineSpectrum(spec.directions), dual, w, 40 * kPi);
       // The truncated sum misses a positive tail, which bounds the difference from above.
-      EXPECT_NEAR(static_cast<double>(direct), static_cast<double>(exact), 2e-6 * static_cast<double>(exact))
+      EXPECT_NEAR(static_cast<double>(direct), static_cast<double>(exact),
+                  2e-6 * static_cast<double>(exact))
           << preset << " at (" << w[0] << "," << w[1] << "," << w[2] << ")";
       EXPECT_LE(static_cast<double>(direct), static_cast<double>(exact) * (1 + 1e-12)) << preset;
     }
@@ -75,8 +79,10 @@ TEST(ErrorKernel, VanishesAtZeroAndNeverFallsBelowTheMinimum) {
 TEST(ErrorKernel, PapersOrderingsHoldOnTheBandOfFig13) {
   const BoxSplineSpec m7 = parse_spec("m7"), m8 = parse_spec("m8"), m12 = parse_spec("m12");
   const Vec d{1, 1, 1};
-  for (std::vector<int> shells : {std::vector<int>{}, std::vector<int>{0, 1}, std::vector<int>{0, 1, 2}}) {
-    const ErrorKernel e7 = kernel_of(m7, shells), e8 = kernel_of(m8, shells), e12 = kernel_of(m12, shells);
+  for (std::vector<int> shells :
+       {std::vector<int>{}, std::vector<int>{0, 1}, std::vector<int>{0, 1, 2}}) {
+    const ErrorKernel e7 = kernel_of(m7, shells), e8 = kernel_of(m8, shells),
+                      e12 = kernel_of(m12, shells);
     for (double w = 0.05; w <= kPi / 2; w += 0.05) {
       EXPECT_LT(e7(along(d, w)), e8(along(d, w))) << "w " << w << " shells " << shells.size();
       if (shells.empty()) {

@@ -51,7 +51,8 @@ TEST(FilterMetrics, TricubicOnTheCubeFactorsIntoOneDimensionalIntegrals) {
     }
   const double volume = std::pow(2 * kPi, 3);
   const double expected_s = 1 - std::pow(one_d, 3) / volume;
-  const double expected_p = (std::pow(2 * kPi, 3) * std::pow(151.0 / 315.0, 3) - std::pow(one_d, 3)) / volume;
+  const double expected_p =
+      (std::pow(2 * kPi, 3) * std::pow(151.0 / 315.0, 3) - std::pow(one_d, 3)) / volume;
   const FilterMetrics m = metrics_of("tricubic");
   EXPECT_NEAR(m.smoothing, expected_s, 1e-12);
   EXPECT_NEAR(m.postaliasing, expected_p, 1e-12);
@@ -86,7 +87,8 @@ TEST(FilterMetrics, RefusesTooFewOrdersAndMismatchedDimensions) {
   const BoxSplineSpectrum psi(spec.directions);
   const DualLattice dual(spec.lattice.generator());
   EXPECT_THROW(filter_metrics(psi, dual, 0.1, {8}), std::invalid_argument);
-  EXPECT_THROW(filter_metrics(BoxSplineSpectrum(IntDirections{{1, 0}, {0, 1}}), dual, 0.1), std::invalid_argument);
+  EXPECT_THROW(filter_metrics(BoxSplineSpectrum(IntDirections{{1, 0}, {0, 1}}), dual, 0.1),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -13,13 +13,16 @@ namespace boxgen::test {
 
 inline std::vector<analysis::LatticeTap> autocorrelation_taps(const BoxSplineSpec& spec) {
   std::vector<analysis::LatticeTap> out;
-  for (const auto& s : autocorrelation_refinement(spec).samples) out.push_back({s.point, to_double(s.value)});
+  for (const auto& s : autocorrelation_refinement(spec).samples)
+    out.push_back({s.point, to_double(s.value)});
   return out;
 }
 
-inline std::vector<analysis::LatticeTap> prefilter_taps(const BoxSplineSpec& spec, std::vector<int> shells) {
+inline std::vector<analysis::LatticeTap> prefilter_taps(const BoxSplineSpec& spec,
+                                                        std::vector<int> shells) {
   std::vector<analysis::LatticeTap> out;
-  for (const auto& w : derive_prefilter(spec, shells).weights) out.push_back({w.offset, to_double(w.weight)});
+  for (const auto& w : derive_prefilter(spec, shells).weights)
+    out.push_back({w.offset, to_double(w.weight)});
   return out;
 }
 

@@ -46,7 +46,9 @@ TEST(CellQuadrature, VolumeAndSecondMomentOfTheRhombicDodecahedron) {
 TEST(CellQuadrature, SmoothIntegrandOnTheCubeConvergesToTheClosedForm) {
   const DualLattice d(Lattice::cartesian(3).generator());
   // ∫_{[-pi,pi]^3} cos(x/2) cos(y/3) e^{z/4} = (4)(6 sin(pi/3))(4 (e^{pi/4} - e^{-pi/4})).
-  const Integrand f = [](const Vec& w) { return std::cos(w[0] / 2) * std::cos(w[1] / 3) * std::exp(w[2] / 4); };
+  const Integrand f = [](const Vec& w) {
+    return std::cos(w[0] / 2) * std::cos(w[1] / 3) * std::exp(w[2] / 4);
+  };
   const double exact = 4 * (6 * std::sin(kPi / 3)) * (4 * (std::exp(kPi / 4) - std::exp(-kPi / 4)));
   EXPECT_NEAR(integrate_iterated(d.cell(), f, 12), exact, 1e-11 * exact);
   EXPECT_NEAR(integrate_simplex_fan(d.cell(), f, 16), exact, 1e-11 * exact);

@@ -14,8 +14,9 @@ namespace boxgen::runtime {
 namespace {
 
 struct Scene {
-  BccVolume<double> volume = prefilter(sample_cube<double>(gaussian, 33, required_margin(Filter::M7, PrefilterChoice::Q1)),
-                                       prefilter_taps(Filter::M7, PrefilterChoice::Q1));
+  BccVolume<double> volume =
+      prefilter(sample_cube<double>(gaussian, 33, required_margin(Filter::M7, PrefilterChoice::Q1)),
+                prefilter_taps(Filter::M7, PrefilterChoice::Q1));
   Reconstructor<double> spline{volume, Filter::M7};
   Box box{{-1, -1, -1}, {1, 1, 1}};
   double radius = kGaussianWidth * std::sqrt(2 * std::log(2.0));
@@ -33,9 +34,13 @@ TEST(RayCaster, HitsTheIsosurfaceWithTheGradientsNormal) {
   Vec3 g{};
   s.spline.value(h.point, &g);
   const double norm = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-  for (int i = 0; i < 3; ++i) EXPECT_NEAR(h.normal[i], -g[i] / norm, 1e-12);  // the analytic gradient
-  const double r = std::sqrt(h.point[0] * h.point[0] + h.point[1] * h.point[1] + h.point[2] * h.point[2]);
-  EXPECT_GT(h.normal[0] * h.point[0] / r + h.normal[1] * h.point[1] / r + h.normal[2] * h.point[2] / r, 0.999);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(h.normal[i], -g[i] / norm, 1e-12);  // the analytic gradient
+  const double r =
+      std::sqrt(h.point[0] * h.point[0] + h.point[1] * h.point[1] + h.point[2] * h.point[2]);
+  EXPECT_GT(
+      h.normal[0] * h.point[0] / r + h.normal[1] * h.point[1] / r + h.normal[2] * h.point[2] / r,
+      0.999);
 }
 
 TEST(RayCaster, PrincipalCurvaturesOfTheBallAreOneOverItsRadius) {

@@ -24,7 +24,8 @@ class AnalysisCli : public ScratchDirectoryTest {
   std::string file(const std::string& name) const { return (dir_ / name).string(); }
   std::vector<std::string> listing() const {
     std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
+    for (const auto& e : fs::directory_iterator(dir_))
+      names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
     return names;
   }
@@ -39,7 +40,8 @@ class AnalysisCli : public ScratchDirectoryTest {
 TEST_F(AnalysisCli, MetricsJsonHasTheDocumentedKeysAndThePapersSmoothing) {
   const auto j = boxgen_json({"metrics", "m7", "m8", "m12", "--json"});
   EXPECT_EQ(exact(j["m7"]["integral_squared"]), Q("39559/1064448"));  // docs/design.md §9
-  const std::map<std::string, double> paper_s = {{"m7", 0.85488}, {"m8", 0.85287}, {"m12", 0.94495}};
+  const std::map<std::string, double> paper_s = {
+      {"m7", 0.85488}, {"m8", 0.85287}, {"m12", 0.94495}};
   for (const auto& [key, s] : paper_s) {
     ASSERT_TRUE(j.contains(key)) << key;
     EXPECT_NEAR(j[key]["smoothing"].get<double>(), s, 0.5e-5) << key;
@@ -65,17 +67,20 @@ TEST_F(AnalysisCli, KernelJsonVanishesAtZeroAndGrows) {
   ASSERT_EQ(j["E"].size(), 4u);
   EXPECT_NEAR(j["E"][0].get<double>(), 0, 1e-14);
   for (int i = 1; i < 4; ++i) EXPECT_GT(j["E"][i].get<double>(), j["E"][i - 1].get<double>());
-  const auto r = boxgen_json({"kernel", "m8", "--prefilter", "min", "--from", "0.1", "--to", "1", "--steps", "10", "--json"});
+  const auto r = boxgen_json({"kernel", "m8", "--prefilter", "min", "--from", "0.1", "--to", "1",
+                              "--steps", "10", "--json"});
   EXPECT_EQ(r["w"].size(), 10u);
   EXPECT_DOUBLE_EQ(r["w"][9].get<double>(), 1.0);
 }
 
 TEST_F(AnalysisCli, SpectrumLineJsonAndTheNyquistInterval) {
-  const auto j = boxgen_json({"spectrum", "m7", "--line", "1,0,0", "--from", "0", "--to", "6", "--steps", "7", "--json"});
+  const auto j = boxgen_json(
+      {"spectrum", "m7", "--line", "1,0,0", "--from", "0", "--to", "6", "--steps", "7", "--json"});
   EXPECT_NEAR(j["magnitude"][0].get<double>(), 1.0, 1e-15);
   EXPECT_NEAR(j["nyquist_interval"][1].get<double>(), std::numbers::pi, 1e-12);
   // psi_hat of M7 vanishes at w = 2 pi e_1, a dual lattice point (partition of unity).
-  const auto z = boxgen_json({"spectrum", "m7", "--line", "1,0,0", "--w", "6.283185307179586", "--json"});
+  const auto z =
+      boxgen_json({"spectrum", "m7", "--line", "1,0,0", "--w", "6.283185307179586", "--json"});
   EXPECT_NEAR(z["magnitude"][0].get<double>(), 0, 1e-12);
 }
 
@@ -92,18 +97,23 @@ TEST_F(AnalysisCli, FiguresAreWrittenAsPngAndNothingElse) {
 #ifndef BOXRECON_EXE
 #error "BOXRECON_EXE must name the boxrecon binary"
 #endif
-ProcessResult boxrecon(const std::vector<std::string>& args) { return run_process(BOXRECON_EXE, args, kDefaultTimeout); }
+ProcessResult boxrecon(const std::vector<std::string>& args) {
+  return run_process(BOXRECON_EXE, args, kDefaultTimeout);
+}
 
 TEST_F(AnalysisCli, RenderWritesAPngOfTheRequestedSize) {
-  const ProcessResult r = boxrecon({"render", "--function", "ml", "--n", "17", "--filter", "m7", "--prefilter", "q1",
-                                    "--cutaway", "--width", "40", "--height", "30", "--quiet", "-o", file("r.png")});
+  const ProcessResult r =
+      boxrecon({"render", "--function", "ml", "--n", "17", "--filter", "m7", "--prefilter", "q1",
+                "--cutaway", "--width", "40", "--height", "30", "--quiet", "-o", file("r.png")});
   ASSERT_TRUE(r.exited && r.exit_code == 0) << describe({"render"}, r);
   EXPECT_EQ(r.err, "");
   ASSERT_TRUE(is_png(file("r.png")));
   std::ifstream in(file("r.png"), std::ios::binary);
   unsigned char header[24] = {};
   in.read(reinterpret_cast<char*>(header), 24);
-  const auto be32 = [&](int at) { return (header[at] << 24) | (header[at + 1] << 16) | (header[at + 2] << 8) | header[at + 3]; };
+  const auto be32 = [&](int at) {
+    return (header[at] << 24) | (header[at + 1] << 16) | (header[at + 2] << 8) | header[at + 3];
+  };
   EXPECT_EQ(be32(16), 40);  // IHDR width
   EXPECT_EQ(be32(20), 30);  // IHDR height
   EXPECT_EQ(listing(), (std::vector<std::string>{"r.png"}));
@@ -143,8 +153,8 @@ TEST_F(AnalysisCli, EvalHessianReproducesTheCubicsSecondDerivatives) {
   }
   const double pts[3][3] = {{0.1, -0.2, 0.3}, {-0.55, 0.4, 0.05}, {0.7, 0.7, -0.6}};
   for (const char* filter : {"m7", "m8", "m12"}) {
-    r = boxrecon({"eval", "--filter", filter, "--prefilter", "q1", "--volume", file("c.nrrd"), "--points", file("p.txt"),
-                  "--gradient", "--hessian"});
+    r = boxrecon({"eval", "--filter", filter, "--prefilter", "q1", "--volume", file("c.nrrd"),
+                  "--points", file("p.txt"), "--gradient", "--hessian"});
     ASSERT_TRUE(r.exited && r.exit_code == 0) << describe({"eval", filter}, r);
     std::istringstream lines(r.out);
     for (const auto& p : pts) {
@@ -152,14 +162,17 @@ TEST_F(AnalysisCli, EvalHessianReproducesTheCubicsSecondDerivatives) {
       for (double& x : v) ASSERT_TRUE(lines >> x) << r.out;
       const double x = p[0], y = p[1], z = p[2];
       const double expected[6] = {6 * x, -2 * z, -2 * y, 6, -2 * x, 0};
-      for (int k = 0; k < 6; ++k) EXPECT_NEAR(v[4 + k], expected[k], 1e-8) << filter << " h" << k << " at " << x << "," << y << "," << z;
+      for (int k = 0; k < 6; ++k)
+        EXPECT_NEAR(v[4 + k], expected[k], 1e-8)
+            << filter << " h" << k << " at " << x << "," << y << "," << z;
     }
   }
 }
 
 TEST_F(AnalysisCli, RenderWithCurvatureShading) {
-  const ProcessResult r = boxrecon({"render", "--function", "ml", "--n", "17", "--shading", "curvature", "--width", "32",
-                                    "--height", "32", "--quiet", "-o", file("c.png")});
+  const ProcessResult r =
+      boxrecon({"render", "--function", "ml", "--n", "17", "--shading", "curvature", "--width",
+                "32", "--height", "32", "--quiet", "-o", file("c.png")});
   ASSERT_TRUE(r.exited && r.exit_code == 0) << describe({"render", "--shading", "curvature"}, r);
   EXPECT_TRUE(is_png(file("c.png")));
 }
@@ -167,16 +180,18 @@ TEST_F(AnalysisCli, RenderWithCurvatureShading) {
 // A BCC volume of 2 x 2^3 samples written by hand (the NRRD layout of runtime/nrrd_io.h): far too
 // small for any stencil.
 TEST_F(AnalysisCli, RenderRefusesAVolumeWithoutTheStencilMargin) {
-  std::string text = "NRRD0004\ntype: double\ndimension: 4\nspace dimension: 3\nsizes: 2 2 2 2\n"
-                     "space directions: none (1,0,0) (0,1,0) (0,0,1)\nspace origin: (0,0,0)\nendian: little\n"
-                     "encoding: raw\nlattice:=bcc\n\n";
+  std::string text =
+      "NRRD0004\ntype: double\ndimension: 4\nspace dimension: 3\nsizes: 2 2 2 2\n"
+      "space directions: none (1,0,0) (0,1,0) (0,0,1)\nspace origin: (0,0,0)\nendian: little\n"
+      "encoding: raw\nlattice:=bcc\n\n";
   const std::vector<double> ones(16, 1.0);
   text.append(reinterpret_cast<const char*>(ones.data()), ones.size() * sizeof(double));
   {
     std::ofstream out(file("tiny.nrrd"), std::ios::binary);
     out << text;
   }
-  const ProcessResult r = boxrecon({"render", "--volume", file("tiny.nrrd"), "--prefilter", "none", "-o", file("r.png")});
+  const ProcessResult r = boxrecon(
+      {"render", "--volume", file("tiny.nrrd"), "--prefilter", "none", "-o", file("r.png")});
   EXPECT_TRUE(r.exited) << describe({"render"}, r);
   EXPECT_EQ(r.exit_code, 1) << describe({"render"}, r);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
@@ -191,7 +206,8 @@ struct BadAnalysisInput {
 };
 void PrintTo(const BadAnalysisInput& c, std::ostream* os) { *os << c.name; }
 
-class AnalysisBadInput : public AnalysisCli, public ::testing::WithParamInterface<BadAnalysisInput> {};
+class AnalysisBadInput : public AnalysisCli,
+                         public ::testing::WithParamInterface<BadAnalysisInput> {};
 
 TEST_P(AnalysisBadInput, OneLineOnStderrNonZeroExitNoFile) {
   const auto& c = GetParam();
@@ -207,7 +223,8 @@ TEST_P(AnalysisBadInput, OneLineOnStderrNonZeroExitNoFile) {
   EXPECT_EQ(r.out, "") << what;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what;
   std::string lower = r.err;
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
   EXPECT_NE(lower.find(c.mentions), std::string::npos) << what;
   EXPECT_TRUE(listing().empty()) << "a file was left behind\n" << what;
 }
@@ -215,24 +232,64 @@ TEST_P(AnalysisBadInput, OneLineOnStderrNonZeroExitNoFile) {
 INSTANTIATE_TEST_SUITE_P(
     Boxgen, AnalysisBadInput,
     ::testing::Values(
-        BadAnalysisInput{"UnknownPrefilter", {"kernel", "m7", "--prefilter", "q3", "--w", "1"}, 1, "prefilter"},
-        BadAnalysisInput{"ZeroDirection", {"kernel", "m7", "--direction", "0,0,0", "--w", "1"}, 1, "zero"},
-        BadAnalysisInput{"ShortDirection", {"kernel", "m7", "--direction", "1,1", "--w", "1"}, 1, "direction"},
-        BadAnalysisInput{"InvertedRange", {"kernel", "m7", "--from", "2", "--to", "1", "--steps", "5"}, 1, "range"},
-        BadAnalysisInput{"EmptyRange", {"spectrum", "m7", "--line", "1,0,0", "--from", "1", "--to", "1", "--steps", "5"}, 1, "range"},
+        BadAnalysisInput{
+            "UnknownPrefilter", {"kernel", "m7", "--prefilter", "q3", "--w", "1"}, 1, "prefilter"},
+        BadAnalysisInput{
+            "ZeroDirection", {"kernel", "m7", "--direction", "0,0,0", "--w", "1"}, 1, "zero"},
+        BadAnalysisInput{
+            "ShortDirection", {"kernel", "m7", "--direction", "1,1", "--w", "1"}, 1, "direction"},
+        BadAnalysisInput{"InvertedRange",
+                         {"kernel", "m7", "--from", "2", "--to", "1", "--steps", "5"},
+                         1,
+                         "range"},
+        BadAnalysisInput{
+            "EmptyRange",
+            {"spectrum", "m7", "--line", "1,0,0", "--from", "1", "--to", "1", "--steps", "5"},
+            1,
+            "range"},
         BadAnalysisInput{"NoAbscissae", {"kernel", "m7"}, 1, "--w"},
-        BadAnalysisInput{"ZeroPlaneNormal", {"spectrum", "m7", "--plane", "0,0,0", "-o", "@/p.png"}, 1, "zero"},
-        BadAnalysisInput{"PlaneAndLine", {"spectrum", "m7", "--plane", "1,0,0", "--line", "1,0,0", "-o", "@/p.png"}, 1, "exactly one"},
-        BadAnalysisInput{"UnwritablePlot", {"kernel", "m7", "--plot", "@/missing/k.png"}, 1, "cannot write"},
-        BadAnalysisInput{"UnwritablePlane", {"spectrum", "m7", "--plane", "1,1,1", "-o", "@/missing/p.png"}, 1, "cannot write"},
+        BadAnalysisInput{
+            "ZeroPlaneNormal", {"spectrum", "m7", "--plane", "0,0,0", "-o", "@/p.png"}, 1, "zero"},
+        BadAnalysisInput{"PlaneAndLine",
+                         {"spectrum", "m7", "--plane", "1,0,0", "--line", "1,0,0", "-o", "@/p.png"},
+                         1,
+                         "exactly one"},
+        BadAnalysisInput{
+            "UnwritablePlot", {"kernel", "m7", "--plot", "@/missing/k.png"}, 1, "cannot write"},
+        BadAnalysisInput{"UnwritablePlane",
+                         {"spectrum", "m7", "--plane", "1,1,1", "-o", "@/missing/p.png"},
+                         1,
+                         "cannot write"},
         BadAnalysisInput{"BadSpec", {"metrics", "m7", "m99"}, 1, "m99"},
-        BadAnalysisInput{"RenderUnknownShading", {"boxrecon", "render", "--function", "ml", "--n", "9", "--shading", "phong", "-o", "@/r.png"}, 1, "shading"},
-        BadAnalysisInput{"RenderUnwritable", {"boxrecon", "render", "--function", "ml", "--n", "9", "-o", "@/missing/r.png"}, 1, "cannot write"},
-        BadAnalysisInput{"RenderUnknownPrefilter", {"boxrecon", "render", "--function", "ml", "--n", "9", "--prefilter", "q7", "-o", "@/r.png"}, 1, "prefilter"},
-        BadAnalysisInput{"RenderNoSource", {"boxrecon", "render", "-o", "@/r.png"}, 1, "--function"},
-        BadAnalysisInput{"RenderBadSize", {"boxrecon", "render", "--function", "ml", "--n", "9", "--width", "0", "-o", "@/r.png"}, 1, "width"},
-        BadAnalysisInput{"ErrorWithoutTableOrN", {"boxrecon", "error", "--filter", "m7"}, 2, "--table"},
-        BadAnalysisInput{"LogPlotFromZero", {"kernel", "m7", "--plot", "@/k.png", "--from", "0", "--to", "1", "--steps", "5"}, 1, "positive"}),
+        BadAnalysisInput{"RenderUnknownShading",
+                         {"boxrecon", "render", "--function", "ml", "--n", "9", "--shading",
+                          "phong", "-o", "@/r.png"},
+                         1,
+                         "shading"},
+        BadAnalysisInput{
+            "RenderUnwritable",
+            {"boxrecon", "render", "--function", "ml", "--n", "9", "-o", "@/missing/r.png"},
+            1,
+            "cannot write"},
+        BadAnalysisInput{"RenderUnknownPrefilter",
+                         {"boxrecon", "render", "--function", "ml", "--n", "9", "--prefilter", "q7",
+                          "-o", "@/r.png"},
+                         1,
+                         "prefilter"},
+        BadAnalysisInput{
+            "RenderNoSource", {"boxrecon", "render", "-o", "@/r.png"}, 1, "--function"},
+        BadAnalysisInput{
+            "RenderBadSize",
+            {"boxrecon", "render", "--function", "ml", "--n", "9", "--width", "0", "-o", "@/r.png"},
+            1,
+            "width"},
+        BadAnalysisInput{
+            "ErrorWithoutTableOrN", {"boxrecon", "error", "--filter", "m7"}, 2, "--table"},
+        BadAnalysisInput{
+            "LogPlotFromZero",
+            {"kernel", "m7", "--plot", "@/k.png", "--from", "0", "--to", "1", "--steps", "5"},
+            1,
+            "positive"}),
     [](const ::testing::TestParamInfo<BadAnalysisInput>& p) { return std::string(p.param.name); });
 
 }  // namespace

@@ -34,7 +34,9 @@ namespace {
 namespace fs = std::filesystem;
 using Point = std::array<double, 3>;
 
-double cubic(const Point& p) { return p[0] * p[0] * p[0] - 2 * p[0] * p[1] * p[2] + 3 * p[1] * p[1] - p[2] + 1; }
+double cubic(const Point& p) {
+  return p[0] * p[0] * p[0] - 2 * p[0] * p[1] * p[2] + 3 * p[1] * p[1] - p[2] + 1;
+}
 Point cubic_gradient(const Point& p) {
   return {3 * p[0] * p[0] - 2 * p[1] * p[2], -2 * p[0] * p[2] + 6 * p[1], -2 * p[0] * p[1] - 1};
 }
@@ -70,7 +72,10 @@ std::string hand_written_header(int n, bool with_lattice_key, const std::string&
   std::string text = "NRRD0004\ntype: double\ndimension: 4\nspace dimension: 3\n";
   const std::string size = std::to_string(n);
   text += "sizes: 2 " + size + " " + size + " " + size + "\n";
-  text += "space directions: none (1,0,0) (0,1,0) (0,0,1)\nspace origin: (0,0,0)\nendian: little\nencoding: " + encoding + "\n";
+  text +=
+      "space directions: none (1,0,0) (0,1,0) (0,0,1)\nspace origin: (0,0,0)\nendian: "
+      "little\nencoding: " +
+      encoding + "\n";
   if (with_lattice_key) text += "lattice:=bcc\n";
   return text + '\n';
 }
@@ -115,7 +120,8 @@ class BoxreconCli : public test::ScratchDirectoryTest {
   std::string file(const std::string& name) const { return (dir_ / name).string(); }
   std::set<std::string> listing() const {
     std::set<std::string> names;
-    for (const auto& entry : fs::directory_iterator(dir_)) names.insert(entry.path().filename().string());
+    for (const auto& entry : fs::directory_iterator(dir_))
+      names.insert(entry.path().filename().string());
     return names;
   }
   // Random points of [-1,1]^3, one "x y z" line each, and the points themselves.
@@ -141,14 +147,18 @@ TEST_F(BoxreconCli, SampleThenEvalReproducesTheCubic) {
   for (const char* filter : {"m7", "m8", "m12"}) {
     SCOPED_TRACE(filter);
     const auto values =
-        parse_lines(boxrecon_ok({"eval", "--filter", filter, "--prefilter", "q1", "--volume", file("vol.nrrd"), "--points", file("points.txt")}), 1);
+        parse_lines(boxrecon_ok({"eval", "--filter", filter, "--prefilter", "q1", "--volume",
+                                 file("vol.nrrd"), "--points", file("points.txt")}),
+                    1);
     ASSERT_EQ(values.size(), points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) EXPECT_NEAR(values[i][0], cubic(points[i]), 1e-10) << i;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      EXPECT_NEAR(values[i][0], cubic(points[i]), 1e-10) << i;
     // The gradient of a reproduced cubic is reproduced too; the 1/h = 8 of the chain rule scales
     // the rounding, hence 1e-9.
-    const auto with_gradient = parse_lines(boxrecon_ok({"eval", "--filter", filter, "--prefilter", "q1", "--volume", file("vol.nrrd"),
-                                                        "--points", file("points.txt"), "--gradient"}),
-                                           4);
+    const auto with_gradient =
+        parse_lines(boxrecon_ok({"eval", "--filter", filter, "--prefilter", "q1", "--volume",
+                                 file("vol.nrrd"), "--points", file("points.txt"), "--gradient"}),
+                    4);
     ASSERT_EQ(with_gradient.size(), points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
       EXPECT_EQ(with_gradient[i][0], values[i][0]) << i;
@@ -161,34 +171,41 @@ TEST_F(BoxreconCli, SampleThenEvalReproducesTheCubic) {
 TEST_F(BoxreconCli, FloatPrecisionEvaluatesInFloat) {
   // float samples and float arithmetic: |cubic| <= 8 on [-1,1]^3, float epsilon 6e-8, a few dozen
   // weighted terms: 1e-4 is ample, and still far below the error of a wrong reconstruction.
-  EXPECT_EQ(boxrecon_ok({"sample", "--function", "cubic", "--n", "9", "--precision", "float", "-o", file("vol.nrrd")}), "");
+  EXPECT_EQ(boxrecon_ok({"sample", "--function", "cubic", "--n", "9", "--precision", "float", "-o",
+                         file("vol.nrrd")}),
+            "");
   const auto points = write_points("points.txt", 20);
-  const auto values = parse_lines(boxrecon_ok({"eval", "--filter", "m8", "--prefilter", "q1", "--volume", file("vol.nrrd"), "--points",
-                                               file("points.txt"), "--precision", "float"}),
-                                  1);
+  const auto values = parse_lines(
+      boxrecon_ok({"eval", "--filter", "m8", "--prefilter", "q1", "--volume", file("vol.nrrd"),
+                   "--points", file("points.txt"), "--precision", "float"}),
+      1);
   ASSERT_EQ(values.size(), points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     EXPECT_NEAR(values[i][0], cubic(points[i]), 1e-4) << i;
-    EXPECT_EQ(values[i][0], static_cast<double>(static_cast<float>(values[i][0]))) << "a float result printed as double";
+    EXPECT_EQ(values[i][0], static_cast<double>(static_cast<float>(values[i][0])))
+        << "a float result printed as double";
   }
 }
 
 TEST_F(BoxreconCli, ErrorJsonHasTheDocumentedKeys) {
-  auto j = nlohmann::json::parse(boxrecon_ok(
-      {"error", "--function", "cubic", "--n", "9", "--filter", "m7", "--prefilter", "q1", "--points", "200", "--json"}));
+  auto j =
+      nlohmann::json::parse(boxrecon_ok({"error", "--function", "cubic", "--n", "9", "--filter",
+                                         "m7", "--prefilter", "q1", "--points", "200", "--json"}));
   ASSERT_TRUE(j.contains("rms") && j.contains("max")) << j.dump();
   EXPECT_FALSE(j.contains("gradient_rms")) << j.dump();
   EXPECT_LE(j["rms"].get<double>(), 1e-11);  // the cubic is reproduced
   EXPECT_LE(j["rms"].get<double>(), j["max"].get<double>());
-  j = nlohmann::json::parse(boxrecon_ok(
-      {"error", "--function", "ml", "--n", "9", "--filter", "m8", "--prefilter", "none", "--points", "200", "--gradient", "--json"}));
+  j = nlohmann::json::parse(
+      boxrecon_ok({"error", "--function", "ml", "--n", "9", "--filter", "m8", "--prefilter", "none",
+                   "--points", "200", "--gradient", "--json"}));
   ASSERT_TRUE(j.contains("rms") && j.contains("max") && j.contains("gradient_rms")) << j.dump();
   EXPECT_GT(j["rms"].get<double>(), 1e-3);  // Marschner-Lobb at N = 9 is badly under-sampled
   EXPECT_GT(j["gradient_rms"].get<double>(), 0);
 }
 
 // Teem's view of a resampled grid; the values are returned as doubles.
-std::vector<double> load_grid(const std::string& path, int type, std::array<std::size_t, 3> sizes, Point spacing, Point origin) {
+std::vector<double> load_grid(const std::string& path, int type, std::array<std::size_t, 3> sizes,
+                              Point spacing, Point origin) {
   Nrrd* nrrd = nrrdNew();
   std::vector<double> values;
   if (nrrdLoad(nrrd, path.c_str(), nullptr) != 0) {
@@ -203,13 +220,15 @@ std::vector<double> load_grid(const std::string& path, int type, std::array<std:
   EXPECT_EQ(nrrd->spaceDim, 3u);
   for (int a = 0; a < 3; ++a) {
     EXPECT_EQ(nrrd->axis[a].size, sizes[a]);
-    for (int b = 0; b < 3; ++b) EXPECT_DOUBLE_EQ(nrrd->axis[a].spaceDirection[b], a == b ? spacing[a] : 0.0);
+    for (int b = 0; b < 3; ++b)
+      EXPECT_DOUBLE_EQ(nrrd->axis[a].spaceDirection[b], a == b ? spacing[a] : 0.0);
     EXPECT_DOUBLE_EQ(nrrd->spaceOrigin[a], origin[a]);
   }
   if (nrrd->dim == 3 && nrrd->data) {
     const std::size_t count = nrrd->axis[0].size * nrrd->axis[1].size * nrrd->axis[2].size;
     for (std::size_t i = 0; i < count; ++i)
-      values.push_back(nrrd->type == nrrdTypeFloat ? static_cast<const float*>(nrrd->data)[i] : static_cast<const double*>(nrrd->data)[i]);
+      values.push_back(nrrd->type == nrrdTypeFloat ? static_cast<const float*>(nrrd->data)[i]
+                                                   : static_cast<const double*>(nrrd->data)[i]);
   }
   nrrdNuke(nrrd);
   return values;
@@ -217,20 +236,23 @@ std::vector<double> load_grid(const std::string& path, int type, std::array<std:
 
 TEST_F(BoxreconCli, ResampleWritesAPlain3dNrrdOfTheReconstruction) {
   EXPECT_EQ(boxrecon_ok({"sample", "--function", "cubic", "--n", "9", "-o", file("vol.nrrd")}), "");
-  EXPECT_EQ(boxrecon_ok({"resample", "--filter", "m7", "--prefilter", "q1", "--volume", file("vol.nrrd"), "-o", file("grid.nrrd"), "--n",
-                         "5", "--min", "-1", "-1", "-1", "--max", "1", "1", "1"}),
+  EXPECT_EQ(boxrecon_ok({"resample", "--filter", "m7", "--prefilter", "q1", "--volume",
+                         file("vol.nrrd"), "-o", file("grid.nrrd"), "--n", "5", "--min", "-1", "-1",
+                         "-1", "--max", "1", "1", "1"}),
             "");
-  const auto values = load_grid(file("grid.nrrd"), nrrdTypeDouble, {5, 5, 5}, {0.5, 0.5, 0.5}, {-1, -1, -1});
+  const auto values =
+      load_grid(file("grid.nrrd"), nrrdTypeDouble, {5, 5, 5}, {0.5, 0.5, 0.5}, {-1, -1, -1});
   ASSERT_EQ(values.size(), 125u);
   for (int k = 0; k < 5; ++k)
     for (int j = 0; j < 5; ++j)
       for (int i = 0; i < 5; ++i)
-        EXPECT_NEAR(values[static_cast<std::size_t>(i + 5 * (j + 5 * k))], cubic({-1 + 0.5 * i, -1 + 0.5 * j, -1 + 0.5 * k}), 1e-10)
+        EXPECT_NEAR(values[static_cast<std::size_t>(i + 5 * (j + 5 * k))],
+                    cubic({-1 + 0.5 * i, -1 + 0.5 * j, -1 + 0.5 * k}), 1e-10)
             << i << " " << j << " " << k;
 
   // Defaults: the largest box where the stencil fits, which holds the sampled cube [-1,1]^3.
-  EXPECT_EQ(boxrecon_ok({"resample", "--filter", "m12", "--volume", file("vol.nrrd"), "-o", file("default.nrrd"), "--n", "4",
-                         "--precision", "float"}),
+  EXPECT_EQ(boxrecon_ok({"resample", "--filter", "m12", "--volume", file("vol.nrrd"), "-o",
+                         file("default.nrrd"), "--n", "4", "--precision", "float"}),
             "");
   Nrrd* nrrd = nrrdNew();
   ASSERT_EQ(nrrdLoad(nrrd, file("default.nrrd").c_str(), nullptr), 0);
@@ -248,8 +270,10 @@ TEST_F(BoxreconCli, AFailedWriteToStdoutIsAnError) {
   EXPECT_EQ(boxrecon_ok({"sample", "--function", "cubic", "--n", "5", "-o", file("vol.nrrd")}), "");
   write_points("points.txt", 3);
   for (const std::vector<std::string>& args :
-       {std::vector<std::string>{"eval", "--filter", "m7", "--volume", file("vol.nrrd"), "--points", file("points.txt")},
-        std::vector<std::string>{"error", "--function", "ml", "--n", "5", "--filter", "m7", "--points", "10", "--json"}}) {
+       {std::vector<std::string>{"eval", "--filter", "m7", "--volume", file("vol.nrrd"), "--points",
+                                 file("points.txt")},
+        std::vector<std::string>{"error", "--function", "ml", "--n", "5", "--filter", "m7",
+                                 "--points", "10", "--json"}}) {
     const ProcessResult r = boxrecon(args, "/dev/full");
     ASSERT_TRUE(r.exited) << describe(args, r);
     EXPECT_EQ(r.exit_code, 1) << describe(args, r);
@@ -269,15 +293,18 @@ struct BadInput {
 void PrintTo(const BadInput& c, std::ostream* os) { *os << c.name; }
 
 std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
 }
 
 std::vector<std::string> eval_with(const std::string& volume, const std::string& points) {
   return {"eval", "--filter", "m7", "--volume", "@/" + volume, "--points", "@/" + points};
 }
-std::vector<std::string> resample_with(const std::string& volume, std::vector<std::string> more = {}) {
-  std::vector<std::string> args{"resample", "--filter", "m7", "--volume", "@/" + volume, "-o", "@/out.nrrd", "--n", "3"};
+std::vector<std::string> resample_with(const std::string& volume,
+                                       std::vector<std::string> more = {}) {
+  std::vector<std::string> args{"resample", "--filter",   "m7",  "--volume", "@/" + volume,
+                                "-o",       "@/out.nrrd", "--n", "3"};
   args.insert(args.end(), more.begin(), more.end());
   return args;
 }
@@ -303,40 +330,93 @@ std::vector<BadInput> bad_inputs() {
       {"NaNPoint", eval_with("vol.nrrd", "nan.txt"), 1, {"nan.txt:2"}},
       {"InfinitePoint", eval_with("vol.nrrd", "inf.txt"), 1, {"inf.txt:2"}},
       {"PointOutsideTheVolume", eval_with("vol.nrrd", "outside.txt"), 1, {"outside"}},
-      // volumes too small for the stencil (a valid hand-written file: see SmallHandWrittenVolumeWorks)
+      // volumes too small for the stencil (a valid hand-written file: see
+      // SmallHandWrittenVolumeWorks)
       {"VolumeTooSmallForEval", eval_with("tiny.nrrd", "tinypoint.txt"), 1, {"outside"}},
       {"VolumeTooSmallForResample", resample_with("tiny.nrrd"), 1, {"too small"}},
-      {"VolumeTooSmallForThePrefilter", resample_with("tiny.nrrd", {"--prefilter", "q2"}), 1, {"too small", "no sample", "remain"}},
+      {"VolumeTooSmallForThePrefilter",
+       resample_with("tiny.nrrd", {"--prefilter", "q2"}),
+       1,
+       {"too small", "no sample", "remain"}},
       // resampling boxes
-      {"BoxLeavesTheVolume", resample_with("vol.nrrd", {"--min", "-1", "-1", "-1", "--max", "1", "1", "9"}), 1, {"leaves"}},
-      {"BoxDegenerate", resample_with("vol.nrrd", {"--min", "-1", "0.5", "-1", "--max", "1", "0.5", "1"}), 1, {"degenerate"}},
-      {"BoxInverted", resample_with("vol.nrrd", {"--min", "1", "1", "1", "--max", "-1", "-1", "-1"}), 1, {"degenerate"}},
-      {"BoxNotANumber", resample_with("vol.nrrd", {"--min", "-1", "x", "-1", "--max", "1", "1", "1"}), 2, {"--min", "x"}},
+      {"BoxLeavesTheVolume",
+       resample_with("vol.nrrd", {"--min", "-1", "-1", "-1", "--max", "1", "1", "9"}),
+       1,
+       {"leaves"}},
+      {"BoxDegenerate",
+       resample_with("vol.nrrd", {"--min", "-1", "0.5", "-1", "--max", "1", "0.5", "1"}),
+       1,
+       {"degenerate"}},
+      {"BoxInverted",
+       resample_with("vol.nrrd", {"--min", "1", "1", "1", "--max", "-1", "-1", "-1"}),
+       1,
+       {"degenerate"}},
+      {"BoxNotANumber",
+       resample_with("vol.nrrd", {"--min", "-1", "x", "-1", "--max", "1", "1", "1"}),
+       2,
+       {"--min", "x"}},
       {"BoxMinWithoutMax", resample_with("vol.nrrd", {"--min", "-1", "-1", "-1"}), 2, {"--max"}},
-      {"BoxWithTwoCoordinates", resample_with("vol.nrrd", {"--min", "-1", "-1", "--max", "1", "1", "1"}), 2, {"--min", "3"}},
+      {"BoxWithTwoCoordinates",
+       resample_with("vol.nrrd", {"--min", "-1", "-1", "--max", "1", "1", "1"}),
+       2,
+       {"--min", "3"}},
       // names
-      {"UnknownFilter", {"eval", "--filter", "m9", "--volume", "@/vol.nrrd", "--points", "@/good.txt"}, 1, {"m9"}},
-      {"UnknownPrefilter", {"eval", "--filter", "m7", "--prefilter", "q3", "--volume", "@/vol.nrrd", "--points", "@/good.txt"}, 1, {"q3"}},
-      {"UnknownFilterResample", {"resample", "--filter", "m9", "--volume", "@/vol.nrrd", "-o", "@/out.nrrd"}, 1, {"m9"}},
-      {"UnknownFunction", {"sample", "--function", "foo", "--n", "5", "-o", "@/out.nrrd"}, 1, {"foo"}},
-      {"UnknownFunctionError", {"error", "--function", "foo", "--n", "5", "--filter", "m7"}, 1, {"foo"}},
+      {"UnknownFilter",
+       {"eval", "--filter", "m9", "--volume", "@/vol.nrrd", "--points", "@/good.txt"},
+       1,
+       {"m9"}},
+      {"UnknownPrefilter",
+       {"eval", "--filter", "m7", "--prefilter", "q3", "--volume", "@/vol.nrrd", "--points",
+        "@/good.txt"},
+       1,
+       {"q3"}},
+      {"UnknownFilterResample",
+       {"resample", "--filter", "m9", "--volume", "@/vol.nrrd", "-o", "@/out.nrrd"},
+       1,
+       {"m9"}},
+      {"UnknownFunction",
+       {"sample", "--function", "foo", "--n", "5", "-o", "@/out.nrrd"},
+       1,
+       {"foo"}},
+      {"UnknownFunctionError",
+       {"error", "--function", "foo", "--n", "5", "--filter", "m7"},
+       1,
+       {"foo"}},
       {"UnknownPrecision", resample_with("vol.nrrd", {"--precision", "half"}), 1, {"half"}},
       // --n
       {"SampleNTooSmall", {"sample", "--n", "1", "-o", "@/out.nrrd"}, 1, {"--n"}},
       {"SampleNTooLarge", {"sample", "--n", "5000", "-o", "@/out.nrrd"}, 1, {"--n"}},
       {"ErrorNZero", {"error", "--n", "0", "--filter", "m7"}, 1, {"--n"}},
-      {"ResampleNTooSmall", {"resample", "--filter", "m7", "--volume", "@/vol.nrrd", "-o", "@/out.nrrd", "--n", "1"}, 1, {"--n"}},
-      {"ResampleNTooLarge", {"resample", "--filter", "m7", "--volume", "@/vol.nrrd", "-o", "@/out.nrrd", "--n", "513"}, 1, {"--n"}},
+      {"ResampleNTooSmall",
+       {"resample", "--filter", "m7", "--volume", "@/vol.nrrd", "-o", "@/out.nrrd", "--n", "1"},
+       1,
+       {"--n"}},
+      {"ResampleNTooLarge",
+       {"resample", "--filter", "m7", "--volume", "@/vol.nrrd", "-o", "@/out.nrrd", "--n", "513"},
+       1,
+       {"--n"}},
       {"NNotANumber", {"sample", "--n", "many", "-o", "@/out.nrrd"}, 2, {"--n", "many"}},
       // output files
-      {"SampleIntoMissingDirectory", {"sample", "--n", "5", "-o", "@/nodir/out.nrrd"}, 1, {"nodir", "does not exist"}},
-      {"ResampleIntoMissingDirectory", {"resample", "--filter", "m7", "--volume", "@/vol.nrrd", "-o", "@/nodir/out.nrrd"}, 1, {"nodir", "does not exist"}},
+      {"SampleIntoMissingDirectory",
+       {"sample", "--n", "5", "-o", "@/nodir/out.nrrd"},
+       1,
+       {"nodir", "does not exist"}},
+      {"ResampleIntoMissingDirectory",
+       {"resample", "--filter", "m7", "--volume", "@/vol.nrrd", "-o", "@/nodir/out.nrrd"},
+       1,
+       {"nodir", "does not exist"}},
       // usage
       {"NoSubcommand", {}, 2, {"subcommand"}},
       {"UnknownSubcommand", {"frobnicate"}, 2, {"frobnicate", "subcommand"}},
       {"EvalWithoutVolume", {"eval", "--filter", "m7", "--points", "@/good.txt"}, 2, {"--volume"}},
-      {"ResampleWithoutOutput", {"resample", "--filter", "m7", "--volume", "@/vol.nrrd"}, 2, {"--output", "-o"}},
-      {"UnknownOption", {"eval", "--filter", "m7", "--volume", "@/vol.nrrd", "--points", "@/good.txt", "--frob"}, 2, {"--frob"}},
+      {"ResampleWithoutOutput",
+       {"resample", "--filter", "m7", "--volume", "@/vol.nrrd"},
+       2,
+       {"--output", "-o"}},
+      {"UnknownOption",
+       {"eval", "--filter", "m7", "--volume", "@/vol.nrrd", "--points", "@/good.txt", "--frob"},
+       2,
+       {"--frob"}},
   };
 }
 
@@ -344,19 +424,23 @@ class BoxreconBadInput : public BoxreconCli, public ::testing::WithParamInterfac
  protected:
   // The inputs of all cases: a good volume and points, and the bad files.
   void make_inputs() {
-    ASSERT_EQ(boxrecon_ok({"sample", "--function", "cubic", "--n", "5", "-o", file("vol.nrrd")}), "");
+    ASSERT_EQ(boxrecon_ok({"sample", "--function", "cubic", "--n", "5", "-o", file("vol.nrrd")}),
+              "");
     const std::string volume = read_bytes(file("vol.nrrd"));
     const std::size_t data = volume.find("\n\n");
     ASSERT_NE(data, std::string::npos);
-    write_bytes(file("truncated.nrrd"), volume.substr(0, data + 2 + (volume.size() - data - 2) / 2));
+    write_bytes(file("truncated.nrrd"),
+                volume.substr(0, data + 2 + (volume.size() - data - 2) / 2));
     write_bytes(file("empty.nrrd"), "");
     write_bytes(file("garbage.txt"), "this is not a volume\n\x01\x02\x03 at all\n");
-    std::string grid3d = "NRRD0004\ntype: double\ndimension: 3\nsizes: 2 2 2\nendian: little\nencoding: raw\n\n";
+    std::string grid3d =
+        "NRRD0004\ntype: double\ndimension: 3\nsizes: 2 2 2\nendian: little\nencoding: raw\n\n";
     grid3d.append(64, '\0');
     write_bytes(file("grid3d.nrrd"), grid3d);
     write_bytes(file("nolattice.nrrd"), hand_written_bcc(3, false));
     // A gzip member header, then bytes that are no deflate stream.
-    write_bytes(file("corruptgz.nrrd"), hand_written_header(3, true, "gzip") + std::string("\x1f\x8b\x08\0\0\0\0\0\0\x03", 10) +
+    write_bytes(file("corruptgz.nrrd"), hand_written_header(3, true, "gzip") +
+                                            std::string("\x1f\x8b\x08\0\0\0\0\0\0\x03", 10) +
                                             std::string(64, '\xff'));
     write_bytes(file("tiny.nrrd"), hand_written_bcc(2, true));
     write_bytes(file("good.txt"), "0 0 0\n0.5 -0.25 0.125\n");
@@ -389,21 +473,28 @@ TEST_P(BoxreconBadInput, OneLineOnStderrExitCodeNothingOnStdoutNoFile) {
   EXPECT_EQ(r.err.back(), '\n') << what;
   EXPECT_EQ(r.err.rfind("boxrecon: ", 0), 0u) << what;
   const std::string message = lower(r.err);
-  EXPECT_TRUE(std::any_of(c.mentions.begin(), c.mentions.end(), [&](const std::string& m) { return message.find(lower(m)) != std::string::npos; }))
-      << "the message does not name the problem (expected one of " << ::testing::PrintToString(c.mentions) << ")\n"
+  EXPECT_TRUE(std::any_of(
+      c.mentions.begin(), c.mentions.end(),
+      [&](const std::string& m) { return message.find(lower(m)) != std::string::npos; }))
+      << "the message does not name the problem (expected one of "
+      << ::testing::PrintToString(c.mentions) << ")\n"
       << what;
   EXPECT_EQ(listing(), before) << "an output file (or a temporary) was left behind\n" << what;
 }
 
 INSTANTIATE_TEST_SUITE_P(Boxrecon, BoxreconBadInput, ::testing::ValuesIn(bad_inputs()),
-                         [](const ::testing::TestParamInfo<BadInput>& param_info) { return std::string(param_info.param.name); });
+                         [](const ::testing::TestParamInfo<BadInput>& param_info) {
+                           return std::string(param_info.param.name);
+                         });
 
 // The hand-written volume format of the "too small" cases is valid: a larger volume in the same
 // form evaluates (all samples 1: a partition of unity reconstructs 1).
 TEST_F(BoxreconCli, SmallHandWrittenVolumeWorks) {
   write_bytes(file("small.nrrd"), hand_written_bcc(8, true));
   write_bytes(file("centre.txt"), "4 4 4\n");
-  const auto values = parse_lines(boxrecon_ok({"eval", "--filter", "m7", "--volume", file("small.nrrd"), "--points", file("centre.txt")}), 1);
+  const auto values = parse_lines(boxrecon_ok({"eval", "--filter", "m7", "--volume",
+                                               file("small.nrrd"), "--points", file("centre.txt")}),
+                                  1);
   ASSERT_EQ(values.size(), 1u);
   EXPECT_NEAR(values[0][0], 1.0, 1e-14);
 }
@@ -411,10 +502,11 @@ TEST_F(BoxreconCli, SmallHandWrittenVolumeWorks) {
 // boxrecon bench --quick --json: one JSON object with every ratio of issue 8 (each a measured,
 // positive, finite number) and the machine; --threads takes a positive count.
 TEST(BoxreconBench, QuickJsonHasEveryRatioAndTheMachine) {
-  const std::string out = boxrecon_ok({"--threads", "2", "bench", "--quick", "--json", "--points", "20000", "--repeats", "1"});
+  const std::string out = boxrecon_ok(
+      {"--threads", "2", "bench", "--quick", "--json", "--points", "20000", "--repeats", "1"});
   const auto j = nlohmann::json::parse(out);
-  for (const char* key : {"t7_over_t8", "t12_over_t8", "m7_over_floor", "m8_over_floor", "m12_over_floor",
-                          "speedup_2_threads", "m7_over_tricubic"}) {
+  for (const char* key : {"t7_over_t8", "t12_over_t8", "m7_over_floor", "m8_over_floor",
+                          "m12_over_floor", "speedup_2_threads", "m7_over_tricubic"}) {
     ASSERT_TRUE(j.contains(key) && j[key].is_number()) << key;
     EXPECT_TRUE(std::isfinite(j[key].get<double>()) && j[key].get<double>() > 0) << key;
   }

@@ -3,8 +3,8 @@
 // header lies is refused; points files as people write them are read. Each case gives one line
 // on stderr and exit code 1, and leaves every file as it was.
 #include <sys/stat.h>
-#include <teem/nrrd.h>
 #include <sys/sysmacros.h>
+#include <teem/nrrd.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -36,7 +36,8 @@ namespace fs = std::filesystem;
 // an older build to show that it fails them).
 ProcessResult boxrecon(const std::vector<std::string>& args, const std::string& stdin_file = "") {
   const char* other = std::getenv("BOXRECON_UNDER_TEST");
-  return run_process(other && *other ? other : BOXRECON_EXE, args, std::chrono::seconds(60 * kSlowdown), "", stdin_file);
+  return run_process(other && *other ? other : BOXRECON_EXE, args,
+                     std::chrono::seconds(60 * kSlowdown), "", stdin_file);
 }
 
 std::string read_bytes(const fs::path& path) {
@@ -52,7 +53,8 @@ void write_bytes(const fs::path& path, const std::string& bytes) {
 }
 
 std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
 }
 
@@ -76,8 +78,11 @@ class BoxreconFiles : public ScratchDirectoryTest {
     EXPECT_EQ(r.out, "") << what;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what;
     EXPECT_EQ(r.err.rfind("boxrecon: error: ", 0), 0u) << what;
-    EXPECT_TRUE(std::any_of(mentions.begin(), mentions.end(), [&](const std::string& m) { return lower(r.err).find(lower(m)) != std::string::npos; }))
-        << "expected one of " << ::testing::PrintToString(mentions) << "\n" << what;
+    EXPECT_TRUE(std::any_of(
+        mentions.begin(), mentions.end(),
+        [&](const std::string& m) { return lower(r.err).find(lower(m)) != std::string::npos; }))
+        << "expected one of " << ::testing::PrintToString(mentions) << "\n"
+        << what;
   }
   // A valid volume of the cubic at N = 5, and its bytes.
   std::string make_volume(const std::string& name) {
@@ -85,7 +90,13 @@ class BoxreconFiles : public ScratchDirectoryTest {
     return read_bytes(file(name));
   }
   std::vector<std::string> eval_args(const std::string& volume, const std::string& points) {
-    return {"eval", "--filter", "m7", "--volume", file(volume), "--points", points == "-" ? "-" : file(points)};
+    return {"eval",
+            "--filter",
+            "m7",
+            "--volume",
+            file(volume),
+            "--points",
+            points == "-" ? "-" : file(points)};
   }
   std::string last_out_;
 };
@@ -104,14 +115,17 @@ TEST_F(BoxreconFiles, OutputThroughASymbolicLinkWritesItsTarget) {
   EXPECT_TRUE(is_nrrd(file("data/old.nrrd"))) << "the link's target was not written";
   // A dangling link creates its target; resample writes through links too.
   fs::create_symlink("data/new.nrrd", file("dangling.nrrd"));
-  ok({"resample", "--filter", "m7", "--volume", file("link.nrrd"), "-o", file("dangling.nrrd"), "--n", "3"});
+  ok({"resample", "--filter", "m7", "--volume", file("link.nrrd"), "-o", file("dangling.nrrd"),
+      "--n", "3"});
   EXPECT_TRUE(fs::is_symlink(file("dangling.nrrd")));
   EXPECT_TRUE(is_nrrd(file("data/new.nrrd")));
   // Nothing else appeared (no temporary file left next to the link or its target).
   std::vector<std::string> names;
-  for (const auto& e : fs::recursive_directory_iterator(dir_)) names.push_back(e.path().lexically_relative(dir_).string());
+  for (const auto& e : fs::recursive_directory_iterator(dir_))
+    names.push_back(e.path().lexically_relative(dir_).string());
   std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"dangling.nrrd", "data", "data/new.nrrd", "data/old.nrrd", "link.nrrd"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"dangling.nrrd", "data", "data/new.nrrd",
+                                             "data/old.nrrd", "link.nrrd"}));
 }
 
 TEST_F(BoxreconFiles, OutputOntoAFifoIsRefusedAndTheFifoStays) {
@@ -138,7 +152,8 @@ TEST_F(BoxreconFiles, OutputOntoADeviceIsRefusedAndTheDeviceStays) {
   }
   // A directory is not replaced either.
   fs::create_directory(file("dir"));
-  refused({"sample", "--function", "cubic", "--n", "4", "-o", file("dir")}, {"directory", "not a file name"});
+  refused({"sample", "--function", "cubic", "--n", "4", "-o", file("dir")},
+          {"directory", "not a file name"});
   EXPECT_TRUE(fs::is_directory(file("dir")));
 }
 
@@ -147,20 +162,25 @@ TEST_F(BoxreconFiles, OutputThatIsTheInputIsRefusedBeforeAnyWork) {
   fs::create_directory(file("sub"));
   fs::create_symlink("v.nrrd", file("alias.nrrd"));
   fs::create_hard_link(file("v.nrrd"), file("hard.nrrd"));
-  for (const std::string& out : {file("v.nrrd"), file("sub/../v.nrrd"), file("alias.nrrd"), file("hard.nrrd")}) {
+  for (const std::string& out :
+       {file("v.nrrd"), file("sub/../v.nrrd"), file("alias.nrrd"), file("hard.nrrd")}) {
     SCOPED_TRACE(out);
-    refused({"resample", "--filter", "m7", "--volume", file("v.nrrd"), "-o", out, "--n", "3"}, {"input"});
+    refused({"resample", "--filter", "m7", "--volume", file("v.nrrd"), "-o", out, "--n", "3"},
+            {"input"});
     EXPECT_EQ(read_bytes(file("v.nrrd")), volume) << "the input was overwritten";
   }
   // Reading through the link and writing the file itself is the same file as well.
-  refused({"resample", "--filter", "m7", "--volume", file("alias.nrrd"), "-o", file("v.nrrd"), "--n", "3"}, {"input"});
+  refused({"resample", "--filter", "m7", "--volume", file("alias.nrrd"), "-o", file("v.nrrd"),
+           "--n", "3"},
+          {"input"});
   EXPECT_EQ(read_bytes(file("v.nrrd")), volume);
   EXPECT_TRUE(fs::is_symlink(file("alias.nrrd")));
 }
 
 TEST_F(BoxreconFiles, ReplacingAFileKeepsItsPermissions) {
   write_bytes(file("v.nrrd"), "old");
-  fs::permissions(file("v.nrrd"), fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  fs::permissions(file("v.nrrd"),
+                  fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
   ok({"sample", "--function", "cubic", "--n", "4", "-o", file("v.nrrd")});
   EXPECT_TRUE(is_nrrd(file("v.nrrd")));
   EXPECT_EQ(fs::status(file("v.nrrd")).permissions() & fs::perms::mask,
@@ -178,22 +198,29 @@ TEST_F(BoxreconFiles, SpacingMustBeFiniteAndPositive) {
   }
   // A valid --h is used: h = 0.25 puts the first odd sample at origin + 0.25.
   ok({"sample", "--function", "cubic", "--n", "4", "--h", "0.25", "-o", file("v.nrrd")});
-  EXPECT_NE(read_bytes(file("v.nrrd")).find("(0.5,0,0)"), std::string::npos) << "space directions 2h = 0.5";
+  EXPECT_NE(read_bytes(file("v.nrrd")).find("(0.5,0,0)"), std::string::npos)
+      << "space directions 2h = 0.5";
 }
 
 TEST_F(BoxreconFiles, SeedOutOfRangeIsAnError) {
-  for (const char* seed : {"-1", "18446744073709551616", "99999999999999999999999", "1.5", "0x10", ""}) {
+  for (const char* seed :
+       {"-1", "18446744073709551616", "99999999999999999999999", "1.5", "0x10", ""}) {
     SCOPED_TRACE(seed);
-    refused({"error", "--function", "cubic", "--n", "5", "--filter", "m7", "--points", "10", "--seed", seed}, {"--seed"});
+    refused({"error", "--function", "cubic", "--n", "5", "--filter", "m7", "--points", "10",
+             "--seed", seed},
+            {"--seed"});
   }
-  ok({"error", "--function", "cubic", "--n", "5", "--filter", "m7", "--points", "10", "--seed", "18446744073709551615"});
-  ok({"error", "--function", "cubic", "--n", "5", "--filter", "m7", "--points", "10", "--seed", "0"});
+  ok({"error", "--function", "cubic", "--n", "5", "--filter", "m7", "--points", "10", "--seed",
+      "18446744073709551615"});
+  ok({"error", "--function", "cubic", "--n", "5", "--filter", "m7", "--points", "10", "--seed",
+      "0"});
 }
 
 TEST_F(BoxreconFiles, AVolumeBeyondMemoryIsAnInputErrorBeforeAllocation) {
   // --n 1024 with the sampling margin of 3: 2 x 1030^3 doubles, about 16.3 GiB.
   const double needed = 2.0 * 1030 * 1030 * 1030 * 8;
-  const double budget = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE)) / 2;
+  const double budget = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+                        static_cast<double>(::sysconf(_SC_PAGE_SIZE)) / 2;
   if (needed <= budget) GTEST_SKIP() << "this machine has memory for --n 1024";
   refused({"sample", "--function", "cubic", "--n", "1024", "-o", file("v.nrrd")}, {"16.3 GiB"});
   // error samples with M7's own margin of 2: 2 x 1028^3 doubles, about 16.2 GiB.
@@ -205,10 +232,11 @@ TEST_F(BoxreconFiles, AVolumeBeyondMemoryIsAnInputErrorBeforeAllocation) {
 // Volumes whose header lies: the header of a 2 x 3^3 double volume (h = 0.5, origin 0) written
 // by hand over data of another length, type or byte order.
 
-std::string header(const std::string& type, const std::string& sizes, const std::string& endian = "little") {
+std::string header(const std::string& type, const std::string& sizes,
+                   const std::string& endian = "little") {
   return "NRRD0004\ntype: " + type + "\ndimension: 4\nspace dimension: 3\nsizes: " + sizes +
-         "\nspace directions: none (1,0,0) (0,1,0) (0,0,1)\nspace origin: (0,0,0)\nendian: " + endian +
-         "\nencoding: raw\nlattice:=bcc\n\n";
+         "\nspace directions: none (1,0,0) (0,1,0) (0,0,1)\nspace origin: (0,0,0)\nendian: " +
+         endian + "\nencoding: raw\nlattice:=bcc\n\n";
 }
 
 std::string doubles(std::size_t count, double value) {
@@ -217,7 +245,8 @@ std::string doubles(std::size_t count, double value) {
 }
 
 TEST_F(BoxreconFiles, AVolumeWhoseHeaderLiesIsRefused) {
-  static_assert(std::endian::native == std::endian::little, "the data below are written little-endian");
+  static_assert(std::endian::native == std::endian::little,
+                "the data below are written little-endian");
   write_bytes(file("p.txt"), "1 1 1\n");
   // Positive control: the honest file reads.
   write_bytes(file("honest.nrrd"), header("double", "2 3 3 3") + doubles(54, 1.0));
@@ -249,7 +278,8 @@ TEST_F(BoxreconFiles, AVolumeWhoseHeaderLiesIsRefused) {
   refused(eval_args("float.gz.nrrd", "p.txt"), {"announces"});
   // A real big-endian file is read in its declared byte order.
   std::string big = doubles(54, 1.0);
-  for (std::size_t s = 0; s < big.size(); s += 8) std::reverse(big.begin() + static_cast<long>(s), big.begin() + static_cast<long>(s + 8));
+  for (std::size_t s = 0; s < big.size(); s += 8)
+    std::reverse(big.begin() + static_cast<long>(s), big.begin() + static_cast<long>(s + 8));
   write_bytes(file("big.nrrd"), header("double", "2 3 3 3", "big") + big);
   ok(eval_args("big.nrrd", "p.txt"));
   EXPECT_EQ(last_out_, "1\n");  // partition of unity over samples 1
@@ -258,11 +288,14 @@ TEST_F(BoxreconFiles, AVolumeWhoseHeaderLiesIsRefused) {
 TEST_F(BoxreconFiles, NonFiniteSamplesAreRefusedUnlessAllowed) {
   std::string data = doubles(2 * 8 * 8 * 8, 1.0);
   const double nan = std::nan("");
-  std::memcpy(data.data() + 8 * 3, &nan, 8);  // sample 3: coset 1 of cell (1, 0, 0), far from the centre
+  std::memcpy(data.data() + 8 * 3, &nan,
+              8);  // sample 3: coset 1 of cell (1, 0, 0), far from the centre
   write_bytes(file("nan.nrrd"), header("double", "2 8 8 8") + data);
   write_bytes(file("p.txt"), "4 4 4\n");
   refused(eval_args("nan.nrrd", "p.txt"), {"not finite", "nan"});
-  refused({"resample", "--filter", "m7", "--volume", file("nan.nrrd"), "-o", file("out.nrrd"), "--n", "3"}, {"nan"});
+  refused({"resample", "--filter", "m7", "--volume", file("nan.nrrd"), "-o", file("out.nrrd"),
+           "--n", "3"},
+          {"nan"});
   EXPECT_FALSE(fs::exists(file("out.nrrd")));
   auto args = eval_args("nan.nrrd", "p.txt");
   args.push_back("--allow-nonfinite");
@@ -289,7 +322,9 @@ TEST_F(BoxreconFiles, PointsFilesAsPeopleWriteThem) {
       {"blank lines", "\n0 0 0\n\n   \n0.5 -0.25 0.125\n\t\n-0.5 0.5 0\n\n"},
       {"comments", "# x y z\n0 0 0  # the centre\n#0.1 0.1 0.1\n0.5 -0.25 0.125\n-0.5 0.5 0 #\n"},
       {"CRLF", "0 0 0\r\n0.5 -0.25 0.125\r\n-0.5 0.5 0\r\n"},
-      {"BOM", "\xEF\xBB\xBF" "0 0 0\n0.5 -0.25 0.125\n-0.5 0.5 0"},
+      {"BOM",
+       "\xEF\xBB\xBF"
+       "0 0 0\n0.5 -0.25 0.125\n-0.5 0.5 0"},
       {"tabs and plus signs", "0\t0\t0\n+0.5 -0.25 +0.125\n-5e-1 5E-1 0\n"},
   };
   for (const auto& [name, text] : variants) {
@@ -351,7 +386,8 @@ TEST_F(BoxreconFiles, SampleOnEveryLattice) {
     const std::string text = read_bytes(file("v.nrrd"));
     EXPECT_EQ(field(text, "lattice:="), c.key);
     const std::size_t k = c.offsets.size();
-    EXPECT_EQ(field(text, "sizes: "), (k == 1 ? std::string() : std::to_string(k) + " ") + "10 10 10");
+    EXPECT_EQ(field(text, "sizes: "),
+              (k == 1 ? std::string() : std::to_string(k) + " ") + "10 10 10");
     const double h = 2.0 / 3 / c.d;
     const std::vector<double> values = data_of(text);
     ASSERT_EQ(values.size(), k * 1000);
@@ -368,13 +404,16 @@ TEST_F(BoxreconFiles, SampleOnEveryLattice) {
   // A BCC filter on the FCC volume is one error naming both lattices.
   ok({"sample", "--function", "cubic", "--n", "4", "--lattice", "fcc", "-o", file("fcc.nrrd")});
   write_bytes(file("p.txt"), "0 0 0\n");
-  refused({"eval", "--filter", "m7", "--volume", file("fcc.nrrd"), "--points", file("p.txt")}, {"'fcc', not 'bcc'"});
+  refused({"eval", "--filter", "m7", "--volume", file("fcc.nrrd"), "--points", file("p.txt")},
+          {"'fcc', not 'bcc'"});
   // z = 0 mod 2 is the custom lattice above: its rows and offsets are in the file.
   EXPECT_EQ(field(read_bytes(file("v.nrrd")), "lattice_rows:="), "1,0,0; 0,1,0; 0,0,2");
-  EXPECT_EQ(field(read_bytes(file("v.nrrd")), "coset_offsets:="), "(0,0,0) (1,0,0) (0,1,0) (1,1,0)");
+  EXPECT_EQ(field(read_bytes(file("v.nrrd")), "coset_offsets:="),
+            "(0,0,0) (1,0,0) (0,1,0) (1,1,0)");
   for (const char* bad : {"hexagonal", "1,0,0; 0,1,0; 1,1,0", "1,0,0; 0,1,0"}) {
     SCOPED_TRACE(bad);
-    refused({"sample", "--function", "cubic", "--n", "4", "--lattice", bad, "-o", file("bad.nrrd")}, {"lattice"});
+    refused({"sample", "--function", "cubic", "--n", "4", "--lattice", bad, "-o", file("bad.nrrd")},
+            {"lattice"});
     EXPECT_FALSE(fs::exists(file("bad.nrrd")));
   }
 }

@@ -21,7 +21,8 @@ struct BadInput {
 void PrintTo(const BadInput& c, std::ostream* os) { *os << c.name; }
 
 std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
 }
 
@@ -38,13 +39,19 @@ std::vector<BadInput> bad_inputs() {
       {"MalformedSpecText", {"analyze", "1,1,1; 1,x,1"}, {"'x'"}},
       {"ZeroMatrix", {"analyze", "0,0,0; 0,0,0; 0,0,0"}, {"zero"}},
       {"RankDeficientMatrix", {"analyze", "1,0,0; 2,0,0; 0,1,0"}, {"rank", "span", "dependent"}},
-      {"DirectionNotInLattice", {"analyze", "1,0,0; 0,1,0; 0,0,1", "--lattice", "bcc"}, {"lattice"}},
-      {"SingularLattice", {"analyze", "1,0,0; 0,1,0; 0,0,1", "--lattice", "1,0,0; 0,1,0; 1,1,0"}, {"singular", "determinant"}},
+      {"DirectionNotInLattice",
+       {"analyze", "1,0,0; 0,1,0; 0,0,1", "--lattice", "bcc"},
+       {"lattice"}},
+      {"SingularLattice",
+       {"analyze", "1,0,0; 0,1,0; 0,0,1", "--lattice", "1,0,0; 0,1,0; 1,1,0"},
+       {"singular", "determinant"}},
       {"MalformedLattice", {"analyze", "1,0; 0,1", "--lattice", "1,0; 0"}, {"lattice"}},
       {"LatticeOfWrongDimension", {"analyze", "1,0; 0,1", "--lattice", "bcc"}, {"dimension"}},
       {"MoreThan32Directions", {"analyze", directions_33()}, {"33", "32"}},
       {"MixedDimensions", {"analyze", "1,0; 0,1,1"}, {"dimension", "entries"}},
-      {"EntryTooLarge", {"analyze", "99999999999999999999,0; 0,1"}, {"99999999999999999999", "large"}},
+      {"EntryTooLarge",
+       {"analyze", "99999999999999999999,0; 0,1"},
+       {"99999999999999999999", "large"}},
       {"EmptySpec", {"analyze", ""}, {"spec"}},
       {"UnknownPreset", {"analyze", "m9"}, {"m9"}},
       {"UnknownPresetInEval", {"eval", "m9", "--at", "0 0 0"}, {"m9"}},
@@ -72,11 +79,19 @@ std::vector<BadInput> bad_inputs() {
       {"ShellListedTwice", {"prefilter", "m7", "--shells", "0,1,1"}, {"twice", "1"}},
       // --derivative
       {"DerivativeNotANumber", {"eval", "m7", "--at", "0 0 0", "--derivative", "1 x 0"}, {"x"}},
-      {"DerivativeWrongCount", {"eval", "m7", "--at", "0 0 0", "--derivative", "1 0"}, {"--derivative"}},
-      {"DerivativeNegative", {"eval", "m7", "--at", "0 0 0", "--derivative", "-1 0 0"}, {"--derivative"}},
-      {"DerivativeFractional", {"eval", "m7", "--at", "0 0 0", "--derivative", "1/2 0 0"}, {"--derivative"}},
+      {"DerivativeWrongCount",
+       {"eval", "m7", "--at", "0 0 0", "--derivative", "1 0"},
+       {"--derivative"}},
+      {"DerivativeNegative",
+       {"eval", "m7", "--at", "0 0 0", "--derivative", "-1 0 0"},
+       {"--derivative"}},
+      {"DerivativeFractional",
+       {"eval", "m7", "--at", "0 0 0", "--derivative", "1/2 0 0"},
+       {"--derivative"}},
       // d/dx of the hex3 hat at its peak: -1 on one side, 0 or 1 on others (cli_exactness_test.cpp)
-      {"DerivativeAtAKink", {"eval", "hex3", "--at", "0 0", "--derivative", "1 0"}, {"knot", "discontinuous"}},
+      {"DerivativeAtAKink",
+       {"eval", "hex3", "--at", "0 0", "--derivative", "1 0"},
+       {"knot", "discontinuous"}},
       // --region
       {"RegionNotAnIndex", {"bbform", "m7", "--region", "foo"}, {"foo"}},
       {"RegionOutOfRange", {"bbform", "m7", "--region", "5"}, {"5"}},
@@ -84,15 +99,27 @@ std::vector<BadInput> bad_inputs() {
       // --method
       {"UnknownAutocorrMethod", {"autocorr", "m7", "--method", "foo"}, {"foo"}},
       // emit (both fail before anything is derived or written)
-      {"UnknownEmitStrategy", {"emit", "zp", "--name", "z", "--out", "/nonexistent/boxgen", "--strategy", "foo"}, {"foo", "horner"}},
-      {"EmitNameNotAnIdentifier", {"emit", "zp", "--name", "9z", "--out", "/nonexistent/boxgen"}, {"9z"}},
-      {"EmitNameWithAHyphen", {"emit", "zp", "--name", "my-spline", "--out", "/nonexistent/boxgen"}, {"identifier"}},
-      {"EmitNameIsAKeyword", {"emit", "zp", "--name", "namespace", "--out", "/nonexistent/boxgen"}, {"keyword"}},
+      {"UnknownEmitStrategy",
+       {"emit", "zp", "--name", "z", "--out", "/nonexistent/boxgen", "--strategy", "foo"},
+       {"foo", "horner"}},
+      {"EmitNameNotAnIdentifier",
+       {"emit", "zp", "--name", "9z", "--out", "/nonexistent/boxgen"},
+       {"9z"}},
+      {"EmitNameWithAHyphen",
+       {"emit", "zp", "--name", "my-spline", "--out", "/nonexistent/boxgen"},
+       {"identifier"}},
+      {"EmitNameIsAKeyword",
+       {"emit", "zp", "--name", "namespace", "--out", "/nonexistent/boxgen"},
+       {"keyword"}},
       // issue 11 conventions
-      {"RankDeficientButTransposeValid", {"analyze", "1,0,1; 0,1,1"}, {"transpose '1,0; 0,1; 1,1'"}},
+      {"RankDeficientButTransposeValid",
+       {"analyze", "1,0,1; 0,1,1"},
+       {"transpose '1,0; 0,1; 1,1'"}},
       {"PointTooLargeForTheExactFrame", {"eval", "hex3", "--at", "1e30 0"}, {"too large"}},
       {"UnknownChecksMode", {"analyze", "zp", "--checks", "some"}, {"'some'"}},
-      {"PredictedBeyondMaxSeconds", {"analyze", "m7", "--max-seconds", "0.000001"}, {"--max-seconds"}},
+      {"PredictedBeyondMaxSeconds",
+       {"analyze", "m7", "--max-seconds", "0.000001"},
+       {"--max-seconds"}},
   };
 }
 
@@ -106,7 +133,8 @@ TEST_P(BadInputTest, OneLineOnStderrNonZeroExitNothingOnStdout) {
   ASSERT_FALSE(r.timed_out) << "a bad input must not hang\n" << what;
   ASSERT_TRUE(r.exited) << "a bad input must not crash\n" << what;
   EXPECT_NE(r.exit_code, 0) << what;
-  EXPECT_NE(r.exit_code, kInternalErrorCode) << "a user mistake is reported as an internal error\n" << what;
+  EXPECT_NE(r.exit_code, kInternalErrorCode) << "a user mistake is reported as an internal error\n"
+                                             << what;
   EXPECT_EQ(r.out, "") << "nothing may be written to stdout on an error\n" << what;
   // Exactly one line: a single '\n', at the very end.
   ASSERT_FALSE(r.err.empty()) << what;
@@ -114,15 +142,18 @@ TEST_P(BadInputTest, OneLineOnStderrNonZeroExitNothingOnStdout) {
   EXPECT_EQ(r.err.back(), '\n') << what;
   EXPECT_EQ(r.err.rfind("boxgen: ", 0), 0u) << "stderr must start with 'boxgen: '\n" << what;
   const std::string message = lower(r.err);
-  const bool named = std::any_of(c.mentions.begin(), c.mentions.end(),
-                                 [&](const std::string& m) { return message.find(lower(m)) != std::string::npos; });
+  const bool named = std::any_of(c.mentions.begin(), c.mentions.end(), [&](const std::string& m) {
+    return message.find(lower(m)) != std::string::npos;
+  });
   EXPECT_TRUE(named) << "the message does not name the problem (expected one of: "
                      << ::testing::PrintToString(c.mentions) << ")\n"
                      << what;
 }
 
 INSTANTIATE_TEST_SUITE_P(Cli, BadInputTest, ::testing::ValuesIn(bad_inputs()),
-                         [](const ::testing::TestParamInfo<BadInput>& param_info) { return std::string(param_info.param.name); });
+                         [](const ::testing::TestParamInfo<BadInput>& param_info) {
+                           return std::string(param_info.param.name);
+                         });
 
 }  // namespace
 }  // namespace boxgen::test

@@ -71,12 +71,14 @@ bool in_bcc(const IntVec& p) {  // all coordinates even or all odd (paper, secti
 
 long det3(const json& m) {
   auto a = [&](int r, int c) { return m[r][c].get<long>(); };
-  return a(0, 0) * (a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)) - a(0, 1) * (a(1, 0) * a(2, 2) - a(1, 2) * a(2, 0)) +
+  return a(0, 0) * (a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)) -
+         a(0, 1) * (a(1, 0) * a(2, 2) - a(1, 2) * a(2, 0)) +
          a(0, 2) * (a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0));
 }
 
 // value_float must be the exact value rounded to double: a relative error of a few ulps at most.
-void expect_float_matches(const json& value_float, const Q& exact_value, const std::string& context) {
+void expect_float_matches(const json& value_float, const Q& exact_value,
+                          const std::string& context) {
   ASSERT_TRUE(value_float.is_number()) << context;
   const double f = value_float.get<double>();
   const double e = cln::double_approx(exact_value);
@@ -97,10 +99,11 @@ std::vector<IntVec> concat(std::initializer_list<std::vector<IntVec>> parts) {
 TEST(CliAnalyze, M7JsonHasEveryContractKeyWithThePapersValues) {
   const json a = boxgen_json({"analyze", "m7", "--json"});
   ASSERT_TRUE(a.is_object()) << a.dump();
-  for (const char* key : {"dimension", "directions", "lattice", "degree", "continuity", "approximation_order",
-                          "support_volume", "stencil_size", "stencil_size_min", "stencil_size_max",
-                          "linearly_independent", "pieces", "regions_per_fundamental_region", "symmetry_group_order",
-                          "regions_up_to_symmetry", "derivation_seconds"})
+  for (const char* key :
+       {"dimension", "directions", "lattice", "degree", "continuity", "approximation_order",
+        "support_volume", "stencil_size", "stencil_size_min", "stencil_size_max",
+        "linearly_independent", "pieces", "regions_per_fundamental_region", "symmetry_group_order",
+        "regions_up_to_symmetry", "derivation_seconds"})
     EXPECT_TRUE(a.contains(key)) << "missing contract key " << key;
 
   EXPECT_EQ(a.value("dimension", json()), json(3));
@@ -128,14 +131,15 @@ TEST(CliAnalyze, M7JsonHasEveryContractKeyWithThePapersValues) {
   EXPECT_EQ(a["regions_up_to_symmetry"], json(1));
   EXPECT_EQ(a["symmetry_group_order"], json(48));
   // Not in the paper: only the types are part of the contract here.
-  EXPECT_TRUE(a["pieces"].is_number_integer() && a["pieces"].get<long>() >= 24) << a["pieces"].dump();
+  EXPECT_TRUE(a["pieces"].is_number_integer() && a["pieces"].get<long>() >= 24)
+      << a["pieces"].dump();
   EXPECT_TRUE(a["derivation_seconds"].is_number() && a["derivation_seconds"].get<double>() >= 0)
       << a["derivation_seconds"].dump();
 }
 
 TEST(CliAnalyze, CustomSpecWithTheM7DirectionsOnBccGivesTheSameStructure) {
-  const json a = boxgen_json(
-      {"analyze", "1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 2,0,0; 0,2,0; 0,0,2", "--lattice", "bcc", "--json"});
+  const json a = boxgen_json({"analyze", "1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 2,0,0; 0,2,0; 0,0,2",
+                              "--lattice", "bcc", "--json"});
   EXPECT_EQ(a.value("degree", json()), json(4));
   EXPECT_EQ(a.value("support_volume", json()), json("120"));
   EXPECT_EQ(a.value("stencil_size", json()), json(30));
@@ -178,7 +182,8 @@ TEST(CliAnalyze, TextOutputIsATableOnStdout) {
 }
 
 TEST(CliEval, JsonIsAListOfPointsWithExactAndFloatValues) {
-  const std::vector<std::string> args{"eval", "m7", "--json", "--at", "0 0 0", "--at", "0.5 -0.25 1/3", "--at", "7 0 0"};
+  const std::vector<std::string> args{"eval",          "m7",   "--json", "--at", "0 0 0", "--at",
+                                      "0.5 -0.25 1/3", "--at", "7 0 0"};
   const json e = boxgen_json(args);
   ASSERT_TRUE(e.is_array() && e.size() == 3) << e.dump();
   // x echoes each point as exact strings, decimals converted exactly.
@@ -234,7 +239,8 @@ TEST(CliPrefilter, M7ShellsZeroOneTwoIsThePapersQ7II) {
     EXPECT_EQ(weight, (o == IntVec{0, 0, 0}) ? Q("19/12") : Q("-1/24")) << w.dump();
     long norm2 = 0;
     for (long x : o) norm2 += x * x;
-    EXPECT_TRUE(norm2 == 0 || norm2 == 3 || norm2 == 4) << "offset outside S_0 u S_1 u S_2: " << w.dump();
+    EXPECT_TRUE(norm2 == 0 || norm2 == 3 || norm2 == 4)
+        << "offset outside S_0 u S_1 u S_2: " << w.dump();
   }
   EXPECT_EQ(offsets.size(), 15u);
   EXPECT_EQ(sum, 1) << "Q(1) = 1 so that constants are reproduced";
@@ -244,7 +250,8 @@ TEST(CliAutocorr, M7HasTheDesignNotesIntegralAndConsistentSamples) {
   const json a = boxgen_json({"autocorr", "m7", "--json"});
   // docs/design.md §9: for M7, a(0) = integral of (M^c)^2 = 39559/1064448.
   EXPECT_EQ(a.value("integral_squared", json()), json("39559/1064448"));
-  ASSERT_TRUE(a.contains("samples") && a["samples"].is_array() && !a["samples"].empty()) << a.dump();
+  ASSERT_TRUE(a.contains("samples") && a["samples"].is_array() && !a["samples"].empty())
+      << a.dump();
   Q sum = 0;
   std::map<IntVec, Q> by_point;
   for (const auto& s : a["samples"]) {
@@ -279,9 +286,9 @@ TEST(CliAutocorr, Hex3SamplesByHandAndBothMethodsAgree) {
   //        [0, n]: 2 * (1/2)/12 = 1/12,
   //   every other lattice point: the hexagons share at most an edge, a = 0.
   // Check: 1/2 + 6/12 = 1 = 1/|det G|.
-  const std::map<IntVec, Q> expected{{{0, 0}, Q("1/2")},   {{1, 0}, Q("1/12")},  {{-1, 0}, Q("1/12")},
-                                     {{0, 1}, Q("1/12")},  {{0, -1}, Q("1/12")}, {{1, 1}, Q("1/12")},
-                                     {{-1, -1}, Q("1/12")}};
+  const std::map<IntVec, Q> expected{
+      {{0, 0}, Q("1/2")},   {{1, 0}, Q("1/12")}, {{-1, 0}, Q("1/12")}, {{0, 1}, Q("1/12")},
+      {{0, -1}, Q("1/12")}, {{1, 1}, Q("1/12")}, {{-1, -1}, Q("1/12")}};
   for (const char* method : {"refinement", "continuity"}) {
     SCOPED_TRACE(method);
     const json a = boxgen_json({"autocorr", "hex3", "--method", method, "--json"});
@@ -304,7 +311,8 @@ TEST(CliBbform, M7ReferenceTetrahedronHas30StencilPointsAnd35Coefficients) {
   // Paper, section 4.2: reference tetrahedron (0,0,0), (1,1,1), (1,0,0), (1,1,0).
   std::set<std::vector<std::string>> vertices;
   for (const auto& v : r["vertices"]) vertices.insert(v.get<std::vector<std::string>>());
-  const std::set<std::vector<std::string>> paper_vertices{{"0", "0", "0"}, {"1", "1", "1"}, {"1", "0", "0"}, {"1", "1", "0"}};
+  const std::set<std::vector<std::string>> paper_vertices{
+      {"0", "0", "0"}, {"1", "1", "1"}, {"1", "0", "0"}, {"1", "1", "0"}};
   EXPECT_EQ(vertices, paper_vertices);
   EXPECT_EQ(r.value("triangulated", json()), json(false));
   ASSERT_TRUE(r["stencil"].is_array());
@@ -315,7 +323,8 @@ TEST(CliBbform, M7ReferenceTetrahedronHas30StencilPointsAnd35Coefficients) {
     stencil.insert(p.get<IntVec>());
   }
   EXPECT_EQ(stencil.size(), 30u) << "stencil points must be distinct";
-  ASSERT_TRUE(r["simplices"].is_array() && r["simplices"].size() == 1) << "a tetrahedron needs no triangulation";
+  ASSERT_TRUE(r["simplices"].is_array() && r["simplices"].size() == 1)
+      << "a tetrahedron needs no triangulation";
   const json& coefficients = r["simplices"][0]["coefficients"];
   // Degree 4 in 3-D: C(4+3, 3) = 35 BB-coefficients, one per multi-index i with |i| = 4.
   ASSERT_EQ(coefficients.size(), 35u);
@@ -357,7 +366,8 @@ TEST(CliBbform, Hex3CoefficientsAreTheSamplesAtTheVertices) {
       ASSERT_EQ(simplex["coefficients"].size(), 3u);
       for (const auto& c : simplex["coefficients"]) {
         const auto index = c["index"].get<std::vector<int>>();
-        const size_t i = static_cast<size_t>(std::find(index.begin(), index.end(), 1) - index.begin());
+        const size_t i =
+            static_cast<size_t>(std::find(index.begin(), index.end(), 1) - index.begin());
         ASSERT_LT(i, 3u) << c.dump();
         ASSERT_EQ(c["terms"].size(), 1u) << c.dump();
         EXPECT_EQ(c["terms"][0]["weight"], json("1")) << c.dump();
@@ -385,8 +395,10 @@ TEST(CliBbform, TricubicCubeIsTriangulatedAndSaysSo) {
     ASSERT_EQ(simplex["vertices"].size(), 4u);
     std::array<std::array<Q, 3>, 3> e;
     for (size_t k = 0; k < 3; ++k)
-      for (size_t i = 0; i < 3; ++i) e[k][i] = exact(simplex["vertices"][k + 1][i]) - exact(simplex["vertices"][0][i]);
-    const Q det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+      for (size_t i = 0; i < 3; ++i)
+        e[k][i] = exact(simplex["vertices"][k + 1][i]) - exact(simplex["vertices"][0][i]);
+    const Q det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                  e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
                   e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
     volume = volume + cln::abs(det) / 6;
     EXPECT_EQ(simplex["coefficients"].size(), 220u);
@@ -398,7 +410,8 @@ TEST(CliBbform, TricubicCubeIsTriangulatedAndSaysSo) {
   }
   EXPECT_EQ(volume, 1);
   const std::string text = boxgen_ok({"bbform", "tricubic"});
-  EXPECT_NE(text.find("not a simplex"), std::string::npos) << "the text output must say it triangulated";
+  EXPECT_NE(text.find("not a simplex"), std::string::npos)
+      << "the text output must say it triangulated";
 }
 
 TEST(CliPresets, JsonListsTheEightPresetsWithTheirDirections) {

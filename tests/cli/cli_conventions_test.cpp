@@ -29,11 +29,13 @@ TEST(CliConventions, EstimatePrintsPredictionWithoutDeriving) {
   EXPECT_FALSE(e.contains("pieces")) << "--estimate must not derive";
   // The same estimate refuses up front only beyond the limit the user sets.
   const double predicted = e["estimated_seconds"].get<double>();
-  const ProcessResult refused = boxgen({"analyze", "m7", "--max-seconds", std::to_string(predicted / 10)});
+  const ProcessResult refused =
+      boxgen({"analyze", "m7", "--max-seconds", std::to_string(predicted / 10)});
   EXPECT_EQ(refused.exit_code, 1) << describe({"analyze", "m7"}, refused);
   EXPECT_NE(refused.err.find("predicted"), std::string::npos) << refused.err;
   const json ok = boxgen_json({"analyze", "zp", "--max-seconds", "1000", "--json"});
-  EXPECT_EQ(ok["pieces"], 21);  // ZP element: 21 polynomial pieces (de Boor, Hoellig, Riemenschneider)
+  EXPECT_EQ(ok["pieces"],
+            21);  // ZP element: 21 polynomial pieces (de Boor, Hoellig, Riemenschneider)
 }
 
 TEST(CliConventions, ChecksModeIsReported) {
@@ -42,7 +44,8 @@ TEST(CliConventions, ChecksModeIsReported) {
   const json f = boxgen_json({"analyze", "zp", "--checks", "full", "--json"});
   EXPECT_EQ(f["checks"]["mode"], "full");
   EXPECT_EQ(f["checks"]["integral_is_one"], true);
-  EXPECT_GE(f["checks"]["continuity_faces_checked"].get<int>(), d["checks"]["continuity_faces_checked"].get<int>());
+  EXPECT_GE(f["checks"]["continuity_faces_checked"].get<int>(),
+            d["checks"]["continuity_faces_checked"].get<int>());
 }
 
 TEST(CliConventions, ProgressIsSilentForShortRuns) {
@@ -69,7 +72,8 @@ TEST(CliConventions, PrefilterSummaryMatchesItsTaps) {
   json_args.push_back("--json");
   const json q = boxgen_json(json_args);
   std::map<std::vector<int>, std::string> tap;
-  for (const auto& w : q["weights"]) tap[w["offset"].get<std::vector<int>>()] = w["weight"].get<std::string>();
+  for (const auto& w : q["weights"])
+    tap[w["offset"].get<std::vector<int>>()] = w["weight"].get<std::string>();
   auto weight = [&](std::vector<int> p) { return tap.count(p) ? tap[p] : std::string("0"); };
   const std::vector<std::vector<std::vector<int>>> shells{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}},
                                                           {{1, 1}, {-1, -1}, {1, -1}, {-1, 1}}};
@@ -89,7 +93,8 @@ TEST(CliConventions, PrefilterSummaryMatchesItsTaps) {
     for (const auto& p : shells[s]) {
       const std::string w = weight(p);
       if (w == "0") continue;
-      EXPECT_NE(line.find(w[0] == '-' ? w.substr(1) : w), std::string::npos) << line << " lacks weight " << w;
+      EXPECT_NE(line.find(w[0] == '-' ? w.substr(1) : w), std::string::npos)
+          << line << " lacks weight " << w;
     }
   }
   EXPECT_GT(non_uniform, 0) << "the example no longer has a non-uniform shell: " << line;

@@ -58,28 +58,28 @@ TEST(CliExactness, Hex3IsTheCourantHatFunction) {
   // Points in all six triangles, on knot lines, at the boundary and outside the support. The values
   // in the comments are worked out from the formula above.
   const std::vector<std::array<const char*, 2>> points{
-      {"0", "0"},      // 1
-      {"1/3", "1/3"},  // max(1/3, 1/3, 0) = 1/3: 2/3
-      {"1/2", "0"},    // 1/2
-      {"2/3", "1/3"},  // max(2/3, 1/3, 1/3): 1/3
-      {"1/4", "1/2"},  // max(1/4, 1/2, 1/4): 1/2
-      {"-1/3", "1/3"}, // |x - y| = 2/3: 1/3
-      {"1/4", "-1/4"}, // |x - y| = 1/2: 1/2 (the anti-diagonal is not a mesh direction)
-      {"1/2", "1/2"},  // 1/2 (along the mesh diagonal)
-      {"1/2", "-1/2"}, // |x - y| = 1: 0 (on the support's edge)
-      {"-1/10", "-3/10"}, // max(1/10, 3/10, 1/5): 7/10
-      {"3/7", "5/7"},  // 2/7
-      {"-5/7", "-3/7"},// 2/7 (the point above reflected through 0)
-      {"1", "1"},      // lattice neighbour: 0
-      {"2", "0"},      // outside: 0
-      {"-3/2", "1/5"}, // outside: 0
+      {"0", "0"},          // 1
+      {"1/3", "1/3"},      // max(1/3, 1/3, 0) = 1/3: 2/3
+      {"1/2", "0"},        // 1/2
+      {"2/3", "1/3"},      // max(2/3, 1/3, 1/3): 1/3
+      {"1/4", "1/2"},      // max(1/4, 1/2, 1/4): 1/2
+      {"-1/3", "1/3"},     // |x - y| = 2/3: 1/3
+      {"1/4", "-1/4"},     // |x - y| = 1/2: 1/2 (the anti-diagonal is not a mesh direction)
+      {"1/2", "1/2"},      // 1/2 (along the mesh diagonal)
+      {"1/2", "-1/2"},     // |x - y| = 1: 0 (on the support's edge)
+      {"-1/10", "-3/10"},  // max(1/10, 3/10, 1/5): 7/10
+      {"3/7", "5/7"},      // 2/7
+      {"-5/7", "-3/7"},    // 2/7 (the point above reflected through 0)
+      {"1", "1"},          // lattice neighbour: 0
+      {"2", "0"},          // outside: 0
+      {"-3/2", "1/5"},     // outside: 0
   };
   std::vector<std::string> texts;
   for (const auto& p : points) texts.push_back(std::string(p[0]) + " " + p[1]);
   const std::vector<Q> got = eval_exact("hex3", texts);
   ASSERT_EQ(got.size(), points.size());
-  const std::vector<const char*> by_hand{"1", "2/3", "1/2", "1/3", "1/2", "1/3", "1/2", "1/2",
-                                         "0", "7/10", "2/7", "2/7", "0", "0", "0"};
+  const std::vector<const char*> by_hand{"1", "2/3",  "1/2", "1/3", "1/2", "1/3", "1/2", "1/2",
+                                         "0", "7/10", "2/7", "2/7", "0",   "0",   "0"};
   for (size_t i = 0; i < points.size(); ++i) {
     SCOPED_TRACE(texts[i]);
     EXPECT_EQ(got[i], hat(Q(points[i][0]), Q(points[i][1])));
@@ -88,7 +88,8 @@ TEST(CliExactness, Hex3IsTheCourantHatFunction) {
 }
 
 TEST(CliExactness, Hex3DecimalPointsAreExact) {
-  // -0.1 and -0.3 are read as -1/10 and -3/10 exactly (not as doubles): 7/10, not 0.7000000000000001.
+  // -0.1 and -0.3 are read as -1/10 and -3/10 exactly (not as doubles): 7/10, not
+  // 0.7000000000000001.
   EXPECT_EQ(eval_exact("hex3", {"-0.1 -0.3"}), std::vector<Q>{Q("7/10")});
 }
 
@@ -100,7 +101,8 @@ TEST(CliExactness, Hex3DerivativesAreTheSlopesOfTheHat) {
             (std::vector<Q>{-1, 0, 1}));
   EXPECT_EQ(eval_exact("hex3", {"1/3 1/6", "1/6 1/3", "-1/4 1/4"}, {"--derivative", "0 1"}),
             (std::vector<Q>{0, -1, -1}));
-  EXPECT_EQ(eval_exact("hex3", {"1/3 1/6", "-1/4 1/4"}, {"--derivative", "2 0"}), (std::vector<Q>{0, 0}));
+  EXPECT_EQ(eval_exact("hex3", {"1/3 1/6", "-1/4 1/4"}, {"--derivative", "2 0"}),
+            (std::vector<Q>{0, 0}));
 }
 
 TEST(CliExactness, Hex3DerivativeIsExactWhereItIsContinuousAcrossAKnotLine) {
@@ -115,8 +117,9 @@ TEST(CliExactness, Hex3OnTheLatticeTwiceAsCoarseIsTheStretchedHat) {
   // defining integral), and the filter M = |det G| M^c = 4 M^c is the hat stretched by 2:
   // M(x) = hat(x / 2). So M(0) = 1, M(2/3, 2/3) = hat(1/3, 1/3) = 2/3, M(1, 0) = hat(1/2, 0) = 1/2,
   // M(1, -1) = hat(1/2, -1/2) = 0.
-  EXPECT_EQ(eval_exact("2,0; 0,2; 2,2", {"0 0", "2/3 2/3", "1 0", "1 -1"}, {"--lattice", "2,0; 0,2"}),
-            (std::vector<Q>{1, Q("2/3"), Q("1/2"), 0}));
+  EXPECT_EQ(
+      eval_exact("2,0; 0,2; 2,2", {"0 0", "2/3 2/3", "1 0", "1 -1"}, {"--lattice", "2,0; 0,2"}),
+      (std::vector<Q>{1, Q("2/3"), Q("1/2"), 0}));
 }
 
 TEST(CliExactness, TricubicIsTheProductOfCubicBSplines) {
@@ -124,8 +127,8 @@ TEST(CliExactness, TricubicIsTheProductOfCubicBSplines) {
   // B(t) = 2/3 - t^2 + |t|^3/2 for |t| <= 1, (2 - |t|)^3/6 for 1 <= |t| <= 2, 0 beyond:
   // B(0) = 2/3, B(1/2) = 2/3 - 1/4 + 1/16 = 23/48, B(1) = 1/6, B(3/2) = 1/48, B(2) = 0.
   EXPECT_EQ(eval_exact("tricubic", {"0 0 0", "1/2 0 1", "3/2 -1/2 1", "2 0 0", "1 1 1"}),
-            (std::vector<Q>{Q("8/27"),                       // (2/3)^3
-                            Q("23/432"),                     // 23/48 * 2/3 * 1/6
+            (std::vector<Q>{Q("8/27"),                          // (2/3)^3
+                            Q("23/432"),                        // 23/48 * 2/3 * 1/6
                             Q("1/48") * Q("23/48") * Q("1/6"),  // 23/13824
                             0, Q("1/216")}));
 }
@@ -148,7 +151,8 @@ TEST(CliExactness, M7ShiftsOverBccSumToOne) {
   for (const std::array<Q, 3>& x : {std::array<Q, 3>{Q("1/3"), Q("1/7"), Q("-2/5")},
                                     std::array<Q, 3>{Q("1/2"), Q("1/2"), Q("0")}}) {
     std::vector<std::string> points;
-    for (const auto& j : bcc_points_near(x)) points.push_back(point_text({x[0] - j[0], x[1] - j[1], x[2] - j[2]}));
+    for (const auto& j : bcc_points_near(x))
+      points.push_back(point_text({x[0] - j[0], x[1] - j[1], x[2] - j[2]}));
     const std::vector<Q> values = eval_exact("m7", points);
     ASSERT_EQ(values.size(), points.size());
     const Q sum = std::accumulate(values.begin(), values.end(), Q(0));
@@ -200,13 +204,15 @@ TEST(CliExactness, M7VertexCoefficientsOfBbformAreValuesOfEval) {
   for (size_t i = 0; i < 4; ++i) {
     std::vector<int> corner(4, 0);
     corner[i] = degree;
-    const auto c = std::find_if(simplex["coefficients"].begin(), simplex["coefficients"].end(),
-                                [&](const json& x) { return x["index"].get<std::vector<int>>() == corner; });
+    const auto c =
+        std::find_if(simplex["coefficients"].begin(), simplex["coefficients"].end(),
+                     [&](const json& x) { return x["index"].get<std::vector<int>>() == corner; });
     ASSERT_NE(c, simplex["coefficients"].end()) << "no coefficient for vertex " << i;
     std::vector<Q> weights(stencil.size(), 0);
     for (const auto& t : (*c)["terms"]) weights.at(t["stencil"].get<size_t>()) = exact(t["weight"]);
     for (size_t k = 0; k < stencil.size(); ++k)
-      EXPECT_EQ(weights[k], values[i * stencil.size() + k]) << "vertex " << i << ", stencil point " << k;
+      EXPECT_EQ(weights[k], values[i * stencil.size() + k])
+          << "vertex " << i << ", stencil point " << k;
   }
 }
 

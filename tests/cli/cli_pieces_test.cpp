@@ -10,9 +10,11 @@ namespace {
 
 TEST(CliPieces, EveryFormatForSplineAndFilter) {
   for (const std::string of : {"spline", "filter"}) {
-    // tricubic: a 3-D preset that derives in a fraction of a second (the sanitized suite runs this too).
+    // tricubic: a 3-D preset that derives in a fraction of a second (the sanitized suite runs this
+    // too).
     const std::string text = boxgen_ok({"pieces", "tricubic", "--of", of});
-    EXPECT_NE(text.find(of == "spline" ? "  s(x,y,z) = " : "  M(x,y,z) = "), std::string::npos) << text;
+    EXPECT_NE(text.find(of == "spline" ? "  s(x,y,z) = " : "  M(x,y,z) = "), std::string::npos)
+        << text;
     const std::string latex = boxgen_ok({"pieces", "tricubic", "--of", of, "--format", "latex"});
     EXPECT_NE(latex.find("\\begin{dmath*}"), std::string::npos) << latex;
     const std::string c = boxgen_ok({"pieces", "tricubic", "--of", of, "--format", "c"});
@@ -20,18 +22,21 @@ TEST(CliPieces, EveryFormatForSplineAndFilter) {
     const nlohmann::json j = boxgen_json({"pieces", "tricubic", "--of", of, "--format", "json"});
     ASSERT_TRUE(j.contains("pieces")) << j.dump();
     for (const auto& p : j["pieces"]) {
-      EXPECT_TRUE(p["region"].contains("vertices") && p["region"].contains("inequalities")) << p.dump();
+      EXPECT_TRUE(p["region"].contains("vertices") && p["region"].contains("inequalities"))
+          << p.dump();
       EXPECT_EQ(p["polynomial"]["variables"], nlohmann::json({"x", "y", "z"}));
       EXPECT_EQ(p.contains("stencil"), of == "spline");
       for (const auto& q : p["region"]["inequalities"]) exact(q["bound"]);
     }
-    EXPECT_EQ(boxgen_json({"pieces", "tricubic", "--of", of, "--json"}), j) << "--json is --format json";
+    EXPECT_EQ(boxgen_json({"pieces", "tricubic", "--of", of, "--json"}), j)
+        << "--json is --format json";
   }
   // fcc6's spline has 10 regions per fundamental region in 2 orbits; `all` lists every region.
   EXPECT_EQ(boxgen_json({"pieces", "fcc6", "--region", "all", "--json"})["pieces"].size(), 10u);
   EXPECT_EQ(boxgen_json({"pieces", "fcc6", "--json"})["pieces"].size(), 2u);
   // A 2-D custom matrix: the variables are x and y.
-  const nlohmann::json zp = boxgen_json({"pieces", "1,0; 0,1; 1,1; -1,1", "--of", "filter", "--json"});
+  const nlohmann::json zp =
+      boxgen_json({"pieces", "1,0; 0,1; 1,1; -1,1", "--of", "filter", "--json"});
   EXPECT_EQ(zp["pieces"][0]["polynomial"]["variables"], nlohmann::json({"x", "y"}));
 }
 

@@ -13,10 +13,12 @@ namespace {
 // with an empty file. Expected: a non-zero exit and one line on stderr.
 TEST(CliRobustness, AFailedWriteToStdoutIsAnError) {
   for (const std::vector<std::string>& args :
-       {std::vector<std::string>{"presets", "--json"}, std::vector<std::string>{"eval", "hex3", "--at", "0 0"}}) {
+       {std::vector<std::string>{"presets", "--json"},
+        std::vector<std::string>{"eval", "hex3", "--at", "0 0"}}) {
     const ProcessResult r = run_process(BOXGEN_EXE, args, kDefaultTimeout, "/dev/full");
     ASSERT_TRUE(r.exited) << describe(args, r);
-    EXPECT_NE(r.exit_code, 0) << "output was lost but boxgen reported success\n" << describe(args, r);
+    EXPECT_NE(r.exit_code, 0) << "output was lost but boxgen reported success\n"
+                              << describe(args, r);
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << describe(args, r);
     EXPECT_EQ(r.err.rfind("boxgen: ", 0), 0u) << describe(args, r);
   }
@@ -24,9 +26,9 @@ TEST(CliRobustness, AFailedWriteToStdoutIsAnError) {
 
 // Brief: never "a hang". A linear box spline (degree 4 - 3 = 1) of four small integer directions on
 // the Cartesian lattice once ran for minutes with memory growing past 450 MB (every integer level
-// of every knot normal was a cell boundary), for `eval` as for `analyze`. Expected: an answer within
-// the deadline or one line saying the SPEC is too complex to derive. (On the knot-plane cells it
-// now answers in well under a second.)
+// of every knot normal was a cell boundary), for `eval` as for `analyze`. Expected: an answer
+// within the deadline or one line saying the SPEC is too complex to derive. (On the knot-plane
+// cells it now answers in well under a second.)
 TEST(CliRobustness, SmallGenericDirectionMatrixFinishesOrRefuses) {
   const std::vector<std::string> args{"eval", "1,2,3; 3,1,2; 2,3,1; -1,2,3", "--at", "0 0 0"};
   const ProcessResult r = boxgen(args, std::chrono::seconds(60 * kSlowdown));

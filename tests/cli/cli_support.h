@@ -40,7 +40,8 @@ inline constexpr int kSlowdown = 1;
 // 2-core development machine: 120 s leaves room for a loaded machine and still catches a hang.
 inline constexpr std::chrono::seconds kDefaultTimeout{120 * kSlowdown};
 
-inline ProcessResult boxgen(const std::vector<std::string>& args, std::chrono::seconds timeout = kDefaultTimeout) {
+inline ProcessResult boxgen(const std::vector<std::string>& args,
+                            std::chrono::seconds timeout = kDefaultTimeout) {
   return run_process(BOXGEN_EXE, args, timeout);
 }
 

@@ -21,7 +21,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 int remaining_ms(Clock::time_point deadline) {
-  const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+  const auto left =
+      std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
   return left > 0 ? static_cast<int>(left) : 0;
 }
 
@@ -64,11 +65,13 @@ ProcessResult run_process(const std::string& program, const std::vector<std::str
 
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, stdin_file.empty() ? "/dev/null" : stdin_file.c_str(), O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(
+      &actions, 0, stdin_file.empty() ? "/dev/null" : stdin_file.c_str(), O_RDONLY, 0);
   if (stdout_file.empty())
     posix_spawn_file_actions_adddup2(&actions, out_pipe[1], 1);  // dup2 clears O_CLOEXEC on 1 and 2
   else  // the stdout pipe then only sees end of file: its write end is close-on-exec
-    posix_spawn_file_actions_addopen(&actions, 1, stdout_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 1, stdout_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
   posix_spawn_file_actions_adddup2(&actions, err_pipe[1], 2);
 
   std::vector<std::string> storage;
@@ -80,7 +83,8 @@ ProcessResult run_process(const std::string& program, const std::vector<std::str
   argv.push_back(nullptr);
 
   pid_t pid = 0;
-  const int spawn_error = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
+  const int spawn_error =
+      posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   ::close(out_pipe[1]);
   ::close(err_pipe[1]);
@@ -99,7 +103,8 @@ ProcessResult run_process(const std::string& program, const std::vector<std::str
   while (open_fds > 0 && !r.timed_out) {
     const int ready = ::poll(fds.data(), fds.size(), remaining_ms(deadline));
     if (ready < 0 && errno == EINTR) continue;
-    if (ready < 0) break;  // cannot happen with valid descriptors; the wait below still has the deadline
+    if (ready < 0)
+      break;  // cannot happen with valid descriptors; the wait below still has the deadline
     if (ready == 0) {
       r.timed_out = Clock::now() >= deadline;
       continue;
@@ -123,8 +128,10 @@ ProcessResult run_process(const std::string& program, const std::vector<std::str
       break;
     }
     if (done < 0 && errno != EINTR) break;
-    if (Clock::now() >= deadline) r.timed_out = true;
-    else std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (Clock::now() >= deadline)
+      r.timed_out = true;
+    else
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   if (r.timed_out) {
     ::kill(pid, SIGKILL);
@@ -142,12 +149,18 @@ std::string describe(const std::vector<std::string>& args, const ProcessResult& 
   std::string s = "command: " + r.program;
   for (const auto& a : args) s += " '" + a + "'";
   s += "\nended: ";
-  if (!r.started) s += "could not start";
-  else if (r.timed_out) s += "TIMED OUT (killed)";
-  else if (r.exited) s += "exit code " + std::to_string(r.exit_code);
-  else s += "signal " + std::to_string(r.signal) + " (" + strsignal(r.signal) + ")";
+  if (!r.started)
+    s += "could not start";
+  else if (r.timed_out)
+    s += "TIMED OUT (killed)";
+  else if (r.exited)
+    s += "exit code " + std::to_string(r.exit_code);
+  else
+    s += "signal " + std::to_string(r.signal) + " (" + strsignal(r.signal) + ")";
   s += " after " + std::to_string(r.seconds) + " s";
-  auto clip = [](const std::string& t) { return t.size() > 4000 ? t.substr(0, 4000) + "\n[... clipped]" : t; };
+  auto clip = [](const std::string& t) {
+    return t.size() > 4000 ? t.substr(0, 4000) + "\n[... clipped]" : t;
+  };
   s += "\n--- stdout (" + std::to_string(r.out.size()) + " bytes) ---\n" + clip(r.out);
   s += "\n--- stderr (" + std::to_string(r.err.size()) + " bytes) ---\n" + clip(r.err);
   return s;

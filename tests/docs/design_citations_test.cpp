@@ -29,7 +29,8 @@ std::set<int> sections_of(const std::string& design) {
     if (line.rfind("## ", 0) != 0) continue;
     std::size_t digits = 3;
     while (digits < line.size() && std::isdigit(static_cast<unsigned char>(line[digits]))) ++digits;
-    if (digits > 3 && digits < line.size() && line[digits] == '.') out.insert(std::stoi(line.substr(3, digits - 3)));
+    if (digits > 3 && digits < line.size() && line[digits] == '.')
+      out.insert(std::stoi(line.substr(3, digits - 3)));
   }
   return out;
 }
@@ -37,7 +38,8 @@ std::set<int> sections_of(const std::string& design) {
 // Problems with the citations on one line ("" when there are none).
 std::string check_line(const std::string& line, const std::set<int>& sections, bool markdown) {
   std::string problems;
-  for (std::size_t at = line.find("design.md"); at != std::string::npos; at = line.find("design.md", at + 1)) {
+  for (std::size_t at = line.find("design.md"); at != std::string::npos;
+       at = line.find("design.md", at + 1)) {
     const std::size_t start = at >= 5 ? at - 5 : 0;
     if (at < 5 || line.compare(start, kCitation.size(), kCitation) != 0) {
       problems += "cites design.md outside docs/; ";
@@ -76,31 +78,37 @@ TEST(DesignCitations, TheCheckerCatchesBadCitations) {
   EXPECT_NE(check_line("// see docs/design.md 3", sections, false), "");
   EXPECT_NE(check_line("// see docs/design.md §3, §9", sections, false), "");
   EXPECT_EQ(check_line("see [the design](docs/design.md).", sections, true), "");
-  EXPECT_EQ(sections_of("# t\n## 1. A\ntext\n## 12. B\n### 3. not a section\n## x. no\n"), (std::set<int>{1, 12}));
+  EXPECT_EQ(sections_of("# t\n## 1. A\ntext\n## 12. B\n### 3. not a section\n## x. no\n"),
+            (std::set<int>{1, 12}));
 }
 
 TEST(DesignCitations, EveryCitationInTheTreeResolves) {
   const fs::path root = BOXGEN_SOURCE_DIR;
   std::ifstream design_file(root / "docs" / "design.md");
   ASSERT_TRUE(design_file) << "docs/design.md is missing";
-  const std::string design((std::istreambuf_iterator<char>(design_file)), std::istreambuf_iterator<char>());
+  const std::string design((std::istreambuf_iterator<char>(design_file)),
+                           std::istreambuf_iterator<char>());
   const std::set<int> sections = sections_of(design);
   ASSERT_FALSE(sections.empty());
   // The sections are numbered 1..N without gaps.
   EXPECT_EQ(*sections.begin(), 1);
   EXPECT_EQ(*sections.rbegin(), static_cast<int>(sections.size()));
 
-  std::vector<fs::path> files{root / "README.md", root / "CMakeLists.txt", root / "docs" / "extending.md"};
-  const std::set<std::string> extensions{".h", ".hpp", ".cpp", ".fmt", ".cmake", ".txt", ".sh", ".md", ".in", ".json"};
-  for (const char* dir : {"apps", "bench", "cmake", "examples", "fuzz", "generated", "generator", "runtime", "scripts",
-                          "support", "templates", "tests"}) {
+  std::vector<fs::path> files{root / "README.md", root / "CMakeLists.txt",
+                              root / "docs" / "extending.md"};
+  const std::set<std::string> extensions{".h",   ".hpp", ".cpp", ".fmt", ".cmake",
+                                         ".txt", ".sh",  ".md",  ".in",  ".json"};
+  for (const char* dir : {"apps", "bench", "cmake", "examples", "fuzz", "generated", "generator",
+                          "runtime", "scripts", "support", "templates", "tests"}) {
     if (!fs::exists(root / dir)) continue;
     for (const auto& entry : fs::recursive_directory_iterator(root / dir))
-      if (entry.is_regular_file() && extensions.count(entry.path().extension().string())) files.push_back(entry.path());
+      if (entry.is_regular_file() && extensions.count(entry.path().extension().string()))
+        files.push_back(entry.path());
   }
   int citations = 0;
   for (const auto& file : files) {
-    if (!fs::exists(file) || file.filename() == "design_citations_test.cpp") continue;  // its own examples
+    if (!fs::exists(file) || file.filename() == "design_citations_test.cpp")
+      continue;  // its own examples
     std::ifstream in(file);
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {

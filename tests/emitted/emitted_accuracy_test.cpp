@@ -14,15 +14,15 @@
 #include <map>
 #include <random>
 
+#include "emitted/biquadratic.hpp"
 #include "emitted/cart7.hpp"
 #include "emitted/fcc6.hpp"
-#include "emitted/tricubic.hpp"
-#include "emitted/zp.hpp"
-#include "emitted/zp_monomial.hpp"
-#include "emitted/biquadratic.hpp"
 #include "emitted/m12_horner.hpp"
 #include "emitted/m7_monomial.hpp"
+#include "emitted/tricubic.hpp"
 #include "emitted/tricubic_horner.hpp"
+#include "emitted/zp.hpp"
+#include "emitted/zp_monomial.hpp"
 #include "generated/m12.hpp"
 #include "generated/m7.hpp"
 #include "generated/m8.hpp"
@@ -52,7 +52,8 @@ struct IntegerPoly {
   explicit IntegerPoly(const Poly& p) : n(p.vars()), degree(std::max(p.degree(), 0)) {
     const auto& ex = monomial_exponents(n, p.capacity());
     for (std::size_t i = 0; i < p.coefficients().size(); ++i)
-      if (!cln::zerop(p.coefficients()[i])) denominator = cln::lcm(denominator, cln::denominator(p.coefficients()[i]));
+      if (!cln::zerop(p.coefficients()[i]))
+        denominator = cln::lcm(denominator, cln::denominator(p.coefficients()[i]));
     for (std::size_t i = 0; i < p.coefficients().size(); ++i) {
       const Rational& c = p.coefficients()[i];
       if (cln::zerop(c)) continue;
@@ -75,7 +76,8 @@ struct IntegerPoly {
         term = term * pw[i][exponents[t][i]];
         total += exponents[t][i];
       }
-      sum = sum + cln::ash(term, static_cast<long>(shift) * (degree - total));  // times D^(degree - |e|)
+      sum = sum +
+            cln::ash(term, static_cast<long>(shift) * (degree - total));  // times D^(degree - |e|)
     }
     return Rational(sum) / Rational(cln::ash(denominator, static_cast<long>(shift) * degree));
   }
@@ -86,14 +88,15 @@ constexpr int kShift = 20;  // test points are multiples of 2^-20
 struct Exact {
   Rational value;
   RatVec gradient;
-  RatVec hessian;  // upper triangle, row by row (xx xy xz yy yz zz)
+  RatVec hessian;               // upper triangle, row by row (xx xy xz yy yz zz)
   bool hessian_defined = true;  // false where cells around the point disagree on it
 };
 
 class Reference {
  public:
   explicit Reference(const std::string& preset)
-      : spec_(parse_spec(preset)), form_(derive_piecewise(spec_, DerivationMethod::TruncatedPower)),
+      : spec_(parse_spec(preset)),
+        form_(derive_piecewise(spec_, DerivationMethod::TruncatedPower)),
         centre_(spline_centre(spec_)) {}
   int dimension() const { return spec_.dimension(); }
   bool twice_differentiable() const { return box_spline_properties(spec_).continuity >= 2; }
@@ -124,8 +127,10 @@ class Reference {
       }
       const auto& polys = polys_of(cell);
       e.value = e.value + v * polys[0].eval(scaled, kShift);
-      for (int d = 0; d < n; ++d) e.gradient[d] = e.gradient[d] + v * polys[d + 1].eval(scaled, kShift);
-      for (int h = 0; h < n * (n + 1) / 2; ++h) e.hessian[h] = e.hessian[h] + v * polys[n + 1 + h].eval(scaled, kShift);
+      for (int d = 0; d < n; ++d)
+        e.gradient[d] = e.gradient[d] + v * polys[d + 1].eval(scaled, kShift);
+      for (int h = 0; h < n * (n + 1) / 2; ++h)
+        e.hessian[h] = e.hessian[h] + v * polys[n + 1 + h].eval(scaled, kShift);
       // On a knot plane (some nu . u an integer) a C^1 spline's second derivatives may jump.
       for (const auto& nu : form_.complex.normals())
         if (is_integer(dot(nu, u))) e.hessian_defined = false;
@@ -141,7 +146,8 @@ class Reference {
       std::vector<IntegerPoly> g{IntegerPoly(form_.polys[cell])};
       for (int d = 0; d < dimension(); ++d) g.emplace_back(form_.polys[cell].derivative(d));
       for (int i = 0; i < dimension(); ++i)
-        for (int j = i; j < dimension(); ++j) g.emplace_back(form_.polys[cell].derivative(i).derivative(j));
+        for (int j = i; j < dimension(); ++j)
+          g.emplace_back(form_.polys[cell].derivative(i).derivative(j));
       it = cache_.emplace(cell, std::move(g)).first;
     }
     return it->second;
@@ -163,7 +169,8 @@ std::vector<RatVec> test_points(const Reference& ref, int count) {
   std::vector<RatVec> out;
   for (int k = 0; k < count; ++k) {
     RatVec x(n);
-    for (int i = 0; i < n; ++i) x[i] = Rational(static_cast<long>(rng() % (6L << 20)) - (3L << 20)) * unit;
+    for (int i = 0; i < n; ++i)
+      x[i] = Rational(static_cast<long>(rng() % (6L << 20)) - (3L << 20)) * unit;
     if (k % 2) {
       const IntVec& nu = normals[rng() % normals.size()];
       int axis = 0;
@@ -193,21 +200,25 @@ void check_filter(const std::string& preset, Evaluate evaluate, double tolerance
     const Exact e = ref.at(x);
     std::array<T, N> xt;
     for (int i = 0; i < N; ++i) xt[i] = static_cast<T>(to_double(x[i]));
-    for (int i = 0; i < N; ++i) ASSERT_EQ(exact_rational(static_cast<double>(xt[i])), x[i]) << "not representable";
+    for (int i = 0; i < N; ++i)
+      ASSERT_EQ(exact_rational(static_cast<double>(xt[i])), x[i]) << "not representable";
     // The three paths: value only, value + gradient, value + gradient + Hessian.
     std::array<T, N> g, g2;
     std::array<T, H> h;
     const T v0 = evaluate(xt, nullptr, nullptr);
     const T v1 = evaluate(xt, &g, nullptr);
     const T v2 = evaluate(xt, &g2, &h);
-    for (const T v : {v0, v1, v2}) worst = std::max(worst, std::abs(static_cast<double>(v) - to_double(e.value)));
+    for (const T v : {v0, v1, v2})
+      worst = std::max(worst, std::abs(static_cast<double>(v) - to_double(e.value)));
     for (int d = 0; d < N; ++d)
       for (const T gd : {g[d], g2[d]})
-        worst_gradient = std::max(worst_gradient, std::abs(static_cast<double>(gd) - to_double(e.gradient[d])));
+        worst_gradient =
+            std::max(worst_gradient, std::abs(static_cast<double>(gd) - to_double(e.gradient[d])));
     if (!c2 && !e.hessian_defined) continue;
     ++hessians_compared;
     for (int k = 0; k < H; ++k)
-      worst_hessian = std::max(worst_hessian, std::abs(static_cast<double>(h[k]) - to_double(e.hessian[k])));
+      worst_hessian =
+          std::max(worst_hessian, std::abs(static_cast<double>(h[k]) - to_double(e.hessian[k])));
   }
   EXPECT_LE(worst / kMaxV, tolerance) << preset << " value";
   EXPECT_LE(worst_gradient / kMaxV, tolerance) << preset << " gradient";
@@ -219,24 +230,32 @@ void check_filter(const std::string& preset, Evaluate evaluate, double tolerance
 template <class T, std::size_t N>
 using HessianOf = std::array<T, N*(N + 1) / 2>;
 
-#define BOXGEN_EMITTED_TEST(NS, PRESET, N)                                                              \
-  TEST(Emitted, NS##Double) {                                                                          \
-    check_filter<double, N>(                                                                           \
-        PRESET,                                                                                        \
-        [](const std::array<double, N>& x, std::array<double, N>* g, HessianOf<double, N>* h) {        \
-          return generated::NS::evaluate<double>(                                                      \
-              x, [](const generated::NS::Point& j) { return data_value(IntVec(j.begin(), j.end())); }, g, h); \
-        },                                                                                             \
-        1e-13);                                                                                        \
-  }                                                                                                    \
-  TEST(Emitted, NS##Float) {                                                                           \
-    check_filter<float, N>(                                                                            \
-        PRESET,                                                                                        \
-        [](const std::array<float, N>& x, std::array<float, N>* g, HessianOf<float, N>* h) {           \
-          return generated::NS::evaluate<float>(                                                       \
-              x, [](const generated::NS::Point& j) { return data_value(IntVec(j.begin(), j.end())); }, g, h); \
-        },                                                                                             \
-        2e-6);                                                                                         \
+#define BOXGEN_EMITTED_TEST(NS, PRESET, N)                                                      \
+  TEST(Emitted, NS##Double) {                                                                   \
+    check_filter<double, N>(                                                                    \
+        PRESET,                                                                                 \
+        [](const std::array<double, N>& x, std::array<double, N>* g, HessianOf<double, N>* h) { \
+          return generated::NS::evaluate<double>(                                               \
+              x,                                                                                \
+              [](const generated::NS::Point& j) {                                               \
+                return data_value(IntVec(j.begin(), j.end()));                                  \
+              },                                                                                \
+              g, h);                                                                            \
+        },                                                                                      \
+        1e-13);                                                                                 \
+  }                                                                                             \
+  TEST(Emitted, NS##Float) {                                                                    \
+    check_filter<float, N>(                                                                     \
+        PRESET,                                                                                 \
+        [](const std::array<float, N>& x, std::array<float, N>* g, HessianOf<float, N>* h) {    \
+          return generated::NS::evaluate<float>(                                                \
+              x,                                                                                \
+              [](const generated::NS::Point& j) {                                               \
+                return data_value(IntVec(j.begin(), j.end()));                                  \
+              },                                                                                \
+              g, h);                                                                            \
+        },                                                                                      \
+        2e-6);                                                                                  \
   }
 
 BOXGEN_EMITTED_TEST(m7, "m7", 3)
@@ -276,8 +295,10 @@ TEST(Emitted, HeadersNameTheirStrategy) {
 // The recorded counts are the cost model `auto` chose by: the separable M12 is far cheaper than
 // its Horner form, and every path costs at least the one before it.
 TEST(Emitted, HeadersRecordTheirOperationCounts) {
-  EXPECT_LT(boxgen::generated::m12::kGradientOperations, boxgen::generated::m12_horner::kGradientOperations / 4);
-  EXPECT_LT(boxgen::generated::tricubic::kGradientOperations, boxgen::generated::tricubic_horner::kGradientOperations);
+  EXPECT_LT(boxgen::generated::m12::kGradientOperations,
+            boxgen::generated::m12_horner::kGradientOperations / 4);
+  EXPECT_LT(boxgen::generated::tricubic::kGradientOperations,
+            boxgen::generated::tricubic_horner::kGradientOperations);
   EXPECT_LT(boxgen::generated::m7::kValueOperations, boxgen::generated::m7::kGradientOperations);
   EXPECT_LT(boxgen::generated::m7::kGradientOperations, boxgen::generated::m7::kHessianOperations);
 }

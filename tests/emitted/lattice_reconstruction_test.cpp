@@ -36,15 +36,20 @@ namespace {
 namespace gen = boxgen::generated;
 
 // x^3 - 2xyz + 3y^2 - z + 1 (degree 3) and 2x^2 - xy + 3z^2 - y + 0.5 (degree 2).
-double cubic_poly(const Vec3& p) { return p[0] * p[0] * p[0] - 2 * p[0] * p[1] * p[2] + 3 * p[1] * p[1] - p[2] + 1; }
-double quadratic_poly(const Vec3& p) { return 2 * p[0] * p[0] - p[0] * p[1] + 3 * p[2] * p[2] - p[1] + 0.5; }
+double cubic_poly(const Vec3& p) {
+  return p[0] * p[0] * p[0] - 2 * p[0] * p[1] * p[2] + 3 * p[1] * p[1] - p[2] + 1;
+}
+double quadratic_poly(const Vec3& p) {
+  return 2 * p[0] * p[0] - p[0] * p[1] + 3 * p[2] * p[2] - p[1] + 0.5;
+}
 
 // Coset cells of margin: the stencil reach (lattice units) over d, plus one for the prefilter.
 template <class Tr>
 int margin_for(const CosetLattice& lattice) {
   int reach = 0;
   for (int a = 0; a < 3; ++a)
-    reach = std::max({reach, -Tr::kStencilReachLo[a] + static_cast<int>(std::ceil(Tr::kCentre[a])), Tr::kStencilReachHi[a] + 1});
+    reach = std::max({reach, -Tr::kStencilReachLo[a] + static_cast<int>(std::ceil(Tr::kCentre[a])),
+                      Tr::kStencilReachHi[a] + 1});
   return (reach + lattice.period() - 1) / lattice.period() + 2;
 }
 
@@ -54,7 +59,8 @@ void expect_reproduction(const char* expected_lattice, const Tap (&q1)[N], int d
   const CosetLattice lattice = filter_lattice<Tr>();
   EXPECT_EQ(lattice.name(), expected_lattice);
   const auto f = degree == 3 ? cubic_poly : quadratic_poly;
-  LatticeVolume<double> v = sample_lattice<double>(f, cube_lattice_grid(lattice, 9, margin_for<Tr>(lattice)));
+  LatticeVolume<double> v =
+      sample_lattice<double>(f, cube_lattice_grid(lattice, 9, margin_for<Tr>(lattice)));
   v = prefilter(v, prefilter_from(q1));
   const LatticeReconstructor<Tr, double> r(v);
   std::mt19937_64 rng(3);
@@ -82,7 +88,8 @@ TEST(LatticeReconstruction, Q1ReproducesPolynomialsOfEveryFilterOnItsLattice) {
 
 TEST(LatticeReconstruction, GradientsOfAReproducedPolynomialAreExact) {
   const CosetLattice lattice = filter_lattice<gen::fcc6::Traits>();
-  LatticeVolume<double> v = sample_lattice<double>(quadratic_poly, cube_lattice_grid(lattice, 9, 6));
+  LatticeVolume<double> v =
+      sample_lattice<double>(quadratic_poly, cube_lattice_grid(lattice, 9, 6));
   v = prefilter(v, prefilter_from(gen::fcc6::q1));
   const LatticeReconstructor<gen::fcc6::Traits, double> r(v);
   for (const Vec3& p : {Vec3{0.1, 0.2, -0.3}, Vec3{-0.7, 0.4, 0.9}}) {
@@ -99,18 +106,23 @@ TEST(LatticeReconstruction, GradientsOfAReproducedPolynomialAreExact) {
 }
 
 TEST(LatticeReconstruction, AFilterOnAVolumeOfAnotherLatticeIsOneError) {
-  const LatticeVolume<double> fcc = sample_lattice<double>(cubic_poly, cube_lattice_grid(CosetLattice::fcc(), 5, 4));
+  const LatticeVolume<double> fcc =
+      sample_lattice<double>(cubic_poly, cube_lattice_grid(CosetLattice::fcc(), 5, 4));
   try {
     const LatticeReconstructor<gen::m7::Traits, double> r(fcc);
     ADD_FAILURE() << "no error";
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "filter m7 is for the bcc lattice, but the volume is on the fcc lattice");
+    EXPECT_STREQ(e.what(),
+                 "filter m7 is for the bcc lattice, but the volume is on the fcc lattice");
   }
-  const LatticeVolume<float> cart = sample_lattice<float>(cubic_poly, cube_lattice_grid(CosetLattice::cartesian(), 5, 4));
+  const LatticeVolume<float> cart =
+      sample_lattice<float>(cubic_poly, cube_lattice_grid(CosetLattice::cartesian(), 5, 4));
   EXPECT_THROW((LatticeReconstructor<gen::fcc6::Traits, float>(cart)), std::invalid_argument);
   // The same points with the cosets in another order are the same lattice.
   const LatticeVolume<double> moved = sample_lattice<double>(
-      cubic_poly, cube_lattice_grid(CosetLattice::fcc().with_offsets({{0, 1, 1}, {0, 0, 0}, {1, 1, 0}, {1, 0, 1}}), 5, 4));
+      cubic_poly,
+      cube_lattice_grid(
+          CosetLattice::fcc().with_offsets({{0, 1, 1}, {0, 0, 0}, {1, 1, 0}, {1, 0, 1}}), 5, 4));
   EXPECT_NO_THROW((LatticeReconstructor<gen::fcc6::Traits, double>(moved)));
   // Points whose stencil leaves the volume, and non-finite points.
   const LatticeReconstructor<gen::fcc6::Traits, double> r(moved);
@@ -145,7 +157,8 @@ TEST(LatticeReconstruction, OnBccItAgreesWithTheBccReconstructor) {
 template <class Tr, class Tap, std::size_t N>
 double ml_rms(int n, const Tap (*q)[N]) {
   const CosetLattice lattice = filter_lattice<Tr>();
-  LatticeVolume<double> v = sample_lattice<double>(marschner_lobb, cube_lattice_grid(lattice, n, margin_for<Tr>(lattice)));
+  LatticeVolume<double> v = sample_lattice<double>(
+      marschner_lobb, cube_lattice_grid(lattice, n, margin_for<Tr>(lattice)));
   if (q) v = prefilter(v, prefilter_from(*q));
   const LatticeReconstructor<Tr, double> r(v);
   std::mt19937_64 rng(1);
@@ -161,7 +174,9 @@ double ml_rms(int n, const Tap (*q)[N]) {
 }
 
 // Samples per coset and axis for about the sample count of n^3 x 2 BCC samples: K m^3 = 2 n^3.
-int equal_count_density(int n, int cosets) { return static_cast<int>(std::lround(n * std::cbrt(2.0 / cosets))); }
+int equal_count_density(int n, int cosets) {
+  return static_cast<int>(std::lround(n * std::cbrt(2.0 / cosets)));
+}
 
 TEST(LatticeReconstruction, MarschnerLobbAtEqualSampleCounts) {
   for (int n : {17, 33}) {
@@ -170,12 +185,15 @@ TEST(LatticeReconstruction, MarschnerLobbAtEqualSampleCounts) {
     const double m7_q1 = ml_rms<gen::m7::Traits>(n, &gen::m7::q1);
     const double fcc6_none = ml_rms<gen::fcc6::Traits, gen::fcc6::PrefilterTap, 1>(nf, nullptr);
     const double fcc6_q1 = ml_rms<gen::fcc6::Traits>(nf, &gen::fcc6::q1);
-    const double tricubic_none = ml_rms<gen::tricubic::Traits, gen::tricubic::PrefilterTap, 1>(nc, nullptr);
+    const double tricubic_none =
+        ml_rms<gen::tricubic::Traits, gen::tricubic::PrefilterTap, 1>(nc, nullptr);
     const double tricubic_q1 = ml_rms<gen::tricubic::Traits>(nc, &gen::tricubic::q1);
-    std::printf("ML rms at about %d samples: m7/bcc N=%d (%d) none %.4e q1 %.4e | fcc6/fcc N=%d (%d) none %.4e q1 %.4e | "
-                "tricubic/cartesian N=%d (%d) none %.4e q1 %.4e\n",
-                2 * n * n * n, n, 2 * n * n * n, m7_none, m7_q1, nf, 4 * nf * nf * nf, fcc6_none, fcc6_q1, nc, nc * nc * nc,
-                tricubic_none, tricubic_q1);
+    std::printf(
+        "ML rms at about %d samples: m7/bcc N=%d (%d) none %.4e q1 %.4e | fcc6/fcc N=%d (%d) none "
+        "%.4e q1 %.4e | "
+        "tricubic/cartesian N=%d (%d) none %.4e q1 %.4e\n",
+        2 * n * n * n, n, 2 * n * n * n, m7_none, m7_q1, nf, 4 * nf * nf * nf, fcc6_none, fcc6_q1,
+        nc, nc * nc * nc, tricubic_none, tricubic_q1);
     // What must hold: every reconstruction is finite and far better than the function's range
     // (0..1); at N = 33 (no longer badly under-sampled) Q^I helps each filter.
     for (double e : {m7_none, m7_q1, fcc6_none, fcc6_q1, tricubic_none, tricubic_q1}) {

@@ -27,10 +27,15 @@ inline const Analysis& cached_analysis(const std::string& preset, bool verify) {
 }  // namespace detail
 
 // Properties, piecewise form and structure (no exact checks).
-inline const Analysis& analysis_of(const std::string& preset) { return detail::cached_analysis(preset, false); }
+inline const Analysis& analysis_of(const std::string& preset) {
+  return detail::cached_analysis(preset, false);
+}
 // The same with the default exact checks run (a failing check throws InternalError).
-inline const Analysis& verified_analysis_of(const std::string& preset) { return detail::cached_analysis(preset, true); }
+inline const Analysis& verified_analysis_of(const std::string& preset) {
+  return detail::cached_analysis(preset, true);
+}
 
-inline const char* const kAllPresets[] = {"m7", "m8", "m12", "cart7", "fcc6", "tricubic", "hex3", "zp"};
+inline const char* const kAllPresets[] = {"m7",   "m8",       "m12",  "cart7",
+                                          "fcc6", "tricubic", "hex3", "zp"};
 
 }  // namespace boxgen::testing

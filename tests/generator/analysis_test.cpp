@@ -21,9 +21,10 @@ struct Expected {
 // M12, M8, M7: Table 1 of Kim 2013 and its section 4 (24 congruent tetrahedra for M7, 6 for M8;
 // M12's pieces are unit cubes: 4 per fundamental region of volume 4, one type up to symmetry).
 // cart7: volume = sum of |det| over triples = 1 (e1 e2 e3) + 12 (two axes, a diagonal) +
-//   24 (one axis, two diagonals: 2 per pair with nonzero minor, 4 such pairs per axis) + 16 (4 triples of
-//   diagonals, |det| 4); order 4 (the plane x = 0 misses e1 and all 4 diagonals: 5; y = z misses
-//   e2, e3 and two diagonals: 4); det 2 subsets -> dependent; 48 signed permutations keep it.
+//   24 (one axis, two diagonals: 2 per pair with nonzero minor, 4 such pairs per axis) + 16 (4
+//   triples of diagonals, |det| 4); order 4 (the plane x = 0 misses e1 and all 4 diagonals: 5; y =
+//   z misses e2, e3 and two diagonals: 4); det 2 subsets -> dependent; 48 signed permutations keep
+//   it.
 // fcc6: Kim, Entezari, Peters 2008 (paper ref [15]): cubic, C^1, order 3, 16-sample stencil; every
 //   triple of face diagonals has |det| 0 or 2 = |det G_fcc| -> independent; volume 16 * 2 = 32.
 //   Its pieces are the FCC Delaunay tetrahedra and octahedra; the octahedra split into tetrahedra
@@ -33,10 +34,10 @@ struct Expected {
 // zp: the Zwart-Powell element: quadratic, order 3, support area 7, four triangles per unit square,
 //   det((1,1),(-1,1)) = 2 -> dependent.
 const Expected kExpected[] = {
-    {"m12", 9, 4, 512, 128, false, 4, 1, 48},     {"m8", 5, 4, 128, 32, true, 6, 1, 48},
-    {"m7", 4, 4, 120, 30, false, 24, 1, 48},      {"cart7", 4, 4, 53, 53, false, 24, 1, 48},
-    {"fcc6", 3, 3, 32, 16, true, 10, 2, 48},      {"tricubic", 9, 4, 64, 64, true, 1, 1, 48},
-    {"hex3", 1, 2, 3, 3, true, 2, 1, 4},          {"zp", 2, 3, 7, 7, false, 4, 1, 8},
+    {"m12", 9, 4, 512, 128, false, 4, 1, 48}, {"m8", 5, 4, 128, 32, true, 6, 1, 48},
+    {"m7", 4, 4, 120, 30, false, 24, 1, 48},  {"cart7", 4, 4, 53, 53, false, 24, 1, 48},
+    {"fcc6", 3, 3, 32, 16, true, 10, 2, 48},  {"tricubic", 9, 4, 64, 64, true, 1, 1, 48},
+    {"hex3", 1, 2, 3, 3, true, 2, 1, 4},      {"zp", 2, 3, 7, 7, false, 4, 1, 8},
 };
 
 class AnalyzePreset : public ::testing::TestWithParam<Expected> {};
@@ -99,10 +100,11 @@ TEST(Analyze, EveryRegionMapsOntoItsReference) {
 
 TEST(Analyze, JsonHasTheDocumentedKeys) {
   const auto j = to_json(analysis_of("m7"));
-  for (const char* key : {"dimension", "directions", "lattice", "degree", "continuity", "approximation_order",
-                          "support_volume", "stencil_size", "stencil_size_min", "stencil_size_max",
-                          "linearly_independent", "pieces", "regions_per_fundamental_region",
-                          "symmetry_group_order", "regions_up_to_symmetry", "derivation_seconds"})
+  for (const char* key :
+       {"dimension", "directions", "lattice", "degree", "continuity", "approximation_order",
+        "support_volume", "stencil_size", "stencil_size_min", "stencil_size_max",
+        "linearly_independent", "pieces", "regions_per_fundamental_region", "symmetry_group_order",
+        "regions_up_to_symmetry", "derivation_seconds"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["support_volume"], "120");
 }

@@ -20,12 +20,19 @@ using testing::negated;
 
 BoxSplineSpec m7() { return {"m7", "", concat({kXi1, kXi2}), Lattice::bcc()}; }
 BoxSplineSpec m8() { return {"m8", "", concat({kXi1, kXi1}), Lattice::bcc()}; }
-BoxSplineSpec m12() { return {"m12", "", concat({kXi2, kXi2, negated(kXi2), negated(kXi2)}), Lattice::bcc()}; }
+BoxSplineSpec m12() {
+  return {"m12", "", concat({kXi2, kXi2, negated(kXi2), negated(kXi2)}), Lattice::bcc()};
+}
 BoxSplineSpec fcc6() {
-  return {"fcc6", "", {{1, 1, 0}, {1, -1, 0}, {1, 0, 1}, {1, 0, -1}, {0, 1, 1}, {0, 1, -1}}, Lattice::fcc()};
+  return {"fcc6",
+          "",
+          {{1, 1, 0}, {1, -1, 0}, {1, 0, 1}, {1, 0, -1}, {0, 1, 1}, {0, 1, -1}},
+          Lattice::fcc()};
 }
 BoxSplineSpec cart7() {
-  return {"cart7", "", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}},
+  return {"cart7",
+          "",
+          {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}},
           Lattice::cartesian(3)};
 }
 BoxSplineSpec hex3() { return {"hex3", "", {{1, 0}, {0, 1}, {1, 1}}, Lattice::cartesian(2)}; }
@@ -109,7 +116,8 @@ TEST(Autocorr, SamplesSumToInverseLatticeDeterminant) {
 TEST(Autocorr, CourantElementByTheSimplexFormula) {
   const auto a = autocorrelation_refinement(hex3());
   std::map<IntVec, Rational> expected{{{0, 0}, Rational(1) / 2}};
-  for (const IntVec& j : {IntVec{1, 0}, IntVec{0, 1}, IntVec{1, 1}, IntVec{-1, 0}, IntVec{0, -1}, IntVec{-1, -1}})
+  for (const IntVec& j :
+       {IntVec{1, 0}, IntVec{0, 1}, IntVec{1, 1}, IntVec{-1, 0}, IntVec{0, -1}, IntVec{-1, -1}})
     expected[j] = Rational(1) / 12;
   EXPECT_EQ(as_map(a), expected);
 }
@@ -125,7 +133,8 @@ TEST(Autocorr, M12IsProductOfOneDimensionalDoubledBsplines) {
   std::size_t nonzero = 0;
   for (const auto& j : bcc.points_in_box({-9, -9, -9}, {9, 9, 9})) {
     Rational expected = 1;
-    for (auto c : j) expected = expected * cardinal_bspline(8, Rational(rational_from(c)) / 2 + 4) / 2;
+    for (auto c : j)
+      expected = expected * cardinal_bspline(8, Rational(rational_from(c)) / 2 + 4) / 2;
     auto it = a.find(j);
     EXPECT_EQ(it == a.end() ? Rational(0) : it->second, expected);
     nonzero += !cln::zerop(expected);

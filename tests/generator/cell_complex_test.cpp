@@ -30,7 +30,8 @@ TEST(CellComplex, TwoDiagonalsMeetAtTheCentre) {
   Rational area = 0;
   for (const auto& c : cells) {
     EXPECT_EQ(c.vertices.size(), 3u);
-    EXPECT_TRUE(vertex_set(c).count({Rational(7) / 2, Rational(-3) / 2})) << "every triangle has the centre";
+    EXPECT_TRUE(vertex_set(c).count({Rational(7) / 2, Rational(-3) / 2}))
+        << "every triangle has the centre";
     area = area + simplex_volume(c.vertices);
   }
   EXPECT_EQ(area, 1);
@@ -43,11 +44,13 @@ TEST(KnotComplexCells, FindsEveryCellByItsKeyAndTilesTheHexagon) {
   Rational area = 0;
   for (std::size_t i = 0; i < complex.cells().size(); ++i) {
     EXPECT_EQ(complex.find(complex.cells()[i].key), static_cast<int>(i));
-    for (const auto& simplex : triangulate(complex.cells()[i], complex)) area = area + simplex_volume(simplex);
+    for (const auto& simplex : triangulate(complex.cells()[i], complex))
+      area = area + simplex_volume(simplex);
   }
   EXPECT_EQ(complex.cells().size(), 6u);
   EXPECT_EQ(area, 3);
-  EXPECT_EQ(complex.locate({Rational(19) / 10, Rational(1) / 10}), -1);  // in the box, outside the hexagon
+  EXPECT_EQ(complex.locate({Rational(19) / 10, Rational(1) / 10}),
+            -1);  // in the box, outside the hexagon
   EXPECT_GE(complex.locate({Rational(1) / 3, Rational(1) / 7}), 0);
 }
 

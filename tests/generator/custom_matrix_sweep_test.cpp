@@ -19,7 +19,8 @@ std::vector<std::string> small_planar_sets() {
       if (a > 0 || (a == 0 && b > 0)) dirs.push_back({a, b});
   auto text = [&](std::initializer_list<std::size_t> idx) {
     std::string s;
-    for (std::size_t i : idx) s += fmt::format("{}{},{}", s.empty() ? "" : ";", dirs[i][0], dirs[i][1]);
+    for (std::size_t i : idx)
+      s += fmt::format("{}{},{}", s.empty() ? "" : ";", dirs[i][0], dirs[i][1]);
     return s;
   };
   std::vector<std::string> sets;

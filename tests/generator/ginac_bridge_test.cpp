@@ -31,13 +31,14 @@ Poly sample_poly() {
 TEST(GinacBridge, ToExpressionIsTheHandWrittenExpression) {
   const auto& v = coordinate_symbols(3);
   const GiNaC::numeric big = (GiNaC::numeric(2).power(100) + 1) / 3;
-  const GiNaC::ex expected = GiNaC::numeric(3, 7) * GiNaC::pow(v[0], 2) * v[1] - 5 * v[2] + GiNaC::numeric(1, 2) +
-                             big * v[0] * v[1] * GiNaC::pow(v[2], 4);
+  const GiNaC::ex expected = GiNaC::numeric(3, 7) * GiNaC::pow(v[0], 2) * v[1] - 5 * v[2] +
+                             GiNaC::numeric(1, 2) + big * v[0] * v[1] * GiNaC::pow(v[2], 4);
   EXPECT_TRUE((to_ex(sample_poly()) - expected).expand().is_zero()) << to_ex(sample_poly());
 }
 
 TEST(GinacBridge, ParsedTextBecomesTheExactPolynomial) {
-  const Poly p = to_poly(parse("1/2 - 5*z + 3/7*x^2*y + (2^100+1)/3*x*y*z^4"), coordinate_symbols(3));
+  const Poly p =
+      to_poly(parse("1/2 - 5*z + 3/7*x^2*y + (2^100+1)/3*x*y*z^4"), coordinate_symbols(3));
   EXPECT_EQ(p, sample_poly());
   // Products are expanded and like terms collected.
   const Poly q = to_poly(parse("(x+1)^2 - x^2 - 2*x"), coordinate_symbols(3));

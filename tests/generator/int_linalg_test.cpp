@@ -7,7 +7,7 @@ namespace boxgen {
 namespace {
 
 TEST(IntLinalg, DeterminantAndRank) {
-  EXPECT_EQ(det({{1, 3}, {2, 4}}), -2);  // columns (1,3), (2,4)
+  EXPECT_EQ(det({{1, 3}, {2, 4}}), -2);                     // columns (1,3), (2,4)
   EXPECT_EQ(det({{-1, 1, 1}, {1, -1, 1}, {1, 1, -1}}), 4);  // the BCC generator
   EXPECT_EQ(rank({{1, 2, 3}, {2, 4, 6}}, 3), 1);
   EXPECT_EQ(rank({{1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, 3), 2);

@@ -23,7 +23,8 @@ TEST(KnotPlanes, LevelsAreTheSubSumsAlongEachNormal) {
   bool found = false;
   for (size_t i = 0; i < planes.normals.size(); ++i) {
     if (planes.normals[i] == IntVec{1, -20}) {
-      EXPECT_EQ(planes.levels[i], (std::vector<std::int64_t>{-581, -492, -488, -399, -182, -93, -89, 0}));
+      EXPECT_EQ(planes.levels[i],
+                (std::vector<std::int64_t>{-581, -492, -488, -399, -182, -93, -89, 0}));
       found = true;
     }
     if (planes.normals[i] == IntVec{-1, 20}) {
@@ -51,7 +52,8 @@ TEST(KnotComplex, ShiftLocatorAgreesWithRationalLocation) {
   for (size_t c = 0; c < form.knots.cells().size(); c += 7) {
     const RatVec& p = form.knots.cells()[c].interior;
     const ShiftLocator locate(form.knots, p);
-    for (const IntVec& j : {IntVec{0, 0, 0}, IntVec{1, 1, 1}, IntVec{-1, 1, -1}, IntVec{2, 0, 0}, IntVec{0, -2, 0}}) {
+    for (const IntVec& j :
+         {IntVec{0, 0, 0}, IntVec{1, 1, 1}, IntVec{-1, 1, -1}, IntVec{2, 0, 0}, IntVec{0, -2, 0}}) {
       RatVec q = p;
       for (int k = 0; k < 3; ++k) q[k] = q[k] - Rational(j[k]);
       EXPECT_EQ(locate.cell_at(j), form.knots.locate(q));
@@ -76,7 +78,8 @@ TEST(KnotComplex, ScaledMatrixOnScaledLatticeHasTheSameCells) {
 
 // Long directions: values of the piecewise form against the independent recurrence.
 TEST(KnotComplex, LongDirectionsAgreeWithTheRecurrence) {
-  for (const char* spec : {"20,1; 1,20; 7,5; -9,4", "1,2,3; 3,1,2; 2,3,1; -1,2,3", "3,1; 1,3; 2,-5"}) {
+  for (const char* spec :
+       {"20,1; 1,20; 7,5; -9,4", "1,2,3; 3,1,2; 2,3,1; -1,2,3", "3,1; 1,3; 2,-5"}) {
     const BoxSplineSpec s = parse_spec(spec);
     const PiecewiseForm form = derive_piecewise(s, DerivationMethod::TruncatedPower);
     BoxSplineRecurrence recurrence(s.directions);
@@ -84,7 +87,8 @@ TEST(KnotComplex, LongDirectionsAgreeWithTheRecurrence) {
     for (size_t c = 0; c < form.knots.cells().size(); ++c) {
       RatVec x = form.knots.cells()[c].interior;
       static const long primes[] = {1000003, 1000033, 1000037};
-      for (size_t k = 0; k < x.size(); ++k) x[k] = x[k] + Rational(1) / primes[k];  // generic, nearby
+      for (size_t k = 0; k < x.size(); ++k)
+        x[k] = x[k] + Rational(1) / primes[k];  // generic, nearby
       const Rational expected = recurrence.value(x);
       EXPECT_EQ(form.value_at(x), expected) << spec << " cell " << c;
       nonzero += !cln::zerop(expected);
@@ -104,7 +108,8 @@ TEST(ReducedChecks, AgreeWithTheFullChecks) {
     EXPECT_LT(orbits.representatives.size(), a.form.knots.cells().size()) << preset;
     EXPECT_EQ(total_integral(a.form, orbits), total_integral(a.form)) << preset;
     const int order = a.properties.approximation_order - 1;
-    EXPECT_EQ(check_continuity(a.form, order, orbits.representatives).sharp, check_continuity(a.form, order).sharp);
+    EXPECT_EQ(check_continuity(a.form, order, orbits.representatives).sharp,
+              check_continuity(a.form, order).sharp);
     EXPECT_NO_THROW(check_partition_of_unity(a.form, a.structure, false)) << preset;
     EXPECT_NO_THROW(check_partition_of_unity(a.form, a.structure, true)) << preset;
   }

@@ -29,7 +29,9 @@ TEST(KnotNormals, ArrangementPutsTheAxesFirst) {
 TEST(KnotNormals, SpatialPlanesOfThreeAxes) {
   // e1, e2, e3 and (1,1,1): planes spanned by pairs.
   const auto normals = knot_normals({{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}}, 3);
-  EXPECT_EQ(as_set(normals), (std::set<IntVec>{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 1, -1}, {1, 0, -1}, {1, -1, 0}}));
+  EXPECT_EQ(
+      as_set(normals),
+      (std::set<IntVec>{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 1, -1}, {1, 0, -1}, {1, -1, 0}}));
 }
 
 TEST(KnotNormals, BasisFirstMovesAnIndependentSetToTheFront) {

@@ -16,8 +16,8 @@ TEST(Lattice, BccMembershipIsAllEvenOrAllOdd) {
   for (int x = -3; x <= 3; ++x)
     for (int y = -3; y <= 3; ++y)
       for (int z = -3; z <= 3; ++z) {
-        const bool expected = (x % 2 == 0 && y % 2 == 0 && z % 2 == 0) ||
-                              (x % 2 != 0 && y % 2 != 0 && z % 2 != 0);
+        const bool expected =
+            (x % 2 == 0 && y % 2 == 0 && z % 2 == 0) || (x % 2 != 0 && y % 2 != 0 && z % 2 != 0);
         EXPECT_EQ(bcc.contains({x, y, z}), expected) << x << ' ' << y << ' ' << z;
       }
 }
@@ -27,11 +27,13 @@ TEST(Lattice, FccMembershipIsEvenCoordinateSum) {
   EXPECT_EQ(fcc.det_abs(), 2);
   for (int x = -2; x <= 2; ++x)
     for (int y = -2; y <= 2; ++y)
-      for (int z = -2; z <= 2; ++z) EXPECT_EQ(fcc.contains({x, y, z}), ((x + y + z) % 2 + 2) % 2 == 0);
+      for (int z = -2; z <= 2; ++z)
+        EXPECT_EQ(fcc.contains({x, y, z}), ((x + y + z) % 2 + 2) % 2 == 0);
 }
 
 TEST(Lattice, CosetRepresentativesAreDistinctAndComplete) {
-  for (const Lattice& l : {Lattice::bcc(), Lattice::fcc(), Lattice::cartesian(3), Lattice::cartesian(2)}) {
+  for (const Lattice& l :
+       {Lattice::bcc(), Lattice::fcc(), Lattice::cartesian(3), Lattice::cartesian(2)}) {
     auto reps = l.coset_representatives();
     EXPECT_EQ(static_cast<std::int64_t>(reps.size()), l.det_abs());
     std::set<IntVec> seen;

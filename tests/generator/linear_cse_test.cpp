@@ -27,7 +27,8 @@ std::map<int, Rational> expand(const LinearRow& row, const SharedRows& s, int in
     work.emplace_back(t.a, w);
     work.emplace_back(t.b, w * t.r);
   }
-  for (auto it = out.begin(); it != out.end();) it = cln::zerop(it->second) ? out.erase(it) : std::next(it);
+  for (auto it = out.begin(); it != out.end();)
+    it = cln::zerop(it->second) ? out.erase(it) : std::next(it);
   return out;
 }
 

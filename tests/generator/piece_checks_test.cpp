@@ -34,7 +34,8 @@ TEST(ExactChecks, IntegralOfCellsCutBySlopeOneHalf) {
   // is not a unit square although it has 2^2 vertices, and must be triangulated (the unit-cube
   // shortcut once took it for one, and these splines failed their integral check).
   for (const char* spec : {"1,0;2,1", "1,0;1,2", "1,0;0,1;1,1;1,-1;2,1"}) {
-    const PiecewiseForm f = derive_piecewise(parse_spec(spec), DerivationMethod::DirectionalIntegration);
+    const PiecewiseForm f =
+        derive_piecewise(parse_spec(spec), DerivationMethod::DirectionalIntegration);
     EXPECT_EQ(total_integral(f), 1) << spec;
   }
 }

@@ -66,7 +66,9 @@ TEST(PieceFormat, JsonIsTheExactData) {
                                {"exponents": [2, 0], "coefficient": "1/2"}]}}]})");
   EXPECT_EQ(pieces_json(filter_piece(), "t"), expected);
   const nlohmann::json spline = pieces_json(spline_piece(), "t")["pieces"][0];
-  EXPECT_EQ(spline["stencil"], nlohmann::json::parse(R"([{"name": "v0", "point": [0, 0]}, {"name": "v1", "point": [1, 0]}])"));
+  EXPECT_EQ(spline["stencil"],
+            nlohmann::json::parse(
+                R"([{"name": "v0", "point": [0, 0]}, {"name": "v1", "point": [1, 0]}])"));
   EXPECT_EQ(spline["polynomial"]["terms"], nlohmann::json::parse(R"([
       {"exponents": [0, 0], "coefficient": {"v1": "1"}},
       {"exponents": [1, 0], "coefficient": {"v0": "1", "v1": "-1"}}])"));
@@ -99,7 +101,9 @@ TEST(PieceFormat, LatexAndC) {
   EXPECT_NE(latex.find("$x \\ge 0$"), std::string::npos) << latex;
   EXPECT_NE(latex.find("\\begin{dmath*}\nM(x,y) = "), std::string::npos) << latex;
   const std::string c = format_pieces(spline_piece(), PieceFormat::C, "t");
-  EXPECT_NE(c.find("double piece_0(double x, double y, const double v[2]) {\n  return "), std::string::npos) << c;
+  EXPECT_NE(c.find("double piece_0(double x, double y, const double v[2]) {\n  return "),
+            std::string::npos)
+      << c;
   EXPECT_NE(c.find("v[1] = V(1,0)"), std::string::npos) << c;
 }
 

@@ -67,7 +67,8 @@ TEST_P(PiecesOfPreset, TextReadsBackAsTheDerivedPolynomials) {
     const GiNaC::ex s = parse(lines[o], n, v).expand();
     GiNaC::exmap zero;
     for (std::size_t k = 0; k < v.size(); ++k) {
-      EXPECT_EQ(to_poly(s.coeff(v[k], 1), coordinate_symbols(n)), ref.basis[k]) << "orbit " << o << ", v" << k;
+      EXPECT_EQ(to_poly(s.coeff(v[k], 1), coordinate_symbols(n)), ref.basis[k])
+          << "orbit " << o << ", v" << k;
       zero[v[k]] = 0;
     }
     EXPECT_TRUE(s.subs(zero).is_zero()) << "a term without a stencil value";
@@ -84,21 +85,26 @@ TEST_P(PiecesOfPreset, TextReadsBackAsTheDerivedPolynomials) {
   for (std::size_t i = 0; i < m_lines.size(); ++i) {
     RatVec u = filter.pieces[i].interior;
     for (int k = 0; k < n; ++k) u[k] = u[k] + c[k];
-    const Poly derived = a.form.poly_at(u).translated(minus_c) *
-                         Rational(a.spec.lattice.det_abs());
+    const Poly derived = a.form.poly_at(u).translated(minus_c) * Rational(a.spec.lattice.det_abs());
     EXPECT_EQ(to_poly(parse(m_lines[i], n, {}), coordinate_symbols(n)), derived) << "piece " << i;
   }
 }
 
 // A generic point strictly inside the convex hull of `vertices`: positive weights with large
 // prime denominators, moved on until the uncentred point is off every knot plane.
-RatVec generic_interior_point(const std::vector<RatVec>& vertices, const BoxSplineSpec& spec, int seed) {
+RatVec generic_interior_point(const std::vector<RatVec>& vertices, const BoxSplineSpec& spec,
+                              int seed) {
   const RatVec c = spline_centre(spec);
   for (int attempt = 0; attempt < 50; ++attempt) {
     std::vector<Rational> w;
     Rational total = 0;
     for (std::size_t i = 0; i < vertices.size(); ++i) {
-      w.push_back(Rational(1) + Rational(static_cast<long>((i * 7 + static_cast<std::size_t>(seed) * 13 + static_cast<std::size_t>(attempt) * 5) % 17 + 1)) / 1000003);
+      w.push_back(Rational(1) +
+                  Rational(static_cast<long>((i * 7 + static_cast<std::size_t>(seed) * 13 +
+                                              static_cast<std::size_t>(attempt) * 5) %
+                                                 17 +
+                                             1)) /
+                      1000003);
       total = total + w.back();
     }
     RatVec x(c.size(), Rational(0)), u(c.size());
@@ -115,9 +121,11 @@ RatVec generic_interior_point(const std::vector<RatVec>& vertices, const BoxSpli
 Rational evaluate(const nlohmann::json& polynomial, const RatVec& x, const std::string& name = "") {
   Rational sum = 0;
   for (const auto& term : polynomial["terms"]) {
-    const nlohmann::json& c = name.empty() ? term["coefficient"] : term["coefficient"].value(name, nlohmann::json("0"));
+    const nlohmann::json& c =
+        name.empty() ? term["coefficient"] : term["coefficient"].value(name, nlohmann::json("0"));
     Rational t = parse_rational(c.get<std::string>());
-    for (std::size_t k = 0; k < x.size(); ++k) t = t * cln::expt(x[k], term["exponents"][k].get<int>());
+    for (std::size_t k = 0; k < x.size(); ++k)
+      t = t * cln::expt(x[k], term["exponents"][k].get<int>());
     sum = sum + t;
   }
   return sum;
@@ -132,7 +140,8 @@ RatVec rationals(const nlohmann::json& list) {
 void expect_inside(const nlohmann::json& region, const RatVec& x) {
   for (const auto& q : region["inequalities"]) {
     Rational lhs = 0;
-    for (std::size_t k = 0; k < x.size(); ++k) lhs = lhs + Rational(q["normal"][k].get<long>()) * x[k];
+    for (std::size_t k = 0; k < x.size(); ++k)
+      lhs = lhs + Rational(q["normal"][k].get<long>()) * x[k];
     EXPECT_LT(lhs, parse_rational(q["bound"].get<std::string>())) << q.dump();
   }
 }
@@ -149,7 +158,8 @@ TEST_P(PiecesOfPreset, JsonPiecesAgreeWithTheRecurrence) {
   };
 
   // The spline on every region of the fundamental region: coefficient of v_k is M(x - j_k).
-  const nlohmann::json spline = pieces_json(spline_pieces(a.form, a.structure, {PieceSelection::All, 0}), "test");
+  const nlohmann::json spline =
+      pieces_json(spline_pieces(a.form, a.structure, {PieceSelection::All, 0}), "test");
   ASSERT_EQ(spline["pieces"].size(), a.structure.regions.size());
   for (const auto& piece : spline["pieces"]) {
     std::vector<RatVec> vertices;
@@ -164,21 +174,24 @@ TEST_P(PiecesOfPreset, JsonPiecesAgreeWithTheRecurrence) {
         for (const auto& v : s["point"]) minus_j.push_back(-v.get<std::int64_t>());
         const Rational expected = det * recurrence.at_shift(minus_j);
         sum = sum + expected;
-        EXPECT_EQ(evaluate(piece["polynomial"], x, s["name"].get<std::string>()), expected) << s.dump();
+        EXPECT_EQ(evaluate(piece["polynomial"], x, s["name"].get<std::string>()), expected)
+            << s.dump();
       }
       EXPECT_EQ(sum, 1) << "the stencil misses a shift of M that is not zero here";
     }
   }
 
   // The filter on one piece per orbit (orbit 0 of each, listed in full by the text test above).
-  const nlohmann::json filter = pieces_json(filter_pieces(a.form, {PieceSelection::Reference, 0}), "test");
+  const nlohmann::json filter =
+      pieces_json(filter_pieces(a.form, {PieceSelection::Reference, 0}), "test");
   for (const auto& piece : filter["pieces"]) {
     std::vector<RatVec> vertices;
     for (const auto& v : piece["region"]["vertices"]) vertices.push_back(rationals(v));
     for (int seed = 0; seed < 3; ++seed) {
       const RatVec x = generic_interior_point(vertices, a.spec, seed);
       expect_inside(piece["region"], x);
-      EXPECT_EQ(evaluate(piece["polynomial"], x), det * box_spline_recurrence(a.spec.directions, uncentred(x)));
+      EXPECT_EQ(evaluate(piece["polynomial"], x),
+                det * box_spline_recurrence(a.spec.directions, uncentred(x)));
     }
   }
 }
@@ -207,8 +220,10 @@ TEST_P(PiecesOfPreset, OrbitsCountsAndRenderingsAreConsistent) {
 
   for (const Pieces* p : {&spline, &reference}) {
     const std::size_t k = p->pieces.size();
-    EXPECT_EQ(count(format_pieces(*p, PieceFormat::Latex, "t"), "\\begin{dmath*}"), static_cast<int>(k));
-    EXPECT_EQ(count(format_pieces(*p, PieceFormat::C, "t"), "\ndouble piece_"), static_cast<int>(k));
+    EXPECT_EQ(count(format_pieces(*p, PieceFormat::Latex, "t"), "\\begin{dmath*}"),
+              static_cast<int>(k));
+    EXPECT_EQ(count(format_pieces(*p, PieceFormat::C, "t"), "\ndouble piece_"),
+              static_cast<int>(k));
     EXPECT_EQ(nlohmann::json::parse(format_pieces(*p, PieceFormat::Json, "t"))["pieces"].size(), k);
   }
 }
@@ -218,10 +233,12 @@ INSTANTIATE_TEST_SUITE_P(AllPresets, PiecesOfPreset, ::testing::ValuesIn(testing
 TEST(Pieces, BadOptionsAreInputErrors) {
   EXPECT_THROW(parse_pieces_of("splines"), InputError);
   EXPECT_THROW(parse_piece_format("pdf"), InputError);
-  for (const char* r : {"", "refrence", "-1", "1.5", "9999999"}) EXPECT_THROW(parse_piece_selection(r), InputError) << r;
+  for (const char* r : {"", "refrence", "-1", "1.5", "9999999"})
+    EXPECT_THROW(parse_piece_selection(r), InputError) << r;
   const Analysis& a = analysis_of("zp");
-  EXPECT_THROW(spline_pieces(a.form, a.structure, {PieceSelection::Orbit, 1}), InputError);  // one orbit
-  EXPECT_THROW(filter_pieces(a.form, {PieceSelection::Orbit, 5}), InputError);              // five orbits
+  EXPECT_THROW(spline_pieces(a.form, a.structure, {PieceSelection::Orbit, 1}),
+               InputError);                                                     // one orbit
+  EXPECT_THROW(filter_pieces(a.form, {PieceSelection::Orbit, 5}), InputError);  // five orbits
   EXPECT_NO_THROW(filter_pieces(a.form, {PieceSelection::Orbit, 4}));
 }
 

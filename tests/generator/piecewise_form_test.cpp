@@ -29,15 +29,19 @@ std::vector<RatVec> generic_points(const PiecewiseForm& form, int count) {
   for (int k = 0; k < count; ++k) {
     RatVec x(n);
     if (k % 2 == 0) {  // near the interior point of a cell of the support
-      const auto& cell = form.knots.cells()[support_cells[static_cast<size_t>(next()) % support_cells.size()]];
-      for (int i = 0; i < n; ++i) x[i] = cell.interior[i] + Rational(1) / Rational(50 * primes[(k + i) % 6]);
+      const auto& cell =
+          form.knots.cells()[support_cells[static_cast<size_t>(next()) % support_cells.size()]];
+      for (int i = 0; i < n; ++i)
+        x[i] = cell.interior[i] + Rational(1) / Rational(50 * primes[(k + i) % 6]);
       out.push_back(x);
       continue;
     }
     for (int i = 0; i < n; ++i) {  // anywhere in the bounding box, one unit beyond
-      const long span = form.complex.hi()[i] - form.complex.lo()[i] + 2;  // one unit beyond each side
+      const long span =
+          form.complex.hi()[i] - form.complex.lo()[i] + 2;  // one unit beyond each side
       const Rational t = Rational(next()) / Rational(20000);
-      x[i] = Rational(form.complex.lo()[i] - 1) + t * Rational(span) + Rational(1) / Rational(primes[(k + i) % 6]);
+      x[i] = Rational(form.complex.lo()[i] - 1) + t * Rational(span) +
+             Rational(1) / Rational(primes[(k + i) % 6]);
     }
     out.push_back(x);
   }

@@ -22,7 +22,8 @@ TEST(Poly, GradedMonomialOrder) {
   // Degree 1 follows degree 0; within a degree the first exponent descends.
   EXPECT_EQ(monomial_exponents(3, 1)[1], (Exponent{1, 0, 0}));
   EXPECT_EQ(monomial_exponents(3, 1)[3], (Exponent{0, 0, 1}));
-  for (std::size_t i = 0; i < monomial_count(3, 4); ++i) EXPECT_EQ(monomial_index(3, monomial_exponents(3, 4)[i]), i);
+  for (std::size_t i = 0; i < monomial_count(3, 4); ++i)
+    EXPECT_EQ(monomial_index(3, monomial_exponents(3, 4)[i]), i);
 }
 
 TEST(Poly, ArithmeticAndEvaluation) {

@@ -39,7 +39,8 @@ TEST(PolynomialCode, OneFunctionPerOrbitInEachStrategy) {
   // cheaper of the others.
   EXPECT_FALSE(orbit_code(ref, 0, 2, 2, EmissionStrategy::Separable).has_value());
   const OrbitCode chosen = choose_orbit_code(ref, 0, 2, 2, EmissionStrategy::Auto);
-  EXPECT_LE(chosen.gradient.total(), std::min(horner->gradient.total(), monomial->gradient.total()));
+  EXPECT_LE(chosen.gradient.total(),
+            std::min(horner->gradient.total(), monomial->gradient.total()));
 }
 
 }  // namespace

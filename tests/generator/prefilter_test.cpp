@@ -18,10 +18,22 @@ namespace {
 
 // The presets, written out here so these tests do not depend on the SPEC parser.
 BoxSplineSpec m7() {
-  return {"m7", "", {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}, {2, 0, 0}, {0, 2, 0}, {0, 0, 2}}, Lattice::bcc()};
+  return {"m7",
+          "",
+          {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}, {2, 0, 0}, {0, 2, 0}, {0, 0, 2}},
+          Lattice::bcc()};
 }
 BoxSplineSpec m8() {
-  return {"m8", "", {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}},
+  return {"m8",
+          "",
+          {{1, 1, 1},
+           {1, -1, -1},
+           {-1, 1, -1},
+           {-1, -1, 1},
+           {1, 1, 1},
+           {1, -1, -1},
+           {-1, 1, -1},
+           {-1, -1, 1}},
           Lattice::bcc()};
 }
 BoxSplineSpec m12() {
@@ -32,10 +44,16 @@ BoxSplineSpec m12() {
   return {"m12", "", xi, Lattice::bcc()};
 }
 BoxSplineSpec cart7() {
-  return {"cart7", "", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}}, Lattice::cartesian(3)};
+  return {"cart7",
+          "",
+          {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}},
+          Lattice::cartesian(3)};
 }
 BoxSplineSpec fcc6() {
-  return {"fcc6", "", {{1, 1, 0}, {1, -1, 0}, {1, 0, 1}, {1, 0, -1}, {0, 1, 1}, {0, 1, -1}}, Lattice::fcc()};
+  return {"fcc6",
+          "",
+          {{1, 1, 0}, {1, -1, 0}, {1, 0, 1}, {1, 0, -1}, {0, 1, 1}, {0, 1, -1}},
+          Lattice::fcc()};
 }
 BoxSplineSpec tricubic() {
   IntColumns xi;
@@ -46,7 +64,9 @@ BoxSplineSpec tricubic() {
 BoxSplineSpec hex3() { return {"hex3", "", {{1, 0}, {0, 1}, {1, 1}}, Lattice::cartesian(2)}; }
 BoxSplineSpec zp() { return {"zp", "", {{1, 0}, {0, 1}, {1, 1}, {-1, 1}}, Lattice::cartesian(2)}; }
 
-std::vector<BoxSplineSpec> all_presets() { return {m7(), m8(), m12(), cart7(), fcc6(), tricubic(), hex3(), zp()}; }
+std::vector<BoxSplineSpec> all_presets() {
+  return {m7(), m8(), m12(), cart7(), fcc6(), tricubic(), hex3(), zp()};
+}
 
 Rational r(long long p, long long q = 1) { return Rational(p) / Rational(q); }
 
@@ -62,7 +82,8 @@ int shell_of(const IntVec& p) {  // BCC: S1 has squared norm 3, S2 squared norm 
 }
 
 // Checks that q has the shells' points, the origin weight and one weight on every other point.
-void expect_origin_and_common(const Prefilter& q, size_t points, const Rational& origin, const Rational& neighbour) {
+void expect_origin_and_common(const Prefilter& q, size_t points, const Rational& origin,
+                              const Rational& neighbour) {
   ASSERT_EQ(q.weights.size(), points);
   EXPECT_EQ(q.parametrisation, "common");
   EXPECT_EQ(q.note, "");
@@ -75,26 +96,30 @@ void expect_origin_and_common(const Prefilter& q, size_t points, const Rational&
 // ---- approximation order ------------------------------------------------------------------------
 
 TEST(ApproximationOrder, PresetsMatchTheLiterature) {
-  // Expected values, each from the literature and a hand count of the most columns on one plane/line:
-  // m7, m8, m12: Table 1 of the paper (order 4 for all three).
-  // cart7: 7 columns; the plane x = y holds e3, (1,1,1), (1,1,-1) and no plane holds 4 -> 7 - 3 = 4.
-  // fcc6: Kim, Entezari, Peters 2008 (paper ref [15]): order 3; the plane x + y + z = 0 holds
+  // Expected values, each from the literature and a hand count of the most columns on one
+  // plane/line: m7, m8, m12: Table 1 of the paper (order 4 for all three). cart7: 7 columns; the
+  // plane x = y holds e3, (1,1,1), (1,1,-1) and no plane holds 4 -> 7 - 3 = 4. fcc6: Kim, Entezari,
+  // Peters 2008 (paper ref [15]): order 3; the plane x + y + z = 0 holds
   //   (1,-1,0), (1,0,-1), (0,1,-1) -> 6 - 3 = 3.
-  // tricubic: the tensor-product cubic B-spline has order 4 (de Boor); a coordinate plane holds 8 of 12.
-  // hex3: the Courant element (piecewise linear) has order 2; each line holds one of 3 columns.
-  // zp: the Zwart-Powell element (C^1 quadratic) has order 3; each line holds one of 4 columns.
-  const std::map<std::string, int> expected{{"m7", 4},       {"m8", 4},   {"m12", 4}, {"cart7", 4},
-                                            {"fcc6", 3},     {"tricubic", 4}, {"hex3", 2}, {"zp", 3}};
+  // tricubic: the tensor-product cubic B-spline has order 4 (de Boor); a coordinate plane holds 8
+  // of 12. hex3: the Courant element (piecewise linear) has order 2; each line holds one of 3
+  // columns. zp: the Zwart-Powell element (C^1 quadratic) has order 3; each line holds one of 4
+  // columns.
+  const std::map<std::string, int> expected{{"m7", 4},   {"m8", 4},       {"m12", 4},  {"cart7", 4},
+                                            {"fcc6", 3}, {"tricubic", 4}, {"hex3", 2}, {"zp", 3}};
   for (const auto& spec : all_presets())
-    EXPECT_EQ(approximation_order(spec.directions, spec.dimension()), expected.at(spec.name)) << spec.name;
+    EXPECT_EQ(approximation_order(spec.directions, spec.dimension()), expected.at(spec.name))
+        << spec.name;
 }
 
 TEST(ApproximationOrder, EdgeCasesCountedByHand) {
-  EXPECT_EQ(approximation_order({{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, 3), 1);             // a box: order 1
-  EXPECT_EQ(approximation_order({{1, 0}, {1, 0}, {0, 1}}, 2), 1);                       // drop (0,1)
-  EXPECT_EQ(approximation_order({{1, 0}, {2, 0}, {-3, 0}, {0, 1}, {0, 5}}, 2), 2);      // parallel columns share a line
-  EXPECT_EQ(approximation_order({{1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, 3), 0);              // no span at all
-  EXPECT_EQ(approximation_order({{1, 0, 0}, {0, 0, 0}, {0, 1, 0}, {0, 0, 1}}, 3), 1);   // a zero column lies on every plane
+  EXPECT_EQ(approximation_order({{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, 3), 1);  // a box: order 1
+  EXPECT_EQ(approximation_order({{1, 0}, {1, 0}, {0, 1}}, 2), 1);           // drop (0,1)
+  EXPECT_EQ(approximation_order({{1, 0}, {2, 0}, {-3, 0}, {0, 1}, {0, 5}}, 2),
+            2);  // parallel columns share a line
+  EXPECT_EQ(approximation_order({{1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, 3), 0);  // no span at all
+  EXPECT_EQ(approximation_order({{1, 0, 0}, {0, 0, 0}, {0, 1, 0}, {0, 0, 1}}, 3),
+            1);  // a zero column lies on every plane
 }
 
 // ---- the paper's Table 1 ------------------------------------------------------------------------
@@ -143,7 +168,8 @@ void expect_moment_conditions(const BoxSplineSpec& spec, const Prefilter& q) {
   for (const auto& w : q.weights) {
     total = total + w.weight;
     for (int a = 0; a < n; ++a)
-      for (int b = 0; b < n; ++b) second[a][b] = second[a][b] + w.weight * w.offset[a] * w.offset[b];
+      for (int b = 0; b < n; ++b)
+        second[a][b] = second[a][b] + w.weight * w.offset[a] * w.offset[b];
   }
   for (const auto& xi : spec.directions)
     for (int a = 0; a < n; ++a)
@@ -179,7 +205,8 @@ TEST(Prefilter, MomentConditionsAndSymmetryHoldForEveryPreset) {
 TEST(Prefilter, MomentSigmaOfThePaper) {
   // docs/design.md §8: M7 and M8 have Sigma = (2/3) I, M12 (4/3) I; so the second moments of q are
   // -(2/3) I and -(4/3) I. A direct check of the Sigma used above for the paper's splines.
-  for (const auto& [spec, diagonal] : {std::pair{m7(), r(-2, 3)}, {m8(), r(-2, 3)}, {m12(), r(-4, 3)}}) {
+  for (const auto& [spec, diagonal] :
+       {std::pair{m7(), r(-2, 3)}, {m8(), r(-2, 3)}, {m12(), r(-4, 3)}}) {
     const Prefilter q = derive_prefilter(spec, {0, 1, 2});
     Rational xx = 0, xy = 0;
     for (const auto& w : q.weights) {
@@ -209,12 +236,13 @@ TEST(Prefilter, OrderSixNeedsOneWeightPerShell) {
   EXPECT_EQ(q.order, 6);
   EXPECT_EQ(q.parametrisation, "per_shell");
   EXPECT_EQ(q.note, "");
-  const std::map<std::int64_t, Rational> by_norm{{0, r(29, 10)}, {1, r(-71, 120)}, {2, r(1, 16)}, {4, r(13, 240)}};
+  const std::map<std::int64_t, Rational> by_norm{
+      {0, r(29, 10)}, {1, r(-71, 120)}, {2, r(1, 16)}, {4, r(13, 240)}};
   ASSERT_EQ(q.weights.size(), 13u);
   for (const auto& w : q.weights) EXPECT_EQ(w.weight, by_norm.at(dot(w.offset, w.offset)));
   // Independent cross-check: on the axis w2 = 0 the condition is the 1-D one for the quintic
-  // B-spline, whose quasi-interpolant on -2..2 is (13/240, -7/15, 73/40, -7/15, 13/240); the sums of
-  // q over the columns x = -2..2 must be exactly that.
+  // B-spline, whose quasi-interpolant on -2..2 is (13/240, -7/15, 73/40, -7/15, 13/240); the sums
+  // of q over the columns x = -2..2 must be exactly that.
   std::map<std::int64_t, Rational> projected;
   for (const auto& w : q.weights) projected[w.offset[0]] = projected[w.offset[0]] + w.weight;
   EXPECT_EQ(projected[0], r(73, 40));
@@ -225,20 +253,25 @@ TEST(Prefilter, OrderSixNeedsOneWeightPerShell) {
 }
 
 TEST(Prefilter, AnisotropicSplineNeedsOneWeightPerOrbit) {
-  // [e1 e1 e2 e2 d d], d = (1,1), on Z^2: order 4, Sigma = [[1/3,1/6],[1/6,1/3]]. Its symmetry group
+  // [e1 e1 e2 e2 d d], d = (1,1), on Z^2: order 4, Sigma = [[1/3,1/6],[1/6,1/3]]. Its symmetry
+  // group
   // {+-I, +-swap} splits shell 2 into {(1,1),(-1,-1)} and {(1,-1),(-1,1)}. Equal weights on a shell
   // give sum q j1 j2 = 0 != -1/6, so only per-orbit weights work; they leave one free parameter.
-  // With the outermost one (the orbit of (-1,1)) zero, by hand: q(1,1) = -1/12, shell 1 -1/12, origin 3/2.
-  const BoxSplineSpec spec{"aniso", "", {{1, 0}, {1, 0}, {0, 1}, {0, 1}, {1, 1}, {1, 1}}, Lattice::cartesian(2)};
+  // With the outermost one (the orbit of (-1,1)) zero, by hand: q(1,1) = -1/12, shell 1 -1/12,
+  // origin 3/2.
+  const BoxSplineSpec spec{
+      "aniso", "", {{1, 0}, {1, 0}, {0, 1}, {0, 1}, {1, 1}, {1, 1}}, Lattice::cartesian(2)};
   const Prefilter q = derive_prefilter(spec, {0, 1, 2});
   EXPECT_EQ(q.order, 4);
   EXPECT_EQ(q.parametrisation, "per_orbit");
   EXPECT_NE(q.note.find("shell 2 orbit of (-1,1)"), std::string::npos) << q.note;
-  const std::map<IntVec, Rational> expected{{{0, 0}, r(3, 2)},   {{1, 0}, r(-1, 12)}, {{-1, 0}, r(-1, 12)},
-                                            {{0, 1}, r(-1, 12)}, {{0, -1}, r(-1, 12)}, {{1, 1}, r(-1, 12)},
-                                            {{-1, -1}, r(-1, 12)}, {{1, -1}, 0},      {{-1, 1}, 0}};
+  const std::map<IntVec, Rational> expected{
+      {{0, 0}, r(3, 2)},     {{1, 0}, r(-1, 12)},  {{-1, 0}, r(-1, 12)},
+      {{0, 1}, r(-1, 12)},   {{0, -1}, r(-1, 12)}, {{1, 1}, r(-1, 12)},
+      {{-1, -1}, r(-1, 12)}, {{1, -1}, 0},         {{-1, 1}, 0}};
   ASSERT_EQ(q.weights.size(), expected.size());
-  for (const auto& w : q.weights) EXPECT_EQ(w.weight, expected.at(w.offset)) << point_string(w.offset);
+  for (const auto& w : q.weights)
+    EXPECT_EQ(w.weight, expected.at(w.offset)) << point_string(w.offset);
   expect_moment_conditions(spec, q);
   expect_symmetric(spec, q);
 }
@@ -292,8 +325,8 @@ TEST(ParseShells, AcceptsListsWithTheOrigin) {
 }
 
 TEST(ParseShells, RejectsMalformedLists) {
-  for (const char* bad : {"", " ", "1", "0,0", "0,9", "0,10", "0,a", "0,,1", "0,1,", "-1", "0;1", "0,1.5",
-                          "0,99999999999999999999"})
+  for (const char* bad : {"", " ", "1", "0,0", "0,9", "0,10", "0,a", "0,,1", "0,1,", "-1", "0;1",
+                          "0,1.5", "0,99999999999999999999"})
     EXPECT_THROW(parse_shells(bad), InputError) << "'" << bad << "'";
 }
 

@@ -13,7 +13,8 @@ Rational frac(long p, long q) { return Rational(p) / Rational(q); }
 
 void expect_parses_to(const std::string& text, const Rational& expected) {
   const Rational got = parse_rational(text);
-  EXPECT_TRUE(got == expected) << "'" << text << "' gave " << to_string(got) << ", expected " << to_string(expected);
+  EXPECT_TRUE(got == expected) << "'" << text << "' gave " << to_string(got) << ", expected "
+                               << to_string(expected);
 }
 
 void expect_rejected(const std::string& text) {
@@ -24,7 +25,8 @@ void expect_rejected(const std::string& text) {
     const std::string message = e.what();
     EXPECT_FALSE(message.empty());
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    EXPECT_NE(message.find("coordinate"), std::string::npos) << message;  // names what was being read
+    EXPECT_NE(message.find("coordinate"), std::string::npos)
+        << message;  // names what was being read
   }
 }
 
@@ -49,14 +51,16 @@ TEST(ParseRational, DecimalsAreExact) {
 }
 
 TEST(ParseRational, RoundTripsThroughToString) {
-  for (const Rational& r : {frac(1, 3), frac(-7, 2), Rational(0), Rational(-12), frac(39559, 1064448)})
+  for (const Rational& r :
+       {frac(1, 3), frac(-7, 2), Rational(0), Rational(-12), frac(39559, 1064448)})
     EXPECT_TRUE(parse_rational(to_string(r)) == r) << to_string(r);
   EXPECT_EQ(to_string(frac(-2, 4)), "-1/2");
 }
 
 TEST(ParseRational, BadInputIsAnInputError) {
-  for (const char* bad : {"abc", "1/0", "1..2", "", "   ", "1e99999", "1/", "/2", "1/-2", "1.5/2", "--1", "+",
-                          "e5", "1e", "1e+", "0x10", "1 2", "nan", "inf", "1,5"})
+  for (const char* bad :
+       {"abc", "1/0", "1..2", "",   "   ", "1e99999", "1/",  "/2",  "1/-2", "1.5/2",
+        "--1", "+",   "e5",   "1e", "1e+", "0x10",    "1 2", "nan", "inf",  "1,5"})
     expect_rejected(bad);
 }
 

@@ -22,7 +22,8 @@ const IntColumns kM7 = concat({kXi1, kXi2});
 const IntColumns kM8 = concat({kXi1, kXi1});
 const IntColumns kM12 = concat({kXi2, kXi2, negated(kXi2), negated(kXi2)});
 const IntColumns kFcc6 = {{1, 1, 0}, {1, -1, 0}, {1, 0, 1}, {1, 0, -1}, {0, 1, 1}, {0, 1, -1}};
-const IntColumns kCart7 = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+const IntColumns kCart7 = {{1, 0, 0},  {0, 1, 0},  {0, 0, 1}, {1, 1, 1},
+                           {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
 const IntColumns kHex3 = {{1, 0}, {0, 1}, {1, 1}};
 const IntColumns kZp = {{1, 0}, {0, 1}, {1, 1}, {-1, 1}};
 
@@ -65,7 +66,8 @@ TEST(Recurrence, ParallelepipedBaseCase) {
     RatVec x(3, 0);
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i) x[i] = x[i] + rational_from(xi[j][i]) * t[j];
-    const bool inside = std::all_of(t.begin(), t.end(), [](const Rational& v) { return v > 0 && v < 1; });
+    const bool inside =
+        std::all_of(t.begin(), t.end(), [](const Rational& v) { return v > 0 && v < 1; });
     EXPECT_EQ(box_spline_recurrence(xi, x), inside ? Rational(1) / 4 : Rational(0)) << k;
   }
 }
@@ -80,8 +82,10 @@ TEST(Recurrence, CourantElementMatchesClosedForm) {
   for (int k = 0; k < 200; ++k) {
     const RatVec x = gen.next(2, -1, 4);
     Rational hat = std::min({x[0], x[1], 1 - x[0] + x[1], 1 + x[0] - x[1], 2 - x[0], 2 - x[1]});
-    if (hat < 0) hat = 0;
-    else ++inside;
+    if (hat < 0)
+      hat = 0;
+    else
+      ++inside;
     EXPECT_EQ(box_spline_recurrence(kHex3, x), hat) << k;
   }
   EXPECT_GT(inside, 30);  // the sample hits the support, not only the zero region
@@ -118,7 +122,9 @@ TEST(Recurrence, M12IsProductOfOneDimensionalBsplines) {
   GenericPoints gen(17);
   for (int k = 0; k < 60; ++k) {
     const RatVec x = gen.next(3, -5, 10);
-    EXPECT_EQ(box_spline_recurrence(kM12, x), m12_factor(x[0]) * m12_factor(x[1]) * m12_factor(x[2])) << k;
+    EXPECT_EQ(box_spline_recurrence(kM12, x),
+              m12_factor(x[0]) * m12_factor(x[1]) * m12_factor(x[2]))
+        << k;
   }
 }
 
@@ -165,14 +171,18 @@ TEST(Recurrence, PartitionOfUnityOnTheLattice) {
     IntColumns xi;
     Lattice lattice;
   };
-  const Case cases[] = {{"m7", kM7, Lattice::bcc()},        {"m8", kM8, Lattice::bcc()},
-                        {"fcc6", kFcc6, Lattice::fcc()},    {"cart7", kCart7, Lattice::cartesian(3)},
-                        {"hex3", kHex3, Lattice::cartesian(2)}, {"zp", kZp, Lattice::cartesian(2)}};
+  const Case cases[] = {{"m7", kM7, Lattice::bcc()},
+                        {"m8", kM8, Lattice::bcc()},
+                        {"fcc6", kFcc6, Lattice::fcc()},
+                        {"cart7", kCart7, Lattice::cartesian(3)},
+                        {"hex3", kHex3, Lattice::cartesian(2)},
+                        {"zp", kZp, Lattice::cartesian(2)}};
   GenericPoints gen(23);
   for (const auto& c : cases)
     for (int k = 0; k < 5; ++k) {
       const RatVec x = gen.next(c.lattice.dimension(), -3, 6);
-      EXPECT_EQ(sum_of_shifts(c.xi, c.lattice, x), Rational(1) / rational_from(c.lattice.det_abs())) << c.name;
+      EXPECT_EQ(sum_of_shifts(c.xi, c.lattice, x), Rational(1) / rational_from(c.lattice.det_abs()))
+          << c.name;
     }
 }
 
@@ -200,7 +210,8 @@ TEST(Recurrence, SharedMemoMatchesFreshEvaluation) {
   const RatVec x = gen.next(3, -1, 2);
   BoxSplineRecurrence rec(kM7);
   rec.set_base(x);
-  for (const IntVec& j : {IntVec{0, 0, 0}, IntVec{1, 1, 1}, IntVec{-2, 0, 0}, IntVec{1, -1, 1}, IntVec{9, 9, 9}}) {
+  for (const IntVec& j :
+       {IntVec{0, 0, 0}, IntVec{1, 1, 1}, IntVec{-2, 0, 0}, IntVec{1, -1, 1}, IntVec{9, 9, 9}}) {
     RatVec y = x;
     for (int i = 0; i < 3; ++i) y[i] = y[i] + rational_from(j[i]);
     EXPECT_EQ(rec.at_shift(j), box_spline_recurrence(kM7, y));
@@ -208,12 +219,15 @@ TEST(Recurrence, SharedMemoMatchesFreshEvaluation) {
 }
 
 TEST(Recurrence, RejectsNonGenericPointsAndBadMatrices) {
-  EXPECT_FALSE(is_generic_point(kM7, {Rational(1) / 3, Rational(1) / 3, Rational(1) / 3}));  // on x2 = x3
-  EXPECT_FALSE(is_generic_point(kM7, {0, Rational(1) / 3, Rational(1) / 5}));                 // on x1 = 0
+  EXPECT_FALSE(
+      is_generic_point(kM7, {Rational(1) / 3, Rational(1) / 3, Rational(1) / 3}));  // on x2 = x3
+  EXPECT_FALSE(is_generic_point(kM7, {0, Rational(1) / 3, Rational(1) / 5}));       // on x1 = 0
   EXPECT_TRUE(is_generic_point(kM7, {Rational(1) / 7, Rational(1) / 11, Rational(1) / 13}));
   EXPECT_THROW(box_spline_recurrence(kM7, {0, Rational(1) / 3, Rational(1) / 5}), InputError);
-  EXPECT_THROW(box_spline_recurrence({{1, 0, 0}, {0, 0, 0}, {0, 0, 1}}, {Rational(1) / 7, 0, 0}), InputError);
-  EXPECT_THROW(box_spline_recurrence({{1, 0, 0}, {2, 0, 0}, {0, 0, 1}}, {Rational(1) / 7, 0, 0}), InputError);
+  EXPECT_THROW(box_spline_recurrence({{1, 0, 0}, {0, 0, 0}, {0, 0, 1}}, {Rational(1) / 7, 0, 0}),
+               InputError);
+  EXPECT_THROW(box_spline_recurrence({{1, 0, 0}, {2, 0, 0}, {0, 0, 1}}, {Rational(1) / 7, 0, 0}),
+               InputError);
   EXPECT_THROW(box_spline_recurrence(kM7, {Rational(1) / 7, Rational(1) / 11}), InputError);
 }
 

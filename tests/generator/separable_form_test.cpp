@@ -21,7 +21,8 @@ TEST(SeparableForm, SeparableFormExactlyForTensorProducts) {
       points += g.stencil.size();
     }
     EXPECT_EQ(points, a.structure.references[0].stencil.size()) << preset;
-    EXPECT_EQ(grids->size(), std::string(preset) == "m12" ? 2u : 1u) << preset;  // BCC: one grid per coset
+    EXPECT_EQ(grids->size(), std::string(preset) == "m12" ? 2u : 1u)
+        << preset;  // BCC: one grid per coset
   }
   const Analysis m7 = analyze(parse_spec("m7"));
   EXPECT_FALSE(separable_form(m7.structure.references.at(0), 3).has_value());

@@ -25,7 +25,8 @@ void expect_input_error(const std::function<void()>& parse, const std::string& n
   }
 }
 
-void expect_spec_error(const std::string& spec, const std::string& needle, const std::string& lattice = "") {
+void expect_spec_error(const std::string& spec, const std::string& needle,
+                       const std::string& lattice = "") {
   SCOPED_TRACE("SPEC '" + spec + "' lattice '" + lattice + "'");
   expect_input_error([&] { parse_spec(spec, lattice); }, needle);
 }
@@ -107,7 +108,8 @@ TEST(Spec, PresetNamesAreCaseInsensitiveAndKeepTheUsersText) {
 }
 
 TEST(Spec, CustomListParsesWithCommasOrBlanks) {
-  const BoxSplineSpec a = parse_spec("1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 2,0,0; 0,2,0; 0,0,2", "bcc");
+  const BoxSplineSpec a =
+      parse_spec("1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 2,0,0; 0,2,0; 0,0,2", "bcc");
   EXPECT_EQ(a.name, "custom");
   EXPECT_EQ(a.directions, concat(kXi1, kXi2));
   EXPECT_EQ(a.lattice.det_abs(), 4);
@@ -151,7 +153,8 @@ TEST(Spec, LimitsAreInclusive) {
   std::string thirty_two;
   for (int k = 0; k < 16; ++k) thirty_two += "1,0; 0,1; ";
   EXPECT_EQ(parse_spec(thirty_two).count(), 32);
-  // Components of magnitude 64 are allowed; bounding box 128 x 128 x 64 = 1048576 cells is below the limit.
+  // Components of magnitude 64 are allowed; bounding box 128 x 128 x 64 = 1048576 cells is below
+  // the limit.
   EXPECT_EQ(parse_spec("64,0,0; 64,0,0; 0,-64,0; 0,64,0; 0,0,64").count(), 5);
 }
 
@@ -186,9 +189,11 @@ TEST(SpecErrors, RankDeficientMatrix) {
 }
 
 TEST(SpecErrors, DirectionNotInLattice) {
-  expect_spec_error("1,0,0; 0,1,0; 0,0,1", "direction 1 (1,0,0) is not a point of the bcc lattice", "bcc");
+  expect_spec_error("1,0,0; 0,1,0; 0,0,1", "direction 1 (1,0,0) is not a point of the bcc lattice",
+                    "bcc");
   expect_spec_error("m7", "not a point of the fcc lattice", "fcc");
-  expect_spec_error("1,0; 0,1", "not a point of the lattice with generator rows '1,1; 0,2'", "1 1; 0 2");
+  expect_spec_error("1,0; 0,1", "not a point of the lattice with generator rows '1,1; 0,2'",
+                    "1 1; 0 2");
 }
 
 TEST(SpecErrors, SingularLattice) {
@@ -198,7 +203,8 @@ TEST(SpecErrors, SingularLattice) {
 
 TEST(SpecErrors, LatticeTextProblems) {
   expect_spec_error("1,0; 0,1", "3-dimensional but the directions are 2-dimensional", "bcc");
-  expect_spec_error("1,0; 0,1", "3-dimensional but the directions are 2-dimensional", "1 0 0; 0 1 0; 0 0 1");
+  expect_spec_error("1,0; 0,1", "3-dimensional but the directions are 2-dimensional",
+                    "1 0 0; 0 1 0; 0 0 1");
   expect_spec_error("1,0,0; 0,1,0; 0,0,1", "must be square", "1 0 0; 0 1 0");
   expect_spec_error("1,0; 0,1", "unknown lattice 'hexagonal'", "hexagonal");
   expect_spec_error("1,0; 0,1", "not an integer", "1 x; 0 1");
@@ -213,7 +219,8 @@ TEST(SpecErrors, MoreThan32Directions) {
 }
 
 TEST(SpecErrors, UnknownPresetListsTheValidNames) {
-  expect_spec_error("m9", "unknown preset 'm9': valid presets are m7, m8, m12, cart7, fcc6, tricubic, hex3, zp");
+  expect_spec_error(
+      "m9", "unknown preset 'm9': valid presets are m7, m8, m12, cart7, fcc6, tricubic, hex3, zp");
 }
 
 TEST(SpecErrors, HugeComponent) {
@@ -230,7 +237,8 @@ TEST(SpecErrors, HugeComponent) {
 
 TEST(SpecErrors, SupportTooLargeToDerive) {
   // Bounding box 128 x 128 x 128 = 2097152 unit cells > 2000000.
-  expect_spec_error("64,0,0; 64,0,0; 0,64,0; 0,64,0; 0,0,64; 0,0,64", "support too large to derive");
+  expect_spec_error("64,0,0; 64,0,0; 0,64,0; 0,64,0; 0,0,64; 0,0,64",
+                    "support too large to derive");
 }
 
 TEST(SpecErrors, MessagesStayOneLineForAnyInput) {

@@ -54,7 +54,8 @@ TEST(BccVolume, LatticeValueFindsTheRightSample) {
   for (int k = 0; k < 5; ++k)
     for (int j = 0; j < 4; ++j)
       for (int i = 0; i < 3; ++i)
-        for (int c = 0; c < 2; ++c) EXPECT_EQ(v.value(2 * i + c, 2 * j + c, 2 * k + c), v.at(c, i, j, k));
+        for (int c = 0; c < 2; ++c)
+          EXPECT_EQ(v.value(2 * i + c, 2 * j + c, 2 * k + c), v.at(c, i, j, k));
 }
 
 TEST(BccVolume, ContainsExactlyTheStoredLatticePoints) {
@@ -65,7 +66,8 @@ TEST(BccVolume, ContainsExactlyTheStoredLatticePoints) {
       for (int x = -3; x <= 8; ++x) {
         const bool lattice = ((x - y) % 2 == 0) && ((x - z) % 2 == 0);
         const int c = ((x % 2) + 2) % 2;
-        const bool stored = lattice && x >= c && y >= c && z >= c && (x - c) / 2 < 3 && (y - c) / 2 < 4 && (z - c) / 2 < 5;
+        const bool stored = lattice && x >= c && y >= c && z >= c && (x - c) / 2 < 3 &&
+                            (y - c) / 2 < 4 && (z - c) / 2 < 5;
         EXPECT_EQ(v.contains(x, y, z), stored) << x << " " << y << " " << z;
         inside += stored;
       }
@@ -74,8 +76,13 @@ TEST(BccVolume, ContainsExactlyTheStoredLatticePoints) {
 
 TEST(BccVolume, OutsidePointsThrowOrGiveTheOutsideValue) {
   const auto v = coded_volume<double>({3, 4, 5});
-  const LatticePoint outside[] = {{-1, -1, -1}, {-2, 0, 0}, {6, 0, 0}, {5, 7, 11}, {0, 8, 0},
-                                  {std::numeric_limits<std::int64_t>::min(), 0, 0}, {std::numeric_limits<std::int64_t>::max(), 1, 1}};
+  const LatticePoint outside[] = {{-1, -1, -1},
+                                  {-2, 0, 0},
+                                  {6, 0, 0},
+                                  {5, 7, 11},
+                                  {0, 8, 0},
+                                  {std::numeric_limits<std::int64_t>::min(), 0, 0},
+                                  {std::numeric_limits<std::int64_t>::max(), 1, 1}};
   for (const auto& p : outside) {
     EXPECT_FALSE(v.contains(p));
     EXPECT_THROW((void)v.value(p), std::out_of_range);
@@ -146,12 +153,15 @@ TEST(BccVolume, WorldAndLatticeCoordinates) {
 TEST(BccVolume, InvalidGeometryIsRejected) {
   EXPECT_THROW(BccVolume<double>({0, 1, 1}, 1, {0, 0, 0}), std::invalid_argument);
   EXPECT_THROW(BccVolume<double>({1, -1, 1}, 1, {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(BccVolume<double>({1, 1, BccVolume<double>::kMaxSize + 1}, 1, {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(BccVolume<double>({1 << 20, 1 << 20, 1 << 20}, 1, {0, 0, 0}), std::invalid_argument);  // 2^61 samples
+  EXPECT_THROW(BccVolume<double>({1, 1, BccVolume<double>::kMaxSize + 1}, 1, {0, 0, 0}),
+               std::invalid_argument);
+  EXPECT_THROW(BccVolume<double>({1 << 20, 1 << 20, 1 << 20}, 1, {0, 0, 0}),
+               std::invalid_argument);  // 2^61 samples
   EXPECT_THROW(BccVolume<double>({1, 1, 1}, 0, {0, 0, 0}), std::invalid_argument);
   EXPECT_THROW(BccVolume<double>({1, 1, 1}, -1, {0, 0, 0}), std::invalid_argument);
   EXPECT_THROW(BccVolume<double>({1, 1, 1}, std::nan(""), {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(BccVolume<float>({1, 1, 1}, 1, {0, std::numeric_limits<double>::infinity(), 0}), std::invalid_argument);
+  EXPECT_THROW(BccVolume<float>({1, 1, 1}, 1, {0, std::numeric_limits<double>::infinity(), 0}),
+               std::invalid_argument);
   const std::string message = message_of([] { BccVolume<double>({0, 1, 1}, 1, {0, 0, 0}); });
   EXPECT_EQ(message.find('\n'), std::string::npos);
   EXPECT_FALSE(message.empty());

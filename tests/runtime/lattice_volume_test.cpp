@@ -31,13 +31,15 @@ std::set<Point> enumerate(const IntRows& g, int r) {
   for (int a = -r; a <= r; ++a)
     for (int b = -r; b <= r; ++b)
       for (int c = -r; c <= r; ++c)
-        points.insert({g[0][0] * a + g[0][1] * b + g[0][2] * c, g[1][0] * a + g[1][1] * b + g[1][2] * c,
+        points.insert({g[0][0] * a + g[0][1] * b + g[0][2] * c,
+                       g[1][0] * a + g[1][1] * b + g[1][2] * c,
                        g[2][0] * a + g[2][1] * b + g[2][2] * c});
   return points;
 }
 
 TEST(CosetLattice, NamedLatticesAreAsSpecified) {
-  const CosetLattice bcc = CosetLattice::bcc(), fcc = CosetLattice::fcc(), cart = CosetLattice::cartesian();
+  const CosetLattice bcc = CosetLattice::bcc(), fcc = CosetLattice::fcc(),
+                     cart = CosetLattice::cartesian();
   EXPECT_EQ(bcc.period(), 2);
   EXPECT_EQ(bcc.coset_count(), 2);
   EXPECT_EQ(bcc.offsets(), (std::vector<Offset>{{0, 0, 0}, {1, 1, 1}}));
@@ -74,7 +76,7 @@ TEST(CosetLattice, CustomLatticesAgreeWithEnumeration) {
       {"2,0,1; 0,2,1; 0,0,1", "bcc", 2, 2},      // columns (2,0,0) (0,2,0) (1,1,1): BCC
       {"0,1,1; 1,0,1; 1,1,0", "fcc", 2, 4},      // FCC with its columns permuted
       {"-1,0,0; 0,1,0; 0,0,-1", "cartesian", 1, 1},
-      {"2,0,0; 0,2,0; 0,0,2", "custom", 2, 1},   // 2 Z^3
+      {"2,0,0; 0,2,0; 0,0,2", "custom", 2, 1},  // 2 Z^3
   };
   for (const CustomCase& c : cases) {
     SCOPED_TRACE(c.rows);
@@ -96,15 +98,17 @@ TEST(CosetLattice, CustomLatticesAgreeWithEnumeration) {
     EXPECT_EQ(residues.size(), l.offsets().size());
     for (int x = -4; x <= 4; ++x)
       for (int y = -4; y <= 4; ++y)
-        for (int z = -4; z <= 4; ++z) EXPECT_EQ(l.contains(x, y, z), points.count({x, y, z}) == 1) << x << " " << y << " " << z;
+        for (int z = -4; z <= 4; ++z)
+          EXPECT_EQ(l.contains(x, y, z), points.count({x, y, z}) == 1) << x << " " << y << " " << z;
     // The text forms round-trip.
     EXPECT_EQ(CosetLattice::parse(l.rows_text()), l);
   }
 }
 
 TEST(CosetLattice, BadLatticesAreOneLineErrors) {
-  for (const char* text : {"1,0,0; 0,1,0; 1,1,0", "1,0,0; 0,1,0", "1,0,0; 0,1,0; 0,0,x", "1,0; 0,1; 0,0", "hex", "",
-                           "1,0,0; 0,1,0; 0,0,65", "1,0,0; 0,1,0; 0,0,9999999999"}) {
+  for (const char* text :
+       {"1,0,0; 0,1,0; 1,1,0", "1,0,0; 0,1,0", "1,0,0; 0,1,0; 0,0,x", "1,0; 0,1; 0,0", "hex", "",
+        "1,0,0; 0,1,0; 0,0,65", "1,0,0; 0,1,0; 0,0,9999999999"}) {
     try {
       (void)CosetLattice::parse(text);
       ADD_FAILURE() << text << ": no error";
@@ -113,16 +117,20 @@ TEST(CosetLattice, BadLatticesAreOneLineErrors) {
     }
   }
   const CosetLattice fcc = CosetLattice::fcc();
-  EXPECT_THROW((void)fcc.with_offsets({{0, 0, 0}, {1, 1, 0}, {1, 0, 1}}), std::invalid_argument);             // too few
-  EXPECT_THROW((void)fcc.with_offsets({{0, 0, 0}, {1, 1, 0}, {1, 0, 1}, {1, 1, 1}}), std::invalid_argument);  // not in L
-  EXPECT_THROW((void)fcc.with_offsets({{0, 0, 0}, {1, 1, 0}, {1, 0, 1}, {2, 2, 0}}), std::invalid_argument);  // same coset
+  EXPECT_THROW((void)fcc.with_offsets({{0, 0, 0}, {1, 1, 0}, {1, 0, 1}}),
+               std::invalid_argument);  // too few
+  EXPECT_THROW((void)fcc.with_offsets({{0, 0, 0}, {1, 1, 0}, {1, 0, 1}, {1, 1, 1}}),
+               std::invalid_argument);  // not in L
+  EXPECT_THROW((void)fcc.with_offsets({{0, 0, 0}, {1, 1, 0}, {1, 0, 1}, {2, 2, 0}}),
+               std::invalid_argument);  // same coset
   const CosetLattice moved = fcc.with_offsets({{0, 1, 1}, {0, 0, 0}, {3, 1, 0}, {1, 0, 1}});
   EXPECT_EQ(moved.coset_of(1, 1, 0), 2);
   EXPECT_EQ(moved.coset_of(2, 1, 1), 0);
 }
 
 std::vector<CosetLattice> all_lattices() {
-  return {CosetLattice::bcc(), CosetLattice::fcc(), CosetLattice::cartesian(), CosetLattice::parse("1,0,0; 0,1,0; 0,0,3"),
+  return {CosetLattice::bcc(), CosetLattice::fcc(), CosetLattice::cartesian(),
+          CosetLattice::parse("1,0,0; 0,1,0; 0,0,3"),
           CosetLattice::fcc().with_offsets({{0, 1, 1}, {0, 0, 0}, {3, 1, 0}, {1, 0, 1}})};
 }
 
@@ -138,19 +146,23 @@ TEST(LatticeVolume, StorageAndLatticeAccessAgree) {
       for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 3; ++i)
           for (int c = 0; c < k; ++c) {
-            EXPECT_EQ(v.index(c, i, j, kk), static_cast<std::size_t>(c + k * (i + 3 * (j + 2 * kk))));
+            EXPECT_EQ(v.index(c, i, j, kk),
+                      static_cast<std::size_t>(c + k * (i + 3 * (j + 2 * kk))));
             v.at(c, i, j, kk) = next++;
             const Offset& o = lattice.offsets()[static_cast<std::size_t>(c)];
             const Point p{o[0] + d * i, o[1] + d * j, o[2] + d * kk};
             EXPECT_EQ(v.lattice_point(c, i, j, kk), p);
-            EXPECT_EQ(v.sample_position(c, i, j, kk), (Vec3{1 + 0.5 * static_cast<double>(p[0]), -2 + 0.5 * static_cast<double>(p[1]),
-                                                            0.25 + 0.5 * static_cast<double>(p[2])}));
+            EXPECT_EQ(
+                v.sample_position(c, i, j, kk),
+                (Vec3{1 + 0.5 * static_cast<double>(p[0]), -2 + 0.5 * static_cast<double>(p[1]),
+                      0.25 + 0.5 * static_cast<double>(p[2])}));
             held.insert(p);
           }
     for (int kk = 0; kk < 4; ++kk)
       for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 3; ++i)
-          for (int c = 0; c < k; ++c) EXPECT_EQ(v.value(v.lattice_point(c, i, j, kk)), v.at(c, i, j, kk));
+          for (int c = 0; c < k; ++c)
+            EXPECT_EQ(v.value(v.lattice_point(c, i, j, kk)), v.at(c, i, j, kk));
     // contains() is exactly the held points; value() throws elsewhere, value_or() does not.
     for (std::int64_t x = -4; x <= 12; ++x)
       for (std::int64_t y = -4; y <= 8; ++y)
@@ -176,18 +188,24 @@ TEST(LatticeVolume, StorageAndLatticeAccessAgree) {
         for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
           for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
             if (lattice.contains(x, y, z) && !held.count({x, y, z})) all = false;
-      EXPECT_EQ(v.contains_box(lo, hi), all) << lo[0] << " " << lo[1] << " " << lo[2] << " .. " << hi[0] << " " << hi[1] << " " << hi[2];
+      EXPECT_EQ(v.contains_box(lo, hi), all) << lo[0] << " " << lo[1] << " " << lo[2] << " .. "
+                                             << hi[0] << " " << hi[1] << " " << hi[2];
     }
     EXPECT_THROW((void)v.at(k, 0, 0, 0), std::out_of_range);
   }
-  EXPECT_THROW(LatticeVolume<float>(CosetLattice::fcc(), {0, 1, 1}, 1, {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(LatticeVolume<float>(CosetLattice::fcc(), {1, 1, 1}, 0, {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(LatticeVolume<float>(CosetLattice::fcc(), {1, 1, 1}, 1, {0, 0, 0}, std::vector<float>(3)), std::invalid_argument);
+  EXPECT_THROW(LatticeVolume<float>(CosetLattice::fcc(), {0, 1, 1}, 1, {0, 0, 0}),
+               std::invalid_argument);
+  EXPECT_THROW(LatticeVolume<float>(CosetLattice::fcc(), {1, 1, 1}, 0, {0, 0, 0}),
+               std::invalid_argument);
+  EXPECT_THROW(
+      LatticeVolume<float>(CosetLattice::fcc(), {1, 1, 1}, 1, {0, 0, 0}, std::vector<float>(3)),
+      std::invalid_argument);
 }
 
 TEST(LatticeVolume, BccVolumesConvertWithoutChange) {
   BccVolume<float> bcc({3, 2, 2}, 0.25, {1, 2, 3});
-  for (std::size_t s = 0; s < bcc.sample_count(); ++s) bcc.samples()[s] = static_cast<float>(s) * 0.5f;
+  for (std::size_t s = 0; s < bcc.sample_count(); ++s)
+    bcc.samples()[s] = static_cast<float>(s) * 0.5f;
   const BccVolume<float> copy = bcc;
   LatticeVolume<float> l = to_lattice_volume(std::move(bcc));
   EXPECT_EQ(l.lattice(), CosetLattice::bcc());
@@ -195,12 +213,17 @@ TEST(LatticeVolume, BccVolumesConvertWithoutChange) {
     for (std::int64_t y = 0; y < 4; ++y)
       for (std::int64_t z = 0; z < 4; ++z) {
         ASSERT_EQ(l.contains(x, y, z), copy.contains(x, y, z));
-        if (copy.contains(x, y, z)) { EXPECT_EQ(l.value(x, y, z), copy.value(x, y, z)); }
+        if (copy.contains(x, y, z)) {
+          EXPECT_EQ(l.value(x, y, z), copy.value(x, y, z));
+        }
       }
   const BccVolume<float> back = to_bcc_volume(std::move(l));
-  EXPECT_TRUE(std::equal(back.samples().begin(), back.samples().end(), copy.samples().begin(), copy.samples().end()));
+  EXPECT_TRUE(std::equal(back.samples().begin(), back.samples().end(), copy.samples().begin(),
+                         copy.samples().end()));
   EXPECT_EQ(back.origin(), copy.origin());
-  EXPECT_THROW((void)to_bcc_volume(LatticeVolume<float>(CosetLattice::fcc(), {1, 1, 1}, 1, {0, 0, 0})), std::invalid_argument);
+  EXPECT_THROW(
+      (void)to_bcc_volume(LatticeVolume<float>(CosetLattice::fcc(), {1, 1, 1}, 1, {0, 0, 0})),
+      std::invalid_argument);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -209,7 +232,8 @@ TEST(LatticeVolume, BccVolumesConvertWithoutChange) {
 double smooth(const Vec3& p) { return std::sin(p[0]) + p[1] * p[1] - 0.5 * p[2] + p[0] * p[2]; }
 
 TEST(LatticeSampling, OnBccItIsTheBccSamplingBitForBit) {
-  const LatticeVolume<double> l = sample_lattice<double>(smooth, cube_lattice_grid(CosetLattice::bcc(), 7, 2));
+  const LatticeVolume<double> l =
+      sample_lattice<double>(smooth, cube_lattice_grid(CosetLattice::bcc(), 7, 2));
   const BccVolume<double> b = sample_cube<double>(smooth, 7, 2);
   EXPECT_EQ(l.sizes(), b.sizes());
   EXPECT_EQ(l.spacing(), b.spacing());
@@ -230,12 +254,15 @@ TEST(LatticeSampling, EverySampleIsTheFunctionAtItsLatticePoint) {
         for (int i = 0; i < 7; ++i)
           for (int c = 0; c < lattice.coset_count(); ++c) {
             const Offset& o = lattice.offsets()[static_cast<std::size_t>(c)];
-            const Vec3 p{-1 - cell + grid.h * (o[0] + lattice.period() * i), -1 - cell + grid.h * (o[1] + lattice.period() * j),
+            const Vec3 p{-1 - cell + grid.h * (o[0] + lattice.period() * i),
+                         -1 - cell + grid.h * (o[1] + lattice.period() * j),
                          -1 - cell + grid.h * (o[2] + lattice.period() * k)};
             EXPECT_FLOAT_EQ(v(c, i, j, k), static_cast<float>(smooth(p)));
           }
     // Coset cells of the cube [-1,1]^3: the sample (c=0 with offset 0, i = margin) sits at -1.
-    if (lattice.offsets()[0] == Offset{0, 0, 0}) { EXPECT_DOUBLE_EQ(v.sample_position(0, 1, 1, 1)[0], -1.0); }
+    if (lattice.offsets()[0] == Offset{0, 0, 0}) {
+      EXPECT_DOUBLE_EQ(v.sample_position(0, 1, 1, 1)[0], -1.0);
+    }
   }
   EXPECT_THROW((void)cube_lattice_grid(CosetLattice::fcc(), 1, 0), std::invalid_argument);
 }
@@ -245,19 +272,26 @@ TEST(LatticeSampling, EverySampleIsTheFunctionAtItsLatticePoint) {
 
 TEST(LatticePrefilter, OnBccItIsTheBccPrefilterBitForBit) {
   const BccVolume<double> b = sample_cube<double>(smooth, 6, 2);
-  const DiscreteFilter q = {{{0, 0, 0}, 2.0}, {{1, 1, 1}, -0.125}, {{-1, 1, -1}, -0.125}, {{2, 0, 0}, 0.0625}, {{0, -2, 0}, 0.25}};
+  const DiscreteFilter q = {{{0, 0, 0}, 2.0},
+                            {{1, 1, 1}, -0.125},
+                            {{-1, 1, -1}, -0.125},
+                            {{2, 0, 0}, 0.0625},
+                            {{0, -2, 0}, 0.25}};
   const BccVolume<double> expected = prefilter(b, q);
   BccVolume<double> copy = b;
   const LatticeVolume<double> got = prefilter(to_lattice_volume(std::move(copy)), q);
   EXPECT_EQ(got.sizes(), expected.sizes());
   EXPECT_EQ(got.origin(), expected.origin());
-  EXPECT_EQ(std::memcmp(got.samples().data(), expected.samples().data(), expected.samples().size_bytes()), 0);
+  EXPECT_EQ(
+      std::memcmp(got.samples().data(), expected.samples().data(), expected.samples().size_bytes()),
+      0);
 }
 
 TEST(LatticePrefilter, IsTheConvolutionOnEveryLattice) {
   for (const CosetLattice& lattice : all_lattices()) {
     SCOPED_TRACE(lattice.name() + " " + lattice.offsets_text());
-    const LatticeVolume<double> v = sample_lattice<double>(smooth, cube_lattice_grid(lattice, 6, 2));
+    const LatticeVolume<double> v =
+        sample_lattice<double>(smooth, cube_lattice_grid(lattice, 6, 2));
     // Taps: the origin and lattice points near it, with weights of no special form.
     DiscreteFilter q;
     double w = 0.5;
@@ -269,7 +303,8 @@ TEST(LatticePrefilter, IsTheConvolutionOnEveryLattice) {
             w = -w * 0.75 + 0.01;
           }
     const LatticeVolume<double> out = prefilter(v, q);
-    // Every output sample is the sum over taps of v at j - o, read through value(), at the same world point.
+    // Every output sample is the sum over taps of v at j - o, read through value(), at the same
+    // world point.
     std::size_t checked = 0;
     for (int k = 0; k < out.sizes()[2]; ++k)
       for (int j = 0; j < out.sizes()[1]; ++j)
@@ -279,7 +314,8 @@ TEST(LatticePrefilter, IsTheConvolutionOnEveryLattice) {
             const Vec3 l = v.to_lattice(world);
             const Point p{std::llround(l[0]), std::llround(l[1]), std::llround(l[2])};
             double sum = 0;
-            for (const auto& [o, weight] : q) sum += weight * v.value(p[0] - o[0], p[1] - o[1], p[2] - o[2]);
+            for (const auto& [o, weight] : q)
+              sum += weight * v.value(p[0] - o[0], p[1] - o[1], p[2] - o[2]);
             EXPECT_NEAR(out(c, i, j, k), sum, 1e-13) << c << " " << i << " " << j << " " << k;
             ++checked;
           }
@@ -289,7 +325,9 @@ TEST(LatticePrefilter, IsTheConvolutionOnEveryLattice) {
     for (int a = 0; a < 3; ++a) EXPECT_EQ(out.sizes()[a], v.sizes()[a] - s.lower[a] - s.upper[a]);
     DiscreteFilter off_lattice = q;
     off_lattice.push_back({{1, 0, 0}, 1.0});
-    if (!lattice.contains(1, 0, 0)) { EXPECT_THROW((void)prefilter(v, off_lattice), std::invalid_argument); }
+    if (!lattice.contains(1, 0, 0)) {
+      EXPECT_THROW((void)prefilter(v, off_lattice), std::invalid_argument);
+    }
   }
 }
 
@@ -304,11 +342,13 @@ class LatticeNrrd : public test::ScratchDirectoryTest {
 
 template <class T>
 LatticeVolume<T> random_volume(const CosetLattice& lattice, Sizes sizes, unsigned seed) {
-  LatticeVolume<T> v(lattice, sizes, 1.0 / 7, {-0.3, 1.0 / 3, 2e5}, std::vector<T>(static_cast<std::size_t>(lattice.coset_count()) *
-                                                                                       sizes[0] * sizes[1] * sizes[2]));
+  LatticeVolume<T> v(lattice, sizes, 1.0 / 7, {-0.3, 1.0 / 3, 2e5},
+                     std::vector<T>(static_cast<std::size_t>(lattice.coset_count()) * sizes[0] *
+                                    sizes[1] * sizes[2]));
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1);
-  for (T& x : v.samples()) x = static_cast<T>(std::ldexp(u(rng), static_cast<int>(rng() % 40) - 20));
+  for (T& x : v.samples())
+    x = static_cast<T>(std::ldexp(u(rng), static_cast<int>(rng() % 40) - 20));
   return v;
 }
 
@@ -347,12 +387,15 @@ TEST_F(LatticeNrrd, RoundTripsOnEveryLattice) {
     const int k = lattice.coset_count();
     const unsigned first = k == 1 ? 0 : 1;
     EXPECT_EQ(nrrd->dim, 3 + first);
-    if (first) { EXPECT_EQ(nrrd->axis[0].size, static_cast<std::size_t>(k)); }
+    if (first) {
+      EXPECT_EQ(nrrd->axis[0].size, static_cast<std::size_t>(k));
+    }
     EXPECT_EQ(nrrd->axis[first].size, 3u);
     EXPECT_EQ(nrrd->axis[first + 2].size, 4u);
     for (unsigned a = 0; a < 3; ++a)
       for (unsigned b = 0; b < 3; ++b)
-        EXPECT_DOUBLE_EQ(nrrd->axis[first + a].spaceDirection[b], a == b ? lattice.period() / 7.0 : 0.0);
+        EXPECT_DOUBLE_EQ(nrrd->axis[first + a].spaceDirection[b],
+                         a == b ? lattice.period() / 7.0 : 0.0);
     EXPECT_EQ(key(nrrd, "lattice"), lattice.name());
     if (lattice.name() == "custom") {
       EXPECT_EQ(key(nrrd, "lattice_rows"), "1,0,0; 0,1,0; 0,0,3");
@@ -360,7 +403,9 @@ TEST_F(LatticeNrrd, RoundTripsOnEveryLattice) {
     } else {
       EXPECT_EQ(key(nrrd, "lattice_rows"), "<missing>");
       // Offsets only when the cosets are not in the named lattice's own order.
-      EXPECT_EQ(key(nrrd, "coset_offsets"), lattice == CosetLattice::parse(lattice.name()) ? "<missing>" : lattice.offsets_text());
+      EXPECT_EQ(key(nrrd, "coset_offsets"), lattice == CosetLattice::parse(lattice.name())
+                                                ? "<missing>"
+                                                : lattice.offsets_text());
     }
     nrrdNuke(nrrd);
   }
@@ -368,7 +413,8 @@ TEST_F(LatticeNrrd, RoundTripsOnEveryLattice) {
 
 TEST_F(LatticeNrrd, BccFilesAreLatticeFilesAndBack) {
   BccVolume<double> b({2, 3, 2}, 0.125, {1, 2, 3});
-  for (std::size_t s = 0; s < b.sample_count(); ++s) b.samples()[s] = std::sqrt(static_cast<double>(s) + 0.5);
+  for (std::size_t s = 0; s < b.sample_count(); ++s)
+    b.samples()[s] = std::sqrt(static_cast<double>(s) + 0.5);
   write_bcc_nrrd(file("b.nrrd"), b);
   const LatticeVolume<double> l = read_lattice_nrrd<double>(file("b.nrrd"));
   BccVolume<double> copy = b;

@@ -4,9 +4,9 @@
 #include "tests/support/scratch_directory.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <teem/biff.h>
 #include <teem/nrrd.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -36,11 +36,11 @@ class BccNrrd : public test::ScratchDirectoryTest {
   fs::path file(const std::string& name) const { return dir_ / name; }
   std::vector<std::string> listing() const {
     std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename().string());
+    for (const auto& entry : fs::directory_iterator(dir_))
+      names.push_back(entry.path().filename().string());
     std::sort(names.begin(), names.end());
     return names;
   }
-
 };
 
 void write_bytes(const fs::path& path, const std::string& bytes) {
@@ -127,9 +127,11 @@ TEST_F(BccNrrd, HeaderFieldsAreAsSpecified) {
   EXPECT_EQ(t.nrrd->axis[2].size, 4u);
   EXPECT_EQ(t.nrrd->axis[3].size, 5u);
   EXPECT_EQ(t.nrrd->spaceDim, 3u);
-  for (int b = 0; b < 3; ++b) EXPECT_TRUE(std::isnan(t.nrrd->axis[0].spaceDirection[b])) << "axis 0 has no space direction";
+  for (int b = 0; b < 3; ++b)
+    EXPECT_TRUE(std::isnan(t.nrrd->axis[0].spaceDirection[b])) << "axis 0 has no space direction";
   for (int a = 1; a <= 3; ++a)
-    for (int b = 0; b < 3; ++b) EXPECT_EQ(t.nrrd->axis[a].spaceDirection[b], a - 1 == b ? 2 * h : 0.0) << a << " " << b;
+    for (int b = 0; b < 3; ++b)
+      EXPECT_EQ(t.nrrd->axis[a].spaceDirection[b], a - 1 == b ? 2 * h : 0.0) << a << " " << b;
   EXPECT_EQ(t.nrrd->spaceOrigin[0], -1.0);
   EXPECT_EQ(t.nrrd->spaceOrigin[1], 2.0);
   EXPECT_EQ(t.nrrd->spaceOrigin[2], 0.5);
@@ -155,13 +157,15 @@ TEST_F(BccNrrd, CartesianGridIsAPlain3dNrrd) {
   for (int a = 0; a < 3; ++a) {
     EXPECT_EQ(t.nrrd->axis[a].size, static_cast<std::size_t>(grid.sizes[a]));
     EXPECT_EQ(t.nrrd->axis[a].kind, nrrdKindDomain);
-    for (int b = 0; b < 3; ++b) EXPECT_EQ(t.nrrd->axis[a].spaceDirection[b], a == b ? grid.spacing[a] : 0.0);
+    for (int b = 0; b < 3; ++b)
+      EXPECT_EQ(t.nrrd->axis[a].spaceDirection[b], a == b ? grid.spacing[a] : 0.0);
     EXPECT_EQ(t.nrrd->spaceOrigin[a], grid.origin[a]);
   }
   EXPECT_EQ(t.key("lattice"), "<missing>");
   ASSERT_NE(t.nrrd->data, nullptr);
   EXPECT_EQ(std::memcmp(t.nrrd->data, grid.values.data(), grid.values.size() * sizeof(float)), 0);
-  EXPECT_EQ(static_cast<const float*>(t.nrrd->data)[grid.index(3, 1, 1)], grid.values[3 + 4 * (1 + 3 * 1)]);
+  EXPECT_EQ(static_cast<const float*>(t.nrrd->data)[grid.index(3, 1, 1)],
+            grid.values[3 + 4 * (1 + 3 * 1)]);
   // It is not a BCC volume.
   EXPECT_THROW((void)read_bcc_nrrd<float>(file("grid.nrrd")), NrrdError);
 
@@ -180,12 +184,14 @@ TEST_F(BccNrrd, SamplesOfTheOtherTypeAreConverted) {
   const auto f = random_volume<float>({2, 3, 2}, 0.5, {0, 0, 0}, 5);
   write_bcc_nrrd(file("f.nrrd"), f);
   const auto as_double = read_bcc_nrrd<double>(file("f.nrrd"));
-  for (std::size_t s = 0; s < f.sample_count(); ++s) EXPECT_EQ(as_double.samples()[s], static_cast<double>(f.samples()[s]));
+  for (std::size_t s = 0; s < f.sample_count(); ++s)
+    EXPECT_EQ(as_double.samples()[s], static_cast<double>(f.samples()[s]));
 
   auto d = random_volume<double>({2, 3, 2}, 0.5, {0, 0, 0}, 6);
   write_bcc_nrrd(file("d.nrrd"), d);
   const auto as_float = read_bcc_nrrd<float>(file("d.nrrd"));
-  for (std::size_t s = 0; s < d.sample_count(); ++s) EXPECT_EQ(as_float.samples()[s], static_cast<float>(d.samples()[s]));
+  for (std::size_t s = 0; s < d.sample_count(); ++s)
+    EXPECT_EQ(as_float.samples()[s], static_cast<float>(d.samples()[s]));
 
   // A finite double that no float can hold is an error, not an undefined conversion.
   d.samples()[3] = 1e300;
@@ -201,16 +207,17 @@ TEST_F(BccNrrd, SamplesOfTheOtherTypeAreConverted) {
 const char* kEndian = std::endian::native == std::endian::little ? "little" : "big";
 
 std::string base_header() {
-  return std::string("NRRD0004\n"
-                     "# hand-written test volume\n"
-                     "type: float\n"
-                     "dimension: 4\n"
-                     "sizes: 2 2 1 1\n"
-                     "space dimension: 3\n"
-                     "space directions: none (0.5,0,0) (0,0.5,0) (0,0,0.5)\n"
-                     "space origin: (1,2,3)\n"
-                     "encoding: raw\n"
-                     "endian: ") +
+  return std::string(
+             "NRRD0004\n"
+             "# hand-written test volume\n"
+             "type: float\n"
+             "dimension: 4\n"
+             "sizes: 2 2 1 1\n"
+             "space dimension: 3\n"
+             "space directions: none (0.5,0,0) (0,0.5,0) (0,0,0.5)\n"
+             "space origin: (1,2,3)\n"
+             "encoding: raw\n"
+             "endian: ") +
          kEndian + "\nlattice:=bcc\n\n";
 }
 
@@ -229,8 +236,10 @@ std::string fmt_hex(unsigned char byte) {
 
 std::string replace(std::string text, const std::string& from, const std::string& to) {
   const std::size_t at = text.find(from);
-  if (at == std::string::npos) ADD_FAILURE() << "'" << from << "' is not in the header";
-  else text.replace(at, from.size(), to);
+  if (at == std::string::npos)
+    ADD_FAILURE() << "'" << from << "' is not in the header";
+  else
+    text.replace(at, from.size(), to);
   return text;
 }
 
@@ -244,13 +253,19 @@ TEST_F(BccNrrd, HandWrittenFilesRead) {
   EXPECT_EQ(v.value(3, 1, 1), 8.0f);  // coset 1, i = 1
 
   // Other encodings and byte orders are Teem's business: ASCII, and raw in the other byte order.
-  write_bytes(file("ascii.nrrd"), replace(base_header(), "encoding: raw", "encoding: ascii") + "1.5 -2\n0.25 8\n");
+  write_bytes(file("ascii.nrrd"),
+              replace(base_header(), "encoding: raw", "encoding: ascii") + "1.5 -2\n0.25 8\n");
   const auto a = read_bcc_nrrd<double>(file("ascii.nrrd"));
-  EXPECT_EQ(std::vector<double>(a.samples().begin(), a.samples().end()), (std::vector<double>{1.5, -2, 0.25, 8}));
+  EXPECT_EQ(std::vector<double>(a.samples().begin(), a.samples().end()),
+            (std::vector<double>{1.5, -2, 0.25, 8}));
   std::string swapped = raw_floats(kValues);
-  for (std::size_t s = 0; s < swapped.size(); s += 4) std::reverse(swapped.begin() + static_cast<std::ptrdiff_t>(s), swapped.begin() + static_cast<std::ptrdiff_t>(s + 4));
+  for (std::size_t s = 0; s < swapped.size(); s += 4)
+    std::reverse(swapped.begin() + static_cast<std::ptrdiff_t>(s),
+                 swapped.begin() + static_cast<std::ptrdiff_t>(s + 4));
   const std::string other = std::endian::native == std::endian::little ? "big" : "little";
-  write_bytes(file("swapped.nrrd"), replace(base_header(), std::string("endian: ") + kEndian, "endian: " + other) + swapped);
+  write_bytes(
+      file("swapped.nrrd"),
+      replace(base_header(), std::string("endian: ") + kEndian, "endian: " + other) + swapped);
   const auto s = read_bcc_nrrd<float>(file("swapped.nrrd"));
   EXPECT_EQ(std::vector<float>(s.samples().begin(), s.samples().end()), kValues);
   // Windows line ends are fine.
@@ -270,7 +285,8 @@ std::vector<BadFile> bad_files() {
   const std::string h = base_header();
   const std::string data = raw_floats(kValues);
   std::string long_header = "NRRD0004\n";
-  while (long_header.size() < (std::size_t{1} << 21)) long_header += "# a comment line that goes on and on and on and on\n";
+  while (long_header.size() < (std::size_t{1} << 21))
+    long_header += "# a comment line that goes on and on and on and on\n";
   return {
       {"empty", "", "not a NRRD file"},
       {"text", "hello, world\n", "not a NRRD file"},
@@ -279,31 +295,48 @@ std::vector<BadFile> bad_files() {
       {"header cut", h.substr(0, 60), ""},
       {"no data", h, "truncated"},
       {"data cut", h + data.substr(0, 13), "truncated"},
-      {"wrong dimension", replace(replace(replace(h, "dimension: 4", "dimension: 3"), "sizes: 2 2 1 1", "sizes: 2 2 1"),
-                                  "none (0.5,0,0) (0,0.5,0) (0,0,0.5)", "(0.5,0,0) (0,0.5,0) (0,0,0.5)") + data,
+      {"wrong dimension",
+       replace(
+           replace(replace(h, "dimension: 4", "dimension: 3"), "sizes: 2 2 1 1", "sizes: 2 2 1"),
+           "none (0.5,0,0) (0,0.5,0) (0,0,0.5)", "(0.5,0,0) (0,0.5,0) (0,0,0.5)") +
+           data,
        "dimension 3"},
       {"axis 0 size 4", replace(h, "sizes: 2 2 1 1", "sizes: 4 1 1 1") + data, "axis 0 has size 4"},
       {"missing lattice key", replace(h, "lattice:=bcc\n", "") + data, "lattice:=bcc"},
       {"other lattice", replace(h, "lattice:=bcc", "lattice:=fcc") + data, "'fcc'"},
       {"inconsistent spacing", replace(h, "(0,0.5,0)", "(0,0.25,0)") + data, "space directions"},
       {"rotated directions", replace(h, "(0.5,0,0)", "(0.5,0.1,0)") + data, "space directions"},
-      {"negative h", replace(h, "none (0.5,0,0) (0,0.5,0) (0,0,0.5)", "none (-0.5,0,0) (0,-0.5,0) (0,0,-0.5)") + data, "space directions"},
-      {"h underflows to 0", replace(h, "none (0.5,0,0) (0,0.5,0) (0,0,0.5)", "none (4.9e-324,0,0) (0,4.9e-324,0) (0,0,4.9e-324)") + data,
+      {"negative h",
+       replace(h, "none (0.5,0,0) (0,0.5,0) (0,0,0.5)", "none (-0.5,0,0) (0,-0.5,0) (0,0,-0.5)") +
+           data,
        "space directions"},
-      {"coset axis with direction", replace(h, "none (0.5,0,0)", "(1,0,0) (0.5,0,0)") + data, "axis 0"},
+      {"h underflows to 0",
+       replace(h, "none (0.5,0,0) (0,0.5,0) (0,0,0.5)",
+               "none (4.9e-324,0,0) (0,4.9e-324,0) (0,0,4.9e-324)") +
+           data,
+       "space directions"},
+      {"coset axis with direction", replace(h, "none (0.5,0,0)", "(1,0,0) (0.5,0,0)") + data,
+       "axis 0"},
       {"spacings instead of directions",
-       replace(replace(replace(h, "space dimension: 3\n", ""), "space directions: none (0.5,0,0) (0,0.5,0) (0,0,0.5)\n", "spacings: nan 0.5 0.5 0.5\n"),
-               "space origin: (1,2,3)\n", "") + data,
+       replace(replace(replace(h, "space dimension: 3\n", ""),
+                       "space directions: none (0.5,0,0) (0,0.5,0) (0,0,0.5)\n",
+                       "spacings: nan 0.5 0.5 0.5\n"),
+               "space origin: (1,2,3)\n", "") +
+           data,
        "space directions"},
       {"missing origin", replace(h, "space origin: (1,2,3)\n", "") + data, "origin"},
       {"int samples", replace(h, "type: float", "type: int") + data, "'int'"},
       {"unparsable sizes", replace(h, "sizes: 2 2 1 1", "sizes: 2 two 1 1") + data, ""},
       {"unknown field", replace(h, "encoding: raw", "encoding: raw\nfrobnicate: yes") + data, ""},
-      {"detached data", replace(h, "encoding: raw", "data file: missing.raw\nencoding: raw"), "detached"},
-      {"detached from stdin", replace(h, "encoding: raw", "DATA  File: /dev/stdin\nencoding: raw") + data, "detached"},
-      {"detached after CR", replace(h, "encoding: raw\n", "encoding: raw\rdatafile: /dev/stdin\n") + data, "detached"},
+      {"detached data", replace(h, "encoding: raw", "data file: missing.raw\nencoding: raw"),
+       "detached"},
+      {"detached from stdin",
+       replace(h, "encoding: raw", "DATA  File: /dev/stdin\nencoding: raw") + data, "detached"},
+      {"detached after CR",
+       replace(h, "encoding: raw\n", "encoding: raw\rdatafile: /dev/stdin\n") + data, "detached"},
       {"huge raw", replace(h, "sizes: 2 2 1 1", "sizes: 2 1000 1000 1000") + data, "truncated"},
-      {"huge sizes", replace(h, "sizes: 2 2 1 1", "sizes: 2 4000000000 4000000000 4000000000") + data, ""},
+      {"huge sizes",
+       replace(h, "sizes: 2 2 1 1", "sizes: 2 4000000000 4000000000 4000000000") + data, ""},
       {"long header", long_header, "header is longer"},
   };
 }
@@ -327,7 +360,8 @@ TEST_F(BccNrrd, BadFilesGiveOneLineErrors) {
       } catch (const NrrdError& e) {
         const std::string message = e.what();
         EXPECT_EQ(message.find('\n'), std::string::npos) << bad.name << ": " << message;
-        EXPECT_NE(message.find(path.filename().string()), std::string::npos) << bad.name << ": " << message;
+        EXPECT_NE(message.find(path.filename().string()), std::string::npos)
+            << bad.name << ": " << message;
         EXPECT_NE(message.find(bad.expected), std::string::npos) << bad.name << ": " << message;
         EXPECT_LT(message.size(), 400u) << bad.name << ": " << message;
       }
@@ -367,7 +401,8 @@ TEST_F(BccNrrd, CompressedFilesRead) {
 
 TEST_F(BccNrrd, CompressedDataBeyondTheLimitIsRefusedBeforeAllocation) {
   // gzip data cannot be checked against the file size; the limit bounds the allocation.
-  const std::string h = replace(replace(base_header(), "sizes: 2 2 1 1", "sizes: 2 1000 1000 1000"), "encoding: raw", "encoding: gzip");
+  const std::string h = replace(replace(base_header(), "sizes: 2 2 1 1", "sizes: 2 1000 1000 1000"),
+                                "encoding: raw", "encoding: gzip");
   write_bytes(file("bomb.nrrd"), h + std::string(64, '\0'));
   try {
     (void)read_bcc_nrrd<float>(file("bomb.nrrd"), NrrdReadLimits{std::uint64_t{1} << 20});
@@ -377,9 +412,11 @@ TEST_F(BccNrrd, CompressedDataBeyondTheLimitIsRefusedBeforeAllocation) {
   }
   // Within the limit, short compressed data is Teem's to reject. (zlib passes data without a
   // gzip header through unchanged, so it must be short, not merely not gzip.)
-  write_bytes(file("small.nrrd"), replace(base_header(), "encoding: raw", "encoding: gzip") + std::string(5, 'x'));
+  write_bytes(file("small.nrrd"),
+              replace(base_header(), "encoding: raw", "encoding: gzip") + std::string(5, 'x'));
   EXPECT_THROW((void)read_bcc_nrrd<float>(file("small.nrrd")), NrrdError);
-  write_bytes(file("small.bz2.nrrd"), replace(base_header(), "encoding: raw", "encoding: bzip2") + std::string(5, 'x'));
+  write_bytes(file("small.bz2.nrrd"),
+              replace(base_header(), "encoding: raw", "encoding: bzip2") + std::string(5, 'x'));
   EXPECT_THROW((void)read_bcc_nrrd<float>(file("small.bz2.nrrd")), NrrdError);
 }
 
@@ -396,7 +433,8 @@ TEST_F(BccNrrd, OutputDirectoryIsCheckedBeforeAnyWork) {
   EXPECT_NO_THROW(require_output_directory(file("v.nrrd")));
   EXPECT_NO_THROW(require_output_directory("relative-name.nrrd"));  // the current directory
   EXPECT_THROW(require_output_directory(file("missing") / "v.nrrd"), NrrdError);
-  EXPECT_THROW(require_output_directory(file("v.nrrd") / ""), NrrdError);  // a directory, not a file
+  EXPECT_THROW(require_output_directory(file("v.nrrd") / ""),
+               NrrdError);  // a directory, not a file
   std::ofstream(file("plain")) << "x";
   EXPECT_THROW(require_output_directory(file("plain") / "v.nrrd"), NrrdError);  // parent is a file
   EXPECT_EQ(listing(), std::vector<std::string>{"plain"});  // nothing written by the checks
@@ -452,22 +490,27 @@ TEST_F(BccNrrd, DataMustMatchTheHeaderExactly) {
       {"one byte more", h + data + "x"},
       {"float over double data", h + raw_floats(kValues) + raw_floats(kValues)},
       {"too few sizes", replace(h, "sizes: 2 2 1 1", "sizes: 2 1 1 1") + data},
-      {"ascii: a number more", replace(h, "encoding: raw", "encoding: ascii") + "1.5 -2\n0.25 8 9\n"},
-      {"hex: a digit more", replace(h, "encoding: raw", "encoding: hex") + std::string(32, '0') + "0\n"},
+      {"ascii: a number more",
+       replace(h, "encoding: raw", "encoding: ascii") + "1.5 -2\n0.25 8 9\n"},
+      {"hex: a digit more",
+       replace(h, "encoding: raw", "encoding: hex") + std::string(32, '0') + "0\n"},
   };
   for (const auto& [name, bytes] : lies) {
     write_bytes(file("lie.nrrd"), bytes);
     EXPECT_NE(read_error(file("lie.nrrd")).find("announces"), std::string::npos) << name;
   }
   // Too little is refused as before, in every counted encoding.
-  write_bytes(file("short.nrrd"), replace(h, "encoding: raw", "encoding: ascii") + "1.5 -2\n0.25\n");
+  write_bytes(file("short.nrrd"),
+              replace(h, "encoding: raw", "encoding: ascii") + "1.5 -2\n0.25\n");
   EXPECT_NE(read_error(file("short.nrrd")).find("truncated"), std::string::npos);
   // Positive controls: exact data in each encoding reads (hex digits with line breaks).
-  write_bytes(file("ascii.nrrd"), replace(h, "encoding: raw", "encoding: ascii") + "1.5 -2\n0.25 8\n\n");
+  write_bytes(file("ascii.nrrd"),
+              replace(h, "encoding: raw", "encoding: ascii") + "1.5 -2\n0.25 8\n\n");
   EXPECT_NO_THROW((void)read_bcc_nrrd<float>(file("ascii.nrrd")));
   std::string hex;
   for (unsigned char byte : data) hex += fmt_hex(byte);
-  write_bytes(file("hex.nrrd"), replace(h, "encoding: raw", "encoding: hex") + hex.substr(0, 10) + "\n" + hex.substr(10) + "\n");
+  write_bytes(file("hex.nrrd"), replace(h, "encoding: raw", "encoding: hex") + hex.substr(0, 10) +
+                                    "\n" + hex.substr(10) + "\n");
   const auto v = read_bcc_nrrd<float>(file("hex.nrrd"));
   EXPECT_EQ(std::vector<float>(v.samples().begin(), v.samples().end()), kValues);
   // Compressed data is decompressed and counted: Teem re-saves the honest file in gzip and bzip2,
@@ -493,19 +536,23 @@ TEST_F(BccNrrd, DataMustMatchTheHeaderExactly) {
     EXPECT_NE(read_error(file("lie.nrrd")).find("truncated"), std::string::npos);
   }
   // Skipped lines or bytes in attached data are not supported.
-  write_bytes(file("skip.nrrd"), replace(h, "encoding: raw", "encoding: raw\nbyte skip: 4") + "abcd" + data);
+  write_bytes(file("skip.nrrd"),
+              replace(h, "encoding: raw", "encoding: raw\nbyte skip: 4") + "abcd" + data);
   EXPECT_NE(read_error(file("skip.nrrd")).find("byte skip"), std::string::npos);
 }
 
 TEST_F(BccNrrd, TheDeclaredByteOrderIsHonouredAndAnEvidentLieRefused) {
   // Native data declared in the other byte order: 1.5f byte-swapped is about 5e-41.
   const std::string other = std::endian::native == std::endian::little ? "big" : "little";
-  const std::string lie = replace(base_header(), std::string("endian: ") + kEndian, "endian: " + other);
+  const std::string lie =
+      replace(base_header(), std::string("endian: ") + kEndian, "endian: " + other);
   write_bytes(file("lie.nrrd"), lie + raw_floats(kValues));
   EXPECT_NE(read_error(file("lie.nrrd")).find("byte order"), std::string::npos);
   // The same header over data in that byte order reads (HandWrittenFilesRead also checks this).
   std::string swapped = raw_floats(kValues);
-  for (std::size_t s = 0; s < swapped.size(); s += 4) std::reverse(swapped.begin() + static_cast<long>(s), swapped.begin() + static_cast<long>(s + 4));
+  for (std::size_t s = 0; s < swapped.size(); s += 4)
+    std::reverse(swapped.begin() + static_cast<long>(s),
+                 swapped.begin() + static_cast<long>(s + 4));
   write_bytes(file("honest.nrrd"), lie + swapped);
   EXPECT_EQ(read_bcc_nrrd<float>(file("honest.nrrd")).value(3, 1, 1), 8.0f);
   // Doubles: 1.0 byte-swapped is about 3e-317.
@@ -531,8 +578,9 @@ TEST_F(BccNrrd, TheDeclaredByteOrderIsHonouredAndAnEvidentLieRefused) {
 }
 
 TEST_F(BccNrrd, NonFiniteSamplesAreRefusedUnlessAllowed) {
-  for (const float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
-                          -std::numeric_limits<float>::infinity()}) {
+  for (const float bad :
+       {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+        -std::numeric_limits<float>::infinity()}) {
     std::vector<float> values = kValues;
     values[3] = bad;
     write_bytes(file("bad.nrrd"), base_header() + raw_floats(values));
@@ -595,7 +643,8 @@ TEST_F(BccNrrd, AnOutputThatIsAnInputIsRefused) {
   fs::create_symlink("in.nrrd", file("alias.nrrd"));
   fs::create_hard_link(file("in.nrrd"), file("hard.nrrd"));
   const fs::path inputs[] = {file("other-missing.nrrd"), file("in.nrrd")};
-  for (const fs::path& out : {file("in.nrrd"), dir_ / "." / "in.nrrd", file("alias.nrrd"), file("hard.nrrd")})
+  for (const fs::path& out :
+       {file("in.nrrd"), dir_ / "." / "in.nrrd", file("alias.nrrd"), file("hard.nrrd")})
     EXPECT_THROW(require_output_file(out, inputs), NrrdError) << out;
   EXPECT_NO_THROW(require_output_file(file("out.nrrd"), inputs));
   EXPECT_NO_THROW(require_output_file(file("in.nrrd"), {}));
@@ -604,7 +653,8 @@ TEST_F(BccNrrd, AnOutputThatIsAnInputIsRefused) {
 TEST_F(BccNrrd, ReplacingAFileKeepsItsPermissions) {
   const auto v = random_volume<double>({2, 2, 2}, 0.5, {0, 0, 0}, 15);
   write_bcc_nrrd(file("v.nrrd"), v);
-  fs::permissions(file("v.nrrd"), fs::perms::owner_read | fs::perms::owner_write | fs::perms::others_read);
+  fs::permissions(file("v.nrrd"),
+                  fs::perms::owner_read | fs::perms::owner_write | fs::perms::others_read);
   write_bcc_nrrd(file("v.nrrd"), v);
   EXPECT_EQ(fs::status(file("v.nrrd")).permissions() & fs::perms::mask,
             fs::perms::owner_read | fs::perms::owner_write | fs::perms::others_read);

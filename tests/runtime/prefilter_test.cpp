@@ -23,12 +23,14 @@ BccVolume<T> lattice_volume(Sizes sizes, double h = 1, Vec3 origin = {0, 0, 0}) 
   for (int k = 0; k < sizes[2]; ++k)
     for (int j = 0; j < sizes[1]; ++j)
       for (int i = 0; i < sizes[0]; ++i)
-        for (int c = 0; c < 2; ++c) v(c, i, j, k) = static_cast<T>(lattice_function(2 * i + c, 2 * j + c, 2 * k + c));
+        for (int c = 0; c < 2; ++c)
+          v(c, i, j, k) = static_cast<T>(lattice_function(2 * i + c, 2 * j + c, 2 * k + c));
   return v;
 }
 
 // q = 2 at 0, 1/2 at (1,1,1), -1/4 at (-1,-1,1), 1 at (2,0,0).
-const DiscreteFilter kFilter = {{{0, 0, 0}, 2.0}, {{1, 1, 1}, 0.5}, {{-1, -1, 1}, -0.25}, {{2, 0, 0}, 1.0}};
+const DiscreteFilter kFilter = {
+    {{0, 0, 0}, 2.0}, {{1, 1, 1}, 0.5}, {{-1, -1, 1}, -0.25}, {{2, 0, 0}, 1.0}};
 
 TEST(BccPrefilter, ShrinkFollowsTheOffsets) {
   // Axis x: offsets 0, 1, -1, 2: lower ceil(2/2) = 1, upper ceil(1/2) = 1. Axis y: 0, 1, -1, 0:
@@ -66,7 +68,8 @@ TEST(BccPrefilter, HandComputedSamples) {
   //   2 V(5,3,7) + 1/2 V(4,2,6) - 1/4 V(6,4,6) + V(3,3,7) = 2*279 + 190/2 - 300/4 + 165 = 743.
   EXPECT_EQ(out.at(1, 1, 0, 2), 743.0);
   // World positions are kept: output sample (c, i, j, k) is input sample (c, i+1, j+1, k+1).
-  for (int c = 0; c < 2; ++c) EXPECT_EQ(out.sample_position(c, 1, 1, 2), v.sample_position(c, 2, 2, 3));
+  for (int c = 0; c < 2; ++c)
+    EXPECT_EQ(out.sample_position(c, 1, 1, 2), v.sample_position(c, 2, 2, 3));
 }
 
 TEST(BccPrefilter, IdentityFilterReturnsTheVolume) {
@@ -90,7 +93,8 @@ TEST(BccPrefilter, AgreesWithTheDefinitionForRandomFilters) {
     const int taps = 1 + trial % 6;
     for (int t = 0; t < taps; ++t) {
       const int p = parity(random);
-      q.push_back({{2 * offset(random) + p, 2 * offset(random) + p, 2 * offset(random) + p}, weight(random)});
+      q.push_back({{2 * offset(random) + p, 2 * offset(random) + p, 2 * offset(random) + p},
+                   weight(random)});
     }
     const auto out = prefilter(v, q);
     const PrefilterShrink s = prefilter_shrink(q);
@@ -99,10 +103,13 @@ TEST(BccPrefilter, AgreesWithTheDefinitionForRandomFilters) {
       for (int j = 0; j < out.sizes()[1]; ++j)
         for (int i = 0; i < out.sizes()[0]; ++i)
           for (int c = 0; c < 2; ++c) {
-            const LatticePoint x{2 * (i + s.lower[0]) + c, 2 * (j + s.lower[1]) + c, 2 * (k + s.lower[2]) + c};
+            const LatticePoint x{2 * (i + s.lower[0]) + c, 2 * (j + s.lower[1]) + c,
+                                 2 * (k + s.lower[2]) + c};
             double expected = 0;
-            for (const auto& [o, w] : q) expected += w * v.value(x[0] - o[0], x[1] - o[1], x[2] - o[2]);
-            ASSERT_NEAR(out.at(c, i, j, k), expected, 1e-12 * (1 + std::fabs(expected))) << "trial " << trial;
+            for (const auto& [o, w] : q)
+              expected += w * v.value(x[0] - o[0], x[1] - o[1], x[2] - o[2]);
+            ASSERT_NEAR(out.at(c, i, j, k), expected, 1e-12 * (1 + std::fabs(expected)))
+                << "trial " << trial;
           }
   }
 }
@@ -110,7 +117,8 @@ TEST(BccPrefilter, AgreesWithTheDefinitionForRandomFilters) {
 // The shrink is tight: one more coset cell at either end would need a sample that is not there.
 TEST(BccPrefilter, ShrinkIsNoLargerThanNeeded) {
   const BccVolume<double> v({6, 6, 6}, 1, {0, 0, 0});
-  const DiscreteFilter q = {{{0, 0, 0}, 1.0}, {{1, 1, 1}, 1.0}, {{-2, 0, 0}, 1.0}, {{0, 2, 0}, 1.0}};
+  const DiscreteFilter q = {
+      {{0, 0, 0}, 1.0}, {{1, 1, 1}, 1.0}, {{-2, 0, 0}, 1.0}, {{0, 2, 0}, 1.0}};
   const PrefilterShrink s = prefilter_shrink(q);
   for (int a = 0; a < 3; ++a) {
     auto neighbourhood_inside = [&](std::int64_t x_a) {
@@ -148,10 +156,10 @@ TEST(BccPrefilter, FloatAgreesWithDouble) {
 TEST(BccPrefilter, BadFiltersAndSmallVolumesAreErrors) {
   const auto v = lattice_volume<double>({3, 3, 3});
   const DiscreteFilter bad[] = {
-      {},                                                // no taps
-      {{{1, 0, 0}, 1.0}},                                // not a BCC lattice vector
-      {{{0, 0, 0}, std::nan("")}},                       // weight not finite
-      {{{0, 0, 0}, 1.0}, {{2, 2, 1 << 21}, 1.0}},        // absurd offset
+      {},                                          // no taps
+      {{{1, 0, 0}, 1.0}},                          // not a BCC lattice vector
+      {{{0, 0, 0}, std::nan("")}},                 // weight not finite
+      {{{0, 0, 0}, 1.0}, {{2, 2, 1 << 21}, 1.0}},  // absurd offset
   };
   for (const auto& q : bad) {
     try {
@@ -164,7 +172,8 @@ TEST(BccPrefilter, BadFiltersAndSmallVolumesAreErrors) {
   // Taps reaching 4 lattice units each way cost 2 coset cells per side: 3 samples are too few.
   EXPECT_THROW((void)prefilter(v, {{{4, 4, 4}, 1.0}, {{-4, -4, -4}, 1.0}}), std::invalid_argument);
   const BccVolume<double> one({1, 1, 1}, 1, {0, 0, 0});
-  EXPECT_THROW((void)prefilter(one, {{{1, 1, 1}, 1.0}, {{-1, -1, -1}, 1.0}}), std::invalid_argument);
+  EXPECT_THROW((void)prefilter(one, {{{1, 1, 1}, 1.0}, {{-1, -1, -1}, 1.0}}),
+               std::invalid_argument);
   EXPECT_NO_THROW((void)prefilter(one, {{{0, 0, 0}, 1.0}}));
 }
 

@@ -32,7 +32,8 @@ double max_error(const TestFunction& fn, int n, Filter f, PrefilterChoice q, int
   if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
   const Reconstructor<double> r(volume, f);
   double worst = 0;
-  for (const auto& p : random_points(count, 7)) worst = std::max(worst, std::abs(r.value(p) - fn.value(p)));
+  for (const auto& p : random_points(count, 7))
+    worst = std::max(worst, std::abs(r.value(p) - fn.value(p)));
   return worst;
 }
 
@@ -43,7 +44,8 @@ double rms_error(const TestFunction& fn, int n, Filter f, PrefilterChoice q, int
   std::vector<double> values(points.size());
   Reconstructor<double>(volume, f).evaluate(points, values);
   double sum = 0;
-  for (size_t i = 0; i < points.size(); ++i) sum += (values[i] - fn.value(points[i])) * (values[i] - fn.value(points[i]));
+  for (size_t i = 0; i < points.size(); ++i)
+    sum += (values[i] - fn.value(points[i])) * (values[i] - fn.value(points[i]));
   return std::sqrt(sum / static_cast<double>(points.size()));
 }
 
@@ -66,7 +68,8 @@ TEST(Reconstruction, RmsErrorFallsAtOrderFour) {
   // three densities (N = 9, 17, 33 gives h = 1/8, 1/16, 1/32) must be at least 3.5.
   const TestFunction& g = find_test_function("gaussian");
   for (Filter f : {Filter::M7, Filter::M8, Filter::M12}) {
-    const double e1 = rms_error(g, 9, f, PrefilterChoice::Q2), e2 = rms_error(g, 17, f, PrefilterChoice::Q2),
+    const double e1 = rms_error(g, 9, f, PrefilterChoice::Q2),
+                 e2 = rms_error(g, 17, f, PrefilterChoice::Q2),
                  e3 = rms_error(g, 33, f, PrefilterChoice::Q2);
     const double slope = std::log2(e1 / e3) / 2;
     EXPECT_GE(slope, 3.5) << filter_name(f) << " errors " << e1 << " " << e2 << " " << e3;
@@ -136,7 +139,7 @@ TEST(Reconstruction, UncheckedAndCheckedFetchesAgreeEverywhere) {
       double expected = 0;
       bool evaluable = true;
       try {
-        expected = f == Filter::M7 ? generated::m7::evaluate<double>(x, checked)
+        expected = f == Filter::M7   ? generated::m7::evaluate<double>(x, checked)
                    : f == Filter::M8 ? generated::m8::evaluate<double>(x, checked)
                                      : generated::m12::evaluate<double>(x, checked);
       } catch (const std::out_of_range&) {
@@ -144,7 +147,8 @@ TEST(Reconstruction, UncheckedAndCheckedFetchesAgreeEverywhere) {
       }
       if (evaluable) {
         ++inside;
-        EXPECT_EQ(r.value(p), expected) << filter_name(f) << " at " << p[0] << " " << p[1] << " " << p[2];
+        EXPECT_EQ(r.value(p), expected)
+            << filter_name(f) << " at " << p[0] << " " << p[1] << " " << p[2];
       } else {
         ++refused;
         EXPECT_THROW(r.value(p), std::out_of_range) << filter_name(f);
@@ -186,10 +190,12 @@ TEST(Reconstruction, HessianIsTheEvaluatorsInWorldUnitsAndMatchesGradientDiffere
       std::array<double, 6> lh;
       auto fetch = [&](const LatticePoint& j) { return volume.value(j); };
       const double direct = f == Filter::M7 ? generated::m7::evaluate<double>(x, fetch, &lg, &lh)
-                            : f == Filter::M8 ? generated::m8::evaluate<double>(x, fetch, &lg, &lh)
-                                              : generated::m12::evaluate<double>(x, fetch, &lg, &lh);
+                            : f == Filter::M8
+                                ? generated::m8::evaluate<double>(x, fetch, &lg, &lh)
+                                : generated::m12::evaluate<double>(x, fetch, &lg, &lh);
       EXPECT_EQ(v, direct);
-      for (int k = 0; k < 6; ++k) EXPECT_EQ(hs[k], lh[k] / (h * h)) << filter_name(f) << " entry " << k;
+      for (int k = 0; k < 6; ++k)
+        EXPECT_EQ(hs[k], lh[k] / (h * h)) << filter_name(f) << " entry " << k;
       // Central differences of the gradient along each axis: column a of the Hessian.
       constexpr int kIndex[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
       const double step = 1e-5;
@@ -200,7 +206,8 @@ TEST(Reconstruction, HessianIsTheEvaluatorsInWorldUnitsAndMatchesGradientDiffere
         r.value(plus, &gp);
         r.value(minus, &gm);
         for (int b = 0; b < 3; ++b) {
-          worst_difference = std::max(worst_difference, std::abs((gp[b] - gm[b]) / (2 * step) - hs[kIndex[a][b]]));
+          worst_difference =
+              std::max(worst_difference, std::abs((gp[b] - gm[b]) / (2 * step) - hs[kIndex[a][b]]));
           scale = std::max(scale, std::abs(hs[kIndex[a][b]]));
         }
       }

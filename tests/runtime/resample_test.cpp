@@ -34,7 +34,8 @@ constexpr Filter kFilters[] = {Filter::M7, Filter::M8, Filter::M12};
 // runtime/test_functions so the expected values do not come from the code under test.
 double cubic(const Vec3& p) {
   const double x = p[0], y = p[1], z = p[2];
-  return 0.75 - 1.5 * x + 0.5 * y + 2 * z * z - 3 * x * y * z + x * x * x - 0.25 * y * y * z + 1.25 * x * z * z - 0.5 * y * y * y;
+  return 0.75 - 1.5 * x + 0.5 * y + 2 * z * z - 3 * x * y * z + x * x * x - 0.25 * y * y * z +
+         1.25 * x * z * z - 0.5 * y * y * y;
 }
 
 template <class T>
@@ -48,7 +49,8 @@ double max_cubic_error(const CartesianVolume<double>& grid) {
   for (int k = 0; k < grid.sizes[2]; ++k)
     for (int j = 0; j < grid.sizes[1]; ++j)
       for (int i = 0; i < grid.sizes[0]; ++i)
-        worst = std::max(worst, std::abs(grid.values[grid.index(i, j, k)] - cubic(grid.position(i, j, k))));
+        worst = std::max(
+            worst, std::abs(grid.values[grid.index(i, j, k)] - cubic(grid.position(i, j, k))));
   return worst;
 }
 
@@ -68,12 +70,14 @@ TEST(Resample, CubicIsReproducedOnTheCartesianGridWithQ1) {
 TEST(Resample, FloatVolumesResampleToFloatGrids) {
   // float data: the cubic (|values| <= about 8) to float rounding, 1e-5.
   const CartesianGrid grid = grid_over({{-1, -1, -1}, {1, 1, 1}}, {5, 5, 5});
-  const auto values = resample(prefiltered<float>(cubic, 9, Filter::M8, PrefilterChoice::Q1), Filter::M8, grid);
+  const auto values =
+      resample(prefiltered<float>(cubic, 9, Filter::M8, PrefilterChoice::Q1), Filter::M8, grid);
   ASSERT_EQ(values.values.size(), 125u);
   for (int k = 0; k < 5; ++k)
     for (int j = 0; j < 5; ++j)
       for (int i = 0; i < 5; ++i)
-        EXPECT_NEAR(values.values[values.index(i, j, k)], cubic(values.position(i, j, k)), 1e-5) << i << " " << j << " " << k;
+        EXPECT_NEAR(values.values[values.index(i, j, k)], cubic(values.position(i, j, k)), 1e-5)
+            << i << " " << j << " " << k;
 }
 
 TEST(Resample, GridGeometryIsWhatWasAsked) {
@@ -96,7 +100,8 @@ TEST(Resample, GridGeometryIsWhatWasAsked) {
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 5; ++i) {
         const Vec3 p{-1 + 0.5 * i, -0.5 + 0.5 * j, 0.25 * k};
-        EXPECT_EQ(out.values[static_cast<std::size_t>(i + 5 * (j + 3 * k))], r.value(p)) << i << " " << j << " " << k;
+        EXPECT_EQ(out.values[static_cast<std::size_t>(i + 5 * (j + 3 * k))], r.value(p))
+            << i << " " << j << " " << k;
       }
 }
 
@@ -120,7 +125,8 @@ void expect_teem_reads(const fs::path& path, const CartesianVolume<T>& grid) {
   EXPECT_EQ(nrrd->spaceDim, 3u);
   for (int a = 0; a < 3; ++a) {
     EXPECT_EQ(nrrd->axis[a].size, static_cast<std::size_t>(grid.sizes[a])) << a;
-    for (int b = 0; b < 3; ++b) EXPECT_EQ(nrrd->axis[a].spaceDirection[b], a == b ? grid.spacing[a] : 0.0) << a << " " << b;
+    for (int b = 0; b < 3; ++b)
+      EXPECT_EQ(nrrd->axis[a].spaceDirection[b], a == b ? grid.spacing[a] : 0.0) << a << " " << b;
     EXPECT_EQ(nrrd->spaceOrigin[a], grid.origin[a]) << a;
   }
   ASSERT_NE(nrrd->data, nullptr);
@@ -132,10 +138,12 @@ TEST_F(ResampleNrrd, TeemReadsThePlain3dGrid) {
   // A box with no short decimal form: the header must carry the exact spacing and origin.
   const Box box{{-0.9, -1.0 / 3, 0.1}, {0.7, 0.8, 2.0 / 3}};
   const CartesianGrid grid = grid_over(box, {6, 5, 4});
-  const auto d = resample(prefiltered<double>(cubic, 9, Filter::M12, PrefilterChoice::Q1), Filter::M12, grid);
+  const auto d =
+      resample(prefiltered<double>(cubic, 9, Filter::M12, PrefilterChoice::Q1), Filter::M12, grid);
   write_cartesian_nrrd(dir_ / "d.nrrd", d);
   expect_teem_reads(dir_ / "d.nrrd", d);
-  const auto f = resample(prefiltered<float>(cubic, 9, Filter::M7, PrefilterChoice::None), Filter::M7, grid);
+  const auto f =
+      resample(prefiltered<float>(cubic, 9, Filter::M7, PrefilterChoice::None), Filter::M7, grid);
   write_cartesian_nrrd(dir_ / "f.nrrd", f);
   expect_teem_reads(dir_ / "f.nrrd", f);
 }
@@ -152,7 +160,8 @@ void expect_reach_matches_fetches(Filter f, Evaluate evaluate) {
     const std::array<double, 3> x{u(rng), u(rng), u(rng)};
     evaluate(x, [&](const std::array<std::int64_t, 3>& j) {
       for (int a = 0; a < 3; ++a) {
-        const int d = static_cast<int>(j[a] - static_cast<std::int64_t>(std::floor(x[a] + reach.centre[a])));
+        const int d =
+            static_cast<int>(j[a] - static_cast<std::int64_t>(std::floor(x[a] + reach.centre[a])));
         seen_lo[a] = std::min(seen_lo[a], d);
         seen_hi[a] = std::max(seen_hi[a], d);
       }
@@ -164,9 +173,15 @@ void expect_reach_matches_fetches(Filter f, Evaluate evaluate) {
 }
 
 TEST(Resample, StencilReachIsWhatTheEvaluatorsFetch) {
-  expect_reach_matches_fetches(Filter::M7, [](const auto& x, auto&& fetch) { return generated::m7::evaluate<double>(x, fetch); });
-  expect_reach_matches_fetches(Filter::M8, [](const auto& x, auto&& fetch) { return generated::m8::evaluate<double>(x, fetch); });
-  expect_reach_matches_fetches(Filter::M12, [](const auto& x, auto&& fetch) { return generated::m12::evaluate<double>(x, fetch); });
+  expect_reach_matches_fetches(Filter::M7, [](const auto& x, auto&& fetch) {
+    return generated::m7::evaluate<double>(x, fetch);
+  });
+  expect_reach_matches_fetches(Filter::M8, [](const auto& x, auto&& fetch) {
+    return generated::m8::evaluate<double>(x, fetch);
+  });
+  expect_reach_matches_fetches(Filter::M12, [](const auto& x, auto&& fetch) {
+    return generated::m12::evaluate<double>(x, fetch);
+  });
 }
 
 // Every point of the default grid, its corners and random points inside evaluate; a point one grid
@@ -189,30 +204,33 @@ void expect_default_box_inside_and_tight(const BccVolume<T>& volume, Filter f) {
   std::uniform_real_distribution<double> u(0, 1);
   for (int s = 0; s < 2000; ++s) {
     Vec3 p;
-    for (int a = 0; a < 3; ++a) p[a] = s < 8 ? ((s >> a) & 1 ? box.max[a] : box.min[a]) : box.min[a] + u(rng) * (box.max[a] - box.min[a]);
+    for (int a = 0; a < 3; ++a)
+      p[a] = s < 8 ? ((s >> a) & 1 ? box.max[a] : box.min[a])
+                   : box.min[a] + u(rng) * (box.max[a] - box.min[a]);
     EXPECT_NO_THROW(r.value(p)) << p[0] << " " << p[1] << " " << p[2];
   }
   // Beyond a face by one grid step (the brief's test), and by only 1e-3 lattice units: the box
   // is tight to far less than a grid step (the rounding guard is below 1e-4 units).
   for (const double step : {grid.spacing[0], 1e-3 * volume.spacing()})
-  for (int a = 0; a < 3; ++a)
-    for (int side = 0; side < 2; ++side) {
-      int outside = 0;
-      const int b = (a + 1) % 3, c = (a + 2) % 3;
-      for (int i = 0; i <= 40; ++i)
-        for (int k = 0; k <= 40; ++k) {
-          Vec3 p;
-          p[a] = side ? box.max[a] + step : box.min[a] - step;
-          p[b] = box.min[b] + (box.max[b] - box.min[b]) * i / 40;
-          p[c] = box.min[c] + (box.max[c] - box.min[c]) * k / 40;
-          try {
-            (void)r.value(p);
-          } catch (const std::out_of_range&) {
-            ++outside;
+    for (int a = 0; a < 3; ++a)
+      for (int side = 0; side < 2; ++side) {
+        int outside = 0;
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        for (int i = 0; i <= 40; ++i)
+          for (int k = 0; k <= 40; ++k) {
+            Vec3 p;
+            p[a] = side ? box.max[a] + step : box.min[a] - step;
+            p[b] = box.min[b] + (box.max[b] - box.min[b]) * i / 40;
+            p[c] = box.min[c] + (box.max[c] - box.min[c]) * k / 40;
+            try {
+              (void)r.value(p);
+            } catch (const std::out_of_range&) {
+              ++outside;
+            }
           }
-        }
-      EXPECT_GT(outside, 0) << "the box could grow by " << step << " on axis " << a << (side ? " upwards" : " downwards");
-    }
+        EXPECT_GT(outside, 0) << "the box could grow by " << step << " on axis " << a
+                              << (side ? " upwards" : " downwards");
+      }
 }
 
 TEST(Resample, DefaultBoxIsInsideTheVolumeAndTight) {
@@ -226,7 +244,8 @@ TEST(Resample, DefaultBoxIsInsideTheVolumeAndTight) {
 }
 
 TEST(Resample, DefaultBoxOfASampledCubeHoldsTheCube) {
-  // With required_margin (reconstruction.h) as the sampling margin, [-1,1]^3 is inside the default box.
+  // With required_margin (reconstruction.h) as the sampling margin, [-1,1]^3 is inside the default
+  // box.
   for (Filter f : kFilters)
     for (PrefilterChoice q : {PrefilterChoice::None, PrefilterChoice::Q2}) {
       const Box box = default_box(prefiltered<double>(cubic, 5, f, q), f);
@@ -247,10 +266,13 @@ TEST(Resample, BadBoxesAndGridsAreErrors) {
   EXPECT_THROW(grid_over({{-1, -1, -1}, {1, INFINITY, 1}}, {3, 3, 3}), std::invalid_argument);
   EXPECT_THROW(grid_over(inside, {3, 1, 3}), std::invalid_argument);
   EXPECT_THROW(grid_over(inside, {3, 3, kMaxGridSize + 1}), std::invalid_argument);
-  EXPECT_THROW(grid_over(inside, {kMaxGridSize, kMaxGridSize, kMaxGridSize}), std::invalid_argument);
+  EXPECT_THROW(grid_over(inside, {kMaxGridSize, kMaxGridSize, kMaxGridSize}),
+               std::invalid_argument);
   // A grid with zero spacing or a non-finite origin.
-  EXPECT_THROW(resample(volume, Filter::M7, CartesianGrid{{3, 3, 3}, {0.5, 0, 0.5}, {0, 0, 0}}), std::invalid_argument);
-  EXPECT_THROW(resample(volume, Filter::M7, CartesianGrid{{3, 3, 3}, {0.5, 0.5, 0.5}, {0, NAN, 0}}), std::invalid_argument);
+  EXPECT_THROW(resample(volume, Filter::M7, CartesianGrid{{3, 3, 3}, {0.5, 0, 0.5}, {0, 0, 0}}),
+               std::invalid_argument);
+  EXPECT_THROW(resample(volume, Filter::M7, CartesianGrid{{3, 3, 3}, {0.5, 0.5, 0.5}, {0, NAN, 0}}),
+               std::invalid_argument);
   // A box leaving the volume, on either side of any axis: one line naming the allowed region.
   const Box allowed = default_box(volume, Filter::M7);
   for (int a = 0; a < 3; ++a)
@@ -268,7 +290,8 @@ TEST(Resample, BadBoxesAndGridsAreErrors) {
   // A volume too small for the stencil has no default box, and nothing can be resampled from it.
   const BccVolume<double> tiny({2, 9, 9}, 0.5, {0, 0, 0});
   EXPECT_THROW((void)default_box(tiny, Filter::M8), std::invalid_argument);
-  EXPECT_THROW((void)resample(tiny, Filter::M8, grid_over({{1, 1, 1}, {2, 2, 2}}, {3, 3, 3})), std::invalid_argument);
+  EXPECT_THROW((void)resample(tiny, Filter::M8, grid_over({{1, 1, 1}, {2, 2, 2}}, {3, 3, 3})),
+               std::invalid_argument);
 }
 
 }  // namespace

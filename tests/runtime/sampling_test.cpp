@@ -54,7 +54,8 @@ TEST(BccSampling, MarginKeepsTheCubeAtTheSameWorldPositions) {
   EXPECT_EQ(v.sizes(), (Sizes{n + 2 * m, n + 2 * m, n + 2 * m}));
   // Lattice (2m, 2m, 2m) is the corner (-1,-1,-1), lattice 2m + 2N - 2 the corner (1,1,1).
   EXPECT_EQ(v.to_world({2.0 * m, 2.0 * m, 2.0 * m}), (Vec3{-1, -1, -1}));
-  EXPECT_EQ(v.to_world({2.0 * m + 2 * n - 2, 2.0 * m + 2 * n - 2, 2.0 * m + 2 * n - 2}), (Vec3{1, 1, 1}));
+  EXPECT_EQ(v.to_world({2.0 * m + 2 * n - 2, 2.0 * m + 2 * n - 2, 2.0 * m + 2 * n - 2}),
+            (Vec3{1, 1, 1}));
   const auto plain = sample_cube<double>(marschner_lobb, n, 0);
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
@@ -66,14 +67,16 @@ TEST(BccSampling, FloatSamplesAreTheRoundedDoubleSamples) {
   const auto d = sample_cube<double>(gaussian, 6, 1);
   const auto f = sample_cube<float>(gaussian, 6, 1);
   ASSERT_EQ(d.sample_count(), f.sample_count());
-  for (std::size_t s = 0; s < d.sample_count(); ++s) EXPECT_EQ(f.samples()[s], static_cast<float>(d.samples()[s]));
+  for (std::size_t s = 0; s < d.sample_count(); ++s)
+    EXPECT_EQ(f.samples()[s], static_cast<float>(d.samples()[s]));
   EXPECT_EQ(f.spacing(), d.spacing());
   EXPECT_EQ(f.origin(), d.origin());
 }
 
 TEST(BccSampling, SampleBccPlacesEverySampleAtItsWorldPoint) {
   const BccGrid grid{{2, 3, 4}, 0.3, {0.5, -1, 2}};
-  const auto v = sample_bcc<double>([](const Vec3& p) { return p[0] + 10 * p[1] + 100 * p[2]; }, grid);
+  const auto v =
+      sample_bcc<double>([](const Vec3& p) { return p[0] + 10 * p[1] + 100 * p[2]; }, grid);
   for (int k = 0; k < 4; ++k)
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 2; ++i)

@@ -59,7 +59,8 @@ std::string spec_text(const std::vector<Direction>& s) {
 }
 
 int determinant(const Direction& a, const Direction& b, const Direction& c) {
-  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+         a[2] * (b[0] * c[1] - b[1] * c[0]);
 }
 
 bool spans_space(const std::vector<Direction>& s) {

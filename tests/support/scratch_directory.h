@@ -14,7 +14,8 @@ class ScratchDirectoryTest : public ::testing::Test {
   explicit ScratchDirectoryTest(std::string prefix) : prefix_(std::move(prefix)) {}
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() / (prefix_ + "-" + std::to_string(::getpid()) + "-" + info->name());
+    dir_ = std::filesystem::temp_directory_path() /
+           (prefix_ + "-" + std::to_string(::getpid()) + "-" + info->name());
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }
