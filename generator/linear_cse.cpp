@@ -28,7 +28,8 @@ SharedRows share_partial_sums(const std::vector<LinearRow>& rows, int inputs,
     for (auto it = count.begin(); it != count.end(); ++it)
       if (best == count.end() || it->second > best->second) best = it;
     if (best == count.end() || best->second < 2) break;
-    const auto [a, b, ratio] = best->first;
+    const int a = std::get<0>(best->first);  // named, not bound: lambdas capture them (clang 14)
+    const int b = std::get<1>(best->first);
     // The exact ratio from the first row holding the pair; rows with another exact ratio keep
     // theirs.
     std::optional<Rational> r;

@@ -52,7 +52,7 @@ class CosetLattice {
 
   // The coset holding integer point p, or -1 when p is not a lattice point.
   int coset_of(std::int64_t x, std::int64_t y, std::int64_t z) const noexcept {
-    return table_[static_cast<std::size_t>(residue(x) + d_ * (residue(y) + d_ * residue(z)))];
+    return table_[index_of(residue(x), residue(y), residue(z))];
   }
   bool contains(std::int64_t x, std::int64_t y, std::int64_t z) const noexcept {
     return coset_of(x, y, z) >= 0;
@@ -70,6 +70,11 @@ class CosetLattice {
 
  private:
   CosetLattice() = default;
+  // Position of the residues (rx, ry, rz) in table_ (x fastest).
+  std::size_t index_of(int rx, int ry, int rz) const noexcept {
+    const auto d = static_cast<std::size_t>(d_);
+    return static_cast<std::size_t>(rx) + d * (static_cast<std::size_t>(ry) + d * static_cast<std::size_t>(rz));
+  }
   int residue(std::int64_t x) const noexcept {
     const std::int64_t r = x % d_;
     return static_cast<int>(r < 0 ? r + d_ : r);

@@ -70,7 +70,7 @@ fs::path check_output_file(const fs::path& path, std::span<const fs::path> input
   if (name.empty() || name == "." || name == "..") refuse(path, "not a file name");
   bool exists = false;
   struct stat info {};
-  const fs::path target = follow_links(path, exists, info);
+  fs::path target = follow_links(path, exists, info);
   if (exists) {
     if (!S_ISREG(info.st_mode))
       refuse(path, fmt::format("{}{} is {}; only regular files are written",

@@ -147,7 +147,7 @@ double tricubic_seconds(int n, const std::vector<Vec3>& bcc_points, int repeats)
   std::vector<T> samples(static_cast<std::size_t>(m) * m * m);
   std::mt19937_64 rng(m);
   for (auto& s : samples) s = static_cast<T>(static_cast<double>(rng() % 4096) / 4096.0);
-  std::vector<std::int64_t> offsets(Tr::kCellCount * Tr::kStencilSize);
+  std::vector<std::int64_t> offsets(static_cast<std::size_t>(Tr::kCellCount) * Tr::kStencilSize);
   for (int c = 0; c < Tr::kCellCount; ++c)
     for (int k = 0; k < Tr::kStencilSize; ++k) {
       const auto& d = Tr::kOffsets[c][k];
@@ -193,6 +193,7 @@ Row table2_row(int n, long count, int repeats) {
 
 int run_bench(const BenchOptions& o) {
   const long count = o.points > 0 ? o.points : (o.quick ? 200000 : 10000000);
+  const auto per_point = [count](double seconds) { return 1e9 * seconds / static_cast<double>(count); };
   const int repeats = std::max(1, o.repeats);
   set_batch_threads(1);
   nlohmann::json result;
@@ -213,15 +214,15 @@ int run_bench(const BenchOptions& o) {
     const double two = filter_seconds(Filter::M7, volume, points, repeats);
     set_batch_threads(1);
     result["volume"] = fmt::format("{}^3 x 2 float, {} random points, one thread", n_cache, count);
-    result["ns_per_point"] = {{"m7", 1e9 * t[0] / count},
-                              {"m8", 1e9 * t[1] / count},
-                              {"m12", 1e9 * t[2] / count},
-                              {"m7_floor", 1e9 * floor[0] / count},
-                              {"m8_floor", 1e9 * floor[1] / count},
-                              {"m12_floor", 1e9 * floor[2] / count},
-                              {"m7_rays", 1e9 * coherent[0] / count},
-                              {"m8_rays", 1e9 * coherent[1] / count},
-                              {"m12_rays", 1e9 * coherent[2] / count},
+    result["ns_per_point"] = {{"m7", per_point(t[0])},
+                              {"m8", per_point(t[1])},
+                              {"m12", per_point(t[2])},
+                              {"m7_floor", per_point(floor[0])},
+                              {"m8_floor", per_point(floor[1])},
+                              {"m12_floor", per_point(floor[2])},
+                              {"m7_rays", per_point(coherent[0])},
+                              {"m8_rays", per_point(coherent[1])},
+                              {"m12_rays", per_point(coherent[2])},
                               {"tricubic", 1e9 * tricubic / count},
                               {"m7_2_threads", 1e9 * two / count}};
     result["t7_over_t8"] = t[0] / t[1];

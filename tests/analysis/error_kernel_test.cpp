@@ -14,7 +14,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-ErrorKernel kernel_of(const BoxSplineSpec& spec, std::vector<int> shells) {
+ErrorKernel kernel_of(const BoxSplineSpec& spec, const std::vector<int>& shells) {
   return ErrorKernel(
       BoxSplineSpectrum(spec.directions), static_cast<double>(spec.lattice.det_abs()),
       test::autocorrelation_taps(spec),
@@ -79,7 +79,7 @@ TEST(ErrorKernel, VanishesAtZeroAndNeverFallsBelowTheMinimum) {
 TEST(ErrorKernel, PapersOrderingsHoldOnTheBandOfFig13) {
   const BoxSplineSpec m7 = parse_spec("m7"), m8 = parse_spec("m8"), m12 = parse_spec("m12");
   const Vec d{1, 1, 1};
-  for (std::vector<int> shells :
+  for (const std::vector<int>& shells :
        {std::vector<int>{}, std::vector<int>{0, 1}, std::vector<int>{0, 1, 2}}) {
     const ErrorKernel e7 = kernel_of(m7, shells), e8 = kernel_of(m8, shells),
                       e12 = kernel_of(m12, shells);

@@ -286,9 +286,9 @@ TEST_F(BoxreconFiles, AVolumeWhoseHeaderLiesIsRefused) {
 }
 
 TEST_F(BoxreconFiles, NonFiniteSamplesAreRefusedUnlessAllowed) {
-  std::string data = doubles(2 * 8 * 8 * 8, 1.0);
+  std::string data = doubles(std::size_t{2} * 8 * 8 * 8, 1.0);
   const double nan = std::nan("");
-  std::memcpy(data.data() + 8 * 3, &nan,
+  std::memcpy(data.data() + std::ptrdiff_t{8} * 3, &nan,
               8);  // sample 3: coset 1 of cell (1, 0, 0), far from the centre
   write_bytes(file("nan.nrrd"), header("double", "2 8 8 8") + data);
   write_bytes(file("p.txt"), "4 4 4\n");
@@ -395,9 +395,10 @@ TEST_F(BoxreconFiles, SampleOnEveryLattice) {
     for (std::size_t s : {std::size_t{0}, k * 123 + k - 1, values.size() - 1, values.size() / 2}) {
       const std::size_t coset = s % k, cell = s / k;
       const std::array<int, 3>& off = c.offsets[coset];
-      const double x = -3 + h * (c.d * static_cast<double>(cell % 10) + off[0]);
-      const double y = -3 + h * (c.d * static_cast<double>(cell / 10 % 10) + off[1]);
-      const double z = -3 + h * (c.d * static_cast<double>(cell / 100) + off[2]);
+      const std::size_t i = cell % 10, j = (cell / 10) % 10, l = cell / 100;  // the cell's indices
+      const double x = -3 + h * (c.d * static_cast<double>(i) + off[0]);
+      const double y = -3 + h * (c.d * static_cast<double>(j) + off[1]);
+      const double z = -3 + h * (c.d * static_cast<double>(l) + off[2]);
       EXPECT_NEAR(values[s], cubic(x, y, z), 1e-12 * (1 + std::abs(cubic(x, y, z)))) << s;
     }
   }

@@ -74,7 +74,7 @@ TEST(CliConventions, PrefilterSummaryMatchesItsTaps) {
   std::map<std::vector<int>, std::string> tap;
   for (const auto& w : q["weights"])
     tap[w["offset"].get<std::vector<int>>()] = w["weight"].get<std::string>();
-  auto weight = [&](std::vector<int> p) { return tap.count(p) ? tap[p] : std::string("0"); };
+  auto weight = [&](const std::vector<int>& p) { return tap.count(p) ? tap[p] : std::string("0"); };
   const std::vector<std::vector<std::vector<int>>> shells{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}},
                                                           {{1, 1}, {-1, -1}, {1, -1}, {-1, 1}}};
   const std::string text = boxgen_ok(args);
