@@ -187,8 +187,7 @@ void CosetLattice::tabulate() {
   table_.assign(static_cast<std::size_t>(d_) * d_ * d_, -1);
   for (std::size_t c = 0; c < offsets_.size(); ++c) {
     const Offset& o = offsets_[c];
-    table_[index_of(residue(o[0]), residue(o[1]), residue(o[2]))] =
-        static_cast<int>(c);
+    table_[index_of(residue(o[0]), residue(o[1]), residue(o[2]))] = static_cast<int>(c);
   }
 }
 

@@ -73,7 +73,8 @@ class CosetLattice {
   // Position of the residues (rx, ry, rz) in table_ (x fastest).
   std::size_t index_of(int rx, int ry, int rz) const noexcept {
     const auto d = static_cast<std::size_t>(d_);
-    return static_cast<std::size_t>(rx) + d * (static_cast<std::size_t>(ry) + d * static_cast<std::size_t>(rz));
+    return static_cast<std::size_t>(rx) +
+           d * (static_cast<std::size_t>(ry) + d * static_cast<std::size_t>(rz));
   }
   int residue(std::int64_t x) const noexcept {
     const std::int64_t r = x % d_;

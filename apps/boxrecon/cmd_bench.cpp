@@ -193,7 +193,9 @@ Row table2_row(int n, long count, int repeats) {
 
 int run_bench(const BenchOptions& o) {
   const long count = o.points > 0 ? o.points : (o.quick ? 200000 : 10000000);
-  const auto per_point = [count](double seconds) { return 1e9 * seconds / static_cast<double>(count); };
+  const auto per_point = [count](double seconds) {
+    return 1e9 * seconds / static_cast<double>(count);
+  };
   const int repeats = std::max(1, o.repeats);
   set_batch_threads(1);
   nlohmann::json result;
@@ -223,8 +225,8 @@ int run_bench(const BenchOptions& o) {
                               {"m7_rays", per_point(coherent[0])},
                               {"m8_rays", per_point(coherent[1])},
                               {"m12_rays", per_point(coherent[2])},
-                              {"tricubic", 1e9 * tricubic / count},
-                              {"m7_2_threads", 1e9 * two / count}};
+                              {"tricubic", per_point(tricubic)},
+                              {"m7_2_threads", per_point(two)}};
     result["t7_over_t8"] = t[0] / t[1];
     result["t12_over_t8"] = t[2] / t[1];
     result["m7_over_floor"] = t[0] / floor[0];
