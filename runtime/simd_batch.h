@@ -1,0 +1,47 @@
+// The SIMD batch path of Reconstructor<T>::evaluate: the generated orbit polynomial of a filter
+// (generated/registry.hpp) evaluated for many points at once, one point per SIMD lane. The
+// polynomial code is the generated one, instantiated with a vector type instead of T (it uses
+// only constants, +, -, * and unary minus); the glue that locates points and gathers their
+// stencils stays scalar (reconstruction.cpp). Google Highway picks the instruction set at run
+// time (dynamic dispatch: SSE4, AVX2 or AVX-512 where present), so one binary runs on any
+// x86-64 and no -march flag is needed.
+#pragma once
+
+namespace boxgen::runtime::simd {
+
+// Points per kernel call: a multiple of every target's lane count (AVX-512: 16 floats, 8 doubles).
+inline constexpr int kChunk = 16;
+
+// Highway's name of the instruction set the kernels dispatch to on this machine ("AVX2",
+// "AVX3" for AVX-512, "SSE4", "EMU128" when no vector unit is usable).
+const char* target_name();
+
+// Whether Reconstructor::evaluate takes the SIMD path: the dispatched target is a vector one and
+// the environment variable BOXGEN_SIMD is not "0" or "off" (a switch for measuring and checking
+// the scalar path, which stays the reference).
+bool enabled();
+
+// Rows of locate_chunk's output for a filter of dimension n (kChunk values each).
+constexpr int locate_rows(int n) { return 2 * n + 3; }
+
+// generated/evaluator_support.hpp's locate() for kChunk points of registry filter `filter` at once,
+// bit for bit the same, and the runtime's stencil box check. In: x[i * kChunk + lane], the
+// lattice coordinates as T (|x| < 2^22: integers are carried as T), and limit[i], the largest
+// lattice coordinate of the volume on axis i. Out, rows of kChunk: the corner floor(x + c)
+// (n rows), the cell (-1: none, the scalar path decides), the reference coordinates (n rows), the
+// cell's orbit, and 1 where the cell exists and its whole published reach is inside [0, limit].
+void locate_chunk(int filter, const float* x, const float* limit, float* out);
+void locate_chunk(int filter, const double* x, const double* limit, double* out);
+
+// The orbit polynomial `orbit` of registry filter `filter` at `lanes` (<= kChunk) points, with
+// derivatives up to `order` (support::kValue, kGradient, kHessian), in the orbit's reference frame.
+// Transposed, lane-minor buffers: v[k * kChunk + lane] the stencil values (k below the orbit's
+// stencil size), x[i * kChunk + lane] the reference coordinates, out[j * kChunk + lane] the value
+// (j = 0) then the orbit function's d[j - 1]. Lanes from `lanes` up to the next multiple of the
+// vector width are computed too, so callers fill them (with any finite data).
+void orbit_chunk(int filter, int orbit, int order, const float* v, const float* x, float* out,
+                 int lanes);
+void orbit_chunk(int filter, int orbit, int order, const double* v, const double* x, double* out,
+                 int lanes);
+
+}  // namespace boxgen::runtime::simd
