@@ -313,6 +313,8 @@ class FilterPath final : public EvaluationPath<T> {
       const T* const inside = located + 8 * kLanes;
       int orbit = -1, size = 0, first_lane = -1;
       bool stays[kLanes] = {};
+      const T* bases[kLanes];
+      const Offset* tables[kLanes];
       for (int lane = 0; lane < lanes; ++lane) {
         if (inside[lane] == T(0) || (orbit >= 0 && static_cast<int>(orbits[lane]) != orbit)) {
           scalar_point<Order>(index[lane], points, values, gradients, hessians, error);
@@ -327,20 +329,32 @@ class FilterPath final : public EvaluationPath<T> {
         const std::int64_t c[3] = {static_cast<std::int64_t>(located[lane]),
                                    static_cast<std::int64_t>(located[kLanes + lane]),
                                    static_cast<std::int64_t>(located[2 * kLanes + lane])};
-        const T* const base = samples + (c[0] * stride_[0] + c[1] * stride_[1] + c[2] * stride_[2]);
-        const Offset* offsets =
+        bases[lane] = samples + (c[0] * stride_[0] + c[1] * stride_[1] + c[2] * stride_[2]);
+        tables[lane] =
             &offsets_[((c[0] & 1) * Tr::kCellCount + static_cast<int>(cells[lane])) * kStencil];
-        if constexpr (std::size(Tr::kOrbitStencilSize) == 1) {
-#pragma GCC unroll 16
-          for (int k = 0; k < kStencil; ++k) v[k * kLanes + lane] = base[offsets[k]];
-        } else {
-          for (int k = 0; k < size; ++k) v[k * kLanes + lane] = base[offsets[k]];
-        }
       }
       if (orbit < 0) continue;
-      for (int lane = 0; lane < kLanes; ++lane) {  // lanes that left or were never filled
-        if (lane < lanes && stays[lane]) continue;
-        for (int k = 0; k < size; ++k) v[k * kLanes + lane] = v[k * kLanes + first_lane];
+      for (int lane = 0; lane < kLanes; ++lane)  // lanes that left or were never filled
+        if (lane >= lanes || !stays[lane]) {
+          bases[lane] = bases[first_lane];
+          tables[lane] = tables[first_lane];
+        }
+      if constexpr (kStencil <= 64) {
+        // Sample k of every lane, then k + 1: the lanes' cache misses overlap (M7, M8: 10% less
+        // time than lane by lane, bench_instructions ... time).
+        for (int k = 0; k < size; ++k) {
+          T* const row = v + k * kLanes;
+#pragma GCC unroll 16
+          for (int lane = 0; lane < kLanes; ++lane) row[lane] = bases[lane][tables[lane][k]];
+        }
+      } else {
+        // Lane by lane: fewer instructions per sample, which wins for large stencils (M12: 128).
+        for (int lane = 0; lane < kLanes; ++lane) {
+          const T* const base = bases[lane];
+          const Offset* const table = tables[lane];
+#pragma GCC unroll 16
+          for (int k = 0; k < size; ++k) v[k * kLanes + lane] = base[table[k]];
+        }
       }
       simd::orbit_chunk(registry_index_, orbit, Order, v, reference, out, kLanes);
       for (int lane = 0; lane < lanes; ++lane) {
