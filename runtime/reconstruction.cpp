@@ -259,8 +259,8 @@ class FilterPath final : public EvaluationPath<T> {
       throw std::out_of_range(fmt::format("point {}: {}", error.index + 1, error.what));
   }
 
-  // Points [first, last) in chunks of simd::kChunk: their lattice coordinates collected, located
-  // in one SIMD call, their stencils gathered lane by lane, the chunk's polynomial evaluated in one
+  // Points [first, last) in chunks of simd::kChunk: their world coordinates converted and located
+  // in one SIMD call, their stencils gathered into lanes, the chunk's polynomial evaluated in one
   // SIMD call (runtime/simd_batch.h), the derivatives mapped back per lane. A point takes the
   // scalar path, point(), with its errors, when it is not finite or far outside, when its stencil
   // box is not inside the volume, when rounding put it on a knot plane (no cell in the table), or
@@ -273,38 +273,31 @@ class FilterPath final : public EvaluationPath<T> {
     constexpr int kLocated = simd::locate_rows(3);
     constexpr int kOut =
         1 + (Order == support::kValue ? 0 : 3) + (Order == support::kHessian ? 6 : 0);
-    alignas(64) T x[3 * kLanes];
+    alignas(64) double world[3 * kLanes];
     alignas(64) T located[kLocated * kLanes];
     alignas(64) T v[kStencil * kLanes];
     alignas(64) T out[kOut * kLanes];
     std::ptrdiff_t index[kLanes];
-    const T limit[3] = {static_cast<T>(2 * volume_.sizes()[0] - 1),
-                        static_cast<T>(2 * volume_.sizes()[1] - 1),
-                        static_cast<T>(2 * volume_.sizes()[2] - 1)};
+    simd::Frame frame{};
+    frame.h = volume_.spacing();
+    frame.lower = -kFar;
+    for (int a = 0; a < 3; ++a) {
+      frame.origin[a] = volume_.origin()[a];
+      frame.upper[a] = 2.0 * volume_.sizes()[a] + kFar;
+      frame.limit[a] = 2.0 * volume_.sizes()[a] - 1;
+    }
     const T* samples = volume_.samples().data();
     const double h = volume_.spacing();
 
-    std::ptrdiff_t i = first;
-    while (i < last) {
-      // Collect up to kLanes points that are finite and near the volume.
+    for (std::ptrdiff_t next = first; next < last;) {
       int lanes = 0;
-      for (; i < last && lanes < kLanes; ++i) {
-        const Vec3& world = points[i];
-        const Vec3 lattice = volume_.to_lattice(world);
-        bool near = std::isfinite(world[0]) && std::isfinite(world[1]) && std::isfinite(world[2]);
-        for (int a = 0; a < 3; ++a)
-          near = near && lattice[a] > -kFar && lattice[a] < 2.0 * volume_.sizes()[a] + kFar;
-        if (!near) {
-          scalar_point<Order>(i, points, values, gradients, hessians, error);
-          continue;
-        }
-        for (int a = 0; a < 3; ++a) x[a * kLanes + lanes] = static_cast<T>(lattice[a]);
-        index[lanes++] = i;
+      for (; next < last && lanes < kLanes; ++next, ++lanes) {
+        for (int a = 0; a < 3; ++a) world[a * kLanes + lanes] = points[next][a];
+        index[lanes] = next;
       }
-      if (lanes == 0) break;
       for (int lane = lanes; lane < kLanes; ++lane)  // a partial chunk: repeat lane 0
-        for (int a = 0; a < 3; ++a) x[a * kLanes + lane] = x[a * kLanes];
-      simd::locate_chunk(registry_index_, x, limit, located);
+        for (int a = 0; a < 3; ++a) world[a * kLanes + lane] = world[a * kLanes];
+      simd::locate_chunk(registry_index_, world, frame, located);
 
       // Gather the stencils of the lanes that stay; the others take the scalar path.
       const T* const cells = located + 3 * kLanes;

@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <cstring>
+#include <type_traits>
 
 #include "generated/registry.hpp"
 
@@ -101,16 +102,51 @@ constexpr LocateTables<Tr, T> locate_tables() {
   return t;
 }
 
+// World to lattice coordinates in double, as BccVolume::to_lattice, rounded to T as the scalar
+// path rounds them; x[i * kChunk + lane] and near[lane] (1 or 0). Lanes that are not near get
+// x = 0, so that nothing below converts a huge or non-finite number to an integer.
+template <class T>
+HWY_ATTR void lattice_lanes(int n, const double* world, const Frame& frame, T* x, T* near) {
+  const hn::ScalableTag<double> dd;
+  const hn::Rebind<T, decltype(dd)> dt;
+  const auto to_t = [&](hn::Vec<decltype(dd)> v) HWY_ATTR {
+    if constexpr (std::is_same_v<T, double>) {
+      static_cast<void>(dt);
+      return v;
+    } else {
+      return hn::DemoteTo(dt, v);
+    }
+  };
+  const int width = static_cast<int>(hn::Lanes(dd));
+  for (int at = 0; at < kChunk; at += width) {
+    hn::Vec<decltype(dd)> lattice[3];
+    auto ok = hn::Eq(hn::Zero(dd), hn::Zero(dd));
+    for (int i = 0; i < n; ++i) {
+      lattice[i] =
+          hn::Div(hn::Sub(hn::LoadU(dd, world + i * kChunk + at), hn::Set(dd, frame.origin[i])),
+                  hn::Set(dd, frame.h));
+      ok = hn::And(ok, hn::And(hn::Gt(lattice[i], hn::Set(dd, frame.lower)),
+                               hn::Lt(lattice[i], hn::Set(dd, frame.upper[i]))));
+    }
+    for (int i = 0; i < n; ++i)
+      hn::StoreU(to_t(hn::IfThenElseZero(ok, lattice[i])), dt, x + i * kChunk + at);
+    hn::StoreU(to_t(hn::IfThenElseZero(ok, hn::Set(dd, 1.0))), dt, near + at);
+  }
+}
+
 // support::locate() for kChunk points at once, with the same operations in the same order (so the
 // same cells and the same reference coordinates, bit for bit), and the stencil box check of the
 // runtime. Integers are carried as T (exact: the caller keeps |x| below 2^23).
 template <class Tr, class T>
-[[gnu::flatten]] HWY_ATTR void locate_lanes(const T* x, const T* limit, T* out) {
+[[gnu::flatten]] HWY_ATTR void locate_lanes(const double* world, const Frame& frame, T* out) {
   constexpr int n = Tr::kDimension;
   static constexpr LocateTables<Tr, T> kTables = locate_tables<Tr, T>();
   const hn::ScalableTag<T> d;
   const hn::RebindToSigned<decltype(d)> di;
   using V = hn::Vec<decltype(d)>;
+  alignas(64) T x[n * kChunk];
+  alignas(64) T near[kChunk];
+  lattice_lanes(n, world, frame, x, near);
   const int width = static_cast<int>(hn::Lanes(d));
   for (int at = 0; at < kChunk; at += width) {
     V xs[n], r[n], corner[n], rep[n];
@@ -148,12 +184,15 @@ template <class Tr, class T>
     // No cell (rounding put r on a knot plane): the caller takes the scalar path, so any valid
     // index serves for the gathers below.
     const auto index = hn::ConvertTo(di, hn::Max(cell, hn::Zero(d)));
-    V ok = hn::IfThenElseZero(hn::Ge(cell, hn::Zero(d)), hn::Set(d, T(1)));
+    V ok = hn::IfThenElseZero(
+        hn::And(hn::Ge(cell, hn::Zero(d)), hn::Gt(hn::LoadU(d, near + at), hn::Zero(d))),
+        hn::Set(d, T(1)));
     for (int i = 0; i < n; ++i) {
       const V lo = hn::Add(corner[i], hn::Set(d, static_cast<T>(Tr::kStencilReachLo[i])));
       const V hi = hn::Add(corner[i], hn::Set(d, static_cast<T>(Tr::kStencilReachHi[i])));
-      ok = hn::IfThenElseZero(hn::And(hn::Ge(lo, hn::Zero(d)), hn::Le(hi, hn::Set(d, limit[i]))),
-                              ok);
+      ok = hn::IfThenElseZero(
+          hn::And(hn::Ge(lo, hn::Zero(d)), hn::Le(hi, hn::Set(d, static_cast<T>(frame.limit[i])))),
+          ok);
     }
     hn::StoreU(cell, d, out + n * kChunk + at);
     hn::StoreU(ok, d, out + (2 * n + 2) * kChunk + at);
@@ -176,16 +215,17 @@ template <class Tr, class T>
 }
 
 template <class T>
-void LocateChunk(int filter, const T* x, const T* limit, T* out) {
-  generated::with_filter(
-      filter, [&](auto entry) { locate_lanes<typename decltype(entry)::Traits>(x, limit, out); });
+void LocateChunk(int filter, const double* world, const Frame& frame, T* out) {
+  generated::with_filter(filter, [&](auto entry) {
+    locate_lanes<typename decltype(entry)::Traits>(world, frame, out);
+  });
 }
 
-void LocateChunkFloat(int filter, const float* x, const float* limit, float* out) {
-  LocateChunk(filter, x, limit, out);
+void LocateChunkFloat(int filter, const double* world, const Frame& frame, float* out) {
+  LocateChunk(filter, world, frame, out);
 }
-void LocateChunkDouble(int filter, const double* x, const double* limit, double* out) {
-  LocateChunk(filter, x, limit, out);
+void LocateChunkDouble(int filter, const double* world, const Frame& frame, double* out) {
+  LocateChunk(filter, world, frame, out);
 }
 
 template <class T>
@@ -222,11 +262,11 @@ HWY_EXPORT(IsVector);
 HWY_EXPORT(LocateChunkFloat);
 HWY_EXPORT(LocateChunkDouble);
 
-void locate_chunk(int filter, const float* x, const float* limit, float* out) {
-  HWY_DYNAMIC_DISPATCH(LocateChunkFloat)(filter, x, limit, out);
+void locate_chunk(int filter, const double* world, const Frame& frame, float* out) {
+  HWY_DYNAMIC_DISPATCH(LocateChunkFloat)(filter, world, frame, out);
 }
-void locate_chunk(int filter, const double* x, const double* limit, double* out) {
-  HWY_DYNAMIC_DISPATCH(LocateChunkDouble)(filter, x, limit, out);
+void locate_chunk(int filter, const double* world, const Frame& frame, double* out) {
+  HWY_DYNAMIC_DISPATCH(LocateChunkDouble)(filter, world, frame, out);
 }
 
 const char* target_name() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }

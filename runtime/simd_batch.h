@@ -24,14 +24,26 @@ bool enabled();
 // Rows of locate_chunk's output for a filter of dimension n (kChunk values each).
 constexpr int locate_rows(int n) { return 2 * n + 3; }
 
-// generated/evaluator_support.hpp's locate() for kChunk points of registry filter `filter` at once,
-// bit for bit the same, and the runtime's stencil box check. In: x[i * kChunk + lane], the
-// lattice coordinates as T (|x| < 2^22: integers are carried as T), and limit[i], the largest
-// lattice coordinate of the volume on axis i. Out, rows of kChunk: the corner floor(x + c)
-// (n rows), the cell (-1: none, the scalar path decides), the reference coordinates (n rows), the
-// cell's orbit, and 1 where the cell exists and its whole published reach is inside [0, limit].
-void locate_chunk(int filter, const float* x, const float* limit, float* out);
-void locate_chunk(int filter, const double* x, const double* limit, double* out);
+// A volume's frame for locate_chunk: lattice = (world - origin) / h, as BccVolume::to_lattice
+// computes it; a point goes on only when every lattice coordinate i lies in (lower, upper[i])
+// (also false for NaN and infinities); limit[i] is the largest lattice coordinate of the volume.
+struct Frame {
+  double origin[3];
+  double h;
+  double lower;
+  double upper[3];
+  double limit[3];
+};
+
+// For kChunk points of registry filter `filter` at once: the lattice coordinates, then
+// generated/evaluator_support.hpp's locate() in T, bit for bit the same, and the runtime's stencil
+// box check. In: world[i * kChunk + lane]. Out, rows of kChunk: the corner floor(x + c) (n rows),
+// the cell (-1: none), the reference coordinates (n rows), the cell's orbit, and 1 where the point
+// is near (see Frame), its cell exists and its whole published reach is inside [0, limit], else 0
+// (the caller then takes the scalar path, which decides and reports). Integers are carried as T:
+// callers keep upper[i] below 2^22.
+void locate_chunk(int filter, const double* world, const Frame& frame, float* out);
+void locate_chunk(int filter, const double* world, const Frame& frame, double* out);
 
 // The orbit polynomial `orbit` of registry filter `filter` at `lanes` (<= kChunk) points, with
 // derivatives up to `order` (support::kValue, kGradient, kHessian), in the orbit's reference frame.
