@@ -269,7 +269,7 @@ class FilterPath final : public EvaluationPath<T> {
   void simd_block(std::ptrdiff_t first, std::ptrdiff_t last, std::span<const Vec3> points,
                   std::span<T> values, std::span<Vec3> gradients, std::span<Hessian> hessians,
                   FirstError& error) const {
-    constexpr int kLanes = simd::kChunk;
+    constexpr std::ptrdiff_t kLanes = simd::kChunk;
     constexpr int kLocated = simd::locate_rows(3);
     constexpr int kOut =
         1 + (Order == support::kValue ? 0 : 3) + (Order == support::kHessian ? 6 : 0);
@@ -349,7 +349,7 @@ class FilterPath final : public EvaluationPath<T> {
           for (int k = 0; k < size; ++k) v[k * kLanes + lane] = base[table[k]];
         }
       }
-      simd::orbit_chunk(registry_index_, orbit, Order, v, reference, out, kLanes);
+      simd::orbit_chunk(registry_index_, orbit, Order, v, reference, out, simd::kChunk);
       for (int lane = 0; lane < lanes; ++lane) {
         if (!stays[lane]) continue;
         const std::ptrdiff_t p = index[lane];

@@ -27,6 +27,9 @@ namespace boxgen::runtime::simd::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 namespace support = boxgen::generated::support;
 
+// Buffers are rows of kChunk values: row r starts at r * kRow.
+constexpr std::ptrdiff_t kRow = kChunk;
+
 // The number type the generated polynomial code is instantiated with: one point per lane. It has
 // exactly what that code uses (the code's comment in generated/evaluator_support.hpp lists it).
 template <class T>
@@ -62,14 +65,14 @@ template <class Tr, int Order, class T>
   for (int at = 0; at < lanes; at += width) {
     P pv[Tr::kStencilSize];
     for (int k = 0; k < Tr::kStencilSize; ++k)
-      pv[k] = k < size ? P(hn::LoadU(d, v + k * kChunk + at)) : P(0.0);
+      pv[k] = k < size ? P(hn::LoadU(d, v + k * kRow + at)) : P(0.0);
     P px[n];
-    for (int i = 0; i < n; ++i) px[i] = P(hn::LoadU(d, x + i * kChunk + at));
+    for (int i = 0; i < n; ++i) px[i] = P(hn::LoadU(d, x + i * kRow + at));
     P pd[kDerivatives + 1];  // the orbit function fills d[0, kDerivatives); zeroed for the compiler
     for (P& e : pd) e = P(0.0);
     const P value = Tr::template orbit<Order>(orbit, pv, px, pd);
     hn::StoreU(value.v, d, out + at);
-    for (int j = 0; j < kDerivatives; ++j) hn::StoreU(pd[j].v, d, out + (j + 1) * kChunk + at);
+    for (int j = 0; j < kDerivatives; ++j) hn::StoreU(pd[j].v, d, out + (j + 1) * kRow + at);
   }
 }
 
@@ -103,7 +106,7 @@ constexpr LocateTables<Tr, T> locate_tables() {
 }
 
 // World to lattice coordinates in double, as BccVolume::to_lattice, rounded to T as the scalar
-// path rounds them; x[i * kChunk + lane] and near[lane] (1 or 0). Lanes that are not near get
+// path rounds them; x[i * kRow + lane] and near[lane] (1 or 0). Lanes that are not near get
 // x = 0, so that nothing below converts a huge or non-finite number to an integer.
 template <class T>
 HWY_ATTR void lattice_lanes(int n, const double* world, const Frame& frame, T* x, T* near) {
@@ -123,13 +126,13 @@ HWY_ATTR void lattice_lanes(int n, const double* world, const Frame& frame, T* x
     auto ok = hn::Eq(hn::Zero(dd), hn::Zero(dd));
     for (int i = 0; i < n; ++i) {
       lattice[i] =
-          hn::Div(hn::Sub(hn::LoadU(dd, world + i * kChunk + at), hn::Set(dd, frame.origin[i])),
+          hn::Div(hn::Sub(hn::LoadU(dd, world + i * kRow + at), hn::Set(dd, frame.origin[i])),
                   hn::Set(dd, frame.h));
       ok = hn::And(ok, hn::And(hn::Gt(lattice[i], hn::Set(dd, frame.lower)),
                                hn::Lt(lattice[i], hn::Set(dd, frame.upper[i]))));
     }
     for (int i = 0; i < n; ++i)
-      hn::StoreU(to_t(hn::IfThenElseZero(ok, lattice[i])), dt, x + i * kChunk + at);
+      hn::StoreU(to_t(hn::IfThenElseZero(ok, lattice[i])), dt, x + i * kRow + at);
     hn::StoreU(to_t(hn::IfThenElseZero(ok, hn::Set(dd, 1.0))), dt, near + at);
   }
 }
@@ -144,14 +147,14 @@ template <class Tr, class T>
   const hn::ScalableTag<T> d;
   const hn::RebindToSigned<decltype(d)> di;
   using V = hn::Vec<decltype(d)>;
-  alignas(64) T x[n * kChunk];
+  alignas(64) T x[n * kRow];
   alignas(64) T near[kChunk];
   lattice_lanes(n, world, frame, x, near);
   const int width = static_cast<int>(hn::Lanes(d));
   for (int at = 0; at < kChunk; at += width) {
     V xs[n], r[n], corner[n], rep[n];
     for (int i = 0; i < n; ++i) {
-      xs[i] = hn::LoadU(d, x + i * kChunk + at);
+      xs[i] = hn::LoadU(d, x + i * kRow + at);
       const V u = hn::Add(xs[i], hn::Set(d, static_cast<T>(Tr::kCentre[i])));
       corner[i] = hn::Floor(u);
       r[i] = hn::Sub(u, corner[i]);
@@ -194,11 +197,11 @@ template <class Tr, class T>
           hn::And(hn::Ge(lo, hn::Zero(d)), hn::Le(hi, hn::Set(d, static_cast<T>(frame.limit[i])))),
           ok);
     }
-    hn::StoreU(cell, d, out + n * kChunk + at);
-    hn::StoreU(ok, d, out + (2 * n + 2) * kChunk + at);
-    hn::StoreU(hn::GatherIndex(d, kTables.orbit, index), d, out + (2 * n + 1) * kChunk + at);
+    hn::StoreU(cell, d, out + n * kRow + at);
+    hn::StoreU(ok, d, out + (2 * n + 2) * kRow + at);
+    hn::StoreU(hn::GatherIndex(d, kTables.orbit, index), d, out + (2 * n + 1) * kRow + at);
     for (int i = 0; i < n; ++i) {
-      hn::StoreU(corner[i], d, out + i * kChunk + at);
+      hn::StoreU(corner[i], d, out + i * kRow + at);
       // x_ref_i = sign_i (x_p - (corner_p - rep_p)) + a_i, p = perm_i.
       const V p = hn::GatherIndex(d, kTables.perm[i], index);
       V xp = xs[n - 1], shift = hn::Sub(corner[n - 1], rep[n - 1]);
@@ -209,7 +212,7 @@ template <class Tr, class T>
       }
       const V ref = hn::Add(hn::Mul(hn::GatherIndex(d, kTables.sign[i], index), hn::Sub(xp, shift)),
                             hn::GatherIndex(d, kTables.a[i], index));
-      hn::StoreU(ref, d, out + (n + 1 + i) * kChunk + at);
+      hn::StoreU(ref, d, out + (n + 1 + i) * kRow + at);
     }
   }
 }
