@@ -31,7 +31,7 @@ namespace support = boxgen::generated::support;
 constexpr std::ptrdiff_t kRow = kChunk;
 
 // The number type the generated polynomial code is instantiated with: one point per lane. It has
-// exactly what that code uses (the code's comment in generated/evaluator_support.hpp lists it).
+// exactly what that code uses: T(constant), +, -, * and unary minus.
 template <class T>
 struct Pack {
   using D = hn::ScalableTag<T>;
