@@ -6,10 +6,15 @@
 // evaluates `points` random points of a 32^3 x 2 float volume through
 // Reconstructor<float>::evaluate (BOXGEN_THREADS=1 is set here), or runs the filter's fetch floor:
 // per point the corner and its base index, then the filter's own stencil shape (cell 0's offsets)
-// fetched and summed. Divide the collected count by `points`.
+// fetched and summed. Divide the collected count by `points`. With `time` it also prints the
+// thread CPU time per point (best of 10 runs): `build/bench/bench_instructions m7 200000 time`.
+// BOXGEN_SIMD=0 measures the scalar batch path. (valgrind emulates no AVX-512: under it the
+// SIMD path dispatches to AVX2.)
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <random>
 #include <string>
 #include <vector>
@@ -47,12 +52,16 @@ __attribute__((noinline)) void fetch_floor(const BccVolume<float>& volume,
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: bench_instructions m7|m8|m12 POINTS [floor]\n");
+    std::fprintf(stderr, "usage: bench_instructions m7|m8|m12 POINTS [floor] [time]\n");
     return 2;
   }
   const Filter f = parse_filter(argv[1]);
   const long count = std::atol(argv[2]);
-  const bool floor = argc > 3 && std::string(argv[3]) == "floor";
+  bool floor = false, timed = false;
+  for (int a = 3; a < argc; ++a) {
+    floor = floor || std::string(argv[a]) == "floor";
+    timed = timed || std::string(argv[a]) == "time";
+  }
   set_batch_threads(1);
   const int n = 32;
   BccVolume<float> volume({n, n, n}, 1.0, {0, 0, 0});
@@ -62,14 +71,33 @@ int main(int argc, char** argv) {
   std::vector<Vec3> points(count > 0 ? count : 1);
   for (auto& p : points) p = {u(rng), u(rng), u(rng)};
   std::vector<float> values(points.size());
-  if (floor)
-    boxgen::generated::with_filter(static_cast<int>(f), [&](auto entry) {
-      fetch_floor<typename decltype(entry)::Traits>(volume, points, values);
-    });
-  else
-    Reconstructor<float>(volume, f).evaluate(points, values);
+  const Reconstructor<float> reconstructor(volume, f);
+  const auto run = [&] {
+    if (floor)
+      boxgen::generated::with_filter(static_cast<int>(f), [&](auto entry) {
+        fetch_floor<typename decltype(entry)::Traits>(volume, points, values);
+      });
+    else
+      reconstructor.evaluate(points, values);
+  };
+  // With `time`: the fastest of 10 runs in CPU time of this thread, which a loaded machine
+  // disturbs far less than wall-clock time (it still shares caches and the core's frequency).
+  double best = 0;
+  for (int r = 0; r < (timed ? 10 : 1); ++r) {
+    timespec t0{}, t1{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t0);
+    run();
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t1);
+    const double ns = 1e9 * static_cast<double>(t1.tv_sec - t0.tv_sec) +
+                      static_cast<double>(t1.tv_nsec - t0.tv_nsec);
+    best = r == 0 ? ns : std::min(best, ns);
+  }
   double sum = 0;
   for (float v : values) sum += v;
-  std::printf("%s%s: %ld points, checksum %.6g\n", argv[1], floor ? " floor" : "", count, sum);
+  std::printf("%s%s: %ld points, checksum %.6g", argv[1], floor ? " floor" : "", count, sum);
+  if (timed)
+    std::printf(", %.2f ns per point (thread CPU time, best of 10)",
+                best / static_cast<double>(points.size()));
+  std::printf("\n");
   return 0;
 }

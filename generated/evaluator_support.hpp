@@ -20,6 +20,7 @@
 #pragma once
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <utility>
 
@@ -137,6 +138,24 @@ template <class Tr, class T>
   return out;
 }
 
+// The derivatives of a cell's reference polynomial (ref[j * stride], j as in the orbit functions'
+// d) in the lattice frame: x_ref_i = sign_i x_perm_i + const, so d/dx_perm_i = sign_i d/dx_ref_i.
+// The stride lets a batch of points keep its derivatives lane by lane (runtime/simd_batch.h).
+template <int Order, class Tr, class T>
+void from_reference_frame(int cell_index, const T* ref, std::ptrdiff_t stride, T* d) {
+  constexpr int n = Tr::kDimension;
+  const auto& cell = Tr::kCells[cell_index];
+  for (int i = 0; i < n; ++i) d[cell.perm[i]] = static_cast<T>(cell.sign[i]) * ref[i * stride];
+  if constexpr (Order >= kHessian) {
+    for (int i = 0; i < n; ++i)
+      for (int j = i; j < n; ++j) {
+        const int pi = cell.perm[i], pj = cell.perm[j];
+        const int at_user = pi <= pj ? hessian_index(n, pi, pj) : hessian_index(n, pj, pi);
+        d[n + at_user] = static_cast<T>(cell.sign[i] * cell.sign[j]) * ref[(n + hessian_index(n, i, j)) * stride];
+      }
+  }
+}
+
 // The spline and, by Order, its derivatives (lattice frame, d as in the orbit functions) at a
 // located point from its stencil values v (v[k] is the sample at corner + kOffsets[cell][k]).
 template <int Order, class Tr, class T>
@@ -148,16 +167,7 @@ T evaluate_located(const Located<Tr::kDimension, T>& at, const T* v, T* d) {
   } else {
     T ref[n + hessian_size(n)] = {};  // every orbit function fills it; zeroed for the compiler
     const T value = Tr::template orbit<Order>(cell.orbit, v, at.x, ref);
-    // x_ref_i = sign_i x_perm_i + const: d/dx_perm_i = sign_i d/dx_ref_i.
-    for (int i = 0; i < n; ++i) d[cell.perm[i]] = static_cast<T>(cell.sign[i]) * ref[i];
-    if constexpr (Order >= kHessian) {
-      for (int i = 0; i < n; ++i)
-        for (int j = i; j < n; ++j) {
-          const int pi = cell.perm[i], pj = cell.perm[j];
-          const int at_user = pi <= pj ? hessian_index(n, pi, pj) : hessian_index(n, pj, pi);
-          d[n + at_user] = static_cast<T>(cell.sign[i] * cell.sign[j]) * ref[n + hessian_index(n, i, j)];
-        }
-    }
+    from_reference_frame<Order, Tr>(at.cell, ref, 1, d);
     return value;
   }
 }

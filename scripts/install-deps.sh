@@ -14,6 +14,7 @@ PACKAGES=(
   zlib1g-dev libbz2-dev                 # length check of gzip/bzip2 NRRD data (runtime/nrrd_io.cpp)
   gnuplot-nox                           # line plots of kernels and spectra (boxgen kernel/spectrum)
   libpng-dev                            # PNG images of spectra and renders
+  libhwy-dev                            # SIMD batch path of the runtime (runtime/simd_batch.cpp)
   clang libclang-rt-14-dev libomp-dev   # libFuzzer targets (label: fuzz); libomp: OpenMP under clang
   clang-format-14 clang-tidy-14         # formatting and static analysis (scripts/lint.sh, in CI)
 )

@@ -26,6 +26,7 @@
 #include "generated/tricubic.hpp"
 #include "runtime/batch_threads.h"
 #include "runtime/reconstruction.h"
+#include "runtime/simd_batch.h"
 
 namespace boxrecon {
 
@@ -263,7 +264,10 @@ int run_bench(const BenchOptions& o) {
   result["machine"] = {
       {"cpu", cpu_model()},
       {"cores", std::thread::hardware_concurrency()},
-      {"simd_target", "scalar (no SIMD batch path yet; compiled for baseline x86-64)"}};
+      // Highway's name of the instruction set the batch path dispatches to on this CPU ("AVX3"
+      // is AVX-512), and whether evaluate() used it in this run (BOXGEN_SIMD=0 switches it off).
+      {"simd_target", simd::target_name()},
+      {"simd_batch", simd::enabled()}};
   if (o.json) {
     fmt::print("{}\n", result.dump());
   } else {
@@ -272,8 +276,10 @@ int run_bench(const BenchOptions& o) {
       fmt::print("{:<18} {:.3f}\n", key, result[key].get<double>());
     for (const auto& [key, value] : result["ns_per_point"].items())
       fmt::print("{:<18} {:.1f} ns/point\n", key, value.get<double>());
-    fmt::print("machine: {}, {} cores\n", result["machine"]["cpu"].get<std::string>(),
-               result["machine"]["cores"].get<unsigned>());
+    fmt::print("machine: {}, {} cores, SIMD {} ({})\n", result["machine"]["cpu"].get<std::string>(),
+               result["machine"]["cores"].get<unsigned>(),
+               result["machine"]["simd_target"].get<std::string>(),
+               simd::enabled() ? "batch path on" : "batch path off");
   }
   return 0;
 }

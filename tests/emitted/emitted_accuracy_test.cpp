@@ -35,6 +35,7 @@
 #include "generator/box_spline_properties.h"
 #include "generator/piece_checks.h"
 #include "generator/piecewise_form.h"
+#include "runtime/reconstruction.h"
 
 namespace boxgen {
 namespace {
@@ -276,6 +277,59 @@ BOXGEN_EMITTED_TEST(tricubic_horner, "tricubic", 3)
 BOXGEN_EMITTED_TEST(zp, "zp", 2)
 BOXGEN_EMITTED_TEST(zp_monomial, "zp", 2)
 BOXGEN_EMITTED_TEST(biquadratic, "1,0; 0,1; 1,0; 0,1; 1,0; 0,1", 2)
+
+// The same comparison through the runtime's batch API, Reconstructor<T>::evaluate (the SIMD batch
+// path, runtime/simd_batch.h, where the CPU has one), all 1000 points in one call (a partial last
+// chunk): a BCC volume holds V(j) at lattice point j + S (S even keeps the parity), with spacing 1
+// and origin -S, so world point x is the generator's point x, exactly.
+template <class T>
+void check_batch(const Reference& ref, const std::vector<RatVec>& exact_points,
+                 const std::vector<Exact>& exact, runtime::Filter filter, double tolerance) {
+  constexpr int kOffset = 10, kSize = 12;  // points |x| < 4, reach <= 4: inside [0, 2 kSize - 1]
+  runtime::BccVolume<T> volume({kSize, kSize, kSize}, 1.0, {-kOffset, -kOffset, -kOffset});
+  for (int c = 0; c < 2; ++c)
+    for (int k = 0; k < kSize; ++k)
+      for (int j = 0; j < kSize; ++j)
+        for (int i = 0; i < kSize; ++i)
+          volume(c, i, j, k) = static_cast<T>(
+              data_value({2 * i + c - kOffset, 2 * j + c - kOffset, 2 * k + c - kOffset}));
+  std::vector<runtime::Vec3> points;
+  for (const auto& x : exact_points)
+    points.push_back({to_double(x[0]), to_double(x[1]), to_double(x[2])});
+  std::vector<T> values(points.size());
+  std::vector<runtime::Vec3> gradients(points.size());
+  std::vector<runtime::Hessian> hessians(points.size());
+  runtime::Reconstructor<T>(volume, filter).evaluate(points, values, gradients, hessians);
+  const bool c2 = ref.twice_differentiable();
+  double worst = 0, worst_gradient = 0, worst_hessian = 0;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const Exact& e = exact[p];
+    worst = std::max(worst, std::abs(static_cast<double>(values[p]) - to_double(e.value)));
+    for (int d = 0; d < 3; ++d)
+      worst_gradient =
+          std::max(worst_gradient, std::abs(gradients[p][d] - to_double(e.gradient[d])));
+    if (!c2 && !e.hessian_defined) continue;
+    for (int k = 0; k < 6; ++k)
+      worst_hessian = std::max(worst_hessian, std::abs(hessians[p][k] - to_double(e.hessian[k])));
+  }
+  const char* type = sizeof(T) == 4 ? " float" : " double";
+  EXPECT_LE(worst / kMaxV, tolerance) << type << " value";
+  EXPECT_LE(worst_gradient / kMaxV, tolerance) << type << " gradient";
+  EXPECT_LE(worst_hessian / kMaxV, 4 * tolerance) << type << " hessian";
+}
+
+void check_batch(const std::string& preset, runtime::Filter filter) {
+  const Reference ref(preset);
+  const std::vector<RatVec> points = test_points(ref, 1000);
+  std::vector<Exact> exact;
+  for (const auto& x : points) exact.push_back(ref.at(x));
+  check_batch<double>(ref, points, exact, filter, 1e-13);
+  check_batch<float>(ref, points, exact, filter, 2e-6);
+}
+
+TEST(EmittedThroughBatch, M7) { check_batch("m7", runtime::Filter::M7); }
+TEST(EmittedThroughBatch, M8) { check_batch("m8", runtime::Filter::M8); }
+TEST(EmittedThroughBatch, M12) { check_batch("m12", runtime::Filter::M12); }
 
 }  // namespace
 }  // namespace boxgen
