@@ -76,14 +76,15 @@ DiscreteFilter RegistryFilter::prefilter(PrefilterChoice q) const {
 int RegistryFilter::required_margin(PrefilterChoice q) const {
   // A margin of m coset cells puts [-1,1] at lattice coordinates [d m, d (m + N - 1)] in a volume
   // of N + 2m cells per coset: evaluation (the region in the header) needs d m >= -lo - c and
-  // d m > hi + c - d; one unit of slack for rounding at the faces. Then the prefilter's own reach.
+  // d m > hi + c - d; half a coset cell of slack for rounding at the faces (on BCC this is
+  // required_margin of reconstruction.cpp exactly). Then the prefilter's own reach.
   const CosetLattice l = lattice();
   const StencilReach r = reach();
   const int d = l.period();
   double need = 0;
   for (int a = 0; a < 3; ++a)
     need = std::max({need, -r.lo[a] - r.centre[a], r.hi[a] + r.centre[a] - d});
-  const int reconstruction = static_cast<int>(std::ceil((need + 1) / d));
+  const int reconstruction = static_cast<int>(std::ceil(need / d + 0.5));
   if (q == PrefilterChoice::None) return reconstruction;
   const PrefilterShrink s = prefilter_shrink(prefilter(q), l);
   int shrink = 0;
