@@ -15,6 +15,9 @@ struct PrefilterTap {
   double weight;
 };
 
+// Quasi-interpolation with q1 or q2 reproduces every polynomial of degree < kApproximationOrder.
+inline constexpr int kApproximationOrder = 3;
+
 // Shells {0, 1}: common parametrisation.
 inline constexpr PrefilterTap q1[] = {
     {{0, 0, 0}, 1.5},  // 3/2

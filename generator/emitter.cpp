@@ -293,7 +293,9 @@ EmittedFile emit_registry(const std::vector<std::string>& names, const std::stri
     quoted.push_back("\"" + n + "\"");
     lattices.push_back(n + "::kLattice");
     entries.push_back(
-        fmt::format("using {0}_entry = RegistryEntry<{0}::Traits, {0}::q1, {0}::q2>;", n));
+        fmt::format("using {0}_entry = RegistryEntry<{0}::Traits, {0}::q1, {0}::q2, "
+                    "{0}::kApproximationOrder>;",
+                    n));
     const bool last = i + 1 == names.size();
     cases.push_back(fmt::format("    {}: return f({}_entry{{}});",
                                 last ? "default" : fmt::format("case {}", i), n));

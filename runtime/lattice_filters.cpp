@@ -73,6 +73,10 @@ DiscreteFilter RegistryFilter::prefilter(PrefilterChoice q) const {
   });
 }
 
+int RegistryFilter::approximation_order() const {
+  return generated::with_filter(index_, [](auto entry) { return entry.approximation_order; });
+}
+
 int RegistryFilter::required_margin(PrefilterChoice q) const {
   // A margin of m coset cells puts [-1,1] at lattice coordinates [d m, d (m + N - 1)] in a volume
   // of N + 2m cells per coset: evaluation (the region in the header) needs d m >= -lo - c and

@@ -45,6 +45,9 @@ class RegistryFilter {
   StencilReach reach() const;
   // Its generated prefilter Q^I (q1) or Q^II (q2); none: the identity {(0,0,0), 1}.
   DiscreteFilter prefilter(PrefilterChoice q) const;
+  // The generator's approximation order k of the filter: q1 and q2 reproduce every polynomial of
+  // degree < k (4 for M7, M8, M12, tricubic and cart7, 3 for fcc6).
+  int approximation_order() const;
   // Coset cells of margin beyond [-1,1]^3 that cube_lattice_grid needs for reconstruction with
   // this filter after prefilter q (as required_margin in reconstruction.h, for period d).
   int required_margin(PrefilterChoice q) const;
