@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 namespace boxgen::analysis {
 
@@ -84,105 +85,136 @@ std::vector<Vec> polytope_vertices(const std::vector<HalfSpace>& constraints, in
   return out;
 }
 
+namespace {
+
+// G as a double matrix g[row][col] (identity beyond n), checked square and non-singular.
+struct DoubleMatrix {
+  double g[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  double det = 0;
+};
+
+DoubleMatrix generator_matrix(const IntDirections& generator, int n) {
+  DoubleMatrix m;
+  for (int c = 0; c < n; ++c) {
+    if (static_cast<int>(generator[c].size()) != n)
+      throw std::invalid_argument("the lattice generator must be square");
+    for (int r = 0; r < n; ++r) m.g[r][c] = static_cast<double>(generator[c][r]);
+  }
+  const auto& g = m.g;
+  m.det = g[0][0] * (g[1][1] * g[2][2] - g[1][2] * g[2][1]) -
+          g[0][1] * (g[1][0] * g[2][2] - g[1][2] * g[2][0]) +
+          g[0][2] * (g[1][0] * g[2][1] - g[1][1] * g[2][0]);
+  if (std::abs(m.det) < 0.5) throw std::invalid_argument("the lattice generator is singular");
+  return m;
+}
+
+// Dual basis d_i with d_i . g_j = 2 pi delta_ij: the rows of 2 pi G^-1 (by the adjugate).
+std::vector<Vec> dual_basis(const DoubleMatrix& m, int n) {
+  const auto& g = m.g;
+  const Vec c0{g[0][0], g[1][0], g[2][0]}, c1{g[0][1], g[1][1], g[2][1]},
+      c2{g[0][2], g[1][2], g[2][2]};
+  const double scale = 2 * std::numbers::pi / m.det;
+  const Vec r0 = cross(c1, c2), r1 = cross(c2, c0), r2 = cross(c0, c1);  // rows of det * G^-1
+  if (n == 2) return {Vec{scale * r0[0], scale * r0[1], 0}, Vec{scale * r1[0], scale * r1[1], 0}};
+  return {Vec{scale * r0[0], scale * r0[1], scale * r0[2]},
+          Vec{scale * r1[0], scale * r1[1], scale * r1[2]},
+          Vec{scale * r2[0], scale * r2[1], scale * r2[2]}};
+}
+
+// The facets of the polytope with these vertices among the half-spaces hs: those touched by n
+// affinely independent vertices; in 3-D each face's vertices in cyclic order about its centroid.
+void keep_facets(const std::vector<HalfSpace>& hs, const std::vector<Vec>& vertices, int n,
+                 VoronoiCell& cell) {
+  for (const auto& h : hs) {
+    std::vector<int> on;
+    for (int v = 0; v < static_cast<int>(vertices.size()); ++v)
+      if (std::abs(dot(h.normal, vertices[v]) - h.offset) < 1e-9 * (1 + h.offset)) on.push_back(v);
+    if (static_cast<int>(on.size()) < n) continue;
+    cell.faces.push_back(h);
+    if (n == 3) {
+      Vec m{0, 0, 0};
+      for (int v : on)
+        for (int i = 0; i < 3; ++i) m[i] += vertices[v][i] / static_cast<double>(on.size());
+      const Vec e1 = sub(vertices[on[0]], m);
+      const Vec e2 = cross(h.normal, e1);
+      const auto angle = [&](int v) {
+        const Vec d = sub(vertices[v], m);
+        return std::atan2(dot(d, e2), dot(d, e1));
+      };
+      std::sort(on.begin(), on.end(), [&](int a, int b) { return angle(a) < angle(b); });
+    }
+    cell.face_vertices.push_back(on);
+  }
+}
+
+// Volume by the fan of simplices from 0 over the ordered faces.
+double fan_volume(const VoronoiCell& cell) {
+  double volume = 0;
+  const auto& vertices = cell.vertices;
+  for (const auto& f : cell.face_vertices) {
+    if (cell.n == 2) {
+      const Vec& a = vertices[f[0]];
+      const Vec& b = vertices[f[1]];
+      volume += 0.5 * std::abs(a[0] * b[1] - a[1] * b[0]);
+      continue;
+    }
+    for (std::size_t j = 1; j + 1 < f.size(); ++j)
+      volume += std::abs(dot(vertices[f[0]], cross(vertices[f[j]], vertices[f[j + 1]]))) / 6;
+  }
+  return volume;
+}
+
+}  // namespace
+
 DualLattice::DualLattice(const IntDirections& generator) {
   n_ = static_cast<int>(generator.size());
   if (n_ < 2 || n_ > 3) throw std::invalid_argument("the lattice must be 2- or 3-dimensional");
-  // G as a double matrix g[row][col]; its inverse by the adjugate.
-  double g[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  for (int c = 0; c < n_; ++c) {
-    if (static_cast<int>(generator[c].size()) != n_)
-      throw std::invalid_argument("the lattice generator must be square");
-    for (int r = 0; r < n_; ++r) g[r][c] = static_cast<double>(generator[c][r]);
-  }
-  const double det = g[0][0] * (g[1][1] * g[2][2] - g[1][2] * g[2][1]) -
-                     g[0][1] * (g[1][0] * g[2][2] - g[1][2] * g[2][0]) +
-                     g[0][2] * (g[1][0] * g[2][1] - g[1][1] * g[2][0]);
-  if (std::abs(det) < 0.5) throw std::invalid_argument("the lattice generator is singular");
-  det_g_ = std::abs(det);
-  // Dual basis d_i with d_i . g_j = 2 pi delta_ij: the rows of 2 pi G^-1.
-  const Vec c0{g[0][0], g[1][0], g[2][0]}, c1{g[0][1], g[1][1], g[2][1]},
-      c2{g[0][2], g[1][2], g[2][2]};
-  const double two_pi = 2 * std::numbers::pi;
-  const Vec r0 = cross(c1, c2), r1 = cross(c2, c0), r2 = cross(c0, c1);  // rows of det * G^-1
-  basis_ = {Vec{two_pi * r0[0] / det, two_pi * r0[1] / det, 0},
-            Vec{two_pi * r1[0] / det, two_pi * r1[1] / det, 0}};
-  if (n_ == 3) {
-    basis_ = {Vec{two_pi * r0[0] / det, two_pi * r0[1] / det, two_pi * r0[2] / det},
-              Vec{two_pi * r1[0] / det, two_pi * r1[1] / det, two_pi * r1[2] / det},
-              Vec{two_pi * r2[0] / det, two_pi * r2[1] / det, two_pi * r2[2] / det}};
-  }
-  // The Voronoi cell: half-spaces of the shortest dual points, grown until every point that
-  // could cut the cell (|k| <= 2 * circumradius) is among them.
-  std::vector<Vec> candidates;
-  const int range = 4;
+  const DoubleMatrix g = generator_matrix(generator, n_);
+  det_g_ = std::abs(g.det);
+  basis_ = dual_basis(g, n_);
+  build_voronoi_cell();
+}
+
+std::vector<Vec> DualLattice::short_points(int range) const {
+  std::vector<Vec> out;
   std::vector<std::int64_t> c(n_, -range);
   while (true) {
-    bool zero = true;
-    for (auto v : c) zero = zero && v == 0;
-    if (!zero) candidates.push_back(point(c));
+    if (std::any_of(c.begin(), c.end(), [](std::int64_t v) { return v != 0; }))
+      out.push_back(point(c));
     int i = 0;
     while (i < n_ && c[i] == range) c[i++] = -range;
     if (i == n_) break;
     ++c[i];
   }
-  std::sort(candidates.begin(), candidates.end(),
+  std::sort(out.begin(), out.end(),
             [](const Vec& a, const Vec& b) { return dot(a, a) < dot(b, b); });
+  return out;
+}
+
+// The Voronoi cell: half-spaces of the shortest dual points, grown shell by shell until every
+// point that could cut the cell (|k| <= 2 * circumradius) is among them.
+void DualLattice::build_voronoi_cell() {
+  const std::vector<Vec> candidates = short_points(4);
+  const auto norm2 = [&](std::size_t i) { return dot(candidates[i], candidates[i]); };
   std::size_t used = std::min<std::size_t>(candidates.size(), n_ == 3 ? 26 : 8);
-  std::vector<Vec> vertices;
   while (true) {
-    while (used < candidates.size() &&
-           std::abs(dot(candidates[used], candidates[used]) -
-                    dot(candidates[used - 1], candidates[used - 1])) < 1e-9)
+    while (used < candidates.size() && std::abs(norm2(used) - norm2(used - 1)) < 1e-9)
       ++used;  // whole shells
     std::vector<HalfSpace> hs;
-    for (std::size_t i = 0; i < used; ++i)
-      hs.push_back({candidates[i], 0.5 * dot(candidates[i], candidates[i])});
-    vertices = polytope_vertices(hs, n_);
+    for (std::size_t i = 0; i < used; ++i) hs.push_back({candidates[i], 0.5 * norm2(i)});
+    std::vector<Vec> vertices = polytope_vertices(hs, n_);
     double r = 0;
     for (const auto& v : vertices) r = std::max(r, std::sqrt(dot(v, v)));
-    if (used == candidates.size() ||
-        std::sqrt(dot(candidates[used], candidates[used])) > 2 * r * (1 + 1e-9)) {
+    if (used == candidates.size() || std::sqrt(norm2(used)) > 2 * r * (1 + 1e-9)) {
       covering_radius_ = r;
-      // Keep the facet-defining half-spaces: those touched by n affinely independent vertices.
-      for (const auto& h : hs) {
-        std::vector<int> on;
-        for (int v = 0; v < static_cast<int>(vertices.size()); ++v)
-          if (std::abs(dot(h.normal, vertices[v]) - h.offset) < 1e-9 * (1 + h.offset))
-            on.push_back(v);
-        if (static_cast<int>(on.size()) < n_) continue;
-        cell_.faces.push_back(h);
-        if (n_ == 3) {  // order around the face's centroid
-          Vec m{0, 0, 0};
-          for (int v : on)
-            for (int i = 0; i < 3; ++i) m[i] += vertices[v][i] / static_cast<double>(on.size());
-          const Vec e1 = sub(vertices[on[0]], m);
-          const Vec e2 = cross(h.normal, e1);
-          std::sort(on.begin(), on.end(), [&](int a, int b) {
-            const Vec da = sub(vertices[a], m), db = sub(vertices[b], m);
-            return std::atan2(dot(da, e2), dot(da, e1)) < std::atan2(dot(db, e2), dot(db, e1));
-          });
-        }
-        cell_.face_vertices.push_back(on);
-      }
-      break;
+      keep_facets(hs, vertices, n_, cell_);
+      cell_.n = n_;
+      cell_.vertices = std::move(vertices);
+      cell_.volume = fan_volume(cell_);
+      return;
     }
     used = std::min(candidates.size(), used + 1);
   }
-  cell_.n = n_;
-  cell_.vertices = vertices;
-  // Volume by the fan of simplices from 0.
-  double volume = 0;
-  for (const auto& f : cell_.face_vertices) {
-    if (n_ == 2) {
-      const Vec& a = vertices[f[0]];
-      const Vec& b = vertices[f[1]];
-      volume += 0.5 * std::abs(a[0] * b[1] - a[1] * b[0]);
-    } else {
-      for (std::size_t j = 1; j + 1 < f.size(); ++j)
-        volume += std::abs(dot(vertices[f[0]], cross(vertices[f[j]], vertices[f[j + 1]]))) / 6;
-    }
-  }
-  cell_.volume = volume;
 }
 
 Vec DualLattice::point(const std::vector<std::int64_t>& c) const {

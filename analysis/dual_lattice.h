@@ -43,6 +43,10 @@ class DualLattice {
   Vec nearest(const Vec& w, double* gap = nullptr) const;
 
  private:
+  // Every nonzero dual point with coefficients in [-range, range], shortest first.
+  std::vector<Vec> short_points(int range) const;
+  void build_voronoi_cell();
+
   int n_;
   std::vector<Vec> basis_;
   double det_g_;

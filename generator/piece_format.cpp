@@ -41,15 +41,101 @@ GiNaC::ex piece_expression(const Piece& piece, const std::vector<GiNaC::symbol>&
 
 namespace {
 
-enum class Printer { Text, Latex };
+enum class Printer { Text, Latex, C };
 
+// GiNaC's printer for the format, on an atom (a number, a power of one coordinate, a symbol).
 std::string print(const GiNaC::ex& e, Printer printer) {
   std::ostringstream os;
   if (printer == Printer::Latex)
     e.print(GiNaC::print_latex(os));
+  else if (printer == Printer::C)
+    e.print(GiNaC::print_csrc_double(os));
   else
     e.print(GiNaC::print_dflt(os));
   return os.str();
+}
+
+// GiNaC orders the operands of a sum or a product by hash values seeded with the addresses of
+// type descriptors, which change from run to run (address-space randomisation): a GiNaC sum
+// printed as a whole lists its terms in a different order on each run. Sums and products are
+// therefore assembled here in a fixed order (the monomials' graded order, then x before y
+// before z, then stencil index), from atoms that GiNaC's printer for the format prints.
+const char* times(Printer printer) { return printer == Printer::Latex ? " " : "*"; }
+
+// One term of a sum: coefficient * factor, where an empty factor means 1.
+struct Term {
+  Rational coefficient;
+  std::string factor;
+};
+
+std::string sum_text(const std::vector<Term>& terms, Printer printer) {
+  std::string out;
+  for (const Term& t : terms) {
+    if (cln::zerop(t.coefficient)) continue;
+    const bool negative = cln::minusp(t.coefficient);
+    if (negative)
+      out += "-";
+    else if (!out.empty())
+      out += "+";
+    const Rational c = negative ? Rational(-t.coefficient) : t.coefficient;
+    if (t.factor.empty())
+      out += print(to_numeric(c), printer);
+    else if (c == 1)
+      out += t.factor;
+    else
+      out += print(to_numeric(c), printer) + times(printer) + t.factor;
+  }
+  return out.empty() ? print(GiNaC::numeric(0), printer) : out;
+}
+
+// x^a y^b z^c as a product of GiNaC-printed powers; "" for the constant monomial.
+std::string monomial_text(const Exponent& e, int n, Printer printer) {
+  const auto& vars = coordinate_symbols(n);
+  std::string out;
+  for (int i = 0; i < n; ++i) {
+    if (e[i] == 0) continue;
+    if (!out.empty()) out += times(printer);
+    out += print(GiNaC::pow(vars[i], e[i]), printer);
+  }
+  return out;
+}
+
+std::string joined_factor(const std::string& a, const std::string& b, Printer printer) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  return a + times(printer) + b;
+}
+
+// The piece's polynomial: M(x) for the filter; for the spline sum_k v_k M(x - j_k) collected in
+// the coordinates, each coefficient a combination of the stencil symbols `stencil` (in parentheses
+// when it has several terms).
+std::string polynomial_text(const Piece& piece, const std::vector<GiNaC::symbol>& stencil, int n,
+                            Printer printer) {
+  int capacity = 0;
+  for (const auto& q : piece.polynomials) capacity = std::max(capacity, q.capacity());
+  std::vector<Term> terms;
+  for (const auto& e : monomial_exponents(n, capacity)) {
+    if (e[0] + e[1] + e[2] > capacity) break;
+    const std::string monomial = monomial_text(e, n, printer);
+    if (piece.stencil.empty()) {
+      terms.push_back({piece.polynomials.front().coefficient(e), monomial});
+      continue;
+    }
+    std::vector<Term> combination;
+    for (std::size_t k = 0; k < piece.polynomials.size(); ++k) {
+      const Rational& c = piece.polynomials[k].coefficient(e);
+      if (!cln::zerop(c)) combination.push_back({c, print(stencil[k], printer)});
+    }
+    if (combination.size() == 1 || monomial.empty()) {
+      for (Term& t : combination)
+        terms.push_back({t.coefficient, joined_factor(t.factor, monomial, printer)});
+      continue;
+    }
+    if (!combination.empty())
+      terms.push_back({Rational(1), joined_factor("(" + sum_text(combination, printer) + ")",
+                                                  monomial, printer)});
+  }
+  return sum_text(terms, printer);
 }
 
 std::string point_text(const RatVec& p, Printer printer) {
@@ -70,13 +156,13 @@ std::string inequality_text(const Inequality& q, Printer printer) {
   const auto first =
       std::find_if(q.normal.begin(), q.normal.end(), [](std::int64_t v) { return v != 0; });
   const long sign = first != q.normal.end() && *first < 0 ? -1 : 1;
-  GiNaC::ex lhs = 0;
+  std::vector<Term> lhs;
   const auto& vars = coordinate_symbols(static_cast<int>(q.normal.size()));
   for (std::size_t i = 0; i < q.normal.size(); ++i)
-    lhs += GiNaC::numeric(sign * static_cast<long>(q.normal[i])) * vars[i];
+    lhs.push_back({Rational(sign * static_cast<long>(q.normal[i])), print(vars[i], printer)});
   const char* relation =
       printer == Printer::Latex ? (sign > 0 ? " \\le " : " \\ge ") : (sign > 0 ? " <= " : " >= ");
-  return print(lhs, printer) + relation + print(to_numeric(q.bound * Rational(sign)), printer);
+  return sum_text(lhs, printer) + relation + print(to_numeric(q.bound * Rational(sign)), printer);
 }
 
 std::string variables_text(int n) { return n == 2 ? "x,y" : "x,y,z"; }
@@ -112,9 +198,9 @@ std::string text_pieces(const Pieces& all, const std::string& title) {
         out += fmt::format("    {} = V{}\n", stencil_name(k), point_text(p.stencil[k]));
     }
     const std::string lhs = all.of == PiecesOf::Spline ? "s" : "M";
-    out +=
-        fmt::format("  {}({}) = {}\n", lhs, variables_text(all.dimension),
-                    print(piece_expression(p, stencil_symbols(p.stencil.size())), Printer::Text));
+    out += fmt::format(
+        "  {}({}) = {}\n", lhs, variables_text(all.dimension),
+        polynomial_text(p, stencil_symbols(p.stencil.size()), all.dimension, Printer::Text));
   }
   return out;
 }
@@ -140,10 +226,10 @@ std::string latex_pieces(const Pieces& all, const std::string& title) {
         out += fmt::format("{} $v_{{{}}} = V{}$", k ? "," : "", k, point_text(p.stencil[k]));
       out += ".\n";
     }
-    out +=
-        fmt::format("\\begin{{dmath*}}\n{}({}) = {}\n\\end{{dmath*}}\n",
-                    all.of == PiecesOf::Spline ? "s" : "M", variables_text(all.dimension),
-                    print(piece_expression(p, stencil_symbols(p.stencil.size())), Printer::Latex));
+    out += fmt::format(
+        "\\begin{{dmath*}}\n{}({}) = {}\n\\end{{dmath*}}\n", all.of == PiecesOf::Spline ? "s" : "M",
+        variables_text(all.dimension),
+        polynomial_text(p, stencil_symbols(p.stencil.size()), all.dimension, Printer::Latex));
   }
   return out;
 }
@@ -166,12 +252,11 @@ std::string c_pieces(const Pieces& all, const std::string& title) {
     for (const auto& v : p.vertices) out += " " + point_text(v, Printer::Text);
     for (std::size_t k = 0; k < p.stencil.size(); ++k)
       out += fmt::format("{}v[{}] = V{}", k % 6 ? ", " : "\n   ", k, point_text(p.stencil[k]));
-    std::ostringstream body;
-    piece_expression(p, stencil_symbols(p.stencil.size(), true))
-        .print(GiNaC::print_csrc_double(body));
+    const std::string body =
+        polynomial_text(p, stencil_symbols(p.stencil.size(), true), all.dimension, Printer::C);
     out += fmt::format(
         " */\ndouble piece_{}({}{}) {{\n  return {};\n}}\n", i, coordinates,
-        p.stencil.empty() ? "" : fmt::format(", const double v[{}]", p.stencil.size()), body.str());
+        p.stencil.empty() ? "" : fmt::format(", const double v[{}]", p.stencil.size()), body);
   }
   return out;
 }

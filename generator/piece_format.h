@@ -1,7 +1,8 @@
-// The explicit pieces (pieces.h) in four renderings (docs/design.md §12): `text` and `latex` are
-// GiNaC's default and LaTeX printers, `c` its C printer, `json` the exact data. One expression,
-// several faithful printers: every number stays an exact rational except in `c`, where GiNaC
-// writes p/q as a quotient of double literals.
+// The explicit pieces (pieces.h) in four renderings (docs/design.md §12): `text`, `latex` and `c`
+// through GiNaC's default, LaTeX and C printers, `json` the exact data. Every number stays an
+// exact rational except in `c`, where GiNaC writes p/q as a quotient of double literals. GiNaC
+// orders a sum's terms by hashes that change from run to run, so the formulas are assembled in a
+// fixed order (the monomials' graded order) from atoms GiNaC prints: the output is reproducible.
 #pragma once
 #include <ginac/ginac.h>
 

@@ -307,70 +307,95 @@ std::string names(const std::vector<int>& v) {
   return out;
 }
 
+// Straight-line code under construction: each definition is one line, its cost counted.
+struct StraightLine {
+  std::string text;
+  OperationCount& cost;
+  void define(const std::string& name, const std::string& expr) {
+    text += fmt::format("    const T {} = {};\n", name, expr);
+    cost += count_operations(expr);
+  }
+};
+
+// A partial contraction: (derivative orders of the contracted axes, grid positions on the rest).
+using ContractionKey = std::pair<std::vector<int>, std::vector<int>>;
+// weight[i][a][o]: the name of the o-th derivative of axis i's a-th 1-D weight ("" when zero).
+using WeightNames = std::vector<std::vector<std::vector<std::string>>>;
+
+WeightNames define_weights(const TensorGrid& grid, std::size_t g, int n, int order,
+                           StraightLine& code) {
+  WeightNames weight(n);
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < grid.sizes[i]; ++a) {
+      weight[i].emplace_back();
+      for (int o = 0; o <= order; ++o) {
+        const UnivariatePoly f = derivative(grid.weights[i][a], o);
+        if (f.empty()) {
+          weight[i][a].push_back("");
+          continue;
+        }
+        const std::string name = fmt::format("w{}_{}_{}_{}", g, i, a, o);
+        code.define(name,
+                    f.size() == 1 ? fmt::format("T({})", literal(f[0])) : univariate_horner(f, i));
+        weight[i][a].push_back(name);
+      }
+    }
+  return weight;
+}
+
+// The stencil values of the grid, keyed by their position on every axis (nothing contracted).
+std::map<ContractionKey, std::string> stencil_level(const TensorGrid& grid, int n) {
+  std::map<ContractionKey, std::string> level;
+  for (std::size_t flat = 0; flat < grid.stencil.size(); ++flat) {
+    std::vector<int> position;
+    std::size_t rest = flat;
+    for (int i = 0; i < n; ++i) {
+      position.push_back(static_cast<int>(rest % grid.sizes[i]));
+      rest /= grid.sizes[i];
+    }
+    level[{{}, position}] = fmt::format("v[{}]", grid.stencil[flat]);
+  }
+  return level;
+}
+
+// Contracts the first remaining axis against its weights (each derivative order that keeps the
+// total within `order`), defining one partial sum per resulting key.
+std::map<ContractionKey, std::string> contract_axis(
+    const std::map<ContractionKey, std::string>& level, const WeightNames& weight, std::size_t g,
+    int axis, int order, StraightLine& code) {
+  std::map<ContractionKey, std::vector<std::string>> terms;
+  for (const auto& [key, name] : level) {
+    const int a = key.second[0];
+    const std::vector<int> rest(key.second.begin() + 1, key.second.end());
+    int used = 0;
+    for (int o : key.first) used += o;
+    for (int o = 0; used + o <= order; ++o) {
+      if (weight[axis][a][o].empty()) continue;
+      std::vector<int> orders = key.first;
+      orders.push_back(o);
+      terms[{orders, rest}].push_back(weight[axis][a][o] + " * " + name);
+    }
+  }
+  std::map<ContractionKey, std::string> next;
+  for (const auto& [key, list] : terms) {
+    const std::string name =
+        fmt::format("s{}_{}_{}_{}", g, axis, names(key.first), names(key.second));
+    code.define(name, join(list, " + "));
+    next[key] = name;
+  }
+  return next;
+}
+
 // Straight-line code for the value and the derivatives up to `order`: 1-D weights per grid and
 // axis, then the contraction axis by axis, sharing partial sums across derivatives.
 std::string separable_body(const std::vector<TensorGrid>& grids, int n, int order,
                            OperationCount& cost) {
-  std::string out;
-  auto define = [&](const std::string& name, const std::string& expr) {
-    out += fmt::format("    const T {} = {};\n", name, expr);
-    cost += count_operations(expr);
-  };
-  // key: (derivative orders of the contracted axes, grid positions on the others)
-  using Key = std::pair<std::vector<int>, std::vector<int>>;
+  StraightLine code{"", cost};
   std::map<Exponent, std::vector<std::string>> results;  // derivative -> one term per grid
   for (std::size_t g = 0; g < grids.size(); ++g) {
-    const TensorGrid& grid = grids[g];
-    // weight[i][a][o]: name of the o-th derivative of axis i's a-th weight ("" when zero)
-    std::vector<std::vector<std::vector<std::string>>> weight(n);
-    for (int i = 0; i < n; ++i)
-      for (int a = 0; a < grid.sizes[i]; ++a) {
-        weight[i].emplace_back();
-        for (int o = 0; o <= order; ++o) {
-          const UnivariatePoly f = derivative(grid.weights[i][a], o);
-          if (f.empty()) {
-            weight[i][a].push_back("");
-            continue;
-          }
-          const std::string name = fmt::format("w{}_{}_{}_{}", g, i, a, o);
-          define(name,
-                 f.size() == 1 ? fmt::format("T({})", literal(f[0])) : univariate_horner(f, i));
-          weight[i][a].push_back(name);
-        }
-      }
-    std::map<Key, std::string> level;
-    for (std::size_t flat = 0; flat < grid.stencil.size(); ++flat) {
-      std::vector<int> position;
-      std::size_t rest = flat;
-      for (int i = 0; i < n; ++i) {
-        position.push_back(static_cast<int>(rest % grid.sizes[i]));
-        rest /= grid.sizes[i];
-      }
-      level[{{}, position}] = fmt::format("v[{}]", grid.stencil[flat]);
-    }
-    for (int axis = 0; axis < n; ++axis) {
-      std::map<Key, std::string> next;
-      std::map<Key, std::vector<std::string>> terms;
-      for (const auto& [key, name] : level) {
-        const int a = key.second[0];
-        std::vector<int> rest(key.second.begin() + 1, key.second.end());
-        int used = 0;
-        for (int o : key.first) used += o;
-        for (int o = 0; used + o <= order; ++o) {
-          if (weight[axis][a][o].empty()) continue;
-          std::vector<int> orders = key.first;
-          orders.push_back(o);
-          terms[{orders, rest}].push_back(weight[axis][a][o] + " * " + name);
-        }
-      }
-      for (const auto& [key, list] : terms) {
-        const std::string name =
-            fmt::format("s{}_{}_{}_{}", g, axis, names(key.first), names(key.second));
-        define(name, join(list, " + "));
-        next[key] = name;
-      }
-      level = std::move(next);
-    }
+    const WeightNames weight = define_weights(grids[g], g, n, order, code);
+    std::map<ContractionKey, std::string> level = stencil_level(grids[g], n);
+    for (int axis = 0; axis < n; ++axis) level = contract_axis(level, weight, g, axis, order, code);
     for (const auto& [key, name] : level) {
       Exponent e{0, 0, 0};
       for (int i = 0; i < n; ++i) e[i] = key.first[i];
@@ -383,6 +408,7 @@ std::string separable_body(const std::vector<TensorGrid>& grids, int n, int orde
     cost += count_operations(join(it->second, " + "));
     return join(it->second, " + ");
   };
+  std::string out = std::move(code.text);
   out += fmt::format("    const T value = {};\n", sum_of(Exponent{0, 0, 0}));
   const auto derivatives = derivative_indices(n, order);
   for (std::size_t k = 0; k < derivatives.size(); ++k)

@@ -447,78 +447,88 @@ std::string teem_read(std::FILE* file, Nrrd* nrrd, bool header_only, DataLayout&
   return {};
 }
 
+// The file's bytes from its current position in 64 KiB chunks; `used` is how far the consumer
+// got in the current chunk.
+struct ChunkReader {
+  std::FILE* file;
+  std::vector<unsigned char> in = std::vector<unsigned char>(1 << 16);
+  std::size_t have = 0, used = 0;
+
+  explicit ChunkReader(std::FILE* f) : file(f) { have = std::fread(in.data(), 1, in.size(), file); }
+  // Makes unread bytes available; false at the end of the file.
+  bool refill() {
+    if (used < have) return true;
+    have = std::fread(in.data(), 1, in.size(), file);
+    used = 0;
+    return have > 0;
+  }
+  bool starts_with_gzip_magic() const { return have >= 2 && in[0] == 0x1f && in[1] == 0x8b; }
+};
+
+// One gzip member: adds its decompressed length to `count` (stopping beyond `cap`); returns why
+// it does not decompress, or "".
+std::string count_gzip_member(ChunkReader& r, std::vector<unsigned char>& out, std::uint64_t cap,
+                              std::uint64_t& count) {
+  z_stream z{};
+  if (inflateInit2(&z, 15 + 16) != Z_OK) return "cannot start zlib";
+  int status = Z_OK;
+  while (status != Z_STREAM_END && count <= cap && r.refill()) {
+    z.next_in = r.in.data() + r.used;
+    z.avail_in = static_cast<uInt>(r.have - r.used);
+    z.next_out = out.data();
+    z.avail_out = static_cast<uInt>(out.size());
+    status = inflate(&z, Z_NO_FLUSH);
+    r.used = r.have - z.avail_in;
+    count += out.size() - z.avail_out;
+    if (status != Z_OK && status != Z_STREAM_END && status != Z_BUF_ERROR) break;
+  }
+  inflateEnd(&z);
+  if (status == Z_STREAM_END || count > cap) return {};
+  return status == Z_OK || status == Z_BUF_ERROR ? "its gzip data end too early"
+                                                 : "its gzip data are corrupt";
+}
+
+// One bzip2 stream, as count_gzip_member.
+std::string count_bzip2_stream(ChunkReader& r, std::vector<unsigned char>& out, std::uint64_t cap,
+                               std::uint64_t& count) {
+  bz_stream b{};
+  if (BZ2_bzDecompressInit(&b, 0, 0) != BZ_OK) return "cannot start bzip2";
+  int status = BZ_OK;
+  while (status != BZ_STREAM_END && count <= cap && r.refill()) {
+    b.next_in = reinterpret_cast<char*>(r.in.data() + r.used);
+    b.avail_in = static_cast<unsigned>(r.have - r.used);
+    b.next_out = reinterpret_cast<char*>(out.data());
+    b.avail_out = static_cast<unsigned>(out.size());
+    status = BZ2_bzDecompress(&b);
+    r.used = r.have - b.avail_in;
+    count += out.size() - b.avail_out;
+    if (status != BZ_OK && status != BZ_STREAM_END) break;
+  }
+  BZ2_bzDecompressEnd(&b);
+  if (status == BZ_STREAM_END || count > cap) return {};
+  return status == BZ_OK ? "its bzip2 data end too early" : "its bzip2 data are corrupt";
+}
+
 // The decompressed length of the gzip or bzip2 data from the file's current position, counted up
 // to `cap` bytes (counting stops beyond it). As Teem's reader does, gzip data without the gzip
 // magic is taken as stored uncompressed; concatenated gzip members or bzip2 streams count
 // together. Sets `problem` for data that does not decompress.
 void count_decompressed(std::FILE* file, bool gzip, std::uint64_t cap, std::uint64_t& count,
                         std::string& problem) {
-  std::vector<unsigned char> in(1 << 16), out(1 << 16);
-  std::size_t have = std::fread(in.data(), 1, in.size(), file), used = 0;
+  ChunkReader r(file);
   count = 0;
-  const auto refill = [&] {
-    if (used < have) return true;
-    have = std::fread(in.data(), 1, in.size(), file);
-    used = 0;
-    return have > 0;
-  };
-  if (gzip && !(have >= 2 && in[0] == 0x1f && in[1] == 0x8b)) {  // not gzip: Teem reads it as it is
-    for (count = have; count <= cap;) {
-      used = have;
-      if (!refill()) break;
-      count += have;
+  if (gzip && !r.starts_with_gzip_magic()) {  // not gzip: Teem reads it as it is
+    for (count = r.have; count <= cap;) {
+      r.used = r.have;
+      if (!r.refill()) break;
+      count += r.have;
     }
     return;
   }
-  while (count <= cap && refill()) {  // one gzip member or bzip2 stream per pass
-    if (gzip) {
-      z_stream z{};
-      if (inflateInit2(&z, 15 + 16) != Z_OK) {
-        problem = "cannot start zlib";
-        return;
-      }
-      int status = Z_OK;
-      while (status != Z_STREAM_END && count <= cap) {
-        if (!refill()) break;
-        z.next_in = in.data() + used;
-        z.avail_in = static_cast<uInt>(have - used);
-        z.next_out = out.data();
-        z.avail_out = static_cast<uInt>(out.size());
-        status = inflate(&z, Z_NO_FLUSH);
-        used = have - z.avail_in;
-        count += out.size() - z.avail_out;
-        if (status != Z_OK && status != Z_STREAM_END && status != Z_BUF_ERROR) break;
-      }
-      inflateEnd(&z);
-      if (status != Z_STREAM_END && count <= cap) {
-        problem = status == Z_OK || status == Z_BUF_ERROR ? "its gzip data end too early"
-                                                          : "its gzip data are corrupt";
-        return;
-      }
-    } else {
-      bz_stream b{};
-      if (BZ2_bzDecompressInit(&b, 0, 0) != BZ_OK) {
-        problem = "cannot start bzip2";
-        return;
-      }
-      int status = BZ_OK;
-      while (status != BZ_STREAM_END && count <= cap) {
-        if (!refill()) break;
-        b.next_in = reinterpret_cast<char*>(in.data() + used);
-        b.avail_in = static_cast<unsigned>(have - used);
-        b.next_out = reinterpret_cast<char*>(out.data());
-        b.avail_out = static_cast<unsigned>(out.size());
-        status = BZ2_bzDecompress(&b);
-        used = have - b.avail_in;
-        count += out.size() - b.avail_out;
-        if (status != BZ_OK && status != BZ_STREAM_END) break;
-      }
-      BZ2_bzDecompressEnd(&b);
-      if (status != BZ_STREAM_END && count <= cap) {
-        problem = status == BZ_OK ? "its bzip2 data end too early" : "its bzip2 data are corrupt";
-        return;
-      }
-    }
+  std::vector<unsigned char> out(1 << 16);
+  while (count <= cap && r.refill()) {  // one gzip member or bzip2 stream per pass
+    problem = gzip ? count_gzip_member(r, out, cap, count) : count_bzip2_stream(r, out, cap, count);
+    if (!problem.empty()) return;
   }
 }
 
@@ -693,17 +703,17 @@ namespace {
 
 using HeaderCheck = std::string (*)(const Nrrd*, VolumeHeader&);
 
-// Reads the volume file `path` whose header `check` accepts (`kind` names it in messages):
-// everything but building the volume, which the caller does from the header and the samples.
-template <class T>
-std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, HeaderCheck check,
-                           const char* kind, VolumeHeader& full) {
-  const std::string shown = printable(path.string());
-  auto fail = [&](const std::string& why) {
+// Throws the one-line error of a file that cannot be read: "cannot read <kind> '<path>': why".
+struct ReadFailure {
+  const char* kind;
+  std::string shown;
+  [[noreturn]] void operator()(const std::string& why) const {
     throw NrrdError(fmt::format("cannot read {} '{}': {}", kind, shown, why));
-  };
+  }
+};
 
-  // Only regular files: opening a FIFO or a device could block or never end.
+// Opens `path` if it is a regular file (a FIFO or a device could block or never end); its size.
+File open_regular_file(const fs::path& path, const ReadFailure& fail, std::uint64_t& size) {
   std::error_code error;
   const fs::file_status status = fs::status(path, error);
   if (error && error != std::errc::no_such_file_or_directory) fail(error.message());
@@ -715,12 +725,15 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, H
   struct stat info {};
   if (::fstat(::fileno(file.get()), &info) != 0) fail(std::strerror(errno));
   if (!S_ISREG(info.st_mode)) fail("not a regular file");
-  const auto file_size = static_cast<std::uint64_t>(info.st_size);
+  size = static_cast<std::uint64_t>(info.st_size);
+  return file;
+}
 
-  // Look at the header before Teem does: the magic keeps Teem's other formats (PNG, PNM, VTK,
-  // text tables) out, and a detached data file is refused before Teem would open it.
+// Looks at the header before Teem does: the magic keeps Teem's other formats (PNG, PNM, VTK,
+// text tables) out, and a detached data file is refused before Teem would open it.
+void check_header_text(std::FILE* file, std::uint64_t file_size, const ReadFailure& fail) {
   std::string head(std::min<std::uint64_t>(file_size, kMaxHeaderBytes), '\0');
-  head.resize(std::fread(head.data(), 1, head.size(), file.get()));
+  head.resize(std::fread(head.data(), 1, head.size(), file));
   if (!head.starts_with("NRRD000") || head.size() < 8 ||
       !std::isdigit(static_cast<unsigned char>(head[7])))
     fail("not a NRRD file (it does not start with the magic 'NRRD000x')");
@@ -731,6 +744,84 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, H
         ".nrrd file");
   if (!header_complete && file_size > head.size())
     fail(fmt::format("its header is longer than {} bytes", kMaxHeaderBytes));
+}
+
+// The data must be exactly what the header describes: a wrong type or too few sizes over the
+// right data would otherwise read as other numbers.
+void check_data_length(std::FILE* file, const DataLayout& layout, std::uint64_t file_size,
+                       const VolumeHeader& header, std::uint64_t sample_count,
+                       const ReadFailure& fail) {
+  std::uint64_t stored = 0;
+  std::string problem;
+  const bool raw = layout.encoding == nrrdEncodingRaw, ascii = layout.encoding == nrrdEncodingAscii,
+             hex = layout.encoding == nrrdEncodingHex;
+  const std::uint64_t expected = ascii ? sample_count
+                                 : hex ? 2 * header.data_bytes
+                                       : header.data_bytes;
+  if (!count_stored_data(file, layout, file_size, expected, stored, problem)) return;
+  if (!problem.empty()) fail(problem);
+  const char* unit = raw     ? "bytes of raw data"
+                     : ascii ? "numbers"
+                     : hex   ? "hex digits"
+                             : "bytes of decompressed data";
+  if (stored < expected)
+    fail(fmt::format("the file is truncated: its header announces {} {}, but only {} follow it",
+                     expected, unit, stored));
+  if (stored > expected)
+    fail(
+        fmt::format("{}{} {} follow its header, which announces {} (its type and sizes must "
+                    "describe the data exactly)",
+                    raw || ascii || hex ? "" : "more than ",
+                    raw || ascii || hex ? stored : expected, unit, expected));
+}
+
+// Teem's samples converted to T; a finite double beyond float's range has no float value
+// (converting it is undefined), so it is refused.
+template <class T>
+std::vector<T> converted_samples(const Nrrd* nrrd, int type, std::size_t count,
+                                 const ReadFailure& fail) {
+  std::vector<T> out(count);
+  if (type == teem_type<T>()) {
+    std::memcpy(out.data(), nrrd->data, count * sizeof(T));
+  } else if (type == nrrdTypeFloat) {
+    std::copy_n(static_cast<const float*>(nrrd->data), count, out.begin());
+  } else {
+    for (std::size_t s = 0; s < count; ++s) {
+      const double x = static_cast<const double*>(nrrd->data)[s];
+      if (std::isfinite(x) && std::fabs(x) > std::numeric_limits<float>::max())
+        fail(fmt::format(
+            "its sample {} = {} is beyond the range of float; read it in double precision", s, x));
+      out[s] = static_cast<T>(x);
+    }
+  }
+  return out;
+}
+
+template <class T>
+void refuse_non_finite(const std::vector<T>& samples, const VolumeHeader& full,
+                       const ReadFailure& fail) {
+  for (std::size_t s = 0; s < samples.size(); ++s) {
+    if (std::isfinite(samples[s])) continue;
+    const Sizes& n = full.sizes;
+    const auto k = static_cast<std::size_t>(full.lattice.coset_count());
+    const std::size_t cell = s / k, n0 = static_cast<std::size_t>(n[0]),
+                      n1 = static_cast<std::size_t>(n[1]);
+    fail(fmt::format(
+        "its sample {} (coset {}, {}, {}, {}) is {}; non-finite samples are refused unless "
+        "allowed (boxrecon --allow-nonfinite)",
+        s, s % k, cell % n0, cell / n0 % n1, cell / n0 / n1, static_cast<double>(samples[s])));
+  }
+}
+
+// Reads the volume file `path` whose header `check` accepts (`kind` names it in messages):
+// everything but building the volume, which the caller does from the header and the samples.
+template <class T>
+std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, HeaderCheck check,
+                           const char* kind, VolumeHeader& full) {
+  const ReadFailure fail{kind, printable(path.string())};
+  std::uint64_t file_size = 0;
+  const File file = open_regular_file(path, fail, file_size);
+  check_header_text(file.get(), file_size, fail);
 
   std::lock_guard lock(teem_mutex());
   VolumeHeader header{};
@@ -743,32 +834,8 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, H
   if (header.data_bytes > limits.max_data_bytes)
     fail(fmt::format("its data of {} bytes exceeds the limit of {} bytes", header.data_bytes,
                      limits.max_data_bytes));
-  // The data must be exactly what the header describes: a wrong type or too few sizes over the
-  // right data would otherwise read as other numbers.
   const std::uint64_t sample_count = header.data_bytes / (header.type == nrrdTypeFloat ? 4 : 8);
-  std::uint64_t stored = 0;
-  std::string problem;
-  const bool raw = layout.encoding == nrrdEncodingRaw, ascii = layout.encoding == nrrdEncodingAscii,
-             hex = layout.encoding == nrrdEncodingHex;
-  const std::uint64_t expected = ascii ? sample_count
-                                 : hex ? 2 * header.data_bytes
-                                       : header.data_bytes;
-  if (count_stored_data(file.get(), layout, file_size, expected, stored, problem)) {
-    if (!problem.empty()) fail(problem);
-    const char* unit = raw     ? "bytes of raw data"
-                       : ascii ? "numbers"
-                       : hex   ? "hex digits"
-                               : "bytes of decompressed data";
-    if (stored < expected)
-      fail(fmt::format("the file is truncated: its header announces {} {}, but only {} follow it",
-                       expected, unit, stored));
-    if (stored > expected)
-      fail(
-          fmt::format("{}{} {} follow its header, which announces {} (its type and sizes must "
-                      "describe the data exactly)",
-                      raw || ascii || hex ? "" : "more than ",
-                      raw || ascii || hex ? stored : expected, unit, expected));
-  }
+  check_data_length(file.get(), layout, file_size, header, sample_count, fail);
 
   NrrdOwner nrrd(nrrdNew());
   if (std::string why = teem_read(file.get(), nrrd.get(), false, layout); !why.empty()) fail(why);
@@ -776,7 +843,7 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, H
     fail(why);  // the file may have changed
   if (full.data_bytes != header.data_bytes) fail("the file changed while it was read");
   if (!nrrd->data) fail("Teem returned no data");
-  const std::size_t count = static_cast<std::size_t>(sample_count);
+  const auto count = static_cast<std::size_t>(sample_count);
   if (layout.encoding != nrrdEncodingAscii) {
     const std::string why =
         full.type == nrrdTypeFloat
@@ -784,34 +851,8 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, H
             : check_byte_order(static_cast<const double*>(nrrd->data), count, layout.endian);
     if (!why.empty()) fail(why);
   }
-
-  std::vector<T> out(count);
-  if (full.type == teem_type<T>())
-    std::memcpy(out.data(), nrrd->data, count * sizeof(T));
-  else if (full.type == nrrdTypeFloat)
-    std::copy_n(static_cast<const float*>(nrrd->data), count, out.begin());
-  else
-    for (std::size_t s = 0; s < count; ++s) {
-      const double x = static_cast<const double*>(nrrd->data)[s];
-      // A finite double beyond float's range has no float value (converting it is undefined).
-      if (std::isfinite(x) && std::fabs(x) > std::numeric_limits<float>::max())
-        fail(fmt::format(
-            "its sample {} = {} is beyond the range of float; read it in double precision", s, x));
-      out[s] = static_cast<T>(x);
-    }
-  if (!limits.allow_non_finite)
-    for (std::size_t s = 0; s < count; ++s)
-      if (!std::isfinite(out[s])) {
-        const Sizes& n = full.sizes;
-        const auto k = static_cast<std::size_t>(full.lattice.coset_count());
-        const std::size_t cell = s / k, n0 = static_cast<std::size_t>(n[0]),
-                          n1 = static_cast<std::size_t>(n[1]);
-        fail(fmt::format(
-            "its sample {} (coset {}, {}, {}, {}) is {}; non-finite samples are refused unless "
-            "allowed "
-            "(boxrecon --allow-nonfinite)",
-            s, s % k, cell % n0, cell / n0 % n1, cell / n0 / n1, static_cast<double>(out[s])));
-      }
+  std::vector<T> out = converted_samples<T>(nrrd.get(), full.type, count, fail);
+  if (!limits.allow_non_finite) refuse_non_finite(out, full, fail);
   return out;
 }
 

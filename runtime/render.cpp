@@ -133,6 +133,77 @@ bool RayCaster::inside(const Vec3& p) const {
   return in_region(p) && spline_(p, nullptr, nullptr) >= iso_;
 }
 
+// Principal curvatures of the level set through a point from the spline's gradient and Hessian
+// {xx, xy, xz, yy, yz, zz}: the eigenvalues of -P H P / |g| (P the projection onto the tangent
+// plane, n = -g/|g|) from its trace and Frobenius norm (the third eigenvalue is 0).
+static void principal_curvatures(const Vec3& gradient, const Hessian& hs, double& k1, double& k2) {
+  const double H[3][3] = {{hs[0], hs[1], hs[2]}, {hs[1], hs[3], hs[4]}, {hs[2], hs[4], hs[5]}};
+  const double glen = std::sqrt(dot(gradient, gradient));
+  const Vec3 n = scale(gradient, -1 / glen);
+  double P[3][3], PH[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) P[i][j] = (i == j ? 1.0 : 0.0) - n[i] * n[j];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      PH[i][j] = 0;
+      for (int k = 0; k < 3; ++k) PH[i][j] += P[i][k] * H[k][j];
+    }
+  double trace = 0, frob2 = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double g = 0;
+      for (int k = 0; k < 3; ++k) g -= PH[i][k] * P[k][j] / glen;
+      frob2 += g * g;
+      if (i == j) trace += g;
+    }
+  const double root = std::sqrt(std::max(0.0, 2 * frob2 - trace * trace));
+  k1 = 0.5 * (trace + root);
+  k2 = 0.5 * (trace - root);
+}
+
+// The first t in [t0, t1] where the ray enters the solid: marching by the step, then bisection
+// on the spline between the last point outside and the first inside. entry_face: inside at t0.
+bool RayCaster::first_crossing(const Vec3& o, const Vec3& d, double t0, double t1, double& t,
+                               bool& entry_face) const {
+  entry_face = inside(add(o, scale(d, t0)));
+  if (entry_face) {
+    t = t0;
+    return true;
+  }
+  double prev = t0;
+  for (double s = t0 + step_;; s += step_) {
+    const double ss = std::min(s, t1);
+    if (inside(add(o, scale(d, ss)))) {
+      double lo = prev, hi = ss;
+      while (hi - lo > 1e-9 * size_) {
+        const double m = 0.5 * (lo + hi);
+        (inside(add(o, scale(d, m))) ? hi : lo) = m;
+      }
+      t = hi;
+      return true;
+    }
+    prev = ss;
+    if (ss >= t1) return false;
+  }
+}
+
+// The outward normal of the cut or box face nearest to p, facing against the ray direction d.
+Vec3 RayCaster::face_normal(const Vec3& p, const Vec3& d) const {
+  int axis = 0;
+  double best = 1e300;
+  for (int i = 0; i < 3; ++i) {
+    const double gap = std::min(
+        {std::abs(p[i] - mid_[i]), std::abs(p[i] - box_.min[i]), std::abs(p[i] - box_.max[i])});
+    if (gap < best) {
+      best = gap;
+      axis = i;
+    }
+  }
+  Vec3 normal{0, 0, 0};
+  normal[axis] = d[axis] > 0 ? -1 : 1;
+  return normal;
+}
+
 RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
   RayHit h;
   const Vec3 d = normalise(direction);
@@ -140,30 +211,9 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
   if (!clip_to_box(origin, d, box_, t0, t1)) return h;
   t0 += 1e-9 * size_;
   t1 -= 1e-9 * size_;
-  double prev = t0;
   bool entry_face = false;
-  if (inside(add(origin, scale(d, t0)))) {
-    h.hit = entry_face = true;
-  } else {
-    for (double t = t0 + step_;; t += step_) {
-      const double tt = std::min(t, t1);
-      if (inside(add(origin, scale(d, tt)))) {
-        // Bisection on the spline between prev (outside) and tt (inside).
-        double lo = prev, hi = tt;
-        while (hi - lo > 1e-9 * size_) {
-          const double m = 0.5 * (lo + hi);
-          (inside(add(origin, scale(d, m))) ? hi : lo) = m;
-        }
-        prev = hi;
-        h.hit = true;
-        break;
-      }
-      prev = tt;
-      if (tt >= t1) break;
-    }
-  }
+  h.hit = first_crossing(origin, d, t0, t1, h.t, entry_face);
   if (!h.hit) return h;
-  h.t = entry_face ? t0 : prev;
   h.point = add(origin, scale(d, h.t));
   Vec3 gradient{};
   h.value = spline_(h.point, &gradient, nullptr);
@@ -175,44 +225,11 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
     if (curvature_) {
       Hessian hs{};
       spline_(h.point, &gradient, &hs);
-      const double H[3][3] = {{hs[0], hs[1], hs[2]}, {hs[1], hs[3], hs[4]}, {hs[2], hs[4], hs[5]}};
-      const double glen = std::sqrt(dot(gradient, gradient));
-      const Vec3 n = scale(gradient, -1 / glen);
-      double P[3][3], PH[3][3], G[3][3];
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) P[i][j] = (i == j ? 1.0 : 0.0) - n[i] * n[j];
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-          PH[i][j] = 0;
-          for (int k = 0; k < 3; ++k) PH[i][j] += P[i][k] * H[k][j];
-        }
-      double trace = 0, frob2 = 0;
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-          G[i][j] = 0;
-          for (int k = 0; k < 3; ++k) G[i][j] -= PH[i][k] * P[k][j] / glen;
-          frob2 += G[i][j] * G[i][j];
-        }
-      for (int i = 0; i < 3; ++i) trace += G[i][i];
-      const double root = std::sqrt(std::max(0.0, 2 * frob2 - trace * trace));
-      h.k1 = 0.5 * (trace + root);
-      h.k2 = 0.5 * (trace - root);
+      principal_curvatures(gradient, hs, h.k1, h.k2);
     }
   } else {
     h.on_cut = true;
-    int axis = 0;
-    double best = 1e300;
-    for (int i = 0; i < 3; ++i) {
-      const double gap =
-          std::min({std::abs(h.point[i] - mid_[i]), std::abs(h.point[i] - box_.min[i]),
-                    std::abs(h.point[i] - box_.max[i])});
-      if (gap < best) {
-        best = gap;
-        axis = i;
-      }
-    }
-    h.normal = {0, 0, 0};
-    h.normal[axis] = d[axis] > 0 ? -1 : 1;
+    h.normal = face_normal(h.point, d);
   }
   if (dot(h.normal, d) > 0) h.normal = scale(h.normal, -1);
   return h;

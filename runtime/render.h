@@ -68,6 +68,9 @@ class RayCaster {
  private:
   bool in_region(const Vec3& p) const;
   bool inside(const Vec3& p) const;
+  bool first_crossing(const Vec3& o, const Vec3& d, double t0, double t1, double& t,
+                      bool& entry_face) const;
+  Vec3 face_normal(const Vec3& p, const Vec3& d) const;
   SplineFunction spline_;
   Box box_;
   double iso_, step_;

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "analysis/gnuplot.h"
 #include "analysis/output_file.h"
@@ -39,12 +41,16 @@ double nyquist_extent(const analysis::VoronoiCell& cell, const analysis::Vec& d)
   return t;
 }
 
-int run_line(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
-  const analysis::Vec d = parse_direction(o.line, n, "--line");
-  const analysis::DualLattice dual = dual_of(specs.front());
+void require_one_lattice(const std::vector<BoxSplineSpec>& specs) {
   for (const auto& s : specs)
     if (s.lattice.generator() != specs.front().lattice.generator())
       fail_input("all SPECs of one spectrum must be on the same lattice");
+}
+
+int run_line(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
+  const analysis::Vec d = parse_direction(o.line, n, "--line");
+  require_one_lattice(specs);
+  const analysis::DualLattice dual = dual_of(specs.front());
   const double t = nyquist_extent(dual.cell(), d);
   const std::vector<double> w = abscissae(o, false, 0, 4 * t, 801, false);
   std::optional<analysis::AtomicOutput> check;
@@ -104,32 +110,35 @@ int run_line(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs,
   return 0;
 }
 
-// One panel per filter, side by side: log10 |psi_hat| from -4 (dark) to 0 (yellow), the
-// boundaries of the dual lattice's Voronoi cells in the plane (white) and the dual lattice
-// points lying in the plane (white discs).
-int run_plane(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
-  if (n != 3) fail_input("--plane needs 3-D filters (for 2-D filters use --line)");
-  if (o.plot.empty()) fail_input("--plane draws an image: give -o out.png");
-  if (o.json) fail_input("--json is for --line (a plane is an image)");
-  if (!o.w.empty() || o.steps != 0)
-    fail_input("--plane takes --from/--to (the square's range), not --w or --steps");
-  analysis::Vec normal = parse_direction(o.plane, 3, "--plane");
+// An orthonormal frame of the plane through 0 with this normal: u, v span it.
+struct PlaneFrame {
+  analysis::Vec normal, u, v;
+};
+
+analysis::Vec unit_cross(const analysis::Vec& a, const analysis::Vec& b) {
+  analysis::Vec c{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  const double len = std::sqrt(dot(c, c));
+  for (double& x : c) x /= len;
+  return c;
+}
+
+PlaneFrame plane_frame(analysis::Vec normal) {
   const double len = std::sqrt(dot(normal, normal));
   for (double& x : normal) x /= len;
-  // An orthonormal basis u, v of the plane.
-  analysis::Vec helper =
+  const analysis::Vec helper =
       std::abs(normal[0]) < 0.9 ? analysis::Vec{1, 0, 0} : analysis::Vec{0, 1, 0};
-  analysis::Vec u{normal[1] * helper[2] - normal[2] * helper[1],
-                  normal[2] * helper[0] - normal[0] * helper[2],
-                  normal[0] * helper[1] - normal[1] * helper[0]};
-  const double lu = std::sqrt(dot(u, u));
-  for (double& x : u) x /= lu;
-  const analysis::Vec v{normal[1] * u[2] - normal[2] * u[1], normal[2] * u[0] - normal[0] * u[2],
-                        normal[0] * u[1] - normal[1] * u[0]};
-  const analysis::DualLattice dual = dual_of(specs.front());
-  for (const auto& s : specs)
-    if (s.lattice.generator() != specs.front().lattice.generator())
-      fail_input("all SPECs of one spectrum must be on the same lattice");
+  const analysis::Vec u = unit_cross(normal, helper);
+  return {normal, u, unit_cross(normal, u)};
+}
+
+// The square [lo, hi]^2 of the plane, `size` pixels a side.
+struct PlaneWindow {
+  double lo, hi;
+  int size;
+  double pixel() const { return (hi - lo) / size; }
+};
+
+PlaneWindow plane_window(const FrequencyOptions& o, const analysis::DualLattice& dual) {
   double circumradius = 0;
   for (const auto& x : dual.cell().vertices)
     circumradius = std::max(circumradius, std::sqrt(dot(x, x)));
@@ -140,48 +149,78 @@ int run_plane(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs
   const int size = o.size != 0 ? o.size : 400;
   if (size < 16 || size > 4096)
     fail_input(fmt::format("--size must be between 16 and 4096, got {}", size));
+  return {lo, hi, size};
+}
+
+// log10 |psi_hat| from -4 (dark) to 0 (yellow); white where a Voronoi boundary of the dual
+// lattice crosses the pixel.
+template <class Psi>
+void paint_magnitude(analysis::RgbImage& image, int x0, const Psi& psi,
+                     const analysis::DualLattice& dual, const PlaneFrame& f,
+                     const PlaneWindow& win) {
+  const double pixel = win.pixel();
+  for (int py = 0; py < win.size; ++py)
+    for (int px = 0; px < win.size; ++px) {
+      const double a = win.lo + (px + 0.5) * pixel, b = win.hi - (py + 0.5) * pixel;
+      const analysis::Vec w{a * f.u[0] + b * f.v[0], a * f.u[1] + b * f.v[1],
+                            a * f.u[2] + b * f.v[2]};
+      double g = 0;
+      dual.nearest(w, &g);
+      std::uint8_t r = 255, gg = 255, bb = 255;
+      if (g >= 1.2 * pixel)
+        analysis::colour_map((std::log10(std::max(std::abs(psi(w)), 1e-300)) + 4) / 4, r, gg, bb);
+      image.set(x0 + px, py, r, gg, bb);
+    }
+}
+
+// The dual lattice points lying in the plane, in its (u, v) coordinates.
+std::vector<std::pair<double, double>> points_in_plane(const analysis::DualLattice& dual,
+                                                       const PlaneFrame& f,
+                                                       const PlaneWindow& win) {
+  std::vector<std::pair<double, double>> dots;
+  const double reach = std::max(std::abs(win.lo), std::abs(win.hi)) * std::sqrt(2.0) + win.pixel();
+  for (const auto& k : dual.points_within(reach))
+    if (std::abs(dot(k, f.normal)) < 1e-9 * (1 + reach)) dots.push_back({dot(k, f.u), dot(k, f.v)});
+  return dots;
+}
+
+void draw_disc(analysis::RgbImage& image, int x0, const PlaneWindow& win, double cx, double cy,
+               double radius) {
+  const int reach = 4 * static_cast<int>(radius);
+  for (int dy = -reach; dy <= reach; ++dy)
+    for (int dx = -reach; dx <= reach; ++dx) {
+      const int px = static_cast<int>(std::floor(cx)) + dx,
+                py = static_cast<int>(std::floor(cy)) + dy;
+      if (px < 0 || px >= win.size || py < 0 || py >= win.size) continue;
+      if (std::hypot(px + 0.5 - cx, py + 0.5 - cy) <= radius) image.set(x0 + px, py, 255, 255, 255);
+    }
+}
+
+// One panel per filter, side by side: log10 |psi_hat|, the boundaries of the dual lattice's
+// Voronoi cells in the plane (white) and the dual lattice points lying in the plane (white discs).
+int run_plane(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
+  if (n != 3) fail_input("--plane needs 3-D filters (for 2-D filters use --line)");
+  if (o.plot.empty()) fail_input("--plane draws an image: give -o out.png");
+  if (o.json) fail_input("--json is for --line (a plane is an image)");
+  if (!o.w.empty() || o.steps != 0)
+    fail_input("--plane takes --from/--to (the square's range), not --w or --steps");
+  const PlaneFrame frame = plane_frame(parse_direction(o.plane, 3, "--plane"));
+  require_one_lattice(specs);
+  const analysis::DualLattice dual = dual_of(specs.front());
+  const PlaneWindow win = plane_window(o, dual);
   std::optional<analysis::AtomicOutput> check(o.plot);
   check.reset();
   const int gap = 8;
   const int count = static_cast<int>(specs.size());
-  analysis::RgbImage image(count * size + (count - 1) * gap, size);
+  analysis::RgbImage image(count * win.size + (count - 1) * gap, win.size);
   std::fill(image.pixels.begin(), image.pixels.end(), 255);
-  const double pixel = (hi - lo) / size;
-  // Dual lattice points in the plane.
-  std::vector<std::pair<double, double>> dots;
-  const double reach = std::max(std::abs(lo), std::abs(hi)) * std::sqrt(2.0) + pixel;
-  for (const auto& k : dual.points_within(reach))
-    if (std::abs(dot(k, normal)) < 1e-9 * (1 + reach)) dots.push_back({dot(k, u), dot(k, v)});
+  const auto dots = points_in_plane(dual, frame, win);
+  const double radius = std::max(2.0, win.size / 120.0);
   for (int s = 0; s < count; ++s) {
-    const auto psi = spectrum_of(specs[s]);
-    const int x0 = s * (size + gap);
-    for (int py = 0; py < size; ++py)
-      for (int px = 0; px < size; ++px) {
-        const double a = lo + (px + 0.5) * pixel, b = hi - (py + 0.5) * pixel;
-        const analysis::Vec w{a * u[0] + b * v[0], a * u[1] + b * v[1], a * u[2] + b * v[2]};
-        double g = 0;
-        dual.nearest(w, &g);
-        std::uint8_t r, gg, bb;
-        if (g < 1.2 * pixel) {
-          r = gg = bb = 255;
-        } else {
-          const double m = std::abs(psi(w));
-          analysis::colour_map((std::log10(std::max(m, 1e-300)) + 4) / 4, r, gg, bb);
-        }
-        image.set(x0 + px, py, r, gg, bb);
-      }
-    const double radius = std::max(2.0, size / 120.0);
-    for (const auto& [a, b] : dots) {
-      const double cx = (a - lo) / pixel, cy = (hi - b) / pixel;
-      for (int dy = -4 * static_cast<int>(radius); dy <= 4 * static_cast<int>(radius); ++dy)
-        for (int dx = -4 * static_cast<int>(radius); dx <= 4 * static_cast<int>(radius); ++dx) {
-          const int px = static_cast<int>(std::floor(cx)) + dx,
-                    py = static_cast<int>(std::floor(cy)) + dy;
-          if (px < 0 || px >= size || py < 0 || py >= size) continue;
-          if (std::hypot(px + 0.5 - cx, py + 0.5 - cy) <= radius)
-            image.set(x0 + px, py, 255, 255, 255);
-        }
-    }
+    const int x0 = s * (win.size + gap);
+    paint_magnitude(image, x0, spectrum_of(specs[s]), dual, frame, win);
+    for (const auto& [a, b] : dots)
+      draw_disc(image, x0, win, (a - win.lo) / win.pixel(), (win.hi - b) / win.pixel(), radius);
   }
   analysis::write_png(o.plot, image);
   return 0;
