@@ -15,6 +15,9 @@ struct PrefilterTap {
   double weight;
 };
 
+// Quasi-interpolation with q1 or q2 reproduces every polynomial of degree < kApproximationOrder.
+inline constexpr int kApproximationOrder = 4;
+
 // Shells {0, 1}: common parametrisation.
 inline constexpr PrefilterTap q1[] = {
     {{0, 0, 0}, 1.6666666666666667},  // 5/3

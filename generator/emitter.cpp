@@ -283,7 +283,7 @@ std::vector<EmittedFile> emit(const Analysis& analysis, const EmissionRequest& r
 
 EmittedFile emit_registry(const std::vector<std::string>& names, const std::string& command) {
   if (names.empty()) fail_input("--registry needs at least one filter name");
-  std::vector<std::string> includes, quoted, entries, cases;
+  std::vector<std::string> includes, quoted, lattices, entries, cases;
   for (std::size_t i = 0; i < names.size(); ++i) {
     const std::string& n = names[i];
     if (!is_identifier(n))
@@ -291,8 +291,11 @@ EmittedFile emit_registry(const std::vector<std::string>& names, const std::stri
     includes.push_back(fmt::format(
         "#include \"generated/{0}.hpp\"\n#include \"generated/{0}_prefilters.hpp\"", n));
     quoted.push_back("\"" + n + "\"");
+    lattices.push_back(n + "::kLattice");
     entries.push_back(
-        fmt::format("using {0}_entry = RegistryEntry<{0}::Traits, {0}::q1, {0}::q2>;", n));
+        fmt::format("using {0}_entry = RegistryEntry<{0}::Traits, {0}::q1, {0}::q2, "
+                    "{0}::kApproximationOrder>;",
+                    n));
     const bool last = i + 1 == names.size();
     cases.push_back(fmt::format("    {}: return f({}_entry{{}});",
                                 last ? "default" : fmt::format("case {}", i), n));
@@ -302,7 +305,8 @@ EmittedFile emit_registry(const std::vector<std::string>& names, const std::stri
       fmt::format(fmt::runtime(templates::registry_hpp), fmt::arg("version", kGeneratorVersion),
                   fmt::arg("command", command), fmt::arg("includes", join(includes, "\n")),
                   fmt::arg("count", names.size()), fmt::arg("names", join(quoted)),
-                  fmt::arg("entries", join(entries, "\n")), fmt::arg("cases", join(cases, "\n")))};
+                  fmt::arg("lattices", join(lattices)), fmt::arg("entries", join(entries, "\n")),
+                  fmt::arg("cases", join(cases, "\n")))};
 }
 
 void write_files(const std::vector<EmittedFile>& files, const std::string& directory) {

@@ -14,15 +14,18 @@
 // on another lattice is refused with one line (std::invalid_argument). Border policy as
 // Reconstructor (reconstruction.h): a point whose stencil leaves the volume is
 // std::out_of_range (one line), a non-finite coordinate std::invalid_argument; the whole stencil
-// box is checked once per point, then fetched without further checks.
+// box is checked once per point, then fetched without further checks, through linear offsets
+// precomputed per volume (see table_ below).
 #pragma once
 #include <fmt/format.h>
 
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <stdexcept>
+#include <vector>
 
 #include "generated/evaluator_support.hpp"
 #include "runtime/coset_lattice.h"
@@ -70,6 +73,7 @@ class LatticeReconstructor {
       throw std::invalid_argument(
           fmt::format("filter {} is for the {} lattice, but the volume is on the {} lattice",
                       Tr::kName, lattice.name(), volume.lattice().name()));
+    tabulate_offsets();
   }
 
   // The spline at a world point; with `gradient` its gradient and with `hessian` its second
@@ -115,16 +119,28 @@ class LatticeReconstructor {
       hi[a] = located.corner[a] + Tr::kStencilReachHi[a];
     }
     const bool inside = volume_.contains_box(lo, hi);
-    try {
-      for (int k = 0; k < size; ++k) {
-        LatticePoint j;
-        for (int a = 0; a < 3; ++a) j[a] = located.corner[a] + Tr::kOffsets[located.cell][k][a];
-        v[k] = inside ? volume_.value_unchecked(j) : volume_.value(j);
+    if (inside && !table_.empty()) {
+      // corner = d q + r, 0 <= r < d per axis: the block q's first sample, plus the table's
+      // offset for the residue class r and the cell.
+      const std::int64_t d = volume_.period();
+      std::int64_t q[3];
+      int residue = 0;
+      for (int a = 2; a >= 0; --a) {
+        const std::int64_t c = located.corner[a];
+        const std::int64_t r = ((c % d) + d) % d;
+        q[a] = (c - r) / d;
+        residue = residue * static_cast<int>(d) + static_cast<int>(r);
       }
-    } catch (const std::out_of_range& e) {  // name the point the user asked for, then the sample
-      throw std::out_of_range(
-          fmt::format("world point ({}, {}, {}) needs a sample outside the volume: {}", world[0],
-                      world[1], world[2], e.what()));
+      const std::int64_t base =
+          volume_.coset_count() *
+          (q[0] +
+           volume_.sizes()[0] * (q[1] + static_cast<std::int64_t>(volume_.sizes()[1]) * q[2]));
+      const T* samples = volume_.samples().data();
+      const std::int64_t* offsets =
+          &table_[(static_cast<std::size_t>(residue) * Tr::kCellCount + located.cell) * kStencil];
+      for (int k = 0; k < size; ++k) v[k] = samples[base + offsets[k]];
+    } else {
+      fetch_checked(located, world, inside, size, v);
     }
     T d[3 + 6] = {};
     const T value = support::evaluate_located<Order, Tr>(located, v, d);
@@ -137,7 +153,64 @@ class LatticeReconstructor {
     return value;
   }
 
+  // The stencil through the volume's lattice lookup: unchecked when `inside`, else every sample
+  // checked (a sample outside is std::out_of_range naming the point).
+  void fetch_checked(const generated::support::Located<3, T>& located, const Vec3& world,
+                     bool inside, int size, T* v) const {
+    try {
+      for (int k = 0; k < size; ++k) {
+        LatticePoint j;
+        for (int a = 0; a < 3; ++a) j[a] = located.corner[a] + Tr::kOffsets[located.cell][k][a];
+        v[k] = inside ? volume_.value_unchecked(j) : volume_.value(j);
+      }
+    } catch (const std::out_of_range& e) {  // name the point the user asked for, then the sample
+      throw std::out_of_range(
+          fmt::format("world point ({}, {}, {}) needs a sample outside the volume: {}", world[0],
+                      world[1], world[2], e.what()));
+    }
+  }
+
+  // table_[(r, cell, k)]: for a corner of residue class r (corner mod d per axis, x fastest,
+  // r = rx + d (ry + d rz)) in block q (corner = d q + r), the stencil sample
+  // j = corner + kOffsets[cell][k] = d q + p, p = r + offset, lies in coset c of p at
+  // (i, j, k) = q + (p - off_c) / d (an exact division): storage index K (q_x + N0 (q_y + N1 q_z))
+  // plus c + K ((p - off_c)_x / d + N0 (...)), the table's entry. Left empty (every fetch through
+  // the lattice lookup) when the table would be large (a custom lattice of large period).
+  void tabulate_offsets() {
+    const CosetLattice& lattice = volume_.lattice();
+    const std::int64_t d = lattice.period(), k_cosets = lattice.coset_count();
+    const std::int64_t n0 = volume_.sizes()[0], n1 = volume_.sizes()[1];
+    constexpr std::int64_t kMaxEntries = std::int64_t{1} << 22;
+    if (d * d * d * Tr::kCellCount * kStencil > kMaxEntries) return;
+    std::vector<std::int64_t> table(static_cast<std::size_t>(d * d * d) * Tr::kCellCount *
+                                    kStencil);
+    auto floor_div = [](std::int64_t a, std::int64_t b) {
+      const std::int64_t q = a / b;
+      return (a % b != 0 && a < 0) ? q - 1 : q;
+    };
+    std::size_t at = 0;
+    for (std::int64_t rz = 0; rz < d; ++rz)
+      for (std::int64_t ry = 0; ry < d; ++ry)
+        for (std::int64_t rx = 0; rx < d; ++rx)
+          for (int cell = 0; cell < Tr::kCellCount; ++cell)
+            for (int k = 0; k < kStencil; ++k, ++at) {
+              if (k >= Tr::kOrbitStencilSize[Tr::kCells[cell].orbit]) continue;  // never read
+              const auto& o = Tr::kOffsets[cell][k];
+              const std::int64_t p[3] = {rx + o[0], ry + o[1], rz + o[2]};
+              const int c = lattice.coset_of(p[0], p[1], p[2]);
+              // Not a lattice point: a cell of another cube type than this residue class has
+              // (locate never pairs them; the lookup path assumes the same). Never read.
+              if (c < 0) continue;
+              const Offset& off = lattice.offsets()[static_cast<std::size_t>(c)];
+              const std::int64_t i = floor_div(p[0] - off[0], d), j = floor_div(p[1] - off[1], d),
+                                 l = floor_div(p[2] - off[2], d);
+              table[at] = c + k_cosets * (i + n0 * (j + n1 * l));
+            }
+    table_ = std::move(table);
+  }
+
   const LatticeVolume<T>& volume_;
+  std::vector<std::int64_t> table_;
 };
 
 }  // namespace boxgen::runtime

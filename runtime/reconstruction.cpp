@@ -20,10 +20,17 @@ namespace support = boxgen::generated::support;
 
 namespace {
 
+// Filter::M7, M8, M12: the registry's first entries (its other filters are on other lattices and
+// reach the apps through lattice_filters.h).
+constexpr const char* kRegistryOrder[] = {"m7", "m8", "m12"};
+static_assert(std::size(kRegistryOrder) <= generated::kFilterCount,
+              "Filter must name the registry's first filters");
+constexpr int kBccFilterCount = static_cast<int>(std::size(kRegistryOrder));
+
 // The Filter enum is an index into the registry; its names must agree with it.
 int registry_index(Filter f) {
   const int index = static_cast<int>(f);
-  if (index < 0 || index >= generated::kFilterCount) throw std::logic_error("unknown filter");
+  if (index < 0 || index >= kBccFilterCount) throw std::logic_error("unknown filter");
   return index;
 }
 
@@ -45,14 +52,10 @@ StencilReach published_reach() {
   return reach;
 }
 
-constexpr const char* kRegistryOrder[] = {"m7", "m8", "m12"};  // Filter::M7, M8, M12
-static_assert(std::size(kRegistryOrder) == generated::kFilterCount,
-              "Filter must list the registry's filters");
-
 }  // namespace
 
 Filter parse_filter(std::string_view name) {
-  for (int i = 0; i < generated::kFilterCount; ++i)
+  for (int i = 0; i < kBccFilterCount; ++i)
     if (name == generated::kFilterNames[i]) return static_cast<Filter>(i);
   throw std::invalid_argument(
       fmt::format("unknown filter '{}': expected m7, m8 or m12", name.substr(0, 40)));
@@ -68,7 +71,7 @@ PrefilterChoice parse_prefilter(std::string_view name) {
 
 const char* filter_name(Filter f) {
   const int index = static_cast<int>(f);
-  if (index < 0 || index >= generated::kFilterCount) return "?";
+  if (index < 0 || index >= kBccFilterCount) return "?";
   if (std::strcmp(generated::kFilterNames[index], kRegistryOrder[index]) != 0)
     throw std::logic_error("registry order");
   return generated::kFilterNames[index];
@@ -381,14 +384,19 @@ Reconstructor<T>::Reconstructor(const BccVolume<T>& volume, Filter filter)
           [&,
            index = registry_index(filter)](auto entry) -> std::shared_ptr<const EvaluationPath<T>> {
             using Tr = typename decltype(entry)::Traits;
-            // |offset| <= (max reach + 1) (1 + N0 + N0 N1): 32 bits suffice for all but huge slabs.
-            int reach = 0;
-            for (int a = 0; a < 3; ++a)
-              reach = std::max({reach, -Tr::kStencilReachLo[a], Tr::kStencilReachHi[a]});
-            const double n0 = volume.sizes()[0], n1 = volume.sizes()[1];
-            if ((reach + 1.0) * (1.0 + n0 + n0 * n1) < 2147483647.0)
-              return std::make_shared<FilterPath<Tr, T, std::int32_t>>(volume, index);
-            return std::make_shared<FilterPath<Tr, T, std::int64_t>>(volume, index);
+            if constexpr (std::string_view(Tr::kLattice) != "bcc") {
+              throw std::logic_error("not a BCC filter");  // registry_index() excludes it
+            } else {
+              // |offset| <= (max reach + 1) (1 + N0 + N0 N1): 32 bits suffice for all but huge
+              // slabs.
+              int reach = 0;
+              for (int a = 0; a < 3; ++a)
+                reach = std::max({reach, -Tr::kStencilReachLo[a], Tr::kStencilReachHi[a]});
+              const double n0 = volume.sizes()[0], n1 = volume.sizes()[1];
+              if ((reach + 1.0) * (1.0 + n0 + n0 * n1) < 2147483647.0)
+                return std::make_shared<FilterPath<Tr, T, std::int32_t>>(volume, index);
+              return std::make_shared<FilterPath<Tr, T, std::int64_t>>(volume, index);
+            }
           })) {}
 
 template <class T>

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 
 namespace boxgen::runtime {
 
@@ -99,7 +100,21 @@ bool clip_to_box(const Vec3& o, const Vec3& d, const Box& box, double& t0, doubl
 
 RayCaster::RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step,
                      bool cutaway, bool curvature)
-    : spline_(spline), box_(box), iso_(iso), step_(step), cutaway_(cutaway), curvature_(curvature) {
+    : RayCaster(
+          [&spline](const Vec3& p, Vec3* gradient, Hessian* hessian) {
+            return hessian ? spline.value_gradient_hessian(p, *gradient, *hessian)
+                           : spline.value(p, gradient);
+          },
+          box, iso, step, cutaway, curvature) {}
+
+RayCaster::RayCaster(SplineFunction spline, const Box& box, double iso, double step, bool cutaway,
+                     bool curvature)
+    : spline_(std::move(spline)),
+      box_(box),
+      iso_(iso),
+      step_(step),
+      cutaway_(cutaway),
+      curvature_(curvature) {
   if (!std::isfinite(iso)) throw std::invalid_argument("--iso must be finite");
   if (!(step > 0) || !std::isfinite(step))
     throw std::invalid_argument("the marching step must be > 0");
@@ -114,7 +129,9 @@ bool RayCaster::in_region(const Vec3& p) const {
   return !(p[2] > mid_[2] && (p[0] > mid_[0] || p[1] > mid_[1]));
 }
 
-bool RayCaster::inside(const Vec3& p) const { return in_region(p) && spline_.value(p) >= iso_; }
+bool RayCaster::inside(const Vec3& p) const {
+  return in_region(p) && spline_(p, nullptr, nullptr) >= iso_;
+}
 
 // Principal curvatures of the level set through a point from the spline's gradient and Hessian
 // {xx, xy, xz, yy, yz, zz}: the eigenvalues of -P H P / |g| (P the projection onto the tangent
@@ -199,7 +216,7 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
   if (!h.hit) return h;
   h.point = add(origin, scale(d, h.t));
   Vec3 gradient{};
-  h.value = spline_.value(h.point, &gradient);
+  h.value = spline_(h.point, &gradient, nullptr);
   // The isosurface when the point just before the hit is still in the region, else a cut or box
   // face.
   h.on_cut = entry_face || !in_region(add(origin, scale(d, h.t - 2e-9 * size_)));
@@ -207,7 +224,7 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
     h.normal = normalise(scale(gradient, -1));  // s grows into the solid
     if (curvature_) {
       Hessian hs{};
-      spline_.value_gradient_hessian(h.point, gradient, hs);
+      spline_(h.point, &gradient, &hs);
       principal_curvatures(gradient, hs, h.k1, h.k2);
     }
   } else {
@@ -218,15 +235,18 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
   return h;
 }
 
-RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box& box,
-                            const RenderOptions& o) {
+namespace {
+
+// The image of the caster's isosurface; `spacing` is the volume's (the default step, curvature
+// scale).
+RgbBuffer render_with(const SplineFunction& spline, double spacing, const Box& box,
+                      const RenderOptions& o) {
   if (o.width < 1 || o.height < 1 || o.width > 8192 || o.height > 8192)
     throw std::invalid_argument(
         fmt::format("image size must be 1..8192 per side, got {} x {}", o.width, o.height));
-  const double step = o.step > 0 ? o.step : 0.5 * volume.spacing();
-  const Reconstructor<double> spline(volume, f);
+  const double step = o.step > 0 ? o.step : 0.5 * spacing;
   const RayCaster caster(spline, box, o.iso, step, o.cutaway, o.shading == Shading::Curvature);
-  const double curvature_scale = 5 * volume.spacing();
+  const double curvature_scale = 5 * spacing;
   const Camera cam = camera_for(box, o.closeup);
   const Vec3 light =
       normalise(add(scale(cam.forward, -1), add(scale(cam.up, 0.6), scale(cam.right, -0.3))));
@@ -268,6 +288,27 @@ RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box
   }
   if (bar) std::fprintf(stderr, "\n");
   return image;
+}
+
+}  // namespace
+
+RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box& box,
+                            const RenderOptions& o) {
+  const Reconstructor<double> spline(volume, f);
+  return render_with(
+      [&spline](const Vec3& p, Vec3* gradient, Hessian* hessian) {
+        return hessian ? spline.value_gradient_hessian(p, *gradient, *hessian)
+                       : spline.value(p, gradient);
+      },
+      volume.spacing(), box, o);
+}
+
+RgbBuffer render_isosurface(const LatticeVolume<double>& volume, RegistryFilter f, const Box& box,
+                            const RenderOptions& o) {
+  const RegistryReconstructor<double> spline(volume, f);
+  return render_with([&spline](const Vec3& p, Vec3* gradient,
+                               Hessian* hessian) { return spline.value(p, gradient, hessian); },
+                     volume.spacing(), box, o);
 }
 
 }  // namespace boxgen::runtime

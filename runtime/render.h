@@ -14,6 +14,7 @@
 #include <functional>
 #include <vector>
 
+#include "runtime/lattice_filters.h"
 #include "runtime/reconstruction.h"
 #include "runtime/resample.h"
 
@@ -50,11 +51,18 @@ struct RayHit {
   double k1 = 0, k2 = 0;
 };
 
+// The spline a caster marches, at a world point: its value, and its gradient and Hessian (world
+// units) where the pointers are not null. Reconstructor<double> and RegistryReconstructor<double>
+// (any registry filter on its lattice) both give one.
+using SplineFunction = std::function<double(const Vec3&, Vec3*, Hessian*)>;
+
 class RayCaster {
  public:
   // Throws std::invalid_argument for a non-finite iso, a step <= 0 or an empty box.
   RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step,
             bool cutaway, bool curvature = false);
+  RayCaster(SplineFunction spline, const Box& box, double iso, double step, bool cutaway,
+            bool curvature = false);
   RayHit cast(const Vec3& origin, const Vec3& direction) const;
 
  private:
@@ -63,7 +71,7 @@ class RayCaster {
   bool first_crossing(const Vec3& o, const Vec3& d, double t0, double t1, double& t,
                       bool& entry_face) const;
   Vec3 face_normal(const Vec3& p, const Vec3& d) const;
-  const Reconstructor<double>& spline_;
+  SplineFunction spline_;
   Box box_;
   double iso_, step_;
   bool cutaway_, curvature_;
@@ -75,6 +83,10 @@ class RayCaster {
 // volume already prefiltered, as for Reconstructor) inside `box` (where the stencil fits, e.g.
 // default_box). Throws std::invalid_argument for a bad size, iso or step.
 RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box& box,
+                            const RenderOptions& options);
+// The same for any registry filter on a volume of its lattice (lattice_filters.h); also throws
+// std::invalid_argument (one line) for a volume of another lattice.
+RgbBuffer render_isosurface(const LatticeVolume<double>& volume, RegistryFilter f, const Box& box,
                             const RenderOptions& options);
 
 }  // namespace boxgen::runtime

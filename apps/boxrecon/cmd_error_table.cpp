@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "emitted/tricubic.hpp"
-#include "emitted/tricubic_prefilters.hpp"
+#include "generated/tricubic.hpp"
+#include "generated/tricubic_prefilters.hpp"
 #include "runtime/prefilter.h"
 #include "runtime/reconstruction.h"
 #include "runtime/sampling.h"
@@ -67,8 +67,8 @@ Row bcc_row(int n, Filter f, PrefilterChoice q, const char* qname,
 }
 
 // The tricubic B-spline on the Cartesian grid of m^3 samples over [-1,1]^3 (spacing 2/(m-1)),
-// evaluated by the evaluator boxgen emits for the preset `tricubic` (emitted at build time,
-// apps/CMakeLists.txt), with its emitted prefilter q1 or none.
+// evaluated by the evaluator boxgen emits for the preset `tricubic` (the registry's checked-in
+// generated/tricubic.hpp), with its emitted prefilter q1 or none.
 Row cartesian_row(int n, int m, bool q1, const std::vector<Vec3>& points) {
   const double h = 2.0 / (m - 1);
   const int margin = 4;  // stencil reach 2 (centred cubic) + prefilter 1, rounded up

@@ -10,6 +10,7 @@
 
 #include "analysis/output_file.h"
 #include "analysis/png_image.h"
+#include "runtime/lattice_filters.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/render.h"
 #include "runtime/sampling.h"
@@ -31,6 +32,31 @@ struct RenderArgs {
 };
 RenderArgs args;
 
+// The image of the chosen filter's spline: M7, M8 and M12 on BCC through the BCC Reconstructor,
+// every other registry filter through the lattice runtime, on a volume of its own lattice.
+RgbBuffer render_volume(RegistryFilter rf, PrefilterChoice q, const RenderOptions& o) {
+  const Box cube{{-1, -1, -1}, {1, 1, 1}};
+  if (rf.has_bcc_filter()) {
+    const Filter f = rf.bcc_filter();
+    BccVolume<double> volume = args.volume.empty()
+                                   ? sample_bcc<double>(find_test_function(args.function).value,
+                                                        cube_grid(args.n, required_margin(f, q)))
+                                   : read_bcc_nrrd<double>(args.volume);
+    if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
+    const Box box = args.volume.empty() ? cube : default_box(volume, f);
+    return render_isosurface(volume, f, box, o);
+  }
+  LatticeVolume<double> volume =
+      args.volume.empty()
+          ? sample_lattice<double>(find_test_function(args.function).value,
+                                   cube_lattice_grid(rf.lattice(), args.n, rf.required_margin(q)))
+          : read_lattice_nrrd<double>(args.volume);
+  rf.check_lattice(volume.lattice());
+  if (q != PrefilterChoice::None) volume = prefilter(volume, rf.prefilter(q));
+  const Box box = args.volume.empty() ? cube : default_box(volume, rf);
+  return render_isosurface(volume, rf, box, o);
+}
+
 }  // namespace
 
 CLI::App* add_render_command(CLI::App& app) {
@@ -38,10 +64,13 @@ CLI::App* add_render_command(CLI::App& app) {
       "render", "ray-cast an isosurface of the reconstruction into a PNG (Figs. 8-9)");
   auto* fn = r->add_option("--function", args.function,
                            "sample this test function (ml | cubic | sphere | gaussian)");
-  r->add_option("--n", args.n, "N for --function: N^3 x 2 samples over [-1,1]^3");
-  auto* vol = r->add_option("--volume", args.volume, "a BCC NRRD volume instead of --function");
+  r->add_option("--n", args.n,
+                "N for --function: N^3 x K samples over [-1,1]^3 on the filter's lattice");
+  auto* vol = r->add_option("--volume", args.volume,
+                            "a NRRD volume on the filter's lattice instead of --function");
   fn->excludes(vol);
-  r->add_option("--filter", args.filter, "m7 | m8 | m12 (default m7)");
+  r->add_option("--filter", args.filter,
+                "a filter of the registry (default m7): " + RegistryFilter::names());
   r->add_option("--prefilter", args.prefilter, "none | q1 | q2 (default q2, as in Fig. 8)");
   r->add_option("--iso", args.iso, "iso value (default 0.5)");
   r->add_flag("--cutaway", args.cutaway,
@@ -58,7 +87,7 @@ CLI::App* add_render_command(CLI::App& app) {
 }
 
 int run_render() {
-  const Filter f = parse_filter(args.filter);
+  const RegistryFilter rf = RegistryFilter::parse(args.filter);
   const PrefilterChoice q = parse_prefilter(args.prefilter);
   if (args.shading != "normal" && args.shading != "curvature")
     throw std::invalid_argument("--shading must be normal or curvature, got '" +
@@ -75,12 +104,6 @@ int run_render() {
   std::optional<analysis::AtomicOutput> check(
       args.output);  // an unwritable -o fails before the work
   check.reset();
-  BccVolume<double> volume = args.volume.empty()
-                                 ? sample_bcc<double>(find_test_function(args.function).value,
-                                                      cube_grid(args.n, required_margin(f, q)))
-                                 : read_bcc_nrrd<double>(args.volume);
-  if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
-  const Box box = args.volume.empty() ? Box{{-1, -1, -1}, {1, 1, 1}} : default_box(volume, f);
   RenderOptions o;
   o.width = args.width;
   o.height = args.height;
@@ -91,7 +114,7 @@ int run_render() {
   o.step = args.step;
   o.progress = !args.quiet;
   const auto start = std::chrono::steady_clock::now();
-  const RgbBuffer image = render_isosurface(volume, f, box, o);
+  const RgbBuffer image = render_volume(rf, q, o);
   analysis::RgbImage png(image.width, image.height);
   png.pixels = image.pixels;
   analysis::write_png(args.output, png);

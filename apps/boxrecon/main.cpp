@@ -1,16 +1,22 @@
-// boxrecon: reconstruction of BCC volumes with the generated M7, M8 and M12 evaluators.
-//   boxrecon sample --function ml --n N [--h H] [--lattice bcc|fcc|cartesian|ROWS] [--precision
-//   float|double] -o vol.nrrd boxrecon eval --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd
-//   --points pts.txt|- [--gradient] [--hessian] boxrecon error --function ml --n N --filter m7
-//   --prefilter q2 [--points K] [--seed S] [--gradient] [--json] boxrecon bench [--quick] [--json]
-//   [--points K] [--repeats R] (every command: --threads N caps the batch paths' threads, like
-//   BOXGEN_THREADS) boxrecon resample --filter m7 [--prefilter none|q1|q2] --volume vol.nrrd -o
-//   grid.nrrd [--n N]
+// boxrecon: sampling and reconstruction of volumes on the BCC, FCC, Cartesian and custom
+// lattices with every filter of generated/registry.hpp (M7, M8, M12 on BCC, fcc6 on FCC,
+// tricubic and cart7 on the Cartesian lattice).
+//   boxrecon sample --function ml --n N [--h H] [--lattice L | --filter F] [--precision P] -o
+//   v.nrrd boxrecon eval --filter F [--prefilter none|q1|q2] --volume v.nrrd --points pts.txt|-
+//                 [--gradient] [--hessian]
+//   boxrecon error --function ml --n N --filter F [--prefilter q2] [--points K] [--seed S]
+//                  [--gradient] [--json]
+//   boxrecon error --table [--points K] [--seed S] [--json]
+//   boxrecon resample --filter F [--prefilter P] --volume v.nrrd -o grid.nrrd [--n N]
 //                     [--min X Y Z --max X Y Z] [--precision float|double]
+//   boxrecon render (--function F --n N | --volume v.nrrd) [--filter F] ... -o out.png
+//   boxrecon bench [--quick] [--json] [--points K] [--repeats R] [--filter F]
+// Every command: --threads N caps the batch paths' threads, like BOXGEN_THREADS. M7, M8 and M12
+// on BCC volumes go through the BCC Reconstructor (reconstruction.h); the other filters through
+// the general lattice runtime (lattice_filters.h, apps/boxrecon/lattice_commands.h).
 // Errors are one line on stderr with a non-zero exit (1: bad input, 2: bad usage, 3: internal).
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -26,10 +32,12 @@
 #include "apps/boxrecon/cmd_error_table.h"
 #include "apps/boxrecon/cmd_render.h"
 #include "apps/boxrecon/input_checks.h"
+#include "apps/boxrecon/lattice_commands.h"
 #include "apps/boxrecon/sample_command.h"
 #include "apps/common/exit_status.h"
 #include "boxgen/version.h"
 #include "runtime/batch_threads.h"
+#include "runtime/lattice_filters.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/points_file.h"
 #include "runtime/reconstruction.h"
@@ -72,8 +80,12 @@ template <class T>
 int run_eval(const std::string& filter, const std::string& pre, const std::string& volume_path,
              const std::string& points_path, bool gradient, bool hessian,
              const NrrdReadLimits& limits) {
-  const Filter f = parse_filter(filter);
+  const RegistryFilter rf = RegistryFilter::parse(filter);
   const PrefilterChoice q = parse_prefilter(pre);
+  if (!rf.has_bcc_filter())  // a filter of another lattice: the general lattice runtime
+    return boxgen::app::run_lattice_eval<T>(rf, q, volume_path, points_path, gradient, hessian,
+                                            limits);
+  const Filter f = rf.bcc_filter();
   BccVolume<T> volume = read_bcc_nrrd<T>(volume_path, limits);
   if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
   const auto points = read_points_file(points_path);
@@ -84,26 +96,19 @@ int run_eval(const std::string& filter, const std::string& pre, const std::strin
     Reconstructor<T>(volume, f).evaluate(points, values, gradients, hessians);
   else
     Reconstructor<T>(volume, f).evaluate(points, values, gradients);
-  std::string out;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    out += fmt::format("{:.17g}", static_cast<double>(values[i]));
-    if (gradient)
-      out += fmt::format(" {:.17g} {:.17g} {:.17g}", gradients[i][0], gradients[i][1],
-                         gradients[i][2]);
-    if (hessian)  // h_xx h_xy h_xz h_yy h_yz h_zz
-      for (double h : hessians[i]) out += fmt::format(" {:.17g}", h);
-    out += '\n';
-  }
-  std::fwrite(out.data(), 1, out.size(), stdout);
+  boxgen::app::print_evaluations<T>(values, gradients, hessians, gradient, hessian);
   return 0;
 }
 
 int run_error(const std::string& function, int n, const std::string& filter, const std::string& pre,
               int count, std::uint64_t seed, bool gradient, bool json) {
   const TestFunction& fn = find_test_function(function);
-  const Filter f = parse_filter(filter);
+  const RegistryFilter rf = RegistryFilter::parse(filter);
   const PrefilterChoice q = parse_prefilter(pre);
   if (count < 1 || count > 100000000) throw InputError("--points must be between 1 and 100000000");
+  const boxgen::app::ErrorReport report{function, filter, pre, n, count, seed, gradient, json};
+  if (!rf.has_bcc_filter()) return boxgen::app::run_lattice_error(report, rf, q);
+  const Filter f = rf.bcc_filter();
   BccVolume<double> volume = sample_bcc<double>(fn.value, grid_for(n, required_margin(f, q)));
   if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
   std::mt19937_64 rng(seed);
@@ -123,17 +128,7 @@ int run_error(const std::string& function, int n, const std::string& filter, con
       for (int d = 0; d < 3; ++d) gsum2 += (gradients[i][d] - g[d]) * (gradients[i][d] - g[d]);
     }
   }
-  const double rms = std::sqrt(sum2 / count), grms = std::sqrt(gsum2 / count);
-  if (json) {
-    nlohmann::json j{{"function", function}, {"n", n},       {"filter", filter}, {"prefilter", pre},
-                     {"points", count},      {"seed", seed}, {"rms", rms},       {"max", worst}};
-    if (gradient) j["gradient_rms"] = grms;
-    std::cout << j.dump(2) << '\n';
-  } else {
-    std::cout << fmt::format("rms {:.6e}  max {:.6e}", rms, worst);
-    if (gradient) std::cout << fmt::format("  gradient_rms {:.6e}", grms);
-    std::cout << '\n';
-  }
+  boxgen::app::print_error_report(report, std::sqrt(sum2 / count), worst, std::sqrt(gsum2 / count));
   return 0;
 }
 
@@ -142,10 +137,13 @@ template <class T>
 int run_resample(const std::string& filter, const std::string& pre, const std::string& volume_path,
                  const std::string& output, int n, const std::vector<double>& min,
                  const std::vector<double>& max, const NrrdReadLimits& limits) {
-  const Filter f = parse_filter(filter);
+  const RegistryFilter rf = RegistryFilter::parse(filter);
   const PrefilterChoice q = parse_prefilter(pre);
   if (n < 2 || n > kMaxResampleN)
     throw InputError(fmt::format("--n must be between 2 and {}, got {}", kMaxResampleN, n));
+  if (!rf.has_bcc_filter())
+    return boxgen::app::run_lattice_resample<T>(rf, q, volume_path, output, n, min, max, limits);
+  const Filter f = rf.bcc_filter();
   const std::filesystem::path input = volume_path;
   require_output_file(output, {&input, 1});  // before the work, not after it; never the input
   BccVolume<T> volume = read_bcc_nrrd<T>(volume_path, limits);
@@ -156,11 +154,22 @@ int run_resample(const std::string& filter, const std::string& pre, const std::s
   return 0;
 }
 
+// "m7 (bcc) | ... | cart7 (cartesian)": every filter of the registry with its lattice.
+std::string filter_choices() {
+  std::string out;
+  for (int i = 0; i < RegistryFilter::count(); ++i) {
+    const RegistryFilter f = RegistryFilter::at(i);
+    out += fmt::format("{}{} ({})", i ? " | " : "", f.name(), f.lattice().name());
+  }
+  return out;
+}
+
 int run(int argc, char** argv) {
-  CLI::App app{"boxrecon: reconstruct BCC volumes with the generated box-spline evaluators"};
+  CLI::App app{"boxrecon: reconstruct lattice volumes with the generated box-spline evaluators"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("boxrecon ") + boxgen::kVersion);
-  std::string function = "ml", lattice = "bcc", output, filter = "m7", pre = "none", volume,
+  const std::string filters = filter_choices();
+  std::string function = "ml", lattice, sample_filter, output, filter = "m7", pre = "none", volume,
               points_path, precision = "double";
   int n = 33, count = 100000;
   std::optional<double> h;
@@ -173,20 +182,24 @@ int run(int argc, char** argv) {
                  "threads of the batch paths (default: BOXGEN_THREADS, else all cores)")
       ->check(CLI::Range(1, 4096));
 
-  auto* sample =
-      app.add_subcommand("sample", "sample a test function on N^3 x 2 BCC points over [-1,1]^3");
+  auto* sample = app.add_subcommand(
+      "sample", "sample a test function on N^3 x K lattice points over [-1,1]^3");
   sample->add_option("--function", function, "ml | cubic | sphere | gaussian");
   sample->add_option("--n", n, "N: N^3 x K samples, K cosets of N^3 with cells of 2/(N-1)")
       ->required();
   sample->add_option("--h", h, "spacing override (finite, > 0)");
   sample->add_option("--lattice", lattice,
                      "bcc (default) | fcc | cartesian | \"a,b,c; d,e,f; g,h,i\" (rows of G)");
+  sample->add_option("--filter", sample_filter,
+                     "the lattice of this filter (default of --lattice), and a check that "
+                     "--lattice agrees: " +
+                         filters);
   sample->add_option("--precision", precision, "float | double");
   sample->add_option("-o,--output", output, "output NRRD file")->required();
   auto* eval = app.add_subcommand("eval", "evaluate the reconstruction at the points of a file");
-  eval->add_option("--filter", filter, "m7 | m8 | m12")->required();
+  eval->add_option("--filter", filter, filters)->required();
   eval->add_option("--prefilter", pre, "none | q1 | q2");
-  eval->add_option("--volume", volume, "BCC NRRD volume")->required();
+  eval->add_option("--volume", volume, "NRRD volume on the filter's lattice")->required();
   eval->add_option("--points", points_path,
                    "file with one 'x y z' (world) per line, '#' comments; - reads stdin")
       ->required();
@@ -201,7 +214,7 @@ int run(int argc, char** argv) {
   error->add_option("--function", function, "ml | cubic | sphere | gaussian");
   auto* error_n = error->add_option("--n", n, "N (required unless --table)");
   auto* error_filter =
-      error->add_option("--filter", filter, "m7 | m8 | m12 (required unless --table)");
+      error->add_option("--filter", filter, filters + " (required unless --table)");
   bool table = false;
   error->add_flag("--table", table,
                   "ML errors for N in {17,25,33,41,57} x {m7,m8,m12} x {none,q1,q2} and the "
@@ -213,9 +226,9 @@ int run(int argc, char** argv) {
   error->add_flag("--json", json, "JSON with keys rms, max, gradient_rms");
   auto* resample = app.add_subcommand(
       "resample", "resample the reconstruction onto a Cartesian grid (a plain 3-D NRRD)");
-  resample->add_option("--filter", filter, "m7 | m8 | m12")->required();
+  resample->add_option("--filter", filter, filters)->required();
   resample->add_option("--prefilter", pre, "none | q1 | q2");
-  resample->add_option("--volume", volume, "BCC NRRD volume")->required();
+  resample->add_option("--volume", volume, "NRRD volume on the filter's lattice")->required();
   resample->add_option("-o,--output", output, "output NRRD file (Cartesian grid)")->required();
   resample->add_option("--n", resample_n,
                        fmt::format("grid points per axis, 2..{} (default 64)", kMaxResampleN));
@@ -243,6 +256,9 @@ int run(int argc, char** argv) {
       ->add_option("--points", bench_options.points,
                    "points per measurement (default 10^7, quick 2 10^5)")
       ->check(CLI::Range(1L, 1000000000L));
+  std::string bench_filter;
+  bench->add_option("--filter", bench_filter,
+                    "only this filter: ns per point on its lattice, 1 and all threads: " + filters);
   bench
       ->add_option("--repeats", bench_options.repeats,
                    "runs per measurement; the fastest counts (default 3)")
@@ -250,12 +266,16 @@ int run(int argc, char** argv) {
   if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxrecon")) return *stop;
   try {
     if (threads > 0) set_batch_threads(threads);
+    if (bench->parsed() && !bench_filter.empty())
+      return boxgen::app::run_filter_bench(RegistryFilter::parse(bench_filter),
+                                           bench_options.points, bench_options.repeats,
+                                           bench_options.json);
     if (bench->parsed()) return boxrecon::run_bench(bench_options);
     if (precision != "float" && precision != "double")
       throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) +
                        "'");
     if (sample->parsed())
-      return boxgen::app::run_sample(function, n, h, lattice, precision, output);
+      return boxgen::app::run_sample(function, n, h, lattice, sample_filter, precision, output);
     NrrdReadLimits limits;
     limits.allow_non_finite = allow_nonfinite;
     if (eval->parsed())

@@ -2,9 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <optional>
 #include <stdexcept>
 
 #include "apps/boxrecon/input_checks.h"
+#include "runtime/lattice_filters.h"
+#include "runtime/lattice_reconstruction.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
@@ -13,8 +17,21 @@ namespace boxgen::app {
 
 namespace {
 
-// Coset cells of margin on every side: enough for every filter with Q^I or Q^II.
+// Coset cells of margin on every side: enough for M7, M8 and M12 with Q^I or Q^II.
 constexpr int kSampleMargin = 3;
+
+// kSampleMargin, or what a registry filter on this lattice needs after Q^I or Q^II if that is more.
+int sample_margin(const runtime::CosetLattice& lattice) {
+  using runtime::PrefilterChoice;
+  int margin = kSampleMargin;
+  for (int i = 0; i < runtime::RegistryFilter::count(); ++i) {
+    const runtime::RegistryFilter f = runtime::RegistryFilter::at(i);
+    if (runtime::same_points(f.lattice(), lattice))
+      margin = std::max(
+          {margin, f.required_margin(PrefilterChoice::Q1), f.required_margin(PrefilterChoice::Q2)});
+  }
+  return margin;
+}
 
 template <class T>
 void sample_and_write(const runtime::TestFunction& fn, const runtime::LatticeGrid& grid,
@@ -25,22 +42,30 @@ void sample_and_write(const runtime::TestFunction& fn, const runtime::LatticeGri
 }  // namespace
 
 int run_sample(const std::string& function, int n, const std::optional<double>& h,
-               const std::string& lattice_text, const std::string& precision,
-               const std::string& output) {
+               const std::string& lattice_text, const std::string& filter,
+               const std::string& precision, const std::string& output) {
   const runtime::TestFunction& fn = runtime::find_test_function(function);
-  const runtime::CosetLattice lattice = runtime::CosetLattice::parse(lattice_text);
+  std::optional<runtime::RegistryFilter> f;
+  if (!filter.empty()) f = runtime::RegistryFilter::parse(filter);
+  const runtime::CosetLattice lattice = lattice_text.empty()
+                                            ? (f ? f->lattice() : runtime::CosetLattice::bcc())
+                                            : runtime::CosetLattice::parse(lattice_text);
+  if (f && !runtime::same_points(f->lattice(), lattice))
+    throw std::invalid_argument(fmt::format("filter {} is for the {} lattice, but --lattice is {}",
+                                            f->name(), f->lattice().name(), lattice.name()));
+  const int margin = sample_margin(lattice);
   if (n < 2 || n > 1024)
     throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", n));
   check_spacing(h);
   runtime::require_output_directory(output);
-  runtime::LatticeGrid grid = runtime::cube_lattice_grid(lattice, n, kSampleMargin);
+  runtime::LatticeGrid grid = runtime::cube_lattice_grid(lattice, n, margin);
   const auto per_axis = static_cast<std::uint64_t>(grid.sizes[0]);
   check_volume_memory(
       static_cast<std::uint64_t>(lattice.coset_count()) * per_axis * per_axis * per_axis,
       precision == "float" ? sizeof(float) : sizeof(double), fmt::format("--n {}", n));
   if (h) {  // --h overrides the spacing; the grid still starts margin cells below -1
     grid.h = *h;
-    for (auto& o : grid.origin) o = -1 - lattice.period() * *h * kSampleMargin;
+    for (auto& o : grid.origin) o = -1 - lattice.period() * *h * margin;
   }
   if (precision == "float")
     sample_and_write<float>(fn, grid, output);

@@ -6,10 +6,14 @@
 
 namespace boxgen::app {
 
-// --function, --n, --h, --lattice (bcc | fcc | cartesian | "a,b,c; d,e,f; g,h,i"), --precision,
-// -o. Every argument is checked before anything is allocated or written; a bad one throws
-// std::invalid_argument (or runtime::NrrdError for -o), one line.
+// --function, --n, --h, --lattice (bcc | fcc | cartesian | "a,b,c; d,e,f; g,h,i"; empty: the
+// filter's lattice, else bcc), --filter (a registry filter, or empty: with --lattice, its lattice
+// must be the filter's), --precision, -o. Every argument is checked before anything is allocated or
+// written; a bad one throws std::invalid_argument (or runtime::NrrdError for -o), one line.
+// The margin beyond [-1,1]^3 is 3 coset cells, or more where a registry filter of the lattice
+// needs more for reconstruction after Q^I or Q^II: the file does not depend on --filter.
 int run_sample(const std::string& function, int n, const std::optional<double>& h,
-               const std::string& lattice, const std::string& precision, const std::string& output);
+               const std::string& lattice, const std::string& filter, const std::string& precision,
+               const std::string& output);
 
 }  // namespace boxgen::app

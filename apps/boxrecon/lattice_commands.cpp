@@ -1,0 +1,224 @@
+#include "apps/boxrecon/lattice_commands.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <random>
+#include <stdexcept>
+#include <utility>
+
+#include "apps/boxrecon/input_checks.h"
+#include "runtime/batch_threads.h"
+#include "runtime/output_file.h"
+#include "runtime/points_file.h"
+#include "runtime/sampling.h"
+#include "runtime/test_functions.h"
+
+namespace boxgen::app {
+
+using namespace boxgen::runtime;
+
+namespace {
+
+// The volume of a file, on the filter's lattice and prefiltered with q.
+template <class T>
+LatticeVolume<T> read_for(RegistryFilter f, PrefilterChoice q, const std::string& path,
+                          const NrrdReadLimits& limits) {
+  LatticeVolume<T> volume = read_lattice_nrrd<T>(path, limits);
+  f.check_lattice(volume.lattice());
+  if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
+  return volume;
+}
+
+}  // namespace
+
+template <class T>
+void print_evaluations(std::span<const T> values, std::span<const Vec3> gradients,
+                       std::span<const Hessian> hessians, bool gradient, bool hessian) {
+  std::string out;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    out += fmt::format("{:.17g}", static_cast<double>(values[i]));
+    if (gradient)
+      out += fmt::format(" {:.17g} {:.17g} {:.17g}", gradients[i][0], gradients[i][1],
+                         gradients[i][2]);
+    if (hessian)  // h_xx h_xy h_xz h_yy h_yz h_zz
+      for (double h : hessians[i]) out += fmt::format(" {:.17g}", h);
+    out += '\n';
+  }
+  std::fwrite(out.data(), 1, out.size(), stdout);
+}
+
+template <class T>
+int run_lattice_eval(RegistryFilter f, PrefilterChoice q, const std::string& volume_path,
+                     const std::string& points_path, bool gradient, bool hessian,
+                     const NrrdReadLimits& limits) {
+  const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
+  const auto points = read_points_file(points_path);
+  std::vector<T> values(points.size());
+  std::vector<Vec3> gradients(gradient || hessian ? points.size() : 0);
+  std::vector<Hessian> hessians(hessian ? points.size() : 0);
+  RegistryReconstructor<T>(volume, f).evaluate(points, values, gradients, hessians);
+  print_evaluations<T>(values, gradients, hessians, gradient, hessian);
+  return 0;
+}
+
+void print_error_report(const ErrorReport& r, double rms, double max, double gradient_rms) {
+  if (r.json) {
+    nlohmann::json j{{"function", r.function},
+                     {"n", r.n},
+                     {"filter", r.filter},
+                     {"prefilter", r.prefilter},
+                     {"points", r.points},
+                     {"seed", r.seed},
+                     {"rms", rms},
+                     {"max", max}};
+    if (r.gradient) j["gradient_rms"] = gradient_rms;
+    std::cout << j.dump(2) << '\n';
+  } else {
+    std::cout << fmt::format("rms {:.6e}  max {:.6e}", rms, max);
+    if (r.gradient) std::cout << fmt::format("  gradient_rms {:.6e}", gradient_rms);
+    std::cout << '\n';
+  }
+}
+
+int run_lattice_error(const ErrorReport& report, RegistryFilter f, PrefilterChoice q) {
+  const TestFunction& fn = find_test_function(report.function);
+  const int n = report.n, count = report.points;
+  if (n < 2 || n > 1024)
+    throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", n));
+  if (count < 1 || count > 100000000)
+    throw std::invalid_argument("--points must be between 1 and 100000000");
+  const CosetLattice lattice = f.lattice();
+  const LatticeGrid grid = cube_lattice_grid(lattice, n, f.required_margin(q));
+  check_volume_memory(static_cast<std::uint64_t>(lattice.coset_count()) * grid.sizes[0] *
+                          grid.sizes[1] * grid.sizes[2],
+                      sizeof(double), fmt::format("--n {}", n));
+  LatticeVolume<double> volume = sample_lattice<double>(fn.value, grid);
+  if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
+  // The points of the BCC command: the same seed gives the same points.
+  std::mt19937_64 rng(report.seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> points(count);
+  for (auto& p : points) p = {u(rng), u(rng), u(rng)};
+  std::vector<double> values(count);
+  std::vector<Vec3> gradients(report.gradient ? count : 0);
+  RegistryReconstructor<double>(volume, f).evaluate(points, values, gradients);
+  double sum2 = 0, worst = 0, gsum2 = 0;
+  for (int i = 0; i < count; ++i) {
+    const double e = values[i] - fn.value(points[i]);
+    sum2 += e * e;
+    worst = std::max(worst, std::abs(e));
+    if (report.gradient) {
+      const Vec3 g = fn.gradient(points[i]);
+      for (int d = 0; d < 3; ++d) gsum2 += (gradients[i][d] - g[d]) * (gradients[i][d] - g[d]);
+    }
+  }
+  print_error_report(report, std::sqrt(sum2 / count), worst, std::sqrt(gsum2 / count));
+  return 0;
+}
+
+template <class T>
+int run_lattice_resample(RegistryFilter f, PrefilterChoice q, const std::string& volume_path,
+                         const std::string& output, int n, const std::vector<double>& min,
+                         const std::vector<double>& max, const NrrdReadLimits& limits) {
+  const std::filesystem::path input = volume_path;
+  require_output_file(output, {&input, 1});  // before the work, not after it; never the input
+  const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
+  const Box box = min.empty() ? default_box(volume, f)
+                              : Box{{min[0], min[1], min[2]}, {max[0], max[1], max[2]}};
+  write_cartesian_nrrd(output, resample(volume, f, grid_over(box, {n, n, n})));
+  return 0;
+}
+
+namespace {
+
+template <class F>
+double fastest_seconds(int repeats, F&& run) {
+  double best = 1e300;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    run();
+    best = std::min(best,
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return best;
+}
+
+}  // namespace
+
+int run_filter_bench(RegistryFilter f, long point_count, int repeats, bool json) {
+  const long count = point_count > 0 ? point_count : 1000000;
+  const CosetLattice lattice = f.lattice();
+  constexpr int kSize = 48;  // samples per coset and axis: a few MB, as a small data set
+  LatticeVolume<double> volume(lattice, {kSize, kSize, kSize}, 1.0, {0, 0, 0});
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double& s : volume.samples()) s = u(rng);
+  const Box box = default_box(volume, f);
+  std::vector<Vec3> points(static_cast<std::size_t>(count));
+  for (auto& p : points)
+    for (int a = 0; a < 3; ++a)
+      p[a] = box.min[a] + (box.max[a] - box.min[a]) * (0.5 + 0.5 * u(rng));
+  std::vector<double> values(points.size());
+  std::vector<Vec3> gradients(points.size());
+  const RegistryReconstructor<double> spline(volume, f);
+  const int all = batch_threads();
+  struct Timing {
+    int threads;
+    double value, gradient;  // seconds per point
+  };
+  std::vector<Timing> timings;
+  for (int threads : {1, all}) {
+    if (!timings.empty() && threads == timings.front().threads) break;
+    set_batch_threads(threads);
+    const double v = fastest_seconds(repeats, [&] { spline.evaluate(points, values); });
+    const double g = fastest_seconds(repeats, [&] { spline.evaluate(points, values, gradients); });
+    timings.push_back({threads, v / static_cast<double>(count), g / static_cast<double>(count)});
+  }
+  set_batch_threads(all);
+  if (json) {
+    nlohmann::json j{{"filter", f.name()},
+                     {"lattice", lattice.name()},
+                     {"points", count},
+                     {"repeats", repeats},
+                     {"volume", fmt::format("{} x {}^3", lattice.coset_count(), kSize)},
+                     {"timings", nlohmann::json::array()}};
+    for (const auto& t : timings)
+      j["timings"].push_back({{"threads", t.threads},
+                              {"value_ns_per_point", t.value * 1e9},
+                              {"gradient_ns_per_point", t.gradient * 1e9}});
+    std::cout << j.dump(2) << '\n';
+    return 0;
+  }
+  std::cout << fmt::format(
+      "{} on the {} lattice ({} x {}^3 random samples), {} random points, fastest of {}:\n",
+      f.name(), lattice.name(), lattice.coset_count(), kSize, count, repeats);
+  for (const auto& t : timings)
+    std::cout << fmt::format(
+        "  {} thread{}: value {:.1f} ns/point, value + gradient {:.1f} ns/point\n", t.threads,
+        t.threads == 1 ? "" : "s", t.value * 1e9, t.gradient * 1e9);
+  return 0;
+}
+
+template void print_evaluations<float>(std::span<const float>, std::span<const Vec3>,
+                                       std::span<const Hessian>, bool, bool);
+template void print_evaluations<double>(std::span<const double>, std::span<const Vec3>,
+                                        std::span<const Hessian>, bool, bool);
+template int run_lattice_eval<float>(RegistryFilter, PrefilterChoice, const std::string&,
+                                     const std::string&, bool, bool, const NrrdReadLimits&);
+template int run_lattice_eval<double>(RegistryFilter, PrefilterChoice, const std::string&,
+                                      const std::string&, bool, bool, const NrrdReadLimits&);
+template int run_lattice_resample<float>(RegistryFilter, PrefilterChoice, const std::string&,
+                                         const std::string&, int, const std::vector<double>&,
+                                         const std::vector<double>&, const NrrdReadLimits&);
+template int run_lattice_resample<double>(RegistryFilter, PrefilterChoice, const std::string&,
+                                          const std::string&, int, const std::vector<double>&,
+                                          const std::vector<double>&, const NrrdReadLimits&);
+
+}  // namespace boxgen::app

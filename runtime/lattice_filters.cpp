@@ -1,0 +1,319 @@
+#include "runtime/lattice_filters.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "generated/registry.hpp"
+#include "runtime/batch_threads.h"
+#include "runtime/lattice_reconstruction.h"
+
+namespace boxgen::runtime {
+
+namespace generated = boxgen::generated;
+
+// ---------------------------------------------------------------------------------------------
+// RegistryFilter
+
+RegistryFilter RegistryFilter::parse(std::string_view name) {
+  for (int i = 0; i < generated::kFilterCount; ++i)
+    if (name == generated::kFilterNames[i]) return RegistryFilter(i);
+  throw std::invalid_argument(
+      fmt::format("unknown filter '{}': expected {}", name.substr(0, 40), names()));
+}
+
+int RegistryFilter::count() { return generated::kFilterCount; }
+
+RegistryFilter RegistryFilter::at(int index) {
+  if (index < 0 || index >= generated::kFilterCount)
+    throw std::invalid_argument(fmt::format("no registry filter {}", index));
+  return RegistryFilter(index);
+}
+
+std::string RegistryFilter::names() {
+  std::string out;
+  for (int i = 0; i < generated::kFilterCount; ++i) {
+    if (i > 0) out += i + 1 == generated::kFilterCount ? " or " : ", ";
+    out += generated::kFilterNames[i];
+  }
+  return out;
+}
+
+const char* RegistryFilter::name() const { return generated::kFilterNames[index_]; }
+
+CosetLattice RegistryFilter::lattice() const {
+  return generated::with_filter(
+      index_, [](auto entry) { return filter_lattice<typename decltype(entry)::Traits>(); });
+}
+
+StencilReach RegistryFilter::reach() const {
+  return generated::with_filter(index_, [](auto entry) {
+    using Tr = typename decltype(entry)::Traits;
+    StencilReach r;
+    for (int a = 0; a < 3; ++a) {
+      r.lo[a] = Tr::kStencilReachLo[a];
+      r.hi[a] = Tr::kStencilReachHi[a];
+      r.centre[a] = Tr::kCentre[a];
+    }
+    return r;
+  });
+}
+
+DiscreteFilter RegistryFilter::prefilter(PrefilterChoice q) const {
+  if (q == PrefilterChoice::None) return {{{0, 0, 0}, 1.0}};
+  return generated::with_filter(index_, [&](auto entry) {
+    return q == PrefilterChoice::Q1 ? prefilter_from(entry.q1) : prefilter_from(entry.q2);
+  });
+}
+
+int RegistryFilter::approximation_order() const {
+  return generated::with_filter(index_, [](auto entry) { return entry.approximation_order; });
+}
+
+int RegistryFilter::required_margin(PrefilterChoice q) const {
+  // A margin of m coset cells puts [-1,1] at lattice coordinates [d m, d (m + N - 1)] in a volume
+  // of N + 2m cells per coset: evaluation (the region in the header) needs d m >= -lo - c and
+  // d m > hi + c - d; half a coset cell of slack for rounding at the faces (on BCC this is
+  // required_margin of reconstruction.cpp exactly). Then the prefilter's own reach.
+  const CosetLattice l = lattice();
+  const StencilReach r = reach();
+  const int d = l.period();
+  double need = 0;
+  for (int a = 0; a < 3; ++a)
+    need = std::max({need, -r.lo[a] - r.centre[a], r.hi[a] + r.centre[a] - d});
+  const int reconstruction = static_cast<int>(std::ceil(need / d + 0.5));
+  if (q == PrefilterChoice::None) return reconstruction;
+  const PrefilterShrink s = prefilter_shrink(prefilter(q), l);
+  int shrink = 0;
+  for (int a = 0; a < 3; ++a) shrink = std::max({shrink, s.lower[a], s.upper[a]});
+  return reconstruction + shrink;
+}
+
+bool RegistryFilter::has_bcc_filter() const noexcept {
+  for (const Filter f : {Filter::M7, Filter::M8, Filter::M12})
+    if (static_cast<int>(f) == index_) return true;
+  return false;
+}
+
+Filter RegistryFilter::bcc_filter() const {
+  if (!has_bcc_filter())
+    throw std::invalid_argument(fmt::format("filter {} has no BCC Reconstructor", name()));
+  const auto f = static_cast<Filter>(index_);
+  if (std::strcmp(filter_name(f), name()) != 0) throw std::logic_error("registry order");
+  return f;
+}
+
+void RegistryFilter::check_lattice(const CosetLattice& volume_lattice) const {
+  const CosetLattice own = lattice();
+  if (!same_points(own, volume_lattice))
+    throw std::invalid_argument(
+        fmt::format("filter {} is for the {} lattice, but the volume is on the {} lattice", name(),
+                    own.name(), volume_lattice.name()));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Regions
+
+namespace {
+
+struct LatticeRegion {
+  Vec3 lo, hi;
+};
+
+template <class T>
+LatticeRegion lattice_region(const LatticeVolume<T>& volume, RegistryFilter f) {
+  f.check_lattice(volume.lattice());
+  const StencilReach reach = f.reach();
+  const int d = volume.period();
+  LatticeRegion region;
+  for (int a = 0; a < 3; ++a) {
+    region.lo[a] = -reach.lo[a] - reach.centre[a];
+    region.hi[a] = static_cast<double>(d) * volume.sizes()[a] - reach.hi[a] - reach.centre[a];
+    if (region.hi[a] <= region.lo[a])
+      throw std::invalid_argument(fmt::format(
+          "{} volume of {} x {} x {} x {} samples is too small for the {} stencil on axis {}",
+          volume.lattice().name(), volume.coset_count(), volume.sizes()[0], volume.sizes()[1],
+          volume.sizes()[2], f.name(), a));
+  }
+  return region;
+}
+
+std::string describe(const Box& b) {
+  return fmt::format("[{}, {}] x [{}, {}] x [{}, {}]", b.min[0], b.max[0], b.min[1], b.max[1],
+                     b.min[2], b.max[2]);
+}
+
+}  // namespace
+
+template <class T>
+Box evaluable_region(const LatticeVolume<T>& volume, RegistryFilter f) {
+  const LatticeRegion r = lattice_region(volume, f);
+  return {volume.to_world(r.lo), volume.to_world(r.hi)};
+}
+
+template <class T>
+Box default_box(const LatticeVolume<T>& volume, RegistryFilter f) {
+  const LatticeRegion region = lattice_region(volume, f);
+  // The rounding guard of default_box in resample.cpp: 16 ulps of every magnitude on the way from
+  // a grid point to the evaluator's lattice coordinates.
+  double lattice_extent = 0, world_extent = 0;
+  for (int a = 0; a < 3; ++a) {
+    lattice_extent = std::max({lattice_extent, std::abs(region.lo[a]), std::abs(region.hi[a])});
+    world_extent = std::max(world_extent, std::abs(volume.origin()[a]) / volume.spacing());
+  }
+  const double guard =
+      16 * (std::numeric_limits<T>::epsilon() * (lattice_extent + 2) +
+            std::numeric_limits<double>::epsilon() * (world_extent + lattice_extent + 2));
+  Vec3 lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = region.lo[a] + guard;
+    hi[a] = region.hi[a] - guard;
+    if (!(lo[a] < hi[a]))
+      throw std::invalid_argument(
+          fmt::format("{} volume is too small for the {} stencil on axis {}",
+                      volume.lattice().name(), f.name(), a));
+  }
+  return {volume.to_world(lo), volume.to_world(hi)};
+}
+
+// ---------------------------------------------------------------------------------------------
+// RegistryReconstructor
+
+template <class T>
+class RegistryReconstructor<T>::Path {
+ public:
+  virtual ~Path() = default;
+  virtual T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const = 0;
+};
+
+namespace {
+
+template <class Tr, class T>
+class FilterPath final : public RegistryReconstructor<T>::Path {
+ public:
+  explicit FilterPath(const LatticeVolume<T>& volume) : spline_(volume) {}
+  T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const override {
+    return spline_.value(world, gradient, hessian);
+  }
+
+ private:
+  LatticeReconstructor<Tr, T> spline_;
+};
+
+}  // namespace
+
+template <class T>
+RegistryReconstructor<T>::RegistryReconstructor(const LatticeVolume<T>& volume, RegistryFilter f) {
+  f.check_lattice(volume.lattice());
+  path_ = generated::with_filter(f.index(), [&](auto entry) -> std::shared_ptr<const Path> {
+    return std::make_shared<FilterPath<typename decltype(entry)::Traits, T>>(volume);
+  });
+}
+
+template <class T>
+T RegistryReconstructor<T>::value(const Vec3& world, Vec3* gradient, Hessian* hessian) const {
+  return path_->at(world, gradient, hessian);
+}
+
+template <class T>
+void RegistryReconstructor<T>::evaluate(std::span<const Vec3> points, std::span<T> values,
+                                        std::span<Vec3> gradients,
+                                        std::span<Hessian> hessians) const {
+  if (values.size() != points.size() || (!gradients.empty() && gradients.size() != points.size()) ||
+      (!hessians.empty() &&
+       (hessians.size() != points.size() || gradients.size() != points.size())))
+    throw std::invalid_argument("evaluate: output sizes differ from the number of points");
+  const auto count = static_cast<std::ptrdiff_t>(points.size());
+  const int threads = batch_threads();
+  std::ptrdiff_t first_bad = count;
+  std::string first_error;
+#pragma omp parallel for schedule(static) num_threads(threads) if (count > 256)
+  for (std::ptrdiff_t i = 0; i < count; ++i) {
+    try {
+      values[i] = path_->at(points[i], gradients.empty() ? nullptr : &gradients[i],
+                            hessians.empty() ? nullptr : &hessians[i]);
+    } catch (const std::exception& e) {
+#pragma omp critical(boxgen_registry_batch_error)
+      if (i < first_bad) {
+        first_bad = i;
+        first_error = e.what();
+      }
+    }
+  }
+  if (first_bad < count)
+    throw std::out_of_range(fmt::format("point {}: {}", first_bad + 1, first_error));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Resampling
+
+template <class T>
+CartesianVolume<T> resample(const LatticeVolume<T>& volume, RegistryFilter f,
+                            const CartesianGrid& grid) {
+  std::uint64_t count = 1;
+  for (int a = 0; a < 3; ++a) {
+    if (grid.sizes[a] < 2 || grid.sizes[a] > kMaxGridSize)
+      throw std::invalid_argument(
+          fmt::format("Cartesian grid of {} x {} x {} points: each size must be in 2..{}",
+                      grid.sizes[0], grid.sizes[1], grid.sizes[2], kMaxGridSize));
+    count *= static_cast<std::uint64_t>(grid.sizes[a]);
+    if (!std::isfinite(grid.spacing[a]) || grid.spacing[a] <= 0 || !std::isfinite(grid.origin[a]))
+      throw std::invalid_argument(fmt::format(
+          "Cartesian grid spacing and origin must be finite (and spacing > 0) on axis {}", a));
+  }
+  if (count > kMaxGridPoints)
+    throw std::invalid_argument(
+        fmt::format("Cartesian grid of {} x {} x {} points is too large (at most {})",
+                    grid.sizes[0], grid.sizes[1], grid.sizes[2], kMaxGridPoints));
+  CartesianVolume<T> out;
+  out.sizes = grid.sizes;
+  out.spacing = grid.spacing;
+  out.origin = grid.origin;
+  // First and last grid points inside the evaluable region: then every point between them is.
+  const LatticeRegion region = lattice_region(volume, f);
+  const Vec3 first = volume.to_lattice(out.position(0, 0, 0));
+  const Vec3 last =
+      volume.to_lattice(out.position(grid.sizes[0] - 1, grid.sizes[1] - 1, grid.sizes[2] - 1));
+  for (int a = 0; a < 3; ++a)
+    if (!(first[a] >= region.lo[a] && last[a] < region.hi[a]))
+      throw std::out_of_range(fmt::format(
+          "resampling grid {} leaves the region where the {} stencil lies inside the volume, {}",
+          describe({out.position(0, 0, 0),
+                    out.position(grid.sizes[0] - 1, grid.sizes[1] - 1, grid.sizes[2] - 1)}),
+          f.name(), describe({volume.to_world(region.lo), volume.to_world(region.hi)})));
+  out.values.resize(static_cast<std::size_t>(count));
+  const RegistryReconstructor<T> spline(volume, f);
+  std::vector<Vec3> points;
+  for (int k = 0; k < grid.sizes[2]; ++k) {  // one z-slice per batch: bounded scratch memory
+    points.clear();
+    for (int j = 0; j < grid.sizes[1]; ++j)
+      for (int i = 0; i < grid.sizes[0]; ++i) points.push_back(out.position(i, j, k));
+    const std::span<T> values(out.values.data() + out.index(0, 0, k), points.size());
+    try {
+      spline.evaluate(points, values);
+    } catch (const std::out_of_range& e) {  // a point within rounding of the region's face
+      throw std::out_of_range(fmt::format("resampling grid slice z = {}: {}", k, e.what()));
+    }
+  }
+  return out;
+}
+
+template Box evaluable_region<float>(const LatticeVolume<float>&, RegistryFilter);
+template Box evaluable_region<double>(const LatticeVolume<double>&, RegistryFilter);
+template Box default_box<float>(const LatticeVolume<float>&, RegistryFilter);
+template Box default_box<double>(const LatticeVolume<double>&, RegistryFilter);
+template class RegistryReconstructor<float>;
+template class RegistryReconstructor<double>;
+template CartesianVolume<float> resample<float>(const LatticeVolume<float>&, RegistryFilter,
+                                                const CartesianGrid&);
+template CartesianVolume<double> resample<double>(const LatticeVolume<double>&, RegistryFilter,
+                                                  const CartesianGrid&);
+
+}  // namespace boxgen::runtime
