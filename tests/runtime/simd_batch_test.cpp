@@ -15,6 +15,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "generated/registry.hpp"
@@ -150,14 +151,24 @@ void expect_batch_equals_scalar(Filter f, std::uint64_t seed) {
   }
 }
 
-TEST(SimdBatch, EqualsTheScalarPathForEveryRegistryFilterInFloat) {
+TEST(SimdBatch, EqualsTheScalarPathForEveryBccRegistryFilterInFloat) {
+  int tested = 0;
   for (int i = 0; i < generated::kFilterCount; ++i)
-    expect_batch_equals_scalar<float>(static_cast<Filter>(i), 10 + i);
+    if (std::string_view(generated::kFilterLattices[i]) == "bcc") {
+      expect_batch_equals_scalar<float>(static_cast<Filter>(i), 10 + i);
+      ++tested;
+    }
+  EXPECT_EQ(tested, 3);  // m7, m8, m12: the filters Reconstructor (BCC) takes
 }
 
-TEST(SimdBatch, EqualsTheScalarPathForEveryRegistryFilterInDouble) {
+TEST(SimdBatch, EqualsTheScalarPathForEveryBccRegistryFilterInDouble) {
+  int tested = 0;
   for (int i = 0; i < generated::kFilterCount; ++i)
-    expect_batch_equals_scalar<double>(static_cast<Filter>(i), 20 + i);
+    if (std::string_view(generated::kFilterLattices[i]) == "bcc") {
+      expect_batch_equals_scalar<double>(static_cast<Filter>(i), 20 + i);
+      ++tested;
+    }
+  EXPECT_EQ(tested, 3);  // m7, m8, m12: the filters Reconstructor (BCC) takes
 }
 
 // Two threads split the chunks differently; the results do not change.
