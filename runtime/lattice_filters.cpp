@@ -145,11 +145,6 @@ LatticeRegion lattice_region(const LatticeVolume<T>& volume, RegistryFilter f) {
   return region;
 }
 
-std::string describe(const Box& b) {
-  return fmt::format("[{}, {}] x [{}, {}] x [{}, {}]", b.min[0], b.max[0], b.min[1], b.max[1],
-                     b.min[2], b.max[2]);
-}
-
 }  // namespace
 
 template <class T>
@@ -257,51 +252,14 @@ void RegistryReconstructor<T>::evaluate(std::span<const Vec3> points, std::span<
 template <class T>
 CartesianVolume<T> resample(const LatticeVolume<T>& volume, RegistryFilter f,
                             const CartesianGrid& grid) {
-  std::uint64_t count = 1;
-  for (int a = 0; a < 3; ++a) {
-    if (grid.sizes[a] < 2 || grid.sizes[a] > kMaxGridSize)
-      throw std::invalid_argument(
-          fmt::format("Cartesian grid of {} x {} x {} points: each size must be in 2..{}",
-                      grid.sizes[0], grid.sizes[1], grid.sizes[2], kMaxGridSize));
-    count *= static_cast<std::uint64_t>(grid.sizes[a]);
-    if (!std::isfinite(grid.spacing[a]) || grid.spacing[a] <= 0 || !std::isfinite(grid.origin[a]))
-      throw std::invalid_argument(fmt::format(
-          "Cartesian grid spacing and origin must be finite (and spacing > 0) on axis {}", a));
-  }
-  if (count > kMaxGridPoints)
-    throw std::invalid_argument(
-        fmt::format("Cartesian grid of {} x {} x {} points is too large (at most {})",
-                    grid.sizes[0], grid.sizes[1], grid.sizes[2], kMaxGridPoints));
-  CartesianVolume<T> out;
-  out.sizes = grid.sizes;
-  out.spacing = grid.spacing;
-  out.origin = grid.origin;
+  CartesianVolume<T> out = empty_grid_volume<T>(grid);
   // First and last grid points inside the evaluable region: then every point between them is.
   const LatticeRegion region = lattice_region(volume, f);
-  const Vec3 first = volume.to_lattice(out.position(0, 0, 0));
-  const Vec3 last =
-      volume.to_lattice(out.position(grid.sizes[0] - 1, grid.sizes[1] - 1, grid.sizes[2] - 1));
-  for (int a = 0; a < 3; ++a)
-    if (!(first[a] >= region.lo[a] && last[a] < region.hi[a]))
-      throw std::out_of_range(fmt::format(
-          "resampling grid {} leaves the region where the {} stencil lies inside the volume, {}",
-          describe({out.position(0, 0, 0),
-                    out.position(grid.sizes[0] - 1, grid.sizes[1] - 1, grid.sizes[2] - 1)}),
-          f.name(), describe({volume.to_world(region.lo), volume.to_world(region.hi)})));
-  out.values.resize(static_cast<std::size_t>(count));
-  const RegistryReconstructor<T> spline(volume, f);
-  std::vector<Vec3> points;
-  for (int k = 0; k < grid.sizes[2]; ++k) {  // one z-slice per batch: bounded scratch memory
-    points.clear();
-    for (int j = 0; j < grid.sizes[1]; ++j)
-      for (int i = 0; i < grid.sizes[0]; ++i) points.push_back(out.position(i, j, k));
-    const std::span<T> values(out.values.data() + out.index(0, 0, k), points.size());
-    try {
-      spline.evaluate(points, values);
-    } catch (const std::out_of_range& e) {  // a point within rounding of the region's face
-      throw std::out_of_range(fmt::format("resampling grid slice z = {}: {}", k, e.what()));
-    }
-  }
+  const Box corners = grid_corners(out);
+  require_grid_in_region(corners, volume.to_lattice(corners.min), volume.to_lattice(corners.max),
+                         region.lo, region.hi, std::string(f.name()),
+                         {volume.to_world(region.lo), volume.to_world(region.hi)});
+  fill_by_slices(out, RegistryReconstructor<T>(volume, f));
   return out;
 }
 

@@ -43,12 +43,45 @@ Box to_world(const BccVolume<T>& volume, const Vec3& lo, const Vec3& hi) {
   return {volume.to_world(lo), volume.to_world(hi)};
 }
 
+}  // namespace
+
 std::string describe(const Box& b) {
   return fmt::format("[{}, {}] x [{}, {}] x [{}, {}]", b.min[0], b.max[0], b.min[1], b.max[1],
                      b.min[2], b.max[2]);
 }
 
-}  // namespace
+template <class T>
+CartesianVolume<T> empty_grid_volume(const CartesianGrid& grid) {
+  std::uint64_t count = 1;
+  for (int a = 0; a < 3; ++a) {
+    if (grid.sizes[a] < 2 || grid.sizes[a] > kMaxGridSize)
+      throw std::invalid_argument(
+          fmt::format("Cartesian grid of {} x {} x {} points: each size must be in 2..{}",
+                      grid.sizes[0], grid.sizes[1], grid.sizes[2], kMaxGridSize));
+    count *= static_cast<std::uint64_t>(grid.sizes[a]);
+    if (!std::isfinite(grid.spacing[a]) || grid.spacing[a] <= 0 || !std::isfinite(grid.origin[a]))
+      throw std::invalid_argument(fmt::format(
+          "Cartesian grid spacing and origin must be finite (and spacing > 0) on axis {}", a));
+  }
+  if (count > kMaxGridPoints)
+    throw std::invalid_argument(
+        fmt::format("Cartesian grid of {} x {} x {} points is too large (at most {})",
+                    grid.sizes[0], grid.sizes[1], grid.sizes[2], kMaxGridPoints));
+  CartesianVolume<T> out;
+  out.sizes = grid.sizes;
+  out.spacing = grid.spacing;
+  out.origin = grid.origin;
+  return out;
+}
+
+void require_grid_in_region(const Box& corners, const Vec3& first, const Vec3& last, const Vec3& lo,
+                            const Vec3& hi, const std::string& filter, const Box& region) {
+  for (int a = 0; a < 3; ++a)
+    if (!(first[a] >= lo[a] && last[a] < hi[a]))
+      throw std::out_of_range(fmt::format(
+          "resampling grid {} leaves the region where the {} stencil lies inside the volume, {}",
+          describe(corners), filter, describe(region)));
+}
 
 template <class T>
 Box evaluable_region(const BccVolume<T>& volume, Filter f) {
@@ -113,65 +146,20 @@ CartesianGrid grid_over(const Box& box, Sizes n) {
 
 template <class T>
 CartesianVolume<T> resample(const BccVolume<T>& volume, Filter f, const CartesianGrid& grid) {
-  std::uint64_t count = 1;
-  for (int a = 0; a < 3; ++a) {
-    if (grid.sizes[a] < 2 || grid.sizes[a] > kMaxGridSize)
-      throw std::invalid_argument(
-          fmt::format("Cartesian grid of {} x {} x {} points: each size must be in 2..{}",
-                      grid.sizes[0], grid.sizes[1], grid.sizes[2], kMaxGridSize));
-    count *= static_cast<std::uint64_t>(grid.sizes[a]);
-    if (!std::isfinite(grid.spacing[a]) || grid.spacing[a] <= 0 || !std::isfinite(grid.origin[a]))
-      throw std::invalid_argument(fmt::format(
-          "Cartesian grid spacing and origin must be finite (and spacing > 0) on axis {}", a));
-  }
-  if (count > kMaxGridPoints)
-    throw std::invalid_argument(
-        fmt::format("Cartesian grid of {} x {} x {} points is too large (at most {})",
-                    grid.sizes[0], grid.sizes[1], grid.sizes[2], kMaxGridPoints));
-
-  CartesianVolume<T> out;
-  out.sizes = grid.sizes;
-  out.spacing = grid.spacing;
-  out.origin = grid.origin;
+  CartesianVolume<T> out = empty_grid_volume<T>(grid);
   // The first and last grid points, computed as the evaluation will see them, must lie in the
   // evaluable region; then every point between them does (the region is a box).
   const LatticeRegion region = lattice_region(volume, f);
-  const Vec3 first = volume.to_lattice(out.position(0, 0, 0));
-  const Vec3 last =
-      volume.to_lattice(out.position(grid.sizes[0] - 1, grid.sizes[1] - 1, grid.sizes[2] - 1));
-  for (int a = 0; a < 3; ++a)
-    if (!(first[a] >= region.lo[a] && last[a] < region.hi[a]))
-      throw std::out_of_range(fmt::format(
-          "resampling grid {} leaves the region where the {} stencil lies inside the volume, {}",
-          describe({out.position(0, 0, 0),
-                    out.position(grid.sizes[0] - 1, grid.sizes[1] - 1, grid.sizes[2] - 1)}),
-          filter_name(f), describe(to_world(volume, region.lo, region.hi))));
-
-  out.values.resize(static_cast<std::size_t>(count));
-  // Whole z-slices per batch (about 2^16 points): all cores at work, bounded scratch memory.
-  const std::size_t slice =
-      static_cast<std::size_t>(grid.sizes[0]) * static_cast<std::size_t>(grid.sizes[1]);
-  const int slices_per_batch =
-      static_cast<int>(std::max<std::size_t>(1, (std::size_t{1} << 16) / slice));
-  const Reconstructor<T> reconstructor(volume, f);
-  std::vector<Vec3> points;
-  for (int k0 = 0; k0 < grid.sizes[2]; k0 += slices_per_batch) {
-    const int k1 = std::min(grid.sizes[2], k0 + slices_per_batch);
-    points.clear();
-    for (int k = k0; k < k1; ++k)
-      for (int j = 0; j < grid.sizes[1]; ++j)
-        for (int i = 0; i < grid.sizes[0]; ++i) points.push_back(out.position(i, j, k));
-    const std::span<T> values(out.values.data() + out.index(0, 0, k0), points.size());
-    try {
-      reconstructor.evaluate(points, values);
-    } catch (const std::out_of_range& e) {  // a point within rounding of the region's face
-      throw std::out_of_range(
-          fmt::format("resampling grid slices z = {}..{}: {}", k0, k1 - 1, e.what()));
-    }
-  }
+  const Box corners = grid_corners(out);
+  require_grid_in_region(corners, volume.to_lattice(corners.min), volume.to_lattice(corners.max),
+                         region.lo, region.hi, filter_name(f),
+                         to_world(volume, region.lo, region.hi));
+  fill_by_slices(out, Reconstructor<T>(volume, f));
   return out;
 }
 
+template CartesianVolume<float> empty_grid_volume<float>(const CartesianGrid&);
+template CartesianVolume<double> empty_grid_volume<double>(const CartesianGrid&);
 template Box evaluable_region<float>(const BccVolume<float>&, Filter);
 template Box evaluable_region<double>(const BccVolume<double>&, Filter);
 template Box default_box<float>(const BccVolume<float>&, Filter);

@@ -15,8 +15,16 @@
 // still lands in the right unit cube after world -> lattice conversion. Growing it by one grid
 // step (anything more than g) on any side leaves the region.
 #pragma once
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include "runtime/bcc_volume.h"
 #include "runtime/cartesian_volume.h"
@@ -64,6 +72,56 @@ CartesianGrid grid_over(const Box& box, Sizes n);
 template <class T>
 CartesianVolume<T> resample(const BccVolume<T>& volume, Filter f, const CartesianGrid& grid);
 
+// Shared by every resample(): the BCC one below and lattice_filters.h's for any registry filter.
+// "[x0, x1] x [y0, y1] x [z0, z1]", for messages.
+std::string describe(const Box& b);
+// A volume with the grid's geometry, its values not yet allocated. Throws std::invalid_argument
+// (one line) for sizes outside [2, kMaxGridSize] or above kMaxGridPoints in all, a non-finite
+// origin, or a spacing that is not finite and > 0.
+template <class T>
+CartesianVolume<T> empty_grid_volume(const CartesianGrid& grid);
+// Throws std::out_of_range (one line) unless the grid's first and last points (`corners`, world),
+// at the lattice coordinates `first` and `last` that evaluation sees, lie in [lo, hi), the lattice
+// box where the stencil of `filter` fits (`region` in world coordinates).
+void require_grid_in_region(const Box& corners, const Vec3& first, const Vec3& last, const Vec3& lo,
+                            const Vec3& hi, const std::string& filter, const Box& region);
+
+// The grid's first and last points in world coordinates.
+template <class T>
+Box grid_corners(const CartesianVolume<T>& out) {
+  const Sizes& n = out.sizes;
+  return {out.position(0, 0, 0), out.position(n[0] - 1, n[1] - 1, n[2] - 1)};
+}
+
+// out.values (allocated here) from spline.evaluate(points, values), whole z-slices per batch (about
+// 2^16 points): all cores at work, bounded scratch memory. A point within rounding of the region's
+// face that still fails names its slices.
+template <class T, class Spline>
+void fill_by_slices(CartesianVolume<T>& out, const Spline& spline) {
+  const Sizes& n = out.sizes;
+  const std::size_t slice = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]);
+  out.values.resize(slice * static_cast<std::size_t>(n[2]));
+  const int slices_per_batch =
+      static_cast<int>(std::max<std::size_t>(1, (std::size_t{1} << 16) / slice));
+  std::vector<Vec3> points;
+  for (int k0 = 0; k0 < n[2]; k0 += slices_per_batch) {
+    const int k1 = std::min(n[2], k0 + slices_per_batch);
+    points.clear();
+    for (int k = k0; k < k1; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i) points.push_back(out.position(i, j, k));
+    const std::span<T> values(out.values.data() + out.index(0, 0, k0), points.size());
+    try {
+      spline.evaluate(points, values);
+    } catch (const std::out_of_range& e) {
+      throw std::out_of_range(
+          fmt::format("resampling grid slices z = {}..{}: {}", k0, k1 - 1, e.what()));
+    }
+  }
+}
+
+extern template CartesianVolume<float> empty_grid_volume<float>(const CartesianGrid&);
+extern template CartesianVolume<double> empty_grid_volume<double>(const CartesianGrid&);
 extern template Box evaluable_region<float>(const BccVolume<float>&, Filter);
 extern template Box evaluable_region<double>(const BccVolume<double>&, Filter);
 extern template Box default_box<float>(const BccVolume<float>&, Filter);
