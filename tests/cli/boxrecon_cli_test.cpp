@@ -34,13 +34,6 @@ namespace {
 namespace fs = std::filesystem;
 using Point = std::array<double, 3>;
 
-double cubic(const Point& p) {
-  return p[0] * p[0] * p[0] - 2 * p[0] * p[1] * p[2] + 3 * p[1] * p[1] - p[2] + 1;
-}
-Point cubic_gradient(const Point& p) {
-  return {3 * p[0] * p[0] - 2 * p[1] * p[2], -2 * p[0] * p[2] + 6 * p[1], -2 * p[0] * p[1] - 1};
-}
-
 // Some failing NRRD reads leak inside Teem (of the cases below, the corrupt gzip volume does); a
 // sanitized boxrecon suppresses those itself (support/lsan_suppressions.cpp), so its stderr stays
 // one line.

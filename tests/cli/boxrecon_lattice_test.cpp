@@ -32,13 +32,6 @@ namespace {
 namespace fs = std::filesystem;
 using Point = std::array<double, 3>;
 
-double cubic(const Point& p) {
-  return p[0] * p[0] * p[0] - 2 * p[0] * p[1] * p[2] + 3 * p[1] * p[1] - p[2] + 1;
-}
-Point cubic_gradient(const Point& p) {
-  return {3 * p[0] * p[0] - 2 * p[1] * p[2], -2 * p[0] * p[2] + 6 * p[1], -2 * p[0] * p[1] - 1};
-}
-
 // The filters of the registry off BCC, with their lattices and approximation orders.
 struct OffBccFilter {
   const char* name;

@@ -8,6 +8,7 @@
 #include <cln/rational_io.h>
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <chrono>
 #include <optional>
 #include <regex>
@@ -22,6 +23,15 @@
 #endif
 
 namespace boxgen::test {
+
+// boxrecon's `cubic` test function (runtime/test_functions.cpp) and its gradient, written out
+// here again so that the CLI tests check the program against an independent formula.
+inline double cubic(const std::array<double, 3>& p) {
+  return p[0] * p[0] * p[0] - 2 * p[0] * p[1] * p[2] + 3 * p[1] * p[1] - p[2] + 1;
+}
+inline std::array<double, 3> cubic_gradient(const std::array<double, 3>& p) {
+  return {3 * p[0] * p[0] - 2 * p[1] * p[2], -2 * p[0] * p[2] + 6 * p[1], -2 * p[0] * p[1] - 1};
+}
 
 // Sanitizer builds run the derivations several times slower; the deadline only has to catch hangs.
 #if defined(__SANITIZE_ADDRESS__)
