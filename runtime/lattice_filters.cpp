@@ -156,16 +156,7 @@ Box evaluable_region(const LatticeVolume<T>& volume, RegistryFilter f) {
 template <class T>
 Box default_box(const LatticeVolume<T>& volume, RegistryFilter f) {
   const LatticeRegion region = lattice_region(volume, f);
-  // The rounding guard of default_box in resample.cpp: 16 ulps of every magnitude on the way from
-  // a grid point to the evaluator's lattice coordinates.
-  double lattice_extent = 0, world_extent = 0;
-  for (int a = 0; a < 3; ++a) {
-    lattice_extent = std::max({lattice_extent, std::abs(region.lo[a]), std::abs(region.hi[a])});
-    world_extent = std::max(world_extent, std::abs(volume.origin()[a]) / volume.spacing());
-  }
-  const double guard =
-      16 * (std::numeric_limits<T>::epsilon() * (lattice_extent + 2) +
-            std::numeric_limits<double>::epsilon() * (world_extent + lattice_extent + 2));
+  const double guard = rounding_guard<T>(region.lo, region.hi, volume.origin(), volume.spacing());
   Vec3 lo, hi;
   for (int a = 0; a < 3; ++a) {
     lo[a] = region.lo[a] + guard;

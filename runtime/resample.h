@@ -17,8 +17,10 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -80,6 +82,21 @@ std::string describe(const Box& b);
 // origin, or a spacing that is not finite and > 0.
 template <class T>
 CartesianVolume<T> empty_grid_volume(const CartesianGrid& grid);
+// The rounding guard of default_box, in lattice units, for the lattice box [lo, hi] of a volume
+// with this origin and spacing. A grid point on a face reaches the evaluator through
+// world = origin + i * spacing, lattice = (world - o) / h (double), a cast to T and + c (in T):
+// each step errs by a few ulps of the magnitudes involved. 16 ulps of each bound them all.
+template <class T>
+double rounding_guard(const Vec3& lo, const Vec3& hi, const Vec3& origin, double spacing) {
+  double lattice_extent = 0, world_extent = 0;
+  for (int a = 0; a < 3; ++a) {
+    lattice_extent = std::max({lattice_extent, std::abs(lo[a]), std::abs(hi[a])});
+    world_extent = std::max(world_extent, std::abs(origin[a]) / spacing);
+  }
+  return 16 * (std::numeric_limits<T>::epsilon() * (lattice_extent + 2) +
+               std::numeric_limits<double>::epsilon() * (world_extent + lattice_extent + 2));
+}
+
 // Throws std::out_of_range (one line) unless the grid's first and last points (`corners`, world),
 // at the lattice coordinates `first` and `last` that evaluation sees, lie in [lo, hi), the lattice
 // box where the stencil of `filter` fits (`region` in world coordinates).
