@@ -281,16 +281,8 @@ class FilterPath final : public EvaluationPath<T> {
     alignas(64) T v[kStencil * kLanes];
     alignas(64) T out[kOut * kLanes];
     std::ptrdiff_t index[kLanes];
-    simd::Frame frame{};
-    frame.h = volume_.spacing();
-    frame.lower = -kFar;
-    for (int a = 0; a < 3; ++a) {
-      frame.origin[a] = volume_.origin()[a];
-      frame.upper[a] = 2.0 * volume_.sizes()[a] + kFar;
-      frame.limit[a] = 2.0 * volume_.sizes()[a] - 1;
-    }
+    const simd::Frame frame = simd_frame();
     const T* samples = volume_.samples().data();
-    const double h = volume_.spacing();
 
     for (std::ptrdiff_t next = first; next < last;) {
       int lanes = 0;
@@ -335,36 +327,66 @@ class FilterPath final : public EvaluationPath<T> {
           bases[lane] = bases[first_lane];
           tables[lane] = tables[first_lane];
         }
-      if constexpr (kStencil <= 64) {
-        // Sample k of every lane, then k + 1: the lanes' cache misses overlap (M7, M8: 10% less
-        // time than lane by lane, bench_instructions ... time).
-        for (int k = 0; k < size; ++k) {
-          T* const row = v + k * kLanes;
-#pragma GCC unroll 16
-          for (int lane = 0; lane < kLanes; ++lane) row[lane] = bases[lane][tables[lane][k]];
-        }
-      } else {
-        // Lane by lane: fewer instructions per sample, which wins for large stencils (M12: 128).
-        for (int lane = 0; lane < kLanes; ++lane) {
-          const T* const base = bases[lane];
-          const Offset* const table = tables[lane];
-#pragma GCC unroll 16
-          for (int k = 0; k < size; ++k) v[k * kLanes + lane] = base[table[k]];
-        }
-      }
+      gather(size, bases, tables, v);
       simd::orbit_chunk(registry_index_, orbit, Order, v, reference, out, simd::kChunk);
-      for (int lane = 0; lane < lanes; ++lane) {
-        if (!stays[lane]) continue;
-        const std::ptrdiff_t p = index[lane];
-        values[p] = out[lane];
-        if constexpr (Order >= support::kGradient) {
-          T d[3 + 6];
-          support::from_reference_frame<Order, Tr>(static_cast<int>(cells[lane]),
-                                                   out + kLanes + lane, kLanes, d);
-          for (int a = 0; a < 3; ++a) gradients[p][a] = static_cast<double>(d[a]) / h;
-          if constexpr (Order >= support::kHessian)
-            for (int a = 0; a < 6; ++a) hessians[p][a] = static_cast<double>(d[3 + a]) / (h * h);
-        }
+      store<Order>(lanes, stays, index, cells, out, values, gradients, hessians);
+    }
+  }
+
+  // The world-to-lattice frame and the bounds of locate_chunk.
+  simd::Frame simd_frame() const {
+    simd::Frame frame{};
+    frame.h = volume_.spacing();
+    frame.lower = -kFar;
+    for (int a = 0; a < 3; ++a) {
+      frame.origin[a] = volume_.origin()[a];
+      frame.upper[a] = 2.0 * volume_.sizes()[a] + kFar;
+      frame.limit[a] = 2.0 * volume_.sizes()[a] - 1;
+    }
+    return frame;
+  }
+
+  // The first `size` stencil values of every lane into v[k * kChunk + lane].
+  static void gather(int size, const T* const* bases, const Offset* const* tables, T* v) {
+    constexpr int kLanes = simd::kChunk;
+    if constexpr (kStencil <= 64) {
+      // Sample k of every lane, then k + 1: the lanes' cache misses overlap (M7, M8: 10% less
+      // time than lane by lane, bench_instructions ... time).
+      for (int k = 0; k < size; ++k) {
+        T* const row = v + k * kLanes;
+#pragma GCC unroll 16
+        for (int lane = 0; lane < kLanes; ++lane) row[lane] = bases[lane][tables[lane][k]];
+      }
+    } else {
+      // Lane by lane: fewer instructions per sample, which wins for large stencils (M12: 128).
+      for (int lane = 0; lane < kLanes; ++lane) {
+        const T* const base = bases[lane];
+        const Offset* const table = tables[lane];
+#pragma GCC unroll 16
+        for (int k = 0; k < size; ++k) v[k * kLanes + lane] = base[table[k]];
+      }
+    }
+  }
+
+  // The chunk's results of the lanes that stayed, derivatives mapped back from the reference
+  // frame of each lane's cell and scaled to world units.
+  template <int Order>
+  void store(int lanes, const bool* stays, const std::ptrdiff_t* index, const T* cells,
+             const T* out, std::span<T> values, std::span<Vec3> gradients,
+             std::span<Hessian> hessians) const {
+    constexpr int kLanes = simd::kChunk;
+    const double h = volume_.spacing();
+    for (int lane = 0; lane < lanes; ++lane) {
+      if (!stays[lane]) continue;
+      const std::ptrdiff_t p = index[lane];
+      values[p] = out[lane];
+      if constexpr (Order >= support::kGradient) {
+        T d[3 + 6];
+        support::from_reference_frame<Order, Tr>(static_cast<int>(cells[lane]), out + kLanes + lane,
+                                                 kLanes, d);
+        for (int a = 0; a < 3; ++a) gradients[p][a] = static_cast<double>(d[a]) / h;
+        if constexpr (Order >= support::kHessian)
+          for (int a = 0; a < 6; ++a) hessians[p][a] = static_cast<double>(d[3 + a]) / (h * h);
       }
     }
   }

@@ -134,63 +134,78 @@ std::vector<CosetLattice> all_lattices() {
           CosetLattice::fcc().with_offsets({{0, 1, 1}, {0, 0, 0}, {3, 1, 0}, {1, 0, 1}})};
 }
 
+// Fills v (sizes 3 x 2 x 4, spacing 0.5, origin (1, -2, 0.25)) sample by sample, checking the
+// storage order, the lattice point and the world position of each; returns the points held.
+std::set<Point> fill_and_check_layout(LatticeVolume<double>& v, const CosetLattice& lattice) {
+  const int k = lattice.coset_count(), d = lattice.period();
+  std::set<Point> held;
+  double next = 1;
+  for (int kk = 0; kk < 4; ++kk)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 3; ++i)
+        for (int c = 0; c < k; ++c) {
+          EXPECT_EQ(v.index(c, i, j, kk), static_cast<std::size_t>(c + k * (i + 3 * (j + 2 * kk))));
+          v.at(c, i, j, kk) = next++;
+          const Offset& o = lattice.offsets()[static_cast<std::size_t>(c)];
+          const Point p{o[0] + d * i, o[1] + d * j, o[2] + d * kk};
+          EXPECT_EQ(v.lattice_point(c, i, j, kk), p);
+          EXPECT_EQ(v.sample_position(c, i, j, kk),
+                    (Vec3{1 + 0.5 * static_cast<double>(p[0]), -2 + 0.5 * static_cast<double>(p[1]),
+                          0.25 + 0.5 * static_cast<double>(p[2])}));
+          held.insert(p);
+        }
+  for (int kk = 0; kk < 4; ++kk)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 3; ++i)
+        for (int c = 0; c < k; ++c)
+          EXPECT_EQ(v.value(v.lattice_point(c, i, j, kk)), v.at(c, i, j, kk));
+  return held;
+}
+
+// contains() is exactly the held points; value() throws elsewhere, value_or() does not.
+void check_contains(const LatticeVolume<double>& v, const std::set<Point>& held) {
+  for (std::int64_t x = -4; x <= 12; ++x)
+    for (std::int64_t y = -4; y <= 8; ++y)
+      for (std::int64_t z = -4; z <= 14; ++z) {
+        const bool inside = held.count({x, y, z}) == 1;
+        ASSERT_EQ(v.contains(x, y, z), inside) << x << " " << y << " " << z;
+        if (!inside) {
+          EXPECT_THROW((void)v.value(x, y, z), std::out_of_range);
+          EXPECT_EQ(v.value_or(x, y, z, -1.0), -1.0);
+        }
+      }
+}
+
+// contains_box() against the lattice points of random boxes.
+void check_contains_box(const LatticeVolume<double>& v, const CosetLattice& lattice,
+                        const std::set<Point>& held) {
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> coordinate(-3, 14);
+  for (int trial = 0; trial < 400; ++trial) {
+    Point lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = coordinate(rng);
+      hi[a] = lo[a] + coordinate(rng) % 5;
+    }
+    bool all = true;
+    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+          if (lattice.contains(x, y, z) && !held.count({x, y, z})) all = false;
+    EXPECT_EQ(v.contains_box(lo, hi), all)
+        << lo[0] << " " << lo[1] << " " << lo[2] << " .. " << hi[0] << " " << hi[1] << " " << hi[2];
+  }
+}
+
 TEST(LatticeVolume, StorageAndLatticeAccessAgree) {
   for (const CosetLattice& lattice : all_lattices()) {
     SCOPED_TRACE(lattice.name() + " " + lattice.offsets_text());
     LatticeVolume<double> v(lattice, {3, 2, 4}, 0.5, {1, -2, 0.25});
-    const int k = lattice.coset_count(), d = lattice.period();
+    const int k = lattice.coset_count();
     ASSERT_EQ(v.sample_count(), static_cast<std::size_t>(k * 3 * 2 * 4));
-    std::set<Point> held;
-    double next = 1;
-    for (int kk = 0; kk < 4; ++kk)
-      for (int j = 0; j < 2; ++j)
-        for (int i = 0; i < 3; ++i)
-          for (int c = 0; c < k; ++c) {
-            EXPECT_EQ(v.index(c, i, j, kk),
-                      static_cast<std::size_t>(c + k * (i + 3 * (j + 2 * kk))));
-            v.at(c, i, j, kk) = next++;
-            const Offset& o = lattice.offsets()[static_cast<std::size_t>(c)];
-            const Point p{o[0] + d * i, o[1] + d * j, o[2] + d * kk};
-            EXPECT_EQ(v.lattice_point(c, i, j, kk), p);
-            EXPECT_EQ(
-                v.sample_position(c, i, j, kk),
-                (Vec3{1 + 0.5 * static_cast<double>(p[0]), -2 + 0.5 * static_cast<double>(p[1]),
-                      0.25 + 0.5 * static_cast<double>(p[2])}));
-            held.insert(p);
-          }
-    for (int kk = 0; kk < 4; ++kk)
-      for (int j = 0; j < 2; ++j)
-        for (int i = 0; i < 3; ++i)
-          for (int c = 0; c < k; ++c)
-            EXPECT_EQ(v.value(v.lattice_point(c, i, j, kk)), v.at(c, i, j, kk));
-    // contains() is exactly the held points; value() throws elsewhere, value_or() does not.
-    for (std::int64_t x = -4; x <= 12; ++x)
-      for (std::int64_t y = -4; y <= 8; ++y)
-        for (std::int64_t z = -4; z <= 14; ++z) {
-          const bool inside = held.count({x, y, z}) == 1;
-          ASSERT_EQ(v.contains(x, y, z), inside) << x << " " << y << " " << z;
-          if (!inside) {
-            EXPECT_THROW((void)v.value(x, y, z), std::out_of_range);
-            EXPECT_EQ(v.value_or(x, y, z, -1.0), -1.0);
-          }
-        }
-    // contains_box() against the points of random boxes.
-    std::mt19937 rng(5);
-    std::uniform_int_distribution<int> coordinate(-3, 14);
-    for (int trial = 0; trial < 400; ++trial) {
-      Point lo, hi;
-      for (int a = 0; a < 3; ++a) {
-        lo[a] = coordinate(rng);
-        hi[a] = lo[a] + coordinate(rng) % 5;
-      }
-      bool all = true;
-      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
-        for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-          for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
-            if (lattice.contains(x, y, z) && !held.count({x, y, z})) all = false;
-      EXPECT_EQ(v.contains_box(lo, hi), all) << lo[0] << " " << lo[1] << " " << lo[2] << " .. "
-                                             << hi[0] << " " << hi[1] << " " << hi[2];
-    }
+    const std::set<Point> held = fill_and_check_layout(v, lattice);
+    check_contains(v, held);
+    check_contains_box(v, lattice, held);
     EXPECT_THROW((void)v.at(k, 0, 0, 0), std::out_of_range);
   }
   EXPECT_THROW(LatticeVolume<float>(CosetLattice::fcc(), {0, 1, 1}, 1, {0, 0, 0}),
