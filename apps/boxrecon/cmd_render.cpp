@@ -10,6 +10,7 @@
 
 #include "analysis/output_file.h"
 #include "analysis/png_image.h"
+#include "apps/boxrecon/sample_command.h"
 #include "runtime/lattice_filters.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/render.h"
@@ -23,7 +24,8 @@ namespace {
 using namespace boxgen::runtime;
 
 struct RenderArgs {
-  std::string function, volume, filter = "m7", prefilter = "q2", shading = "normal", output;
+  std::string function, volume, lattice, filter = "m7", prefilter = "q2", shading = "normal",
+                                         output;
   int n = 0;
   double iso = 0.5;
   bool cutaway = false, closeup = false, quiet = false;
@@ -36,6 +38,7 @@ RenderArgs args;
 // every other registry filter through the lattice runtime, on a volume of its own lattice.
 RgbBuffer render_volume(RegistryFilter rf, PrefilterChoice q, const RenderOptions& o) {
   const Box cube{{-1, -1, -1}, {1, 1, 1}};
+  (void)boxgen::app::lattice_for(rf, args.lattice);
   if (rf.has_bcc_filter()) {
     const Filter f = rf.bcc_filter();
     BccVolume<double> volume = args.volume.empty()
@@ -69,6 +72,9 @@ CLI::App* add_render_command(CLI::App& app) {
   auto* vol = r->add_option("--volume", args.volume,
                             "a NRRD volume on the filter's lattice instead of --function");
   fn->excludes(vol);
+  r->add_option("--lattice", args.lattice,
+                "the lattice of --function's samples: only the filter's own (bcc | fcc | cartesian "
+                "| rows of G), default the filter's");
   r->add_option("--filter", args.filter,
                 "a filter of the registry (default m7): " + RegistryFilter::names());
   r->add_option("--prefilter", args.prefilter, "none | q1 | q2 (default q2, as in Fig. 8)");

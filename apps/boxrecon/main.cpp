@@ -100,10 +100,12 @@ int run_eval(const std::string& filter, const std::string& pre, const std::strin
   return 0;
 }
 
-int run_error(const std::string& function, int n, const std::string& filter, const std::string& pre,
-              int count, std::uint64_t seed, bool gradient, bool json) {
+int run_error(const std::string& function, int n, const std::string& filter,
+              const std::string& lattice, const std::string& pre, int count, std::uint64_t seed,
+              bool gradient, bool json) {
   const TestFunction& fn = find_test_function(function);
   const RegistryFilter rf = RegistryFilter::parse(filter);
+  (void)boxgen::app::lattice_for(rf, lattice);
   const PrefilterChoice q = parse_prefilter(pre);
   if (count < 1 || count > 100000000) throw InputError("--points must be between 1 and 100000000");
   const boxgen::app::ErrorReport report{function, filter, pre, n, count, seed, gradient, json};
@@ -216,9 +218,15 @@ int run(int argc, char** argv) {
   auto* error_filter =
       error->add_option("--filter", filter, filters + " (required unless --table)");
   bool table = false;
-  error->add_flag("--table", table,
-                  "ML errors for N in {17,25,33,41,57} x {m7,m8,m12} x {none,q1,q2} and the "
-                  "tricubic on Cartesian");
+  auto* table_flag =
+      error->add_flag("--table", table,
+                      "ML errors for N in {17,25,33,41,57} x {m7,m8,m12} x {none,q1,q2} and the "
+                      "tricubic on Cartesian");
+  error
+      ->add_option("--lattice", lattice,
+                   "the lattice it samples on: only the filter's own (bcc | fcc | cartesian | rows "
+                   "of G), default the filter's")
+      ->excludes(table_flag);
   error->add_option("--prefilter", pre, "none | q1 | q2");
   error->add_option("--points", count, "number of random points");
   error->add_option("--seed", seed, "random seed, 0..2^64-1");
@@ -291,8 +299,8 @@ int run(int argc, char** argv) {
       return 2;
     }
     if (error->parsed())
-      return run_error(function, n, filter, pre, count, boxgen::app::parse_seed(seed), gradient,
-                       json);
+      return run_error(function, n, filter, lattice, pre, count, boxgen::app::parse_seed(seed),
+                       gradient, json);
     if (resample->parsed())
       return precision == "float" ? run_resample<float>(filter, pre, volume, output, resample_n,
                                                         box_min, box_max, limits)

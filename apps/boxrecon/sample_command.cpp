@@ -41,18 +41,25 @@ void sample_and_write(const runtime::TestFunction& fn, const runtime::LatticeGri
 
 }  // namespace
 
+runtime::CosetLattice lattice_for(const runtime::RegistryFilter& f, const std::string& lattice) {
+  if (lattice.empty()) return f.lattice();
+  const runtime::CosetLattice given = runtime::CosetLattice::parse(lattice);
+  if (!runtime::same_points(f.lattice(), given))
+    throw std::invalid_argument(fmt::format("filter {} is for the {} lattice, but --lattice is {}",
+                                            f.name(), f.lattice().name(), given.name()));
+  return f.lattice();
+}
+
 int run_sample(const std::string& function, int n, const std::optional<double>& h,
                const std::string& lattice_text, const std::string& filter,
                const std::string& precision, const std::string& output) {
   const runtime::TestFunction& fn = runtime::find_test_function(function);
   std::optional<runtime::RegistryFilter> f;
   if (!filter.empty()) f = runtime::RegistryFilter::parse(filter);
-  const runtime::CosetLattice lattice = lattice_text.empty()
-                                            ? (f ? f->lattice() : runtime::CosetLattice::bcc())
-                                            : runtime::CosetLattice::parse(lattice_text);
-  if (f && !runtime::same_points(f->lattice(), lattice))
-    throw std::invalid_argument(fmt::format("filter {} is for the {} lattice, but --lattice is {}",
-                                            f->name(), f->lattice().name(), lattice.name()));
+  const runtime::CosetLattice lattice =
+      f ? lattice_for(*f, lattice_text)
+        : (lattice_text.empty() ? runtime::CosetLattice::bcc()
+                                : runtime::CosetLattice::parse(lattice_text));
   const int margin = sample_margin(lattice);
   if (n < 2 || n > 1024)
     throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", n));

@@ -4,7 +4,14 @@
 #include <optional>
 #include <string>
 
+#include "runtime/lattice_filters.h"
+
 namespace boxgen::app {
+
+// The lattice `--lattice` names (bcc | fcc | cartesian | rows of G), which must hold the same
+// points as the filter's own lattice; empty: the filter's. Throws std::invalid_argument (one line)
+// for a lattice that is not the filter's: error and render sample on the filter's lattice only.
+runtime::CosetLattice lattice_for(const runtime::RegistryFilter& f, const std::string& lattice);
 
 // --function, --n, --h, --lattice (bcc | fcc | cartesian | "a,b,c; d,e,f; g,h,i"; empty: the
 // filter's lattice, else bcc), --filter (a registry filter, or empty: with --lattice, its lattice

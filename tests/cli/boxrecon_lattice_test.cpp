@@ -231,5 +231,29 @@ TEST_F(BoxreconLattices, AFilterOnAVolumeOfAnotherLatticeIsOneLine) {
   EXPECT_FALSE(fs::exists(file("out.nrrd")));
 }
 
+// error and render sample on the filter's own lattice: --lattice may name it, in any spelling
+// of the same points, and anything else is one line.
+TEST_F(BoxreconLattices, ErrorAndRenderTakeOnlyTheFiltersOwnLattice) {
+  for (const auto& f : kFilters) {
+    SCOPED_TRACE(f.name);
+    const std::string same = std::string(f.lattice) == "fcc" ? "0,1,1; 1,0,1; 1,1,0" : "cartesian";
+    const auto with = nlohmann::json::parse(
+        boxrecon_ok({"error", "--function", "ml", "--n", "9", "--filter", f.name, "--lattice", same,
+                     "--points", "200", "--json"}));
+    const auto without =
+        nlohmann::json::parse(boxrecon_ok({"error", "--function", "ml", "--n", "9", "--filter",
+                                           f.name, "--points", "200", "--json"}));
+    EXPECT_EQ(with["rms"], without["rms"]);
+    const std::string message = std::string("filter ") + f.name + " is for the " + f.lattice +
+                                " lattice, but --lattice is bcc";
+    refused({"error", "--function", "ml", "--n", "9", "--filter", f.name, "--lattice", "bcc"},
+            message);
+    refused({"render", "--function", "ml", "--n", "9", "--filter", f.name, "--lattice", "bcc",
+             "--width", "8", "--height", "8", "--quiet", "-o", file("out.png")},
+            message);
+    EXPECT_FALSE(fs::exists(file("out.png")));
+  }
+}
+
 }  // namespace
 }  // namespace boxgen::test
