@@ -44,18 +44,6 @@ std::string cpu_model() {
   return "unknown";
 }
 
-template <class F>
-double fastest_seconds(int repeats, F&& run) {
-  double best = 1e300;
-  for (int r = 0; r < repeats; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    run();
-    best = std::min(best,
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  return best;
-}
-
 // A volume of random samples with unit spacing at the origin: lattice = world coordinates.
 template <class T>
 BccVolume<T> random_volume(int n) {

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "apps/boxrecon/cmd_bench.h"
 #include "apps/boxrecon/input_checks.h"
 #include "runtime/batch_threads.h"
 #include "runtime/output_file.h"
@@ -136,22 +137,6 @@ int run_lattice_resample(RegistryFilter f, PrefilterChoice q, const std::string&
   return 0;
 }
 
-namespace {
-
-template <class F>
-double fastest_seconds(int repeats, F&& run) {
-  double best = 1e300;
-  for (int r = 0; r < repeats; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    run();
-    best = std::min(best,
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  return best;
-}
-
-}  // namespace
-
 int run_filter_bench(RegistryFilter f, long point_count, int repeats, bool json) {
   const long count = point_count > 0 ? point_count : 1000000;
   const CosetLattice lattice = f.lattice();
@@ -177,8 +162,9 @@ int run_filter_bench(RegistryFilter f, long point_count, int repeats, bool json)
   for (int threads : {1, all}) {
     if (!timings.empty() && threads == timings.front().threads) break;
     set_batch_threads(threads);
-    const double v = fastest_seconds(repeats, [&] { spline.evaluate(points, values); });
-    const double g = fastest_seconds(repeats, [&] { spline.evaluate(points, values, gradients); });
+    const double v = boxrecon::fastest_seconds(repeats, [&] { spline.evaluate(points, values); });
+    const double g =
+        boxrecon::fastest_seconds(repeats, [&] { spline.evaluate(points, values, gradients); });
     timings.push_back({threads, v / static_cast<double>(count), g / static_cast<double>(count)});
   }
   set_batch_threads(all);
