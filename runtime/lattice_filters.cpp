@@ -54,16 +54,8 @@ CosetLattice RegistryFilter::lattice() const {
 }
 
 StencilReach RegistryFilter::reach() const {
-  return generated::with_filter(index_, [](auto entry) {
-    using Tr = typename decltype(entry)::Traits;
-    StencilReach r;
-    for (int a = 0; a < 3; ++a) {
-      r.lo[a] = Tr::kStencilReachLo[a];
-      r.hi[a] = Tr::kStencilReachHi[a];
-      r.centre[a] = Tr::kCentre[a];
-    }
-    return r;
-  });
+  return generated::with_filter(
+      index_, [](auto entry) { return published_reach<typename decltype(entry)::Traits>(); });
 }
 
 DiscreteFilter RegistryFilter::prefilter(PrefilterChoice q) const {

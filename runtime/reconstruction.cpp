@@ -11,6 +11,7 @@
 
 #include "generated/registry.hpp"
 #include "runtime/batch_threads.h"
+#include "runtime/lattice_reconstruction.h"
 #include "runtime/simd_batch.h"
 
 namespace boxgen::runtime {
@@ -32,24 +33,6 @@ int registry_index(Filter f) {
   const int index = static_cast<int>(f);
   if (index < 0 || index >= kBccFilterCount) throw std::logic_error("unknown filter");
   return index;
-}
-
-template <class Tap, std::size_t N>
-DiscreteFilter taps(const Tap (&table)[N]) {
-  DiscreteFilter out;
-  for (const auto& t : table) out.push_back({{t.offset[0], t.offset[1], t.offset[2]}, t.weight});
-  return out;
-}
-
-template <class Tr>
-StencilReach published_reach() {
-  StencilReach reach;
-  for (int a = 0; a < 3; ++a) {
-    reach.lo[a] = Tr::kStencilReachLo[a];
-    reach.hi[a] = Tr::kStencilReachHi[a];
-    reach.centre[a] = Tr::kCentre[a];
-  }
-  return reach;
 }
 
 }  // namespace
@@ -80,7 +63,7 @@ const char* filter_name(Filter f) {
 DiscreteFilter prefilter_taps(Filter f, PrefilterChoice q) {
   if (q == PrefilterChoice::None) return {{{0, 0, 0}, 1.0}};
   return generated::with_filter(registry_index(f), [&](auto entry) {
-    return q == PrefilterChoice::Q1 ? taps(entry.q1) : taps(entry.q2);
+    return q == PrefilterChoice::Q1 ? prefilter_from(entry.q1) : prefilter_from(entry.q2);
   });
 }
 

@@ -30,6 +30,17 @@ struct StencilReach {
   Vec3 centre{};
 };
 StencilReach stencil_reach(Filter f);
+// The reach an emitted evaluator's traits type publishes (any filter, any lattice).
+template <class Tr>
+StencilReach published_reach() {
+  StencilReach reach;
+  for (int a = 0; a < 3; ++a) {
+    reach.lo[a] = Tr::kStencilReachLo[a];
+    reach.hi[a] = Tr::kStencilReachHi[a];
+    reach.centre[a] = Tr::kCentre[a];
+  }
+  return reach;
+}
 
 // The generated quasi-interpolation prefilter (Q^I on shells 0,1; Q^II on shells 0,1,2).
 DiscreteFilter prefilter_taps(Filter f, PrefilterChoice q);
