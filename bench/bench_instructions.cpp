@@ -9,7 +9,11 @@
 // fetched and summed. Divide the collected count by `points`. With `time` it also prints the
 // thread CPU time per point (best of 10 runs): `build/bench/bench_instructions m7 200000 time`.
 // BOXGEN_SIMD=0 measures the scalar batch path. (valgrind emulates no AVX-512: under it the
-// SIMD path dispatches to AVX2.)
+// SIMD path dispatches to AVX2.) Any other registry filter (fcc6, tricubic, cart7) runs through
+// RegistryReconstructor<float>::evaluate on a volume of its own lattice with about as many
+// samples (2 x 32^3), no floor:
+//   valgrind --tool=callgrind --toggle-collect='*RegistryReconstructor<float>::evaluate*'
+//            build/bench/bench_instructions tricubic 20000
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +25,8 @@
 
 #include "generated/registry.hpp"
 #include "runtime/batch_threads.h"
+#include "runtime/lattice_filters.h"
+#include "runtime/lattice_volume.h"
 #include "runtime/reconstruction.h"
 
 using namespace boxgen::runtime;
@@ -50,40 +56,12 @@ __attribute__((noinline)) void fetch_floor(const BccVolume<float>& volume,
   }
 }
 
-int main(int argc, char** argv) {
-  if (argc < 3) {
-    std::fprintf(stderr, "usage: bench_instructions m7|m8|m12 POINTS [floor] [time]\n");
-    return 2;
-  }
-  const Filter f = parse_filter(argv[1]);
-  const long count = std::atol(argv[2]);
-  bool floor = false, timed = false;
-  for (int a = 3; a < argc; ++a) {
-    floor = floor || std::string(argv[a]) == "floor";
-    timed = timed || std::string(argv[a]) == "time";
-  }
-  set_batch_threads(1);
-  const int n = 32;
-  BccVolume<float> volume({n, n, n}, 1.0, {0, 0, 0});
-  std::mt19937_64 rng(1);
-  for (auto& s : volume.samples()) s = static_cast<float>(rng() % 1000) / 1000.f;
-  std::uniform_real_distribution<double> u(6.0, 2.0 * n - 7.0);
-  std::vector<Vec3> points(count > 0 ? count : 1);
-  for (auto& p : points) p = {u(rng), u(rng), u(rng)};
-  std::vector<float> values(points.size());
-  const Reconstructor<float> reconstructor(volume, f);
-  const auto run = [&] {
-    if (floor)
-      boxgen::generated::with_filter(static_cast<int>(f), [&](auto entry) {
-        fetch_floor<typename decltype(entry)::Traits>(volume, points, values);
-      });
-    else
-      reconstructor.evaluate(points, values);
-  };
-  // With `time`: the fastest of 10 runs in CPU time of this thread, which a loaded machine
-  // disturbs far less than wall-clock time (it still shares caches and the core's frequency).
+// The fastest of `runs` calls of run() in CPU time of this thread (ns), which a loaded machine
+// disturbs far less than wall-clock time (it still shares caches and the core's frequency).
+template <class F>
+double best_thread_ns(int runs, F&& run) {
   double best = 0;
-  for (int r = 0; r < (timed ? 10 : 1); ++r) {
+  for (int r = 0; r < runs; ++r) {
     timespec t0{}, t1{};
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t0);
     run();
@@ -92,12 +70,78 @@ int main(int argc, char** argv) {
                       static_cast<double>(t1.tv_nsec - t0.tv_nsec);
     best = r == 0 ? ns : std::min(best, ns);
   }
+  return best;
+}
+
+// M7, M8 or M12 (or its fetch floor) on a 32^3 x 2 float BCC volume.
+double bcc_filter_ns(Filter f, std::vector<float>& values, long count, bool floor, int runs) {
+  const int n = 32;
+  BccVolume<float> volume({n, n, n}, 1.0, {0, 0, 0});
+  std::mt19937_64 rng(1);
+  for (auto& s : volume.samples()) s = static_cast<float>(rng() % 1000) / 1000.f;
+  std::uniform_real_distribution<double> u(6.0, 2.0 * n - 7.0);
+  std::vector<Vec3> points(count > 0 ? count : 1);
+  for (auto& p : points) p = {u(rng), u(rng), u(rng)};
+  values.resize(points.size());
+  const Reconstructor<float> reconstructor(volume, f);
+  return best_thread_ns(runs, [&] {
+    if (floor)
+      boxgen::generated::with_filter(static_cast<int>(f), [&](auto entry) {
+        fetch_floor<typename decltype(entry)::Traits>(volume, points, values);
+      });
+    else
+      reconstructor.evaluate(points, values);
+  });
+}
+
+// Any registry filter on a volume of its own lattice with about 2 x 32^3 samples.
+double lattice_filter_ns(const RegistryFilter& f, std::vector<float>& values, long count,
+                         int runs) {
+  const CosetLattice lattice = f.lattice();
+  const int n =
+      static_cast<int>(std::lround(std::cbrt(2.0 * 32 * 32 * 32 / lattice.coset_count())));
+  LatticeVolume<float> volume(lattice, {n, n, n}, 1.0, {0, 0, 0});
+  std::mt19937_64 rng(1);
+  for (auto& s : volume.samples()) s = static_cast<float>(rng() % 1000) / 1000.f;
+  const double extent = static_cast<double>(lattice.period()) * n;
+  std::uniform_real_distribution<double> u(6.0, extent - 7.0);
+  std::vector<Vec3> points(count > 0 ? count : 1);
+  for (auto& p : points) p = {u(rng), u(rng), u(rng)};
+  values.resize(points.size());
+  const RegistryReconstructor<float> reconstructor(volume, f);
+  return best_thread_ns(runs, [&] { reconstructor.evaluate(points, values); });
+}
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: bench_instructions FILTER POINTS [floor] [time]\n");
+    return 2;
+  }
+  const long count = std::atol(argv[2]);
+  bool floor = false, timed = false;
+  for (int a = 3; a < argc; ++a) {
+    floor = floor || std::string(argv[a]) == "floor";
+    timed = timed || std::string(argv[a]) == "time";
+  }
+  set_batch_threads(1);
+  const RegistryFilter filter = RegistryFilter::parse(argv[1]);
+  std::vector<float> values;
+  double best = 0;
+  if (!filter.has_bcc_filter()) {
+    if (floor) {
+      std::fprintf(stderr, "bench_instructions: the floor is measured for m7, m8 and m12\n");
+      return 2;
+    }
+    best = lattice_filter_ns(filter, values, count, timed ? 10 : 1);
+  } else {
+    best = bcc_filter_ns(filter.bcc_filter(), values, count, floor, timed ? 10 : 1);
+  }
   double sum = 0;
   for (float v : values) sum += v;
   std::printf("%s%s: %ld points, checksum %.6g", argv[1], floor ? " floor" : "", count, sum);
   if (timed)
     std::printf(", %.2f ns per point (thread CPU time, best of 10)",
-                best / static_cast<double>(points.size()));
+                best / static_cast<double>(values.size()));
   std::printf("\n");
   return 0;
 }

@@ -26,6 +26,8 @@
 namespace boxgen::runtime {
 
 using Vec3 = std::array<double, 3>;
+// Second derivatives in world units: the upper triangle {xx, xy, xz, yy, yz, zz}.
+using Hessian = std::array<double, 6>;
 using LatticePoint = std::array<std::int64_t, 3>;
 using Sizes = std::array<int, 3>;
 

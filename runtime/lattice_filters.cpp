@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "generated/registry.hpp"
-#include "runtime/batch_threads.h"
 #include "runtime/lattice_reconstruction.h"
 
 namespace boxgen::runtime {
@@ -103,11 +102,9 @@ Filter RegistryFilter::bcc_filter() const {
 }
 
 void RegistryFilter::check_lattice(const CosetLattice& volume_lattice) const {
-  const CosetLattice own = lattice();
-  if (!same_points(own, volume_lattice))
-    throw std::invalid_argument(
-        fmt::format("filter {} is for the {} lattice, but the volume is on the {} lattice", name(),
-                    own.name(), volume_lattice.name()));
+  generated::with_filter(index_, [&](auto entry) {
+    require_filter_lattice<typename decltype(entry)::Traits>(volume_lattice);
+  });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -169,6 +166,8 @@ class RegistryReconstructor<T>::Path {
  public:
   virtual ~Path() = default;
   virtual T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const = 0;
+  virtual void batch(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
+                     std::span<Hessian> hessians) const = 0;
 };
 
 namespace {
@@ -176,13 +175,19 @@ namespace {
 template <class Tr, class T>
 class FilterPath final : public RegistryReconstructor<T>::Path {
  public:
-  explicit FilterPath(const LatticeVolume<T>& volume) : spline_(volume) {}
+  // The registry's filters have SIMD kernels: the batch path uses them (emitted_spline.h).
+  FilterPath(const LatticeVolume<T>& volume, int registry_index)
+      : spline_(LatticeStencils<Tr, T>(volume), registry_index) {}
   T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const override {
-    return spline_.value(world, gradient, hessian);
+    return spline_.at(world, gradient, hessian);
+  }
+  void batch(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
+             std::span<Hessian> hessians) const override {
+    spline_.batch(points, values, gradients, hessians);
   }
 
  private:
-  LatticeReconstructor<Tr, T> spline_;
+  EmittedSpline<Tr, LatticeStencils<Tr, T>> spline_;
 };
 
 }  // namespace
@@ -191,7 +196,7 @@ template <class T>
 RegistryReconstructor<T>::RegistryReconstructor(const LatticeVolume<T>& volume, RegistryFilter f) {
   f.check_lattice(volume.lattice());
   path_ = generated::with_filter(f.index(), [&](auto entry) -> std::shared_ptr<const Path> {
-    return std::make_shared<FilterPath<typename decltype(entry)::Traits, T>>(volume);
+    return std::make_shared<FilterPath<typename decltype(entry)::Traits, T>>(volume, f.index());
   });
 }
 
@@ -204,29 +209,7 @@ template <class T>
 void RegistryReconstructor<T>::evaluate(std::span<const Vec3> points, std::span<T> values,
                                         std::span<Vec3> gradients,
                                         std::span<Hessian> hessians) const {
-  if (values.size() != points.size() || (!gradients.empty() && gradients.size() != points.size()) ||
-      (!hessians.empty() &&
-       (hessians.size() != points.size() || gradients.size() != points.size())))
-    throw std::invalid_argument("evaluate: output sizes differ from the number of points");
-  const auto count = static_cast<std::ptrdiff_t>(points.size());
-  const int threads = batch_threads();
-  std::ptrdiff_t first_bad = count;
-  std::string first_error;
-#pragma omp parallel for schedule(static) num_threads(threads) if (count > 256)
-  for (std::ptrdiff_t i = 0; i < count; ++i) {
-    try {
-      values[i] = path_->at(points[i], gradients.empty() ? nullptr : &gradients[i],
-                            hessians.empty() ? nullptr : &hessians[i]);
-    } catch (const std::exception& e) {
-#pragma omp critical(boxgen_registry_batch_error)
-      if (i < first_bad) {
-        first_bad = i;
-        first_error = e.what();
-      }
-    }
-  }
-  if (first_bad < count)
-    throw std::out_of_range(fmt::format("point {}: {}", first_bad + 1, first_error));
+  path_->batch(points, values, gradients, hessians);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -3,19 +3,17 @@
 // a template on the evaluator's Traits (the struct every emitted header defines, see
 // generated/evaluator_support.hpp), so nothing here lists filters or knows a coefficient.
 //
-//   #include "my_filter.hpp"              // boxgen emit "<your matrix>" --name my_filter
-//   #include "my_filter_prefilters.hpp"
-//   LatticeVolume<double> v = sample_lattice<double>(f,
-//   cube_lattice_grid(filter_lattice<my_filter::Traits>(), 33, 4)); v = prefilter(v,
-//   prefilter_from(my_filter::q1)); LatticeReconstructor<my_filter::Traits, double> r(v); double s
-//   = r.value({0.1, 0.2, 0.3});
+// Example (a header from `boxgen emit "<your matrix>" --name my_filter`, and its prefilters):
+//   auto v = sample_lattice<double>(f, cube_lattice_grid(filter_lattice<my_filter::Traits>(),
+//                                                         33, 4));
+//   v = prefilter(v, prefilter_from(my_filter::q1));
+//   LatticeReconstructor<my_filter::Traits, double> r(v);
+//   double s = r.value({0.1, 0.2, 0.3});
 //
 // The filter's lattice is read from the evaluator's Hermite basis (Traits::kHermite); a volume
-// on another lattice is refused with one line (std::invalid_argument). Border policy as
-// Reconstructor (reconstruction.h): a point whose stencil leaves the volume is
-// std::out_of_range (one line), a non-finite coordinate std::invalid_argument; the whole stencil
-// box is checked once per point, then fetched without further checks, through linear offsets
-// precomputed per volume (see table_ below).
+// on another lattice is refused with one line (std::invalid_argument). Evaluation is the
+// runtime's one engine, EmittedSpline (emitted_spline.h), with this volume's LatticeStencils:
+// border policy, threads and the SIMD batch path as for Reconstructor (reconstruction.h).
 #pragma once
 #include <fmt/format.h>
 
@@ -29,6 +27,7 @@
 
 #include "generated/evaluator_support.hpp"
 #include "runtime/coset_lattice.h"
+#include "runtime/emitted_spline.h"
 #include "runtime/lattice_volume.h"
 #include "runtime/prefilter.h"
 
@@ -60,130 +59,74 @@ inline bool same_points(const CosetLattice& a, const CosetLattice& b) {
   return true;
 }
 
+// Where the stencil of a point lies in a LatticeVolume (emitted_spline.h says what a Stencils
+// provides). table_[(r, cell, k)]: for a corner of residue class r (corner mod d per axis, x
+// fastest, r = rx + d (ry + d rz)) in block q (corner = d q + r), the stencil sample
+// j = corner + kOffsets[cell][k] = d q + p, p = r + offset, lies in coset c of p at
+// (i, j, k) = q + (p - off_c) / d (an exact division): storage index K (q_x + N0 (q_y + N1 q_z))
+// plus c + K ((p - off_c)_x / d + N0 (...)), the table's entry. Left empty (every fetch through
+// the lattice lookup) when the table would be large (a custom lattice of large period).
+// Throws std::invalid_argument (one line) unless `volume_lattice` holds the points of the lattice
+// the evaluator was derived on.
+template <class Tr>
+void require_filter_lattice(const CosetLattice& volume_lattice) {
+  const CosetLattice lattice = filter_lattice<Tr>();
+  if (!same_points(lattice, volume_lattice))
+    throw std::invalid_argument(
+        fmt::format("filter {} is for the {} lattice, but the volume is on the {} lattice",
+                    Tr::kName, lattice.name(), volume_lattice.name()));
+}
+
 template <class Tr, class T>
-class LatticeReconstructor {
-  static_assert(Tr::kDimension == 3, "volumes are 3-D");
-  static constexpr int kStencil = Tr::kStencilSize;
-
+class LatticeStencils {
  public:
-  // Throws std::invalid_argument (one line) if the volume is not on the filter's lattice.
-  explicit LatticeReconstructor(const LatticeVolume<T>& volume) : volume_(volume) {
-    const CosetLattice lattice = filter_lattice<Tr>();
-    if (!same_points(lattice, volume.lattice()))
-      throw std::invalid_argument(
-          fmt::format("filter {} is for the {} lattice, but the volume is on the {} lattice",
-                      Tr::kName, lattice.name(), volume.lattice().name()));
-    tabulate_offsets();
-  }
+  using Sample = T;
+  using Index = std::int64_t;
 
-  // The spline at a world point; with `gradient` its gradient and with `hessian` its second
-  // derivatives {xx, xy, xz, yy, yz, zz}, in world units.
-  T value(const Vec3& world, Vec3* gradient = nullptr,
-          std::array<double, 6>* hessian = nullptr) const {
-    if (hessian) return point<generated::support::kHessian>(world, gradient, hessian);
-    if (gradient) return point<generated::support::kGradient>(world, gradient, nullptr);
-    return point<generated::support::kValue>(world, nullptr, nullptr);
-  }
+  explicit LatticeStencils(const LatticeVolume<T>& volume) : volume_(&volume) { tabulate(); }
 
-  // value() for many points (`gradients` empty: values only). Throws the first error.
-  void evaluate(std::span<const Vec3> points, std::span<T> values,
-                std::span<Vec3> gradients = {}) const {
-    if (values.size() != points.size() || (!gradients.empty() && gradients.size() != points.size()))
-      throw std::invalid_argument("evaluate: values and gradients must be as long as points");
-    for (std::size_t i = 0; i < points.size(); ++i)
-      values[i] = value(points[i], gradients.empty() ? nullptr : &gradients[i]);
+  const LatticeVolume<T>& volume() const { return *volume_; }
+  // The samples' lattice coordinates lie in [0, d N_a - 1]: coset offsets lie in [0, d)^3.
+  double extent(int a) const {
+    return static_cast<double>(volume_->period()) * (volume_->sizes()[a] + 1);
+  }
+  double last(int a) const {
+    return static_cast<double>(volume_->period()) * volume_->sizes()[a] - 1;
+  }
+  bool has_offsets() const { return !table_.empty(); }
+  const T* samples() const { return volume_->samples().data(); }
+  Fetch<Index> fetch(const std::int64_t* corner, int cell) const {
+    // corner = d q + r, 0 <= r < d per axis: the block q's first sample, plus the table's
+    // offset for the residue class r and the cell.
+    const std::int64_t d = volume_->period();
+    std::int64_t q[3];
+    std::int64_t residue = 0;
+    for (int a = 2; a >= 0; --a) {
+      const std::int64_t r = ((corner[a] % d) + d) % d;
+      q[a] = (corner[a] - r) / d;
+      residue = residue * d + r;
+    }
+    const std::int64_t base =
+        volume_->coset_count() *
+        (q[0] +
+         volume_->sizes()[0] * (q[1] + static_cast<std::int64_t>(volume_->sizes()[1]) * q[2]));
+    return {base, &table_[(static_cast<std::size_t>(residue) * Tr::kCellCount +
+                           static_cast<std::size_t>(cell)) *
+                          Tr::kStencilSize]};
+  }
+  T sample(const LatticePoint& j, bool inside) const {
+    return inside ? volume_->value_unchecked(j) : volume_->value(j);
   }
 
  private:
-  template <int Order>
-  T point(const Vec3& world, Vec3* gradient, std::array<double, 6>* hessian) const {
-    namespace support = generated::support;
-    for (double c : world)
-      if (!std::isfinite(c)) throw std::invalid_argument("point has a non-finite coordinate");
-    const Vec3 lattice = volume_.to_lattice(world);
-    // Far outside, stop before floor(x) becomes an integer that could overflow.
-    constexpr double kFar = 64;
-    for (int a = 0; a < 3; ++a)
-      if (!(lattice[a] > -kFar &&
-            lattice[a] < static_cast<double>(volume_.period()) * (volume_.sizes()[a] + 1) + kFar))
-        throw std::out_of_range(fmt::format("world point ({}, {}, {}) is outside the volume",
-                                            world[0], world[1], world[2]));
-    const std::array<T, 3> x{static_cast<T>(lattice[0]), static_cast<T>(lattice[1]),
-                             static_cast<T>(lattice[2])};
-    const support::Located<3, T> located = support::locate<Tr>(x);
-    const int size = Tr::kOrbitStencilSize[Tr::kCells[located.cell].orbit];
-    T v[kStencil];
-    LatticePoint lo, hi;
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = located.corner[a] + Tr::kStencilReachLo[a];
-      hi[a] = located.corner[a] + Tr::kStencilReachHi[a];
-    }
-    const bool inside = volume_.contains_box(lo, hi);
-    if (inside && !table_.empty()) {
-      // corner = d q + r, 0 <= r < d per axis: the block q's first sample, plus the table's
-      // offset for the residue class r and the cell.
-      const std::int64_t d = volume_.period();
-      std::int64_t q[3];
-      int residue = 0;
-      for (int a = 2; a >= 0; --a) {
-        const std::int64_t c = located.corner[a];
-        const std::int64_t r = ((c % d) + d) % d;
-        q[a] = (c - r) / d;
-        residue = residue * static_cast<int>(d) + static_cast<int>(r);
-      }
-      const std::int64_t base =
-          volume_.coset_count() *
-          (q[0] +
-           volume_.sizes()[0] * (q[1] + static_cast<std::int64_t>(volume_.sizes()[1]) * q[2]));
-      const T* samples = volume_.samples().data();
-      const std::int64_t* offsets =
-          &table_[(static_cast<std::size_t>(residue) * Tr::kCellCount + located.cell) * kStencil];
-      for (int k = 0; k < size; ++k) v[k] = samples[base + offsets[k]];
-    } else {
-      fetch_checked(located, world, inside, size, v);
-    }
-    T d[3 + 6] = {};
-    const T value = support::evaluate_located<Order, Tr>(located, v, d);
-    const double h = volume_.spacing();
-    if constexpr (Order >= support::kGradient)
-      if (gradient)
-        for (int i = 0; i < 3; ++i) (*gradient)[i] = static_cast<double>(d[i]) / h;
-    if constexpr (Order >= support::kHessian)
-      for (int i = 0; i < 6; ++i) (*hessian)[i] = static_cast<double>(d[3 + i]) / (h * h);
-    return value;
-  }
-
-  // The stencil through the volume's lattice lookup: unchecked when `inside`, else every sample
-  // checked (a sample outside is std::out_of_range naming the point).
-  void fetch_checked(const generated::support::Located<3, T>& located, const Vec3& world,
-                     bool inside, int size, T* v) const {
-    try {
-      for (int k = 0; k < size; ++k) {
-        LatticePoint j;
-        for (int a = 0; a < 3; ++a) j[a] = located.corner[a] + Tr::kOffsets[located.cell][k][a];
-        v[k] = inside ? volume_.value_unchecked(j) : volume_.value(j);
-      }
-    } catch (const std::out_of_range& e) {  // name the point the user asked for, then the sample
-      throw std::out_of_range(
-          fmt::format("world point ({}, {}, {}) needs a sample outside the volume: {}", world[0],
-                      world[1], world[2], e.what()));
-    }
-  }
-
-  // table_[(r, cell, k)]: for a corner of residue class r (corner mod d per axis, x fastest,
-  // r = rx + d (ry + d rz)) in block q (corner = d q + r), the stencil sample
-  // j = corner + kOffsets[cell][k] = d q + p, p = r + offset, lies in coset c of p at
-  // (i, j, k) = q + (p - off_c) / d (an exact division): storage index K (q_x + N0 (q_y + N1 q_z))
-  // plus c + K ((p - off_c)_x / d + N0 (...)), the table's entry. Left empty (every fetch through
-  // the lattice lookup) when the table would be large (a custom lattice of large period).
-  void tabulate_offsets() {
-    const CosetLattice& lattice = volume_.lattice();
+  void tabulate() {
+    const CosetLattice& lattice = volume_->lattice();
     const std::int64_t d = lattice.period(), k_cosets = lattice.coset_count();
-    const std::int64_t n0 = volume_.sizes()[0], n1 = volume_.sizes()[1];
+    const std::int64_t n0 = volume_->sizes()[0], n1 = volume_->sizes()[1];
     constexpr std::int64_t kMaxEntries = std::int64_t{1} << 22;
-    if (d * d * d * Tr::kCellCount * kStencil > kMaxEntries) return;
+    if (d * d * d * Tr::kCellCount * Tr::kStencilSize > kMaxEntries) return;
     std::vector<std::int64_t> table(static_cast<std::size_t>(d * d * d) * Tr::kCellCount *
-                                    kStencil);
+                                    Tr::kStencilSize);
     auto floor_div = [](std::int64_t a, std::int64_t b) {
       const std::int64_t q = a / b;
       return (a % b != 0 && a < 0) ? q - 1 : q;
@@ -193,7 +136,7 @@ class LatticeReconstructor {
       for (std::int64_t ry = 0; ry < d; ++ry)
         for (std::int64_t rx = 0; rx < d; ++rx)
           for (int cell = 0; cell < Tr::kCellCount; ++cell)
-            for (int k = 0; k < kStencil; ++k, ++at) {
+            for (int k = 0; k < Tr::kStencilSize; ++k, ++at) {
               if (k >= Tr::kOrbitStencilSize[Tr::kCells[cell].orbit]) continue;  // never read
               const auto& o = Tr::kOffsets[cell][k];
               const std::int64_t p[3] = {rx + o[0], ry + o[1], rz + o[2]};
@@ -209,8 +152,40 @@ class LatticeReconstructor {
     table_ = std::move(table);
   }
 
-  const LatticeVolume<T>& volume_;
+  const LatticeVolume<T>* volume_;
   std::vector<std::int64_t> table_;
+};
+
+template <class Tr, class T>
+class LatticeReconstructor {
+  static_assert(Tr::kDimension == 3, "volumes are 3-D");
+
+ public:
+  // Throws std::invalid_argument (one line) if the volume is not on the filter's lattice.
+  explicit LatticeReconstructor(const LatticeVolume<T>& volume) : spline_(checked(volume)) {}
+
+  // The spline at a world point; with `gradient` its gradient and with `hessian` its second
+  // derivatives {xx, xy, xz, yy, yz, zz}, in world units.
+  T value(const Vec3& world, Vec3* gradient = nullptr, Hessian* hessian = nullptr) const {
+    return spline_.at(world, gradient, hessian);
+  }
+
+  // value() for many points on up to batch_threads() threads (the registry's filters take the
+  // SIMD batch path through RegistryReconstructor, lattice_filters.h). `gradients` and
+  // `hessians` empty (not computed) or as long as `points`; hessians need gradients. Throws the
+  // first error, naming the point's index (from 1).
+  void evaluate(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients = {},
+                std::span<Hessian> hessians = {}) const {
+    spline_.batch(points, values, gradients, hessians);
+  }
+
+ private:
+  static LatticeStencils<Tr, T> checked(const LatticeVolume<T>& volume) {
+    require_filter_lattice<Tr>(volume.lattice());
+    return LatticeStencils<Tr, T>(volume);
+  }
+
+  EmittedSpline<Tr, LatticeStencils<Tr, T>> spline_;
 };
 
 }  // namespace boxgen::runtime

@@ -47,9 +47,6 @@ DiscreteFilter prefilter_taps(Filter f, PrefilterChoice q);
 // Samples beyond [-1,1]^3 (in coset cells) that reconstruction with f, after prefilter q, needs.
 int required_margin(Filter f, PrefilterChoice q);
 
-// Second derivatives in world units: the upper triangle {xx, xy, xz, yy, yz, zz}.
-using Hessian = std::array<double, 6>;
-
 // How one filter evaluates on a volume (reconstruction.cpp, one per entry of
 // generated/registry.hpp): the generated evaluator with fetches through precomputed linear offsets.
 template <class T>

@@ -1,8 +1,9 @@
-// The SIMD batch path of Reconstructor<T>::evaluate: the generated orbit polynomial of a filter
+// The SIMD batch path of the runtime (Reconstructor and RegistryReconstructor evaluate through
+// runtime/emitted_spline.h): the generated orbit polynomial of a filter
 // (generated/registry.hpp) evaluated for many points at once, one point per SIMD lane. The
 // polynomial code is the generated one, instantiated with a vector type instead of T (it uses
 // only constants, +, -, * and unary minus); the glue that locates points and gathers their
-// stencils stays scalar (reconstruction.cpp). Google Highway picks the instruction set at run
+// stencils stays scalar (emitted_spline.h). Google Highway picks the instruction set at run
 // time (dynamic dispatch: SSE4, AVX2 or AVX-512 where present), so one binary runs on any
 // x86-64 and no -march flag is needed.
 #pragma once

@@ -3,8 +3,8 @@
 //   the fetch floor: the same number of samples per point, fetched through precomputed linear
 //     offsets (the evaluator's own stencil shape) and summed, with the same per-point addressing;
 //   coherent access: the points in order along rays, as a ray caster issues them;
-//   tricubic: the emitted tricubic B-spline (generated/tricubic.hpp, the same evaluator glue and
-//     offset fetching as the runtime's path) on a Cartesian volume with as many samples;
+//   tricubic: the registry's tricubic B-spline through RegistryReconstructor<T>::evaluate (the
+//     same engine and SIMD path) on a Cartesian volume with as many samples;
 //   2 threads over 1 (BOXGEN_THREADS-style cap through set_batch_threads).
 // Every ratio is measured in this run; the fastest of `repeats` runs counts.
 #include "apps/boxrecon/cmd_bench.h"
@@ -23,8 +23,9 @@
 #include <vector>
 
 #include "generated/registry.hpp"
-#include "generated/tricubic.hpp"
 #include "runtime/batch_threads.h"
+#include "runtime/lattice_filters.h"
+#include "runtime/lattice_volume.h"
 #include "runtime/reconstruction.h"
 #include "runtime/simd_batch.h"
 
@@ -126,41 +127,23 @@ double filter_seconds(Filter f, const BccVolume<T>& volume, const std::vector<Ve
   return fastest_seconds(repeats, [&] { r.evaluate(points, values); });
 }
 
-// The tricubic B-spline on a Cartesian volume of m^3 samples (m^3 ~ 2 n^3), through the emitted
-// evaluator's locate / evaluate_located and linear offsets, as the runtime's BCC path does.
+// The tricubic B-spline on a Cartesian volume of m^3 samples (m^3 ~ 2 n^3), through the runtime's
+// batch API for any registry filter (RegistryReconstructor: the same engine, SIMD path and
+// offset fetching as Reconstructor's BCC path), at the BCC points scaled to its inner box.
 template <class T>
 double tricubic_seconds(int n, const std::vector<Vec3>& bcc_points, int repeats) {
-  namespace tc = boxgen::generated::tricubic;
-  using Tr = tc::Traits;
+  const RegistryFilter tricubic = RegistryFilter::parse("tricubic");
   const int m = static_cast<int>(std::lround(n * std::cbrt(2.0)));
-  std::vector<T> samples(static_cast<std::size_t>(m) * m * m);
+  LatticeVolume<T> volume(tricubic.lattice(), {m, m, m}, 1.0, {0, 0, 0});
   std::mt19937_64 rng(m);
-  for (auto& s : samples) s = static_cast<T>(static_cast<double>(rng() % 4096) / 4096.0);
-  std::vector<std::int64_t> offsets(static_cast<std::size_t>(Tr::kCellCount) * Tr::kStencilSize);
-  for (int c = 0; c < Tr::kCellCount; ++c)
-    for (int k = 0; k < Tr::kStencilSize; ++k) {
-      const auto& d = Tr::kOffsets[c][k];
-      offsets[c * Tr::kStencilSize + k] = d[0] + m * (d[1] + static_cast<std::int64_t>(m) * d[2]);
-    }
-  // The BCC points scaled to the Cartesian grid's inner box.
+  for (auto& s : volume.samples()) s = static_cast<T>(static_cast<double>(rng() % 4096) / 4096.0);
   const double scale = (m - 6.0) / (2.0 * n - 13.0);
-  std::vector<std::array<T, 3>> points(bcc_points.size());
+  std::vector<Vec3> points(bcc_points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
-    for (int a = 0; a < 3; ++a)
-      points[i][a] = static_cast<T>(3.0 + (bcc_points[i][a] - 6.0) * scale);
-  std::vector<T> out(points.size());
-  return fastest_seconds(repeats, [&] {
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const auto at = tc::locate<T>(points[i]);
-      const std::int64_t base =
-          at.corner[0] + m * (at.corner[1] + static_cast<std::int64_t>(m) * at.corner[2]);
-      const std::int64_t* off = &offsets[at.cell * Tr::kStencilSize];
-      T v[Tr::kStencilSize];
-      for (int k = 0; k < Tr::kStencilSize; ++k) v[k] = samples[base + off[k]];
-      out[i] =
-          tc::evaluate_located<boxgen::generated::support::kValue>(at, v, static_cast<T*>(nullptr));
-    }
-  });
+    for (int a = 0; a < 3; ++a) points[i][a] = 3.0 + (bcc_points[i][a] - 6.0) * scale;
+  std::vector<T> values(points.size());
+  const RegistryReconstructor<T> r(volume, tricubic);
+  return fastest_seconds(repeats, [&] { r.evaluate(points, values); });
 }
 
 struct Row {

@@ -1,6 +1,8 @@
-// The SIMD batch path of Reconstructor::evaluate (runtime/simd_batch.h) against the scalar path
-// (value(), value_gradient_hessian(), and evaluate() with BOXGEN_SIMD=0): for every filter of
-// generated/registry.hpp, float and double, the results agree bit for bit (the SIMD code runs the
+// The SIMD batch path of Reconstructor::evaluate and RegistryReconstructor::evaluate
+// (runtime/simd_batch.h, runtime/emitted_spline.h) against the scalar path (value() with and
+// without derivatives, and evaluate() with BOXGEN_SIMD=0): for every filter of
+// generated/registry.hpp on BCC volumes and on volumes of its own lattice, float and double, the
+// results agree bit for bit (the SIMD code runs the
 // same generated operations in the same order, without fused multiply-adds), at random points,
 // at points on and near knot planes, near the volume's faces (where some lanes of a chunk fall
 // back to the scalar path), and for counts that leave a partial chunk. Errors are the scalar
@@ -20,6 +22,8 @@
 
 #include "generated/registry.hpp"
 #include "runtime/batch_threads.h"
+#include "runtime/lattice_filters.h"
+#include "runtime/lattice_volume.h"
 #include "runtime/reconstruction.h"
 
 namespace boxgen::runtime {
@@ -76,9 +80,22 @@ std::vector<Vec3> candidate_points(int count, std::uint64_t seed) {
   return out;
 }
 
-// The points the scalar path evaluates (value() does not throw).
+// A volume of the filter's own lattice with as wide a box as random_volume: lattice coordinates
+// in [0, 2 kSize - 1] on every lattice (2 kSize / d samples per coset and axis).
 template <class T>
-std::vector<Vec3> evaluable(const Reconstructor<T>& r, const std::vector<Vec3>& candidates) {
+LatticeVolume<T> random_lattice_volume(RegistryFilter f, std::uint64_t seed) {
+  const CosetLattice lattice = f.lattice();
+  const int n = 2 * kSize / lattice.period();
+  LatticeVolume<T> volume(lattice, {n, n, n}, kSpacing, kOrigin);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (auto& s : volume.samples()) s = static_cast<T>(u(rng));
+  return volume;
+}
+
+// The points the scalar path evaluates (value() does not throw).
+template <class Spline>
+std::vector<Vec3> evaluable(const Spline& r, const std::vector<Vec3>& candidates) {
   std::vector<Vec3> out;
   for (const Vec3& p : candidates) {
     try {
@@ -114,12 +131,19 @@ TEST(SimdBatch, DispatchesToAVectorTargetAndCanBeSwitchedOff) {
   EXPECT_TRUE(simd::enabled());
 }
 
+// One point through the scalar path: value, and with gradient and Hessian when asked.
 template <class T>
-void expect_batch_equals_scalar(Filter f, std::uint64_t seed) {
-  SCOPED_TRACE(filter_name(f));
+T scalar_value(const Reconstructor<T>& r, const Vec3& p, Vec3* g, Hessian* h) {
+  return h ? r.value_gradient_hessian(p, *g, *h) : r.value(p, g);
+}
+template <class T>
+T scalar_value(const RegistryReconstructor<T>& r, const Vec3& p, Vec3* g, Hessian* h) {
+  return r.value(p, g, h);
+}
+
+template <class T, class Spline>
+void expect_batch_equals_scalar(const Spline& r, std::uint64_t seed) {
   SCOPED_TRACE(sizeof(T) == 4 ? "float" : "double");
-  const BccVolume<T> volume = random_volume<T>(seed);
-  const Reconstructor<T> r(volume, f);
   const std::vector<Vec3> all = evaluable(r, candidate_points(1500, seed + 1));
   ASSERT_GT(all.size(), 600u);
   // Counts that fill chunks exactly, leave partial chunks, or fit in one.
@@ -141,14 +165,21 @@ void expect_batch_equals_scalar(Filter f, std::uint64_t seed) {
     for (std::size_t i = 0; i < count; ++i) {
       Vec3 g, gh;
       Hessian h;
-      EXPECT_EQ(values_only[i], r.value(points[i])) << i;
-      EXPECT_EQ(values[i], r.value(points[i], &g)) << i;
+      EXPECT_EQ(values_only[i], scalar_value(r, points[i], nullptr, nullptr)) << i;
+      EXPECT_EQ(values[i], scalar_value(r, points[i], &g, nullptr)) << i;
       EXPECT_EQ(gradients[i], g) << i;
-      EXPECT_EQ(values[i], r.value_gradient_hessian(points[i], gh, h)) << i;
+      EXPECT_EQ(values[i], scalar_value(r, points[i], &gh, &h)) << i;
       EXPECT_EQ(gradients_h[i], gh) << i;
       EXPECT_EQ(hessians[i], h) << i;
     }
   }
+}
+
+template <class T>
+void expect_batch_equals_scalar(Filter f, std::uint64_t seed) {
+  SCOPED_TRACE(filter_name(f));
+  const BccVolume<T> volume = random_volume<T>(seed);
+  expect_batch_equals_scalar<T>(Reconstructor<T>(volume, f), seed);
 }
 
 TEST(SimdBatch, EqualsTheScalarPathForEveryBccRegistryFilterInFloat) {
@@ -169,6 +200,26 @@ TEST(SimdBatch, EqualsTheScalarPathForEveryBccRegistryFilterInDouble) {
       ++tested;
     }
   EXPECT_EQ(tested, 3);  // m7, m8, m12: the filters Reconstructor (BCC) takes
+}
+
+// Every registry filter, BCC ones included, on a volume of its own lattice through
+// RegistryReconstructor (the SIMD path of the lattice runtime).
+template <class T>
+void expect_every_lattice_filter_equals_scalar(std::uint64_t seed) {
+  for (int i = 0; i < RegistryFilter::count(); ++i) {
+    const RegistryFilter f = RegistryFilter::at(i);
+    SCOPED_TRACE(f.name());
+    const LatticeVolume<T> volume = random_lattice_volume<T>(f, seed + i);
+    expect_batch_equals_scalar<T>(RegistryReconstructor<T>(volume, f), seed + i);
+  }
+}
+
+TEST(SimdBatch, EqualsTheScalarPathForEveryRegistryFilterOnItsLatticeInFloat) {
+  expect_every_lattice_filter_equals_scalar<float>(40);
+}
+
+TEST(SimdBatch, EqualsTheScalarPathForEveryRegistryFilterOnItsLatticeInDouble) {
+  expect_every_lattice_filter_equals_scalar<double>(60);
 }
 
 // Two threads split the chunks differently; the results do not change.

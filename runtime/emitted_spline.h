@@ -1,0 +1,337 @@
+// The one evaluation engine of the runtime (docs/design.md §13): an emitted evaluator (its Traits,
+// generated/evaluator_support.hpp) on a volume, for one point (at) and for many (batch: OpenMP
+// threads capped by batch_threads(), and the SIMD chunks of runtime/simd_batch.h for the filters
+// of generated/registry.hpp). Reconstructor (BCC volumes, reconstruction.h) and
+// LatticeReconstructor (any lattice, lattice_reconstruction.h; RegistryReconstructor of
+// lattice_filters.h for the registry's filters) are this class with their own Stencils, the part
+// that says where a point's stencil lies in the volume's storage:
+//
+//   using Sample = T; using Index = std::int32_t or std::int64_t;
+//   const Volume& volume() const;  // to_lattice, spacing, origin, contains_box
+//   double extent(int a) const;    // lattice coordinates beyond extent + kFar are far outside
+//   double last(int a) const;      // lattice coordinates of stored samples lie in [0, last]
+//   bool has_offsets() const;      // false: every fetch goes through sample()
+//   const T* samples() const;
+//   Fetch<Index> fetch(const std::int64_t* corner, int cell) const;  // the stencil of a cell
+//   T sample(const LatticePoint& j, bool inside) const;  // checked unless inside
+//
+// Border policy: a non-finite coordinate is std::invalid_argument; a point whose stencil leaves
+// the volume is std::out_of_range (one line); the volume never invents data. A batch throws the
+// first failing point's error, naming its index from 1.
+#pragma once
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "generated/evaluator_support.hpp"
+#include "runtime/batch_threads.h"
+#include "runtime/bcc_volume.h"
+#include "runtime/simd_batch.h"
+
+namespace boxgen::runtime {
+
+// A point's stencil in storage: sample k is samples()[base + offsets[k]].
+template <class Offset>
+struct Fetch {
+  std::int64_t base;
+  const Offset* offsets;
+};
+
+template <class Tr, class Stencils>
+class EmittedSpline {
+  using T = typename Stencils::Sample;
+  using Offset = typename Stencils::Index;
+  static constexpr int kStencil = Tr::kStencilSize;
+  static_assert(Tr::kDimension == 3, "volumes are 3-D");
+
+ public:
+  // registry_index: the evaluator's position in generated/registry.hpp, whose filters have SIMD
+  // kernels (simd_batch.cpp); -1 for any other emitted evaluator (a user's own header, which
+  // this header must not clash with: it includes no registry), which takes the scalar path.
+  explicit EmittedSpline(Stencils stencils, int registry_index = -1)
+      : stencils_(std::move(stencils)), registry_index_(registry_index) {}
+
+  // One point; gradient and hessian may be null (not computed).
+  T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const {
+    if (hessian) return point<generated::support::kHessian>(world, gradient, hessian);
+    if (gradient) return point<generated::support::kGradient>(world, gradient, nullptr);
+    return point<generated::support::kValue>(world, nullptr, nullptr);
+  }
+
+  // Many points; gradients and hessians empty (not computed) or as long as points (hessians need
+  // gradients), else std::invalid_argument.
+  void batch(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
+             std::span<Hessian> hessians) const {
+    namespace support = generated::support;
+    if (values.size() != points.size() ||
+        (!gradients.empty() && gradients.size() != points.size()) ||
+        (!hessians.empty() &&
+         (hessians.size() != points.size() || gradients.size() != points.size())))
+      throw std::invalid_argument("evaluate: output sizes differ from the number of points");
+    if (!hessians.empty()) return loop<support::kHessian>(points, values, gradients, hessians);
+    if (!gradients.empty()) return loop<support::kGradient>(points, values, gradients, hessians);
+    loop<support::kValue>(points, values, gradients, hessians);
+  }
+
+ private:
+  // Far outside the volume, stop before the evaluator converts floor(x) to an integer (which
+  // would overflow for huge coordinates); the stencil's reach is far smaller than kFar.
+  static constexpr double kFar = 64;
+
+  template <int Order>
+  T point(const Vec3& world, Vec3* gradient, Hessian* hessian) const {
+    namespace support = generated::support;
+    for (double c : world)
+      if (!std::isfinite(c)) throw std::invalid_argument("point has a non-finite coordinate");
+    const Vec3 lattice = stencils_.volume().to_lattice(world);
+    for (int a = 0; a < 3; ++a)
+      if (!(lattice[a] > -kFar && lattice[a] < stencils_.extent(a) + kFar))
+        throw std::out_of_range(fmt::format("world point ({}, {}, {}) is outside the volume",
+                                            world[0], world[1], world[2]));
+    const std::array<T, 3> x{static_cast<T>(lattice[0]), static_cast<T>(lattice[1]),
+                             static_cast<T>(lattice[2])};
+    const support::Located<3, T> located = support::locate<Tr>(x);
+    T v[kStencil];
+    const int size = Tr::kOrbitStencilSize[Tr::kCells[located.cell].orbit];
+    LatticePoint lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = located.corner[a] + Tr::kStencilReachLo[a];
+      hi[a] = located.corner[a] + Tr::kStencilReachHi[a];
+    }
+    const bool inside = stencils_.volume().contains_box(lo, hi);
+    if (inside && stencils_.has_offsets()) {
+      const std::int64_t corner[3] = {located.corner[0], located.corner[1], located.corner[2]};
+      const Fetch<Offset> f = stencils_.fetch(corner, located.cell);
+      const T* samples = stencils_.samples() + f.base;
+      for (int k = 0; k < size; ++k) v[k] = samples[f.offsets[k]];
+    } else {
+      fetch_checked(located, world, inside, size, v);
+    }
+    T d[3 + 6] = {};
+    const T value = support::evaluate_located<Order, Tr>(located, v, d);
+    const double h = stencils_.volume().spacing();
+    if constexpr (Order >= support::kGradient)
+      if (gradient)
+        for (int i = 0; i < 3; ++i) (*gradient)[i] = static_cast<double>(d[i]) / h;
+    if constexpr (Order >= support::kHessian)
+      for (int i = 0; i < 6; ++i) (*hessian)[i] = static_cast<double>(d[3 + i]) / (h * h);
+    return value;
+  }
+
+  // The stencil sample by sample: unchecked when `inside`, else each checked (a sample outside
+  // is std::out_of_range naming the point).
+  void fetch_checked(const generated::support::Located<3, T>& located, const Vec3& world,
+                     bool inside, int size, T* v) const {
+    try {
+      for (int k = 0; k < size; ++k) {
+        LatticePoint j;
+        for (int a = 0; a < 3; ++a) j[a] = located.corner[a] + Tr::kOffsets[located.cell][k][a];
+        v[k] = stencils_.sample(j, inside);
+      }
+    } catch (const std::out_of_range& e) {  // name the point the user asked for, then the sample
+      throw std::out_of_range(
+          fmt::format("world point ({}, {}, {}) needs a sample outside the volume: {}", world[0],
+                      world[1], world[2], e.what()));
+    }
+  }
+
+  // The first failing point of a batch and its error (the batch throws it at the end).
+  struct FirstError {
+    std::ptrdiff_t index;
+    std::string what;
+  };
+
+  // One point on the scalar path, its error recorded.
+  template <int Order>
+  void scalar_point(std::ptrdiff_t i, std::span<const Vec3> points, std::span<T> values,
+                    std::span<Vec3> gradients, std::span<Hessian> hessians,
+                    FirstError& error) const {
+    try {
+      values[i] = point<Order>(points[i], gradients.empty() ? nullptr : &gradients[i],
+                               hessians.empty() ? nullptr : &hessians[i]);
+    } catch (const std::exception& e) {
+#pragma omp critical(boxgen_batch_error)
+      if (i < error.index) {
+        error.index = i;
+        error.what = e.what();
+      }
+    }
+  }
+
+  // The SIMD path serves registry filters on volumes whose lattice coordinates it can carry as
+  // exact integers in T (below 2^22) and whose stencils it can fetch through offsets.
+  bool simd_serves() const {
+    if (registry_index_ < 0 || !stencils_.has_offsets() || !simd::enabled()) return false;
+    for (int a = 0; a < 3; ++a)
+      if (!(stencils_.extent(a) + kFar < double(1 << 22))) return false;
+    return true;
+  }
+
+  template <int Order>
+  void loop(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
+            std::span<Hessian> hessians) const {
+    const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(points.size());
+    const int threads = batch_threads();
+    FirstError error{count, {}};
+    if (simd_serves()) {
+      // Blocks of consecutive points, each packed into SIMD chunks (simd_block).
+      constexpr std::ptrdiff_t kBlock = 1024;
+      const std::ptrdiff_t blocks = (count + kBlock - 1) / kBlock;
+#pragma omp parallel for schedule(static) num_threads(threads) if (count > 256)
+      for (std::ptrdiff_t b = 0; b < blocks; ++b)
+        simd_block<Order>(b * kBlock, std::min(count, (b + 1) * kBlock), points, values, gradients,
+                          hessians, error);
+    } else {
+#pragma omp parallel for schedule(static) num_threads(threads) if (count > 256)
+      for (std::ptrdiff_t i = 0; i < count; ++i)
+        scalar_point<Order>(i, points, values, gradients, hessians, error);
+    }
+    if (error.index < count)
+      throw std::out_of_range(fmt::format("point {}: {}", error.index + 1, error.what));
+  }
+
+  // Points [first, last) in chunks of simd::kChunk: their world coordinates converted and located
+  // in one SIMD call, their stencils gathered into lanes, the chunk's polynomial evaluated in one
+  // SIMD call (runtime/simd_batch.h), the derivatives mapped back per lane. A point takes the
+  // scalar path, point(), with its errors, when it is not finite or far outside, when its stencil
+  // box is not inside the volume, when rounding put it on a knot plane (no cell in the table), or
+  // when its orbit is not the chunk's.
+  template <int Order>
+  void simd_block(std::ptrdiff_t first, std::ptrdiff_t last, std::span<const Vec3> points,
+                  std::span<T> values, std::span<Vec3> gradients, std::span<Hessian> hessians,
+                  FirstError& error) const {
+    namespace support = generated::support;
+    constexpr std::ptrdiff_t kLanes = simd::kChunk;
+    constexpr int kLocated = simd::locate_rows(3);
+    constexpr int kOut =
+        1 + (Order == support::kValue ? 0 : 3) + (Order == support::kHessian ? 6 : 0);
+    alignas(64) double world[3 * kLanes];
+    alignas(64) T located[kLocated * kLanes];
+    alignas(64) T v[kStencil * kLanes];
+    alignas(64) T out[kOut * kLanes];
+    std::ptrdiff_t index[kLanes];
+    const simd::Frame frame = simd_frame();
+
+    for (std::ptrdiff_t next = first; next < last;) {
+      int lanes = 0;
+      for (; next < last && lanes < kLanes; ++next, ++lanes) {
+        for (int a = 0; a < 3; ++a) world[a * kLanes + lanes] = points[next][a];
+        index[lanes] = next;
+      }
+      for (int lane = lanes; lane < kLanes; ++lane)  // a partial chunk: repeat lane 0
+        for (int a = 0; a < 3; ++a) world[a * kLanes + lane] = world[a * kLanes];
+      simd::locate_chunk(registry_index_, world, frame, located);
+
+      // Gather the stencils of the lanes that stay; the others take the scalar path.
+      const T* const cells = located + 3 * kLanes;
+      const T* const reference = located + 4 * kLanes;
+      const T* const orbits = located + 7 * kLanes;
+      const T* const inside = located + 8 * kLanes;
+      int orbit = -1, size = 0, first_lane = -1;
+      bool stays[kLanes] = {};
+      const T* bases[kLanes];
+      const Offset* tables[kLanes];
+      for (int lane = 0; lane < lanes; ++lane) {
+        if (inside[lane] == T(0) || (orbit >= 0 && static_cast<int>(orbits[lane]) != orbit)) {
+          scalar_point<Order>(index[lane], points, values, gradients, hessians, error);
+          continue;
+        }
+        if (orbit < 0) {
+          orbit = static_cast<int>(orbits[lane]);
+          size = Tr::kOrbitStencilSize[orbit];
+          first_lane = lane;
+        }
+        stays[lane] = true;
+        const std::int64_t corner[3] = {static_cast<std::int64_t>(located[lane]),
+                                        static_cast<std::int64_t>(located[kLanes + lane]),
+                                        static_cast<std::int64_t>(located[2 * kLanes + lane])};
+        const Fetch<Offset> f = stencils_.fetch(corner, static_cast<int>(cells[lane]));
+        bases[lane] = stencils_.samples() + f.base;
+        tables[lane] = f.offsets;
+      }
+      if (orbit < 0) continue;
+      for (int lane = 0; lane < kLanes; ++lane)  // lanes that left or were never filled
+        if (lane >= lanes || !stays[lane]) {
+          bases[lane] = bases[first_lane];
+          tables[lane] = tables[first_lane];
+        }
+      gather(size, bases, tables, v);
+      simd::orbit_chunk(registry_index_, orbit, Order, v, reference, out, simd::kChunk);
+      store<Order>(lanes, stays, index, cells, out, values, gradients, hessians);
+    }
+  }
+
+  // The world-to-lattice frame and the bounds of locate_chunk.
+  simd::Frame simd_frame() const {
+    simd::Frame frame{};
+    frame.h = stencils_.volume().spacing();
+    frame.lower = -kFar;
+    for (int a = 0; a < 3; ++a) {
+      frame.origin[a] = stencils_.volume().origin()[a];
+      frame.upper[a] = stencils_.extent(a) + kFar;
+      frame.limit[a] = stencils_.last(a);
+    }
+    return frame;
+  }
+
+  // The first `size` stencil values of every lane into v[k * kChunk + lane].
+  static void gather(int size, const T* const* bases, const Offset* const* tables, T* v) {
+    constexpr int kLanes = simd::kChunk;
+    if constexpr (kStencil < 64) {
+      // Sample k of every lane, then k + 1: the lanes' cache misses overlap (M7, M8: 10% less
+      // time than lane by lane, bench_instructions ... time).
+      for (int k = 0; k < size; ++k) {
+        T* const row = v + k * kLanes;
+#pragma GCC unroll 16
+        for (int lane = 0; lane < kLanes; ++lane) row[lane] = bases[lane][tables[lane][k]];
+      }
+    } else {
+      // Lane by lane: fewer instructions per sample, which wins for large stencils (tricubic: 64,
+      // M12: 128).
+      for (int lane = 0; lane < kLanes; ++lane) {
+        const T* const base = bases[lane];
+        const Offset* const table = tables[lane];
+#pragma GCC unroll 16
+        for (int k = 0; k < size; ++k) v[k * kLanes + lane] = base[table[k]];
+      }
+    }
+  }
+
+  // The chunk's results of the lanes that stayed, derivatives mapped back from the reference
+  // frame of each lane's cell and scaled to world units.
+  template <int Order>
+  void store(int lanes, const bool* stays, const std::ptrdiff_t* index, const T* cells,
+             const T* out, std::span<T> values, std::span<Vec3> gradients,
+             std::span<Hessian> hessians) const {
+    namespace support = generated::support;
+    constexpr int kLanes = simd::kChunk;
+    const double h = stencils_.volume().spacing();
+    for (int lane = 0; lane < lanes; ++lane) {
+      if (!stays[lane]) continue;
+      const std::ptrdiff_t p = index[lane];
+      values[p] = out[lane];
+      if constexpr (Order >= support::kGradient) {
+        T d[3 + 6];
+        support::from_reference_frame<Order, Tr>(static_cast<int>(cells[lane]), out + kLanes + lane,
+                                                 kLanes, d);
+        for (int a = 0; a < 3; ++a) gradients[p][a] = static_cast<double>(d[a]) / h;
+        if constexpr (Order >= support::kHessian)
+          for (int a = 0; a < 6; ++a) hessians[p][a] = static_cast<double>(d[3 + a]) / (h * h);
+      }
+    }
+  }
+
+  Stencils stencils_;
+  int registry_index_;  // the filter's entry in generated/registry.hpp, for the SIMD kernels
+};
+
+}  // namespace boxgen::runtime
