@@ -334,4 +334,35 @@ class EmittedSpline {
   int registry_index_;  // the filter's entry in generated/registry.hpp, for the SIMD kernels
 };
 
+// An EmittedSpline behind a virtual interface, for classes that choose the filter at run time
+// (Reconstructor, RegistryReconstructor): one virtual call per point or per batch.
+template <class T>
+class EvaluationPath {
+ public:
+  virtual ~EvaluationPath() = default;
+  // One point; gradient and hessian may be null (not computed).
+  virtual T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const = 0;
+  virtual void batch(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
+                     std::span<Hessian> hessians) const = 0;
+};
+
+template <class Tr, class Stencils>
+class EmittedSplinePath final : public EvaluationPath<typename Stencils::Sample> {
+  using T = typename Stencils::Sample;
+
+ public:
+  EmittedSplinePath(Stencils stencils, int registry_index)
+      : spline_(std::move(stencils), registry_index) {}
+  T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const override {
+    return spline_.at(world, gradient, hessian);
+  }
+  void batch(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
+             std::span<Hessian> hessians) const override {
+    spline_.batch(points, values, gradients, hessians);
+  }
+
+ private:
+  EmittedSpline<Tr, Stencils> spline_;
+};
+
 }  // namespace boxgen::runtime

@@ -162,42 +162,15 @@ Box default_box(const LatticeVolume<T>& volume, RegistryFilter f) {
 // RegistryReconstructor
 
 template <class T>
-class RegistryReconstructor<T>::Path {
- public:
-  virtual ~Path() = default;
-  virtual T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const = 0;
-  virtual void batch(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
-                     std::span<Hessian> hessians) const = 0;
-};
-
-namespace {
-
-template <class Tr, class T>
-class FilterPath final : public RegistryReconstructor<T>::Path {
- public:
-  // The registry's filters have SIMD kernels: the batch path uses them (emitted_spline.h).
-  FilterPath(const LatticeVolume<T>& volume, int registry_index)
-      : spline_(LatticeStencils<Tr, T>(volume), registry_index) {}
-  T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const override {
-    return spline_.at(world, gradient, hessian);
-  }
-  void batch(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
-             std::span<Hessian> hessians) const override {
-    spline_.batch(points, values, gradients, hessians);
-  }
-
- private:
-  EmittedSpline<Tr, LatticeStencils<Tr, T>> spline_;
-};
-
-}  // namespace
-
-template <class T>
 RegistryReconstructor<T>::RegistryReconstructor(const LatticeVolume<T>& volume, RegistryFilter f) {
   f.check_lattice(volume.lattice());
-  path_ = generated::with_filter(f.index(), [&](auto entry) -> std::shared_ptr<const Path> {
-    return std::make_shared<FilterPath<typename decltype(entry)::Traits, T>>(volume, f.index());
-  });
+  // The registry's filters have SIMD kernels: the batch path uses them (emitted_spline.h).
+  path_ = generated::with_filter(
+      f.index(), [&](auto entry) -> std::shared_ptr<const EvaluationPath<T>> {
+        using Tr = typename decltype(entry)::Traits;
+        return std::make_shared<EmittedSplinePath<Tr, LatticeStencils<Tr, T>>>(
+            LatticeStencils<Tr, T>(volume), f.index());
+      });
 }
 
 template <class T>

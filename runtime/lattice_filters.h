@@ -90,10 +90,8 @@ class RegistryReconstructor {
   void evaluate(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients = {},
                 std::span<Hessian> hessians = {}) const;
 
-  class Path;  // the LatticeReconstructor of one filter (lattice_filters.cpp)
-
  private:
-  std::shared_ptr<const Path> path_;
+  std::shared_ptr<const EvaluationPath<T>> path_;  // the chosen filter (emitted_spline.h)
 };
 
 // resample() of resample.h for any registry filter on its lattice: the spline's values at the

@@ -85,16 +85,6 @@ int required_margin(Filter f, PrefilterChoice q) {
   return reconstruction + (q == PrefilterChoice::None ? 0 : prefilter_margin(prefilter_taps(f, q)));
 }
 
-template <class T>
-class EvaluationPath {
- public:
-  virtual ~EvaluationPath() = default;
-  // One point; gradient and hessian may be null (not computed).
-  virtual T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const = 0;
-  virtual void batch(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
-                     std::span<Hessian> hessians) const = 0;
-};
-
 namespace {
 
 // Where the stencil of a point lies in a BccVolume (emitted_spline.h says what a Stencils
@@ -144,24 +134,6 @@ class BccStencils {
   std::vector<O> offsets_;  // [corner parity][cell][k]
 };
 
-// The generated evaluator of one filter on one BCC volume.
-template <class Tr, class T, class Offset>
-class FilterPath final : public EvaluationPath<T> {
- public:
-  FilterPath(const BccVolume<T>& volume, int registry_index)
-      : spline_(BccStencils<Tr, T, Offset>(volume), registry_index) {}
-  T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const override {
-    return spline_.at(world, gradient, hessian);
-  }
-  void batch(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
-             std::span<Hessian> hessians) const override {
-    spline_.batch(points, values, gradients, hessians);
-  }
-
- private:
-  EmittedSpline<Tr, BccStencils<Tr, T, Offset>> spline_;
-};
-
 }  // namespace
 
 template <class T>
@@ -181,8 +153,10 @@ Reconstructor<T>::Reconstructor(const BccVolume<T>& volume, Filter filter)
                 reach = std::max({reach, -Tr::kStencilReachLo[a], Tr::kStencilReachHi[a]});
               const double n0 = volume.sizes()[0], n1 = volume.sizes()[1];
               if ((reach + 1.0) * (1.0 + n0 + n0 * n1) < 2147483647.0)
-                return std::make_shared<FilterPath<Tr, T, std::int32_t>>(volume, index);
-              return std::make_shared<FilterPath<Tr, T, std::int64_t>>(volume, index);
+                return std::make_shared<EmittedSplinePath<Tr, BccStencils<Tr, T, std::int32_t>>>(
+                    BccStencils<Tr, T, std::int32_t>(volume), index);
+              return std::make_shared<EmittedSplinePath<Tr, BccStencils<Tr, T, std::int64_t>>>(
+                  BccStencils<Tr, T, std::int64_t>(volume), index);
             }
           })) {}
 

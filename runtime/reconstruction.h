@@ -47,8 +47,8 @@ DiscreteFilter prefilter_taps(Filter f, PrefilterChoice q);
 // Samples beyond [-1,1]^3 (in coset cells) that reconstruction with f, after prefilter q, needs.
 int required_margin(Filter f, PrefilterChoice q);
 
-// How one filter evaluates on a volume (reconstruction.cpp, one per entry of
-// generated/registry.hpp): the generated evaluator with fetches through precomputed linear offsets.
+// How the chosen filter evaluates on a volume: runtime/emitted_spline.h (the runtime's one engine,
+// with the BCC volume's offset tables of reconstruction.cpp).
 template <class T>
 class EvaluationPath;
 
