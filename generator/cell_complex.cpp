@@ -206,17 +206,17 @@ int KnotComplex::find(const CellKey& key) const {
 }
 
 ShiftLocator::ShiftLocator(const KnotComplex& knots, const RatVec& p) : knots_(&knots), p_(p) {
-  Integer d = 1;
-  for (const auto& x : p) d = cln::lcm(d, cln::denominator(x));
-  const Integer limit = cln::expt_pos(Integer(2), 40);
-  small_ = d < cln::expt_pos(Integer(2), 20);
+  // Per normal, t = nu.p once in rationals; then nu.(p - j) = t - nu.j, and the levels L below it
+  // are those with L + nu.j <= floor(t) (t not an integer) or L + nu.j < t (t an integer).
+  const Integer limit = cln::expt_pos(Integer(2), 60);
+  small_ = true;
   for (const auto& nu : knots.planes().normals) {
-    Integer v = 0;
-    for (size_t k = 0; k < p.size(); ++k) v = v + nu[k] * cln::numerator(p[k] * d);
-    small_ = small_ && cln::abs(v) < limit;
-    nu_p_.push_back(small_ ? cln::cl_I_to_long(v) : 0);
+    const Rational t = dot(nu, p);
+    const Integer f = cln::floor1(t);
+    small_ = small_ && cln::abs(f) < limit;
+    floor_nu_p_.push_back(small_ ? cln::cl_I_to_Q(f) : 0);
+    nu_p_integral_.push_back(is_integer(t));
   }
-  if (small_) d_ = cln::cl_I_to_long(d);
 }
 
 int ShiftLocator::cell_at(const IntVec& j) const {
@@ -229,10 +229,10 @@ int ShiftLocator::cell_at(const IntVec& j) const {
   CellKey& key = key_;
   key.resize(planes.normals.size());
   for (size_t i = 0; i < planes.normals.size(); ++i) {
-    const std::int64_t v = nu_p_[i] - d_ * dot(planes.normals[i], j);  // d nu.(p - j)
+    const std::int64_t f = floor_nu_p_[i] - dot(planes.normals[i], j);  // floor(nu.(p - j))
     const auto& levels = planes.levels[i];
-    const auto below = std::partition_point(levels.begin(), levels.end(),
-                                            [&](std::int64_t l) { return d_ * l < v; });
+    const auto below = nu_p_integral_[i] ? std::lower_bound(levels.begin(), levels.end(), f)
+                                         : std::upper_bound(levels.begin(), levels.end(), f);
     if (below == levels.begin() || below == levels.end()) return -1;  // outside the support
     key[i] = static_cast<std::int32_t>(below - levels.begin());
   }
