@@ -6,9 +6,11 @@
 #include <numeric>
 #include <optional>
 #include <set>
+#include <unordered_map>
 
 #include "generator/error.h"
 #include "generator/piece_checks.h"
+#include "generator/poly_sum.h"
 
 namespace boxgen {
 
@@ -355,6 +357,7 @@ void reference_bases(SplineStructure& s, const PiecewiseForm& form, const Fundam
         it = moved.emplace(std::make_pair(cell, j), centred[cell]->translated(to_ratvec(j))).first;
       }
       ref.stencil.push_back(j);
+      ref.stencil_knot_cells.push_back(cell);
       ref.basis.push_back(it->second);
     }
   }
@@ -383,25 +386,70 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
   return s;
 }
 
-void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& s, bool full) {
-  if (!full) {
-    const Poly one = Poly::constant(form.dimension(), 1);
-    for (const auto& ref : s.references) {
-      Poly sum(form.dimension(), 0);
-      for (const auto& b : ref.basis) sum += b;
-      if (sum != one) fail_internal("partition of unity fails on a reference region");
+namespace {
+
+// The distinct stencil terms (knot cell, j) of many sums, each numbered once.
+class StencilTerms {
+ public:
+  // The index of the term (cell, j); `make` gives its polynomial the first time it is seen.
+  template <typename Make>
+  int index(int cell, const IntVec& j, Make make) {
+    auto [it, fresh] = index_.emplace(std::make_pair(cell, j), static_cast<int>(polys_.size()));
+    if (fresh) polys_.push_back(make());
+    return it->second;
+  }
+  const std::vector<const Poly*>& polys() const { return polys_; }
+
+ private:
+  struct Hash {
+    std::size_t operator()(const std::pair<int, IntVec>& key) const noexcept {
+      std::uint64_t h = 1469598103934665603ull ^ static_cast<std::uint32_t>(key.first);
+      for (auto v : key.second) h = (h ^ static_cast<std::uint64_t>(v)) * 1099511628211ull;
+      return static_cast<std::size_t>(h);
     }
+  };
+  std::unordered_map<std::pair<int, IntVec>, int, Hash> index_;
+  std::vector<const Poly*> polys_;
+};
+
+}  // namespace
+
+void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& s, bool full) {
+  const int n = form.dimension();
+  StencilTerms terms;
+  std::vector<std::vector<int>> sums;
+  if (!full) {
+    for (const auto& ref : s.references) {
+      std::vector<int>& sum = sums.emplace_back();
+      for (size_t k = 0; k < ref.basis.size(); ++k) {
+        sum.push_back(
+            terms.index(ref.stencil_knot_cells[k], ref.stencil[k], [&] { return &ref.basis[k]; }));
+        // A term met before is the same M(x - j) on the same knot cell: it must be the same
+        // polynomial, so every basis polynomial takes part in the check.
+        if (*terms.polys()[static_cast<size_t>(sum.back())] != ref.basis[k])
+          fail_internal("a basis polynomial differs between reference regions");
+      }
+    }
+    const CommonDenominatorTerms exact(n, terms.polys());
+    for (const auto& sum : sums)
+      if (!exact.sum_is_constant(sum, 1))
+        fail_internal("partition of unity fails on a reference region");
     return;
   }
-  const Poly expected =
-      Poly::constant(form.dimension(), Rational(1) / Rational(form.spec.lattice.det_abs()));
+  std::deque<Poly> translated;  // stable addresses
   for (const auto& fc : s.cells) {
-    Poly sum(form.dimension(), 0);
+    std::vector<int>& sum = sums.emplace_back();
     for (size_t k = 0; k < fc.stencil.size(); ++k)
-      sum += form.polys[fc.stencil_knot_cells[k]].translated(to_ratvec(fc.stencil[k]));
-    if (sum != expected)
-      fail_internal("partition of unity fails on a cell of the fundamental region");
+      sum.push_back(terms.index(fc.stencil_knot_cells[k], fc.stencil[k], [&] {
+        return &translated.emplace_back(
+            form.polys[fc.stencil_knot_cells[k]].translated(to_ratvec(fc.stencil[k])));
+      }));
   }
+  const CommonDenominatorTerms exact(n, terms.polys());
+  const Rational expected = Rational(1) / Rational(form.spec.lattice.det_abs());
+  for (const auto& sum : sums)
+    if (!exact.sum_is_constant(sum, expected))
+      fail_internal("partition of unity fails on a cell of the fundamental region");
 }
 
 }  // namespace boxgen
