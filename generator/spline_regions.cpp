@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <deque>
-#include <map>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -21,6 +20,16 @@ RatVec SpaceGroupElement::apply(const RatVec& x) const {
 }
 
 namespace {
+
+// A knot cell and a lattice point j: a term M(x - j) taken on that knot cell.
+using CellShift = std::pair<int, IntVec>;
+struct CellShiftHash {
+  std::size_t operator()(const CellShift& key) const noexcept {
+    std::uint64_t h = 1469598103934665603ull ^ static_cast<std::uint32_t>(key.first);
+    for (auto v : key.second) h = (h ^ static_cast<std::uint64_t>(v)) * 1099511628211ull;
+    return static_cast<std::size_t>(h);
+  }
+};
 
 CellKey shifted_key(const CellKey& k, const std::vector<IntVec>& normals, const IntVec& j) {
   CellKey out = k;
@@ -339,7 +348,7 @@ void reference_bases(SplineStructure& s, const PiecewiseForm& form, const Fundam
   for (int k = 0; k < n; ++k) minus_c[k] = -s.centre[k];
   std::vector<std::optional<Poly>> centred(form.polys.size());
   // Neighbouring regions share most (knot piece, stencil point) pairs: translate each pair once.
-  std::map<std::pair<int, IntVec>, Poly> moved;
+  std::unordered_map<CellShift, Poly, CellShiftHash> moved;
   for (auto& ref : s.references) {
     RatVec u(n);
     IntVec corner(n);
@@ -373,7 +382,7 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
   Fundamental fund(form);
   for (auto& fc : fund.cells()) fund.set_stencil(fc);
   s.regions = merge_regions(fund, s.centre, n);
-  s.cells = fund.cells();
+  s.cells = std::move(fund.cells());
   s.stencil_min = s.stencil_max = static_cast<int>(s.cells.front().stencil.size());
   for (const auto& fc : s.cells) {
     s.stencil_min = std::min(s.stencil_min, static_cast<int>(fc.stencil.size()));
@@ -401,14 +410,7 @@ class StencilTerms {
   const std::vector<const Poly*>& polys() const { return polys_; }
 
  private:
-  struct Hash {
-    std::size_t operator()(const std::pair<int, IntVec>& key) const noexcept {
-      std::uint64_t h = 1469598103934665603ull ^ static_cast<std::uint32_t>(key.first);
-      for (auto v : key.second) h = (h ^ static_cast<std::uint64_t>(v)) * 1099511628211ull;
-      return static_cast<std::size_t>(h);
-    }
-  };
-  std::unordered_map<std::pair<int, IntVec>, int, Hash> index_;
+  std::unordered_map<CellShift, int, CellShiftHash> index_;
   std::vector<const Poly*> polys_;
 };
 
