@@ -28,6 +28,42 @@ std::vector<Integer> scaled_numerators(const Poly& p, const Integer& d) {
   return out;
 }
 
+bool ScaledPoly::is_zero() const {
+  return std::all_of(numerators.begin(), numerators.end(),
+                     [](const Integer& v) { return cln::zerop(v); });
+}
+
+ScaledPoly scaled(const Poly& p) {
+  ScaledPoly out;
+  out.vars = p.vars();
+  out.capacity = std::max(p.capacity(), 0);
+  out.denominator = common_denominator({&p});
+  out.numerators = scaled_numerators(p, out.denominator);
+  return out;
+}
+
+Poly sum_scaled(int n, const std::vector<const ScaledPoly*>& terms) {
+  Integer d = 1;
+  int capacity = 0;
+  for (const ScaledPoly* t : terms) {
+    capacity = std::max(capacity, t->capacity);
+    if (!cln::zerop(cln::mod(d, t->denominator))) d = cln::lcm(d, t->denominator);
+  }
+  std::vector<Integer> total(monomial_count(n, capacity), Integer(0));
+  for (const ScaledPoly* t : terms) {
+    const Integer factor = cln::exquo(d, t->denominator);
+    const bool unit = factor == 1;
+    for (std::size_t k = 0; k < t->numerators.size(); ++k)
+      if (!cln::zerop(t->numerators[k]))
+        total[k] = total[k] + (unit ? t->numerators[k] : t->numerators[k] * factor);
+  }
+  Poly out(n, capacity);
+  const auto& exponents = monomial_exponents(n, capacity);
+  for (std::size_t k = 0; k < total.size(); ++k)
+    if (!cln::zerop(total[k])) out.set_coefficient(exponents[k], Rational(total[k]) / d);
+  return out;
+}
+
 CommonDenominatorTerms::CommonDenominatorTerms(int n, const std::vector<const Poly*>& terms)
     : n_(n), d_(common_denominator(terms)) {
   numerators_.reserve(terms.size());

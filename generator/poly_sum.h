@@ -19,6 +19,22 @@ Integer common_denominator(const std::vector<const Poly*>& polys);
 // denominator of p.
 std::vector<Integer> scaled_numerators(const Poly& p, const Integer& d);
 
+// A polynomial as integer numerators over one denominator of its own (the lcm of its
+// coefficients' denominators), kept for repeated sums.
+struct ScaledPoly {
+  int vars = 0;
+  int capacity = 0;
+  Integer denominator = 1;
+  std::vector<Integer> numerators;  // graded monomial order
+  bool is_zero() const;
+};
+ScaledPoly scaled(const Poly& p);
+
+// The exact sum of the terms: each term's numerators are brought to the lcm of the terms'
+// denominators by one factor per term, so the work per coefficient is an integer product and
+// sum, not a rational sum with its gcd.
+Poly sum_scaled(int n, const std::vector<const ScaledPoly*>& terms);
+
 // Terms of one common denominator, each added to sums by its index.
 class CommonDenominatorTerms {
  public:

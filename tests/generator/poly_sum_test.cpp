@@ -16,6 +16,22 @@ namespace {
 
 using testing::analysis_of;
 
+TEST(PolySum, ScaledTermsOfDifferentDenominatorsSumExactly) {
+  Poly a(2, 1), b(2, 2);
+  a.set_coefficient({1, 0, 0}, Rational(1) / 6);
+  a.set_coefficient({0, 0, 0}, Rational(3) / 4);
+  b.set_coefficient({1, 1, 0}, Rational(-5) / 9);
+  b.set_coefficient({1, 0, 0}, Rational(-1) / 6);
+  const ScaledPoly sa = scaled(a), sb = scaled(b), zero = scaled(Poly(2, 0));
+  EXPECT_EQ(sa.denominator, 12);
+  EXPECT_EQ(sb.denominator, 18);
+  EXPECT_TRUE(zero.is_zero());
+  EXPECT_FALSE(sa.is_zero());
+  EXPECT_EQ(sum_scaled(2, {&sa, &sb}), a + b);  // the x terms cancel
+  EXPECT_EQ(sum_scaled(2, {&sa, &sb, &sa, &zero}), a + b + a);
+  EXPECT_TRUE(sum_scaled(2, {}).is_zero());
+}
+
 TEST(PolySum, CommonDenominatorIsTheLcmOfTheCoefficientDenominators) {
   Poly a(2, 1), b(2, 2);
   a.set_coefficient({1, 0, 0}, Rational(1) / 6);
@@ -47,6 +63,16 @@ TEST(PolySum, StencilSumsEqualTheRationalSums) {
         }
       }
       const CommonDenominatorTerms exact(static_cast<int>(s.centre.size()), terms);
+      // Each term over its own denominator (the truncated power's sums), summed the same.
+      std::vector<ScaledPoly> own;
+      for (const Poly* t : terms) own.push_back(scaled(*t));
+      std::vector<const ScaledPoly*> own_odd, own_all;
+      for (size_t k = 0; k < own.size(); ++k) {
+        own_all.push_back(&own[k]);
+        if (k % 2 == 1) own_odd.push_back(&own[k]);
+      }
+      EXPECT_EQ(sum_scaled(static_cast<int>(s.centre.size()), own_all), rational) << preset;
+      EXPECT_EQ(sum_scaled(static_cast<int>(s.centre.size()), own_odd), rational_odd) << preset;
       EXPECT_EQ(exact.sum(all), rational) << preset;
       EXPECT_EQ(exact.sum(odd), rational_odd) << preset;
       EXPECT_TRUE(exact.sum_is_constant(all, 1)) << preset;  // partition of unity
