@@ -184,6 +184,28 @@ std::vector<FineCell> split_cube(const std::vector<IntVec>& normals, const IntVe
   return split(box_polytope(corner, upper), normals, unit_intervals);
 }
 
+std::vector<FineCell> split_cubes(const std::vector<IntVec>& normals,
+                                  const std::vector<IntVec>& corners) {
+  std::vector<FineCell> out;
+  if (corners.empty()) return out;
+  const std::vector<FineCell> unit = split_cube(normals, IntVec(corners.front().size(), 0));
+  out.reserve(unit.size() * corners.size());
+  for (const IntVec& corner : corners) {
+    const RatVec shift = to_ratvec(corner);
+    std::vector<std::int32_t> key_shift;
+    for (const auto& nu : normals) key_shift.push_back(static_cast<std::int32_t>(dot(nu, corner)));
+    for (const FineCell& c : unit) {
+      FineCell t = c;
+      for (size_t i = 0; i < t.key.size(); ++i) t.key[i] += key_shift[i];
+      for (auto& v : t.vertices)
+        for (size_t k = 0; k < v.size(); ++k) v[k] = v[k] + shift[k];
+      for (size_t k = 0; k < t.interior.size(); ++k) t.interior[k] = t.interior[k] + shift[k];
+      out.push_back(std::move(t));
+    }
+  }
+  return out;
+}
+
 KnotComplex::KnotComplex(KnotPlanes planes, IntVec lo, IntVec hi)
     : planes_(std::move(planes)), lo_(std::move(lo)), hi_(std::move(hi)) {
   // Between consecutive knot levels L_(k-1) <= nu.x <= L_k, keyed by k; outside the first and

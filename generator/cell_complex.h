@@ -22,6 +22,10 @@ struct FineCell {
 
 // Cells of one unit cube in the arrangement of integer levels of `normals` (axes first).
 std::vector<FineCell> split_cube(const std::vector<IntVec>& normals, const IntVec& corner);
+// The same for several cubes, in order. The arrangement is invariant under integer shifts, so
+// one cube is split and the others are its translates (keys move by nu . shift): the same cells.
+std::vector<FineCell> split_cubes(const std::vector<IntVec>& normals,
+                                  const std::vector<IntVec>& corners);
 
 class KnotComplex {
  public:

@@ -48,13 +48,12 @@ IntVec sub(const IntVec& a, const IntVec& b) {
 class Fundamental {
  public:
   explicit Fundamental(const PiecewiseForm& form) : form_(form), n_(form.dimension()) {
-    for (const auto& rep : form.spec.lattice.coset_representatives())
-      for (auto& c : split_cube(form.complex.normals(), rep)) {
-        index_.emplace(c.key, static_cast<int>(cells_.size()));
-        FundamentalCell fc;
-        fc.cell = std::move(c);
-        cells_.push_back(std::move(fc));
-      }
+    for (auto& c : split_cubes(form.complex.normals(), form.spec.lattice.coset_representatives())) {
+      index_.emplace(c.key, static_cast<int>(cells_.size()));
+      FundamentalCell fc;
+      fc.cell = std::move(c);
+      cells_.push_back(std::move(fc));
+    }
     // The lattice points any cube of F may fetch, enumerated once (a scaled lattice has few
     // points in a large box, and enumerating the box per cell would dominate).
     corner_lo_ = corner_hi_ =
@@ -142,10 +141,6 @@ class Fundamental {
   std::vector<IntVec> near_points_;  // lattice points any of them may fetch (margin 1)
 };
 
-void add_unique(std::vector<RatVec>& pts, const RatVec& p) {
-  if (std::find(pts.begin(), pts.end(), p) == pts.end()) pts.push_back(p);
-}
-
 void add_unique_plane(std::vector<Plane>& planes, const Plane& p) {
   for (const auto& q : planes)
     if (q.nu == p.nu && q.level == p.level) return;
@@ -181,7 +176,7 @@ std::vector<SplineRegion> merge_regions(Fundamental& fund, const RatVec& c, int 
       for (const auto& v : cells[i].cell.vertices) {
         RatVec x(n);
         for (int k = 0; k < n; ++k) x[k] = v[k] + Rational(p[k]) - c[k];
-        add_unique(all_vertices, x);
+        all_vertices.push_back(std::move(x));
       }
       for (const auto& f : facets_of(cells[i].cell, fund.normals())) {
         CellKey other = cells[i].cell.key;
@@ -203,7 +198,10 @@ std::vector<SplineRegion> merge_regions(Fundamental& fund, const RatVec& c, int 
         }
       }
     }
-    // Vertices of the convex region: points where n independent boundary planes are tight.
+    // Vertices of the convex region: points where n independent boundary planes are tight
+    // (cells share vertices: sorted and made unique once, not searched per vertex).
+    std::sort(all_vertices.begin(), all_vertices.end());
+    all_vertices.erase(std::unique(all_vertices.begin(), all_vertices.end()), all_vertices.end());
     for (const auto& x : all_vertices) {
       IntColumns tight;
       for (const auto& pl : region.planes)
