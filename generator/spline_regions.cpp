@@ -420,6 +420,9 @@ void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& 
   std::vector<std::vector<int>> sums;
   if (!full) {
     for (const auto& ref : s.references) {
+      if (ref.stencil.size() != ref.basis.size() ||
+          ref.stencil_knot_cells.size() != ref.basis.size())
+        fail_internal("a reference region's stencil and basis differ in length");
       std::vector<int>& sum = sums.emplace_back();
       for (size_t k = 0; k < ref.basis.size(); ++k) {
         sum.push_back(
