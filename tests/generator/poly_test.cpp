@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+
 namespace boxgen {
 namespace {
 
@@ -83,10 +85,10 @@ TEST(Poly, EqualityIgnoresCapacityAndTrimShrinksIt) {
 // P(I x - s) (another routine) and against values on the principal lattice of degree d, which
 // determines a polynomial of degree <= d.
 TEST(Poly, TranslationWithDenominatorsMatchesCompositionAndValues) {
-  int seed = 1;
+  std::uint32_t seed = 1;  // unsigned: the generator wraps modulo 2^32 by design
   auto next = [&seed] {
-    seed = (seed * 1103515245 + 12345) & 0x7fffffff;
-    return seed;
+    seed = seed * 1103515245u + 12345u;
+    return static_cast<int>(seed >> 1);
   };
   for (int n : {2, 3})
     for (int d : {0, 1, 2, 5, 9}) {
