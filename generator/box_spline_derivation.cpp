@@ -80,7 +80,7 @@ Poly TruncatedPowerDerivation::polynomial_at(const RatVec& p) {
     for (int i = 0; i < n_; ++i) v = v + nu[i] * cln::numerator(p[i] * d);
     nu_p.push_back(v);
   }
-  Poly sum(n_, 0);
+  std::vector<const ScaledPoly*> terms;
   CellKey key(normals.size());
   for (size_t k = 0; k < shifts_.size(); ++k) {
     for (size_t i = 0; i < normals.size(); ++i)
@@ -92,11 +92,14 @@ Poly TruncatedPowerDerivation::polynomial_at(const RatVec& p) {
       RatVec q = p;
       for (int i = 0; i < n_; ++i) q[i] = q[i] - Rational(s[i]);
       const Poly& t = integrator_.top(key, q);
-      it = translated_.emplace(memo_key, t.is_zero() ? t : t.translated(to_ratvec(s)) * Rational(w))
-               .first;
+      it =
+          translated_
+              .emplace(memo_key, scaled(t.is_zero() ? t : t.translated(to_ratvec(s)) * Rational(w)))
+              .first;
     }
-    if (!it->second.is_zero()) sum += it->second;
+    if (!it->second.is_zero()) terms.push_back(&it->second);
   }
+  Poly sum = sum_scaled(n_, terms);
   sum.trim();
   return sum;
 }

@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "generator/level_integrator.h"
+#include "generator/poly_sum.h"
 #include "generator/spec.h"
 
 namespace boxgen {
@@ -52,8 +53,8 @@ class TruncatedPowerDerivation final : public BoxSplineDerivation {
   std::vector<std::pair<IntVec, Integer>> shifts_;  // M_Xi(x) = sum_s w_s T(x - s)
   std::vector<std::vector<std::int64_t>>
       normal_dot_shift_;  // per shift: nu . s for every normal of T
-  std::unordered_map<std::pair<CellKey, int>, Poly, KeyHash>
-      translated_;  // T's piece moved by shift k
+  // T's piece moved by shift k and weighted, as integers over a denominator (summed per cell).
+  std::unordered_map<std::pair<CellKey, int>, ScaledPoly, KeyHash> translated_;
 };
 
 // Columns flipped into the open half-space h.x > 0 (h generic), and the sum of the flipped

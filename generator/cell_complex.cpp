@@ -184,6 +184,28 @@ std::vector<FineCell> split_cube(const std::vector<IntVec>& normals, const IntVe
   return split(box_polytope(corner, upper), normals, unit_intervals);
 }
 
+std::vector<FineCell> split_cubes(const std::vector<IntVec>& normals,
+                                  const std::vector<IntVec>& corners) {
+  std::vector<FineCell> out;
+  if (corners.empty()) return out;
+  const std::vector<FineCell> unit = split_cube(normals, IntVec(corners.front().size(), 0));
+  out.reserve(unit.size() * corners.size());
+  for (const IntVec& corner : corners) {
+    const RatVec shift = to_ratvec(corner);
+    std::vector<std::int32_t> key_shift;
+    for (const auto& nu : normals) key_shift.push_back(static_cast<std::int32_t>(dot(nu, corner)));
+    for (const FineCell& c : unit) {
+      FineCell t = c;
+      for (size_t i = 0; i < t.key.size(); ++i) t.key[i] += key_shift[i];
+      for (auto& v : t.vertices)
+        for (size_t k = 0; k < v.size(); ++k) v[k] = v[k] + shift[k];
+      for (size_t k = 0; k < t.interior.size(); ++k) t.interior[k] = t.interior[k] + shift[k];
+      out.push_back(std::move(t));
+    }
+  }
+  return out;
+}
+
 KnotComplex::KnotComplex(KnotPlanes planes, IntVec lo, IntVec hi)
     : planes_(std::move(planes)), lo_(std::move(lo)), hi_(std::move(hi)) {
   // Between consecutive knot levels L_(k-1) <= nu.x <= L_k, keyed by k; outside the first and
@@ -206,17 +228,17 @@ int KnotComplex::find(const CellKey& key) const {
 }
 
 ShiftLocator::ShiftLocator(const KnotComplex& knots, const RatVec& p) : knots_(&knots), p_(p) {
-  Integer d = 1;
-  for (const auto& x : p) d = cln::lcm(d, cln::denominator(x));
-  const Integer limit = cln::expt_pos(Integer(2), 40);
-  small_ = d < cln::expt_pos(Integer(2), 20);
+  // Per normal, t = nu.p once in rationals; then nu.(p - j) = t - nu.j, and the levels L below it
+  // are those with L + nu.j <= floor(t) (t not an integer) or L + nu.j < t (t an integer).
+  const Integer limit = cln::expt_pos(Integer(2), 60);
+  small_ = true;
   for (const auto& nu : knots.planes().normals) {
-    Integer v = 0;
-    for (size_t k = 0; k < p.size(); ++k) v = v + nu[k] * cln::numerator(p[k] * d);
-    small_ = small_ && cln::abs(v) < limit;
-    nu_p_.push_back(small_ ? cln::cl_I_to_long(v) : 0);
+    const Rational t = dot(nu, p);
+    const Integer f = cln::floor1(t);
+    small_ = small_ && cln::abs(f) < limit;
+    floor_nu_p_.push_back(small_ ? cln::cl_I_to_Q(f) : 0);
+    nu_p_integral_.push_back(is_integer(t));
   }
-  if (small_) d_ = cln::cl_I_to_long(d);
 }
 
 int ShiftLocator::cell_at(const IntVec& j) const {
@@ -229,10 +251,10 @@ int ShiftLocator::cell_at(const IntVec& j) const {
   CellKey& key = key_;
   key.resize(planes.normals.size());
   for (size_t i = 0; i < planes.normals.size(); ++i) {
-    const std::int64_t v = nu_p_[i] - d_ * dot(planes.normals[i], j);  // d nu.(p - j)
+    const std::int64_t f = floor_nu_p_[i] - dot(planes.normals[i], j);  // floor(nu.(p - j))
     const auto& levels = planes.levels[i];
-    const auto below = std::partition_point(levels.begin(), levels.end(),
-                                            [&](std::int64_t l) { return d_ * l < v; });
+    const auto below = nu_p_integral_[i] ? std::lower_bound(levels.begin(), levels.end(), f)
+                                         : std::upper_bound(levels.begin(), levels.end(), f);
     if (below == levels.begin() || below == levels.end()) return -1;  // outside the support
     key[i] = static_cast<std::int32_t>(below - levels.begin());
   }

@@ -22,6 +22,10 @@ struct FineCell {
 
 // Cells of one unit cube in the arrangement of integer levels of `normals` (axes first).
 std::vector<FineCell> split_cube(const std::vector<IntVec>& normals, const IntVec& corner);
+// The same for several cubes, in order. The arrangement is invariant under integer shifts, so
+// one cube is split and the others are its translates (keys move by nu . shift): the same cells.
+std::vector<FineCell> split_cubes(const std::vector<IntVec>& normals,
+                                  const std::vector<IntVec>& corners);
 
 class KnotComplex {
  public:
@@ -47,8 +51,9 @@ class KnotComplex {
 };
 
 // Exact point location of p - j in a knot complex for many integer shifts j (the stencil of a
-// cell): with p = P / d, P integral, nu.(p - j) lies above the level L iff nu.P - d nu.j > d L,
-// all in machine integers (falls back to rational arithmetic if they could overflow).
+// cell): the knot levels L are integers, so L < nu.(p - j) compares L + nu.j with floor(nu.p)
+// (and with nu.p itself when that is an integer), all in machine integers whatever the
+// denominators of p (falls back to rational arithmetic only if floor(nu.p) could overflow).
 class ShiftLocator {
  public:
   ShiftLocator(const KnotComplex& knots, const RatVec& p);
@@ -60,8 +65,8 @@ class ShiftLocator {
   const KnotComplex* knots_;
   RatVec p_;
   bool small_ = false;
-  std::int64_t d_ = 1;
-  std::vector<std::int64_t> nu_p_;
+  std::vector<std::int64_t> floor_nu_p_;  // per normal: floor(nu.p)
+  std::vector<bool> nu_p_integral_;       // per normal: nu.p is an integer
   mutable CellKey key_;  // reused: cell_at runs for every stencil candidate of every fine cell
 };
 

@@ -18,22 +18,24 @@ namespace {
 
 // Calibration: a least-squares fit (in log time) of the user CPU seconds of `boxgen analyze`
 // with its default checks on the issue-11 table and the presets (bench/bench_derivation.cpp
-// measures them; README, "Derivation cost"). The work terms follow the code:
+// measures them; README, "Derivation cost"): the median of three runs of every row, refitted
+// after the stencil location and the sums moved to integer arithmetic. The work terms follow the
+// code:
 //  - truncated power: per knot cell, every difference shift adds a translated piece;
 //  - directional integration and the checks: per knot cell, coefficient work times the number of
 //    knot planes (the crossings a path meets);
 //  - spline regions: per fine cell of F, every stencil point is located and compared, and the
-//    cell itself is split, its facets found and merged.
-constexpr double kSecondsPerShiftCoefficient = 6.1e-9;  // knot cell x shift x monomial
-constexpr double kSecondsPerPlaneCoefficient = 1.5e-7;  // knot cell x monomial x knot plane
-constexpr double kSecondsPerStencilPoint = 2.55e-6;     // fine cell of F x stencil point
-constexpr double kSecondsPerFineCell = 1.55e-5;  // splitting, facets and merging of a fine cell
-constexpr double kSecondsStart = 0.027;
+//    cell itself is translated from the split unit cube, its facets found and merged.
+constexpr double kSecondsPerShiftCoefficient = 5.4e-9;  // knot cell x shift x monomial
+constexpr double kSecondsPerPlaneCoefficient = 7.9e-8;  // knot cell x monomial x knot plane
+constexpr double kSecondsPerStencilPoint = 4.6e-7;      // fine cell of F x stencil point
+constexpr double kSecondsPerFineCell = 9.6e-7;  // translating, facets and merging of a fine cell
+constexpr double kSecondsStart = 0.024;
 constexpr double kBytesBase = 7e6;
 constexpr double kBytesPerCoefficient =
     300;  // memoised pieces and translates per knot-cell coefficient
 constexpr double kBytesPerStencilPoint =
-    185;  // a fine cell's stencil entry and its share of the basis
+    130;  // a fine cell's stencil entry and its share of the basis (fitted on the long row)
 constexpr double kBytesPerFineCell = 3500;  // its exact vertices, key and stencil vectors
 constexpr double kEnumerableCells = 2e6;    // above this bound, do not enumerate
 

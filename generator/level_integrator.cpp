@@ -54,13 +54,7 @@ const Poly& LevelIntegrator::top(const CellKey& k, const RatVec& p) {
 }
 
 LevelIntegrator::Cell& LevelIntegrator::cell(int level, const RatVec& p) {
-  CellKey k = key(level, p);
-  auto& cells = levels_[level].cells;
-  if (auto it = cells.find(k); it != cells.end()) return it->second;
-  Poly poly = derive(level, p);
-  auto [it, inserted] = cells.emplace(std::move(k), Cell{});
-  it->second.poly = std::move(poly);
-  return it->second;
+  return cell(level, key(level, p), [&] { return p; });
 }
 
 Poly LevelIntegrator::base(const RatVec& p) const {
@@ -122,26 +116,32 @@ Poly LevelIntegrator::derive(int level, RatVec p) {
     p = perturbed(level, p, attempt);
   }
 
-  // Cells of the lower level along the path, in order.
+  // Cells of the lower level along the path, in order. Only the first key is located; at each
+  // crossing the path passes one plane nu.x = c of the lower level (the parameters are distinct),
+  // so one entry of the key moves by one: down if nu.x decreases along -xi (nu.xi > 0), else up.
   const RatVec xi_r = to_ratvec(xi);
   auto point_at = [&](const Rational& t) {
     RatVec q = p;
     for (int i = 0; i < n_; ++i) q[i] = q[i] - t * xi_r[i];
     return q;
   };
-  std::vector<RatVec> mids;
+  std::vector<Rational> mid_t;
   Rational prev = 0;
   for (const auto& c : crossings) {
-    mids.push_back(point_at((prev + c.t) / 2));
+    mid_t.push_back((prev + c.t) / 2);
     prev = c.t;
   }
-  mids.push_back(point_at(path_ == IntegrationPath::Ray ? prev + 1 : (prev + 1) / 2));
-  std::vector<CellKey> keys;
-  std::vector<Cell*> cells;
-  for (const auto& q : mids) {
-    keys.push_back(key(level - 1, q));
-    cells.push_back(&cell(level - 1, q));
+  mid_t.push_back(path_ == IntegrationPath::Ray ? prev + 1 : (prev + 1) / 2);
+  std::vector<CellKey> keys{key(level - 1, point_at(mid_t[0]))};
+  for (const auto& c : crossings) {
+    CellKey next = keys.back();
+    next[static_cast<size_t>(c.normal)] +=
+        dot(lower[static_cast<size_t>(c.normal)], xi) > 0 ? -1 : 1;
+    keys.push_back(std::move(next));
   }
+  std::vector<Cell*> cells;
+  for (size_t j = 0; j < keys.size(); ++j)
+    cells.push_back(&cell(level - 1, keys[j], [&] { return point_at(mid_t[j]); }));
   if (path_ == IntegrationPath::Ray && !cells.back()->poly.is_zero())
     fail_internal("truncated power: the integrand does not vanish at infinity");
 

@@ -57,6 +57,16 @@ class LevelIntegrator {
 
   CellKey key(int level, const RatVec& p) const;
   Cell& cell(int level, const RatVec& p);
+  // The cell with this key; `point` gives a point inside it, called only to derive a new cell.
+  template <typename Point>
+  Cell& cell(int level, const CellKey& k, Point point) {
+    auto& cells = levels_[level].cells;
+    if (auto it = cells.find(k); it != cells.end()) return it->second;
+    Poly poly = derive(level, point());
+    auto [it, inserted] = cells.emplace(k, Cell{});
+    it->second.poly = std::move(poly);
+    return it->second;
+  }
   Poly derive(int level, RatVec p);
   Poly base(const RatVec& p) const;
   const std::vector<Poly>& integrated(int level, Cell& c);

@@ -2,6 +2,7 @@
 
 #include <numeric>
 #include <set>
+#include <unordered_map>
 
 #include "generator/error.h"
 #include "generator/simplex_integral.h"
@@ -15,6 +16,22 @@ struct UnionFind {
   explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
   int find(int a) { return parent[a] == a ? a : parent[a] = find(parent[a]); }
   void unite(int a, int b) { parent[find(a)] = find(b); }
+};
+
+// Polynomials by value (trailing zero coefficients do not count), for sharing work between cells
+// with one polynomial.
+struct PolyHash {
+  std::size_t operator()(const Poly* p) const noexcept {
+    std::uint64_t h = 1469598103934665603ull;
+    const auto& c = p->coefficients();
+    for (std::size_t k = 0; k < c.size(); ++k)
+      if (!cln::zerop(c[k]))
+        h = (h ^ (k * 0x9e3779b97f4a7c15ull ^ cln::equal_hashcode(c[k]))) * 1099511628211ull;
+    return static_cast<std::size_t>(h);
+  }
+};
+struct PolyEqual {
+  bool operator()(const Poly* a, const Poly* b) const { return *a == *b; }
 };
 
 CellKey neighbour_key(const FineCell& cell, const Facet& f) {
@@ -231,9 +248,18 @@ void check_symmetry(const PiecewiseForm& form, const std::vector<SignedPermutati
   // Q_t(g y) = Q_i(y) with t the cell holding the image.
   RatVec minus_c(n);
   for (int i = 0; i < n; ++i) minus_c[i] = -c[i];
-  std::vector<Poly> centred;
-  centred.reserve(cells.size());
-  for (const auto& p : form.polys) centred.push_back(p.translated(minus_c));
+  // Cells often share a polynomial (the knot complex is finer than the pieces): centre each
+  // distinct polynomial once.
+  std::unordered_map<const Poly*, int, PolyHash, PolyEqual> distinct;
+  std::vector<Poly> centred_distinct;
+  std::vector<const Poly*> centred;
+  std::vector<int> centred_index;
+  for (const auto& p : form.polys) {
+    auto [it, fresh] = distinct.emplace(&p, static_cast<int>(centred_distinct.size()));
+    if (fresh) centred_distinct.push_back(p.translated(minus_c));
+    centred_index.push_back(it->second);
+  }
+  for (const int k : centred_index) centred.push_back(&centred_distinct[static_cast<size_t>(k)]);
   for (const auto& g : checks)
     for (size_t i = 0; i < cells.size(); ++i) {
       const int t = form.knots.locate(symmetry_image(g, cells[i].interior, c));
@@ -241,7 +267,7 @@ void check_symmetry(const PiecewiseForm& form, const std::vector<SignedPermutati
         if (form.polys[i].is_zero()) continue;
         fail_internal("symmetry check failed: the image of a cell of the support lies outside it");
       }
-      if (centred[t].signed_permuted(g.perm, g.sign) != centred[i])
+      if (centred[t]->signed_permuted(g.perm, g.sign) != *centred[i])
         fail_internal("symmetry check failed: M^c(g x) != M^c(x) on a cell");
     }
 }

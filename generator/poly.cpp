@@ -211,32 +211,37 @@ Rational Poly::eval(const RatVec& x) const {
 
 namespace {
 
-// table[k][e][j] = binomial(e, j) (-s_k)^j: the coefficients of (x_k - s_k)^e.
-using ShiftTable = std::vector<std::vector<RatVec>>;
+// Translation runs in integers: with s = S / q (S integral) and P = N / D (N integral),
+//   P(x - s) = R(q x) / (D q^d),  R(z) = sum_e N_e q^(d - |e|) (z - S)^e,
+// so the expansion is integer products and sums, and each coefficient of the result is divided
+// once (a gcd per coefficient instead of one per product).
 
-ShiftTable shift_table(const RatVec& s, int n, int d) {
-  ShiftTable table(n, std::vector<RatVec>(d + 1));
+// table[k][e][j] = binomial(e, j) (-S_k)^j: the coefficients of (z_k - S_k)^e.
+using ShiftTable = std::vector<std::vector<std::vector<Integer>>>;
+
+ShiftTable shift_table(const std::vector<Integer>& s, int n, int d) {
+  ShiftTable table(n, std::vector<std::vector<Integer>>(d + 1));
   for (int k = 0; k < n; ++k) {
-    RatVec negpow(d + 1);
+    std::vector<Integer> negpow(d + 1);
     negpow[0] = 1;
-    for (int j = 1; j <= d; ++j) negpow[j] = negpow[j - 1] * Rational(-s[k]);
+    for (int j = 1; j <= d; ++j) negpow[j] = negpow[j - 1] * (-s[k]);
     for (int e = 0; e <= d; ++e) {
       table[k][e].resize(e + 1);
       for (int j = 0; j <= e; ++j)
-        table[k][e][j] = Rational(static_cast<long>(binom(e, j))) * negpow[j];
+        table[k][e][j] = Integer(static_cast<long>(binom(e, j))) * negpow[j];
     }
   }
   return table;
 }
 
-// Adds v (x - s_0)^e0 (y - s_1)^e1, expanded, to the coefficients `out` (2 variables).
-void add_shifted_monomial_2d(const Rational& v, const Exponent& e, const ShiftTable& table,
-                             std::vector<Rational>& out) {
+// Adds v (z_0 - S_0)^e0 (z_1 - S_1)^e1, expanded, to the coefficients `out` (2 variables).
+void add_shifted_monomial_2d(const Integer& v, const Exponent& e, const ShiftTable& table,
+                             std::vector<Integer>& out) {
   for (int j0 = 0; j0 <= e[0]; ++j0) {
-    const Rational a = v * table[0][e[0]][j0];
+    const Integer a = v * table[0][e[0]][j0];
     if (cln::zerop(a)) continue;
     for (int j1 = 0; j1 <= e[1]; ++j1) {
-      const Rational& b = table[1][e[1]][j1];
+      const Integer& b = table[1][e[1]][j1];
       if (cln::zerop(b)) continue;
       auto& slot = out[monomial_index(2, {e[0] - j0, e[1] - j1, 0})];
       slot = slot + a * b;
@@ -245,16 +250,16 @@ void add_shifted_monomial_2d(const Rational& v, const Exponent& e, const ShiftTa
 }
 
 // The same in 3 variables.
-void add_shifted_monomial_3d(const Rational& v, const Exponent& e, const ShiftTable& table,
-                             std::vector<Rational>& out) {
+void add_shifted_monomial_3d(const Integer& v, const Exponent& e, const ShiftTable& table,
+                             std::vector<Integer>& out) {
   for (int j0 = 0; j0 <= e[0]; ++j0) {
-    const Rational a = v * table[0][e[0]][j0];
+    const Integer a = v * table[0][e[0]][j0];
     if (cln::zerop(a)) continue;
     for (int j1 = 0; j1 <= e[1]; ++j1) {
       if (cln::zerop(table[1][e[1]][j1])) continue;
-      const Rational b = a * table[1][e[1]][j1];
+      const Integer b = a * table[1][e[1]][j1];
       for (int j2 = 0; j2 <= e[2]; ++j2) {
-        const Rational& c = table[2][e[2]][j2];
+        const Integer& c = table[2][e[2]][j2];
         if (cln::zerop(c)) continue;
         auto& slot = out[monomial_index(3, {e[0] - j0, e[1] - j1, e[2] - j2})];
         slot = slot + b * c;
@@ -266,20 +271,37 @@ void add_shifted_monomial_3d(const Rational& v, const Exponent& e, const ShiftTa
 }  // namespace
 
 Poly Poly::translated(const RatVec& s) const {
-  // Expand prod_k (x_k - s_k)^{e_k} monomial by monomial.
   const int d = std::max(degree(), 0);
-  Poly r(n_, d);
   const auto& ex = monomial_exponents(n_, d);
-  const ShiftTable table = shift_table(s, n_, d);
   const std::size_t count = monomial_count(n_, d);
+  Integer q = 1, den = 1;
+  for (const auto& v : s) q = cln::lcm(q, cln::denominator(v));
+  for (std::size_t i = 0; i < count; ++i) den = cln::lcm(den, cln::denominator(c_[i]));
+  std::vector<Integer> shift(n_);
+  for (int k = 0; k < n_; ++k) shift[k] = cln::numerator(s[k] * q);
+  std::vector<Integer> q_pow(d + 1);
+  q_pow[0] = 1;
+  for (int j = 1; j <= d; ++j) q_pow[j] = q_pow[j - 1] * q;
+  const ShiftTable table = shift_table(shift, n_, d);
+  std::vector<Integer> r(count, Integer(0));
   for (std::size_t i = 0; i < count; ++i) {
     if (cln::zerop(c_[i])) continue;
+    const int degree_i = ex[i][0] + ex[i][1] + ex[i][2];
+    // N_e q^(d - |e|), N_e = D c_e
+    const Integer v = cln::numerator(c_[i]) * cln::exquo(den, cln::denominator(c_[i])) *
+                      q_pow[static_cast<std::size_t>(d - degree_i)];
     if (n_ == 2)
-      add_shifted_monomial_2d(c_[i], ex[i], table, r.c_);
+      add_shifted_monomial_2d(v, ex[i], table, r);
     else
-      add_shifted_monomial_3d(c_[i], ex[i], table, r.c_);
+      add_shifted_monomial_3d(v, ex[i], table, r);
   }
-  return r;
+  Poly out(n_, d);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (cln::zerop(r[i])) continue;
+    const int degree_i = ex[i][0] + ex[i][1] + ex[i][2];
+    out.c_[i] = Rational(r[i]) / (den * q_pow[static_cast<std::size_t>(d - degree_i)]);
+  }
+  return out;
 }
 
 Poly Poly::composed_affine(const std::vector<RatVec>& a, const RatVec& b) const {

@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <deque>
-#include <map>
 #include <numeric>
 #include <optional>
 #include <set>
+#include <unordered_map>
 
 #include "generator/error.h"
 #include "generator/piece_checks.h"
+#include "generator/poly_sum.h"
 
 namespace boxgen {
 
@@ -19,6 +20,16 @@ RatVec SpaceGroupElement::apply(const RatVec& x) const {
 }
 
 namespace {
+
+// A knot cell and a lattice point j: a term M(x - j) taken on that knot cell.
+using CellShift = std::pair<int, IntVec>;
+struct CellShiftHash {
+  std::size_t operator()(const CellShift& key) const noexcept {
+    std::uint64_t h = 1469598103934665603ull ^ static_cast<std::uint32_t>(key.first);
+    for (auto v : key.second) h = (h ^ static_cast<std::uint64_t>(v)) * 1099511628211ull;
+    return static_cast<std::size_t>(h);
+  }
+};
 
 CellKey shifted_key(const CellKey& k, const std::vector<IntVec>& normals, const IntVec& j) {
   CellKey out = k;
@@ -37,13 +48,12 @@ IntVec sub(const IntVec& a, const IntVec& b) {
 class Fundamental {
  public:
   explicit Fundamental(const PiecewiseForm& form) : form_(form), n_(form.dimension()) {
-    for (const auto& rep : form.spec.lattice.coset_representatives())
-      for (auto& c : split_cube(form.complex.normals(), rep)) {
-        index_.emplace(c.key, static_cast<int>(cells_.size()));
-        FundamentalCell fc;
-        fc.cell = std::move(c);
-        cells_.push_back(std::move(fc));
-      }
+    for (auto& c : split_cubes(form.complex.normals(), form.spec.lattice.coset_representatives())) {
+      index_.emplace(c.key, static_cast<int>(cells_.size()));
+      FundamentalCell fc;
+      fc.cell = std::move(c);
+      cells_.push_back(std::move(fc));
+    }
     // The lattice points any cube of F may fetch, enumerated once (a scaled lattice has few
     // points in a large box, and enumerating the box per cell would dominate).
     corner_lo_ = corner_hi_ =
@@ -131,10 +141,6 @@ class Fundamental {
   std::vector<IntVec> near_points_;  // lattice points any of them may fetch (margin 1)
 };
 
-void add_unique(std::vector<RatVec>& pts, const RatVec& p) {
-  if (std::find(pts.begin(), pts.end(), p) == pts.end()) pts.push_back(p);
-}
-
 void add_unique_plane(std::vector<Plane>& planes, const Plane& p) {
   for (const auto& q : planes)
     if (q.nu == p.nu && q.level == p.level) return;
@@ -170,7 +176,7 @@ std::vector<SplineRegion> merge_regions(Fundamental& fund, const RatVec& c, int 
       for (const auto& v : cells[i].cell.vertices) {
         RatVec x(n);
         for (int k = 0; k < n; ++k) x[k] = v[k] + Rational(p[k]) - c[k];
-        add_unique(all_vertices, x);
+        all_vertices.push_back(std::move(x));
       }
       for (const auto& f : facets_of(cells[i].cell, fund.normals())) {
         CellKey other = cells[i].cell.key;
@@ -192,7 +198,10 @@ std::vector<SplineRegion> merge_regions(Fundamental& fund, const RatVec& c, int 
         }
       }
     }
-    // Vertices of the convex region: points where n independent boundary planes are tight.
+    // Vertices of the convex region: points where n independent boundary planes are tight
+    // (cells share vertices: sorted and made unique once, not searched per vertex).
+    std::sort(all_vertices.begin(), all_vertices.end());
+    all_vertices.erase(std::unique(all_vertices.begin(), all_vertices.end()), all_vertices.end());
     for (const auto& x : all_vertices) {
       IntColumns tight;
       for (const auto& pl : region.planes)
@@ -337,7 +346,7 @@ void reference_bases(SplineStructure& s, const PiecewiseForm& form, const Fundam
   for (int k = 0; k < n; ++k) minus_c[k] = -s.centre[k];
   std::vector<std::optional<Poly>> centred(form.polys.size());
   // Neighbouring regions share most (knot piece, stencil point) pairs: translate each pair once.
-  std::map<std::pair<int, IntVec>, Poly> moved;
+  std::unordered_map<CellShift, Poly, CellShiftHash> moved;
   for (auto& ref : s.references) {
     RatVec u(n);
     IntVec corner(n);
@@ -355,6 +364,7 @@ void reference_bases(SplineStructure& s, const PiecewiseForm& form, const Fundam
         it = moved.emplace(std::make_pair(cell, j), centred[cell]->translated(to_ratvec(j))).first;
       }
       ref.stencil.push_back(j);
+      ref.stencil_knot_cells.push_back(cell);
       ref.basis.push_back(it->second);
     }
   }
@@ -370,7 +380,7 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
   Fundamental fund(form);
   for (auto& fc : fund.cells()) fund.set_stencil(fc);
   s.regions = merge_regions(fund, s.centre, n);
-  s.cells = fund.cells();
+  s.cells = std::move(fund.cells());
   s.stencil_min = s.stencil_max = static_cast<int>(s.cells.front().stencil.size());
   for (const auto& fc : s.cells) {
     s.stencil_min = std::min(s.stencil_min, static_cast<int>(fc.stencil.size()));
@@ -383,25 +393,66 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
   return s;
 }
 
+namespace {
+
+// The distinct stencil terms (knot cell, j) of many sums, each numbered once.
+class StencilTerms {
+ public:
+  // The index of the term (cell, j); `make` gives its polynomial the first time it is seen.
+  template <typename Make>
+  int index(int cell, const IntVec& j, Make make) {
+    auto [it, fresh] = index_.emplace(std::make_pair(cell, j), static_cast<int>(polys_.size()));
+    if (fresh) polys_.push_back(make());
+    return it->second;
+  }
+  const std::vector<const Poly*>& polys() const { return polys_; }
+
+ private:
+  std::unordered_map<CellShift, int, CellShiftHash> index_;
+  std::vector<const Poly*> polys_;
+};
+
+}  // namespace
+
 void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& s, bool full) {
+  const int n = form.dimension();
+  StencilTerms terms;
+  std::vector<std::vector<int>> sums;
   if (!full) {
-    const Poly one = Poly::constant(form.dimension(), 1);
     for (const auto& ref : s.references) {
-      Poly sum(form.dimension(), 0);
-      for (const auto& b : ref.basis) sum += b;
-      if (sum != one) fail_internal("partition of unity fails on a reference region");
+      if (ref.stencil.size() != ref.basis.size() ||
+          ref.stencil_knot_cells.size() != ref.basis.size())
+        fail_internal("a reference region's stencil and basis differ in length");
+      std::vector<int>& sum = sums.emplace_back();
+      for (size_t k = 0; k < ref.basis.size(); ++k) {
+        sum.push_back(
+            terms.index(ref.stencil_knot_cells[k], ref.stencil[k], [&] { return &ref.basis[k]; }));
+        // A term met before is the same M(x - j) on the same knot cell: it must be the same
+        // polynomial, so every basis polynomial takes part in the check.
+        if (*terms.polys()[static_cast<size_t>(sum.back())] != ref.basis[k])
+          fail_internal("a basis polynomial differs between reference regions");
+      }
     }
+    const CommonDenominatorTerms exact(n, terms.polys());
+    for (const auto& sum : sums)
+      if (!exact.sum_is_constant(sum, 1))
+        fail_internal("partition of unity fails on a reference region");
     return;
   }
-  const Poly expected =
-      Poly::constant(form.dimension(), Rational(1) / Rational(form.spec.lattice.det_abs()));
+  std::deque<Poly> translated;  // stable addresses
   for (const auto& fc : s.cells) {
-    Poly sum(form.dimension(), 0);
+    std::vector<int>& sum = sums.emplace_back();
     for (size_t k = 0; k < fc.stencil.size(); ++k)
-      sum += form.polys[fc.stencil_knot_cells[k]].translated(to_ratvec(fc.stencil[k]));
-    if (sum != expected)
-      fail_internal("partition of unity fails on a cell of the fundamental region");
+      sum.push_back(terms.index(fc.stencil_knot_cells[k], fc.stencil[k], [&] {
+        return &translated.emplace_back(
+            form.polys[fc.stencil_knot_cells[k]].translated(to_ratvec(fc.stencil[k])));
+      }));
   }
+  const CommonDenominatorTerms exact(n, terms.polys());
+  const Rational expected = Rational(1) / Rational(form.spec.lattice.det_abs());
+  for (const auto& sum : sums)
+    if (!exact.sum_is_constant(sum, expected))
+      fail_internal("partition of unity fails on a cell of the fundamental region");
 }
 
 }  // namespace boxgen

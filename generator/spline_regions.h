@@ -42,10 +42,11 @@ struct SplineRegion {
 struct ReferenceRegion {
   std::vector<RatVec> vertices;  // centred frame
   std::vector<Plane> planes;
-  RatVec interior;              // a point strictly inside (centred)
-  std::vector<IntVec> stencil;  // lattice points j, sorted
-  std::vector<Poly> basis;      // M(x - j) on the region, x centred, M = |det G| M^c
-  int regions_in_orbit = 0;     // per fundamental region
+  RatVec interior;                      // a point strictly inside (centred)
+  std::vector<IntVec> stencil;          // lattice points j, sorted
+  std::vector<int> stencil_knot_cells;  // per stencil point: the knot cell of M_Xi it takes
+  std::vector<Poly> basis;              // M(x - j) on the region, x centred, M = |det G| M^c
+  int regions_in_orbit = 0;             // per fundamental region
 };
 
 struct SplineStructure {
@@ -62,7 +63,8 @@ SplineStructure spline_structure(const PiecewiseForm& form);
 // Throws InternalError unless sum_j M(x - j) = 1 identically on every fundamental cell (full), or
 // on every reference region (the default: each fine cell lies in a region, where the stencil's
 // pieces are those of its reference region mapped by a symmetry and a lattice translation,
-// both of which keep the sum).
+// both of which keep the sum). Exact: each distinct term (knot cell, j) is converted once to
+// integer numerators over one common denominator, and the sums are integer sums (poly_sum.h).
 void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& s,
                               bool full = true);
 

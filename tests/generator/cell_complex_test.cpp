@@ -54,6 +54,31 @@ TEST(KnotComplexCells, FindsEveryCellByItsKeyAndTilesTheHexagon) {
   EXPECT_GE(complex.locate({Rational(1) / 3, Rational(1) / 7}), 0);
 }
 
+// split_cubes translates the cells of one cube: the same cells, keys, vertices and interior
+// points, in the same order, as splitting every cube (2-D with long normals, and 3-D).
+TEST(CellComplex, SplitCubesEqualsSplittingEachCube) {
+  for (const auto& [columns, n] :
+       {std::make_pair(IntColumns{{20, 1}, {1, 20}, {7, 5}, {-9, 4}}, 2),
+        std::make_pair(IntColumns{{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, 0, 0}},
+                       3)}) {
+    const auto normals = arrangement_normals(columns, n);
+    const std::vector<IntVec> corners =
+        n == 2 ? std::vector<IntVec>{{0, 0}, {3, -2}, {-7, 11}}
+               : std::vector<IntVec>{{0, 0, 0}, {1, -1, 2}, {-3, 0, 5}};
+    std::vector<FineCell> each;
+    for (const auto& c : corners)
+      for (auto& cell : split_cube(normals, c)) each.push_back(std::move(cell));
+    const std::vector<FineCell> translated = split_cubes(normals, corners);
+    ASSERT_EQ(translated.size(), each.size());
+    for (size_t i = 0; i < each.size(); ++i) {
+      EXPECT_EQ(translated[i].key, each[i].key) << i;
+      EXPECT_EQ(translated[i].vertices, each[i].vertices) << i;
+      EXPECT_EQ(translated[i].interior, each[i].interior) << i;
+    }
+  }
+  EXPECT_TRUE(split_cubes(arrangement_normals({{1, 0}, {0, 1}}, 2), {}).empty());
+}
+
 TEST(CellComplex, AffineRankAndTriangulation) {
   EXPECT_EQ(affine_rank({{0, 0}}), 0);
   EXPECT_EQ(affine_rank({{0, 0}, {1, 1}, {2, 2}}), 1);

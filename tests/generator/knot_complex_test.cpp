@@ -63,6 +63,32 @@ TEST(KnotComplex, ShiftLocatorAgreesWithRationalLocation) {
   EXPECT_GT(inside, 50);
 }
 
+// Long directions: the fine cells' interiors have large denominators (vertex means of crossings
+// of normals such as (1,-20) and (20,-1)), and points with nu.p an integer (on or off a knot
+// plane) take the cell below, as the rational location does.
+TEST(KnotComplex, ShiftLocatorAgreesWithRationalLocationForLargeDenominators) {
+  const BoxSplineSpec s = parse_spec("20,1; 1,20; 7,5; -9,4");
+  const PiecewiseForm form = derive_piecewise(s, DerivationMethod::TruncatedPower);
+  std::vector<RatVec> points;
+  for (const IntVec& corner : {IntVec{0, 0}, IntVec{3, 5}})
+    for (const auto& cell : split_cube(form.complex.normals(), corner))
+      points.push_back(cell.interior);
+  for (int a = 0; a < 6; ++a) points.push_back({Rational(a) / 3, Rational(a * a) / 2});
+  int inside = 0, large = 0;
+  for (const RatVec& p : points) {
+    large += cln::denominator(p[0]) > 1000 || cln::denominator(p[1]) > 1000;
+    const ShiftLocator locate(form.knots, p);
+    for (std::int64_t x = -30; x <= 10; x += 3)
+      for (std::int64_t y = -30; y <= 10; y += 2) {
+        const RatVec q{p[0] - Rational(x), p[1] - Rational(y)};
+        ASSERT_EQ(locate.cell_at({x, y}), form.knots.locate(q));
+        inside += locate.cell_at({x, y}) >= 0;
+      }
+  }
+  EXPECT_GT(large, 0);  // the case the locator once left to rational arithmetic
+  EXPECT_GT(inside, 100);
+}
+
 // A scaled direction matrix on the correspondingly scaled lattice is the same spline: the knot
 // complex, the pieces and the structure must not grow with the scale.
 TEST(KnotComplex, ScaledMatrixOnScaledLatticeHasTheSameCells) {

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+
 namespace boxgen {
 namespace {
 
@@ -76,6 +78,52 @@ TEST(Poly, EqualityIgnoresCapacityAndTrimShrinksIt) {
   wide.trim();
   EXPECT_EQ(wide.capacity(), 1);
   EXPECT_EQ(Poly(3, 2).degree(), -1);
+}
+
+// Translation runs in integers over one denominator (poly.cpp); it must equal P(x - s) exactly
+// for rational coefficients and shifts of any denominators: checked against the composition
+// P(I x - s) (another routine) and against values on the principal lattice of degree d, which
+// determines a polynomial of degree <= d.
+TEST(Poly, TranslationWithDenominatorsMatchesCompositionAndValues) {
+  std::uint32_t seed = 1;  // unsigned: the generator wraps modulo 2^32 by design
+  auto next = [&seed] {
+    seed = seed * 1103515245u + 12345u;
+    return static_cast<int>(seed >> 1);
+  };
+  for (int n : {2, 3})
+    for (int d : {0, 1, 2, 5, 9}) {
+      Poly p(n, d);
+      for (const auto& e :
+           std::vector<Exponent>(monomial_exponents(n, d).begin(),
+                                 monomial_exponents(n, d).begin() +
+                                     static_cast<std::ptrdiff_t>(monomial_count(n, d))))
+        if (next() % 4 != 0)
+          p.set_coefficient(e, Rational(next() % 41 - 20) / Rational(1 + next() % 12));
+      const std::vector<RatVec> shifts{
+          RatVec(n, Rational(0)), RatVec(n, Rational(3)), RatVec(n, Rational(-1) / 2),
+          n == 2 ? RatVec{Rational(1) / 3, Rational(-5) / 7}
+                 : RatVec{Rational(1) / 3, Rational(-5) / 7, Rational(2)}};
+      for (const RatVec& s : shifts) {
+        const Poly t = p.translated(s);
+        std::vector<RatVec> identity(n, RatVec(n, Rational(0)));
+        RatVec minus_s(n);
+        for (int k = 0; k < n; ++k) {
+          identity[k][k] = 1;
+          minus_s[k] = -s[k];
+        }
+        EXPECT_EQ(t, p.composed_affine(identity, minus_s)) << n << " " << d;
+        EXPECT_LE(t.degree(), d);
+        for (std::size_t i = 0; i < monomial_count(n, d); ++i) {
+          const Exponent& e = monomial_exponents(n, d)[i];
+          RatVec x(n), x_minus_s(n);
+          for (int k = 0; k < n; ++k) {
+            x[k] = Rational(e[k]) + Rational(1) / 5;
+            x_minus_s[k] = x[k] - s[k];
+          }
+          ASSERT_EQ(t.eval(x), p.eval(x_minus_s)) << n << " " << d;
+        }
+      }
+    }
 }
 
 }  // namespace
