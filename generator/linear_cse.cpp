@@ -1,34 +1,14 @@
 #include "generator/linear_cse.h"
 
 #include <algorithm>
-#include <cmath>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <tuple>
-#include <unordered_map>
 
 namespace boxgen {
 
 namespace {
-
-// A pair of inputs a < b whose weights stand in the ratio w_b / w_a (its double; the exact ratio
-// is compared again when the pair is replaced).
-struct PairKey {
-  int a, b;
-  double ratio;
-  bool operator==(const PairKey& o) const { return a == o.a && b == o.b && ratio == o.ratio; }
-  bool operator<(const PairKey& o) const {
-    return std::tie(a, b, ratio) < std::tie(o.a, o.b, o.ratio);
-  }
-};
-
-struct PairHash {
-  std::size_t operator()(const PairKey& k) const {
-    const std::size_t h = std::hash<double>()(k.ratio);
-    return h ^ (static_cast<std::size_t>(k.a) * 0x9e3779b97f4a7c15ull) ^
-           (static_cast<std::size_t>(k.b) * 0xc2b2ae3d27d4eb4full);
-  }
-};
 
 // The distinct weights of the rows, each converted once, and the doubles of their ratios, each
 // computed once: the pair search touches every pair of every row in every round.
@@ -42,19 +22,33 @@ class WeightTable {
     weights_.push_back(w);
     return next;
   }
-  double ratio(int a, int b) {  // to_double(w_b / w_a)
+  // The id of the double of w_b / w_a (equal doubles share an id), and that double.
+  int ratio_id(int a, int b) {
     const std::size_t size = weights_.size();
-    if (ratios_.size() != size * size) {
-      std::vector<double> grown(size * size, std::nan(""));
-      const std::size_t old = size == 0 ? 0 : static_cast<std::size_t>(std::sqrt(ratios_.size()));
+    if (ratio_ids_.size() != size * size) {
+      std::vector<int> grown(size * size, -1);
+      const std::size_t old = size_;
       for (std::size_t i = 0; i < old; ++i)
-        for (std::size_t j = 0; j < old; ++j) grown[i * size + j] = ratios_[i * old + j];
-      ratios_ = std::move(grown);
+        for (std::size_t j = 0; j < old; ++j) grown[i * size + j] = ratio_ids_[i * old + j];
+      ratio_ids_ = std::move(grown);
+      size_ = size;
     }
-    double& r = ratios_[static_cast<std::size_t>(a) * size + static_cast<std::size_t>(b)];
-    if (std::isnan(r)) r = to_double(weights_[b] / weights_[a]);
-    return r;
+    int& id = ratio_ids_[static_cast<std::size_t>(a) * size + static_cast<std::size_t>(b)];
+    if (id < 0) {
+      const double r = to_double(weights_[b] / weights_[a]);
+      const auto it = ratio_of_value_.find(r);
+      if (it != ratio_of_value_.end()) {
+        id = it->second;
+      } else {
+        id = static_cast<int>(ratios_.size());
+        ratio_of_value_.emplace(r, id);
+        ratios_.push_back(r);
+      }
+    }
+    return id;
   }
+  double ratio(int id) const { return ratios_[id]; }
+  std::size_t ratio_count() const { return ratios_.size(); }
   const Rational& weight(int id) const { return weights_[id]; }
 
  private:
@@ -63,6 +57,9 @@ class WeightTable {
   };
   std::map<Rational, int, Less> ids_;
   std::vector<Rational> weights_;
+  std::vector<int> ratio_ids_;  // size_ x size_, -1 until computed
+  std::size_t size_ = 0;
+  std::map<double, int> ratio_of_value_;
   std::vector<double> ratios_;
 };
 
@@ -73,7 +70,8 @@ SharedRows share_partial_sums(const std::vector<LinearRow>& rows, int inputs,
   SharedRows out{{}, rows};
   std::size_t entries = 0;
   for (const auto& row : rows) entries += row.size();
-  if (entries > max_entries) return out;
+  // The packed pair keys below hold inputs and temporaries (< inputs + entries) in 20 bits.
+  if (entries > max_entries || static_cast<std::size_t>(inputs) + entries >= (1u << 20)) return out;
   // The rows with weights replaced by their ids in `table` (entries: input, weight id).
   WeightTable table;
   std::vector<std::vector<std::pair<int, int>>> work;
@@ -81,28 +79,45 @@ SharedRows share_partial_sums(const std::vector<LinearRow>& rows, int inputs,
     work.emplace_back();
     for (const auto& [input, w] : row) work.back().emplace_back(input, table.id(w));
   }
-  std::unordered_map<PairKey, int, PairHash> count;
+  // A pair (a < b, ratio id) packed into one word: 20 bits each for the inputs, 24 for the ratio.
+  auto pack = [](int a, int b, int r) {
+    return (static_cast<std::uint64_t>(a) << 44) | (static_cast<std::uint64_t>(b) << 24) |
+           static_cast<std::uint64_t>(r);
+  };
+  std::vector<std::uint64_t> pairs;
   for (int next = inputs;; ++next) {
-    // How many rows hold inputs a < b with weights in ratio r.
-    count.clear();
+    // Every pair of inputs a < b of every row with its weight ratio, sorted: equal keys are the
+    // rows that could share t = x_a + r x_b.
+    pairs.clear();
     for (const auto& row : work)
       for (std::size_t i = 0; i < row.size(); ++i)
         for (std::size_t j = i + 1; j < row.size(); ++j) {
           const auto& [a, wa] = row[i].first < row[j].first ? row[i] : row[j];
           const auto& [b, wb] = row[i].first < row[j].first ? row[j] : row[i];
-          ++count[{a, b, table.ratio(wa, wb)}];
+          pairs.push_back(pack(a, b, table.ratio_id(wa, wb)));
         }
-    // The most frequent pair; among equally frequent ones the smallest key (a, b, ratio).
-    const PairKey* best = nullptr;
-    int best_count = 0;
-    for (const auto& [key, c] : count)
-      if (c > best_count || (c == best_count && key < *best)) {
-        best = &key;
+    std::sort(pairs.begin(), pairs.end());
+    // The most frequent pair; among equally frequent ones the smallest (a, b, ratio).
+    auto unpack = [&](std::uint64_t key) {
+      return std::make_tuple(static_cast<int>(key >> 44),
+                             static_cast<int>((key >> 24) & ((1u << 20) - 1)),
+                             table.ratio(static_cast<int>(key & ((1u << 24) - 1))));
+    };
+    std::optional<std::tuple<int, int, double>> best;
+    std::size_t best_count = 0;
+    for (std::size_t i = 0; i < pairs.size();) {
+      std::size_t j = i;
+      while (j < pairs.size() && pairs[j] == pairs[i]) ++j;
+      const std::size_t c = j - i;
+      if (c > best_count || (c == best_count && unpack(pairs[i]) < *best)) {
+        best = unpack(pairs[i]);
         best_count = c;
       }
-    if (!best || best_count < 2) break;
-    const int a = best->a;
-    const int b = best->b;
+      i = j;
+    }
+    if (!best || best_count < 2 || table.ratio_count() >= (1u << 24)) break;
+    const int a = std::get<0>(*best);  // named, not bound: lambdas capture them (clang 14)
+    const int b = std::get<1>(*best);
     // The exact ratio from the first row holding the pair; rows with another exact ratio keep
     // theirs.
     std::optional<Rational> r;
