@@ -63,6 +63,67 @@ class WeightTable {
   std::vector<double> ratios_;
 };
 
+using WorkRow = std::vector<std::pair<int, int>>;  // (input, weight id)
+
+// A pair (a < b, ratio id) packed into one word: 20 bits each for the inputs, 24 for the ratio.
+std::uint64_t pack(int a, int b, int r) {
+  return (static_cast<std::uint64_t>(a) << 44) | (static_cast<std::uint64_t>(b) << 24) |
+         static_cast<std::uint64_t>(r);
+}
+
+// The pair of inputs a < b whose weights stand in the same ratio in the most rows (among equally
+// frequent ones the smallest (a, b, ratio)), with that count. Every pair of every row goes into
+// `pairs`, sorted: equal keys are the rows that could share t = x_a + r x_b.
+std::pair<std::tuple<int, int, double>, std::size_t> most_frequent_pair(
+    const std::vector<WorkRow>& work, WeightTable& table, std::vector<std::uint64_t>& pairs) {
+  pairs.clear();
+  for (const auto& row : work)
+    for (std::size_t i = 0; i < row.size(); ++i)
+      for (std::size_t j = i + 1; j < row.size(); ++j) {
+        const auto& [a, wa] = row[i].first < row[j].first ? row[i] : row[j];
+        const auto& [b, wb] = row[i].first < row[j].first ? row[j] : row[i];
+        pairs.push_back(pack(a, b, table.ratio_id(wa, wb)));
+      }
+  std::sort(pairs.begin(), pairs.end());
+  auto unpack = [&](std::uint64_t key) {
+    return std::make_tuple(static_cast<int>(key >> 44),
+                           static_cast<int>((key >> 24) & ((1u << 20) - 1)),
+                           table.ratio(static_cast<int>(key & ((1u << 24) - 1))));
+  };
+  std::tuple<int, int, double> best{0, 0, 0.0};
+  std::size_t best_count = 0;
+  for (std::size_t i = 0; i < pairs.size();) {
+    std::size_t j = i;
+    while (j < pairs.size() && pairs[j] == pairs[i]) ++j;
+    if (j - i > best_count || (j - i == best_count && unpack(pairs[i]) < best)) {
+      best = unpack(pairs[i]);
+      best_count = j - i;
+    }
+    i = j;
+  }
+  return {best, best_count};
+}
+
+// Replaces x_a and x_b by the temporary `next` = x_a + r x_b in every row where they stand in the
+// ratio r of the first row holding both (rows with another exact ratio keep theirs); returns r.
+Rational replace_pair(std::vector<WorkRow>& work, const WeightTable& table, int a, int b,
+                      int next) {
+  std::optional<Rational> r;
+  for (auto& row : work) {
+    auto ia = std::find_if(row.begin(), row.end(), [&](const auto& e) { return e.first == a; });
+    auto ib = std::find_if(row.begin(), row.end(), [&](const auto& e) { return e.first == b; });
+    if (ia == row.end() || ib == row.end()) continue;
+    const Rational row_ratio = table.weight(ib->second) / table.weight(ia->second);
+    if (!r) r = row_ratio;
+    if (row_ratio != *r) continue;
+    const int wa = ia->second;
+    row.erase(std::max(ia, ib));
+    row.erase(std::min(ia, ib));
+    row.emplace_back(next, wa);
+  }
+  return *r;  // the pair was counted in at least two rows
+}
+
 }  // namespace
 
 SharedRows share_partial_sums(const std::vector<LinearRow>& rows, int inputs,
@@ -70,73 +131,22 @@ SharedRows share_partial_sums(const std::vector<LinearRow>& rows, int inputs,
   SharedRows out{{}, rows};
   std::size_t entries = 0;
   for (const auto& row : rows) entries += row.size();
-  // The packed pair keys below hold inputs and temporaries (< inputs + entries) in 20 bits.
+  // The packed pair keys hold inputs and temporaries (< inputs + entries) in 20 bits.
   if (entries > max_entries || static_cast<std::size_t>(inputs) + entries >= (1u << 20)) return out;
-  // The rows with weights replaced by their ids in `table` (entries: input, weight id).
+  // The rows with weights replaced by their ids in `table`.
   WeightTable table;
-  std::vector<std::vector<std::pair<int, int>>> work;
+  std::vector<WorkRow> work;
   for (const auto& row : rows) {
     work.emplace_back();
     for (const auto& [input, w] : row) work.back().emplace_back(input, table.id(w));
   }
-  // A pair (a < b, ratio id) packed into one word: 20 bits each for the inputs, 24 for the ratio.
-  auto pack = [](int a, int b, int r) {
-    return (static_cast<std::uint64_t>(a) << 44) | (static_cast<std::uint64_t>(b) << 24) |
-           static_cast<std::uint64_t>(r);
-  };
   std::vector<std::uint64_t> pairs;
   for (int next = inputs;; ++next) {
-    // Every pair of inputs a < b of every row with its weight ratio, sorted: equal keys are the
-    // rows that could share t = x_a + r x_b.
-    pairs.clear();
-    for (const auto& row : work)
-      for (std::size_t i = 0; i < row.size(); ++i)
-        for (std::size_t j = i + 1; j < row.size(); ++j) {
-          const auto& [a, wa] = row[i].first < row[j].first ? row[i] : row[j];
-          const auto& [b, wb] = row[i].first < row[j].first ? row[j] : row[i];
-          pairs.push_back(pack(a, b, table.ratio_id(wa, wb)));
-        }
-    std::sort(pairs.begin(), pairs.end());
-    // The most frequent pair; among equally frequent ones the smallest (a, b, ratio).
-    auto unpack = [&](std::uint64_t key) {
-      return std::make_tuple(static_cast<int>(key >> 44),
-                             static_cast<int>((key >> 24) & ((1u << 20) - 1)),
-                             table.ratio(static_cast<int>(key & ((1u << 24) - 1))));
-    };
-    std::optional<std::tuple<int, int, double>> best;
-    std::size_t best_count = 0;
-    for (std::size_t i = 0; i < pairs.size();) {
-      std::size_t j = i;
-      while (j < pairs.size() && pairs[j] == pairs[i]) ++j;
-      const std::size_t c = j - i;
-      if (c > best_count || (c == best_count && unpack(pairs[i]) < *best)) {
-        best = unpack(pairs[i]);
-        best_count = c;
-      }
-      i = j;
-    }
-    if (!best || best_count < 2 || table.ratio_count() >= (1u << 24)) break;
-    const int a = std::get<0>(*best);  // named, not bound: lambdas capture them (clang 14)
-    const int b = std::get<1>(*best);
-    // The exact ratio from the first row holding the pair; rows with another exact ratio keep
-    // theirs.
-    std::optional<Rational> r;
-    int replaced = 0;
-    for (auto& row : work) {
-      auto ia = std::find_if(row.begin(), row.end(), [&](const auto& e) { return e.first == a; });
-      auto ib = std::find_if(row.begin(), row.end(), [&](const auto& e) { return e.first == b; });
-      if (ia == row.end() || ib == row.end()) continue;
-      const Rational row_ratio = table.weight(ib->second) / table.weight(ia->second);
-      if (!r) r = row_ratio;
-      if (row_ratio != *r) continue;
-      const int wa = ia->second;
-      row.erase(std::max(ia, ib));
-      row.erase(std::min(ia, ib));
-      row.emplace_back(next, wa);
-      ++replaced;
-    }
-    if (replaced == 0) break;  // cannot happen: the first row holding the pair matches itself
-    out.temporaries.push_back({a, b, *r});
+    const auto [best, count] = most_frequent_pair(work, table, pairs);
+    if (count < 2 || table.ratio_count() >= (1u << 24)) break;
+    const int a = std::get<0>(best);
+    const int b = std::get<1>(best);
+    out.temporaries.push_back({a, b, replace_pair(work, table, a, b, next)});
   }
   out.rows.clear();
   for (const auto& row : work) {

@@ -615,6 +615,80 @@ std::map<MultiIndex, std::size_t> index_of(int n, int d) {
   return out;
 }
 
+// The names of the values of each de Casteljau level ("" where a value is zero).
+using BBLevels = std::vector<std::vector<std::string>>;
+
+// De Casteljau from the BB-coefficients `level0`: q^r_b = sum_i l_i q^(r-1)_(b + e_i) for
+// r = 1..d, every level kept (d - 1 and d - 2 give the derivatives); the definitions are appended
+// to `text` and counted in `cost`.
+BBLevels casteljau_levels(const std::vector<std::string>& level0, int n, int degree,
+                          std::string& text, OperationCount& cost) {
+  BBLevels levels{level0};
+  for (int r = 1; r <= degree; ++r) {
+    const auto previous = index_of(n, degree - r + 1);
+    const auto indices = bb_multi_indices(n, degree - r);
+    std::vector<std::string> next(indices.size());
+    for (std::size_t b = 0; b < indices.size(); ++b) {
+      std::vector<std::string> terms;
+      for (int i = 0; i <= n; ++i) {
+        MultiIndex up = indices[b];
+        ++up[i];
+        const std::string& q = levels.back()[previous.at(up)];
+        if (!q.empty()) terms.push_back(fmt::format("l{} * {}", i, q));
+      }
+      if (terms.empty()) continue;
+      next[b] = fmt::format("q{}_{}", r, b);
+      const std::string expr = join(terms, " + ");
+      text += fmt::format("  const T {} = {};\n", next[b], expr);
+      cost += count_operations(expr);
+    }
+    levels.push_back(std::move(next));
+  }
+  return levels;
+}
+
+// sum_b weight(b) q^level_b as emitted text ("" when zero).
+std::string level_combination(const BBLevels& levels, int level, int n, int degree,
+                              const std::function<Rational(const MultiIndex&)>& weight) {
+  if (level < 0) return "";
+  const auto indices = bb_multi_indices(n, degree - level);
+  LinearRow row;
+  std::vector<std::string> names;
+  for (std::size_t b = 0; b < indices.size(); ++b) {
+    const std::string& q = levels[level][b];
+    const Rational w = weight(indices[b]);
+    names.push_back(q);
+    if (!q.empty() && !cln::zerop(w)) row.emplace_back(static_cast<int>(b), w);
+  }
+  return row.empty() ? "" : linear_combination(row, names, true);
+}
+
+// The gradient from level d - 1 and the Hessian's upper triangle from level d - 2, in the order
+// of d[]: fixed rational combinations, since every grad(l_i) is constant.
+std::vector<std::string> bb_derivatives(const BBLevels& levels, const std::vector<RatVec>& lambda,
+                                        int n, int degree) {
+  std::vector<std::string> d_exprs;
+  const Rational dd = Rational(degree);
+  for (int p = 0; p < n; ++p)
+    d_exprs.push_back(level_combination(levels, degree - 1, n, degree, [&](const MultiIndex& b) {
+      const int i = static_cast<int>(std::find(b.begin(), b.end(), 1) - b.begin());
+      return dd * lambda[i][p + 1];
+    }));
+  for (int p = 0; p < n; ++p)
+    for (int q = p; q < n; ++q)
+      d_exprs.push_back(level_combination(levels, degree - 2, n, degree, [&](const MultiIndex& b) {
+        // the ordered pairs (i, j) with e_i + e_j = b: grad(l_i)_p grad(l_j)_q summed
+        std::vector<int> parts;
+        for (int i = 0; i <= n; ++i)
+          for (int k = 0; k < b[i]; ++k) parts.push_back(i);
+        const int i = parts[0], j = parts[1];
+        Rational sum = lambda[i][p + 1] * lambda[j][q + 1];
+        if (i != j) sum = sum + lambda[j][p + 1] * lambda[i][q + 1];
+        return dd * (dd - 1) * sum;
+      }));
+  return d_exprs;
+}
+
 // On a simplicial reference region: the BB-coefficients (generator/bbform.h), the barycentric
 // coordinates, de Casteljau's algorithm level by level (level r holds the degree d - r
 // polynomials q_b, |b| = d - r, whose BB-combination with the degree-r Bernstein polynomials is
@@ -649,64 +723,10 @@ std::optional<OrbitCode> bernstein_code(const ReferenceRegion& ref, int orbit, i
       barycentric += fmt::format("  const T l{} = {};\n", i, expr);
       shared += count_operations(expr);
     }
-  // De Casteljau: q^r_b = sum_i l_i q^(r-1)_(b + e_i); levels d - 1 and d - 2 are kept for the
-  // derivatives.
   std::string casteljau;
-  std::vector<std::vector<std::string>> levels{level};
-  for (int r = 1; r <= degree; ++r) {
-    const auto previous = index_of(n, degree - r + 1);
-    const auto indices = bb_multi_indices(n, degree - r);
-    std::vector<std::string> next(indices.size());
-    for (std::size_t b = 0; b < indices.size(); ++b) {
-      std::vector<std::string> terms;
-      for (int i = 0; i <= n; ++i) {
-        MultiIndex up = indices[b];
-        ++up[i];
-        const std::string& q = levels.back()[previous.at(up)];
-        if (!q.empty()) terms.push_back(fmt::format("l{} * {}", i, q));
-      }
-      if (terms.empty()) continue;
-      next[b] = fmt::format("q{}_{}", r, b);
-      const std::string expr = join(terms, " + ");
-      casteljau += fmt::format("  const T {} = {};\n", next[b], expr);
-      shared += count_operations(expr);
-    }
-    levels.push_back(std::move(next));
-  }
+  const BBLevels levels = casteljau_levels(level, n, degree, casteljau, shared);
   const std::string value = levels.back()[0].empty() ? "T(0)" : levels.back()[0];
-  // Derivatives: fixed combinations of level d - 1 (gradient) and d - 2 (Hessian).
-  std::vector<std::string> d_exprs;
-  auto combination = [&](int from_level, const std::function<Rational(const MultiIndex&)>& weight) {
-    if (from_level < 0) return std::string();
-    const auto indices = bb_multi_indices(n, degree - from_level);
-    LinearRow row;
-    std::vector<std::string> names;
-    for (std::size_t b = 0; b < indices.size(); ++b) {
-      const std::string& q = levels[from_level][b];
-      const Rational w = weight(indices[b]);
-      names.push_back(q);
-      if (!q.empty() && !cln::zerop(w)) row.emplace_back(static_cast<int>(b), w);
-    }
-    return row.empty() ? std::string() : linear_combination(row, names, true);
-  };
-  const Rational dd = Rational(degree);
-  for (int p = 0; p < n; ++p)
-    d_exprs.push_back(combination(degree - 1, [&](const MultiIndex& b) {
-      const int i = static_cast<int>(std::find(b.begin(), b.end(), 1) - b.begin());
-      return dd * lambda[i][p + 1];
-    }));
-  for (int p = 0; p < n; ++p)
-    for (int q = p; q < n; ++q)
-      d_exprs.push_back(combination(degree - 2, [&](const MultiIndex& b) {
-        // sum over ordered pairs (i, j) with e_i + e_j = b of grad(l_i)_p grad(l_j)_q
-        std::vector<int> parts;
-        for (int i = 0; i <= n; ++i)
-          for (int k = 0; k < b[i]; ++k) parts.push_back(i);
-        const int i = parts[0], j = parts[1];
-        Rational sum = lambda[i][p + 1] * lambda[j][q + 1];
-        if (i != j) sum = sum + lambda[j][p + 1] * lambda[i][q + 1];
-        return dd * (dd - 1) * sum;
-      }));
+  const std::vector<std::string> d_exprs = bb_derivatives(levels, lambda, n, degree);
   std::vector<OperationCount> d_costs;
   for (const auto& e : d_exprs) d_costs.push_back(count_operations(e));
   OrbitCode code{EmissionStrategy::Bernstein, "", {}, {}, {}, "", {}};
