@@ -17,8 +17,10 @@
 #endif
 
 #include <cmath>
+#include <iomanip>
 #include <map>
 #include <random>
+#include <sstream>
 
 #include "emitted/biquadratic.hpp"
 #include "emitted/cart7.hpp"
@@ -241,7 +243,16 @@ void check_filter(const std::string& preset, Evaluate evaluate, double tolerance
   EXPECT_LE(worst_gradient / kMaxV, tolerance) << preset << " gradient";
   EXPECT_LE(worst_hessian / kMaxV, 4 * tolerance) << preset << " hessian";
   EXPECT_GE(hessians_compared, BOXGEN_EXACT_POINTS / 2) << preset;
-  ::testing::Test::RecordProperty("max_relative_error", std::to_string(worst / kMaxV));
+  // In scientific notation (std::to_string's six decimals print every error here as 0).
+  auto scientific = [](double e) {
+    std::ostringstream out;
+    out << std::scientific << std::setprecision(2) << e;
+    return out.str();
+  };
+  ::testing::Test::RecordProperty("max_relative_error", scientific(worst / kMaxV));
+  ::testing::Test::RecordProperty("max_relative_gradient_error",
+                                  scientific(worst_gradient / kMaxV));
+  ::testing::Test::RecordProperty("max_relative_hessian_error", scientific(worst_hessian / kMaxV));
 }
 
 template <class T, std::size_t N>
