@@ -399,7 +399,9 @@ ShiftedForm shifted_form(const ReferenceRegion& ref, const RatVec& origin, int n
   return f;
 }
 
-OrbitCode shifted_code(const ReferenceRegion& ref, int orbit, int n, int degree) {
+// The cheapest origin's code; nullopt without a candidate (a region has points other than 0, so
+// only a degenerate input gets there).
+std::optional<OrbitCode> shifted_code(const ReferenceRegion& ref, int orbit, int n, int degree) {
   std::optional<OrbitCode> best;
   const std::vector<RatVec> origins = shift_origins(ref, n);
   for (const RatVec& o : origins) {
@@ -422,7 +424,7 @@ OrbitCode shifted_code(const ReferenceRegion& ref, int orbit, int n, int degree)
     code.form = "about " + code::vertex_text(o);
     best = std::move(code);
   }
-  return *best;
+  return best;
 }
 
 // ---- separable ----
@@ -763,19 +765,35 @@ std::optional<OrbitCode> orbit_code(const ReferenceRegion& ref, int orbit, int n
   return std::nullopt;
 }
 
+namespace {
+
+// Why a strategy does not apply to an orbit, as one line for the user.
+std::string not_applicable(EmissionStrategy strategy, const ReferenceRegion& ref, int orbit,
+                           int n) {
+  switch (strategy) {
+    case EmissionStrategy::Bernstein:
+      return fmt::format(
+          "--strategy bernstein: the reference region of orbit {} is not a simplex ({} vertices "
+          "in {}-D)",
+          orbit, ref.vertices.size(), n);
+    case EmissionStrategy::Separable:
+      return fmt::format(
+          "--strategy separable: orbit {} is not a tensor product of univariate "
+          "factors",
+          orbit);
+    default:
+      return fmt::format("--strategy {}: no candidate origin for orbit {}", strategy_name(strategy),
+                         orbit);
+  }
+}
+
+}  // namespace
+
 OrbitCode choose_orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree,
                             EmissionStrategy strategy) {
   if (strategy != EmissionStrategy::Auto) {
     auto code = orbit_code(ref, orbit, n, degree, strategy);
-    if (!code)
-      fail_input(
-          strategy == EmissionStrategy::Bernstein
-              ? fmt::format("--strategy bernstein: the reference region of orbit {} is not a "
-                            "simplex ({} vertices in {}-D)",
-                            orbit, ref.vertices.size(), n)
-              : fmt::format("--strategy {}: orbit {} is not a tensor product of univariate "
-                            "factors",
-                            strategy_name(strategy), orbit));
+    if (!code) fail_input(not_applicable(strategy, ref, orbit, n));
     return *code;
   }
   std::optional<OrbitCode> best;
