@@ -14,7 +14,11 @@
 
 #include "emitted/m12_horner.hpp"
 #include "emitted/m12_monomial.hpp"
+#include "emitted/m7_bernstein.hpp"
+#include "emitted/m7_horner.hpp"
 #include "emitted/m7_monomial.hpp"
+#include "emitted/m8_bernstein.hpp"
+#include "emitted/m8_horner.hpp"
 #include "emitted/m8_monomial.hpp"
 #include "generated/m12.hpp"
 #include "generated/m7.hpp"
@@ -73,8 +77,12 @@ void run(benchmark::State& state, Evaluate evaluate, int order) {
   BENCHMARK(NS##_scalar)->Name("scalar/" #NS)->ArgName("order")->DenseRange(0, 2)
 
 BOXGEN_SCALAR_BENCHMARK(m7);
+BOXGEN_SCALAR_BENCHMARK(m7_horner);
+BOXGEN_SCALAR_BENCHMARK(m7_bernstein);
 BOXGEN_SCALAR_BENCHMARK(m7_monomial);
 BOXGEN_SCALAR_BENCHMARK(m8);
+BOXGEN_SCALAR_BENCHMARK(m8_horner);
+BOXGEN_SCALAR_BENCHMARK(m8_bernstein);
 BOXGEN_SCALAR_BENCHMARK(m8_monomial);
 BOXGEN_SCALAR_BENCHMARK(m12);
 BOXGEN_SCALAR_BENCHMARK(m12_horner);

@@ -1,6 +1,6 @@
 # boxgen_emit: turn a direction matrix of your own into C++ headers at build time.
 #
-#   boxgen_emit(<target> NAME <name> SPEC <spec> [LATTICE <lattice>] [STRATEGY auto|horner|separable|monomial]
+#   boxgen_emit(<target> NAME <name> SPEC <spec> [LATTICE <lattice>] [STRATEGY auto|horner|shifted|bernstein|separable|monomial]
 #               [OUTPUT_DIR <dir>] [HEADERS <variable>])
 #
 # adds a build step that runs `boxgen emit <spec> [--lattice <lattice>] [--strategy <strategy>]

@@ -7,10 +7,11 @@
 // templates/evaluator.hpp.fmt: the tables and the polynomial code below are the generator's
 // output; the glue (cell lookup, symmetry, fetching) is generated/evaluator_support.hpp.
 //
-// Emission strategy: horner. Arithmetic per point of the polynomial code (additions +
+// Emission strategy: shifted. Arithmetic per point of the polynomial code (additions +
 // multiplications as emitted, the costliest orbit), value / value + gradient / + Hessian:
-//   449 / 575 / 707
-//   orbit 0: horner, 449 / 575 / 707
+//   428 / 554 / 686
+//   orbit 0: shifted about (1/2,1/2,1/2), 428 / 554 / 686
+//     chosen by value + gradient from horner 449 / 575 / 707, monomial 1598 / 1781 / 1937, shifted 428 / 554 / 686, bernstein 1146 / 1154 / 1186
 #pragma once
 #include <array>
 #include <cstdint>
@@ -25,10 +26,10 @@ inline constexpr int kStencilSize = 53;
 inline constexpr int kLatticeDet = 1;
 inline constexpr const char* kSpec = "1,0,0; 0,1,0; 0,0,1; 1,1,1; 1,1,-1; 1,-1,1; -1,1,1";
 inline constexpr const char* kLattice = "cartesian";
-inline constexpr const char* kStrategy = "horner";
-inline constexpr long kValueOperations = 449;
-inline constexpr long kGradientOperations = 575;
-inline constexpr long kHessianOperations = 707;
+inline constexpr const char* kStrategy = "shifted";
+inline constexpr long kValueOperations = 428;
+inline constexpr long kGradientOperations = 554;
+inline constexpr long kHessianOperations = 686;
 
 using Point = std::array<std::int64_t, kDimension>;
 
@@ -42,188 +43,197 @@ inline constexpr int kStencilReachHi[kDimension] = {1, 1, 1};
 namespace detail {
 
 // Orbit 0: the spline on the reference region with vertices (0,0,0) (1/2,0,0) (1/2,1/2,-1/2) (1/2,1/2,1/2),
-// as 32 monomial coefficients, each a linear combination of the 53 stencil values
-// (128 partial sums s shared between coefficients, then values of equal weight grouped),
-// evaluated in nested Horner form; each partial derivative is the Horner form of the exact
-// derivative polynomial, sharing the coefficients.
+// in monomials of y = x - o about the origin o = (1/2,1/2,1/2) (of 10 candidate points of the
+// region, the one with the fewest value + gradient operations): 32 coefficients, each an
+// exact linear combination of the 53 stencil values (132 partial sums s shared between
+// coefficients, then values of equal weight grouped), evaluated in nested Horner form in y; each
+// partial derivative is the Horner form of the exact derivative polynomial, sharing the
+// coefficients.
 template <int Order, class T>
 T orbit_0(const T* v, const T* x, T* d) {
-  const T s0 = v[13] + v[44];
-  const T s1 = v[5] + v[36];
-  const T s2 = v[14] + v[45];
-  const T s3 = v[6] + v[37];
-  const T s4 = v[10] + v[41];
-  const T s5 = v[0] + T(8) * v[8];
-  const T s6 = v[0] + T(3) * v[8];
-  const T s7 = v[0] + v[8];
-  const T s8 = v[9] + v[40];
-  const T s9 = v[39] + T(0.125) * v[49];
-  const T s10 = v[39] + T(0.33333333333333331) * v[49];
-  const T s11 = v[39] + v[49];
-  const T s12 = v[4] + v[35];
-  const T s13 = v[12] + v[43];
-  const T s14 = v[22] + v[31];
-  const T s15 = v[1] + v[11];
-  const T s16 = v[4] - v[35];
-  const T s17 = v[6] - v[37];
-  const T s18 = v[12] - v[43];
-  const T s19 = v[21] + v[30];
-  const T s20 = v[25] + v[27];
-  const T s21 = v[42] + v[50];
-  const T s22 = v[2] - s7;
-  const T s23 = v[13] - v[44];
-  const T s24 = v[14] - v[45];
-  const T s25 = v[51] - s11;
-  const T s26 = v[3] - v[16];
-  const T s27 = v[5] - v[36];
-  const T s28 = v[29] + s14;
-  const T s29 = v[47] - v[52];
-  const T s30 = s0 + s1;
-  const T s31 = s4 + T(4) * s8;
-  const T s32 = s4 + T(-2) * s8;
-  const T s33 = s4 - s8;
-  const T s34 = s17 + s18;
-  const T s35 = v[17] - s22;
-  const T s36 = v[18] - v[19];
-  const T s37 = v[32] + v[34];
-  const T s38 = v[48] - s25;
-  const T s39 = s15 - s26;
-  const T s40 = s16 + s24;
-  const T s41 = s21 + s29;
-  const T s42 = v[10] - v[41];
-  const T s43 = s2 + s3;
-  const T s44 = s19 + s20;
-  const T s45 = v[0] - v[49];
-  const T s46 = v[7] + v[38];
-  const T s47 = v[7] - v[38];
-  const T s48 = v[9] - v[40];
-  const T s49 = v[15] + v[46];
-  const T s50 = v[15] - v[46];
-  const T s51 = v[20] + T(0.125) * v[33];
-  const T s52 = v[20] + T(-0.33333333333333331) * v[33];
-  const T s53 = v[20] + v[33];
-  const T s54 = v[26] + T(0.015151515151515152) * v[28];
-  const T s55 = v[26] + T(-0.5) * v[28];
-  const T s56 = v[26] + v[28];
-  const T s57 = v[33] + T(-0.5) * s13;
-  const T s58 = s12 + s13;
-  const T s59 = s23 + s42;
-  const T s60 = s23 + s47;
-  const T s61 = s27 + s50;
-  const T s62 = s35 - s41;
-  const T s63 = s38 - s39;
-  const T s64 = v[8] + v[39];
-  const T s65 = v[8] - v[39];
-  const T s66 = v[16] + s22;
-  const T s67 = v[21] + T(-0.5) * v[31];
-  const T s68 = v[21] - v[31];
-  const T s69 = v[23] - s36;
-  const T s70 = v[25] + T(-0.5) * s30;
-  const T s71 = v[47] + s25;
-  const T s72 = s0 - s1;
-  const T s73 = s2 - s3;
-  const T s74 = s3 + T(0.5) * s12;
-  const T s75 = s7 + s11;
-  const T s76 = s12 - s13;
-  const T s77 = s28 + s56;
-  const T s78 = s36 + T(0.5) * s46;
-  const T s79 = s37 - s53;
-  const T s80 = s48 + T(0.5) * s59;
-  const T s81 = s48 + s59;
-  const T s82 = v[0] + v[49];
-  const T s83 = v[1] - v[11];
-  const T s84 = v[2] - v[17];
-  const T s85 = v[20] - v[22];
-  const T s86 = v[20] + s64;
-  const T s87 = v[22] - s72;
-  const T s88 = v[26] + T(-0.5) * s30;
-  const T s89 = v[28] + s43;
-  const T s90 = v[28] + T(-0.5) * s43;
-  const T s91 = v[29] - s69;
-  const T s92 = v[32] + T(0.5) * s2;
-  const T s93 = v[34] + T(-0.5) * s49;
-  const T s94 = v[42] - v[50];
-  const T s95 = v[48] - v[51];
-  const T s96 = s0 + T(2) * s1;
-  const T s97 = s0 + T(0.5) * s1;
-  const T s98 = s2 + T(0.5) * s3;
-  const T s99 = s4 + s8;
-  const T s100 = s14 - s19;
-  const T s101 = s15 + s21;
-  const T s102 = s15 - s21;
-  const T s103 = s16 - s17;
-  const T s104 = s16 + s17;
-  const T s105 = s20 + T(-0.5) * s33;
-  const T s106 = s26 + s83;
-  const T s107 = s29 - s84;
-  const T s108 = s33 - s44;
-  const T s109 = s34 + s40;
-  const T s110 = s34 - s40;
-  const T s111 = s35 + s41;
-  const T s112 = s37 + T(-0.5) * s49;
-  const T s113 = s38 + s39;
-  const T s114 = s45 - s65;
-  const T s115 = s57 + s77;
-  const T s116 = s62 + s63;
-  const T s117 = s62 - s63;
-  const T s118 = s66 + s71;
-  const T s119 = s70 - s90;
-  const T s120 = s74 + s92;
-  const T s121 = s75 - s101;
-  const T s122 = s94 + s107;
-  const T s123 = s95 - s106;
-  const T s124 = s97 - s112;
-  const T s125 = s98 - s115;
-  const T s126 = s105 + T(0.5) * s118;
-  const T s127 = s108 + T(0.5) * s116;
-  const T c0 = T(0.0026041666666666665) * (v[18] + v[24] + s5) + T(0.020833333333333332) * (s9 + s28 + s30 + s31 + s51) + T(0.0078125) * (s43 + s58) + T(0.083333333333333329) * s44 + T(0.171875) * s54;
-  const T c1 = T(0.020833333333333332) * (-v[24] - s58 + s89) + T(0.125) * (-v[25] + v[27]) + T(0.0625) * (-v[29] + s4 + s14 - s86);
-  const T c2 = T(0.020833333333333332) * (-v[18] + s73 - s76) + T(0.0625) * (v[29] - s52 - s87) + T(0.125) * (v[30] - s67);
-  const T c3 = T(0.020833333333333332) * (-s6 - s109) + T(0.0625) * (s10 - s27) + T(0.125) * -s80;
-  const T c4 = T(0.0625) * (v[24] + s28 + s32 + s86) + T(0.125) * (-s19 - s55);
-  const T c5 = T(0.125) * (-v[29] + v[31] + s85) + T(0.0625) * (s73 + s76);
-  const T c6 = T(0.0625) * (s18 - s24 + s103) + T(0.125) * (-s42 + s65);
-  const T c7 = T(0.0625) * (v[18] + s28 + s53) + T(0.125) * (-s8 - s20 - s88);
-  const T c8 = T(0.0625) * (-s18 - s24 + s104) + T(0.125) * (-s23 + s27);
-  const T c9 = T(0.0625) * (s4 + s75) + T(0.125) * (-s44 - s88);
-  const T c10 = T(0.083333333333333329) * (-v[24] + s70) + T(0.0625) * (-s33 - s100) + T(0.041666666666666664) * s58 + T(0.020833333333333332) * (s79 - s91 - s121);
-  const T c11 = T(0.0625) * (-v[30] + s68 - s76 + s79 + s87 + s91);
-  const T c12 = T(0.0625) * (-s16 - s18 + s27 + s81 - s102 + s114);
-  const T c13 = T(0.0625) * (s19 - s28 + s69 + s79) + T(0.125) * (-s33 + s119);
-  const T c14 = T(0.125) * s110;
-  const T c15 = T(0.0625) * (-s33 - s121) + T(0.125) * (-s100 + s119);
-  const T c16 = T(0.0625) * (-v[18] + s68) + T(0.020833333333333332) * (-v[19] - v[23] - v[29] - v[30] + v[33] - s2 + s37 - s85) + T(0.041666666666666664) * (-s0 + s74 + s126);
-  const T c17 = T(0.0625) * (-s27 - s66 + s71 + s81 - s104);
-  const T c18 = T(0.125) * (-v[29] - s57 + s68 + s126) + T(0.0625) * (s2 - s30);
-  const T c19 = T(0.020833333333333332) * (-v[2] - v[16] + v[47] + v[51] + s34 - s102) + T(0.041666666666666664) * (s24 - s45 + s81);
-  const T c20 = T(0.020833333333333332) * (-v[1] + v[33] - v[50] + s78 + s82 - s93) + T(0.041666666666666664) * (v[24] + v[26] - s20) + T(0.03125) * (s30 - s58) + T(0.010416666666666666) * -s43;
-  const T c21 = T(0.020833333333333332) * (s12 + s72 - s73) + T(0.041666666666666664) * (s57 - s78 - s93);
-  const T c22 = T(0.041666666666666664) * (v[1] - v[50] - s45) + T(0.020833333333333332) * (-s60 - s61 + s109);
-  const T c24 = T(0.0625) * (s60 - s61 - s110);
-  const T c26 = T(0.041666666666666664) * (s77 + s78 - s120 + s127) + T(0.020833333333333332) * s96;
-  const T c27 = T(0.0625) * (s40 - s60 - s111 + s113);
-  const T c28 = T(0.125) * (s124 - s125 + s127);
-  const T c29 = T(0.020833333333333332) * (-s34 + s61 + s114 - s122 + s123);
-  const T c30 = T(0.020833333333333332) * (v[18] + v[19] - s19 + s20 - s28 + s56 + s99 - s120) + T(0.010416666666666666) * (-s46 - s96 + s111 + s113);
-  const T c31 = T(0.020833333333333332) * (s40 + s60 - s117);
-  const T c33 = T(0.020833333333333332) * (-s34 - s61 + s117);
-  const T c34 = T(0.020833333333333332) * (s44 - s99 - s124 - s125) + T(0.010416666666666666) * (-s64 + s82 - s122 - s123);
+  const T s0 = v[44] + v[45];
+  const T s1 = v[39] + v[49];
+  const T s2 = v[42] + v[50];
+  const T s3 = v[47] + v[52];
+  const T s4 = v[47] - v[52];
+  const T s5 = v[48] + v[51];
+  const T s6 = v[48] - v[51];
+  const T s7 = v[30] + v[31];
+  const T s8 = v[36] + v[37];
+  const T s9 = v[40] + v[41];
+  const T s10 = v[13] + v[14];
+  const T s11 = v[21] + v[25];
+  const T s12 = v[22] + v[28];
+  const T s13 = v[26] + v[27];
+  const T s14 = v[43] + v[46];
+  const T s15 = v[13] - v[14];
+  const T s16 = v[29] + v[32];
+  const T s17 = v[36] - v[37];
+  const T s18 = v[9] + v[10];
+  const T s19 = v[26] - v[27];
+  const T s20 = v[33] + v[34];
+  const T s21 = v[33] - v[34];
+  const T s22 = v[44] - v[45];
+  const T s23 = s4 - s6;
+  const T s24 = v[8] + v[17];
+  const T s25 = v[11] + v[16];
+  const T s26 = v[43] - v[46];
+  const T s27 = s0 + s9;
+  const T s28 = v[2] - s24;
+  const T s29 = v[3] - s25;
+  const T s30 = v[5] + v[6];
+  const T s31 = v[9] - v[10];
+  const T s32 = v[29] - v[32];
+  const T s33 = v[30] - v[31];
+  const T s34 = v[40] - v[41];
+  const T s35 = s1 + s2;
+  const T s36 = s1 - s2;
+  const T s37 = s7 + s13;
+  const T s38 = s8 + s14;
+  const T s39 = v[0] - v[1];
+  const T s40 = v[12] - v[15];
+  const T s41 = v[35] - v[38];
+  const T s42 = v[47] + v[48];
+  const T s43 = v[49] - v[50];
+  const T s44 = v[51] + v[52];
+  const T s45 = s10 + s18;
+  const T s46 = s11 + s12;
+  const T s47 = s11 - s12;
+  const T s48 = s15 + s21;
+  const T s49 = s16 + s20;
+  const T s50 = s23 - s36;
+  const T s51 = s31 + T(4) * s34;
+  const T s52 = s31 + s34;
+  const T s53 = v[5] + T(-0.33333333333333331) * v[6];
+  const T s54 = v[5] - v[6];
+  const T s55 = v[12] + v[15];
+  const T s56 = v[35] + v[38];
+  const T s57 = v[39] - v[42];
+  const T s58 = v[39] + v[42];
+  const T s59 = s17 + T(2) * s26;
+  const T s60 = s17 - s26;
+  const T s61 = s19 + T(0.5) * s32;
+  const T s62 = s19 - s32;
+  const T s63 = s19 + s32;
+  const T s64 = s33 - s47;
+  const T s65 = s33 + s47;
+  const T s66 = v[0] + v[1];
+  const T s67 = v[4] + T(-0.33333333333333331) * v[7];
+  const T s68 = v[4] - v[7];
+  const T s69 = v[21] - v[22];
+  const T s70 = v[21] + v[22];
+  const T s71 = v[25] - v[28];
+  const T s72 = v[25] + v[28];
+  const T s73 = v[49] + v[50];
+  const T s74 = s0 + s56;
+  const T s75 = s4 + s6;
+  const T s76 = s7 - s13;
+  const T s77 = s27 + s37;
+  const T s78 = s28 - s29;
+  const T s79 = s28 + s29;
+  const T s80 = s30 + s55;
+  const T s81 = s46 + s49;
+  const T s82 = s48 - s52;
+  const T s83 = v[4] + v[7];
+  const T s84 = v[16] + v[17];
+  const T s85 = v[18] - v[19];
+  const T s86 = s8 + s70;
+  const T s87 = s10 - s18;
+  const T s88 = s10 + s83;
+  const T s89 = s14 - s35;
+  const T s90 = s15 - s40;
+  const T s91 = s17 - s65;
+  const T s92 = s22 + T(-0.5) * s41;
+  const T s93 = s22 + s41;
+  const T s94 = s22 - s41;
+  const T s95 = s22 + s82;
+  const T s96 = s23 + s43;
+  const T s97 = s35 + s75;
+  const T s98 = s38 + s58;
+  const T s99 = s39 - s78;
+  const T s100 = s44 + s73;
+  const T s101 = s50 - s60;
+  const T s102 = s66 - s79;
+  const T s103 = v[8] - v[11];
+  const T s104 = v[20] - v[23];
+  const T s105 = v[20] + v[23];
+  const T s106 = s0 - s9;
+  const T s107 = s3 + s5;
+  const T s108 = s8 - s84;
+  const T s109 = s9 - s16;
+  const T s110 = s14 + s58;
+  const T s111 = s15 - s68;
+  const T s112 = s19 + T(0.5) * s21;
+  const T s113 = s20 + s42;
+  const T s114 = s27 - s37;
+  const T s115 = s27 - s45;
+  const T s116 = s30 + s76;
+  const T s117 = s38 - s74;
+  const T s118 = s40 - s54;
+  const T s119 = s42 + s98;
+  const T s120 = s43 + T(2) * s112;
+  const T s121 = s44 + s89;
+  const T s122 = s46 - s49;
+  const T s123 = s50 - s94;
+  const T s124 = s54 - s68;
+  const T s125 = s63 - s65;
+  const T s126 = s63 - s91;
+  const T s127 = s74 - s97;
+  const T s128 = s80 + T(-2) * s81;
+  const T s129 = s88 - s102;
+  const T s130 = s95 + s125;
+  const T s131 = s99 + s111;
+  const T c0 = T(0.010416666666666666) * (s35 + s38 + s45 + s81 + s107) + T(0.09375) * s77;
+  const T c1 = T(0.083333333333333329) * (-s22 - s33 - s61) + T(0.020833333333333332) * (-s48 - s51 - s59 - s69 - s96) + T(0.041666666666666664) * (-s57 - s71);
+  const T c2 = T(0.020833333333333332) * (s16 - s72 + s87 + s121) + T(0.083333333333333329) * (s76 + s106) + T(0.041666666666666664) * (-s86 + s113);
+  const T c3 = T(0.041666666666666664) * (-s45 + s100) + T(0.020833333333333332) * (-s81 + s119) + T(0.083333333333333329) * s114;
+  const T c4 = T(0.0625) * (s16 + s72 - s77 + s110);
+  const T c5 = T(0.0625) * (s62 - s64 - s95 - s101);
+  const T c6 = T(0.0625) * (-s22 - s23 - s26 + s31 - s34 - s36 + s48 + s126);
+  const T c7 = T(0.0625) * (-s77 + s86 + s113);
+  const T c8 = T(0.0625) * (-s8 - s76 - s87 + s89 + s106 + s107 + s122);
+  const T c9 = T(0.0625) * (s45 - s77 + s100);
+  const T c10 = T(0.020833333333333332) * (s17 - s32 - s57 + s90 - s103 - s104) + T(0.041666666666666664) * (-s26 + s92 + s120) + T(0.0625) * (s33 + s52 + s69);
+  const T c11 = T(0.0625) * (-s7 + s16 + s70 - s105 + s117);
+  const T c12 = T(0.0625) * (-v[8] - v[11] - s55 + s110 - s115);
+  const T c13 = T(0.0625) * (s19 - s41 - s50 + s71 - s82 - s104);
+  const T c14 = T(0.125) * (-s101 + s130);
+  const T c15 = T(0.0625) * (s21 - s40 - s96 - s103 + s126);
+  const T c16 = T(0.0625) * (-s0 + s13 + s72) + T(0.083333333333333329) * -s7 + T(0.020833333333333332) * (s20 - s30 + s35 - s44 - s56 - s105 - s108) + T(0.041666666666666664) * (s42 - s87 + s109);
+  const T c17 = T(0.0625) * (-s30 + s42 + s108 - s115);
+  const T c18 = T(0.0625) * (s84 - s116 + s121 + s122);
+  const T c19 = T(0.020833333333333332) * (-s24 - s25 - s119 - s128) + T(0.083333333333333329) * -s27 + T(0.041666666666666664) * (s37 + s100);
+  const T c20 = T(0.03125) * (-v[12] + v[13] - v[35] + v[36] - v[43] + v[44] + s53 - s67) + T(0.010416666666666666) * (-v[14] + v[15] - v[37] + v[38] - v[45] + v[46]) + T(0.041666666666666664) * (v[24] - v[25]) + T(0.020833333333333332) * (s39 + s85 + s120);
+  const T c21 = T(0.020833333333333332) * (-s17 - s26 + s90 + s93 - s124) + T(0.041666666666666664) * (s21 - s85);
+  const T c22 = T(0.041666666666666664) * (-s39 + s43) + T(0.020833333333333332) * (s60 - s90 + s94 - s124);
+  const T c24 = T(0.0625) * (-s80 + s88 + s117);
+  const T c26 = T(0.041666666666666664) * (-s52 + s54 + s63 + s85 + s91) + T(0.020833333333333332) * (-s123 + s131);
+  const T c27 = T(0.0625) * (-s123 - s131);
+  const T c28 = T(0.0625) * (s99 - s101 - s118) + T(0.125) * s130;
+  const T c29 = T(0.020833333333333332) * (s39 + s57 - s60 + s78 - s96 - s118);
+  const T c30 = T(0.020833333333333332) * (v[18] + v[19] + s18 + s72 - s86 + s109 - s116) + T(0.010416666666666666) * (-s127 - s129);
+  const T c31 = T(0.020833333333333332) * (-s127 + s129);
+  const T c33 = T(0.020833333333333332) * (s38 - s80 - s97 + s102);
+  const T c34 = T(0.020833333333333332) * (-s45 - s114) + T(0.010416666666666666) * (s66 + s73 - s75 + s79 - s98 - s128);
+  const T y0 = x[0] - T(0.5);
+  const T y1 = x[1] - T(0.5);
+  const T y2 = x[2] - T(0.5);
   static_cast<void>(x);  // unused when the polynomial is constant
   static_cast<void>(d);  // unused on the value path
   if constexpr (Order >= 1) {
-    d[0] = c1 + x[2] * (c6 + x[2] * (c15 + x[2] * (c29))) + x[1] * (c5 + x[2] * (c14 + x[2] * (c28)) + x[1] * (c13 + x[2] * (c27) + x[1] * (c26))) + x[0] * (T(2) * c4 + x[2] * (T(2) * c12) + x[1] * (T(2) * c11 + x[2] * (T(2) * c24)) + x[0] * (T(3) * c10 + x[2] * (T(3) * c22) + x[1] * (T(3) * c21) + x[0] * (T(4) * c20)));
-    d[1] = c2 + x[2] * (c8 + x[2] * (c18 + x[2] * (c33))) + x[1] * (T(2) * c7 + x[2] * (T(2) * c17) + x[1] * (T(3) * c16 + x[2] * (T(3) * c31) + x[1] * (T(4) * c30))) + x[0] * (c5 + x[2] * (c14 + x[2] * (c28)) + x[1] * (T(2) * c13 + x[2] * (T(2) * c27) + x[1] * (T(3) * c26)) + x[0] * (c11 + x[2] * (c24) + x[0] * (c21)));
-    d[2] = c3 + x[2] * (T(2) * c9 + x[2] * (T(3) * c19 + x[2] * (T(4) * c34))) + x[1] * (c8 + x[2] * (T(2) * c18 + x[2] * (T(3) * c33)) + x[1] * (c17 + x[1] * (c31))) + x[0] * (c6 + x[2] * (T(2) * c15 + x[2] * (T(3) * c29)) + x[1] * (c14 + x[2] * (T(2) * c28) + x[1] * (c27)) + x[0] * (c12 + x[1] * (c24) + x[0] * (c22)));
+    d[0] = c1 + y2 * (c6 + y2 * (c15 + y2 * (c29))) + y1 * (c5 + y2 * (c14 + y2 * (c28)) + y1 * (c13 + y2 * (c27) + y1 * (c26))) + y0 * (T(2) * c4 + y2 * (T(2) * c12) + y1 * (T(2) * c11 + y2 * (T(2) * c24)) + y0 * (T(3) * c10 + y2 * (T(3) * c22) + y1 * (T(3) * c21) + y0 * (T(4) * c20)));
+    d[1] = c2 + y2 * (c8 + y2 * (c18 + y2 * (c33))) + y1 * (T(2) * c7 + y2 * (T(2) * c17) + y1 * (T(3) * c16 + y2 * (T(3) * c31) + y1 * (T(4) * c30))) + y0 * (c5 + y2 * (c14 + y2 * (c28)) + y1 * (T(2) * c13 + y2 * (T(2) * c27) + y1 * (T(3) * c26)) + y0 * (c11 + y2 * (c24) + y0 * (c21)));
+    d[2] = c3 + y2 * (T(2) * c9 + y2 * (T(3) * c19 + y2 * (T(4) * c34))) + y1 * (c8 + y2 * (T(2) * c18 + y2 * (T(3) * c33)) + y1 * (c17 + y1 * (c31))) + y0 * (c6 + y2 * (T(2) * c15 + y2 * (T(3) * c29)) + y1 * (c14 + y2 * (T(2) * c28) + y1 * (c27)) + y0 * (c12 + y1 * (c24) + y0 * (c22)));
   }
   if constexpr (Order >= 2) {
-    d[3] = T(2) * c4 + x[2] * (T(2) * c12) + x[1] * (T(2) * c11 + x[2] * (T(2) * c24)) + x[0] * (T(6) * c10 + x[2] * (T(6) * c22) + x[1] * (T(6) * c21) + x[0] * (T(12) * c20));
-    d[4] = c5 + x[2] * (c14 + x[2] * (c28)) + x[1] * (T(2) * c13 + x[2] * (T(2) * c27) + x[1] * (T(3) * c26)) + x[0] * (T(2) * c11 + x[2] * (T(2) * c24) + x[0] * (T(3) * c21));
-    d[5] = c6 + x[2] * (T(2) * c15 + x[2] * (T(3) * c29)) + x[1] * (c14 + x[2] * (T(2) * c28) + x[1] * (c27)) + x[0] * (T(2) * c12 + x[1] * (T(2) * c24) + x[0] * (T(3) * c22));
-    d[6] = T(2) * c7 + x[2] * (T(2) * c17) + x[1] * (T(6) * c16 + x[2] * (T(6) * c31) + x[1] * (T(12) * c30)) + x[0] * (T(2) * c13 + x[2] * (T(2) * c27) + x[1] * (T(6) * c26));
-    d[7] = c8 + x[2] * (T(2) * c18 + x[2] * (T(3) * c33)) + x[1] * (T(2) * c17 + x[1] * (T(3) * c31)) + x[0] * (c14 + x[2] * (T(2) * c28) + x[1] * (T(2) * c27) + x[0] * (c24));
-    d[8] = T(2) * c9 + x[2] * (T(6) * c19 + x[2] * (T(12) * c34)) + x[1] * (T(2) * c18 + x[2] * (T(6) * c33)) + x[0] * (T(2) * c15 + x[2] * (T(6) * c29) + x[1] * (T(2) * c28));
+    d[3] = T(2) * c4 + y2 * (T(2) * c12) + y1 * (T(2) * c11 + y2 * (T(2) * c24)) + y0 * (T(6) * c10 + y2 * (T(6) * c22) + y1 * (T(6) * c21) + y0 * (T(12) * c20));
+    d[4] = c5 + y2 * (c14 + y2 * (c28)) + y1 * (T(2) * c13 + y2 * (T(2) * c27) + y1 * (T(3) * c26)) + y0 * (T(2) * c11 + y2 * (T(2) * c24) + y0 * (T(3) * c21));
+    d[5] = c6 + y2 * (T(2) * c15 + y2 * (T(3) * c29)) + y1 * (c14 + y2 * (T(2) * c28) + y1 * (c27)) + y0 * (T(2) * c12 + y1 * (T(2) * c24) + y0 * (T(3) * c22));
+    d[6] = T(2) * c7 + y2 * (T(2) * c17) + y1 * (T(6) * c16 + y2 * (T(6) * c31) + y1 * (T(12) * c30)) + y0 * (T(2) * c13 + y2 * (T(2) * c27) + y1 * (T(6) * c26));
+    d[7] = c8 + y2 * (T(2) * c18 + y2 * (T(3) * c33)) + y1 * (T(2) * c17 + y1 * (T(3) * c31)) + y0 * (c14 + y2 * (T(2) * c28) + y1 * (T(2) * c27) + y0 * (c24));
+    d[8] = T(2) * c9 + y2 * (T(6) * c19 + y2 * (T(12) * c34)) + y1 * (T(2) * c18 + y2 * (T(6) * c33)) + y0 * (T(2) * c15 + y2 * (T(6) * c29) + y1 * (T(2) * c28));
   }
-  return c0 + x[2] * (c3 + x[2] * (c9 + x[2] * (c19 + x[2] * (c34)))) + x[1] * (c2 + x[2] * (c8 + x[2] * (c18 + x[2] * (c33))) + x[1] * (c7 + x[2] * (c17) + x[1] * (c16 + x[2] * (c31) + x[1] * (c30)))) + x[0] * (c1 + x[2] * (c6 + x[2] * (c15 + x[2] * (c29))) + x[1] * (c5 + x[2] * (c14 + x[2] * (c28)) + x[1] * (c13 + x[2] * (c27) + x[1] * (c26))) + x[0] * (c4 + x[2] * (c12) + x[1] * (c11 + x[2] * (c24)) + x[0] * (c10 + x[2] * (c22) + x[1] * (c21) + x[0] * (c20))));
+  return c0 + y2 * (c3 + y2 * (c9 + y2 * (c19 + y2 * (c34)))) + y1 * (c2 + y2 * (c8 + y2 * (c18 + y2 * (c33))) + y1 * (c7 + y2 * (c17) + y1 * (c16 + y2 * (c31) + y1 * (c30)))) + y0 * (c1 + y2 * (c6 + y2 * (c15 + y2 * (c29))) + y1 * (c5 + y2 * (c14 + y2 * (c28)) + y1 * (c13 + y2 * (c27) + y1 * (c26))) + y0 * (c4 + y2 * (c12) + y1 * (c11 + y2 * (c24)) + y0 * (c10 + y2 * (c22) + y1 * (c21) + y0 * (c20))));
 }
 
 

@@ -7,11 +7,13 @@
 // templates/evaluator.hpp.fmt: the tables and the polynomial code below are the generator's
 // output; the glue (cell lookup, symmetry, fetching) is generated/evaluator_support.hpp.
 //
-// Emission strategy: horner. Arithmetic per point of the polynomial code (additions +
+// Emission strategy: shifted. Arithmetic per point of the polynomial code (additions +
 // multiplications as emitted, the costliest orbit), value / value + gradient / + Hessian:
-//   156 / 216 / 264
-//   orbit 0: horner, 134 / 194 / 242
-//   orbit 1: horner, 156 / 216 / 264
+//   133 / 193 / 241
+//   orbit 0: shifted about (1,0,0), 130 / 190 / 238
+//     chosen by value + gradient from horner 134 / 194 / 242, monomial 392 / 473 / 524, shifted 130 / 190 / 238, bernstein 203 / 209 / 233
+//   orbit 1: shifted about (1/2,1/2,1/2), 133 / 193 / 241
+//     chosen by value + gradient from horner 156 / 216 / 264, monomial 476 / 557 / 608, shifted 133 / 193 / 241, bernstein 220 / 232 / 286
 #pragma once
 #include <array>
 #include <cstdint>
@@ -26,10 +28,10 @@ inline constexpr int kStencilSize = 16;
 inline constexpr int kLatticeDet = 2;
 inline constexpr const char* kSpec = "1,1,0; 1,-1,0; 1,0,1; 1,0,-1; 0,1,1; 0,1,-1";
 inline constexpr const char* kLattice = "fcc";
-inline constexpr const char* kStrategy = "horner";
-inline constexpr long kValueOperations = 156;
-inline constexpr long kGradientOperations = 216;
-inline constexpr long kHessianOperations = 264;
+inline constexpr const char* kStrategy = "shifted";
+inline constexpr long kValueOperations = 133;
+inline constexpr long kGradientOperations = 193;
+inline constexpr long kHessianOperations = 241;
 
 using Point = std::array<std::int64_t, kDimension>;
 
@@ -43,157 +45,165 @@ inline constexpr int kStencilReachHi[kDimension] = {0, 1, 2};
 namespace detail {
 
 // Orbit 0: the spline on the reference region with vertices (0,0,0) (0,0,1) (0,1,0) (1,0,0),
-// as 19 monomial coefficients, each a linear combination of the 16 stencil values
-// (32 partial sums s shared between coefficients, then values of equal weight grouped),
-// evaluated in nested Horner form; each partial derivative is the Horner form of the exact
-// derivative polynomial, sharing the coefficients.
+// in monomials of y = x - o about the origin o = (1,0,0) (of 10 candidate points of the
+// region, the one with the fewest value + gradient operations): 19 coefficients, each an
+// exact linear combination of the 16 stencil values (28 partial sums s shared between
+// coefficients, then values of equal weight grouped), evaluated in nested Horner form in y; each
+// partial derivative is the Horner form of the exact derivative polynomial, sharing the
+// coefficients.
 template <int Order, class T>
 T orbit_0(const T* v, const T* x, T* d) {
   const T s0 = v[0] + v[3];
-  const T s1 = v[1] + v[2];
-  const T s2 = v[4] + v[5];
-  const T s3 = v[8] + v[9];
-  const T s4 = v[11] + v[14];
-  const T s5 = v[12] + v[13];
-  const T s6 = s0 + s4;
-  const T s7 = s1 + s5;
-  const T s8 = s2 + s3;
-  const T s9 = v[0] - v[3];
-  const T s10 = v[1] - v[2];
-  const T s11 = v[4] - v[5];
-  const T s12 = v[8] - v[9];
-  const T s13 = v[11] - v[14];
-  const T s14 = v[12] - v[13];
-  const T s15 = s0 - s4;
-  const T s16 = s1 - s5;
-  const T s17 = s2 - s3;
-  const T s18 = s9 + s13;
-  const T s19 = s10 + s14;
-  const T s20 = s11 + s12;
-  const T s21 = v[6] + T(0.083333333333333329) * s6;
-  const T s22 = v[6] + T(0.25) * s6;
-  const T s23 = v[6] + T(-0.25) * s6;
-  const T s24 = s7 + s8;
-  const T s25 = s7 - s8;
-  const T s26 = s15 + s16;
-  const T s27 = s15 - s16;
-  const T s28 = s17 + s18;
-  const T s29 = s17 - s18;
-  const T s30 = s19 + s20;
-  const T s31 = s19 - s20;
-  const T c0 = T(0.5) * s21 + T(0.041666666666666664) * s24;
-  const T c1 = T(0.125) * -s30;
-  const T c2 = T(0.125) * -s28;
-  const T c3 = T(0.125) * -s26;
-  const T c4 = T(0.5) * -s22 + T(0.125) * s24;
-  const T c5 = T(0.25) * (s11 - s12);
-  const T c6 = T(0.25) * (s10 - s14);
-  const T c7 = T(0.5) * -s23 + T(0.125) * -s25;
-  const T c8 = T(0.25) * (s9 - s13);
-  const T c9 = T(0.5) * -s23 + T(0.125) * s25;
-  const T c10 = T(0.041666666666666664) * (-v[1] - v[4] - v[8] - v[12]) + T(0.125) * (-v[2] - v[5] - v[9] - v[13]) + T(0.16666666666666666) * (v[6] + v[7]) + T(0.083333333333333329) * s6;
-  const T c11 = T(0.125) * -s29;
-  const T c12 = T(0.125) * s27;
-  const T c13 = T(0.125) * s31;
-  const T c15 = T(0.125) * -s31;
-  const T c16 = T(0.041666666666666664) * (-v[0] - v[11] - s2) + T(0.125) * (-v[3] - v[14] - s3) + T(0.16666666666666666) * (v[6] + v[10]) + T(0.083333333333333329) * s7;
-  const T c17 = T(0.125) * -s27;
-  const T c18 = T(0.125) * s29;
-  const T c19 = T(0.16666666666666666) * (v[6] + v[15]) + T(0.041666666666666664) * (-s0 - s1) + T(0.125) * (-s4 - s5) + T(0.083333333333333329) * s8;
+  const T s1 = v[2] + v[13];
+  const T s2 = v[5] + v[9];
+  const T s3 = v[11] + v[14];
+  const T s4 = v[0] - v[3];
+  const T s5 = v[1] + v[12];
+  const T s6 = v[2] - v[13];
+  const T s7 = v[4] + v[8];
+  const T s8 = v[5] - v[9];
+  const T s9 = v[11] - v[14];
+  const T s10 = s0 + s3;
+  const T s11 = s1 + s2;
+  const T s12 = s1 - s2;
+  const T s13 = s0 - s3;
+  const T s14 = s4 + s9;
+  const T s15 = v[1] - v[12];
+  const T s16 = v[4] - v[8];
+  const T s17 = v[6] + v[7];
+  const T s18 = v[6] + T(-0.25) * s10;
+  const T s19 = s5 + s7;
+  const T s20 = s5 - s7;
+  const T s21 = s6 + T(-0.5) * s13;
+  const T s22 = s6 - s13;
+  const T s23 = s8 + T(-0.5) * s14;
+  const T s24 = s8 - s14;
+  const T s25 = s12 - s20;
+  const T s26 = s15 + s22;
+  const T s27 = s16 + s24;
+  const T c0 = T(0.16666666666666666) * (s11 + s17);
+  const T c1 = T(0.5) * (-v[6] + v[7]);
+  const T c2 = T(0.5) * -s8;
+  const T c3 = T(0.5) * -s6;
+  const T c4 = T(0.5) * v[7] + T(0.125) * s10 + T(0.25) * -s11;
+  const T c5 = T(0.5) * -s23;
+  const T c6 = T(0.5) * -s21;
+  const T c7 = T(0.25) * -s12 + T(0.5) * -s18;
+  const T c8 = T(0.25) * (s4 - s9);
+  const T c9 = T(0.25) * s12 + T(0.5) * -s18;
+  const T c10 = T(0.083333333333333329) * s10 + T(0.125) * -s11 + T(0.16666666666666666) * s17 + T(0.041666666666666664) * -s19;
+  const T c11 = T(0.125) * -s27;
+  const T c12 = T(0.125) * -s26;
+  const T c13 = T(0.125) * -s25;
+  const T c15 = T(0.125) * s25;
+  const T c16 = T(0.041666666666666664) * (-v[0] - v[4] - v[5] - v[11]) + T(0.125) * (-v[3] - v[8] - v[9] - v[14]) + T(0.16666666666666666) * (v[6] + v[10]) + T(0.083333333333333329) * (s1 + s5);
+  const T c17 = T(0.125) * s26;
+  const T c18 = T(0.125) * s27;
+  const T c19 = T(0.041666666666666664) * (-v[1] - v[2] - s0) + T(0.16666666666666666) * (v[6] + v[15]) + T(0.125) * (-v[12] - v[13] - s3) + T(0.083333333333333329) * (s2 + s7);
+  const T y0 = x[0] - T(1);
   static_cast<void>(x);  // unused when the polynomial is constant
   static_cast<void>(d);  // unused on the value path
   if constexpr (Order >= 1) {
-    d[0] = c1 + x[2] * (c6 + x[2] * (c15)) + x[1] * (c5 + x[1] * (c13)) + x[0] * (T(2) * c4 + x[2] * (T(2) * c12) + x[1] * (T(2) * c11) + x[0] * (T(3) * c10));
-    d[1] = c2 + x[2] * (c8 + x[2] * (c18)) + x[1] * (T(2) * c7 + x[2] * (T(2) * c17) + x[1] * (T(3) * c16)) + x[0] * (c5 + x[1] * (T(2) * c13) + x[0] * (c11));
-    d[2] = c3 + x[2] * (T(2) * c9 + x[2] * (T(3) * c19)) + x[1] * (c8 + x[2] * (T(2) * c18) + x[1] * (c17)) + x[0] * (c6 + x[2] * (T(2) * c15) + x[0] * (c12));
+    d[0] = c1 + x[2] * (c6 + x[2] * (c15)) + x[1] * (c5 + x[1] * (c13)) + y0 * (T(2) * c4 + x[2] * (T(2) * c12) + x[1] * (T(2) * c11) + y0 * (T(3) * c10));
+    d[1] = c2 + x[2] * (c8 + x[2] * (c18)) + x[1] * (T(2) * c7 + x[2] * (T(2) * c17) + x[1] * (T(3) * c16)) + y0 * (c5 + x[1] * (T(2) * c13) + y0 * (c11));
+    d[2] = c3 + x[2] * (T(2) * c9 + x[2] * (T(3) * c19)) + x[1] * (c8 + x[2] * (T(2) * c18) + x[1] * (c17)) + y0 * (c6 + x[2] * (T(2) * c15) + y0 * (c12));
   }
   if constexpr (Order >= 2) {
-    d[3] = T(2) * c4 + x[2] * (T(2) * c12) + x[1] * (T(2) * c11) + x[0] * (T(6) * c10);
-    d[4] = c5 + x[1] * (T(2) * c13) + x[0] * (T(2) * c11);
-    d[5] = c6 + x[2] * (T(2) * c15) + x[0] * (T(2) * c12);
-    d[6] = T(2) * c7 + x[2] * (T(2) * c17) + x[1] * (T(6) * c16) + x[0] * (T(2) * c13);
+    d[3] = T(2) * c4 + x[2] * (T(2) * c12) + x[1] * (T(2) * c11) + y0 * (T(6) * c10);
+    d[4] = c5 + x[1] * (T(2) * c13) + y0 * (T(2) * c11);
+    d[5] = c6 + x[2] * (T(2) * c15) + y0 * (T(2) * c12);
+    d[6] = T(2) * c7 + x[2] * (T(2) * c17) + x[1] * (T(6) * c16) + y0 * (T(2) * c13);
     d[7] = c8 + x[2] * (T(2) * c18) + x[1] * (T(2) * c17);
-    d[8] = T(2) * c9 + x[2] * (T(6) * c19) + x[1] * (T(2) * c18) + x[0] * (T(2) * c15);
+    d[8] = T(2) * c9 + x[2] * (T(6) * c19) + x[1] * (T(2) * c18) + y0 * (T(2) * c15);
   }
-  return c0 + x[2] * (c3 + x[2] * (c9 + x[2] * (c19))) + x[1] * (c2 + x[2] * (c8 + x[2] * (c18)) + x[1] * (c7 + x[2] * (c17) + x[1] * (c16))) + x[0] * (c1 + x[2] * (c6 + x[2] * (c15)) + x[1] * (c5 + x[1] * (c13)) + x[0] * (c4 + x[2] * (c12) + x[1] * (c11) + x[0] * (c10)));
+  return c0 + x[2] * (c3 + x[2] * (c9 + x[2] * (c19))) + x[1] * (c2 + x[2] * (c8 + x[2] * (c18)) + x[1] * (c7 + x[2] * (c17) + x[1] * (c16))) + y0 * (c1 + x[2] * (c6 + x[2] * (c15)) + x[1] * (c5 + x[1] * (c13)) + y0 * (c4 + x[2] * (c12) + x[1] * (c11) + y0 * (c10)));
 }
 
 // Orbit 1: the spline on the reference region with vertices (0,0,1) (0,1,0) (1,0,0) (1,1,1),
-// as 19 monomial coefficients, each a linear combination of the 16 stencil values
-// (34 partial sums s shared between coefficients, then values of equal weight grouped),
-// evaluated in nested Horner form; each partial derivative is the Horner form of the exact
-// derivative polynomial, sharing the coefficients.
+// in monomials of y = x - o about the origin o = (1/2,1/2,1/2) (of 11 candidate points of the
+// region, the one with the fewest value + gradient operations): 19 coefficients, each an
+// exact linear combination of the 16 stencil values (38 partial sums s shared between
+// coefficients, then values of equal weight grouped), evaluated in nested Horner form in y; each
+// partial derivative is the Horner form of the exact derivative polynomial, sharing the
+// coefficients.
 template <int Order, class T>
 T orbit_1(const T* v, const T* x, T* d) {
-  const T s0 = v[4] - v[12];
-  const T s1 = v[7] - v[13];
-  const T s2 = v[14] - v[15];
-  const T s3 = v[0] + v[1];
-  const T s4 = v[0] - v[1];
-  const T s5 = v[2] + v[8];
-  const T s6 = v[2] - v[8];
-  const T s7 = v[5] + v[9];
-  const T s8 = v[5] - v[9];
-  const T s9 = v[3] + T(-0.066666666666666666) * v[6];
-  const T s10 = v[3] - v[6];
-  const T s11 = v[10] + v[11];
-  const T s12 = v[10] + T(-3) * v[11];
-  const T s13 = v[10] - v[11];
-  const T s14 = s0 + s1;
-  const T s15 = s0 - s1;
-  const T s16 = s0 - s4;
-  const T s17 = s1 + s4;
-  const T s18 = s2 + T(-2) * s5;
-  const T s19 = s2 + s6;
-  const T s20 = s3 + T(-0.5) * s14;
-  const T s21 = v[3] + T(-0.33333333333333331) * v[6];
-  const T s22 = v[3] + v[6];
-  const T s23 = s10 - s11;
-  const T s24 = s2 + T(-2) * s7;
-  const T s25 = s2 + s8;
-  const T s26 = s4 + T(4) * s13;
-  const T s27 = s6 + s8;
-  const T s28 = s6 - s8;
-  const T s29 = s11 - s22;
-  const T s30 = s15 - s28;
-  const T s31 = s16 - s25;
-  const T s32 = s17 + s19;
-  const T s33 = s17 - s19;
-  const T c0 = T(0.083333333333333329) * (s7 + s20) + T(0.625) * s9 + T(0.041666666666666664) * (-s11 - s18);
-  const T c1 = T(0.25) * (-s7 - s23) + T(0.125) * s32;
-  const T c2 = T(0.125) * (s8 + s16 + s18) + T(0.25) * -s23;
-  const T c3 = T(0.25) * (-s20 - s23) + T(0.125) * -s27;
-  const T c4 = T(0.125) * (s12 + s15 - s24) + T(0.375) * -s21;
-  const T c5 = T(0.25) * (-s8 - s19 - s29);
-  const T c6 = T(0.25) * (s8 + s10 + s13 - s17);
-  const T c7 = T(0.375) * (-v[10] - s21) + T(0.125) * (v[11] - s15 - s18);
-  const T c8 = T(0.25) * (s6 + s10 - s13 - s16);
-  const T c9 = T(0.125) * (s2 + s11) + T(0.25) * s20 + T(0.375) * -s22;
-  const T c10 = T(0.083333333333333329) * (v[4] + v[12]) + T(0.041666666666666664) * (s1 - s6 + s24 - s26) + T(0.16666666666666666) * s10;
-  const T c11 = T(0.125) * -s31;
-  const T c12 = T(0.125) * -s30;
-  const T c13 = T(0.125) * -s33;
-  const T c15 = T(0.125) * s33;
-  const T c16 = T(0.083333333333333329) * (v[7] + v[13]) + T(0.041666666666666664) * (s0 - s8 + s18 + s26) + T(0.16666666666666666) * s10;
-  const T c17 = T(0.125) * s30;
-  const T c18 = T(0.125) * s31;
-  const T c19 = T(0.083333333333333329) * (v[14] + v[15] - s20) + T(0.041666666666666664) * s27 + T(0.16666666666666666) * -s29;
+  const T s0 = v[0] + v[1];
+  const T s1 = v[0] - v[1];
+  const T s2 = v[2] + v[8];
+  const T s3 = v[2] - v[8];
+  const T s4 = v[4] + v[12];
+  const T s5 = v[4] - v[12];
+  const T s6 = v[5] + v[9];
+  const T s7 = v[5] - v[9];
+  const T s8 = v[7] + v[13];
+  const T s9 = v[7] - v[13];
+  const T s10 = v[14] + v[15];
+  const T s11 = v[14] - v[15];
+  const T s12 = v[3] + v[6];
+  const T s13 = v[10] + v[11];
+  const T s14 = v[3] - v[6];
+  const T s15 = v[10] - v[11];
+  const T s16 = s1 - s11;
+  const T s17 = s1 + s11;
+  const T s18 = s3 - s9;
+  const T s19 = s3 + s9;
+  const T s20 = s5 - s7;
+  const T s21 = s5 + s7;
+  const T s22 = s12 + s13;
+  const T s23 = s12 - s13;
+  const T s24 = s14 - s15;
+  const T s25 = s14 + s15;
+  const T s26 = s16 + s18;
+  const T s27 = s17 + s20;
+  const T s28 = s19 + s21;
+  const T s29 = s0 + s10;
+  const T s30 = s0 - s10;
+  const T s31 = s2 + s8;
+  const T s32 = s2 - s8;
+  const T s33 = s4 + s6;
+  const T s34 = s4 - s6;
+  const T s35 = s16 - s18;
+  const T s36 = s17 - s20;
+  const T s37 = s19 - s21;
+  const T c0 = T(0.21875) * s22 + T(0.010416666666666666) * (s29 + s31 + s33);
+  const T c1 = T(0.25) * -s24 + T(0.03125) * s26 + T(0.0625) * s34;
+  const T c2 = T(0.25) * -s25 + T(0.03125) * -s27 + T(0.0625) * -s32;
+  const T c3 = T(0.25) * -s23 + T(0.03125) * -s28 + T(0.0625) * -s30;
+  const T c4 = T(0.125) * (-s22 + s33);
+  const T c5 = T(0.25) * s23 + T(0.125) * -s28;
+  const T c6 = T(0.25) * s25 + T(0.125) * -s27;
+  const T c7 = T(0.125) * (-s22 + s31);
+  const T c8 = T(0.25) * s24 + T(0.125) * s26;
+  const T c9 = T(0.125) * (-s22 + s29);
+  const T c10 = T(0.16666666666666666) * s24 + T(0.041666666666666664) * -s26 + T(0.083333333333333329) * s34;
+  const T c11 = T(0.125) * s36;
+  const T c12 = T(0.125) * s37;
+  const T c13 = T(0.125) * -s35;
+  const T c15 = T(0.125) * s35;
+  const T c16 = T(0.16666666666666666) * s25 + T(0.041666666666666664) * s27 + T(0.083333333333333329) * -s32;
+  const T c17 = T(0.125) * -s37;
+  const T c18 = T(0.125) * -s36;
+  const T c19 = T(0.16666666666666666) * s23 + T(0.041666666666666664) * s28 + T(0.083333333333333329) * -s30;
+  const T y0 = x[0] - T(0.5);
+  const T y1 = x[1] - T(0.5);
+  const T y2 = x[2] - T(0.5);
   static_cast<void>(x);  // unused when the polynomial is constant
   static_cast<void>(d);  // unused on the value path
   if constexpr (Order >= 1) {
-    d[0] = c1 + x[2] * (c6 + x[2] * (c15)) + x[1] * (c5 + x[1] * (c13)) + x[0] * (T(2) * c4 + x[2] * (T(2) * c12) + x[1] * (T(2) * c11) + x[0] * (T(3) * c10));
-    d[1] = c2 + x[2] * (c8 + x[2] * (c18)) + x[1] * (T(2) * c7 + x[2] * (T(2) * c17) + x[1] * (T(3) * c16)) + x[0] * (c5 + x[1] * (T(2) * c13) + x[0] * (c11));
-    d[2] = c3 + x[2] * (T(2) * c9 + x[2] * (T(3) * c19)) + x[1] * (c8 + x[2] * (T(2) * c18) + x[1] * (c17)) + x[0] * (c6 + x[2] * (T(2) * c15) + x[0] * (c12));
+    d[0] = c1 + y2 * (c6 + y2 * (c15)) + y1 * (c5 + y1 * (c13)) + y0 * (T(2) * c4 + y2 * (T(2) * c12) + y1 * (T(2) * c11) + y0 * (T(3) * c10));
+    d[1] = c2 + y2 * (c8 + y2 * (c18)) + y1 * (T(2) * c7 + y2 * (T(2) * c17) + y1 * (T(3) * c16)) + y0 * (c5 + y1 * (T(2) * c13) + y0 * (c11));
+    d[2] = c3 + y2 * (T(2) * c9 + y2 * (T(3) * c19)) + y1 * (c8 + y2 * (T(2) * c18) + y1 * (c17)) + y0 * (c6 + y2 * (T(2) * c15) + y0 * (c12));
   }
   if constexpr (Order >= 2) {
-    d[3] = T(2) * c4 + x[2] * (T(2) * c12) + x[1] * (T(2) * c11) + x[0] * (T(6) * c10);
-    d[4] = c5 + x[1] * (T(2) * c13) + x[0] * (T(2) * c11);
-    d[5] = c6 + x[2] * (T(2) * c15) + x[0] * (T(2) * c12);
-    d[6] = T(2) * c7 + x[2] * (T(2) * c17) + x[1] * (T(6) * c16) + x[0] * (T(2) * c13);
-    d[7] = c8 + x[2] * (T(2) * c18) + x[1] * (T(2) * c17);
-    d[8] = T(2) * c9 + x[2] * (T(6) * c19) + x[1] * (T(2) * c18) + x[0] * (T(2) * c15);
+    d[3] = T(2) * c4 + y2 * (T(2) * c12) + y1 * (T(2) * c11) + y0 * (T(6) * c10);
+    d[4] = c5 + y1 * (T(2) * c13) + y0 * (T(2) * c11);
+    d[5] = c6 + y2 * (T(2) * c15) + y0 * (T(2) * c12);
+    d[6] = T(2) * c7 + y2 * (T(2) * c17) + y1 * (T(6) * c16) + y0 * (T(2) * c13);
+    d[7] = c8 + y2 * (T(2) * c18) + y1 * (T(2) * c17);
+    d[8] = T(2) * c9 + y2 * (T(6) * c19) + y1 * (T(2) * c18) + y0 * (T(2) * c15);
   }
-  return c0 + x[2] * (c3 + x[2] * (c9 + x[2] * (c19))) + x[1] * (c2 + x[2] * (c8 + x[2] * (c18)) + x[1] * (c7 + x[2] * (c17) + x[1] * (c16))) + x[0] * (c1 + x[2] * (c6 + x[2] * (c15)) + x[1] * (c5 + x[1] * (c13)) + x[0] * (c4 + x[2] * (c12) + x[1] * (c11) + x[0] * (c10)));
+  return c0 + y2 * (c3 + y2 * (c9 + y2 * (c19))) + y1 * (c2 + y2 * (c8 + y2 * (c18)) + y1 * (c7 + y2 * (c17) + y1 * (c16))) + y0 * (c1 + y2 * (c6 + y2 * (c15)) + y1 * (c5 + y1 * (c13)) + y0 * (c4 + y2 * (c12) + y1 * (c11) + y0 * (c10)));
 }
 
 

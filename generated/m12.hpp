@@ -11,6 +11,7 @@
 // multiplications as emitted, the costliest orbit), value / value + gradient / + Hessian:
 //   427 / 895 / 1422
 //   orbit 0: separable, 427 / 895 / 1422
+//     chosen by value + gradient from horner 6451 / 6829 / 7417, separable 427 / 895 / 1422, monomial 11819 / 12416 / 13235, shifted 6002 / 6380 / 6968
 #pragma once
 #include <array>
 #include <cstdint>

@@ -7,10 +7,11 @@
 // templates/evaluator.hpp.fmt: the tables and the polynomial code below are the generator's
 // output; the glue (cell lookup, symmetry, fetching) is generated/evaluator_support.hpp.
 //
-// Emission strategy: horner. Arithmetic per point of the polynomial code (additions +
+// Emission strategy: shifted. Arithmetic per point of the polynomial code (additions +
 // multiplications as emitted, the costliest orbit), value / value + gradient / + Hessian:
-//   282 / 408 / 540
-//   orbit 0: horner, 282 / 408 / 540
+//   278 / 404 / 536
+//   orbit 0: shifted about (1,1,1), 278 / 404 / 536
+//     chosen by value + gradient from horner 282 / 408 / 540, monomial 840 / 1023 / 1179, shifted 278 / 404 / 536, bernstein 665 / 671 / 695
 #pragma once
 #include <array>
 #include <cstdint>
@@ -25,10 +26,10 @@ inline constexpr int kStencilSize = 30;
 inline constexpr int kLatticeDet = 4;
 inline constexpr const char* kSpec = "1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 2,0,0; 0,2,0; 0,0,2";
 inline constexpr const char* kLattice = "bcc";
-inline constexpr const char* kStrategy = "horner";
-inline constexpr long kValueOperations = 282;
-inline constexpr long kGradientOperations = 408;
-inline constexpr long kHessianOperations = 540;
+inline constexpr const char* kStrategy = "shifted";
+inline constexpr long kValueOperations = 278;
+inline constexpr long kGradientOperations = 404;
+inline constexpr long kHessianOperations = 536;
 
 using Point = std::array<std::int64_t, kDimension>;
 
@@ -42,121 +43,133 @@ inline constexpr int kStencilReachHi[kDimension] = {2, 2, 2};
 namespace detail {
 
 // Orbit 0: the spline on the reference region with vertices (0,0,0) (1,0,0) (1,1,0) (1,1,1),
-// as 32 monomial coefficients, each a linear combination of the 30 stencil values
-// (61 partial sums s shared between coefficients, then values of equal weight grouped),
-// evaluated in nested Horner form; each partial derivative is the Horner form of the exact
-// derivative polynomial, sharing the coefficients.
+// in monomials of y = x - o about the origin o = (1,1,1) (of 10 candidate points of the
+// region, the one with the fewest value + gradient operations): 32 coefficients, each an
+// exact linear combination of the 30 stencil values (68 partial sums s shared between
+// coefficients, then values of equal weight grouped), evaluated in nested Horner form in y; each
+// partial derivative is the Horner form of the exact derivative polynomial, sharing the
+// coefficients.
 template <int Order, class T>
 T orbit_0(const T* v, const T* x, T* d) {
-  const T s0 = v[4] + v[7];
-  const T s1 = v[4] - v[7];
-  const T s2 = v[18] + v[21];
-  const T s3 = v[18] - v[21];
-  const T s4 = v[0] + v[25];
-  const T s5 = v[5] + v[19];
-  const T s6 = v[5] - v[19];
-  const T s7 = v[0] - v[25];
-  const T s8 = v[8] + v[22];
-  const T s9 = v[8] - v[22];
-  const T s10 = v[1] + v[26];
-  const T s11 = v[1] - v[26];
-  const T s12 = s1 + s3;
-  const T s13 = v[2] + v[27];
-  const T s14 = v[2] - v[27];
-  const T s15 = v[6] + v[9];
-  const T s16 = v[6] - v[9];
-  const T s17 = v[11] - v[12];
-  const T s18 = v[14] + T(0.055555555555555552) * s4;
-  const T s19 = v[14] + T(-0.5) * s4;
-  const T s20 = v[16] - v[17];
-  const T s21 = v[20] + v[23];
-  const T s22 = v[20] - v[23];
-  const T s23 = s1 - s3;
-  const T s24 = v[3] + T(-2) * v[10];
-  const T s25 = v[28] + s22;
-  const T s26 = s0 + s2;
-  const T s27 = s0 - s2;
-  const T s28 = s5 + s8;
-  const T s29 = s5 - s8;
-  const T s30 = s6 + s9;
-  const T s31 = s6 - s9;
-  const T s32 = s7 - s11;
-  const T s33 = s13 + T(2) * s19;
-  const T s34 = v[7] - v[21];
-  const T s35 = v[15] + T(-0.5) * s10;
-  const T s36 = v[16] + v[17];
-  const T s37 = v[24] + T(-0.5) * s24;
-  const T s38 = v[24] + T(0.5) * s24;
-  const T s39 = s7 - s14;
-  const T s40 = s17 + s20;
-  const T s41 = v[3] - s14;
-  const T s42 = v[3] - s33;
-  const T s43 = v[9] - v[23];
-  const T s44 = v[11] + v[15];
-  const T s45 = v[13] - v[15];
-  const T s46 = s4 - s10;
-  const T s47 = s6 + T(-0.5) * s11;
-  const T s48 = s12 - s16;
-  const T s49 = s12 + s29;
-  const T s50 = s12 - s29;
-  const T s51 = s16 + s23;
-  const T s52 = s17 - s20;
-  const T s53 = s23 + s31;
-  const T s54 = s26 + s28;
-  const T s55 = s26 - s28;
-  const T s56 = s27 + s30;
-  const T s57 = s27 - s30;
-  const T s58 = s35 + T(0.5) * s42;
-  const T s59 = s38 + T(-0.5) * s39;
-  const T s60 = s40 + s46;
-  const T c0 = T(0.020833333333333332) * (v[13] + v[16] + s44) + T(0.375) * s18 + T(0.0625) * s54;
-  const T c1 = T(0.083333333333333329) * (-s45 - s55);
-  const T c2 = T(0.083333333333333329) * (-v[11] + v[16] - s49);
-  const T c3 = T(0.083333333333333329) * (-s7 - s56);
-  const T c4 = T(0.125) * (v[13] + v[15]) + T(0.25) * -v[14];
-  const T c5 = T(0.125) * s50;
-  const T c6 = T(0.125) * s57;
-  const T c7 = T(0.125) * (v[11] + v[16]) + T(0.25) * -v[14];
-  const T c8 = T(0.125) * s53;
-  const T c9 = T(0.25) * -s19;
-  const T c10 = T(0.083333333333333329) * (-v[13] + v[14]) + T(0.041666666666666664) * s55 + T(0.020833333333333332) * -s60;
-  const T c11 = T(0.0625) * (-s50 + s52);
-  const T c12 = T(0.0625) * (s32 - s57);
-  const T c13 = T(0.125) * (v[14] - v[15]) + T(0.0625) * -s40;
-  const T c14 = T(0.125) * (-s23 + s31);
-  const T c15 = T(0.125) * (s19 - s35);
-  const T c16 = T(0.0625) * (-v[11] + s29) + T(0.020833333333333332) * (-v[12] + s12 + s33 + s36);
-  const T c17 = T(0.0625) * (s39 - s53);
-  const T c18 = T(0.125) * -v[16] + T(0.0625) * s33;
-  const T c19 = T(0.041666666666666664) * (-s7 + s34 + s47) + T(0.083333333333333329) * s9 + T(0.020833333333333332) * -s14;
-  const T c20 = T(0.005208333333333333) * (s15 + s21) + T(0.015625) * -s26 + T(0.010416666666666666) * (s28 + s60) + T(0.020833333333333332) * s45;
-  const T c21 = T(0.010416666666666666) * (-s22 + s48) + T(0.020833333333333332) * -s52;
-  const T c22 = T(0.010416666666666666) * (-s15 + s21 + s27) + T(0.020833333333333332) * -s32;
-  const T c24 = T(0.03125) * (-s22 + s51) + T(0.0625) * -s31;
-  const T c26 = T(0.020833333333333332) * (s17 + s58) + T(0.010416666666666666) * (s25 - s48);
-  const T c27 = T(0.03125) * (-s16 + s23 + s25 - s32 - s41);
-  const T c28 = T(0.03125) * v[28] + T(0.0625) * (s20 + s58);
-  const T c29 = T(0.010416666666666666) * (v[28] + s32 - s41) + T(0.020833333333333332) * (-s34 + s43);
-  const T c30 = T(0.010416666666666666) * (v[12] + v[14] + s8 + s37 + s44) + T(0.005208333333333333) * (s4 + s10 - s12 - s13 - s16 - s25) + T(0.020833333333333332) * (-s5 - s36);
-  const T c31 = T(0.020833333333333332) * (s9 + s59) + T(0.010416666666666666) * (-s11 - s25 + s51);
-  const T c33 = T(0.010416666666666666) * v[28] + T(0.020833333333333332) * (-s47 - s59);
-  const T c34 = T(0.005208333333333333) * (v[0] + v[1] + v[2]) + T(0.020833333333333332) * (-v[8] + v[29]) + T(0.010416666666666666) * (v[14] + v[15] - s6 - s34 + s36 + s38 - s43) + T(0.015625) * (-v[25] - v[26] - v[27] - v[28]);
+  const T s0 = v[25] + v[26];
+  const T s1 = v[25] - v[26];
+  const T s2 = v[27] + v[28];
+  const T s3 = v[16] + v[17];
+  const T s4 = v[16] - v[17];
+  const T s5 = v[21] + v[23];
+  const T s6 = v[27] - v[28];
+  const T s7 = v[14] + v[15];
+  const T s8 = v[14] - v[15];
+  const T s9 = v[21] - v[23];
+  const T s10 = v[7] - v[9];
+  const T s11 = s0 + s2;
+  const T s12 = s0 - s2;
+  const T s13 = v[0] - v[1];
+  const T s14 = v[5] + v[19];
+  const T s15 = v[5] - v[19];
+  const T s16 = v[7] + v[9];
+  const T s17 = v[10] + T(3) * v[24];
+  const T s18 = v[10] - v[24];
+  const T s19 = v[18] - v[20];
+  const T s20 = v[22] + T(0.055555555555555552) * s5;
+  const T s21 = v[22] + T(-0.5) * s5;
+  const T s22 = s1 + s6;
+  const T s23 = s1 - s6;
+  const T s24 = v[18] + v[20];
+  const T s25 = v[0] + v[1];
+  const T s26 = v[2] - v[3];
+  const T s27 = v[2] + v[3];
+  const T s28 = v[4] + T(-0.33333333333333331) * v[6];
+  const T s29 = v[4] - v[6];
+  const T s30 = s3 + s7;
+  const T s31 = s3 - s7;
+  const T s32 = s4 + s8;
+  const T s33 = s4 - s8;
+  const T s34 = s9 + T(0.5) * s10;
+  const T s35 = s9 - s10;
+  const T s36 = s21 + T(0.5) * s24;
+  const T s37 = v[4] + v[6];
+  const T s38 = v[8] + T(-0.5) * s16;
+  const T s39 = v[11] - v[12];
+  const T s40 = s9 - s19;
+  const T s41 = s13 - s26;
+  const T s42 = s15 + s18;
+  const T s43 = s25 - s27;
+  const T s44 = v[8] + T(-2) * v[22];
+  const T s45 = v[8] - v[22];
+  const T s46 = v[8] + v[22];
+  const T s47 = v[8] + v[29];
+  const T s48 = v[8] - v[29];
+  const T s49 = v[19] + v[24];
+  const T s50 = s1 + s4;
+  const T s51 = s5 - s16;
+  const T s52 = s10 - s29;
+  const T s53 = s11 + s30;
+  const T s54 = s11 - s30;
+  const T s55 = s12 - s18;
+  const T s56 = s12 + T(-2) * s18;
+  const T s57 = s19 - s29;
+  const T s58 = s22 + s32;
+  const T s59 = s22 - s32;
+  const T s60 = s23 - s33;
+  const T s61 = s23 + s41;
+  const T s62 = s36 + T(-0.5) * s37;
+  const T s63 = s38 - s62;
+  const T s64 = s39 + T(0.5) * s40;
+  const T s65 = s42 - s51;
+  const T s66 = s43 - s56;
+  const T s67 = s52 + T(2) * s64;
+  const T c0 = T(0.375) * s20 + T(0.020833333333333332) * (s47 + s49) + T(0.0625) * s53;
+  const T c1 = T(0.083333333333333329) * (-s9 - s58);
+  const T c2 = T(0.083333333333333329) * (-v[19] + v[24] - s12 + s31);
+  const T c3 = T(0.083333333333333329) * (-s48 + s54);
+  const T c4 = T(0.25) * -s21;
+  const T c5 = T(0.125) * s60;
+  const T c6 = T(0.125) * -s59;
+  const T c7 = T(0.25) * -v[22] + T(0.125) * s49;
+  const T c8 = T(0.125) * (-s12 - s31);
+  const T c9 = T(0.125) * (v[29] + s44);
+  const T c10 = T(0.083333333333333329) * s8 + T(0.020833333333333332) * -s19 + T(0.041666666666666664) * (-s34 + s50);
+  const T c11 = T(0.125) * (v[19] - s36);
+  const T c12 = T(0.125) * (-s21 + s38);
+  const T c13 = T(0.0625) * (s40 + s60);
+  const T c14 = T(0.125) * (s23 + s33);
+  const T c15 = T(0.0625) * (s35 - s59);
+  const T c16 = T(0.020833333333333332) * (s12 - s14 + s17) + T(0.0625) * -s31 + T(0.041666666666666664) * -s36;
+  const T c17 = T(0.0625) * -s42 + T(0.125) * s45;
+  const T c18 = T(0.0625) * (-s15 - s31 - s55);
+  const T c19 = T(0.083333333333333329) * (-v[22] + v[29]) + T(0.041666666666666664) * -s54 + T(0.020833333333333332) * -s65;
+  const T c20 = T(0.015625) * (-v[7] - v[18] - v[21] - s28) + T(0.005208333333333333) * (v[9] + v[20] + v[23]) + T(0.020833333333333332) * (v[13] - v[15]) + T(0.010416666666666666) * (s13 + s14 + s39 + s46 + s50);
+  const T c21 = T(0.020833333333333332) * s4 + T(0.010416666666666666) * -s67;
+  const T c22 = T(0.020833333333333332) * (s1 - s13) + T(0.010416666666666666) * (-s35 - s57);
+  const T c24 = T(0.0625) * (-s15 + s63);
+  const T c26 = T(0.020833333333333332) * -s8 + T(0.010416666666666666) * (s61 + s67);
+  const T c27 = T(0.03125) * (s23 + s35 - s41 - s57);
+  const T c28 = T(0.0625) * s33 + T(0.03125) * s61;
+  const T c29 = T(0.010416666666666666) * (s13 - s22 + s26) + T(0.020833333333333332) * s35;
+  const T c30 = T(0.010416666666666666) * (v[10] + v[11] + v[12] + v[24] + s7 + s46) + T(0.020833333333333332) * (-s3 - s14) + T(0.005208333333333333) * (s5 + s12 + s16 - s24 - s37 + s43);
+  const T c31 = T(0.020833333333333332) * s63 + T(0.010416666666666666) * -s66;
+  const T c33 = T(0.020833333333333332) * -s15 + T(0.010416666666666666) * s66;
+  const T c34 = T(0.015625) * -s11 + T(0.005208333333333333) * (s25 + s27) + T(0.010416666666666666) * (s30 - s65) + T(0.020833333333333332) * -s48;
+  const T y0 = x[0] - T(1);
+  const T y1 = x[1] - T(1);
+  const T y2 = x[2] - T(1);
   static_cast<void>(x);  // unused when the polynomial is constant
   static_cast<void>(d);  // unused on the value path
   if constexpr (Order >= 1) {
-    d[0] = c1 + x[2] * (c6 + x[2] * (c15 + x[2] * (c29))) + x[1] * (c5 + x[2] * (c14 + x[2] * (c28)) + x[1] * (c13 + x[2] * (c27) + x[1] * (c26))) + x[0] * (T(2) * c4 + x[2] * (T(2) * c12) + x[1] * (T(2) * c11 + x[2] * (T(2) * c24)) + x[0] * (T(3) * c10 + x[2] * (T(3) * c22) + x[1] * (T(3) * c21) + x[0] * (T(4) * c20)));
-    d[1] = c2 + x[2] * (c8 + x[2] * (c18 + x[2] * (c33))) + x[1] * (T(2) * c7 + x[2] * (T(2) * c17) + x[1] * (T(3) * c16 + x[2] * (T(3) * c31) + x[1] * (T(4) * c30))) + x[0] * (c5 + x[2] * (c14 + x[2] * (c28)) + x[1] * (T(2) * c13 + x[2] * (T(2) * c27) + x[1] * (T(3) * c26)) + x[0] * (c11 + x[2] * (c24) + x[0] * (c21)));
-    d[2] = c3 + x[2] * (T(2) * c9 + x[2] * (T(3) * c19 + x[2] * (T(4) * c34))) + x[1] * (c8 + x[2] * (T(2) * c18 + x[2] * (T(3) * c33)) + x[1] * (c17 + x[1] * (c31))) + x[0] * (c6 + x[2] * (T(2) * c15 + x[2] * (T(3) * c29)) + x[1] * (c14 + x[2] * (T(2) * c28) + x[1] * (c27)) + x[0] * (c12 + x[1] * (c24) + x[0] * (c22)));
+    d[0] = c1 + y2 * (c6 + y2 * (c15 + y2 * (c29))) + y1 * (c5 + y2 * (c14 + y2 * (c28)) + y1 * (c13 + y2 * (c27) + y1 * (c26))) + y0 * (T(2) * c4 + y2 * (T(2) * c12) + y1 * (T(2) * c11 + y2 * (T(2) * c24)) + y0 * (T(3) * c10 + y2 * (T(3) * c22) + y1 * (T(3) * c21) + y0 * (T(4) * c20)));
+    d[1] = c2 + y2 * (c8 + y2 * (c18 + y2 * (c33))) + y1 * (T(2) * c7 + y2 * (T(2) * c17) + y1 * (T(3) * c16 + y2 * (T(3) * c31) + y1 * (T(4) * c30))) + y0 * (c5 + y2 * (c14 + y2 * (c28)) + y1 * (T(2) * c13 + y2 * (T(2) * c27) + y1 * (T(3) * c26)) + y0 * (c11 + y2 * (c24) + y0 * (c21)));
+    d[2] = c3 + y2 * (T(2) * c9 + y2 * (T(3) * c19 + y2 * (T(4) * c34))) + y1 * (c8 + y2 * (T(2) * c18 + y2 * (T(3) * c33)) + y1 * (c17 + y1 * (c31))) + y0 * (c6 + y2 * (T(2) * c15 + y2 * (T(3) * c29)) + y1 * (c14 + y2 * (T(2) * c28) + y1 * (c27)) + y0 * (c12 + y1 * (c24) + y0 * (c22)));
   }
   if constexpr (Order >= 2) {
-    d[3] = T(2) * c4 + x[2] * (T(2) * c12) + x[1] * (T(2) * c11 + x[2] * (T(2) * c24)) + x[0] * (T(6) * c10 + x[2] * (T(6) * c22) + x[1] * (T(6) * c21) + x[0] * (T(12) * c20));
-    d[4] = c5 + x[2] * (c14 + x[2] * (c28)) + x[1] * (T(2) * c13 + x[2] * (T(2) * c27) + x[1] * (T(3) * c26)) + x[0] * (T(2) * c11 + x[2] * (T(2) * c24) + x[0] * (T(3) * c21));
-    d[5] = c6 + x[2] * (T(2) * c15 + x[2] * (T(3) * c29)) + x[1] * (c14 + x[2] * (T(2) * c28) + x[1] * (c27)) + x[0] * (T(2) * c12 + x[1] * (T(2) * c24) + x[0] * (T(3) * c22));
-    d[6] = T(2) * c7 + x[2] * (T(2) * c17) + x[1] * (T(6) * c16 + x[2] * (T(6) * c31) + x[1] * (T(12) * c30)) + x[0] * (T(2) * c13 + x[2] * (T(2) * c27) + x[1] * (T(6) * c26));
-    d[7] = c8 + x[2] * (T(2) * c18 + x[2] * (T(3) * c33)) + x[1] * (T(2) * c17 + x[1] * (T(3) * c31)) + x[0] * (c14 + x[2] * (T(2) * c28) + x[1] * (T(2) * c27) + x[0] * (c24));
-    d[8] = T(2) * c9 + x[2] * (T(6) * c19 + x[2] * (T(12) * c34)) + x[1] * (T(2) * c18 + x[2] * (T(6) * c33)) + x[0] * (T(2) * c15 + x[2] * (T(6) * c29) + x[1] * (T(2) * c28));
+    d[3] = T(2) * c4 + y2 * (T(2) * c12) + y1 * (T(2) * c11 + y2 * (T(2) * c24)) + y0 * (T(6) * c10 + y2 * (T(6) * c22) + y1 * (T(6) * c21) + y0 * (T(12) * c20));
+    d[4] = c5 + y2 * (c14 + y2 * (c28)) + y1 * (T(2) * c13 + y2 * (T(2) * c27) + y1 * (T(3) * c26)) + y0 * (T(2) * c11 + y2 * (T(2) * c24) + y0 * (T(3) * c21));
+    d[5] = c6 + y2 * (T(2) * c15 + y2 * (T(3) * c29)) + y1 * (c14 + y2 * (T(2) * c28) + y1 * (c27)) + y0 * (T(2) * c12 + y1 * (T(2) * c24) + y0 * (T(3) * c22));
+    d[6] = T(2) * c7 + y2 * (T(2) * c17) + y1 * (T(6) * c16 + y2 * (T(6) * c31) + y1 * (T(12) * c30)) + y0 * (T(2) * c13 + y2 * (T(2) * c27) + y1 * (T(6) * c26));
+    d[7] = c8 + y2 * (T(2) * c18 + y2 * (T(3) * c33)) + y1 * (T(2) * c17 + y1 * (T(3) * c31)) + y0 * (c14 + y2 * (T(2) * c28) + y1 * (T(2) * c27) + y0 * (c24));
+    d[8] = T(2) * c9 + y2 * (T(6) * c19 + y2 * (T(12) * c34)) + y1 * (T(2) * c18 + y2 * (T(6) * c33)) + y0 * (T(2) * c15 + y2 * (T(6) * c29) + y1 * (T(2) * c28));
   }
-  return c0 + x[2] * (c3 + x[2] * (c9 + x[2] * (c19 + x[2] * (c34)))) + x[1] * (c2 + x[2] * (c8 + x[2] * (c18 + x[2] * (c33))) + x[1] * (c7 + x[2] * (c17) + x[1] * (c16 + x[2] * (c31) + x[1] * (c30)))) + x[0] * (c1 + x[2] * (c6 + x[2] * (c15 + x[2] * (c29))) + x[1] * (c5 + x[2] * (c14 + x[2] * (c28)) + x[1] * (c13 + x[2] * (c27) + x[1] * (c26))) + x[0] * (c4 + x[2] * (c12) + x[1] * (c11 + x[2] * (c24)) + x[0] * (c10 + x[2] * (c22) + x[1] * (c21) + x[0] * (c20))));
+  return c0 + y2 * (c3 + y2 * (c9 + y2 * (c19 + y2 * (c34)))) + y1 * (c2 + y2 * (c8 + y2 * (c18 + y2 * (c33))) + y1 * (c7 + y2 * (c17) + y1 * (c16 + y2 * (c31) + y1 * (c30)))) + y0 * (c1 + y2 * (c6 + y2 * (c15 + y2 * (c29))) + y1 * (c5 + y2 * (c14 + y2 * (c28)) + y1 * (c13 + y2 * (c27) + y1 * (c26))) + y0 * (c4 + y2 * (c12) + y1 * (c11 + y2 * (c24)) + y0 * (c10 + y2 * (c22) + y1 * (c21) + y0 * (c20))));
 }
 
 

@@ -11,6 +11,7 @@
 // multiplications as emitted, the costliest orbit), value / value + gradient / + Hessian:
 //   207 / 435 / 694
 //   orbit 0: separable, 207 / 435 / 694
+//     chosen by value + gradient from horner 733 / 1111 / 1699, separable 207 / 435 / 694, monomial 3627 / 4224 / 5043, shifted 700 / 1078 / 1666
 #pragma once
 #include <array>
 #include <cstdint>

@@ -74,8 +74,7 @@ std::vector<Rational> bb_coefficients(const Poly& p, const std::vector<RatVec>& 
   return out;
 }
 
-Poly bb_polynomial(const std::vector<Rational>& coefficients, const std::vector<RatVec>& simplex,
-                   int d) {
+std::vector<RatVec> barycentric_forms(const std::vector<RatVec>& simplex) {
   const int n = static_cast<int>(simplex[0].size());
   auto [a, v0] = simplex_frame(simplex);
   // lambda(x) = A^{-1}(x - v0), lambda_0 = 1 - sum lambda_i
@@ -109,6 +108,13 @@ Poly bb_polynomial(const std::vector<Rational>& coefficients, const std::vector<
   lambda[0][0] = 1;
   for (int i = 1; i <= n; ++i)
     for (int k = 0; k <= n; ++k) lambda[0][k] = lambda[0][k] - lambda[i][k];
+  return lambda;
+}
+
+Poly bb_polynomial(const std::vector<Rational>& coefficients, const std::vector<RatVec>& simplex,
+                   int d) {
+  const int n = static_cast<int>(simplex[0].size());
+  const std::vector<RatVec> lambda = barycentric_forms(simplex);
   Poly out(n, d);
   const auto indices = bb_multi_indices(n, d);
   for (size_t t = 0; t < indices.size(); ++t) {

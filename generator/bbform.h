@@ -16,6 +16,9 @@ using MultiIndex = std::vector<int>;  // b_0..b_n, |b| = d
 std::vector<MultiIndex> bb_multi_indices(int n, int d);
 // Exact BB coefficients of p (degree <= d) on the simplex, in bb_multi_indices order.
 std::vector<Rational> bb_coefficients(const Poly& p, const std::vector<RatVec>& simplex, int d);
+// The barycentric coordinates of the simplex as exact affine forms of x: lambda_i(x) =
+// f[i][0] + sum_j f[i][j + 1] x_j, i = 0..n (they sum to 1 and lambda_i(v_k) = [i == k]).
+std::vector<RatVec> barycentric_forms(const std::vector<RatVec>& simplex);
 // The polynomial with these BB coefficients (the inverse of bb_coefficients).
 Poly bb_polynomial(const std::vector<Rational>& coefficients, const std::vector<RatVec>& simplex,
                    int d);

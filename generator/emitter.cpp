@@ -210,8 +210,11 @@ std::string evaluator(const Analysis& a, const EmissionRequest& req, const Orbit
     dispatch.push_back(fmt::format("      case {0}: return detail::orbit_{0}<Order>(v, x, d);", o));
     functions.push_back(code.orbits[o].text);
     const OrbitCode& c = code.orbits[o];
-    costs.push_back(fmt::format("//   orbit {}: {}, {} / {} / {}", o, strategy_name(c.strategy),
-                                c.value.total(), c.gradient.total(), c.hessian.total()));
+    costs.push_back(fmt::format("//   orbit {}: {}, {} / {} / {}", o,
+                                strategy_description(c.strategy, c.form), c.value.total(),
+                                c.gradient.total(), c.hessian.total()));
+    if (!c.considered.empty())
+      costs.push_back("//     chosen by value + gradient from " + considered_text(c.considered));
   }
   std::vector<std::string> centre, hermite_rows;
   for (const auto& c : s.centre) centre.push_back(literal(c));
@@ -275,7 +278,8 @@ std::vector<EmittedFile> emit(const Analysis& analysis, const EmissionRequest& r
   if (report) {
     *report = {code.strategy, {}, code.value, code.gradient, code.hessian};
     for (const auto& o : code.orbits)
-      report->orbits.push_back({strategy_name(o.strategy), o.value, o.gradient, o.hessian});
+      report->orbits.push_back(
+          {strategy_name(o.strategy), o.value, o.gradient, o.hessian, o.form, o.considered});
   }
   return {{request.name + ".hpp", evaluator(analysis, request, code)},
           {request.name + "_prefilters.hpp", prefilters(analysis, request)}};

@@ -27,6 +27,8 @@ struct EmissionRequest {
 struct OrbitReport {
   std::string strategy;
   OperationCount value, gradient, hessian;
+  std::string form;                      // e.g. the origin of the shifted form: "about (1,1,1)"
+  std::vector<StrategyCost> considered;  // auto: every applicable strategy's counts
 };
 struct EmissionReport {
   std::string strategy;  // of the whole evaluator ("mixed: ..." when orbits differ)

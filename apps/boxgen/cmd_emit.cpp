@@ -44,9 +44,14 @@ void print_report(const EmissionReport& r) {
       "strategy {}: operations per point (adds + muls), value / value+gradient / +hessian: {} / {} "
       "/ {}\n",
       r.strategy, r.value.total(), r.gradient.total(), r.hessian.total());
-  for (std::size_t o = 0; o < r.orbits.size(); ++o)
-    fmt::print("  orbit {}: {}, {} / {} / {}\n", o, r.orbits[o].strategy, r.orbits[o].value.total(),
-               r.orbits[o].gradient.total(), r.orbits[o].hessian.total());
+  for (std::size_t o = 0; o < r.orbits.size(); ++o) {
+    const OrbitReport& orbit = r.orbits[o];
+    fmt::print("  orbit {}: {}{}, {} / {} / {}\n", o, orbit.strategy,
+               orbit.form.empty() ? "" : " " + orbit.form, orbit.value.total(),
+               orbit.gradient.total(), orbit.hessian.total());
+    if (!orbit.considered.empty())
+      fmt::print("    chosen by value + gradient from {}\n", considered_text(orbit.considered));
+  }
 }
 
 // --name becomes a namespace: a C++ identifier that is not a keyword (checked before deriving).
@@ -135,11 +140,20 @@ int run_emit(const Common& c, const std::string& name, const std::string& out,
     nlohmann::json result{{"files", j}};
     if (report) {
       nlohmann::json orbits = nlohmann::json::array();
-      for (const auto& o : r.orbits)
+      for (const auto& o : r.orbits) {
+        nlohmann::json considered = nlohmann::json::array();
+        for (const auto& s : o.considered)
+          considered.push_back({{"strategy", strategy_name(s.strategy)},
+                                {"value", counts_json(s.value)},
+                                {"gradient", counts_json(s.gradient)},
+                                {"hessian", counts_json(s.hessian)}});
         orbits.push_back({{"strategy", o.strategy},
+                          {"form", o.form},
                           {"value", counts_json(o.value)},
                           {"gradient", counts_json(o.gradient)},
-                          {"hessian", counts_json(o.hessian)}});
+                          {"hessian", counts_json(o.hessian)},
+                          {"considered", considered}});
+      }
       result["report"] = {{"strategy", r.strategy},
                           {"value", counts_json(r.value)},
                           {"gradient", counts_json(r.gradient)},

@@ -88,7 +88,8 @@ int run(int argc, char** argv) {
   emit->add_option("--out", emit_out, "output directory")->required();
   emit->add_option(
       "--strategy", emit_strategy,
-      "how polynomials are written: auto (default: the cheapest), horner, separable or monomial");
+      "how polynomials are written: auto (default: the cheapest), horner, shifted, bernstein, "
+      "separable or monomial");
   emit->add_flag("--report", emit_report, "also print the strategy and operation counts per orbit");
   emit->add_option("--registry", emit_registry,
                    "also write registry.hpp listing these filters (comma-separated)")

@@ -102,6 +102,10 @@ std::vector<BadInput> bad_inputs() {
       {"UnknownEmitStrategy",
        {"emit", "zp", "--name", "z", "--out", "/nonexistent/boxgen", "--strategy", "foo"},
        {"foo", "horner"}},
+      // a form that does not apply to the filter's regions: one line naming why, nothing written
+      {"EmitBernsteinOnCubes",
+       {"emit", "m12", "--name", "z", "--out", "/nonexistent/boxgen", "--strategy", "bernstein"},
+       {"bernstein", "not a simplex"}},
       {"EmitNameNotAnIdentifier",
        {"emit", "zp", "--name", "9z", "--out", "/nonexistent/boxgen"},
        {"9z"}},

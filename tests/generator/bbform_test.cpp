@@ -24,6 +24,34 @@ TEST(BBForm, RoundTripOnEveryReferenceRegion) {
   }
 }
 
+// The affine forms the Bernstein emission writes (generator/polynomial_code.cpp): exact, one per
+// vertex, 1 at their vertex and 0 at the others, summing to 1 everywhere.
+TEST(BBForm, BarycentricFormsAreExactAffineCoordinates) {
+  int simplices = 0;
+  for (const char* preset : testing::kAllPresets) {
+    const Analysis& a = analysis_of(preset);
+    for (const auto& ref : a.structure.references) {
+      const int n = static_cast<int>(ref.vertices[0].size());
+      if (static_cast<int>(ref.vertices.size()) != n + 1) continue;
+      ++simplices;
+      const std::vector<RatVec> f = barycentric_forms(ref.vertices);
+      ASSERT_EQ(f.size(), ref.vertices.size());
+      auto at = [&](const RatVec& form, const RatVec& x) {
+        Rational r = form[0];
+        for (int j = 0; j < n; ++j) r = r + form[j + 1] * x[j];
+        return r;
+      };
+      for (std::size_t i = 0; i < f.size(); ++i)
+        for (std::size_t k = 0; k < ref.vertices.size(); ++k)
+          EXPECT_EQ(at(f[i], ref.vertices[k]), Rational(i == k ? 1 : 0)) << preset;
+      Rational sum = 0;
+      for (const auto& form : f) sum = sum + at(form, ref.interior);
+      EXPECT_EQ(sum, Rational(1)) << preset;
+    }
+  }
+  EXPECT_GE(simplices, 5);  // M7, M8, cart7, fcc6 (two orbits), hex3, zp
+}
+
 TEST(BBForm, M7HasThePapersTable) {
   // Paper section 4.2 and its supplemental Table 1: 30 stencil points, 35 quartic coefficients.
   const Analysis& a = analysis_of("m7");
