@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -265,29 +266,55 @@ void choose_references(SplineStructure& s, const Lattice& lattice, int n) {
   std::int64_t reach = 2;
   for (const auto& col : lattice.generator())
     for (auto v : col) reach = std::max<std::int64_t>(reach, std::llabs(v) + 1);
+  // The regions of each orbit, listed once.
+  std::vector<std::vector<int>> members(s.references.size());
+  for (size_t r = 0; r < s.regions.size(); ++r)
+    members[static_cast<size_t>(s.regions[r].orbit)].push_back(static_cast<int>(r));
+  // A candidate image g R + l, its squared centroid norm in double first: only the candidates
+  // within rounding of the smallest are compared exactly (the choice stays the exact one).
+  struct Candidate {
+    double norm;
+    int region;
+    size_t g;
+    IntVec l;
+  };
   for (size_t o = 0; o < s.references.size(); ++o) {
-    std::optional<std::pair<Rational, RatVec>> best;
-    SpaceGroupElement best_map;
-    int best_region = -1;
-    for (size_t r = 0; r < s.regions.size(); ++r) {
-      if (s.regions[r].orbit != static_cast<int>(o)) continue;
-      for (const auto& g : s.group) {
-        RatVec z = g.apply(s.regions[r].centroid);
+    std::vector<Candidate> candidates;
+    double smallest = std::numeric_limits<double>::infinity();
+    for (int r : members[o]) {
+      for (size_t gi = 0; gi < s.group.size(); ++gi) {
+        const RatVec z = s.group[gi].apply(s.regions[static_cast<size_t>(r)].centroid);
         IntVec lo(n), hi(n);
+        std::vector<double> zd(static_cast<size_t>(n));
         for (int i = 0; i < n; ++i) {
           lo[i] = floor_to_int64(-z[i]) - reach;
           hi[i] = floor_to_int64(-z[i]) + reach;
+          zd[static_cast<size_t>(i)] = to_double(z[i]);
         }
         for (const auto& l : lattice.points_in_box(lo, hi)) {
-          RatVec y = z;
-          for (int i = 0; i < n; ++i) y[i] = y[i] + Rational(l[i]);
-          Rational d = norm2(y);
-          if (!best || d < best->first || (d == best->first && y > best->second)) {
-            best = std::make_pair(d, y);
-            best_map = {g, l};
-            best_region = static_cast<int>(r);
+          double d = 0;
+          for (int i = 0; i < n; ++i) {
+            const double y = zd[static_cast<size_t>(i)] + static_cast<double>(l[i]);
+            d += y * y;
           }
+          smallest = std::min(smallest, d);
+          candidates.push_back({d, r, gi, l});
         }
+      }
+    }
+    std::optional<std::pair<Rational, RatVec>> best;
+    SpaceGroupElement best_map;
+    int best_region = -1;
+    const double cut = smallest * (1 + 1e-9) + 1e-9;
+    for (const Candidate& c : candidates) {
+      if (c.norm > cut) continue;
+      RatVec y = s.group[c.g].apply(s.regions[static_cast<size_t>(c.region)].centroid);
+      for (int i = 0; i < n; ++i) y[i] = y[i] + Rational(c.l[i]);
+      Rational d = norm2(y);
+      if (!best || d < best->first || (d == best->first && y > best->second)) {
+        best = std::make_pair(d, y);
+        best_map = {s.group[c.g], c.l};
+        best_region = c.region;
       }
     }
     ReferenceRegion& ref = s.references[o];
