@@ -16,14 +16,6 @@ struct Slab {
   Rational lo, hi;  // lo <= nu.x <= hi
 };
 
-bool inside(const std::vector<Slab>& slabs, const RatVec& x) {
-  for (const auto& s : slabs) {
-    Rational v = dot(s.nu, x);
-    if (v < s.lo || v > s.hi) return false;
-  }
-  return true;
-}
-
 int tight_rank(const std::vector<Slab>& slabs, const RatVec& x, int n) {
   IntColumns tight;
   for (const auto& s : slabs) {
@@ -67,10 +59,10 @@ Polytope box_polytope(const IntVec& lo, const IntVec& hi) {
   return box;
 }
 
-// Points of the segment a-b on the plane nu.x = c, if it crosses the plane strictly.
-void add_crossing(const IntVec& nu, const Rational& c, const RatVec& a, const RatVec& b,
+// The point of the segment a-b on a plane, if it crosses the plane strictly; da and db are the
+// plane's equation nu.x - c at a and b.
+void add_crossing(const Rational& da, const Rational& db, const RatVec& a, const RatVec& b,
                   std::vector<RatVec>& out) {
-  const Rational da = dot(nu, a) - c, db = dot(nu, b) - c;
   if (!(cln::minusp(da) && cln::plusp(db)) && !(cln::plusp(da) && cln::minusp(db))) return;
   const Rational s = da / (da - db);
   RatVec x(a.size());
@@ -87,17 +79,18 @@ std::optional<Polytope> slice(const Polytope& w, const IntVec& nu, const Interva
   sub.slabs.push_back({nu, cut.lo, cut.hi});
   sub.key = w.key;
   sub.key.push_back(cut.key);
+  // w is convex and every vertex and every segment between two vertices lies in it, so only the
+  // new slab decides what is inside; nu.v is computed once per vertex.
+  std::vector<Rational> level;
+  level.reserve(w.vertices.size());
+  for (const auto& v : w.vertices) level.push_back(dot(nu, v));
   std::vector<RatVec> candidates;
-  for (const auto& v : w.vertices)
-    if (inside(sub.slabs, v)) add_unique(candidates, v);
+  for (size_t a = 0; a < w.vertices.size(); ++a)
+    if (level[a] >= cut.lo && level[a] <= cut.hi) add_unique(candidates, w.vertices[a]);
   for (const Rational& c : {cut.lo, cut.hi})
     for (size_t a = 0; a < w.vertices.size(); ++a)
-      for (size_t b = a + 1; b < w.vertices.size(); ++b) {
-        std::vector<RatVec> hit;
-        add_crossing(nu, c, w.vertices[a], w.vertices[b], hit);
-        for (auto& x : hit)
-          if (inside(sub.slabs, x)) add_unique(candidates, std::move(x));
-      }
+      for (size_t b = a + 1; b < w.vertices.size(); ++b)
+        add_crossing(level[a] - c, level[b] - c, w.vertices[a], w.vertices[b], candidates);
   for (const auto& x : candidates)
     if (tight_rank(sub.slabs, x, n) == n) sub.vertices.push_back(x);
   if (affine_rank(sub.vertices) != n) return std::nullopt;
