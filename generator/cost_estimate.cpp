@@ -30,6 +30,13 @@ constexpr double kSecondsPerShiftCoefficient = 5.4e-9;  // knot cell x shift x m
 constexpr double kSecondsPerPlaneCoefficient = 7.9e-8;  // knot cell x monomial x knot plane
 constexpr double kSecondsPerStencilPoint = 4.6e-7;      // fine cell of F x stencil point
 constexpr double kSecondsPerFineCell = 9.6e-7;  // translating, facets and merging of a fine cell
+// In 3-D each cell of the split unit cube also costs its exact slicing and the choice of
+// reference regions (polytopes with many vertices); the unit cube is split once and translated
+// to the other cubes of F, so this is per cell of one cube, not per fine cell of F. Fitted
+// afterwards on two skewed 3-D matrices outside the table, (3,1,0), (0,3,1), (1,0,3), (1,1,1)
+// and (2,1,0), (0,2,1), (1,0,2), (1,1,1), (1,-1,0) (README, "Derivation cost"), whose unit cube
+// has hundreds to thousands of cells.
+constexpr double kSecondsPerCubeCell3D = 2.5e-4;
 constexpr double kSecondsStart = 0.024;
 constexpr double kBytesBase = 7e6;
 constexpr double kBytesPerCoefficient =
@@ -133,7 +140,7 @@ CostEstimate estimate_cost(const BoxSplineSpec& spec, std::size_t knot_cells, bo
   e.seconds = kSecondsStart + cells * shifts * monomials * kSecondsPerShiftCoefficient +
               checks * cells * monomials * knot_planes_count * kSecondsPerPlaneCoefficient +
               (verify && full_checks ? 2.0 : 1.0) * fine * stencil * kSecondsPerStencilPoint +
-              fine * kSecondsPerFineCell;
+              fine * kSecondsPerFineCell + (n == 3 ? per_cube * kSecondsPerCubeCell3D : 0.0);
   e.bytes = kBytesBase + kBytesPerCoefficient * cells * monomials +
             kBytesPerStencilPoint * fine * stencil + kBytesPerFineCell * fine;
   return e;
