@@ -1,7 +1,6 @@
 #include "generator/cell_complex.h"
 
 #include <algorithm>
-#include <mutex>
 #include <optional>
 
 #include "generator/error.h"
@@ -163,10 +162,7 @@ int affine_rank(const std::vector<RatVec>& points) {
   return r;
 }
 
-namespace {
-
-std::vector<FineCell> split_cube_uncached(const std::vector<IntVec>& normals,
-                                          const IntVec& corner) {
+std::vector<FineCell> split_cube(const std::vector<IntVec>& normals, const IntVec& corner) {
   IntVec upper = corner;
   for (auto& v : upper) ++v;
   // Integer levels l <= nu.x <= l + 1, keyed by l.
@@ -181,32 +177,16 @@ std::vector<FineCell> split_cube_uncached(const std::vector<IntVec>& normals,
   return split(box_polytope(corner, upper), normals, unit_intervals);
 }
 
-}  // namespace
-
-std::vector<FineCell> split_cube(const std::vector<IntVec>& normals, const IntVec& corner) {
-  // The last split of the unit cube at the origin is kept: the cost estimate and the spline
-  // structure of one analysis both ask for it (on some arrangements it is a fifth of the time).
-  static std::mutex mutex;
-  static std::vector<IntVec> last_normals;
-  static std::vector<FineCell> last_cells;
-  const bool at_origin = std::ranges::all_of(corner, [](std::int64_t v) { return v == 0; });
-  if (!at_origin) return split_cube_uncached(normals, corner);
-  {
-    const std::lock_guard<std::mutex> lock(mutex);
-    if (!last_cells.empty() && last_normals == normals) return last_cells;
-  }
-  std::vector<FineCell> cells = split_cube_uncached(normals, corner);
-  const std::lock_guard<std::mutex> lock(mutex);
-  last_normals = normals;
-  last_cells = cells;
-  return cells;
-}
-
 std::vector<FineCell> split_cubes(const std::vector<IntVec>& normals,
                                   const std::vector<IntVec>& corners) {
+  if (corners.empty()) return {};
+  return translate_cells(split_cube(normals, IntVec(corners.front().size(), 0)), normals, corners);
+}
+
+std::vector<FineCell> translate_cells(const std::vector<FineCell>& unit,
+                                      const std::vector<IntVec>& normals,
+                                      const std::vector<IntVec>& corners) {
   std::vector<FineCell> out;
-  if (corners.empty()) return out;
-  const std::vector<FineCell> unit = split_cube(normals, IntVec(corners.front().size(), 0));
   out.reserve(unit.size() * corners.size());
   for (const IntVec& corner : corners) {
     const RatVec shift = to_ratvec(corner);

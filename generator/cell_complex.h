@@ -26,6 +26,10 @@ std::vector<FineCell> split_cube(const std::vector<IntVec>& normals, const IntVe
 // one cube is split and the others are its translates (keys move by nu . shift): the same cells.
 std::vector<FineCell> split_cubes(const std::vector<IntVec>& normals,
                                   const std::vector<IntVec>& corners);
+// The same from the cells `unit` of the cube at the origin (split_cube(normals, 0)), split once.
+std::vector<FineCell> translate_cells(const std::vector<FineCell>& unit,
+                                      const std::vector<IntVec>& normals,
+                                      const std::vector<IntVec>& corners);
 
 class KnotComplex {
  public:

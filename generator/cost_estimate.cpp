@@ -103,27 +103,28 @@ CostEstimate estimate_cost(const BoxSplineSpec& spec, bool verify, bool full_che
   const int n = spec.dimension();
   const KnotPlanes planes = knot_planes(spec.directions, n);
   const double bound = knot_cell_bound(planes, n);
+  // The fine arrangement is periodic under integer shifts: one unit cube has the cells of each.
+  const std::size_t cube_cells =
+      split_cube(arrangement_normals(spec.directions, n), IntVec(n, 0)).size();
   if (bound > kEnumerableCells) {
-    CostEstimate e = estimate_cost(spec, static_cast<std::size_t>(bound), verify, full_checks);
+    CostEstimate e =
+        estimate_cost(spec, static_cast<std::size_t>(bound), cube_cells, verify, full_checks);
     e.cells_exact = false;
     return e;
   }
   Zonotope box(spec.directions, n);
-  return estimate_cost(spec, KnotComplex(planes, box.box_lo(), box.box_hi()).cells().size(), verify,
-                       full_checks);
+  return estimate_cost(spec, KnotComplex(planes, box.box_lo(), box.box_hi()).cells().size(),
+                       cube_cells, verify, full_checks);
 }
 
-CostEstimate estimate_cost(const BoxSplineSpec& spec, std::size_t knot_cells, bool verify,
-                           bool full_checks) {
+CostEstimate estimate_cost(const BoxSplineSpec& spec, std::size_t knot_cells,
+                           std::size_t cube_cells, bool verify, bool full_checks) {
   const int n = spec.dimension();
   const int degree = spec.count() - n;
   CostEstimate e;
   e.knot_cells = knot_cells;
   e.cells_exact = true;
-  // The fine arrangement is periodic under integer shifts: one unit cube has the cells of each.
-  IntVec origin(n, 0);
-  const double per_cube =
-      static_cast<double>(split_cube(arrangement_normals(spec.directions, n), origin).size());
+  const double per_cube = static_cast<double>(cube_cells);
   e.fundamental_cells =
       static_cast<std::size_t>(per_cube * static_cast<double>(spec.lattice.det_abs()));
   const double monomials = static_cast<double>(monomial_count(n, degree));

@@ -23,9 +23,10 @@ struct CostEstimate {
 
 // Predicts `boxgen analyze` (with the exact checks if `verify`, every cell if `full_checks`).
 CostEstimate estimate_cost(const BoxSplineSpec& spec, bool verify = true, bool full_checks = false);
-// The same when the knot cells are already counted (no second enumeration).
-CostEstimate estimate_cost(const BoxSplineSpec& spec, std::size_t knot_cells, bool verify,
-                           bool full_checks);
+// The same when the knot cells and the cells of one unit cube of the fine arrangement are
+// already counted (no second enumeration or split).
+CostEstimate estimate_cost(const BoxSplineSpec& spec, std::size_t knot_cells,
+                           std::size_t cube_cells, bool verify, bool full_checks);
 // Throws InputError before anything is enumerated if even a bound on the knot cells is beyond
 // what can be enumerated (a guard against hangs; the estimate proper needs the count).
 void refuse_if_too_many_cells(const BoxSplineSpec& spec);

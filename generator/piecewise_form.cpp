@@ -95,7 +95,8 @@ PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod metho
       KnotComplex(knot_planes(spec.directions, n), support.box_lo(), support.box_hi()),
       FineArrangement(arrangement_normals(spec.directions, n), support.box_lo(), support.box_hi()));
   refuse_if_too_costly(
-      estimate_cost(spec, form.knots.cells().size(), budget.with_checks, budget.full_checks),
+      estimate_cost(spec, form.knots.cells().size(), form.complex.unit_cells().size(),
+                    budget.with_checks, budget.full_checks),
       budget.max_seconds);
   form.polys = derive_on_cells(spec, form.knots, method, progress);
   form.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -24,18 +24,25 @@ class Zonotope {
 };
 
 // The fine arrangement: every integer level of the knot normals plus the axes (axes first), on
-// the bounding box [lo, hi) of the support. Only described here; split_cube builds its cells.
+// the bounding box [lo, hi) of the support. It is invariant under integer shifts, so it holds the
+// cells of the unit cube at the origin, split once (the cost estimate counts them, the spline
+// structure translates them); every other cube's cells are their translates.
 class FineArrangement {
  public:
   FineArrangement(std::vector<IntVec> normals, IntVec lo, IntVec hi)
-      : normals_(std::move(normals)), lo_(std::move(lo)), hi_(std::move(hi)) {}
+      : normals_(std::move(normals)),
+        lo_(std::move(lo)),
+        hi_(std::move(hi)),
+        unit_cells_(split_cube(normals_, IntVec(lo_.size(), 0))) {}
   const std::vector<IntVec>& normals() const { return normals_; }
   const IntVec& lo() const { return lo_; }
   const IntVec& hi() const { return hi_; }
+  const std::vector<FineCell>& unit_cells() const { return unit_cells_; }
 
  private:
   std::vector<IntVec> normals_;
   IntVec lo_, hi_;
+  std::vector<FineCell> unit_cells_;
 };
 
 struct PiecewiseForm {

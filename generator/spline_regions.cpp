@@ -49,7 +49,8 @@ IntVec sub(const IntVec& a, const IntVec& b) {
 class Fundamental {
  public:
   explicit Fundamental(const PiecewiseForm& form) : form_(form), n_(form.dimension()) {
-    for (auto& c : split_cubes(form.complex.normals(), form.spec.lattice.coset_representatives())) {
+    for (auto& c : translate_cells(form.complex.unit_cells(), form.complex.normals(),
+                                   form.spec.lattice.coset_representatives())) {
       index_.emplace(c.key, static_cast<int>(cells_.size()));
       FundamentalCell fc;
       fc.cell = std::move(c);
