@@ -8,6 +8,7 @@
 //   kDimension, kStencilSize, kNormalCount, kLookupSize, kCubeCount, kCellCount
 //   kCentre[n]                          c: the uncentred frame is u = x + c
 //   kHermite[n][n]                      lower-triangular Hermite basis of the lattice (columns)
+//   kScale                              1, or k: cubes and keys are those of the frame (x + c) / k
 //   kNormals[K+1][n], kNormalMin[K+1], kNormalWidth[K+1], kNormalStride[K+1]
 //   kLookup[kCubeCount][kLookupSize]    cell for (cube, combined knot-plane key), -1 if none
 //   kCells[kCellCount]                  Cell<n, K>: cube, orbit, keys, perm, sign, a
@@ -114,26 +115,29 @@ template <class Tr, class T>
   constexpr int n = Tr::kDimension;
   Located<n, T> out;
   T r[n];
+  // A scaled pair (kScale = k) locates in the reduced frame (x + c) / k: its cubes have side k.
+  constexpr std::int64_t k = Tr::kScale;
+  std::int64_t rep[n];  // the cube's corner, then its coset representative, in that frame
   for (int i = 0; i < n; ++i) {
     const T u = x[i] + static_cast<T>(Tr::kCentre[i]);
-    const T f = std::floor(u);
-    out.corner[i] = static_cast<std::int64_t>(f);
-    r[i] = u - f;
+    const T s = k == 1 ? u : u / static_cast<T>(k);
+    const T f = std::floor(s);
+    rep[i] = static_cast<std::int64_t>(f);
+    out.corner[i] = rep[i] * k;
+    r[i] = s - f;
   }
   // The coset representative of the corner (reduction by the Hermite basis) names its cube.
-  std::int64_t rep[n];
-  for (int i = 0; i < n; ++i) rep[i] = out.corner[i];
   for (int j = 0; j < n; ++j) {
-    const std::int64_t q = floor_div(rep[j], Tr::kHermite[j][j]);
-    for (int i = j; i < n; ++i) rep[i] -= q * Tr::kHermite[j][i];
+    const std::int64_t q = floor_div(rep[j], Tr::kHermite[j][j] / k);
+    for (int i = j; i < n; ++i) rep[i] -= q * (Tr::kHermite[j][i] / k);
   }
   int cube = 0;
-  for (int i = n - 1; i >= 0; --i) cube = cube * static_cast<int>(Tr::kHermite[i][i]) + static_cast<int>(rep[i]);
+  for (int i = n - 1; i >= 0; --i) cube = cube * static_cast<int>(Tr::kHermite[i][i] / k) + static_cast<int>(rep[i]);
   out.cell = cell_of<Tr>(cube, r);
   const auto& cell = Tr::kCells[out.cell];
   for (int i = 0; i < n; ++i) {
     const int p = cell.perm[i];
-    out.x[i] = static_cast<T>(cell.sign[i]) * (x[p] - static_cast<T>(out.corner[p] - rep[p])) + static_cast<T>(cell.a[i]);
+    out.x[i] = static_cast<T>(cell.sign[i]) * (x[p] - static_cast<T>(out.corner[p] - rep[p] * k)) + static_cast<T>(cell.a[i]);
   }
   return out;
 }

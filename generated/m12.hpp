@@ -536,6 +536,9 @@ struct Traits {
   // Lower-triangular Hermite basis of the lattice (columns): reduces integer points to the coset
   // representatives 0 <= r_i < H_ii, the lower corners of the unit cubes of the fundamental region.
   static constexpr std::int64_t kHermite[kDimension][kDimension] = {{1, -1, -1}, {0, 2, 0}, {0, 0, 2}};
+  // 1, or k when Xi and G are k times a reduced pair's: the cubes, keys and lookup below are then
+  // those of the reduced frame (x + c) / k; the polynomials, centre and offsets are in x.
+  static constexpr int kScale = 1;
   static constexpr int kCubeCount = 4;
   // Knot normals other than the axes; floor(nu . r) for r in [0,1)^n lies in [min, min + width).
   static constexpr int kNormalCount = 0;

@@ -220,6 +220,25 @@ KnotComplex::KnotComplex(KnotPlanes planes, IntVec lo, IntVec hi)
   for (size_t i = 0; i < cells_.size(); ++i) index_.emplace(cells_[i].key, static_cast<int>(i));
 }
 
+KnotComplex KnotComplex::scaled_down(std::int64_t k) const {
+  KnotComplex out = *this;
+  auto divide = [k](std::int64_t v) {
+    if (v % k != 0) fail_internal("scaled_down: a knot level is not a multiple of the scale");
+    return v / k;
+  };
+  for (auto& levels : out.planes_.levels)
+    for (auto& level : levels) level = divide(level);
+  for (auto& v : out.lo_) v = divide(v);
+  for (auto& v : out.hi_) v = divide(v);
+  const Rational factor = Rational(1) / Rational(k);
+  for (auto& cell : out.cells_) {
+    for (auto& vertex : cell.vertices)
+      for (auto& x : vertex) x = x * factor;
+    for (auto& x : cell.interior) x = x * factor;
+  }
+  return out;
+}
+
 int KnotComplex::find(const CellKey& key) const {
   auto it = index_.find(key);
   return it == index_.end() ? -1 : it->second;

@@ -36,6 +36,9 @@ class KnotComplex {
   // Cells of the knot-plane arrangement inside the box [lo, hi] and between the first and last
   // level of every normal (the support zonotope).
   KnotComplex(KnotPlanes planes, IntVec lo, IntVec hi);
+  // The same complex shrunk by k (every level and box bound divisible by k): the cells keep their
+  // order and keys, so an index names the same cell in both (generator/common_scale.h).
+  KnotComplex scaled_down(std::int64_t k) const;
 
   int dimension() const { return static_cast<int>(lo_.size()); }
   const KnotPlanes& planes() const { return planes_; }

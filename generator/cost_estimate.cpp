@@ -8,6 +8,7 @@
 
 #include "generator/box_spline_properties.h"
 #include "generator/cell_complex.h"
+#include "generator/common_scale.h"
 #include "generator/error.h"
 #include "generator/knot_normals.h"
 #include "generator/piecewise_form.h"
@@ -117,8 +118,11 @@ CostEstimate estimate_cost(const BoxSplineSpec& spec, bool verify, bool full_che
                        cube_cells, verify, full_checks);
 }
 
-CostEstimate estimate_cost(const BoxSplineSpec& spec, std::size_t knot_cells,
+CostEstimate estimate_cost(const BoxSplineSpec& given, std::size_t knot_cells,
                            std::size_t cube_cells, bool verify, bool full_checks) {
+  // A scaled pair (k Xi, k G) is derived as (Xi, G) (common_scale.h): its fundamental region has
+  // the reduced pair's cubes.
+  const BoxSplineSpec spec = reduced_spec(given, common_scale(given));
   const int n = spec.dimension();
   const int degree = spec.count() - n;
   CostEstimate e;

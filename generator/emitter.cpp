@@ -112,14 +112,19 @@ struct CellTables {
 CellTables cell_tables(const Analysis& a, const KnotPlaneKeys& keys, const IntColumns& hermite) {
   const SplineStructure& s = a.structure;
   const int n = a.spec.dimension();
+  // The cubes and keys of a scaled pair are the reduced frame's (SplineStructure::scale); the
+  // offsets and translations below are in the user's frame.
+  const std::int64_t k = s.scale;
   auto cube_index = [&](const IntVec& rep) {
     int idx = 0;
     for (int i = n - 1; i >= 0; --i)
-      idx = idx * static_cast<int>(hermite[i][i]) + static_cast<int>(rep[i]);
+      idx = idx * static_cast<int>(hermite[i][i] / k) + static_cast<int>(rep[i]);
     return idx;
   };
+  std::int64_t cubes = a.spec.lattice.det_abs();
+  for (int i = 0; i < n; ++i) cubes /= k;
   CellTables t;
-  t.lookup.assign(a.spec.lattice.det_abs(), std::vector<int>(keys.size(), -1));
+  t.lookup.assign(cubes, std::vector<int>(keys.size(), -1));
   t.reach_lo.assign(n, std::numeric_limits<std::int64_t>::max());
   t.reach_hi.assign(n, std::numeric_limits<std::int64_t>::min());
   for (size_t c = 0; c < s.cells.size(); ++c) {
@@ -128,12 +133,17 @@ CellTables cell_tables(const Analysis& a, const KnotPlaneKeys& keys, const IntCo
     const int cube = cube_index(rep);
     std::vector<int> local_keys;
     long index = 0;
-    for (size_t k = 0; k < keys.planes.size(); ++k) {
-      const int local = fc.cell.key[n + k] - static_cast<int>(dot(keys.planes[k], rep));
+    for (size_t p = 0; p < keys.planes.size(); ++p) {
+      const int local = fc.cell.key[n + p] - static_cast<int>(dot(keys.planes[p], rep));
       local_keys.push_back(local);
-      index += static_cast<long>(local - keys.mins[k]) * keys.strides[k];
+      index += static_cast<long>(local - keys.mins[p]) * keys.strides[p];
     }
     t.lookup[cube][index] = static_cast<int>(c);
+    const IntVec corner_offset = [&] {  // rep in the user's frame
+      IntVec r = rep;
+      for (auto& v : r) v *= k;
+      return r;
+    }();
     local_keys.push_back(0);
     const auto& region = s.regions[fc.region];
     const auto& g = region.to_reference.g;
@@ -146,13 +156,13 @@ CellTables cell_tables(const Analysis& a, const KnotPlaneKeys& keys, const IntCo
       IntVec d(n);
       for (int i = 0; i < n; ++i) {
         const int axis = g.perm[i];
-        d[axis] = g.sign[i] * (sp[i] - av[i]) - rep[axis];
+        d[axis] = g.sign[i] * (sp[i] - av[i]) - corner_offset[axis];
         t.reach_lo[axis] = std::min(t.reach_lo[axis], d[axis]);
         t.reach_hi[axis] = std::max(t.reach_hi[axis], d[axis]);
       }
       points.push_back(brace_list(d));
     }
-    for (size_t k = points.size(); k < static_cast<size_t>(s.stencil_max); ++k)
+    for (size_t m = points.size(); m < static_cast<size_t>(s.stencil_max); ++m)
       points.push_back(brace_list(IntVec(n, 0)));
     t.offsets.push_back("{" + join(points) + "}");
     t.cells.push_back(fmt::format("{{{}, {}, {}, {}, {}, {}}}", cube, region.orbit,
@@ -229,12 +239,12 @@ std::string evaluator(const Analysis& a, const EmissionRequest& req, const Orbit
       fmt::arg("hessian_ops", code.hessian.total()), fmt::arg("orbit_costs", join(costs, "\n")),
       fmt::arg("centre", join(centre)), fmt::arg("reach_lo", join_ints(t.reach_lo)),
       fmt::arg("reach_hi", join_ints(t.reach_hi)), fmt::arg("hermite", join(hermite_rows)),
-      fmt::arg("cube_count", t.lookup.size()), fmt::arg("normal_count", keys.planes.size()),
-      fmt::arg("normals", join(normal_rows)), fmt::arg("normal_min", ints(keys.mins)),
-      fmt::arg("normal_width", ints(keys.widths)), fmt::arg("normal_stride", ints(keys.strides)),
-      fmt::arg("lookup_size", keys.size()), fmt::arg("lookup", join(lookup_rows, ",\n      ")),
-      fmt::arg("cell_count", t.cells.size()), fmt::arg("cells", join(t.cells, ",\n      ")),
-      fmt::arg("orbit_count", s.references.size()),
+      fmt::arg("scale", s.scale), fmt::arg("cube_count", t.lookup.size()),
+      fmt::arg("normal_count", keys.planes.size()), fmt::arg("normals", join(normal_rows)),
+      fmt::arg("normal_min", ints(keys.mins)), fmt::arg("normal_width", ints(keys.widths)),
+      fmt::arg("normal_stride", ints(keys.strides)), fmt::arg("lookup_size", keys.size()),
+      fmt::arg("lookup", join(lookup_rows, ",\n      ")), fmt::arg("cell_count", t.cells.size()),
+      fmt::arg("cells", join(t.cells, ",\n      ")), fmt::arg("orbit_count", s.references.size()),
       fmt::arg("orbit_stencil_sizes", join(orbit_sizes)),
       fmt::arg("offsets", join(t.offsets, ",\n      ")),
       fmt::arg("orbit_functions", join(functions, "\n")),

@@ -110,15 +110,31 @@ std::vector<IntVec> Lattice::coset_representatives() const {
 }
 
 std::vector<IntVec> Lattice::points_in_box(const IntVec& lo, const IntVec& hi) const {
+  // x = sum_j z_j h_j with the lower-triangular Hermite basis: x_i depends on z_0..z_i only, so
+  // each z_i runs over exactly the range that keeps x_i in [lo_i, hi_i] (the work follows the
+  // points found, not the box: a scaled lattice k L has few points in a large box).
   std::vector<IntVec> out;
-  IntVec x = lo;
-  for (;;) {
-    if (contains(x)) out.push_back(x);
-    int i = 0;
-    while (i < n_ && x[i] == hi[i]) x[i] = lo[i], ++i;
-    if (i == n_) break;
-    ++x[i];
-  }
+  IntVec z(n_, 0), x(n_, 0);
+  auto visit = [&](auto& self, int i) -> void {
+    if (i == n_) {
+      out.push_back(x);
+      return;
+    }
+    std::int64_t partial = 0;  // x_i without the term of z_i
+    for (int j = 0; j < i; ++j) partial += z[j] * hermite_[j][i];
+    const std::int64_t h = hermite_[i][i];
+    for (z[i] = -floor_div(partial - lo[i], h); partial + z[i] * h <= hi[i]; ++z[i]) {
+      x[i] = partial + z[i] * h;
+      self(self, i + 1);
+    }
+  };
+  visit(visit, 0);
+  // The order of a scan with x_0 fastest (callers' stencils and emitted tables follow it).
+  std::sort(out.begin(), out.end(), [this](const IntVec& a, const IntVec& b) {
+    for (int i = n_ - 1; i >= 0; --i)
+      if (a[i] != b[i]) return a[i] < b[i];
+    return false;
+  });
   return out;
 }
 

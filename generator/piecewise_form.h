@@ -38,6 +38,14 @@ class FineArrangement {
   const IntVec& lo() const { return lo_; }
   const IntVec& hi() const { return hi_; }
   const std::vector<FineCell>& unit_cells() const { return unit_cells_; }
+  // The arrangement of the directions divided by k (generator/common_scale.h): the same normals
+  // and unit cube, on the box divided by k.
+  FineArrangement scaled_down(std::int64_t k) const {
+    FineArrangement out = *this;
+    for (auto& v : out.lo_) v /= k;  // the support's box: sums of entries, multiples of k
+    for (auto& v : out.hi_) v /= k;
+    return out;
+  }
 
  private:
   std::vector<IntVec> normals_;

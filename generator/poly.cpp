@@ -383,6 +383,17 @@ Poly Poly::signed_permuted(const std::vector<int>& perm, const std::vector<int>&
   return r;
 }
 
+Poly Poly::stretched(const Rational& f) const {
+  const int d = std::max(degree(), 0);
+  Poly r(n_, d);
+  const auto& ex = monomial_exponents(n_, d);
+  std::vector<Rational> power(static_cast<std::size_t>(d) + 1, Rational(1));
+  for (int j = 1; j <= d; ++j) power[j] = power[j - 1] * f;
+  for (std::size_t i = 0; i < monomial_count(n_, d); ++i)
+    if (!cln::zerop(c_[i])) r.c_[i] = c_[i] * power[ex[i][0] + ex[i][1] + ex[i][2]];
+  return r;
+}
+
 std::vector<Poly> Poly::along_direction(const IntVec& dir) const {
   // (x_k - tau d_k)^{e_k} = sum_j binom(e_k, j) x_k^{e_k - j} (-d_k)^j tau^j
   const int d = std::max(degree(), 0);

@@ -58,6 +58,8 @@ class Poly {
   Poly substituted(int var, const RatVec& a) const;
   // Q(x) = P(y) with y_i = sign[i] x_perm[i]: P composed with a signed permutation.
   Poly signed_permuted(const std::vector<int>& perm, const std::vector<int>& sign) const;
+  // P(f x): the coefficient of x^e times f^|e| (generator/common_scale.h).
+  Poly stretched(const Rational& f) const;
   // Coefficients Q_e with P(x - tau d) = sum_e tau^e Q_e(x).
   std::vector<Poly> along_direction(const IntVec& d) const;
   void reserve_degree(int capacity);

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cstdint>
 #include <cstdlib>
+#include <numeric>
 #include <optional>
 
 #include "generator/error.h"
@@ -232,21 +233,26 @@ void check_directions(const IntColumns& xi, int n) {
         "independent directions are needed in {}-D{}",
         xi.size(), r, n, n, hint));
   }
-  // The support Xi[0,1]^m has the bounding-box side sum_k |xi_k[i]| in coordinate i; the
-  // derivation visits every unit cell of that box. Sides are <= 32 * 64, so no overflow.
+}
+
+// The support Xi[0,1]^m has the bounding-box side sum_k |xi_k[i]| in coordinate i; stencils and
+// fine cells grow with that box measured in units of k = common_scale(spec) (a scaled pair is
+// derived as the reduced one, common_scale.h). Sides are <= 32 * 64, so no overflow.
+void check_support_size(const BoxSplineSpec& spec) {
+  const std::int64_t k = common_scale(spec);
   std::int64_t cells = 1;
   std::vector<std::int64_t> sides;
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < spec.dimension(); ++i) {
     std::int64_t side = 0;
-    for (const auto& c : xi) side += std::llabs(c[static_cast<std::size_t>(i)]);
-    cells *= side;
+    for (const auto& c : spec.directions) side += std::llabs(c[static_cast<std::size_t>(i)]);
+    cells *= side / k;
     sides.push_back(side);
   }
   if (cells > kMaxSupportCells)
     fail_input(fmt::format(
-        "support too large to derive: its bounding box is {} = {} unit cells, more than the limit "
-        "of {}",
-        fmt::join(sides, " x "), cells, kMaxSupportCells));
+        "support too large to derive: its bounding box is {} = {} cells of side {}, more than the "
+        "limit of {}",
+        fmt::join(sides, " x "), cells, k, kMaxSupportCells));
 }
 
 }  // namespace
@@ -361,8 +367,17 @@ BoxSplineSpec parse_spec(std::string_view spec, std::string_view lattice_text) {
       fail_input(fmt::format(
           "direction {} ({}) is not a point of {}: every direction must lie in the lattice", k + 1,
           join_row(directions[k]), describe(lattice)));
+  BoxSplineSpec out{name, std::string(spec), directions, std::move(lattice)};
+  check_support_size(out);
+  return out;
+}
 
-  return BoxSplineSpec{name, std::string(spec), directions, std::move(lattice)};
+std::int64_t common_scale(const BoxSplineSpec& spec) {
+  std::int64_t k = 0;
+  for (const auto& columns : {spec.directions, spec.lattice.generator()})
+    for (const auto& column : columns)
+      for (auto v : column) k = std::gcd(k, v);
+  return k == 0 ? 1 : k;
 }
 
 }  // namespace boxgen

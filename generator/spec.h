@@ -38,6 +38,10 @@ const std::vector<PresetInfo>& presets();
 // not in the lattice, more than kMaxDirections directions, entries too large to derive.
 BoxSplineSpec parse_spec(std::string_view spec, std::string_view lattice_text = "");
 
+// The largest k dividing every entry of Xi and of G: (Xi, G) is k times the reduced pair
+// (Xi / k, G / k), whose spline it is, stretched by k (generator/common_scale.h).
+std::int64_t common_scale(const BoxSplineSpec& spec);
+
 // Parses bcc | fcc | cartesian | "<rows of G>" for the given dimension.
 Lattice parse_lattice(std::string_view text, int dimension);
 

@@ -8,6 +8,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "generator/common_scale.h"
 #include "generator/error.h"
 #include "generator/piece_checks.h"
 #include "generator/poly_sum.h"
@@ -400,7 +401,9 @@ void reference_bases(SplineStructure& s, const PiecewiseForm& form, const Fundam
 
 }  // namespace
 
-SplineStructure spline_structure(const PiecewiseForm& form) {
+namespace {
+
+SplineStructure structure_in_unit_cubes(const PiecewiseForm& form) {
   const int n = form.dimension();
   SplineStructure s;
   s.centre = spline_centre(form.spec);
@@ -419,6 +422,15 @@ SplineStructure spline_structure(const PiecewiseForm& form) {
   map_regions_to_references(s, form.spec.lattice, n);
   reference_bases(s, form, fund);
   return s;
+}
+
+}  // namespace
+
+SplineStructure spline_structure(const PiecewiseForm& form) {
+  // F has k^n times the unit cubes of the reduced pair's, each split the same way: derive there.
+  if (const std::int64_t k = common_scale(form.spec); k > 1)
+    return scaled_up(structure_in_unit_cubes(scaled_down(form, k)), k);
+  return structure_in_unit_cubes(form);
 }
 
 namespace {

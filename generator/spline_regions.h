@@ -56,8 +56,14 @@ struct SplineStructure {
   std::vector<SplineRegion> regions;
   std::vector<ReferenceRegion> references;  // one per orbit
   int stencil_min = 0, stencil_max = 0;
+  // 1, or the common factor k of a scaled pair (k Xi, k G) (generator/common_scale.h): then the
+  // structure was derived on (Xi, G) and stretched back, and the fine cells' keys (with the unit
+  // cubes of F they name) are those of the reduced frame x / k. Every other member, the cells'
+  // vertices and placements included, is in the user's frame.
+  std::int64_t scale = 1;
 };
 
+// For a scaled pair (k Xi, k G), derived on (Xi, G) and stretched back (scale = k).
 SplineStructure spline_structure(const PiecewiseForm& form);
 
 // Throws InternalError unless sum_j M(x - j) = 1 identically on every fundamental cell (full), or

@@ -143,6 +143,7 @@ HWY_ATTR void lattice_lanes(int n, const double* world, const Frame& frame, T* x
 template <class Tr, class T>
 [[gnu::flatten]] HWY_ATTR void locate_lanes(const double* world, const Frame& frame, T* out) {
   constexpr int n = Tr::kDimension;
+  static_assert(Tr::kScale == 1, "the registry's filters are not scaled pairs");
   static constexpr LocateTables<Tr, T> kTables = locate_tables<Tr, T>();
   const hn::ScalableTag<T> d;
   const hn::RebindToSigned<decltype(d)> di;

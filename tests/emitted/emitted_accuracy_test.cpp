@@ -31,6 +31,7 @@
 #include "emitted/m12_horner.hpp"
 #include "emitted/m12_shifted.hpp"
 #include "emitted/m7_bernstein.hpp"
+#include "emitted/m7_doubled.hpp"
 #include "emitted/m7_horner.hpp"
 #include "emitted/m7_monomial.hpp"
 #include "emitted/m8_bernstein.hpp"
@@ -41,6 +42,7 @@
 #include "emitted/zp_bernstein.hpp"
 #include "emitted/zp_monomial.hpp"
 #include "emitted/zp_shifted.hpp"
+#include "emitted/zp_tripled.hpp"
 #include "generated/m12.hpp"
 #include "generated/m7.hpp"
 #include "generated/m8.hpp"
@@ -113,8 +115,8 @@ struct Exact {
 
 class Reference {
  public:
-  explicit Reference(const std::string& preset)
-      : spec_(parse_spec(preset)),
+  explicit Reference(const std::string& preset, const std::string& lattice = "")
+      : spec_(parse_spec(preset, lattice)),
         form_(derive_piecewise(spec_, DerivationMethod::TruncatedPower)),
         centre_(spline_centre(spec_)) {}
   int dimension() const { return spec_.dimension(); }
@@ -208,8 +210,9 @@ std::vector<RatVec> test_points(const Reference& ref, int count) {
 }
 
 template <class T, int N, class Evaluate>
-void check_filter(const std::string& preset, Evaluate evaluate, double tolerance) {
-  const Reference ref(preset);
+void check_filter(const std::string& preset, Evaluate evaluate, double tolerance,
+                  const std::string& lattice = "") {
+  const Reference ref(preset, lattice);
   ASSERT_EQ(ref.dimension(), N);
   constexpr int H = N * (N + 1) / 2;
   const bool c2 = ref.twice_differentiable();
@@ -258,7 +261,7 @@ void check_filter(const std::string& preset, Evaluate evaluate, double tolerance
 template <class T, std::size_t N>
 using HessianOf = std::array<T, N*(N + 1) / 2>;
 
-#define BOXGEN_EMITTED_TEST(NS, PRESET, N)                                                      \
+#define BOXGEN_EMITTED_TEST_ON(NS, PRESET, LATTICE, N)                                          \
   TEST(Emitted, NS##Double) {                                                                   \
     check_filter<double, N>(                                                                    \
         PRESET,                                                                                 \
@@ -270,7 +273,7 @@ using HessianOf = std::array<T, N*(N + 1) / 2>;
               },                                                                                \
               g, h);                                                                            \
         },                                                                                      \
-        1e-13);                                                                                 \
+        1e-13, LATTICE);                                                                        \
   }                                                                                             \
   TEST(Emitted, NS##Float) {                                                                    \
     check_filter<float, N>(                                                                     \
@@ -283,8 +286,9 @@ using HessianOf = std::array<T, N*(N + 1) / 2>;
               },                                                                                \
               g, h);                                                                            \
         },                                                                                      \
-        2e-6);                                                                                  \
+        2e-6, LATTICE);                                                                         \
   }
+#define BOXGEN_EMITTED_TEST(NS, PRESET, N) BOXGEN_EMITTED_TEST_ON(NS, PRESET, "", N)
 
 BOXGEN_EMITTED_TEST(m7, "m7", 3)
 BOXGEN_EMITTED_TEST(m8, "m8", 3)
@@ -308,6 +312,10 @@ BOXGEN_EMITTED_TEST(m7_bernstein, "m7", 3)
 BOXGEN_EMITTED_TEST(m8_bernstein, "m8", 3)
 BOXGEN_EMITTED_TEST(fcc6_bernstein, "fcc6", 3)
 BOXGEN_EMITTED_TEST(zp_bernstein, "zp", 2)
+// Scaled pairs: derived on the reduced pair, located in cubes of side k (Traits::kScale).
+BOXGEN_EMITTED_TEST_ON(m7_doubled, "2,2,2; 2,-2,-2; -2,2,-2; -2,-2,2; 4,0,0; 0,4,0; 0,0,4",
+                       "-2,2,2; 2,-2,2; 2,2,-2", 3)
+BOXGEN_EMITTED_TEST_ON(zp_tripled, "3,0; 0,3; 3,3; -3,3", "3,0; 0,3", 2)
 
 // The same comparison through the runtime's batch API, Reconstructor<T>::evaluate (the SIMD batch
 // path, runtime/simd_batch.h, where the CPU has one), all 1000 points in one call (a partial last

@@ -17,6 +17,8 @@
 #include "emitted/cart7_prefilters.hpp"
 #include "emitted/fcc6.hpp"
 #include "emitted/fcc6_prefilters.hpp"
+#include "emitted/m7_doubled.hpp"
+#include "emitted/m7_doubled_prefilters.hpp"
 #include "emitted/tricubic.hpp"
 #include "emitted/tricubic_prefilters.hpp"
 #include "generated/m12.hpp"
@@ -84,6 +86,8 @@ TEST(LatticeReconstruction, Q1ReproducesPolynomialsOfEveryFilterOnItsLattice) {
   expect_reproduction<gen::tricubic::Traits>("cartesian", gen::tricubic::q1, 3);
   expect_reproduction<gen::cart7::Traits>("cartesian", gen::cart7::q1, 3);
   expect_reproduction<gen::fcc6::Traits>("fcc", gen::fcc6::q1, 2);
+  // A scaled pair (M7 doubled on 2 BCC): located in cubes of side 2 (Traits::kScale).
+  expect_reproduction<gen::m7_doubled::Traits>("custom", gen::m7_doubled::q1, 3);
 }
 
 TEST(LatticeReconstruction, GradientsOfAReproducedPolynomialAreExact) {

@@ -69,6 +69,30 @@ TEST(Lattice, BccShellsMatchThePaper) {
   for (const auto& p : shells[2]) EXPECT_EQ(dot(p, p), 4);
 }
 
+TEST(Lattice, PointsInABoxAreExactlyTheMembersInScanOrder) {
+  // Against a scan of the whole box with contains(), x_0 fastest: skewed, scaled and 2-D lattices.
+  for (const Lattice& l :
+       {Lattice::bcc(), Lattice::fcc(), Lattice("skew", {{3, 1, 0}, {0, 2, 1}, {1, 0, 5}}),
+        Lattice("scaled bcc", {{-4, 4, 4}, {4, -4, 4}, {4, 4, -4}}),
+        Lattice("2-D", {{2, 1}, {-1, 3}})}) {
+    SCOPED_TRACE(l.name());
+    const int n = l.dimension();
+    IntVec lo(n), hi(n);
+    for (int i = 0; i < n; ++i) lo[i] = -7 + i, hi[i] = 6 + 2 * i;
+    std::vector<IntVec> scanned;
+    IntVec x = lo;
+    for (;;) {
+      if (l.contains(x)) scanned.push_back(x);
+      int i = 0;
+      while (i < n && x[i] == hi[i]) x[i] = lo[i], ++i;
+      if (i == n) break;
+      ++x[i];
+    }
+    EXPECT_FALSE(scanned.empty());
+    EXPECT_EQ(l.points_in_box(lo, hi), scanned);
+  }
+}
+
 TEST(Lattice, SingularGeneratorIsRejected) {
   EXPECT_THROW(Lattice("bad", IntColumns{{1, 0, 0}, {0, 1, 0}, {1, 1, 0}}), InputError);
 }
