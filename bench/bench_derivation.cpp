@@ -83,6 +83,14 @@ BOXGEN_DERIVATION_BENCHMARK(
     "cartesian", 10);
 BOXGEN_DERIVATION_BENCHMARK(scaled_hat, "64,0; 0,64; 64,64", "64,0; 0,64", 1);
 BOXGEN_DERIVATION_BENCHMARK(long_directions, "20,1; 1,20; 7,5; -9,4", "cartesian", 1);
+// Scale invariance: M7 scaled by 8 and 32 on the correspondingly scaled BCC lattice (the same time
+// as the m7 row: the pair is derived as M7 and stretched back, generator/common_scale.h).
+BOXGEN_DERIVATION_BENCHMARK(m7_scaled_by_8,
+                            "8,8,8; 8,-8,-8; -8,8,-8; -8,-8,8; 16,0,0; 0,16,0; 0,0,16",
+                            "-8,8,8; 8,-8,8; 8,8,-8", 10);
+BOXGEN_DERIVATION_BENCHMARK(m7_scaled_by_32,
+                            "32,32,32; 32,-32,-32; -32,32,-32; -32,-32,32; 64,0,0; 0,64,0; 0,0,64",
+                            "-32,32,32; 32,-32,32; 32,32,-32", 10);
 
 }  // namespace
 
