@@ -74,6 +74,7 @@ void print_error_report(const ErrorReport& r, double rms, double max, double gra
     nlohmann::json j{{"function", r.function},
                      {"n", r.n},
                      {"filter", r.filter},
+                     {"lattice", r.lattice},
                      {"prefilter", r.prefilter},
                      {"points", r.points},
                      {"seed", r.seed},

@@ -31,6 +31,7 @@ struct ErrorReport {
   int n = 0, points = 0;
   std::uint64_t seed = 0;
   bool gradient = false, json = false;
+  std::string lattice;  // the filter's lattice, where the samples were taken
 };
 void print_error_report(const ErrorReport& r, double rms, double max, double gradient_rms);
 

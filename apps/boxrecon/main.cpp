@@ -108,7 +108,8 @@ int run_error(const std::string& function, int n, const std::string& filter,
   (void)boxgen::app::lattice_for(rf, lattice);
   const PrefilterChoice q = parse_prefilter(pre);
   if (count < 1 || count > 100000000) throw InputError("--points must be between 1 and 100000000");
-  const boxgen::app::ErrorReport report{function, filter, pre, n, count, seed, gradient, json};
+  const boxgen::app::ErrorReport report{
+      function, filter, pre, n, count, seed, gradient, json, rf.lattice().name()};
   if (!rf.has_bcc_filter()) return boxgen::app::run_lattice_error(report, rf, q);
   const Filter f = rf.bcc_filter();
   BccVolume<double> volume = sample_bcc<double>(fn.value, grid_for(n, required_margin(f, q)));

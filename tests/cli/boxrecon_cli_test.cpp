@@ -186,6 +186,8 @@ TEST_F(BoxreconCli, ErrorJsonHasTheDocumentedKeys) {
                                          "m7", "--prefilter", "q1", "--points", "200", "--json"}));
   ASSERT_TRUE(j.contains("rms") && j.contains("max")) << j.dump();
   EXPECT_FALSE(j.contains("gradient_rms")) << j.dump();
+  EXPECT_EQ(j["filter"], "m7");
+  EXPECT_EQ(j["lattice"], "bcc");
   EXPECT_LE(j["rms"].get<double>(), 1e-11);  // the cubic is reproduced
   EXPECT_LE(j["rms"].get<double>(), j["max"].get<double>());
   j = nlohmann::json::parse(
@@ -194,6 +196,9 @@ TEST_F(BoxreconCli, ErrorJsonHasTheDocumentedKeys) {
   ASSERT_TRUE(j.contains("rms") && j.contains("max") && j.contains("gradient_rms")) << j.dump();
   EXPECT_GT(j["rms"].get<double>(), 1e-3);  // Marschner-Lobb at N = 9 is badly under-sampled
   EXPECT_GT(j["gradient_rms"].get<double>(), 0);
+  j = nlohmann::json::parse(boxrecon_ok({"error", "--function", "cubic", "--n", "9", "--filter",
+                                         "fcc6", "--points", "50", "--json"}));
+  EXPECT_EQ(j["lattice"], "fcc");
 }
 
 // Teem's view of a resampled grid; the values are returned as doubles.
