@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <deque>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -290,6 +291,9 @@ void choose_references(SplineStructure& s, const Lattice& lattice, int n) {
     size_t g;
     IntVec l;
   };
+  // The lattice points of a box depend only on its corner floor(-z) - reach, which few centroid
+  // images share: each box is enumerated once.
+  std::map<IntVec, std::vector<IntVec>> boxes;
   for (size_t o = 0; o < s.references.size(); ++o) {
     std::vector<Candidate> candidates;
     double smallest = std::numeric_limits<double>::infinity();
@@ -303,7 +307,9 @@ void choose_references(SplineStructure& s, const Lattice& lattice, int n) {
           hi[i] = floor_to_int64(-z[i]) + reach;
           zd[static_cast<size_t>(i)] = to_double(z[i]);
         }
-        for (const auto& l : lattice.points_in_box(lo, hi)) {
+        auto box = boxes.find(lo);
+        if (box == boxes.end()) box = boxes.emplace(lo, lattice.points_in_box(lo, hi)).first;
+        for (const auto& l : box->second) {
           double d = 0;
           for (int i = 0; i < n; ++i) {
             const double y = zd[static_cast<size_t>(i)] + static_cast<double>(l[i]);
