@@ -303,28 +303,35 @@ int ShiftLocator::cell_at(const IntVec& j) const {
 std::vector<Facet> facets_of(const FineCell& cell, const std::vector<IntVec>& normals) {
   const int n = static_cast<int>(cell.interior.size());
   std::vector<Facet> out;
-  for (int i = 0; i < static_cast<int>(normals.size()); ++i)
+  std::vector<Rational> at(cell.vertices.size());  // nu.v, once per normal and vertex
+  for (int i = 0; i < static_cast<int>(normals.size()); ++i) {
+    for (size_t k = 0; k < cell.vertices.size(); ++k) at[k] = dot(normals[i], cell.vertices[k]);
     for (bool upper : {false, true}) {
       const std::int64_t level = cell.key[i] + (upper ? 1 : 0);
       Facet f{i, level, upper, {}};
-      for (const auto& v : cell.vertices)
-        if (dot(normals[i], v) == Rational(level)) f.vertices.push_back(v);
+      for (size_t k = 0; k < cell.vertices.size(); ++k)
+        if (at[k] == Rational(level)) f.vertices.push_back(cell.vertices[k]);
       if (affine_rank(f.vertices) == n - 1) out.push_back(std::move(f));
     }
+  }
   return out;
 }
 
 std::vector<Facet> facets_of(const FineCell& cell, const KnotPlanes& planes) {
   const int n = static_cast<int>(cell.interior.size());
   std::vector<Facet> out;
-  for (int i = 0; i < static_cast<int>(planes.normals.size()); ++i)
+  std::vector<Rational> at(cell.vertices.size());  // nu.v, once per normal and vertex
+  for (int i = 0; i < static_cast<int>(planes.normals.size()); ++i) {
+    for (size_t k = 0; k < cell.vertices.size(); ++k)
+      at[k] = dot(planes.normals[i], cell.vertices[k]);
     for (bool upper : {false, true}) {
       const std::int64_t level = planes.levels[i][cell.key[i] - (upper ? 0 : 1)];
       Facet f{i, level, upper, {}};
-      for (const auto& v : cell.vertices)
-        if (dot(planes.normals[i], v) == Rational(level)) f.vertices.push_back(v);
+      for (size_t k = 0; k < cell.vertices.size(); ++k)
+        if (at[k] == Rational(level)) f.vertices.push_back(cell.vertices[k]);
       if (affine_rank(f.vertices) == n - 1) out.push_back(std::move(f));
     }
+  }
   return out;
 }
 
