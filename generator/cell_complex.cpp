@@ -1,6 +1,7 @@
 #include "generator/cell_complex.h"
 
 #include <algorithm>
+#include <iterator>
 #include <optional>
 
 #include "generator/error.h"
@@ -15,23 +16,15 @@ struct Slab {
   Rational lo, hi;  // lo <= nu.x <= hi
 };
 
-int tight_rank(const std::vector<Slab>& slabs, const RatVec& x, int n) {
-  IntColumns tight;
-  for (const auto& s : slabs) {
-    Rational v = dot(s.nu, x);
-    if (v == s.lo || v == s.hi) tight.push_back(s.nu);
-  }
-  return tight.empty() ? 0 : rank(tight, n);
-}
+// A constraint of a polytope: side 0 (nu.x = lo) or 1 (nu.x = hi) of slab s, numbered 2 s + side.
+using Constraint = int;
 
-void add_unique(std::vector<RatVec>& pts, RatVec p) {
-  if (std::find(pts.begin(), pts.end(), p) == pts.end()) pts.push_back(std::move(p));
-}
-
-// A convex polytope during splitting: its defining slabs, exact vertices and key so far.
+// A convex polytope during splitting: its defining slabs, exact vertices (each with the sorted
+// constraints tight there) and key so far.
 struct Polytope {
   std::vector<Slab> slabs;
   std::vector<RatVec> vertices;
+  std::vector<std::vector<Constraint>> tight;  // per vertex
   CellKey key;
 };
 
@@ -52,46 +45,75 @@ Polytope box_polytope(const IntVec& lo, const IntVec& hi) {
   }
   for (int mask = 0; mask < (1 << n); ++mask) {
     RatVec v(n);
-    for (int i = 0; i < n; ++i) v[i] = Rational(((mask >> i) & 1) ? hi[i] : lo[i]);
+    std::vector<Constraint> tight;
+    for (int i = 0; i < n; ++i) {
+      const bool upper = ((mask >> i) & 1) != 0;
+      v[i] = Rational(upper ? hi[i] : lo[i]);
+      tight.push_back(2 * i + (upper ? 1 : 0));
+    }
     box.vertices.push_back(v);
+    box.tight.push_back(std::move(tight));
   }
   return box;
 }
 
-// The point of the segment a-b on a plane, if it crosses the plane strictly; da and db are the
-// plane's equation nu.x - c at a and b.
-void add_crossing(const Rational& da, const Rational& db, const RatVec& a, const RatVec& b,
-                  std::vector<RatVec>& out) {
-  if (!(cln::minusp(da) && cln::plusp(db)) && !(cln::plusp(da) && cln::minusp(db))) return;
-  const Rational s = da / (da - db);
-  RatVec x(a.size());
-  for (size_t i = 0; i < a.size(); ++i) x[i] = a[i] + s * (b[i] - a[i]);
-  add_unique(out, std::move(x));
+// True if the segment between vertices with these tight constraints is an edge of the polytope:
+// the constraints tight at both have rank n - 1. (A point strictly inside a segment between two
+// vertices is tight exactly where both ends are, and it is a vertex of a slice through it only if
+// the segment is an edge: a chord through a point of an edge lies in that edge.)
+bool is_edge(const std::vector<Constraint>& a, const std::vector<Constraint>& b,
+             const std::vector<Slab>& slabs, int n, std::vector<Constraint>& common) {
+  common.clear();
+  std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(common));
+  if (static_cast<int>(common.size()) < n - 1) return false;
+  if (n == 1) return true;
+  IntColumns normals;
+  for (Constraint c : common) normals.push_back(slabs[static_cast<size_t>(c / 2)].nu);
+  return rank(normals, n) == n - 1;
 }
 
 // The part of w inside the slab `cut` (nullopt if it is not n-dimensional). Its vertices are
-// w's vertices in the slab and the crossings of the slab's planes with segments between w's
-// vertices, filtered to those where n independent constraints are tight.
+// w's vertices in the slab and the crossings of the slab's planes with w's edges.
 std::optional<Polytope> slice(const Polytope& w, const IntVec& nu, const Interval& cut, int n) {
   Polytope sub;
   sub.slabs = w.slabs;
   sub.slabs.push_back({nu, cut.lo, cut.hi});
+  const Constraint lower = 2 * static_cast<Constraint>(w.slabs.size()), upper = lower + 1;
   sub.key = w.key;
   sub.key.push_back(cut.key);
-  // w is convex and every vertex and every segment between two vertices lies in it, so only the
-  // new slab decides what is inside; nu.v is computed once per vertex.
+  // nu.v and its side of each plane are computed once per vertex.
   std::vector<Rational> level;
   level.reserve(w.vertices.size());
   for (const auto& v : w.vertices) level.push_back(dot(nu, v));
-  std::vector<RatVec> candidates;
-  for (size_t a = 0; a < w.vertices.size(); ++a)
-    if (level[a] >= cut.lo && level[a] <= cut.hi) add_unique(candidates, w.vertices[a]);
-  for (const Rational& c : {cut.lo, cut.hi})
+  std::vector<int> side_lo, side_hi;
+  for (size_t a = 0; a < w.vertices.size(); ++a) {
+    side_lo.push_back(cln::compare(level[a], cut.lo));
+    side_hi.push_back(cln::compare(level[a], cut.hi));
+    if (side_lo[a] >= 0 && side_hi[a] <= 0) {
+      sub.vertices.push_back(w.vertices[a]);
+      auto& tight = sub.tight.emplace_back(w.tight[a]);
+      if (side_lo[a] == 0) tight.push_back(lower);
+      if (side_hi[a] == 0) tight.push_back(upper);
+    }
+  }
+  std::vector<Constraint> common;
+  for (const bool at_hi : {false, true}) {
+    const Rational& c = at_hi ? cut.hi : cut.lo;
+    const std::vector<int>& side = at_hi ? side_hi : side_lo;
     for (size_t a = 0; a < w.vertices.size(); ++a)
-      for (size_t b = a + 1; b < w.vertices.size(); ++b)
-        add_crossing(level[a] - c, level[b] - c, w.vertices[a], w.vertices[b], candidates);
-  for (const auto& x : candidates)
-    if (tight_rank(sub.slabs, x, n) == n) sub.vertices.push_back(x);
+      for (size_t b = a + 1; b < w.vertices.size(); ++b) {
+        if (side[a] * side[b] >= 0) continue;  // no strict crossing
+        if (!is_edge(w.tight[a], w.tight[b], w.slabs, n, common)) continue;
+        const Rational da = level[a] - c, s = da / (da - (level[b] - c));
+        const RatVec& va = w.vertices[a];
+        const RatVec& vb = w.vertices[b];
+        RatVec x(va.size());
+        for (size_t i = 0; i < va.size(); ++i) x[i] = va[i] + s * (vb[i] - va[i]);
+        sub.vertices.push_back(std::move(x));
+        common.push_back(at_hi ? upper : lower);
+        sub.tight.push_back(common);
+      }
+  }
   if (affine_rank(sub.vertices) != n) return std::nullopt;
   return sub;
 }
@@ -281,28 +303,35 @@ int ShiftLocator::cell_at(const IntVec& j) const {
 std::vector<Facet> facets_of(const FineCell& cell, const std::vector<IntVec>& normals) {
   const int n = static_cast<int>(cell.interior.size());
   std::vector<Facet> out;
-  for (int i = 0; i < static_cast<int>(normals.size()); ++i)
+  std::vector<Rational> at(cell.vertices.size());  // nu.v, once per normal and vertex
+  for (int i = 0; i < static_cast<int>(normals.size()); ++i) {
+    for (size_t k = 0; k < cell.vertices.size(); ++k) at[k] = dot(normals[i], cell.vertices[k]);
     for (bool upper : {false, true}) {
       const std::int64_t level = cell.key[i] + (upper ? 1 : 0);
       Facet f{i, level, upper, {}};
-      for (const auto& v : cell.vertices)
-        if (dot(normals[i], v) == Rational(level)) f.vertices.push_back(v);
+      for (size_t k = 0; k < cell.vertices.size(); ++k)
+        if (at[k] == Rational(level)) f.vertices.push_back(cell.vertices[k]);
       if (affine_rank(f.vertices) == n - 1) out.push_back(std::move(f));
     }
+  }
   return out;
 }
 
 std::vector<Facet> facets_of(const FineCell& cell, const KnotPlanes& planes) {
   const int n = static_cast<int>(cell.interior.size());
   std::vector<Facet> out;
-  for (int i = 0; i < static_cast<int>(planes.normals.size()); ++i)
+  std::vector<Rational> at(cell.vertices.size());  // nu.v, once per normal and vertex
+  for (int i = 0; i < static_cast<int>(planes.normals.size()); ++i) {
+    for (size_t k = 0; k < cell.vertices.size(); ++k)
+      at[k] = dot(planes.normals[i], cell.vertices[k]);
     for (bool upper : {false, true}) {
       const std::int64_t level = planes.levels[i][cell.key[i] - (upper ? 0 : 1)];
       Facet f{i, level, upper, {}};
-      for (const auto& v : cell.vertices)
-        if (dot(planes.normals[i], v) == Rational(level)) f.vertices.push_back(v);
+      for (size_t k = 0; k < cell.vertices.size(); ++k)
+        if (at[k] == Rational(level)) f.vertices.push_back(cell.vertices[k]);
       if (affine_rank(f.vertices) == n - 1) out.push_back(std::move(f));
     }
+  }
   return out;
 }
 

@@ -8,6 +8,8 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <numeric>
 #include <sstream>
 
 #include "generator/error.h"
@@ -177,7 +179,59 @@ RatVec to_ratvec(const IntVec& v) {
   return out;
 }
 
+namespace {
+
+__extension__ using Int128 = __int128;
+
+// r = p/q (q > 0, lowest terms) with p and q fixnums, which fit in 64 bits.
+bool small_parts(const Rational& r, std::int64_t& p, std::int64_t& q) {
+  if (!r.pointer_p()) {  // an immediate: a fixnum integer
+    p = cln::cl_I_to_Q(cln::numerator(r));
+    q = 1;
+    return true;
+  }
+  const Integer num = cln::numerator(r), den = cln::denominator(r);
+  if (num.pointer_p() || den.pointer_p()) return false;
+  p = cln::cl_I_to_Q(num);
+  q = cln::cl_I_to_Q(den);
+  return true;
+}
+
+// a.b in machine integers as p/q, or nullopt if anything could overflow.
+std::optional<Rational> small_dot(const IntVec& a, const RatVec& b) {
+  constexpr Int128 kLimit = Int128(1) << 100;
+  Int128 p = 0;
+  std::int64_t q = 1;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (a[i] == 0) continue;
+    std::int64_t n = 0, d = 1;
+    if (!small_parts(b[i], n, d)) return std::nullopt;
+    Int128 term = Int128(a[i]) * n;  // |a[i] n| < 2^126
+    if (d != q) {
+      const std::int64_t g = std::gcd(q, d);
+      const Int128 scale_p = d / g, scale_term = q / g;
+      const Int128 new_q = scale_term * d;
+      if (new_q >= (Int128(1) << 62)) return std::nullopt;
+      if (__builtin_mul_overflow(p, scale_p, &p)) return std::nullopt;
+      if (__builtin_mul_overflow(term, scale_term, &term)) return std::nullopt;
+      q = static_cast<std::int64_t>(new_q);
+    }
+    if (__builtin_add_overflow(p, term, &p)) return std::nullopt;
+    if (p >= kLimit || p <= -kLimit) return std::nullopt;
+  }
+  if (p > INT64_MAX || p < -INT64_MAX) return std::nullopt;
+  auto num = static_cast<std::int64_t>(p);
+  const std::int64_t g = std::gcd(num, q);
+  num /= g;
+  q /= g;
+  if (q == 1) return rational_from(num);
+  return Rational(rational_from(num) / rational_from(q));  // reduces to lowest terms
+}
+
+}  // namespace
+
 Rational dot(const IntVec& a, const RatVec& b) {
+  if (auto fast = small_dot(a, b)) return *std::move(fast);
   Rational s = 0;
   for (size_t i = 0; i < a.size(); ++i)
     if (a[i] != 0) s = s + rational_from(a[i]) * b[i];

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <deque>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -93,6 +94,13 @@ class Fundamental {
 
   // Lattice points j with a chance of M_Xi(u - j) != 0 for u in the unit cube at `corner`.
   std::vector<IntVec> candidates(const IntVec& corner, int margin) const {
+    std::vector<IntVec> out;
+    for_each_candidate(corner, margin, [&](const IntVec& j) { out.push_back(j); });
+    return out;
+  }
+  // The same, each passed to f in turn (no copies of the cached points).
+  template <typename F>
+  void for_each_candidate(const IntVec& corner, int margin, F f) const {
     IntVec lo(n_), hi(n_);
     bool cached = margin <= 1;
     for (int i = 0; i < n_; ++i) {
@@ -100,25 +108,28 @@ class Fundamental {
       hi[i] = corner[i] - form_.complex.lo()[i] + margin;
       cached = cached && corner[i] >= corner_lo_[i] && corner[i] <= corner_hi_[i];
     }
-    if (!cached) return form_.spec.lattice.points_in_box(lo, hi);
-    std::vector<IntVec> out;
+    if (!cached) {
+      for (const auto& j : form_.spec.lattice.points_in_box(lo, hi)) f(j);
+      return;
+    }
     for (const auto& j : near_points_) {
       bool in = true;
       for (int i = 0; i < n_ && in; ++i) in = j[i] >= lo[i] && j[i] <= hi[i];
-      if (in) out.push_back(j);
+      if (in) f(j);
     }
-    return out;
   }
 
   // The stencil of a fine cell: the lattice points j with M_Xi(u - j) != 0 there, each with the
   // knot cell of M_Xi whose polynomial it takes (the fine cell holding u - j lies in it).
   void set_stencil(FundamentalCell& fc) const {
     const ShiftLocator locate(form_.knots, fc.cell.interior);
-    for (const auto& j : candidates(IntVec(fc.cell.key.begin(), fc.cell.key.begin() + n_), 0))
-      if (const int k = locate.cell_at(j); k >= 0 && !form_.polys[k].is_zero()) {
-        fc.stencil.push_back(j);
-        fc.stencil_knot_cells.push_back(k);
-      }
+    for_each_candidate(IntVec(fc.cell.key.begin(), fc.cell.key.begin() + n_), 0,
+                       [&](const IntVec& j) {
+                         if (const int k = locate.cell_at(j); k >= 0 && !form_.polys[k].is_zero()) {
+                           fc.stencil.push_back(j);
+                           fc.stencil_knot_cells.push_back(k);
+                         }
+                       });
   }
 
   // True if the spline has one polynomial on fine cell a and on fine cell b translated by l
@@ -280,6 +291,9 @@ void choose_references(SplineStructure& s, const Lattice& lattice, int n) {
     size_t g;
     IntVec l;
   };
+  // The lattice points of a box depend only on its corner floor(-z) - reach, which few centroid
+  // images share: each box is enumerated once.
+  std::map<IntVec, std::vector<IntVec>> boxes;
   for (size_t o = 0; o < s.references.size(); ++o) {
     std::vector<Candidate> candidates;
     double smallest = std::numeric_limits<double>::infinity();
@@ -293,7 +307,9 @@ void choose_references(SplineStructure& s, const Lattice& lattice, int n) {
           hi[i] = floor_to_int64(-z[i]) + reach;
           zd[static_cast<size_t>(i)] = to_double(z[i]);
         }
-        for (const auto& l : lattice.points_in_box(lo, hi)) {
+        auto box = boxes.find(lo);
+        if (box == boxes.end()) box = boxes.emplace(lo, lattice.points_in_box(lo, hi)).first;
+        for (const auto& l : box->second) {
           double d = 0;
           for (int i = 0; i < n; ++i) {
             const double y = zd[static_cast<size_t>(i)] + static_cast<double>(l[i]);
