@@ -300,14 +300,20 @@ int ShiftLocator::cell_at(const IntVec& j) const {
   return knots_->find(key);
 }
 
-std::vector<Facet> facets_of(const FineCell& cell, const std::vector<IntVec>& normals) {
+namespace {
+
+// Facets of a cell among these normals; level_of(i, upper) is the plane nu_i . x = level on the
+// cell's lower or upper side.
+template <typename LevelOf>
+std::vector<Facet> facets_among(const FineCell& cell, const std::vector<IntVec>& normals,
+                                LevelOf level_of) {
   const int n = static_cast<int>(cell.interior.size());
   std::vector<Facet> out;
   std::vector<Rational> at(cell.vertices.size());  // nu.v, once per normal and vertex
   for (int i = 0; i < static_cast<int>(normals.size()); ++i) {
     for (size_t k = 0; k < cell.vertices.size(); ++k) at[k] = dot(normals[i], cell.vertices[k]);
     for (bool upper : {false, true}) {
-      const std::int64_t level = cell.key[i] + (upper ? 1 : 0);
+      const std::int64_t level = level_of(i, upper);
       Facet f{i, level, upper, {}};
       for (size_t k = 0; k < cell.vertices.size(); ++k)
         if (at[k] == Rational(level)) f.vertices.push_back(cell.vertices[k]);
@@ -317,22 +323,18 @@ std::vector<Facet> facets_of(const FineCell& cell, const std::vector<IntVec>& no
   return out;
 }
 
+}  // namespace
+
+std::vector<Facet> facets_of(const FineCell& cell, const std::vector<IntVec>& normals) {
+  return facets_among(cell, normals, [&](int i, bool upper) -> std::int64_t {
+    return cell.key[i] + (upper ? 1 : 0);
+  });
+}
+
 std::vector<Facet> facets_of(const FineCell& cell, const KnotPlanes& planes) {
-  const int n = static_cast<int>(cell.interior.size());
-  std::vector<Facet> out;
-  std::vector<Rational> at(cell.vertices.size());  // nu.v, once per normal and vertex
-  for (int i = 0; i < static_cast<int>(planes.normals.size()); ++i) {
-    for (size_t k = 0; k < cell.vertices.size(); ++k)
-      at[k] = dot(planes.normals[i], cell.vertices[k]);
-    for (bool upper : {false, true}) {
-      const std::int64_t level = planes.levels[i][cell.key[i] - (upper ? 0 : 1)];
-      Facet f{i, level, upper, {}};
-      for (size_t k = 0; k < cell.vertices.size(); ++k)
-        if (at[k] == Rational(level)) f.vertices.push_back(cell.vertices[k]);
-      if (affine_rank(f.vertices) == n - 1) out.push_back(std::move(f));
-    }
-  }
-  return out;
+  return facets_among(cell, planes.normals, [&](int i, bool upper) {
+    return planes.levels[i][cell.key[i] - (upper ? 0 : 1)];
+  });
 }
 
 namespace {

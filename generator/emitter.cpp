@@ -139,11 +139,8 @@ CellTables cell_tables(const Analysis& a, const KnotPlaneKeys& keys, const IntCo
       index += static_cast<long>(local - keys.mins[p]) * keys.strides[p];
     }
     t.lookup[cube][index] = static_cast<int>(c);
-    const IntVec corner_offset = [&] {  // rep in the user's frame
-      IntVec r = rep;
-      for (auto& v : r) v *= k;
-      return r;
-    }();
+    IntVec corner_offset = rep;  // rep in the user's frame
+    for (auto& v : corner_offset) v *= k;
     local_keys.push_back(0);
     const auto& region = s.regions[fc.region];
     const auto& g = region.to_reference.g;
