@@ -49,7 +49,6 @@ SplineStructure scaled_up(const SplineStructure& s, std::int64_t k) {
   for (auto& fc : out.cells) {
     for (auto& v : fc.cell.vertices) v = times(v, f);
     fc.cell.interior = times(fc.cell.interior, f);
-    for (auto& j : fc.stencil) j = times(j, k);
     fc.placement = times(fc.placement, k);
   }
   auto scale_planes = [&](std::vector<Plane>& planes) {

@@ -1,6 +1,7 @@
 #include "generator/spline_regions.h"
 
 #include <algorithm>
+#include <array>
 #include <deque>
 #include <limits>
 #include <map>
@@ -24,12 +25,25 @@ RatVec SpaceGroupElement::apply(const RatVec& x) const {
 
 namespace {
 
-// A knot cell and a lattice point j: a term M(x - j) taken on that knot cell.
-using CellShift = std::pair<int, IntVec>;
+// A knot cell and a lattice point j: a term M(x - j) taken on that knot cell. Fixed-size, so the
+// maps below (millions of terms for a large stencil) neither allocate nor hash a vector per key.
+struct CellShift {
+  int cell = -1;
+  std::array<std::int32_t, 3> j{};
+  CellShift(int c, const IntVec& shift) : cell(c) {
+    for (size_t i = 0; i < shift.size(); ++i) {
+      if (shift[i] < std::numeric_limits<std::int32_t>::min() ||
+          shift[i] > std::numeric_limits<std::int32_t>::max())
+        fail_internal("a stencil point beyond 32-bit coordinates");
+      j[i] = static_cast<std::int32_t>(shift[i]);
+    }
+  }
+  bool operator==(const CellShift&) const = default;
+};
 struct CellShiftHash {
   std::size_t operator()(const CellShift& key) const noexcept {
-    std::uint64_t h = 1469598103934665603ull ^ static_cast<std::uint32_t>(key.first);
-    for (auto v : key.second) h = (h ^ static_cast<std::uint64_t>(v)) * 1099511628211ull;
+    std::uint64_t h = 1469598103934665603ull ^ static_cast<std::uint32_t>(key.cell);
+    for (auto v : key.j) h = (h ^ static_cast<std::uint32_t>(v)) * 1099511628211ull;
     return static_cast<std::size_t>(h);
   }
 };
@@ -58,8 +72,8 @@ class Fundamental {
       fc.cell = std::move(c);
       cells_.push_back(std::move(fc));
     }
-    // The lattice points any cube of F may fetch, enumerated once (a scaled lattice has few
-    // points in a large box, and enumerating the box per cell would dominate).
+    // The lattice points any cube of F or next to it may fetch, enumerated once and grouped, per
+    // knot normal, by nu . j (same_spline_piece looks up the points on a few planes).
     corner_lo_ = corner_hi_ =
         IntVec(cells_.front().cell.key.begin(), cells_.front().cell.key.begin() + n_);
     for (const auto& fc : cells_)
@@ -73,8 +87,19 @@ class Fundamental {
       hi[i] = corner_hi_[i] - form.complex.lo()[i] + 1;
     }
     near_points_ = form.spec.lattice.points_in_box(lo, hi);
+    const auto& knot_normals = form.knots.planes().normals;
+    points_by_level_.resize(knot_normals.size());
+    for (size_t k = 0; k < knot_normals.size(); ++k)
+      for (size_t p = 0; p < near_points_.size(); ++p)
+        points_by_level_[k][dot(knot_normals[k], near_points_[p])].push_back(static_cast<int>(p));
+    for (const auto& nu : normals()) {
+      const auto it = std::find(knot_normals.begin(), knot_normals.end(), nu);
+      knot_normal_of_.push_back(
+          it == knot_normals.end() ? -1 : static_cast<int>(it - knot_normals.begin()));
+    }
   }
   std::vector<FundamentalCell>& cells() { return cells_; }
+  const PiecewiseForm& form() const { return form_; }
   const std::vector<IntVec>& normals() const { return form_.complex.normals(); }
 
   // The fundamental cell and lattice vector l such that the cell with this absolute key is F cell +
@@ -92,56 +117,31 @@ class Fundamental {
     return locate(floor_key(normals(), u));
   }
 
-  // Lattice points j with a chance of M_Xi(u - j) != 0 for u in the unit cube at `corner`.
-  std::vector<IntVec> candidates(const IntVec& corner, int margin) const {
-    std::vector<IntVec> out;
-    for_each_candidate(corner, margin, [&](const IntVec& j) { out.push_back(j); });
-    return out;
-  }
-  // The same, each passed to f in turn (no copies of the cached points).
-  template <typename F>
-  void for_each_candidate(const IntVec& corner, int margin, F f) const {
-    IntVec lo(n_), hi(n_);
-    bool cached = margin <= 1;
-    for (int i = 0; i < n_; ++i) {
-      lo[i] = corner[i] - form_.complex.hi()[i] + 1 - margin;
-      hi[i] = corner[i] - form_.complex.lo()[i] + margin;
-      cached = cached && corner[i] >= corner_lo_[i] && corner[i] <= corner_hi_[i];
-    }
-    if (!cached) {
-      for (const auto& j : form_.spec.lattice.points_in_box(lo, hi)) f(j);
-      return;
-    }
-    for (const auto& j : near_points_) {
-      bool in = true;
-      for (int i = 0; i < n_ && in; ++i) in = j[i] >= lo[i] && j[i] <= hi[i];
-      if (in) f(j);
-    }
-  }
-
-  // The stencil of a fine cell: the lattice points j with M_Xi(u - j) != 0 there, each with the
-  // knot cell of M_Xi whose polynomial it takes (the fine cell holding u - j lies in it).
-  void set_stencil(FundamentalCell& fc) const {
-    const ShiftLocator locate(form_.knots, fc.cell.interior);
-    for_each_candidate(IntVec(fc.cell.key.begin(), fc.cell.key.begin() + n_), 0,
-                       [&](const IntVec& j) {
-                         if (const int k = locate.cell_at(j); k >= 0 && !form_.polys[k].is_zero()) {
-                           fc.stencil.push_back(j);
-                           fc.stencil_knot_cells.push_back(k);
-                         }
-                       });
-  }
-
-  // True if the spline has one polynomial on fine cell a and on fine cell b translated by l
-  // (adjacent cells): the same j with the same polynomial on both, for every j.
-  bool same_spline_piece(const FundamentalCell& a, const FundamentalCell& b,
-                         const IntVec& l) const {
-    if (a.stencil.size() != b.stencil.size()) return false;
-    for (size_t k = 0; k < a.stencil.size(); ++k) {
-      for (int i = 0; i < n_; ++i)
-        if (a.stencil[k][i] != b.stencil[k][i] + l[i]) return false;
-      const int ka = a.stencil_knot_cells[k], kb = b.stencil_knot_cells[k];
-      if (ka != kb && form_.polys[ka] != form_.polys[kb]) return false;
+  // True if the spline has one polynomial on a fine cell (located by at_a) and on its neighbour
+  // across facet f, the fine cell b translated by l: the same terms M(u - j) on both. A term can
+  // differ only where the facet's plane nu.u = level, moved by -j, is a knot plane of M_Xi, i.e.
+  // nu.j = level - L for a knot level L (docs/design.md §7); for every other j the two cells
+  // minus j are neighbours inside one knot cell (or both outside the support), so only the j on
+  // those few planes are compared, not the whole stencil.
+  bool same_spline_piece(const ShiftLocator& at_a, const FineCell& b, const IntVec& l,
+                         const Facet& f) const {
+    const int k = knot_normal_of_[static_cast<size_t>(f.normal)];
+    if (k < 0) return true;  // an axis that is no knot normal: no knot plane lies on the facet
+    RatVec b_point = b.interior;
+    for (int i = 0; i < n_; ++i) b_point[i] = b_point[i] + Rational(l[i]);
+    const ShiftLocator at_b(form_.knots, b_point);
+    const auto& by_level = points_by_level_[static_cast<size_t>(k)];
+    for (const auto level : form_.knots.planes().levels[static_cast<size_t>(k)]) {
+      const auto on_plane = by_level.find(f.level - level);
+      if (on_plane == by_level.end()) continue;
+      for (const int p : on_plane->second) {
+        const IntVec& j = near_points_[static_cast<size_t>(p)];
+        const int ka = at_a.cell_at(j), kb = at_b.cell_at(j);
+        const bool zero_a = ka < 0 || form_.polys[ka].is_zero();
+        const bool zero_b = kb < 0 || form_.polys[kb].is_zero();
+        if (zero_a != zero_b) return false;
+        if (!zero_a && ka != kb && form_.polys[ka] != form_.polys[kb]) return false;
+      }
     }
     return true;
   }
@@ -153,6 +153,33 @@ class Fundamental {
   std::unordered_map<CellKey, int, CellKeyHash> index_;
   IntVec corner_lo_, corner_hi_;     // range of the cubes of F
   std::vector<IntVec> near_points_;  // lattice points any of them may fetch (margin 1)
+  std::vector<std::unordered_map<std::int64_t, std::vector<int>>> points_by_level_;
+  std::vector<int> knot_normal_of_;  // per fine normal: its index among the knot normals, or -1
+};
+
+// Lattice points j with a chance of M_Xi(u - j) != 0 for u in the unit cube at a corner (u - j in
+// the support's box), in scan order, enumerated once per cube.
+class CubeCandidates {
+ public:
+  explicit CubeCandidates(const PiecewiseForm& form) : form_(form) {}
+  const std::vector<IntVec>& at(const IntVec& corner) {
+    auto it = boxes_.find(corner);
+    if (it == boxes_.end()) {
+      if (boxes_.size() >= kCubesKept) boxes_.clear();  // a scaled F has k^n cubes: keep a few
+      IntVec lo(corner.size()), hi(corner.size());
+      for (size_t i = 0; i < corner.size(); ++i) {
+        lo[i] = corner[i] - form_.complex.hi()[i] + 1;
+        hi[i] = corner[i] - form_.complex.lo()[i];
+      }
+      it = boxes_.emplace(corner, form_.spec.lattice.points_in_box(lo, hi)).first;
+    }
+    return it->second;
+  }
+
+ private:
+  static constexpr size_t kCubesKept = 64;
+  const PiecewiseForm& form_;
+  std::map<IntVec, std::vector<IntVec>> boxes_;
 };
 
 void add_unique_plane(std::vector<Plane>& planes, const Plane& p) {
@@ -192,12 +219,13 @@ std::vector<SplineRegion> merge_regions(Fundamental& fund, const RatVec& c, int 
         for (int k = 0; k < n; ++k) x[k] = v[k] + Rational(p[k]) - c[k];
         all_vertices.push_back(std::move(x));
       }
+      const ShiftLocator at_cell(fund.form().knots, cells[i].cell.interior);
       for (const auto& f : facets_of(cells[i].cell, fund.normals())) {
         CellKey other = cells[i].cell.key;
         other[f.normal] += f.upper ? 1 : -1;
         const IntVec& nu = fund.normals()[f.normal];
         auto [j, l] = fund.locate(other);
-        if (!fund.same_spline_piece(cells[i], cells[j], l)) {
+        if (!fund.same_spline_piece(at_cell, cells[j].cell, l, f)) {
           add_unique_plane(region.planes,
                            {nu, Rational(f.level) + Rational(dot(nu, p)) - dot(nu, c)});
           continue;
@@ -381,7 +409,7 @@ void map_regions_to_references(SplineStructure& s, const Lattice& lattice, int n
 }
 
 // Stencil and basis polynomials of each reference region (centred frame).
-void reference_bases(SplineStructure& s, const PiecewiseForm& form, const Fundamental& fund) {
+void reference_bases(SplineStructure& s, const PiecewiseForm& form) {
   const int n = form.dimension();
   const Lattice& lattice = form.spec.lattice;
   const Rational scale = Rational(lattice.det_abs());
@@ -392,6 +420,7 @@ void reference_bases(SplineStructure& s, const PiecewiseForm& form, const Fundam
   std::vector<std::optional<Poly>> centred(form.polys.size());
   // Neighbouring regions share most (knot piece, stencil point) pairs: translate each pair once.
   std::unordered_map<CellShift, Poly, CellShiftHash> moved;
+  CubeCandidates candidates(form);  // the references lie in a few cubes near the centre
   for (auto& ref : s.references) {
     RatVec u(n);
     IntVec corner(n);
@@ -400,13 +429,13 @@ void reference_bases(SplineStructure& s, const PiecewiseForm& form, const Fundam
       corner[k] = floor_to_int64(u[k]);
     }
     const ShiftLocator locate(form.knots, u);
-    for (const auto& j : fund.candidates(corner, 0)) {
+    for (const auto& j : candidates.at(corner)) {
       const int cell = locate.cell_at(j);
       if (cell < 0 || form.polys[cell].is_zero()) continue;
-      auto it = moved.find({cell, j});
-      if (it == moved.end()) {
+      auto [it, fresh] = moved.try_emplace(CellShift(cell, j));
+      if (fresh) {
         if (!centred[cell]) centred[cell] = form.polys[cell].translated(minus_c) * scale;
-        it = moved.emplace(std::make_pair(cell, j), centred[cell]->translated(to_ratvec(j))).first;
+        it->second = centred[cell]->translated(to_ratvec(j));
       }
       ref.stencil.push_back(j);
       ref.stencil_knot_cells.push_back(cell);
@@ -425,18 +454,19 @@ SplineStructure structure_in_unit_cubes(const PiecewiseForm& form) {
   s.centre = spline_centre(form.spec);
   s.group = symmetry_group(form.spec);
   Fundamental fund(form);
-  for (auto& fc : fund.cells()) fund.set_stencil(fc);
   s.regions = merge_regions(fund, s.centre, n);
   s.cells = std::move(fund.cells());
-  s.stencil_min = s.stencil_max = static_cast<int>(s.cells.front().stencil.size());
-  for (const auto& fc : s.cells) {
-    s.stencil_min = std::min(s.stencil_min, static_cast<int>(fc.stencil.size()));
-    s.stencil_max = std::max(s.stencil_max, static_cast<int>(fc.stencil.size()));
-  }
   assign_orbits(s, fund);
   choose_references(s, form.spec.lattice, n);
   map_regions_to_references(s, form.spec.lattice, n);
-  reference_bases(s, form, fund);
+  reference_bases(s, form);
+  // Every fine cell of a region has its reference's stencil, mapped (merge_regions joins cells
+  // only where every term is the same; a symmetry and a translation keep the count).
+  s.stencil_min = s.stencil_max = static_cast<int>(s.references.front().stencil.size());
+  for (const auto& ref : s.references) {
+    s.stencil_min = std::min(s.stencil_min, static_cast<int>(ref.stencil.size()));
+    s.stencil_max = std::max(s.stencil_max, static_cast<int>(ref.stencil.size()));
+  }
   return s;
 }
 
@@ -457,7 +487,7 @@ class StencilTerms {
   // The index of the term (cell, j); `make` gives its polynomial the first time it is seen.
   template <typename Make>
   int index(int cell, const IntVec& j, Make make) {
-    auto [it, fresh] = index_.emplace(std::make_pair(cell, j), static_cast<int>(polys_.size()));
+    auto [it, fresh] = index_.try_emplace(CellShift(cell, j), static_cast<int>(polys_.size()));
     if (fresh) polys_.push_back(make());
     return it->second;
   }
@@ -495,14 +525,22 @@ void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& 
         fail_internal("partition of unity fails on a reference region");
     return;
   }
+  // Every fine cell's own stencil, found afresh: the terms M(u - j) nonzero at its interior u.
   std::deque<Poly> translated;  // stable addresses
+  CubeCandidates candidates(form);
   for (const auto& fc : s.cells) {
+    IntVec corner(n);
+    for (int k = 0; k < n; ++k) corner[k] = floor_to_int64(fc.cell.interior[k]);
+    const ShiftLocator locate(form.knots, fc.cell.interior);
     std::vector<int>& sum = sums.emplace_back();
-    for (size_t k = 0; k < fc.stencil.size(); ++k)
-      sum.push_back(terms.index(fc.stencil_knot_cells[k], fc.stencil[k], [&] {
-        return &translated.emplace_back(
-            form.polys[fc.stencil_knot_cells[k]].translated(to_ratvec(fc.stencil[k])));
+    for (const auto& j : candidates.at(corner)) {
+      const int cell = locate.cell_at(j);
+      if (cell < 0 || form.polys[cell].is_zero()) continue;
+      sum.push_back(terms.index(cell, j, [&] {
+        return &translated.emplace_back(form.polys[cell].translated(to_ratvec(j)));
       }));
+    }
+    if (sum.empty()) fail_internal("a cell of the fundamental region has an empty stencil");
   }
   const CommonDenominatorTerms exact(n, terms.polys());
   const Rational expected = Rational(1) / Rational(form.spec.lattice.det_abs());

@@ -17,9 +17,7 @@
 namespace boxgen {
 
 struct FundamentalCell {
-  FineCell cell;                // uncentred frame, inside F
-  std::vector<IntVec> stencil;  // lattice points j with M_Xi(u - j) != 0 on the cell, sorted
-  std::vector<int> stencil_knot_cells;  // per stencil point: the knot cell of M_Xi holding u - j
+  FineCell cell;  // uncentred frame, inside F
   int region = -1;
   IntVec placement;  // cell + placement is where the cell sits in its region's geometry
 };
