@@ -155,8 +155,10 @@ std::vector<FineCell> split(Polytope start, const std::vector<IntVec>& normals,
 
 }  // namespace
 
-int affine_rank(const std::vector<RatVec>& points) {
-  if (points.size() <= 1) return 0;
+namespace {
+
+// Row echelon rank of the differences p - p0 (any dimension).
+int elimination_rank(const std::vector<RatVec>& points) {
   const size_t n = points[0].size();
   std::vector<RatVec> rows;
   for (size_t i = 1; i < points.size(); ++i) {
@@ -182,6 +184,46 @@ int affine_rank(const std::vector<RatVec>& points) {
     ++r;
   }
   return r;
+}
+
+}  // namespace
+
+int affine_rank(const std::vector<RatVec>& points) {
+  if (points.size() <= 1) return 0;
+  const size_t n = points[0].size();
+  if (n != 2 && n != 3) return elimination_rank(points);
+  // In 2-D and 3-D, incrementally and without divisions (this runs for every slice and facet):
+  // the first point off p0 gives a direction d1, the first off that line a second direction
+  // (2-D: rank 2), and in 3-D the first point off that plane rank 3.
+  const RatVec& p0 = points[0];
+  auto from_p0 = [&](const RatVec& p) {
+    RatVec d(n);
+    for (size_t k = 0; k < n; ++k) d[k] = p[k] - p0[k];
+    return d;
+  };
+  size_t i = 1;
+  while (i < points.size() && points[i] == p0) ++i;
+  if (i == points.size()) return 0;
+  const RatVec d1 = from_p0(points[i]);
+  RatVec normal;  // 3-D: d1 x d2
+  for (++i; i < points.size(); ++i) {
+    const RatVec d = from_p0(points[i]);
+    if (n == 2) {
+      if (d1[0] * d[1] != d1[1] * d[0]) return 2;
+      continue;
+    }
+    RatVec c{d1[1] * d[2] - d1[2] * d[1], d1[2] * d[0] - d1[0] * d[2], d1[0] * d[1] - d1[1] * d[0]};
+    if (!cln::zerop(c[0]) || !cln::zerop(c[1]) || !cln::zerop(c[2])) {
+      normal = std::move(c);
+      break;
+    }
+  }
+  if (i >= points.size()) return 1;
+  for (++i; i < points.size(); ++i) {
+    const RatVec d = from_p0(points[i]);
+    if (!cln::zerop(normal[0] * d[0] + normal[1] * d[1] + normal[2] * d[2])) return 3;
+  }
+  return 2;
 }
 
 std::vector<FineCell> split_cube(const std::vector<IntVec>& normals, const IntVec& corner) {

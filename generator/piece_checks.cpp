@@ -130,9 +130,9 @@ static Rational integral_of_cell(const PiecewiseForm& form, int i) {
   if (p.is_zero()) return 0;
   RatVec lo, hi;
   if (box_corners(cell, lo, hi)) return integrate_over_box(p, lo, hi);
+  const SimplexIntegrator integrate(p);
   Rational total = 0;
-  for (const auto& simplex : triangulate(cell, form.knots))
-    total = total + integrate_over_simplex(p, simplex);
+  for (const auto& simplex : triangulate(cell, form.knots)) total = total + integrate.over(simplex);
   return total;
 }
 

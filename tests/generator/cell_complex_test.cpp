@@ -83,6 +83,17 @@ TEST(CellComplex, AffineRankAndTriangulation) {
   EXPECT_EQ(affine_rank({{0, 0}}), 0);
   EXPECT_EQ(affine_rank({{0, 0}, {1, 1}, {2, 2}}), 1);
   EXPECT_EQ(affine_rank({{0, 0}, {1, 1}, {2, 3}}), 2);
+  EXPECT_EQ(affine_rank({{0, 0}, {0, 0}, {2, 3}}), 1);  // a repeated first point
+  // 3-D: the first points repeated or collinear, then the plane, then a point off it.
+  const Rational h = Rational(1) / 2;
+  EXPECT_EQ(affine_rank({{1, 1, 1}, {1, 1, 1}}), 0);
+  EXPECT_EQ(affine_rank({{0, 0, 0}, {h, h, h}, {2, 2, 2}}), 1);
+  EXPECT_EQ(affine_rank({{0, 0, 0}, {1, 2, 3}, {2, 4, 6}, {1, 0, 0}, {2, 2, 3}}), 2);
+  EXPECT_EQ(affine_rank({{0, 0, 0}, {1, 2, 3}, {2, 4, 6}, {1, 0, 0}, {2, 2, 3}, {0, 0, h}}), 3);
+  EXPECT_EQ(affine_rank({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}), 2);
+  // More than three coordinates take row elimination.
+  EXPECT_EQ(affine_rank({{0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {1, 1, 0, 0}}), 2);
+  EXPECT_EQ(affine_rank({{0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 0, 1}}), 3);
   const std::vector<RatVec> square{{0, 0}, {1, 0}, {0, 1}, {1, 1}};
   const std::vector<Plane> sides{{{1, 0}, 0}, {{1, 0}, 1}, {{0, 1}, 0}, {{0, 1}, 1}};
   const auto simplices = triangulate_polytope(square, sides);
