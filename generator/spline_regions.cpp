@@ -127,16 +127,19 @@ class Fundamental {
                          const Facet& f) const {
     const int k = knot_normal_of_[static_cast<size_t>(f.normal)];
     if (k < 0) return true;  // an axis that is no knot normal: no knot plane lies on the facet
-    RatVec b_point = b.interior;
-    for (int i = 0; i < n_; ++i) b_point[i] = b_point[i] + Rational(l[i]);
-    const ShiftLocator at_b(form_.knots, b_point);
+    std::optional<ShiftLocator> at_b;  // made when a plane holds a lattice point
     const auto& by_level = points_by_level_[static_cast<size_t>(k)];
     for (const auto level : form_.knots.planes().levels[static_cast<size_t>(k)]) {
       const auto on_plane = by_level.find(f.level - level);
       if (on_plane == by_level.end()) continue;
+      if (!at_b) {
+        RatVec b_point = b.interior;
+        for (int i = 0; i < n_; ++i) b_point[i] = b_point[i] + Rational(l[i]);
+        at_b.emplace(form_.knots, b_point);
+      }
       for (const int p : on_plane->second) {
         const IntVec& j = near_points_[static_cast<size_t>(p)];
-        const int ka = at_a.cell_at(j), kb = at_b.cell_at(j);
+        const int ka = at_a.cell_at(j), kb = at_b->cell_at(j);
         const bool zero_a = ka < 0 || form_.polys[ka].is_zero();
         const bool zero_b = kb < 0 || form_.polys[kb].is_zero();
         if (zero_a != zero_b) return false;
@@ -317,7 +320,7 @@ void choose_references(SplineStructure& s, const Lattice& lattice, int n) {
     double norm;
     int region;
     size_t g;
-    IntVec l;
+    const IntVec* l;  // in `boxes`, whose vectors stay put
   };
   // The lattice points of a box depend only on its corner floor(-z) - reach, which few centroid
   // images share: each box is enumerated once.
@@ -343,8 +346,9 @@ void choose_references(SplineStructure& s, const Lattice& lattice, int n) {
             const double y = zd[static_cast<size_t>(i)] + static_cast<double>(l[i]);
             d += y * y;
           }
+          if (d > smallest * (1 + 1e-9) + 1e-9) continue;  // beyond the cut below already
           smallest = std::min(smallest, d);
-          candidates.push_back({d, r, gi, l});
+          candidates.push_back({d, r, gi, &l});
         }
       }
     }
@@ -355,11 +359,11 @@ void choose_references(SplineStructure& s, const Lattice& lattice, int n) {
     for (const Candidate& c : candidates) {
       if (c.norm > cut) continue;
       RatVec y = s.group[c.g].apply(s.regions[static_cast<size_t>(c.region)].centroid);
-      for (int i = 0; i < n; ++i) y[i] = y[i] + Rational(c.l[i]);
+      for (int i = 0; i < n; ++i) y[i] = y[i] + Rational((*c.l)[i]);
       Rational d = norm2(y);
       if (!best || d < best->first || (d == best->first && y > best->second)) {
         best = std::make_pair(d, y);
-        best_map = {s.group[c.g], c.l};
+        best_map = {s.group[c.g], *c.l};
         best_region = c.region;
       }
     }
