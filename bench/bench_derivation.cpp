@@ -83,6 +83,22 @@ BOXGEN_DERIVATION_BENCHMARK(
     "cartesian", 10);
 BOXGEN_DERIVATION_BENCHMARK(scaled_hat, "64,0; 0,64; 64,64", "64,0; 0,64", 1);
 BOXGEN_DERIVATION_BENCHMARK(long_directions, "20,1; 1,20; 7,5; -9,4", "cartesian", 1);
+// Matrices of the same kinds that the table does not list (README, "Derivation cost"):
+// longer or skewed directions, degree 1 to 4, the degree-1 and degree-2 ones under 1 s.
+BOXGEN_DERIVATION_BENCHMARK(skewed_4_degree_1, "4,1,0; 0,4,1; 1,0,4; 1,1,1", "cartesian", 1);
+BOXGEN_DERIVATION_BENCHMARK(skewed_2_degree_2, "2,1,0; 0,2,1; 1,0,2; 1,1,1; 1,1,-1", "cartesian",
+                            1);
+BOXGEN_DERIVATION_BENCHMARK(skewed_3_degree_1, "3,1,0; 0,3,1; 1,0,3; 1,1,1", "cartesian", 1);
+BOXGEN_DERIVATION_BENCHMARK(longer_directions, "30,1; 1,30; 11,7; -13,5", "cartesian", 1);
+BOXGEN_DERIVATION_BENCHMARK(five_2d_directions, "5,2; -3,7; 4,4; 1,-6; 2,9", "cartesian", 10);
+BOXGEN_DERIVATION_BENCHMARK(axes_diagonal_two_faces, "1,0,0; 0,1,0; 0,0,1; 1,1,1; 1,-1,0; 0,1,-1",
+                            "cartesian", 10);
+BOXGEN_DERIVATION_BENCHMARK(axes_three_faces_diagonal,
+                            "1,0,0; 0,1,0; 0,0,1; 1,1,0; 1,0,1; 0,1,1; 1,1,1", "cartesian", 10);
+BOXGEN_DERIVATION_BENCHMARK(skewed_2_with_face, "2,1,0; 0,2,1; 1,0,2; 1,1,1; 1,-1,0", "cartesian",
+                            1);
+BOXGEN_DERIVATION_BENCHMARK(skewed_3_with_face, "3,1,1; 1,3,1; 1,1,3; 1,-1,0", "cartesian", 1);
+BOXGEN_DERIVATION_BENCHMARK(skewed_5_2_1, "5,2,1; 1,1,0; 0,1,1; 1,0,1", "cartesian", 1);
 // Scale invariance: M7 scaled by 8 and 32 on the correspondingly scaled BCC lattice (the same time
 // as the m7 row: the pair is derived as M7 and stretched back, generator/common_scale.h).
 BOXGEN_DERIVATION_BENCHMARK(m7_scaled_by_8,

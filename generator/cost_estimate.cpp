@@ -25,11 +25,14 @@ namespace {
 //  - truncated power: per knot cell, every difference shift adds a translated piece;
 //  - directional integration and the checks: per knot cell, coefficient work times the number of
 //    knot planes (the crossings a path meets);
-//  - spline regions: per fine cell of F, every stencil point is located and compared, and the
-//    cell itself is translated from the split unit cube, its facets found and merged.
+//  - spline regions: the regions follow the fine cells of F, and each reference region's stencil
+//    points are located, translated and summed by the partition-of-unity check; each fine cell
+//    is translated from the split unit cube, its facets found and merged. The stencil term was
+//    refitted (from 4.6e-7) on the two long 2-D rows, (20,1), ... and (30,1), ..., when the fine
+//    cells stopped keeping stencils of their own (stop 17).
 constexpr double kSecondsPerShiftCoefficient = 5.4e-9;  // knot cell x shift x monomial
 constexpr double kSecondsPerPlaneCoefficient = 7.9e-8;  // knot cell x monomial x knot plane
-constexpr double kSecondsPerStencilPoint = 4.6e-7;      // fine cell of F x stencil point
+constexpr double kSecondsPerStencilPoint = 1.9e-7;      // fine cell of F x stencil point
 constexpr double kSecondsPerFineCell = 9.6e-7;  // translating, facets and merging of a fine cell
 // In 3-D each cell of the split unit cube also costs its exact slicing and the choice of
 // reference regions (polytopes with many vertices); the unit cube is split once and translated
@@ -47,8 +50,8 @@ constexpr double kBytesBase = 7e6;
 constexpr double kBytesPerCoefficient =
     300;  // memoised pieces and translates per knot-cell coefficient
 constexpr double kBytesPerStencilPoint =
-    130;  // a fine cell's stencil entry and its share of the basis (fitted on the long row)
-constexpr double kBytesPerFineCell = 3500;  // its exact vertices, key and stencil vectors
+    80;  // a reference region's basis entry (refitted on the two long 2-D rows, stop 17)
+constexpr double kBytesPerFineCell = 3500;  // its exact vertices, key and placement
 constexpr double kEnumerableCells = 2e6;    // above this bound, do not enumerate
 
 double binomial(double p, int k) {
