@@ -188,10 +188,11 @@ int elimination_rank(const std::vector<RatVec>& points) {
 
 }  // namespace
 
-int affine_rank(const std::vector<RatVec>& points) {
-  if (points.size() <= 1) return 0;
+int affine_rank(const std::vector<RatVec>& points, int cap) {
+  if (points.size() <= 1 || cap == 0) return 0;
   const size_t n = points[0].size();
-  if (n != 2 && n != 3) return elimination_rank(points);
+  if (n != 2 && n != 3)
+    return cap < 0 ? elimination_rank(points) : std::min(elimination_rank(points), cap);
   // In 2-D and 3-D, incrementally and without divisions (this runs for every slice and facet):
   // the first point off p0 gives a direction d1, the first off that line a second direction
   // (2-D: rank 2), and in 3-D the first point off that plane rank 3.
@@ -204,6 +205,7 @@ int affine_rank(const std::vector<RatVec>& points) {
   size_t i = 1;
   while (i < points.size() && points[i] == p0) ++i;
   if (i == points.size()) return 0;
+  if (cap == 1) return 1;
   const RatVec d1 = from_p0(points[i]);
   RatVec normal;  // 3-D: d1 x d2
   for (++i; i < points.size(); ++i) {
@@ -219,6 +221,7 @@ int affine_rank(const std::vector<RatVec>& points) {
     }
   }
   if (i >= points.size()) return 1;
+  if (cap == 2) return 2;
   for (++i; i < points.size(); ++i) {
     const RatVec d = from_p0(points[i]);
     if (!cln::zerop(normal[0] * d[0] + normal[1] * d[1] + normal[2] * d[2])) return 3;
@@ -322,6 +325,17 @@ ShiftLocator::ShiftLocator(const KnotComplex& knots, const RatVec& p) : knots_(&
   }
 }
 
+ShiftLocator ShiftLocator::translated(const IntVec& l) const {
+  RatVec q = p_;
+  for (size_t k = 0; k < q.size(); ++k) q[k] = q[k] + Rational(l[k]);
+  if (!small_) return ShiftLocator(*knots_, q);
+  ShiftLocator out = *this;
+  out.p_ = std::move(q);
+  const auto& normals = knots_->planes().normals;
+  for (size_t i = 0; i < normals.size(); ++i) out.floor_nu_p_[i] += dot(normals[i], l);
+  return out;
+}
+
 int ShiftLocator::cell_at(const IntVec& j) const {
   if (!small_) {
     RatVec q = p_;
@@ -352,14 +366,23 @@ std::vector<Facet> facets_among(const FineCell& cell, const std::vector<IntVec>&
   const int n = static_cast<int>(cell.interior.size());
   std::vector<Facet> out;
   std::vector<Rational> at(cell.vertices.size());  // nu.v, once per normal and vertex
+  std::vector<size_t> on_plane;
   for (int i = 0; i < static_cast<int>(normals.size()); ++i) {
     for (size_t k = 0; k < cell.vertices.size(); ++k) at[k] = dot(normals[i], cell.vertices[k]);
     for (bool upper : {false, true}) {
       const std::int64_t level = level_of(i, upper);
-      Facet f{i, level, upper, {}};
+      const Rational at_level(level);
+      on_plane.clear();
       for (size_t k = 0; k < cell.vertices.size(); ++k)
-        if (at[k] == Rational(level)) f.vertices.push_back(cell.vertices[k]);
-      if (affine_rank(f.vertices) == n - 1) out.push_back(std::move(f));
+        if (at[k] == at_level) on_plane.push_back(k);
+      // A cell's vertices are its extreme points (slicing adds only edge crossings), and no three
+      // extreme points of a convex set are collinear: in 2-D and 3-D, n of them on a bounding
+      // plane span it, so only the count is needed there.
+      if (on_plane.size() < static_cast<size_t>(n)) continue;
+      Facet f{i, level, upper, {}};
+      for (size_t k : on_plane) f.vertices.push_back(cell.vertices[k]);
+      if (n > 3 && affine_rank(f.vertices, n - 1) != n - 1) continue;
+      out.push_back(std::move(f));
     }
   }
   return out;
@@ -397,7 +420,7 @@ void pull(const std::vector<RatVec>& pts, int d, const std::vector<Plane>& plane
       if (dot(nu, p) == level) face.push_back(p);
     if (face.size() == pts.size() || std::find(face.begin(), face.end(), v0) != face.end())
       continue;
-    if (affine_rank(face) != d - 1) continue;
+    if (affine_rank(face, d - 1) != d - 1) continue;  // the face lies on a plane
     std::sort(face.begin(), face.end());
     if (std::find(seen.begin(), seen.end(), face) != seen.end()) continue;
     seen.push_back(face);

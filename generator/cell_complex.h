@@ -67,6 +67,8 @@ class ShiftLocator {
   // Index of the knot cell holding p - j, or -1 outside the support. p - j must lie on no knot
   // plane.
   int cell_at(const IntVec& j) const;
+  // The locator of p + l (integer l): the floors move by nu.l, no rational arithmetic.
+  ShiftLocator translated(const IntVec& l) const;
 
  private:
   const KnotComplex* knots_;
@@ -87,8 +89,9 @@ struct Facet {
 std::vector<Facet> facets_of(const FineCell& cell, const std::vector<IntVec>& normals);
 // The same for a cell of the knot complex (level = the knot level of the facet's plane).
 std::vector<Facet> facets_of(const FineCell& cell, const KnotPlanes& planes);
-// Affine rank of a point set (0 for one point).
-int affine_rank(const std::vector<RatVec>& points);
+// Affine rank of a point set (0 for one point), or cap if that is smaller (cap < 0: no cap). A
+// caller that knows the points lie on a plane asks only whether they span it.
+int affine_rank(const std::vector<RatVec>& points, int cap = -1);
 // Pulling triangulation of a convex cell into simplices (each n+1 vertices).
 std::vector<std::vector<RatVec>> triangulate(const FineCell& cell, const KnotComplex& complex);
 // A plane nu . x = level.

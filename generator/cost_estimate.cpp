@@ -44,8 +44,9 @@ constexpr double kSecondsPerFineCell = 9.6e-7;  // translating, facets and mergi
 // (1,1,1).
 constexpr double kSecondsPerCubeCell3D = 1.0e-4;
 // The process's own start and the smallest derivations (the hat measures 0.003 s of CPU): lowered
-// from 0.024 s when the small presets fell to 0.02-0.04 s (stop 16).
-constexpr double kSecondsStart = 0.006;
+// from 0.024 s when the small presets fell to 0.02-0.04 s (stop 16), and to 0.004 s (from 0.006)
+// when the hat measured 0.002 s in bench_derivation (stop 17).
+constexpr double kSecondsStart = 0.004;
 constexpr double kBytesBase = 7e6;
 constexpr double kBytesPerCoefficient =
     300;  // memoised pieces and translates per knot-cell coefficient

@@ -118,12 +118,13 @@ class Fundamental {
   }
 
   // True if the spline has one polynomial on a fine cell (located by at_a) and on its neighbour
-  // across facet f, the fine cell b translated by l: the same terms M(u - j) on both. A term can
+  // across facet f, the fine cell b (located by at_cell_b) translated by l: the same terms
+  // M(u - j) on both. A term can
   // differ only where the facet's plane nu.u = level, moved by -j, is a knot plane of M_Xi, i.e.
   // nu.j = level - L for a knot level L (docs/design.md §7); for every other j the two cells
   // minus j are neighbours inside one knot cell (or both outside the support), so only the j on
   // those few planes are compared, not the whole stencil.
-  bool same_spline_piece(const ShiftLocator& at_a, const FineCell& b, const IntVec& l,
+  bool same_spline_piece(const ShiftLocator& at_a, const ShiftLocator& at_cell_b, const IntVec& l,
                          const Facet& f) const {
     const int k = knot_normal_of_[static_cast<size_t>(f.normal)];
     if (k < 0) return true;  // an axis that is no knot normal: no knot plane lies on the facet
@@ -132,11 +133,7 @@ class Fundamental {
     for (const auto level : form_.knots.planes().levels[static_cast<size_t>(k)]) {
       const auto on_plane = by_level.find(f.level - level);
       if (on_plane == by_level.end()) continue;
-      if (!at_b) {
-        RatVec b_point = b.interior;
-        for (int i = 0; i < n_; ++i) b_point[i] = b_point[i] + Rational(l[i]);
-        at_b.emplace(form_.knots, b_point);
-      }
+      if (!at_b) at_b.emplace(at_cell_b.translated(l));
       for (const int p : on_plane->second) {
         const IntVec& j = near_points_[static_cast<size_t>(p)];
         const int ka = at_a.cell_at(j), kb = at_b->cell_at(j);
@@ -204,6 +201,9 @@ std::vector<SplineRegion> merge_regions(Fundamental& fund, const RatVec& c, int 
   auto& cells = fund.cells();
   std::vector<std::optional<IntVec>> placed(cells.size());
   std::vector<SplineRegion> regions;
+  std::vector<ShiftLocator> locators;  // each cell's, made once (a neighbour's is translated)
+  locators.reserve(cells.size());
+  for (const auto& fc : cells) locators.emplace_back(fund.form().knots, fc.cell.interior);
   for (size_t start = 0; start < cells.size(); ++start) {
     if (placed[start]) continue;
     SplineRegion region;
@@ -222,13 +222,12 @@ std::vector<SplineRegion> merge_regions(Fundamental& fund, const RatVec& c, int 
         for (int k = 0; k < n; ++k) x[k] = v[k] + Rational(p[k]) - c[k];
         all_vertices.push_back(std::move(x));
       }
-      const ShiftLocator at_cell(fund.form().knots, cells[i].cell.interior);
       for (const auto& f : facets_of(cells[i].cell, fund.normals())) {
         CellKey other = cells[i].cell.key;
         other[f.normal] += f.upper ? 1 : -1;
         const IntVec& nu = fund.normals()[f.normal];
         auto [j, l] = fund.locate(other);
-        if (!fund.same_spline_piece(at_cell, cells[j].cell, l, f)) {
+        if (!fund.same_spline_piece(locators[i], locators[j], l, f)) {
           add_unique_plane(region.planes,
                            {nu, Rational(f.level) + Rational(dot(nu, p)) - dot(nu, c)});
           continue;
