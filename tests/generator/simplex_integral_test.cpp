@@ -61,7 +61,7 @@ TEST(SimplexIntegral, RationalTetrahedraAgainstTheAffineSubstitution) {
     const Poly q = p.composed_affine(rows, v[0]);
     Rational standard = 0;
     for (const auto& e : monomial_exponents(3, q.capacity())) {
-      const Rational c = q.coefficient(e);
+      const Rational& c = q.coefficient(e);
       if (cln::zerop(c)) continue;
       // integral of t^e over the standard simplex: e0! e1! e2! / (|e| + 3)!
       Integer num = 1, den = 1;

@@ -49,87 +49,95 @@ TEST(SplineRegions, PartitionOfUnityHoldsAndItsCheckCanFail) {
   EXPECT_THROW(check_partition_of_unity(broken, a.structure), InternalError);
 }
 
+// The whole stencil at a point u, found by locating u - j for every lattice point j of the
+// support's box, as the map j + placement -> polynomial.
+using Terms = std::map<IntVec, const Poly*>;
+Terms terms_at(const PiecewiseForm& form, const RatVec& u, const IntVec& placement) {
+  const int n = form.dimension();
+  IntVec lo(n), hi(n);
+  for (int i = 0; i < n; ++i) {
+    const std::int64_t corner = floor_to_int64(u[i]);
+    lo[i] = corner - form.complex.hi()[i];
+    hi[i] = corner - form.complex.lo()[i] + 1;
+  }
+  Terms out;
+  for (const auto& j : form.spec.lattice.points_in_box(lo, hi)) {
+    RatVec q = u;
+    for (int i = 0; i < n; ++i) q[i] = q[i] - Rational(j[i]);
+    const int k = form.knots.locate(q);
+    if (k < 0 || form.polys[k].is_zero()) continue;
+    IntVec placed = j;
+    for (int i = 0; i < n; ++i) placed[i] += placement[i];
+    out.emplace(placed, &form.polys[k]);
+  }
+  return out;
+}
+
+bool same_terms(const Terms& x, const Terms& y) {
+  if (x.size() != y.size()) return false;
+  for (auto p = x.begin(), q = y.begin(); p != x.end(); ++p, ++q)
+    if (p->first != q->first || *p->second != *q->second) return false;
+  return true;
+}
+
+// Strictly inside a region's convex polytope (centred frame): on its centroid's side of every
+// boundary plane.
+bool inside(const SplineRegion& region, const RatVec& x) {
+  for (const auto& pl : region.planes) {
+    const Rational at = dot(pl.nu, x) - pl.level;
+    const Rational centre = dot(pl.nu, region.centroid) - pl.level;
+    if (cln::zerop(at) || cln::minusp(at) != cln::minusp(centre)) return false;
+  }
+  return true;
+}
+
+// A point of the neighbour across facet f of a fine cell: beyond the facet's centre, as near as
+// it takes for its floor key to be the cell's with the facet's entry moved by one.
+std::optional<RatVec> point_across(const FineCell& cell, const Facet& f,
+                                   const std::vector<IntVec>& normals) {
+  const int n = static_cast<int>(cell.interior.size());
+  RatVec mid(n, Rational(0));
+  for (const auto& v : f.vertices)
+    for (int i = 0; i < n; ++i) mid[i] = mid[i] + v[i] / Rational(long(f.vertices.size()));
+  CellKey expected = cell.key;
+  expected[static_cast<size_t>(f.normal)] += f.upper ? 1 : -1;
+  for (Rational step = Rational(1) / 8; step > Rational(1) / 1048576; step = step / 2) {
+    RatVec across = mid;
+    for (int i = 0; i < n; ++i) across[i] = across[i] + (mid[i] - cell.interior[i]) * step;
+    bool on_a_plane = false;
+    for (const auto& nu : normals) on_a_plane = on_a_plane || is_integer(dot(nu, across));
+    if (!on_a_plane && floor_key(normals, across) == expected) return across;
+  }
+  return std::nullopt;
+}
+
 // The regions are merged by comparing only the terms on a facet's knot planes. Checked here
-// against every term: the whole stencil at a point u, found by locating u - j for every lattice
-// point j of the support's box, as the map j + placement -> polynomial. Every fine cell of a
-// region must have its region's map; and across every facet of every fine cell, the neighbour
-// has the same map exactly when it lies in the same region (else the merge joined too much or
-// stopped early). 2-D with long directions, a 3-D skewed matrix, and M7 on BCC.
+// against every term: every fine cell of a region must have its region's map; and across every
+// facet of every fine cell, the neighbour has the same map exactly when it lies in the same region
+// (else the merge joined too much or stopped early). 2-D with long directions, a 3-D skewed
+// matrix, and M7 on BCC.
 TEST(SplineRegions, RegionsAreTheMaximalSetsOfCellsWithTheSameTerms) {
   for (const char* text : {"9,1; 1,9; 4,3; -5,2", "2,1,0; 0,2,1; 1,0,2; 1,1,1", "m7"}) {
     AnalysisOptions options;
     options.verify = false;
     const Analysis a = analyze(parse_spec(text), options);
-    const PiecewiseForm& form = a.form;
     const SplineStructure& s = a.structure;
-    const int n = form.dimension();
-    const auto& normals = form.complex.normals();
-    using Terms = std::map<IntVec, const Poly*>;
-    auto terms_at = [&](const RatVec& u, const IntVec& placement) {
-      IntVec lo(n), hi(n);
-      for (int i = 0; i < n; ++i) {
-        const std::int64_t corner = floor_to_int64(u[i]);
-        lo[i] = corner - form.complex.hi()[i];
-        hi[i] = corner - form.complex.lo()[i] + 1;
-      }
-      Terms out;
-      for (const auto& j : form.spec.lattice.points_in_box(lo, hi)) {
-        RatVec q = u;
-        for (int i = 0; i < n; ++i) q[i] = q[i] - Rational(j[i]);
-        const int k = form.knots.locate(q);
-        if (k < 0 || form.polys[k].is_zero()) continue;
-        IntVec placed = j;
-        for (int i = 0; i < n; ++i) placed[i] += placement[i];
-        out.emplace(placed, &form.polys[k]);
-      }
-      return out;
-    };
-    auto same = [](const Terms& x, const Terms& y) {
-      if (x.size() != y.size()) return false;
-      for (auto p = x.begin(), q = y.begin(); p != x.end(); ++p, ++q)
-        if (p->first != q->first || *p->second != *q->second) return false;
-      return true;
-    };
-    // Strictly inside region r's convex polytope (centred frame): on its centroid's side of
-    // every boundary plane.
-    auto inside = [&](size_t r, const RatVec& x) {
-      for (const auto& pl : s.regions[r].planes) {
-        const Rational at = dot(pl.nu, x) - pl.level;
-        const Rational mid = dot(pl.nu, s.regions[r].centroid) - pl.level;
-        if (cln::zerop(at) || cln::minusp(at) != cln::minusp(mid)) return false;
-      }
-      return true;
-    };
+    const int n = a.form.dimension();
     std::vector<std::optional<Terms>> region_terms(s.regions.size());
     size_t facets = 0;
     for (const auto& fc : s.cells) {
       const auto r = static_cast<size_t>(fc.region);
-      const Terms here = terms_at(fc.cell.interior, fc.placement);
-      if (!region_terms[r])
-        region_terms[r] = here;
-      else
-        EXPECT_TRUE(same(*region_terms[r], here)) << text << ": a cell of region " << r;
-      for (const auto& f : facets_of(fc.cell, normals)) {
-        // A point of the neighbour across f: beyond the facet's centre, as near as it takes for
-        // its floor key to be the cell's with the facet's entry moved by one.
-        RatVec mid(n, Rational(0));
-        for (const auto& v : f.vertices)
-          for (int i = 0; i < n; ++i) mid[i] = mid[i] + v[i] / Rational(long(f.vertices.size()));
-        CellKey expected = fc.cell.key;
-        expected[static_cast<size_t>(f.normal)] += f.upper ? 1 : -1;
-        RatVec across;
-        for (Rational step = Rational(1) / 8;; step = step / 2) {
-          across = mid;
-          for (int i = 0; i < n; ++i) across[i] = across[i] + (mid[i] - fc.cell.interior[i]) * step;
-          bool on_a_plane = false;
-          for (const auto& nu : normals) on_a_plane = on_a_plane || is_integer(dot(nu, across));
-          if (!on_a_plane && floor_key(normals, across) == expected) break;
-          ASSERT_GT(step, Rational(1) / 1048576) << text;
-        }
+      const Terms here = terms_at(a.form, fc.cell.interior, fc.placement);
+      if (!region_terms[r]) region_terms[r] = here;
+      EXPECT_TRUE(same_terms(*region_terms[r], here)) << text << ": a cell of region " << r;
+      for (const auto& f : facets_of(fc.cell, a.form.complex.normals())) {
+        const auto across = point_across(fc.cell, f, a.form.complex.normals());
+        ASSERT_TRUE(across.has_value()) << text;
         RatVec centred(n);
         for (int i = 0; i < n; ++i)
-          centred[i] = across[i] + Rational(fc.placement[i]) - s.centre[i];
-        EXPECT_EQ(same(terms_at(across, fc.placement), here), inside(r, centred))
+          centred[i] = (*across)[i] + Rational(fc.placement[i]) - s.centre[i];
+        EXPECT_EQ(same_terms(terms_at(a.form, *across, fc.placement), here),
+                  inside(s.regions[r], centred))
             << text << ": a facet of region " << r;
         ++facets;
       }
