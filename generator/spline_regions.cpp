@@ -74,17 +74,18 @@ class Fundamental {
     }
     // The lattice points any cube of F or next to it may fetch, enumerated once and grouped, per
     // knot normal, by nu . j (same_spline_piece looks up the points on a few planes).
-    corner_lo_ = corner_hi_ =
+    IntVec corner_lo, corner_hi;  // range of the cubes of F
+    corner_lo = corner_hi =
         IntVec(cells_.front().cell.key.begin(), cells_.front().cell.key.begin() + n_);
     for (const auto& fc : cells_)
       for (int i = 0; i < n_; ++i) {
-        corner_lo_[i] = std::min<std::int64_t>(corner_lo_[i], fc.cell.key[i]);
-        corner_hi_[i] = std::max<std::int64_t>(corner_hi_[i], fc.cell.key[i]);
+        corner_lo[i] = std::min<std::int64_t>(corner_lo[i], fc.cell.key[i]);
+        corner_hi[i] = std::max<std::int64_t>(corner_hi[i], fc.cell.key[i]);
       }
     IntVec lo(n_), hi(n_);
     for (int i = 0; i < n_; ++i) {
-      lo[i] = corner_lo_[i] - form.complex.hi()[i];
-      hi[i] = corner_hi_[i] - form.complex.lo()[i] + 1;
+      lo[i] = corner_lo[i] - form.complex.hi()[i];
+      hi[i] = corner_hi[i] - form.complex.lo()[i] + 1;
     }
     near_points_ = form.spec.lattice.points_in_box(lo, hi);
     const auto& knot_normals = form.knots.planes().normals;
@@ -151,7 +152,6 @@ class Fundamental {
   int n_;
   std::vector<FundamentalCell> cells_;
   std::unordered_map<CellKey, int, CellKeyHash> index_;
-  IntVec corner_lo_, corner_hi_;     // range of the cubes of F
   std::vector<IntVec> near_points_;  // lattice points any of them may fetch (margin 1)
   std::vector<std::unordered_map<std::int64_t, std::vector<int>>> points_by_level_;
   std::vector<int> knot_normal_of_;  // per fine normal: its index among the knot normals, or -1
