@@ -51,7 +51,7 @@
 #include "generator/piecewise_form.h"
 #include "runtime/reconstruction.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 constexpr double kMaxV = 1000;
@@ -371,7 +371,7 @@ TEST(EmittedThroughBatch, M8) { check_batch("m8", runtime::Filter::M8); }
 TEST(EmittedThroughBatch, M12) { check_batch("m12", runtime::Filter::M12); }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator
 
 namespace {
 
