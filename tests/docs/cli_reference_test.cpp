@@ -120,6 +120,14 @@ std::string help_of(const std::string& exe, const std::vector<std::string>& args
   return r.out;
 }
 
+// The parts of a message, joined (one string, no temporaries per part).
+template <class... Parts>
+std::string concat(const Parts&... parts) {
+  std::string out;
+  ((out += parts), ...);
+  return out;
+}
+
 std::string join(const Names& names) {
   std::string out;
   for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
@@ -135,13 +143,13 @@ std::string compare(const std::string& command, const Names& in_help, const Name
                       std::inserter(extra, extra.end()));
   std::string problems;
   if (!missing.empty())
-    problems += "`" + command + " --help` lists " + join(missing) +
-                ", which docs/cli.md does not document: add a table row for each (its name in "
-                "backticks in the first cell) to the section headed \"`" +
-                command + "`\".\n";
+    problems += concat("`", command, " --help` lists ", join(missing),
+                       ", which docs/cli.md does not document: add a table row for each (its name "
+                       "in backticks in the first cell) to the section headed \"`",
+                       command, "`\".\n");
   if (!extra.empty())
-    problems += "docs/cli.md documents " + join(extra) + " under \"`" + command + "`\", but `" +
-                command + " --help` does not list it: remove or rename the row.\n";
+    problems += concat("docs/cli.md documents ", join(extra), " under \"`", command, "`\", but `",
+                       command, " --help` does not list it: remove or rename the row.\n");
   return problems;
 }
 
@@ -153,25 +161,24 @@ std::string check_program(const std::string& program, const std::string& exe,
   std::string problems;
   const auto own = docs.find(program);
   if (own == docs.end())
-    problems += "docs/cli.md has no section headed \"## `" + program +
-                "`\" (the program's own "
-                "options)\n";
+    problems += concat("docs/cli.md has no section headed \"## `", program,
+                       "`\" (the program's own options)\n");
   else
     problems += compare(program, help_entries(help, "Options"), own->second);
   const Names commands = help_entries(help, "Subcommands");
-  if (commands.empty()) problems += "`" + program + " --help` lists no commands\n";
+  if (commands.empty()) problems += concat("`", program, " --help` lists no commands\n");
   for (const std::string& command : commands) {
-    const std::string name = program + " " + command;
+    const std::string name = concat(program, " ", command);
     const auto section = docs.find(name);
     if (section == docs.end()) {
-      problems += "`" + program + " --help` lists the command `" + command +
-                  "`, but docs/cli.md has no section headed \"### `" + name +
-                  "`\": add one with a table of its options.\n";
+      problems += concat("`", program, " --help` lists the command `", command,
+                         "`, but docs/cli.md has no section headed \"### `", name,
+                         "`\": add one with a table of its options.\n");
       continue;
     }
     const std::string sub = help_of(exe, {command, "--help"});
     if (sub.empty()) {
-      problems += "`" + name + " --help` failed\n";
+      problems += concat("`", name, " --help` failed\n");
       continue;
     }
     Names in_help = help_entries(sub, "Options");
@@ -181,8 +188,8 @@ std::string check_program(const std::string& program, const std::string& exe,
   }
   for (const auto& [name, names] : docs)
     if (starts_with(name, program + " ") && !commands.count(name.substr(program.size() + 1)))
-      problems += "docs/cli.md has a section for `" + name + "`, but `" + program +
-                  " --help` lists no such command: remove the section.\n";
+      problems += concat("docs/cli.md has a section for `", name, "`, but `", program,
+                         " --help` lists no such command: remove the section.\n");
   return problems;
 }
 
