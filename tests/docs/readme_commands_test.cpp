@@ -164,5 +164,13 @@ TEST(ReadmeCommands, EveryCommandRunsAndPrintsWhatTheReadmeShows) {
   fs::remove_all(dir);
 }
 
+// The README is a user's guide (what, set-up, a tour, dependencies, links); reference and
+// measurements live in docs/ (issue 18 set the bound).
+TEST(ReadmeCommands, TheReadmeStaysAShortGuide) {
+  const auto lines = split_lines(read_text_file(std::string(BOXGEN_SOURCE_DIR) + "/README.md"));
+  EXPECT_LT(lines.size(), 350U) << "README.md has " << lines.size()
+                                << " lines: move reference material to the pages of docs/";
+}
+
 }  // namespace
 }  // namespace boxgen::test
