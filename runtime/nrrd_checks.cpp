@@ -36,6 +36,8 @@ struct Field {
 Field field_of(std::string_view line) {
   const std::size_t colon = line.find(':');
   Field f{{}, colon == std::string_view::npos ? std::string_view{} : line.substr(colon + 1)};
+  while (!f.value.empty() && std::isspace(static_cast<unsigned char>(f.value.front())))
+    f.value.remove_prefix(1);
   for (char ch : line.substr(0, colon))
     if (!std::isspace(static_cast<unsigned char>(ch)))
       f.name += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
@@ -67,7 +69,7 @@ std::string check_field(const Field& f) {
     std::string lower;
     for (char ch : f.value) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos)
-      return fmt::format("its {} '{}' hold a number that is not finite",
+      return fmt::format("its {} '{}' has a number that is not finite",
                          f.name == "spaceorigin" ? "space origin" : "space directions",
                          printable(f.value));
   }

@@ -232,36 +232,38 @@ std::string file_lattice(const Nrrd* nrrd, VolumeHeader& header) {
     return "the key/value 'lattice:=bcc|fcc|cartesian|custom' that marks a lattice volume is "
            "missing";
   const std::string value = name.value_or("cartesian");
-  try {
-    if (value == "custom") {
-      if (!rows)
-        return "its lattice is 'custom' but the key/value 'lattice_rows:=a,b,c; d,e,f; g,h,i' is "
-               "missing";
-      if (!offsets)
-        return "its lattice is 'custom' but the key/value 'coset_offsets:=(x,y,z) ...' is missing";
-    } else if (value != "bcc" && value != "fcc" && value != "cartesian") {
-      return fmt::format("its lattice is '{}', not bcc, fcc, cartesian or custom",
-                         printable(value, 40));
-    }
-    CosetLattice lattice =
-        value == "custom" ? CosetLattice::parse(*rows) : CosetLattice::parse(value);
-    if (value != "custom" && rows) {
-      const CosetLattice declared = CosetLattice::parse(*rows);
-      if (declared.name() != value)
-        return fmt::format("its lattice_rows '{}' do not generate the {} lattice",
-                           printable(*rows, 80), value);
-    }
-    if (offsets) {
-      const auto parsed = parse_offsets(*offsets);
-      if (!parsed)
-        return fmt::format("its coset_offsets '{}' are not of the form '(x,y,z) (x,y,z) ...'",
-                           printable(*offsets, 80));
-      lattice = lattice.with_offsets(*parsed);
-    }
-    header.lattice = lattice;
-  } catch (const std::invalid_argument& e) {
-    return printable(e.what());
+  if (value == "custom") {
+    if (!rows)
+      return "its lattice is 'custom' but the key/value 'lattice_rows:=a,b,c; d,e,f; g,h,i' is "
+             "missing";
+    if (!offsets)
+      return "its lattice is 'custom' but the key/value 'coset_offsets:=(x,y,z) ...' is missing";
+  } else if (value != "bcc" && value != "fcc" && value != "cartesian") {
+    return fmt::format("its lattice is '{}', not bcc, fcc, cartesian or custom",
+                       printable(value, 40));
   }
+  std::optional<CosetLattice> declared;
+  try {
+    if (rows) declared = CosetLattice::parse(*rows);
+  } catch (const std::invalid_argument& e) {
+    return "its lattice_rows are no lattice: " + printable(e.what());
+  }
+  if (value != "custom" && declared && declared->name() != value)
+    return fmt::format("its lattice_rows '{}' do not generate the {} lattice", printable(*rows, 80),
+                       value);
+  CosetLattice lattice = value == "custom" ? *declared : CosetLattice::parse(value);
+  if (offsets) {
+    const auto parsed = parse_offsets(*offsets);
+    if (!parsed)
+      return fmt::format("its coset_offsets '{}' are not of the form '(x,y,z) (x,y,z) ...'",
+                         printable(*offsets, 80));
+    try {
+      lattice = lattice.with_offsets(*parsed);
+    } catch (const std::invalid_argument& e) {
+      return "its coset_offsets do not fit its lattice: " + printable(e.what());
+    }
+  }
+  header.lattice = lattice;
   return {};
 }
 

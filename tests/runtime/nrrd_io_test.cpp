@@ -4,13 +4,17 @@
 #include "tests/support/scratch_directory.h"
 
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <teem/biff.h>
 #include <teem/nrrd.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <bit>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -665,6 +669,93 @@ TEST_F(BccNrrd, ReplacingAFileKeepsItsPermissions) {
   write_lattice_nrrd(file("v.nrrd"), v);
   EXPECT_EQ(fs::status(file("v.nrrd")).permissions() & fs::perms::mask,
             fs::perms::owner_read | fs::perms::owner_write | fs::perms::others_read);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Faults a hostile trial found (issue 19, items 1, 12, 13)
+
+// A BCC file whose cosets are stored odd first, and says so, is that volume; coset offsets that
+// are not two cosets, rows that are not numbers and rows of another lattice are refused.
+TEST_F(BccNrrd, CosetOffsetsAreHonouredOrRefused) {
+  const std::vector<float> swapped = {-2, 1.5f, 8, 0.25f};  // kValues with the cosets exchanged
+  write_bytes(file("swapped.nrrd"),
+              replace(base_header(), "lattice:=bcc\n", "lattice:=bcc\ncoset_offsets:=(1,1,1) (0,0,0)\n") +
+                  raw_floats(swapped));
+  write_bytes(file("usual.nrrd"), base_header() + raw_floats(kValues));
+  const auto usual = read_bcc<float>(file("usual.nrrd"));
+  const auto v = read_bcc<float>(file("swapped.nrrd"));
+  EXPECT_EQ(v.lattice().offsets(), (std::vector<Offset>{{1, 1, 1}, {0, 0, 0}}));
+  for (const LatticePoint& p : {LatticePoint{0, 0, 0}, LatticePoint{1, 1, 1}, LatticePoint{2, 0, 0},
+                                LatticePoint{3, 1, 1}})
+    EXPECT_EQ(v.value(p), usual.value(p)) << p[0] << " " << p[1] << " " << p[2];
+  for (const char* keys : {"coset_offsets:=(0,0,0) (0,0,0)\n", "lattice_rows:=a,b,c\n",
+                           "lattice_rows:=1,0,0; 0,1,0; 0,0,1\n", "coset_offsets:=(0,0,0)\n",
+                           "coset_offsets:=(0,0,0) (1,1,0)\n"}) {
+    write_bytes(file("bad.nrrd"),
+                replace(base_header(), "lattice:=bcc\n", std::string("lattice:=bcc\n") + keys) +
+                    raw_floats(kValues));
+    EXPECT_THROW((void)read_bcc<float>(file("bad.nrrd")), NrrdError) << keys;
+  }
+}
+
+// What Teem would say about these headers ("existance of all space vector coefficients must be
+// consistent", "axis 1 size is zero!") or silently get wrong ("23.5" read as 23) is said in the
+// project's words, and the file refused.
+TEST_F(BccNrrd, TeemsWordsDoNotReachTheUser) {
+  const struct {
+    const char* from;
+    const char* to;
+    const char* said;
+  } cases[] = {
+      {"space origin: (1,2,3)", "space origin: (nan,2,3)", "not finite"},
+      {"sizes: 2 2 1 1", "sizes: 2 -3 1 1", "positive integers"},
+      {"sizes: 2 2 1 1", "sizes: 2 2.5 1 1", "positive integers"},
+      {"sizes: 2 2 1 1", "sizes: 2 1.5 1 1", "positive integers"},
+  };
+  for (const auto& c : cases) {
+    write_bytes(file("bad.nrrd"), replace(base_header(), c.from, c.to) + raw_floats(kValues));
+    const std::string message = read_error(file("bad.nrrd"));
+    EXPECT_NE(message.find(c.said), std::string::npos) << c.to << ": " << message;
+    for (const char* teem : {"existance", "size is zero", "[nrrd]", "_nrrd"})
+      EXPECT_EQ(message.find(teem), std::string::npos) << c.to << ": " << message;
+  }
+}
+
+// A write that the file system stops (here a file size limit, as a full disk does) is one line
+// in the project's words, and leaves nothing behind.
+TEST_F(BccNrrd, AFailedWriteIsSaidInOurWords) {
+  const LatticeVolume<double> v = random_volume<double>({16, 16, 16}, 0.5, {0, 0, 0}, 3);
+  int pipe_fds[2];
+  ASSERT_EQ(::pipe(pipe_fds), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {  // 64 KiB of samples against a limit of 8 KiB
+    ::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{8192, 8192};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    std::string message = "no error";
+    try {
+      write_lattice_nrrd(file("big.nrrd"), v);
+    } catch (const NrrdError& e) {
+      message = e.what();
+    }
+    (void)!::write(pipe_fds[1], message.data(), message.size());
+    ::_exit(0);
+  }
+  ::close(pipe_fds[1]);
+  std::string message;
+  char buffer[512];
+  for (ssize_t got; (got = ::read(pipe_fds[0], buffer, sizeof buffer)) > 0;)
+    message.append(buffer, static_cast<std::size_t>(got));
+  ::close(pipe_fds[0]);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  EXPECT_NE(message.find("cannot write"), std::string::npos) << message;
+  EXPECT_NE(message.find(std::strerror(EFBIG)), std::string::npos) << message;
+  EXPECT_EQ(message.find("fwrite"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(file("big.nrrd")));
+  EXPECT_TRUE(fs::is_empty(dir_)) << "a temporary file was left behind";
 }
 
 }  // namespace
