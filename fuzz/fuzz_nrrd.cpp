@@ -37,12 +37,12 @@ const std::filesystem::path& input_path() {
 }
 
 // Keep what a small input can make us allocate far below libFuzzer's memory limit.
-constexpr NrrdReadLimits kLimits{std::uint64_t{1} << 24};
+const NrrdReadLimits kLimits{std::uint64_t{1} << 24, false, std::nullopt};
 
 template <class T>
 void read_or_nrrd_error(const std::filesystem::path& path) {
   try {
-    const BccVolume<T> v = read_bcc_nrrd<T>(path, kLimits);
+    const LatticeVolume<T> v = read_lattice_nrrd<T>(path, kLimits);
     const Sizes& n = v.sizes();
     require(n[0] >= 1 && n[1] >= 1 && n[2] >= 1, "sizes at least 1");
     require(v.sample_count() == 2 * static_cast<std::size_t>(n[0]) * n[1] * n[2],

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "runtime/bcc_volume.h"
+#include "runtime/lattice_volume.h"
 
 namespace boxgen::runtime {
 

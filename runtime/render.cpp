@@ -102,8 +102,7 @@ RayCaster::RayCaster(const Reconstructor<double>& spline, const Box& box, double
                      bool cutaway, bool curvature)
     : RayCaster(
           [&spline](const Vec3& p, Vec3* gradient, Hessian* hessian) {
-            return hessian ? spline.value_gradient_hessian(p, *gradient, *hessian)
-                           : spline.value(p, gradient);
+            return spline.value(p, gradient, hessian);
           },
           box, iso, step, cutaway, curvature) {}
 
@@ -292,20 +291,9 @@ RgbBuffer render_with(const SplineFunction& spline, double spacing, const Box& b
 
 }  // namespace
 
-RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box& box,
-                            const RenderOptions& o) {
+RgbBuffer render_isosurface(const LatticeVolume<double>& volume, const SplineFilter& f,
+                            const Box& box, const RenderOptions& o) {
   const Reconstructor<double> spline(volume, f);
-  return render_with(
-      [&spline](const Vec3& p, Vec3* gradient, Hessian* hessian) {
-        return hessian ? spline.value_gradient_hessian(p, *gradient, *hessian)
-                       : spline.value(p, gradient);
-      },
-      volume.spacing(), box, o);
-}
-
-RgbBuffer render_isosurface(const LatticeVolume<double>& volume, RegistryFilter f, const Box& box,
-                            const RenderOptions& o) {
-  const RegistryReconstructor<double> spline(volume, f);
   return render_with([&spline](const Vec3& p, Vec3* gradient,
                                Hessian* hessian) { return spline.value(p, gradient, hessian); },
                      volume.spacing(), box, o);
