@@ -63,7 +63,7 @@ TEST_F(BoxreconLimits, AMarchingStepWithTooManySamplesPerRayIsRefused) {
   // The box [-1,1]^3 has the diagonal 2 sqrt(3) = 3.46: 1e-300 and 1e-12 ask for 3.5e300 and
   // 3.5e12 samples per ray, beyond the bound of 65536.
   for (const std::string step : {"1e-300", "1e-12"}) {
-    refused({"render", "--function", "sphere", "--n", "8", "--width", "64", "--height", "64",
+    refused({"render", "--function", "ml", "--n", "8", "--width", "64", "--height", "64",
              "--step", step, "-o", file("r.png")},
             {"samples per ray", "65536"});
     EXPECT_FALSE(std::filesystem::exists(file("r.png")));
