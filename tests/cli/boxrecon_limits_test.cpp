@@ -94,5 +94,31 @@ TEST_F(BoxreconLimits, SizesBeyondMemoryAreRefusedNamingTheSizeNeeded) {
   refused({"bench", "--points", "1000000000"}, {"--points 1000000000", "GiB"});
 }
 
+// A full disk while a file is written: one line in the project's words with the system's reason,
+// exit 1, no file and no temporary left. A file size limit stands in for the full disk (the write
+// fails with EFBIG; SIGXFSZ is ignored, as the shell's trap leaves it for the exec'd program).
+TEST_F(BoxreconLimits, AFullDiskIsAnOutputErrorInOurWords) {
+  const std::vector<std::vector<std::string>> writers = {
+      {BOXRECON_EXE, "render", "--function", "sphere", "--n", "8", "--width", "64", "--height",
+       "64", "-o", file("r.png")},
+      {BOXRECON_EXE, "sample", "--function", "cubic", "--n", "12", "-o", file("v.nrrd")},
+      {BOXGEN_EXE, "spectrum", "m7", "--plane", "1,0,0", "--size", "64", "-o", file("p.png")}};
+  for (const auto& command : writers) {
+    std::vector<std::string> args = {"-c", "trap '' XFSZ; ulimit -f 1; exec \"$0\" \"$@\""};
+    args.insert(args.end(), command.begin(), command.end());
+    const ProcessResult r = run_process("/bin/sh", args, std::chrono::seconds(60 * kSlowdown));
+    const std::string what = describe(command, r);
+    ASSERT_TRUE(r.exited) << what;
+    EXPECT_EQ(r.exit_code, 1) << what;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what;
+    EXPECT_NE(lower(r.err).find("file too large"), std::string::npos) << what;
+    EXPECT_EQ(lower(r.err).find("fwrite"), std::string::npos) << what;  // no library's words
+    EXPECT_EQ(lower(r.err).find("internal"), std::string::npos) << what;
+    std::size_t left = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir_)) ++left;
+    EXPECT_EQ(left, 0u) << what;
+  }
+}
+
 }  // namespace
 }  // namespace boxgen::test
