@@ -1,12 +1,17 @@
 // boxrecon's bounds on work and memory (issue 19, items 4-6): arguments inside their allowed
 // ranges that once ran for ever or died of std::bad_alloc (exit 3) are refused up front with one
 // line naming the bound and the size asked for, exit 1, within seconds.
+#include <fcntl.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
+#include <csignal>
 #include <cstdint>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -63,8 +68,8 @@ TEST_F(BoxreconLimits, AMarchingStepWithTooManySamplesPerRayIsRefused) {
   // The box [-1,1]^3 has the diagonal 2 sqrt(3) = 3.46: 1e-300 and 1e-12 ask for 3.5e300 and
   // 3.5e12 samples per ray, beyond the bound of 65536.
   for (const std::string step : {"1e-300", "1e-12"}) {
-    refused({"render", "--function", "ml", "--n", "8", "--width", "64", "--height", "64",
-             "--step", step, "-o", file("r.png")},
+    refused({"render", "--function", "ml", "--n", "8", "--width", "64", "--height", "64", "--step",
+             step, "-o", file("r.png")},
             {"samples per ray", "65536"});
     EXPECT_FALSE(std::filesystem::exists(file("r.png")));
   }
@@ -117,6 +122,51 @@ TEST_F(BoxreconLimits, AFullDiskIsAnOutputErrorInOurWords) {
     std::size_t left = 0;
     for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir_)) ++left;
     EXPECT_EQ(left, 0u) << what;
+  }
+}
+
+// SIGINT while resample writes its output: the temporary is removed, the old output stays.
+TEST_F(BoxreconLimits, AnInterruptedWriteLeavesNoTemporary) {
+  const ProcessResult made = boxrecon(
+      {"sample", "--function", "cubic", "--n", "12", "--filter", "m7", "-o", file("v.nrrd")});
+  ASSERT_TRUE(made.exited && made.exit_code == 0) << describe({"sample"}, made);
+  { std::ofstream(file("out.nrrd")) << "old"; }
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_RDWR);
+    ::dup2(null, 0);
+    ::dup2(null, 1);
+    ::dup2(null, 2);
+    ::execl(BOXRECON_EXE, BOXRECON_EXE, "resample", "--filter", "m7", "--volume",
+            file("v.nrrd").c_str(), "--n", "300", "--precision", "float", "-o",
+            file("out.nrrd").c_str(), nullptr);
+    ::_exit(127);
+  }
+  // Wait for the temporary to appear, then interrupt.
+  const auto temporary_exists = [&] {
+    for (const auto& e : std::filesystem::directory_iterator(dir_))
+      if (e.path().filename().string().rfind(".out.nrrd.tmp-", 0) == 0) return true;
+    return false;
+  };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120 * kSlowdown);
+  bool seen = false;
+  int status = 0;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if ((seen = temporary_exists())) break;
+    if (::waitpid(pid, &status, WNOHANG) == pid) break;  // finished before we saw it
+    ::usleep(500);
+  }
+  if (seen) {
+    ::kill(pid, SIGINT);
+    ::waitpid(pid, &status, 0);
+  }
+  ASSERT_TRUE(seen) << "the temporary never appeared";
+  EXPECT_FALSE(temporary_exists()) << "SIGINT left the temporary behind";
+  if (WIFSIGNALED(status)) {
+    EXPECT_EQ(WTERMSIG(status), SIGINT);
+    std::ifstream in(file("out.nrrd"));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text, "old");
   }
 }
 
