@@ -54,9 +54,14 @@ struct RayHit {
 // units) where the pointers are not null; a Reconstructor<double> gives one.
 using SplineFunction = std::function<double(const Vec3&, Vec3*, Hessian*)>;
 
+// The most samples a ray may take across the box (its diagonal divided by the step): 2^16, about
+// 300 times the default step's count on a 64^3 volume.
+inline constexpr std::int64_t kMaxStepsPerRay = std::int64_t{1} << 16;
+
 class RayCaster {
  public:
-  // Throws std::invalid_argument for a non-finite iso, a step <= 0 or an empty box.
+  // Throws std::invalid_argument for a non-finite iso, a step <= 0, a step that gives more than
+  // kMaxStepsPerRay samples across the box's diagonal, or an empty box.
   RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step,
             bool cutaway, bool curvature = false);
   RayCaster(SplineFunction spline, const Box& box, double iso, double step, bool cutaway,

@@ -8,6 +8,7 @@
 //   2 threads over 1 (BOXGEN_THREADS-style cap through set_batch_threads).
 // Every ratio is measured in this run; the fastest of `repeats` runs counts.
 #include "apps/boxrecon/cmd_bench.h"
+#include "apps/boxrecon/input_checks.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -83,7 +84,8 @@ std::vector<Vec3> ray_points(int n, long count) {
 // The fetch floor of a filter: per point the corner floor(x + c) and its base index (as the
 // runtime computes them), then kStencilSize samples at fixed precomputed offsets, summed.
 template <class Tr, class T>
-void fetch_floor(const LatticeVolume<T>& volume, const std::vector<Vec3>& points, std::vector<T>& out) {
+void fetch_floor(const LatticeVolume<T>& volume, const std::vector<Vec3>& points,
+                 std::vector<T>& out) {
   const std::int64_t n0 = volume.sizes()[0], n1 = volume.sizes()[1];
   std::vector<std::int64_t> offsets(Tr::kStencilSize);
   for (int k = 0; k < Tr::kStencilSize; ++k) {
@@ -119,8 +121,8 @@ double floor_seconds(const char* f, const LatticeVolume<T>& volume, const std::v
 }
 
 template <class T>
-double filter_seconds(const char* f, const LatticeVolume<T>& volume, const std::vector<Vec3>& points,
-                      int repeats) {
+double filter_seconds(const char* f, const LatticeVolume<T>& volume,
+                      const std::vector<Vec3>& points, int repeats) {
   std::vector<T> values(points.size());
   const Reconstructor<T> r(volume, SplineFilter::parse(f));
   return fastest_seconds(repeats, [&] { r.evaluate(points, values); });
@@ -164,6 +166,9 @@ Row table2_row(int n, long count, int repeats) {
 
 int run_bench(const BenchOptions& o) {
   const long count = o.points > 0 ? o.points : (o.quick ? 200000 : 10000000);
+  // Random and ray points (Vec3 each) and one value per point, in double at most.
+  boxgen::app::check_memory(static_cast<std::uint64_t>(count), 2 * sizeof(Vec3) + sizeof(double),
+                            fmt::format("--points {}", count), "points");
   const auto per_point = [count](double seconds) {
     return 1e9 * seconds / static_cast<double>(count);
   };

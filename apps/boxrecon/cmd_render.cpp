@@ -1,4 +1,5 @@
 #include "apps/boxrecon/cmd_render.h"
+#include "apps/boxrecon/input_checks.h"
 
 #include <fmt/format.h>
 
@@ -40,11 +41,16 @@ RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, const RenderO
   (void)boxgen::app::lattice_for(rf, args.lattice);
   NrrdReadLimits on_lattice;
   on_lattice.lattice = rf.lattice();
+  const auto sampled = [&] {
+    const LatticeGrid grid = cube_lattice_grid(rf.lattice(), args.n, rf.required_margin(q));
+    // The samples, and the prefiltered copy beside them.
+    boxgen::app::check_volume_memory(static_cast<std::uint64_t>(rf.lattice().coset_count()) *
+                                         grid.sizes[0] * grid.sizes[1] * grid.sizes[2],
+                                     2 * sizeof(double), fmt::format("--n {}", args.n));
+    return sample_lattice<double>(find_test_function(args.function).value, grid);
+  };
   LatticeVolume<double> volume =
-      args.volume.empty()
-          ? sample_lattice<double>(find_test_function(args.function).value,
-                                   cube_lattice_grid(rf.lattice(), args.n, rf.required_margin(q)))
-          : read_lattice_nrrd<double>(args.volume, on_lattice);
+      args.volume.empty() ? sampled() : read_lattice_nrrd<double>(args.volume, on_lattice);
   rf.check_lattice(volume.lattice());
   if (q != PrefilterChoice::None) volume = prefilter(volume, rf.prefilter(q));
   const Box box = args.volume.empty() ? cube : default_box(volume, rf);
