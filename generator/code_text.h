@@ -9,7 +9,7 @@
 #include "generator/polynomial_code.h"
 #include "generator/rational.h"
 
-namespace boxgen::code {
+namespace boxgen::generator::code {
 
 // A double literal that round-trips (17 significant digits).
 inline std::string literal(const Rational& r) { return fmt::format("{:.17g}", to_double(r)); }
@@ -49,4 +49,4 @@ inline OperationCount count_operations(const std::string& text) {
   return c;
 }
 
-}  // namespace boxgen::code
+}  // namespace boxgen::generator::code

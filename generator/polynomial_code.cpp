@@ -13,7 +13,7 @@
 #include "generator/linear_cse.h"
 #include "generator/separable_form.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 using code::count_operations;
 using code::join;
@@ -810,4 +810,4 @@ OrbitCode choose_orbit_code(const ReferenceRegion& ref, int orbit, int n, int de
   return *best;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

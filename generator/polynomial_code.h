@@ -10,7 +10,7 @@
 
 #include "generator/spline_regions.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 // `monomial`: one coefficient per monomial (a linear combination of the stencil values), then a
 //   sum over a table of coordinate powers.
@@ -78,4 +78,4 @@ std::optional<OrbitCode> orbit_code(const ReferenceRegion& ref, int orbit, int n
 OrbitCode choose_orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree,
                             EmissionStrategy strategy);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "runtime/coset_lattice.h"
+#include "support/integer_math.h"
 
 namespace boxgen::runtime {
 
@@ -111,9 +112,10 @@ class LatticeVolume {
     const int c = lattice_.coset_of(p[0], p[1], p[2]);
     const Offset& o = lattice_.offsets()[static_cast<std::size_t>(c)];
     const std::int64_t d = lattice_.period();
+    using support::floor_div;
     return c + k_ * (floor_div(p[0] - o[0], d) +
-                     sizes_[0] * (floor_div(p[1] - o[1], d) +
-                                  static_cast<std::int64_t>(sizes_[1]) * floor_div(p[2] - o[2], d)));
+                     sizes_[0] * (floor_div(p[1] - o[1], d) + static_cast<std::int64_t>(sizes_[1]) *
+                                                                  floor_div(p[2] - o[2], d)));
   }
   // A lattice point the caller has shown to be inside: no check.
   T value_unchecked(const LatticePoint& p) const noexcept {
@@ -141,10 +143,6 @@ class LatticeVolume {
   }
 
  private:
-  static std::int64_t floor_div(std::int64_t a, std::int64_t b) noexcept {
-    const std::int64_t q = a / b;
-    return (a % b != 0 && a < 0) ? q - 1 : q;
-  }
   std::size_t lattice_index(std::int64_t x, std::int64_t y, std::int64_t z) const noexcept {
     return static_cast<std::size_t>(storage_offset({x, y, z}));
   }

@@ -1,7 +1,7 @@
 #include "runtime/nrrd_io.h"
 
 #include "runtime/nrrd_checks.h"
-#include "runtime/output_file.h"
+#include "support/output_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -31,6 +31,10 @@
 
 namespace boxgen::runtime {
 
+using support::check_output_file;
+using support::OutputFileError;
+using support::write_output_file;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -41,15 +45,7 @@ std::mutex& teem_mutex() {
   return mutex;
 }
 
-// Text from a file or path, made fit for a one-line message: control characters become '?',
-// and at most `limit` characters are kept.
-std::string printable(std::string_view text, std::size_t limit = 200) {
-  std::string out;
-  for (char ch : text.substr(0, limit))
-    out += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
-  if (text.size() > limit) out += "...";
-  return out;
-}
+using nrrd_checks::printable;
 
 // Teem's biff message is several lines, outermost call first ("[nrrd] nrrdRead: trouble", ...,
 // "[nrrd] _nrrdEncodingRaw_read: fread got only ..."): keep the innermost line that says
@@ -271,11 +267,11 @@ std::string file_lattice(const Nrrd* nrrd, VolumeHeader& header) {
 // `expected` needs one is refused in `expected`'s terms. Returns what it says or an error text.
 std::string check_lattice_header(const Nrrd* nrrd, const std::optional<CosetLattice>& expected,
                                  VolumeHeader& header) {
-  if (expected && !key_value(nrrd, "lattice") &&
-      (nrrd->dim != 3 || expected->coset_count() != 1)) {
+  if (expected && !key_value(nrrd, "lattice") && (nrrd->dim != 3 || expected->coset_count() != 1)) {
     if (nrrd->dim != 4)
       return fmt::format(
-          "it has dimension {}; a {} volume is a 4-D NRRD (sizes {} N0 N1 N2, the coset axis first)",
+          "it has dimension {}; a {} volume is a 4-D NRRD (sizes {} N0 N1 N2, the coset axis "
+          "first)",
           nrrd->dim, expected->name(), expected->coset_count());
     return fmt::format("the key/value 'lattice:={}' that marks a {} volume is missing",
                        expected->name(), expected->label());

@@ -8,16 +8,15 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "support/integer_math.h"
+
 namespace boxgen::runtime {
+
+using support::floor_div;
 
 namespace {
 
 constexpr int kMaxOffset = 1 << 20;
-
-std::int64_t floor_div(std::int64_t a, std::int64_t b) {
-  const std::int64_t q = a / b;
-  return (a % b != 0 && a < 0) ? q - 1 : q;
-}
 
 // delta(c, o) and the coset c' that tap o reads for output coset c (see prefilter.h).
 struct TapStep {

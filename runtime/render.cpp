@@ -100,11 +100,9 @@ bool clip_to_box(const Vec3& o, const Vec3& d, const Box& box, double& t0, doubl
 
 RayCaster::RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step,
                      bool cutaway, bool curvature)
-    : RayCaster(
-          [&spline](const Vec3& p, Vec3* gradient, Hessian* hessian) {
-            return spline.value(p, gradient, hessian);
-          },
-          box, iso, step, cutaway, curvature) {}
+    : RayCaster([&spline](const Vec3& p, Vec3* gradient,
+                          Hessian* hessian) { return spline.value(p, gradient, hessian); },
+                box, iso, step, cutaway, curvature) {}
 
 RayCaster::RayCaster(SplineFunction spline, const Box& box, double iso, double step, bool cutaway,
                      bool curvature)

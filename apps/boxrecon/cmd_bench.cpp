@@ -83,7 +83,8 @@ std::vector<Vec3> ray_points(int n, long count) {
 // The fetch floor of a filter: per point the corner floor(x + c) and its base index (as the
 // runtime computes them), then kStencilSize samples at fixed precomputed offsets, summed.
 template <class Tr, class T>
-void fetch_floor(const LatticeVolume<T>& volume, const std::vector<Vec3>& points, std::vector<T>& out) {
+void fetch_floor(const LatticeVolume<T>& volume, const std::vector<Vec3>& points,
+                 std::vector<T>& out) {
   const std::int64_t n0 = volume.sizes()[0], n1 = volume.sizes()[1];
   std::vector<std::int64_t> offsets(Tr::kStencilSize);
   for (int k = 0; k < Tr::kStencilSize; ++k) {
@@ -119,8 +120,8 @@ double floor_seconds(const char* f, const LatticeVolume<T>& volume, const std::v
 }
 
 template <class T>
-double filter_seconds(const char* f, const LatticeVolume<T>& volume, const std::vector<Vec3>& points,
-                      int repeats) {
+double filter_seconds(const char* f, const LatticeVolume<T>& volume,
+                      const std::vector<Vec3>& points, int repeats) {
   std::vector<T> values(points.size());
   const Reconstructor<T> r(volume, SplineFilter::parse(f));
   return fastest_seconds(repeats, [&] { r.evaluate(points, values); });

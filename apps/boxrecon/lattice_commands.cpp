@@ -17,12 +17,12 @@
 #include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/sample_command.h"
 #include "runtime/batch_threads.h"
-#include "runtime/output_file.h"
+#include "runtime/points_file.h"
 #include "runtime/prefilter.h"
 #include "runtime/resample.h"
-#include "runtime/points_file.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
+#include "support/output_file.h"
 
 namespace boxgen::app {
 
@@ -107,8 +107,8 @@ int run_error(const std::string& function, int n, const std::string& filter,
   const PrefilterChoice q = parse_prefilter(pre);
   if (count < 1 || count > 100000000)
     throw std::invalid_argument("--points must be between 1 and 100000000");
-  const ErrorReport report{function, filter,   pre,  n, count, seed,
-                           gradient, json,     f.lattice().name()};
+  const ErrorReport report{function,          filter, pre, n, count, seed, gradient, json,
+                           f.lattice().name()};
   if (n < 2 || n > 1024)
     throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", n));
   const CosetLattice lattice = f.lattice();

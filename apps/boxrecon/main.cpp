@@ -39,6 +39,7 @@
 #include "runtime/batch_threads.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/spline_filter.h"
+#include "support/output_file.h"
 
 namespace {
 
@@ -55,7 +56,8 @@ int exit_code_for(const std::exception& e) {
   const bool bad_input = dynamic_cast<const std::invalid_argument*>(&e) ||
                          dynamic_cast<const std::out_of_range*>(&e) ||
                          dynamic_cast<const std::domain_error*>(&e) ||
-                         dynamic_cast<const NrrdError*>(&e);
+                         dynamic_cast<const NrrdError*>(&e) ||
+                         dynamic_cast<const boxgen::support::OutputFileError*>(&e);
   return bad_input ? 1 : 3;
 }
 
@@ -141,8 +143,9 @@ int run(int argc, char** argv) {
   resample->add_option("--prefilter", pre, "none | q1 | q2");
   resample->add_option("--volume", volume, "NRRD volume on the filter's lattice")->required();
   resample->add_option("-o,--output", output, "output NRRD file (Cartesian grid)")->required();
-  resample->add_option("--n", resample_n,
-                       fmt::format("grid points per axis, 2..{} (default 64)", boxgen::app::kMaxResampleN));
+  resample->add_option(
+      "--n", resample_n,
+      fmt::format("grid points per axis, 2..{} (default 64)", boxgen::app::kMaxResampleN));
   auto* min_option = resample
                          ->add_option("--min", box_min,
                                       "X Y Z: lower corner of the box (world); default (without "
@@ -178,9 +181,8 @@ int run(int argc, char** argv) {
   try {
     if (threads > 0) set_batch_threads(threads);
     if (bench->parsed() && !bench_filter.empty())
-      return boxgen::app::run_filter_bench(SplineFilter::parse(bench_filter),
-                                           bench_options.points, bench_options.repeats,
-                                           bench_options.json);
+      return boxgen::app::run_filter_bench(SplineFilter::parse(bench_filter), bench_options.points,
+                                           bench_options.repeats, bench_options.json);
     if (bench->parsed()) return boxrecon::run_bench(bench_options);
     if (precision != "float" && precision != "double")
       throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) +
@@ -212,6 +214,7 @@ int run(int argc, char** argv) {
                  : boxgen::app::run_resample<double>(filter, pre, volume, output, resample_n,
                                                      box_min, box_max, limits);
   } catch (const std::exception& e) {
+    if (boxgen::app::is_output_error(e)) return boxgen::app::report_output_error(e, "boxrecon");
     const int code = exit_code_for(e);
     std::cerr << (code == 1 ? "boxrecon: error: " : "boxrecon: internal error: ") << e.what()
               << '\n';
@@ -222,4 +225,7 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return boxgen::app::finish(run(argc, argv), "boxrecon"); }
+int main(int argc, char** argv) {
+  boxgen::support::handle_signals();  // temporaries removed on SIGINT/SIGTERM; EPIPE, not SIGPIPE
+  return boxgen::app::finish(run(argc, argv), "boxrecon");
+}

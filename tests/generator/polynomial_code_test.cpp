@@ -8,9 +8,9 @@
 #include <regex>
 
 #include "generator/error.h"
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 TEST(PolynomialCode, StrategiesByName) {
@@ -28,7 +28,7 @@ TEST(PolynomialCode, StrategiesByName) {
 }
 
 TEST(PolynomialCode, OneFunctionPerOrbitInEachStrategy) {
-  const Analysis& a = testing::analysis_of("zp");
+  const Derivation& a = fixture::derivation_of("zp");
   const ReferenceRegion& ref = a.structure.references[0];
   const auto horner = orbit_code(ref, 0, 2, 2, EmissionStrategy::Horner);
   const auto monomial = orbit_code(ref, 0, 2, 2, EmissionStrategy::Monomial);
@@ -52,7 +52,7 @@ TEST(PolynomialCode, OneFunctionPerOrbitInEachStrategy) {
 // generator chose by its own count: here M8's, the midpoint of two vertices, since the vertex at 0
 // is the Horner form itself. Its code uses y = x - o and no other coordinates.
 TEST(PolynomialCode, ShiftedFormRecordsItsOriginAndWritesY) {
-  const Analysis& a = testing::analysis_of("m8");
+  const Derivation& a = fixture::derivation_of("m8");
   const ReferenceRegion& ref = a.structure.references[0];
   const auto shifted = orbit_code(ref, 0, 3, a.properties.degree, EmissionStrategy::Shifted);
   ASSERT_TRUE(shifted);
@@ -71,7 +71,7 @@ TEST(PolynomialCode, ShiftedFormRecordsItsOriginAndWritesY) {
 // Bernstein-Bezier code exists on simplices only: M7's tetrahedron and zp's triangle, not the
 // cubes of M12; asking for it there is an input error naming the region.
 TEST(PolynomialCode, BernsteinOnSimplicesOnly) {
-  const Analysis& m7 = testing::analysis_of("m7");
+  const Derivation& m7 = fixture::derivation_of("m7");
   const auto bb = orbit_code(m7.structure.references[0], 0, 3, 4, EmissionStrategy::Bernstein);
   ASSERT_TRUE(bb);
   // Degree 4 in 3-D: 35 BB-coefficients, de Casteljau levels of 20, 10, 4 and 1 values.
@@ -79,9 +79,9 @@ TEST(PolynomialCode, BernsteinOnSimplicesOnly) {
   EXPECT_NE(bb->text.find("const T q1_19 ="), std::string::npos);
   EXPECT_NE(bb->text.find("const T q4_0 ="), std::string::npos);
   EXPECT_NE(bb->text.find("const T l3 = x[2];"), std::string::npos) << bb->text;
-  const Analysis& zp = testing::analysis_of("zp");
+  const Derivation& zp = fixture::derivation_of("zp");
   EXPECT_TRUE(orbit_code(zp.structure.references[0], 0, 2, 2, EmissionStrategy::Bernstein));
-  const Analysis& m12 = testing::analysis_of("m12");
+  const Derivation& m12 = fixture::derivation_of("m12");
   const ReferenceRegion& cube = m12.structure.references[0];
   EXPECT_FALSE(orbit_code(cube, 0, 3, m12.properties.degree, EmissionStrategy::Bernstein));
   try {
@@ -95,7 +95,7 @@ TEST(PolynomialCode, BernsteinOnSimplicesOnly) {
 // auto weighs every applicable strategy by the value + gradient count, reports them all, and
 // takes the cheapest; on fcc6 the two orbits each get their own origin.
 TEST(PolynomialCode, AutoConsidersEveryApplicableStrategy) {
-  const Analysis& a = testing::analysis_of("fcc6");
+  const Derivation& a = fixture::derivation_of("fcc6");
   for (std::size_t o = 0; o < a.structure.references.size(); ++o) {
     const ReferenceRegion& ref = a.structure.references[o];
     const OrbitCode chosen =
@@ -118,4 +118,4 @@ TEST(PolynomialCode, AutoConsidersEveryApplicableStrategy) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator
