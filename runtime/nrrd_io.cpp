@@ -360,7 +360,7 @@ std::string teem_read(std::FILE* file, Nrrd* nrrd, bool header_only, DataLayout&
   if (!io) return "out of memory";
   io->skipData = header_only ? 1 : 0;
   if (nrrdRead(nrrd, file, io.get()) != 0) {
-    const std::string teem = teem_error();
+    std::string teem = teem_error();
     if (!header_only) return teem;
     // A header Teem cannot parse, in our words where we know Teem's phrase.
     if (teem.find("size is zero") != std::string::npos) return "its sizes must be positive";
@@ -477,7 +477,7 @@ template <class T>
 std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, const char* kind,
                            VolumeHeader& full) {
   const ReadFailure fail{kind, printable(path.string())};
-  const auto check = [&](std::string why) {
+  const auto check = [&](const std::string& why) {
     if (!why.empty()) fail(why);
   };
   std::uint64_t file_size = 0;

@@ -111,7 +111,7 @@ int run_error(const std::string& function, int n, const std::string& filter,
                            f.lattice().name()};
   if (n < 2 || n > 1024)
     throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", n));
-  const CosetLattice lattice = f.lattice();
+  const CosetLattice& lattice = f.lattice();
   const LatticeGrid grid = cube_lattice_grid(lattice, n, f.required_margin(q));
   check_volume_memory(static_cast<std::uint64_t>(lattice.coset_count()) * grid.sizes[0] *
                           grid.sizes[1] * grid.sizes[2],
@@ -159,7 +159,7 @@ int run_resample(const std::string& filter, const std::string& pre, const std::s
 
 int run_filter_bench(const SplineFilter& f, long point_count, int repeats, bool json) {
   const long count = point_count > 0 ? point_count : 1000000;
-  const CosetLattice lattice = f.lattice();
+  const CosetLattice& lattice = f.lattice();
   constexpr int kSize = 48;  // samples per coset and axis: a few MB, as a small data set
   LatticeVolume<double> volume(lattice, {kSize, kSize, kSize}, 1.0, {0, 0, 0});
   std::mt19937_64 rng(1);

@@ -189,9 +189,9 @@ TEST(NrrdChecks, ByteOrderThatTheDataContradictIsRefused) {
 }
 
 TEST(NrrdChecks, NonFiniteSamplesAreNamedByTheirPlace) {
-  std::vector<float> samples(2 * 3 * 2 * 2, 1.0f);
+  std::vector<float> samples(std::size_t{2} * 3 * 2 * 2, 1.0f);
   EXPECT_EQ(check_finite<float>(samples, 2, {3, 2, 2}), "");
-  samples[2 * (1 + 3 * (1 + 2 * 1)) + 1] = -std::numeric_limits<float>::infinity();
+  samples[std::size_t{2} * (1 + 3 * (1 + 2 * 1)) + 1] = -std::numeric_limits<float>::infinity();
   const std::string why = check_finite<float>(samples, 2, {3, 2, 2});
   EXPECT_NE(why.find("sample 21 (coset 1, 1, 1, 1) is -inf"), std::string::npos) << why;
 }
