@@ -111,15 +111,15 @@ void batch(benchmark::State& state, const char* filter) {
 void batch_float(benchmark::State& state, const char* f) { batch<float>(state, f); }
 void batch_double(benchmark::State& state, const char* f) { batch<double>(state, f); }
 
-#define BOXGEN_BATCH_BENCHMARK(F, name, T)                          \
-  BENCHMARK_CAPTURE(batch_##T, F##_##T, name)                       \
-      ->Name("batch/" #F "/" #T)                                    \
-      ->ArgName("N")                                                \
-      ->Arg(21)                                                     \
-      ->Arg(32)                                                     \
-      ->Arg(45)                                                     \
-      ->Arg(77)                                                     \
-      ->Arg(117)                                                    \
+#define BOXGEN_BATCH_BENCHMARK(F, name, T)    \
+  BENCHMARK_CAPTURE(batch_##T, F##_##T, name) \
+      ->Name("batch/" #F "/" #T)              \
+      ->ArgName("N")                          \
+      ->Arg(21)                               \
+      ->Arg(32)                               \
+      ->Arg(45)                               \
+      ->Arg(77)                               \
+      ->Arg(117)                              \
       ->Unit(benchmark::kMillisecond)
 
 BOXGEN_BATCH_BENCHMARK(M7, "m7", float);

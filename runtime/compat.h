@@ -49,9 +49,9 @@ class BccVolume : public LatticeVolume<T> {
  private:
   static LatticeVolume<T>&& checked(LatticeVolume<T>&& volume) {
     if (!(volume.lattice() == CosetLattice::bcc()))
-      throw std::invalid_argument(
-          "the volume is on the " + volume.lattice().name() + " lattice (offsets " +
-          volume.lattice().offsets_text() + "), not on BCC with offsets (0,0,0) (1,1,1)");
+      throw std::invalid_argument("the volume is on the " + volume.lattice().name() +
+                                  " lattice (offsets " + volume.lattice().offsets_text() +
+                                  "), not on BCC with offsets (0,0,0) (1,1,1)");
     return std::move(volume);
   }
 };

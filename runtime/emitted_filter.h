@@ -21,10 +21,10 @@
 #include <string_view>
 #include <utility>
 
-#include "support/evaluator_support.hpp"
 #include "runtime/emitted_spline.h"
 #include "runtime/spline_filter.h"
 #include "runtime/stencils.h"
+#include "support/evaluator_support.hpp"
 
 namespace boxgen::runtime {
 
@@ -79,8 +79,8 @@ class EmittedFilter final : public FilterSource {
     const DiscreteFilter& taps = q == PrefilterChoice::Q1 ? q1_ : q2_;
     if (taps.empty())
       throw std::invalid_argument(fmt::format(
-          "filter {} was given no prefilter {} (pass the tables of its _prefilters.hpp)",
-          Tr::kName, q == PrefilterChoice::Q1 ? "q1" : "q2"));
+          "filter {} was given no prefilter {} (pass the tables of its _prefilters.hpp)", Tr::kName,
+          q == PrefilterChoice::Q1 ? "q1" : "q2"));
     return taps;
   }
   int approximation_order() const override { return order_; }
@@ -121,7 +121,8 @@ class EmittedFilter final : public FilterSource {
 // or with the tables of its _prefilters.hpp (q1, q2, kApproximationOrder).
 template <class Tr>
 SplineFilter emitted_filter() {
-  return SplineFilter(std::make_shared<EmittedFilter<Tr>>(DiscreteFilter{}, DiscreteFilter{}, 0, -1));
+  return SplineFilter(
+      std::make_shared<EmittedFilter<Tr>>(DiscreteFilter{}, DiscreteFilter{}, 0, -1));
 }
 template <class Tr, class Tap, std::size_t N1, std::size_t N2>
 SplineFilter emitted_filter(const Tap (&q1)[N1], const Tap (&q2)[N2], int approximation_order) {

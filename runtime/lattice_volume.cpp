@@ -10,6 +10,8 @@
 
 namespace boxgen::runtime {
 
+using support::floor_div;
+
 namespace {
 
 std::uint64_t checked_count(const CosetLattice& lattice, const Sizes& sizes, double h,

@@ -112,9 +112,10 @@ class LatticeVolume {
     const int c = lattice_.coset_of(p[0], p[1], p[2]);
     const Offset& o = lattice_.offsets()[static_cast<std::size_t>(c)];
     const std::int64_t d = lattice_.period();
-    return c + k_ * (::boxgen::support::floor_div(p[0] - o[0], d) +
-                     sizes_[0] * (::boxgen::support::floor_div(p[1] - o[1], d) +
-                                  static_cast<std::int64_t>(sizes_[1]) * ::boxgen::support::floor_div(p[2] - o[2], d)));
+    using support::floor_div;
+    return c + k_ * (floor_div(p[0] - o[0], d) +
+                     sizes_[0] * (floor_div(p[1] - o[1], d) + static_cast<std::int64_t>(sizes_[1]) *
+                                                                  floor_div(p[2] - o[2], d)));
   }
   // A lattice point the caller has shown to be inside: no check.
   T value_unchecked(const LatticePoint& p) const noexcept {

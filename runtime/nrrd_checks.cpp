@@ -16,17 +16,15 @@
 
 namespace boxgen::runtime::nrrd_checks {
 
-namespace {
-
-// Text from a file made fit for a one-line message: control characters become '?', and at most
-// `limit` characters are kept.
-std::string printable(std::string_view text, std::size_t limit = 80) {
+std::string printable(std::string_view text, std::size_t limit) {
   std::string out;
   for (char ch : text.substr(0, limit))
     out += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
   if (text.size() > limit) out += "...";
   return out;
 }
+
+namespace {
 
 // A header line's field name as Teem matches it (any case, any spacing) and its value.
 struct Field {
@@ -60,18 +58,19 @@ std::string check_field(const Field& f) {
         return std::isdigit(static_cast<unsigned char>(c)) != 0;
       });
       if (!token.empty() && (!digits || token.find_first_not_of('0') == std::string_view::npos))
-        return fmt::format("its sizes '{}' are not all positive integers ('{}')",
-                           printable(v), printable(token, 40));
+        return fmt::format("its sizes '{}' are not all positive integers ('{}')", printable(v, 80),
+                           printable(token, 40));
       pos = end;
     }
   }
   if (f.name == "spaceorigin" || f.name == "spacedirections") {
     std::string lower;
-    for (char ch : f.value) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    for (char ch : f.value)
+      lower += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos)
       return fmt::format("its {} '{}' has a number that is not finite",
                          f.name == "spaceorigin" ? "space origin" : "space directions",
-                         printable(f.value));
+                         printable(f.value, 80));
   }
   return {};
 }
@@ -198,9 +197,8 @@ void count_decompressed(std::FILE* file, bool gzip, std::uint64_t cap, std::uint
 // The amount of data after the header, counted in the unit the encoding stores: bytes (raw,
 // and decompressed bytes for gzip and bzip2, counted up to `cap`), numbers (ascii: whitespace-
 // separated tokens) or hex digits (hex). Returns false for an encoding it cannot count.
-bool count_stored_data(std::FILE* file, long data_start, Encoding encoding,
-                       std::uint64_t file_size, std::uint64_t cap, std::uint64_t& count,
-                       std::string& problem) {
+bool count_stored_data(std::FILE* file, long data_start, Encoding encoding, std::uint64_t file_size,
+                       std::uint64_t cap, std::uint64_t& count, std::string& problem) {
   const auto start = static_cast<std::uint64_t>(std::max(0L, data_start));
   if (encoding == Encoding::Raw) {
     count = file_size - std::min(file_size, start);
@@ -276,8 +274,7 @@ std::string check_byte_order(std::span<const T> samples, std::string_view declar
       "{} non-zero "
       "samples are not finite or beyond 1e+-{}, and none are in the other byte order; correct its "
       "'endian' field",
-      printable(declared_order), declared, nonzero,
-      std::is_same_v<T, float> ? 20 : 150);
+      printable(declared_order, 80), declared, nonzero, std::is_same_v<T, float> ? 20 : 150);
 }
 
 std::string check_header_text(std::FILE* file, std::uint64_t file_size) {
@@ -292,7 +289,6 @@ std::string check_header_text(std::FILE* file, std::uint64_t file_size) {
     return fmt::format("its header is longer than {} bytes", kMaxHeaderBytes);
   return {};
 }
-
 
 // The data must be exactly what the header describes: a wrong type or too few sizes over the
 // right data would otherwise read as other numbers.
@@ -313,7 +309,7 @@ std::string check_data_length(std::FILE* file, long data_start, Encoding encodin
                              : "bytes of decompressed data";
   if (stored < expected)
     return (fmt::format("the file is truncated: its header announces {} {}, but only {} follow it",
-                     expected, unit, stored));
+                        expected, unit, stored));
   if (stored > expected)
     return (
         fmt::format("{}{} {} follow its header, which announces {} (its type and sizes must "

@@ -16,6 +16,10 @@
 
 namespace boxgen::runtime::nrrd_checks {
 
+// Text from a file or path made fit for a one-line message: control characters become '?', and at
+// most `limit` characters are kept.
+std::string printable(std::string_view text, std::size_t limit = 200);
+
 // Largest header the reader looks at.
 inline constexpr std::size_t kMaxHeaderBytes = std::size_t{1} << 20;
 

@@ -1,7 +1,7 @@
 #include "runtime/nrrd_io.h"
 
-#include "support/output_file.h"
 #include "runtime/nrrd_checks.h"
+#include "support/output_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -45,15 +45,7 @@ std::mutex& teem_mutex() {
   return mutex;
 }
 
-// Text from a file or path, made fit for a one-line message: control characters become '?',
-// and at most `limit` characters are kept.
-std::string printable(std::string_view text, std::size_t limit = 200) {
-  std::string out;
-  for (char ch : text.substr(0, limit))
-    out += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
-  if (text.size() > limit) out += "...";
-  return out;
-}
+using nrrd_checks::printable;
 
 // Teem's biff message is several lines, outermost call first ("[nrrd] nrrdRead: trouble", ...,
 // "[nrrd] _nrrdEncodingRaw_read: fread got only ..."): keep the innermost line that says
@@ -275,11 +267,11 @@ std::string file_lattice(const Nrrd* nrrd, VolumeHeader& header) {
 // `expected` needs one is refused in `expected`'s terms. Returns what it says or an error text.
 std::string check_lattice_header(const Nrrd* nrrd, const std::optional<CosetLattice>& expected,
                                  VolumeHeader& header) {
-  if (expected && !key_value(nrrd, "lattice") &&
-      (nrrd->dim != 3 || expected->coset_count() != 1)) {
+  if (expected && !key_value(nrrd, "lattice") && (nrrd->dim != 3 || expected->coset_count() != 1)) {
     if (nrrd->dim != 4)
       return fmt::format(
-          "it has dimension {}; a {} volume is a 4-D NRRD (sizes {} N0 N1 N2, the coset axis first)",
+          "it has dimension {}; a {} volume is a 4-D NRRD (sizes {} N0 N1 N2, the coset axis "
+          "first)",
           nrrd->dim, expected->name(), expected->coset_count());
     return fmt::format("the key/value 'lattice:={}' that marks a {} volume is missing",
                        expected->name(), expected->label());
@@ -368,7 +360,7 @@ std::string teem_read(std::FILE* file, Nrrd* nrrd, bool header_only, DataLayout&
   if (!io) return "out of memory";
   io->skipData = header_only ? 1 : 0;
   if (nrrdRead(nrrd, file, io.get()) != 0) {
-    const std::string teem = teem_error();
+    std::string teem = teem_error();
     if (!header_only) return teem;
     // A header Teem cannot parse, in our words where we know Teem's phrase.
     if (teem.find("size is zero") != std::string::npos) return "its sizes must be positive";
@@ -485,7 +477,7 @@ template <class T>
 std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, const char* kind,
                            VolumeHeader& full) {
   const ReadFailure fail{kind, printable(path.string())};
-  const auto check = [&](std::string why) {
+  const auto check = [&](const std::string& why) {
     if (!why.empty()) fail(why);
   };
   std::uint64_t file_size = 0;

@@ -1,7 +1,5 @@
 #include "runtime/prefilter.h"
 
-#include "support/integer_math.h"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -10,13 +8,15 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "support/integer_math.h"
+
 namespace boxgen::runtime {
+
+using support::floor_div;
 
 namespace {
 
 constexpr int kMaxOffset = 1 << 20;
-
-using support::floor_div;
 
 // delta(c, o) and the coset c' that tap o reads for output coset c (see prefilter.h).
 struct TapStep {

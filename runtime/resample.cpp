@@ -200,7 +200,7 @@ template Box default_box<float>(const LatticeVolume<float>&, const SplineFilter&
 template Box default_box<double>(const LatticeVolume<double>&, const SplineFilter&);
 template CartesianVolume<float> resample<float>(const LatticeVolume<float>&, const SplineFilter&,
                                                 const CartesianGrid&);
-template CartesianVolume<double> resample<double>(const LatticeVolume<double>&,
-                                                  const SplineFilter&, const CartesianGrid&);
+template CartesianVolume<double> resample<double>(const LatticeVolume<double>&, const SplineFilter&,
+                                                  const CartesianGrid&);
 
 }  // namespace boxgen::runtime

@@ -39,10 +39,11 @@ SplineFilter SplineFilter::at(int index) {
   static const auto sources = [] {
     std::vector<std::shared_ptr<const FilterSource>> all;
     for (int i = 0; i < generated::kFilterCount; ++i)
-      all.push_back(generated::with_filter(i, [i](auto entry) -> std::shared_ptr<const FilterSource> {
-        return std::make_shared<EmittedFilter<typename decltype(entry)::Traits>>(
-            prefilter_from(entry.q1), prefilter_from(entry.q2), entry.approximation_order, i);
-      }));
+      all.push_back(
+          generated::with_filter(i, [i](auto entry) -> std::shared_ptr<const FilterSource> {
+            return std::make_shared<EmittedFilter<typename decltype(entry)::Traits>>(
+                prefilter_from(entry.q1), prefilter_from(entry.q2), entry.approximation_order, i);
+          }));
     return all;
   }();
   return SplineFilter(sources[static_cast<std::size_t>(index)], index);

@@ -3,11 +3,11 @@
 // per volume: BccStencils on BCC volumes with the offsets (0,0,0) (1,1,1), LatticeStencils on
 // every other lattice.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
-#include <algorithm>
 #include <vector>
 
 #include "runtime/lattice_volume.h"
@@ -134,7 +134,8 @@ class BccStencils {
     for (int a = 0; a < 3; ++a)
       reach = std::max({reach, -Tr::kStencilReachLo[a], Tr::kStencilReachHi[a]});
     const double n0 = volume.sizes()[0], n1 = volume.sizes()[1];
-    return (reach + 1.0) * (1.0 + n0 + n0 * n1) < static_cast<double>(std::numeric_limits<O>::max());
+    return (reach + 1.0) * (1.0 + n0 + n0 * n1) <
+           static_cast<double>(std::numeric_limits<O>::max());
   }
 
   const LatticeVolume<T>& volume() const { return *volume_; }
@@ -144,8 +145,7 @@ class BccStencils {
     for (int a = 0; a < 3; ++a)
       if (lo[a] > hi[a]) return true;  // empty box
     for (int a = 0; a < 3; ++a)
-      if (lo[a] < 0 || hi[a] > 2 * static_cast<std::int64_t>(volume_->sizes()[a]) - 1)
-        return false;
+      if (lo[a] < 0 || hi[a] > 2 * static_cast<std::int64_t>(volume_->sizes()[a]) - 1) return false;
     return true;
   }
   bool has_offsets() const { return true; }

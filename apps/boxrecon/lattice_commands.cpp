@@ -17,9 +17,9 @@
 #include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/sample_command.h"
 #include "runtime/batch_threads.h"
+#include "runtime/points_file.h"
 #include "runtime/prefilter.h"
 #include "runtime/resample.h"
-#include "runtime/points_file.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
 #include "support/output_file.h"
@@ -107,11 +107,11 @@ int run_error(const std::string& function, int n, const std::string& filter,
   const PrefilterChoice q = parse_prefilter(pre);
   if (count < 1 || count > 100000000)
     throw std::invalid_argument("--points must be between 1 and 100000000");
-  const ErrorReport report{function, filter,   pre,  n, count, seed,
-                           gradient, json,     f.lattice().name()};
+  const ErrorReport report{function,          filter, pre, n, count, seed, gradient, json,
+                           f.lattice().name()};
   if (n < 2 || n > 1024)
     throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", n));
-  const CosetLattice lattice = f.lattice();
+  const CosetLattice& lattice = f.lattice();
   const LatticeGrid grid = cube_lattice_grid(lattice, n, f.required_margin(q));
   check_volume_memory(static_cast<std::uint64_t>(lattice.coset_count()) * grid.sizes[0] *
                           grid.sizes[1] * grid.sizes[2],
@@ -159,7 +159,7 @@ int run_resample(const std::string& filter, const std::string& pre, const std::s
 
 int run_filter_bench(const SplineFilter& f, long point_count, int repeats, bool json) {
   const long count = point_count > 0 ? point_count : 1000000;
-  const CosetLattice lattice = f.lattice();
+  const CosetLattice& lattice = f.lattice();
   constexpr int kSize = 48;  // samples per coset and axis: a few MB, as a small data set
   LatticeVolume<double> volume(lattice, {kSize, kSize, kSize}, 1.0, {0, 0, 0});
   std::mt19937_64 rng(1);

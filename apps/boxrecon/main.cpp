@@ -38,13 +38,8 @@
 #include "boxgen/version.h"
 #include "runtime/batch_threads.h"
 #include "runtime/nrrd_io.h"
-#include "runtime/points_file.h"
-#include "runtime/reconstruction.h"
-#include "runtime/resample.h"
-#include "runtime/sampling.h"
-#include "runtime/test_functions.h"
-#include "support/output_file.h"
 #include "runtime/spline_filter.h"
+#include "support/output_file.h"
 
 namespace {
 
@@ -148,8 +143,9 @@ int run(int argc, char** argv) {
   resample->add_option("--prefilter", pre, "none | q1 | q2");
   resample->add_option("--volume", volume, "NRRD volume on the filter's lattice")->required();
   resample->add_option("-o,--output", output, "output NRRD file (Cartesian grid)")->required();
-  resample->add_option("--n", resample_n,
-                       fmt::format("grid points per axis, 2..{} (default 64)", boxgen::app::kMaxResampleN));
+  resample->add_option(
+      "--n", resample_n,
+      fmt::format("grid points per axis, 2..{} (default 64)", boxgen::app::kMaxResampleN));
   auto* min_option = resample
                          ->add_option("--min", box_min,
                                       "X Y Z: lower corner of the box (world); default (without "
@@ -185,9 +181,8 @@ int run(int argc, char** argv) {
   try {
     if (threads > 0) set_batch_threads(threads);
     if (bench->parsed() && !bench_filter.empty())
-      return boxgen::app::run_filter_bench(SplineFilter::parse(bench_filter),
-                                           bench_options.points, bench_options.repeats,
-                                           bench_options.json);
+      return boxgen::app::run_filter_bench(SplineFilter::parse(bench_filter), bench_options.points,
+                                           bench_options.repeats, bench_options.json);
     if (bench->parsed()) return boxrecon::run_bench(bench_options);
     if (precision != "float" && precision != "double")
       throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) +

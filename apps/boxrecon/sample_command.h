@@ -1,5 +1,5 @@
 // boxrecon sample: a test function sampled on any lattice (runtime/lattice_volume.h) over
-// [-1,1]^3, written as a lattice NRRD. 
+// [-1,1]^3, written as a lattice NRRD.
 #pragma once
 #include <optional>
 #include <string>

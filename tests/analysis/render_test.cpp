@@ -16,7 +16,8 @@ namespace {
 
 struct Scene {
   LatticeVolume<double> volume =
-      prefilter(test::sample_bcc_cube<double>(gaussian, 33, SplineFilter::parse("m7").required_margin(PrefilterChoice::Q1)),
+      prefilter(test::sample_bcc_cube<double>(
+                    gaussian, 33, SplineFilter::parse("m7").required_margin(PrefilterChoice::Q1)),
                 SplineFilter::parse("m7").prefilter(PrefilterChoice::Q1));
   Reconstructor<double> spline{volume, SplineFilter::parse("m7")};
   Box box{{-1, -1, -1}, {1, 1, 1}};
@@ -86,10 +87,12 @@ TEST(Render, ImageHasTheRequestedSizeAndBadOptionsAreRefused) {
   const RgbBuffer img = render_isosurface(s.volume, SplineFilter::parse("m7"), s.box, o);
   EXPECT_EQ(img.pixels.size(), 24u * 16u * 3u);
   o.width = 0;
-  EXPECT_THROW(render_isosurface(s.volume, SplineFilter::parse("m7"), s.box, o), std::invalid_argument);
+  EXPECT_THROW(render_isosurface(s.volume, SplineFilter::parse("m7"), s.box, o),
+               std::invalid_argument);
   o.width = 8;
   o.iso = std::nan("");
-  EXPECT_THROW(render_isosurface(s.volume, SplineFilter::parse("m7"), s.box, o), std::invalid_argument);
+  EXPECT_THROW(render_isosurface(s.volume, SplineFilter::parse("m7"), s.box, o),
+               std::invalid_argument);
 }
 
 }  // namespace

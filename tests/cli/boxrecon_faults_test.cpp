@@ -38,7 +38,7 @@ void write_bytes(const fs::path& path, const std::string& bytes) {
 
 // The header of a BCC volume of 2 x n^3 little-endian doubles, h = 1/2 (coset cells of 1),
 // origin 0, and `extra` key/value lines.
-std::string bcc_header(int n, const std::string& extra = "") {
+std::string bcc_header(std::size_t n, const std::string& extra = "") {
   return "NRRD0004\ntype: double\ndimension: 4\nsizes: 2 " + std::to_string(n) + " " +
          std::to_string(n) + " " + std::to_string(n) +
          "\nspace dimension: 3\nspace directions: none (1,0,0) (0,1,0) (0,0,1)\n"
@@ -80,7 +80,7 @@ class BoxreconFaults : public ScratchDirectoryTest {
 // A file that stores the odd coset first and says so (coset_offsets:=(1,1,1) (0,0,0)) is the
 // same volume as the usual one: eval gives the same values, digit for digit.
 TEST_F(BoxreconFaults, BccCosetOrderIsHonoured) {
-  constexpr int n = 8;
+  constexpr std::size_t n = 8;
   std::vector<double> usual(2 * n * n * n), swapped(usual.size());
   for (std::size_t s = 0; s < usual.size(); ++s)
     usual[s] = std::sin(0.37 * static_cast<double>(s)) + 0.01 * static_cast<double>(s % 7);
@@ -102,7 +102,7 @@ TEST_F(BoxreconFaults, BccCosetOrderIsHonoured) {
 // Coset offsets that are not two cosets, rows that are not numbers and rows of another lattice
 // are refused, never guessed.
 TEST_F(BoxreconFaults, BccHeadersThatContradictThemselvesAreRefused) {
-  constexpr int n = 4;
+  constexpr std::size_t n = 4;
   const std::string data = doubles(std::vector<double>(2 * n * n * n, 0.5));
   write_bytes(file("p.txt"), "1.75 1.75 1.75\n");
   const struct {
@@ -126,12 +126,13 @@ TEST_F(BoxreconFaults, BccHeadersThatContradictThemselvesAreRefused) {
 // Finite samples near the largest double overflow the spline's sums: eval prints nothing and
 // resample writes nothing; the message names the cause.
 TEST_F(BoxreconFaults, NonFiniteResultsFromFiniteSamplesAreErrors) {
-  constexpr int n = 6;
+  constexpr std::size_t n = 6;
   std::vector<double> huge;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        for (int c = 0; c < 2; ++c) huge.push_back((i + j + k + c) % 2 == 0 ? 1e308 : -1e308);
+  for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t c = 0; c < 2; ++c)
+          huge.push_back((i + j + k + c) % 2 == 0 ? 1e308 : -1e308);
   write_bytes(file("huge.nrrd"), bcc_header(n) + doubles(huge));
   write_bytes(file("p.txt"), "2.75 2.75 2.75\n");
   refused({"eval", "--filter", "m7", "--volume", file("huge.nrrd"), "--points", file("p.txt")},

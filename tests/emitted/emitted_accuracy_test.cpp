@@ -323,9 +323,11 @@ BOXGEN_EMITTED_TEST_ON(zp_tripled, "3,0; 0,3; 3,3; -3,3", "3,0; 0,3", 2)
 // and origin -S, so world point x is the generator's point x, exactly.
 template <class T>
 void check_batch(const Reference& ref, const std::vector<RatVec>& exact_points,
-                 const std::vector<Exact>& exact, const runtime::SplineFilter& filter, double tolerance) {
+                 const std::vector<Exact>& exact, const runtime::SplineFilter& filter,
+                 double tolerance) {
   constexpr int kOffset = 10, kSize = 12;  // points |x| < 4, reach <= 4: inside [0, 2 kSize - 1]
-  runtime::LatticeVolume<T> volume(runtime::CosetLattice::bcc(), {kSize, kSize, kSize}, 1.0, {-kOffset, -kOffset, -kOffset});
+  runtime::LatticeVolume<T> volume(runtime::CosetLattice::bcc(), {kSize, kSize, kSize}, 1.0,
+                                   {-kOffset, -kOffset, -kOffset});
   for (int c = 0; c < 2; ++c)
     for (int k = 0; k < kSize; ++k)
       for (int j = 0; j < kSize; ++j)

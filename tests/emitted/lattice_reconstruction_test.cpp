@@ -122,7 +122,8 @@ TEST(LatticeReconstruction, AFilterOnAVolumeOfAnotherLatticeIsOneError) {
   }
   const LatticeVolume<float> cart =
       sample_lattice<float>(cubic_poly, cube_lattice_grid(CosetLattice::cartesian(), 5, 4));
-  EXPECT_THROW((Reconstructor<float>(cart, emitted_filter<gen::fcc6::Traits>())), std::invalid_argument);
+  EXPECT_THROW((Reconstructor<float>(cart, emitted_filter<gen::fcc6::Traits>())),
+               std::invalid_argument);
   // The same points with the cosets in another order are the same lattice.
   const LatticeVolume<double> moved = sample_lattice<double>(
       cubic_poly,

@@ -152,18 +152,28 @@ TEST(BccLatticeVolume, WorldAndLatticeCoordinates) {
 }
 
 TEST(BccLatticeVolume, InvalidGeometryIsRejected) {
-  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {0, 1, 1}, 1, {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {1, -1, 1}, 1, {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {1, 1, LatticeVolume<double>::kMaxSize + 1}, 1, {0, 0, 0}),
+  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {0, 1, 1}, 1, {0, 0, 0}),
                std::invalid_argument);
-  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {1 << 20, 1 << 20, 1 << 20}, 1, {0, 0, 0}),
-               std::invalid_argument);  // 2^61 samples
-  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {1, 1, 1}, 0, {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {1, 1, 1}, -1, {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {1, 1, 1}, std::nan(""), {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(LatticeVolume<float>(CosetLattice::bcc(), {1, 1, 1}, 1, {0, std::numeric_limits<double>::infinity(), 0}),
+  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {1, -1, 1}, 1, {0, 0, 0}),
                std::invalid_argument);
-  const std::string message = message_of([] { LatticeVolume<double>(CosetLattice::bcc(), {0, 1, 1}, 1, {0, 0, 0}); });
+  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(),
+                                     {1, 1, LatticeVolume<double>::kMaxSize + 1}, 1, {0, 0, 0}),
+               std::invalid_argument);
+  EXPECT_THROW(
+      LatticeVolume<double>(CosetLattice::bcc(), {1 << 20, 1 << 20, 1 << 20}, 1, {0, 0, 0}),
+      std::invalid_argument);  // 2^61 samples
+  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {1, 1, 1}, 0, {0, 0, 0}),
+               std::invalid_argument);
+  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {1, 1, 1}, -1, {0, 0, 0}),
+               std::invalid_argument);
+  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {1, 1, 1}, std::nan(""), {0, 0, 0}),
+               std::invalid_argument);
+  EXPECT_THROW(LatticeVolume<float>(CosetLattice::bcc(), {1, 1, 1}, 1,
+                                    {0, std::numeric_limits<double>::infinity(), 0}),
+               std::invalid_argument);
+  const std::string message = message_of([] {
+    LatticeVolume<double>(CosetLattice::bcc(), {0, 1, 1}, 1, {0, 0, 0});
+  });
   EXPECT_EQ(message.find('\n'), std::string::npos);
   EXPECT_FALSE(message.empty());
 }

@@ -24,7 +24,8 @@ TEST(Compat, FilterIsTheRegistrysBccFilters) {
   EXPECT_STREQ(filter_name(Filter::M8), "m8");
   EXPECT_THROW((void)parse_filter("fcc6"), std::invalid_argument);
   for (const Filter f : {Filter::M7, Filter::M8, Filter::M12})
-    for (const PrefilterChoice q : {PrefilterChoice::None, PrefilterChoice::Q1, PrefilterChoice::Q2}) {
+    for (const PrefilterChoice q :
+         {PrefilterChoice::None, PrefilterChoice::Q1, PrefilterChoice::Q2}) {
       EXPECT_EQ(required_margin(f, q), SplineFilter(f).required_margin(q));
       EXPECT_EQ(prefilter_taps(f, q), SplineFilter(f).prefilter(q));
     }
@@ -32,8 +33,10 @@ TEST(Compat, FilterIsTheRegistrysBccFilters) {
 }
 
 TEST(Compat, BccVolumeCodeRunsOnTheOneApi) {
-  const BccVolume<double> samples = sample_cube<double>(cubic, 9, required_margin(Filter::M7, PrefilterChoice::Q1));
-  const BccVolume<double> volume = prefilter(samples, prefilter_taps(Filter::M7, PrefilterChoice::Q1));
+  const BccVolume<double> samples =
+      sample_cube<double>(cubic, 9, required_margin(Filter::M7, PrefilterChoice::Q1));
+  const BccVolume<double> volume =
+      prefilter(samples, prefilter_taps(Filter::M7, PrefilterChoice::Q1));
   const Reconstructor<double> old_way(volume, Filter::M7);
   const SplineFilter m7 = SplineFilter::parse("m7");
   LatticeVolume<double> v = sample_lattice<double>(
@@ -56,7 +59,8 @@ TEST(Compat, BccVolumeCodeRunsOnTheOneApi) {
 
 TEST(Compat, BccVolumesConvertWithoutChange) {
   BccVolume<float> bcc({3, 2, 2}, 0.25, {1, 2, 3});
-  for (std::size_t s = 0; s < bcc.sample_count(); ++s) bcc.samples()[s] = static_cast<float>(s) * 0.5f;
+  for (std::size_t s = 0; s < bcc.sample_count(); ++s)
+    bcc.samples()[s] = static_cast<float>(s) * 0.5f;
   const BccVolume<float> copy = bcc;
   LatticeVolume<float> l = to_lattice_volume(std::move(bcc));
   EXPECT_EQ(l.lattice(), CosetLattice::bcc());
@@ -79,7 +83,8 @@ TEST_F(CompatNrrd, BccFilesReadAndWriteAsBefore) {
   write_bcc_nrrd(dir_ / "v.nrrd", v);
   const BccVolume<double> back = read_bcc_nrrd<double>(dir_ / "v.nrrd");
   EXPECT_EQ(std::memcmp(back.samples().data(), v.samples().data(), v.samples().size_bytes()), 0);
-  write_lattice_nrrd(dir_ / "f.nrrd", LatticeVolume<double>(CosetLattice::fcc(), {2, 2, 2}, 1, {0, 0, 0}));
+  write_lattice_nrrd(dir_ / "f.nrrd",
+                     LatticeVolume<double>(CosetLattice::fcc(), {2, 2, 2}, 1, {0, 0, 0}));
   EXPECT_THROW((void)read_bcc_nrrd<double>(dir_ / "f.nrrd"), NrrdError);
 }
 

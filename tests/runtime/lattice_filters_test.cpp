@@ -1,6 +1,6 @@
 // Every filter of generated/registry.hpp through the runtime on its own lattice
-// (runtime/spline_filter.h, reconstruction.h, resample.h). Each test loops over the registry, so a filter added there is
-// covered without a change here.
+// (runtime/spline_filter.h, reconstruction.h, resample.h). Each test loops over the registry, so a
+// filter added there is covered without a change here.
 //
 // Oracle: quasi-interpolation with Q^I (and Q^II) of a filter of approximation order k reproduces
 // every polynomial of degree < k, with its derivatives. The polynomial (every monomial of degree

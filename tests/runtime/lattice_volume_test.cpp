@@ -238,8 +238,8 @@ TEST(LatticeSampling, OnBccItIsTheDesignsGridBitForBit) {
     for (int j = 0; j < 11; ++j)
       for (int i = 0; i < 11; ++i)
         for (int c = 0; c < 2; ++c)
-          ASSERT_EQ(l(c, i, j, k), smooth({o + h * (2 * i + c), o + h * (2 * j + c),
-                                           o + h * (2 * k + c)}));
+          ASSERT_EQ(l(c, i, j, k),
+                    smooth({o + h * (2 * i + c), o + h * (2 * j + c), o + h * (2 * k + c)}));
 }
 
 TEST(LatticeSampling, EverySampleIsTheFunctionAtItsLatticePoint) {

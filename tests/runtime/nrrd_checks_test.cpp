@@ -79,8 +79,7 @@ TEST(NrrdChecks, SpaceFieldsMustBeFinite) {
   EXPECT_NE(header_check(with("space origin: (0,0,0)", "space origin: (nan,0,0)"))
                 .find("space origin '(nan,0,0)' has a number that is not finite"),
             std::string::npos);
-  EXPECT_NE(header_check(with("(0,1,0)", "(0,INF,0)")).find("space directions"),
-            std::string::npos);
+  EXPECT_NE(header_check(with("(0,1,0)", "(0,INF,0)")).find("space directions"), std::string::npos);
   // Key/value pairs are the writer's business, not Teem's fields.
   EXPECT_EQ(header_check(with("lattice:=bcc", "note:=sizes: nan")), "");
 }
@@ -101,8 +100,7 @@ TEST(NrrdChecks, DataLengthCountsRawAsciiAndHex) {
   EXPECT_NE(length(std::string(17, 'x'), Encoding::Raw, 16, 4).find("17 bytes of raw data"),
             std::string::npos);
   EXPECT_EQ(length("1 2.5\n-3 4e1\n", Encoding::Ascii, 16, 4), "");
-  EXPECT_NE(length("1 2.5\n-3\n", Encoding::Ascii, 16, 4).find("only 3 follow"),
-            std::string::npos);
+  EXPECT_NE(length("1 2.5\n-3\n", Encoding::Ascii, 16, 4).find("only 3 follow"), std::string::npos);
   EXPECT_EQ(length(std::string(32, 'a') + "\n", Encoding::Hex, 16, 4), "");
   EXPECT_NE(length(std::string(30, 'a'), Encoding::Hex, 16, 4).find("30"), std::string::npos);
   EXPECT_NE(length(std::string(31, 'a') + "g", Encoding::Hex, 16, 4).find("not a hex digit"),
@@ -139,7 +137,9 @@ TEST(NrrdChecks, DataLengthDecompressesGzipAndBzip2) {
   const std::string data(4000, 'q');
   for (const Encoding e : {Encoding::Gzip, Encoding::Bzip2}) {
     SCOPED_TRACE(e == Encoding::Gzip ? "gzip" : "bzip2");
-    const auto pack = [&](const std::string& d) { return e == Encoding::Gzip ? gzip(d) : bzip2(d); };
+    const auto pack = [&](const std::string& d) {
+      return e == Encoding::Gzip ? gzip(d) : bzip2(d);
+    };
     const auto length = [&](const std::string& stored) {
       const File f = file_of(stored);
       return check_data_length(f.get(), 0, e, stored.size(), data.size(), 1000);
@@ -149,7 +149,8 @@ TEST(NrrdChecks, DataLengthDecompressesGzipAndBzip2) {
     EXPECT_NE(length(pack(data + "x")).find("more than"), std::string::npos);
     EXPECT_EQ(length(pack(data.substr(0, 1000)) + pack(data.substr(1000))), "");
     std::string corrupt = pack(data);
-    for (std::size_t i = 12; i < corrupt.size(); i += 7) corrupt[i] = static_cast<char>(~corrupt[i]);
+    for (std::size_t i = 12; i < corrupt.size(); i += 7)
+      corrupt[i] = static_cast<char>(~corrupt[i]);
     EXPECT_NE(length(corrupt).find("corrupt"), std::string::npos) << length(corrupt);
   }
   // gzip data without the gzip magic is stored as it is (Teem reads it so).
@@ -188,9 +189,9 @@ TEST(NrrdChecks, ByteOrderThatTheDataContradictIsRefused) {
 }
 
 TEST(NrrdChecks, NonFiniteSamplesAreNamedByTheirPlace) {
-  std::vector<float> samples(2 * 3 * 2 * 2, 1.0f);
+  std::vector<float> samples(std::size_t{2} * 3 * 2 * 2, 1.0f);
   EXPECT_EQ(check_finite<float>(samples, 2, {3, 2, 2}), "");
-  samples[2 * (1 + 3 * (1 + 2 * 1)) + 1] = -std::numeric_limits<float>::infinity();
+  samples[std::size_t{2} * (1 + 3 * (1 + 2 * 1)) + 1] = -std::numeric_limits<float>::infinity();
   const std::string why = check_finite<float>(samples, 2, {3, 2, 2});
   EXPECT_NE(why.find("sample 21 (coset 1, 1, 1, 1) is -inf"), std::string::npos) << why;
 }

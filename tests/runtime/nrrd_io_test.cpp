@@ -416,7 +416,8 @@ TEST_F(BccNrrd, CompressedDataBeyondTheLimitIsRefusedBeforeAllocation) {
                                 "encoding: raw", "encoding: gzip");
   write_bytes(file("bomb.nrrd"), h + std::string(64, '\0'));
   try {
-    (void)read_bcc<float>(file("bomb.nrrd"), NrrdReadLimits{std::uint64_t{1} << 20, false, std::nullopt});
+    (void)read_bcc<float>(file("bomb.nrrd"),
+                          NrrdReadLimits{std::uint64_t{1} << 20, false, std::nullopt});
     ADD_FAILURE() << "no error";
   } catch (const NrrdError& e) {
     EXPECT_NE(std::string(e.what()).find("exceeds the limit"), std::string::npos) << e.what();
@@ -678,15 +679,15 @@ TEST_F(BccNrrd, ReplacingAFileKeepsItsPermissions) {
 // are not two cosets, rows that are not numbers and rows of another lattice are refused.
 TEST_F(BccNrrd, CosetOffsetsAreHonouredOrRefused) {
   const std::vector<float> swapped = {-2, 1.5f, 8, 0.25f};  // kValues with the cosets exchanged
-  write_bytes(file("swapped.nrrd"),
-              replace(base_header(), "lattice:=bcc\n", "lattice:=bcc\ncoset_offsets:=(1,1,1) (0,0,0)\n") +
-                  raw_floats(swapped));
+  write_bytes(file("swapped.nrrd"), replace(base_header(), "lattice:=bcc\n",
+                                            "lattice:=bcc\ncoset_offsets:=(1,1,1) (0,0,0)\n") +
+                                        raw_floats(swapped));
   write_bytes(file("usual.nrrd"), base_header() + raw_floats(kValues));
   const auto usual = read_bcc<float>(file("usual.nrrd"));
   const auto v = read_bcc<float>(file("swapped.nrrd"));
   EXPECT_EQ(v.lattice().offsets(), (std::vector<Offset>{{1, 1, 1}, {0, 0, 0}}));
-  for (const LatticePoint& p : {LatticePoint{0, 0, 0}, LatticePoint{1, 1, 1}, LatticePoint{2, 0, 0},
-                                LatticePoint{3, 1, 1}})
+  for (const LatticePoint& p :
+       {LatticePoint{0, 0, 0}, LatticePoint{1, 1, 1}, LatticePoint{2, 0, 0}, LatticePoint{3, 1, 1}})
     EXPECT_EQ(v.value(p), usual.value(p)) << p[0] << " " << p[1] << " " << p[2];
   for (const char* keys : {"coset_offsets:=(0,0,0) (0,0,0)\n", "lattice_rows:=a,b,c\n",
                            "lattice_rows:=1,0,0; 0,1,0; 0,0,1\n", "coset_offsets:=(0,0,0)\n",

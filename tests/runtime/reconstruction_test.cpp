@@ -28,7 +28,8 @@ std::vector<Vec3> random_points(int count, std::uint64_t seed) {
 }
 
 // Largest |s - f| over random points of [-1,1]^3 for data sampled from f on N^3 x 2 points.
-double max_error(const TestFunction& fn, int n, const SplineFilter& f, PrefilterChoice q, int count = 300) {
+double max_error(const TestFunction& fn, int n, const SplineFilter& f, PrefilterChoice q,
+                 int count = 300) {
   LatticeVolume<double> volume = test::sample_bcc_cube<double>(fn.value, n, f.required_margin(q));
   if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
   const Reconstructor<double> r(volume, f);
@@ -38,7 +39,8 @@ double max_error(const TestFunction& fn, int n, const SplineFilter& f, Prefilter
   return worst;
 }
 
-double rms_error(const TestFunction& fn, int n, const SplineFilter& f, PrefilterChoice q, int count = 2000) {
+double rms_error(const TestFunction& fn, int n, const SplineFilter& f, PrefilterChoice q,
+                 int count = 2000) {
   LatticeVolume<double> volume = test::sample_bcc_cube<double>(fn.value, n, f.required_margin(q));
   if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
   const auto points = random_points(count, 11);
@@ -53,14 +55,16 @@ double rms_error(const TestFunction& fn, int n, const SplineFilter& f, Prefilter
 TEST(Reconstruction, CubicsAreReproducedWithTheGeneratedPrefilters) {
   // The `cubic` test function is a cubic polynomial; order-4 quasi-interpolation reproduces it.
   const TestFunction& cubic = find_test_function("cubic");
-  for (const SplineFilter& f : {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")})
+  for (const SplineFilter& f :
+       {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")})
     for (PrefilterChoice q : {PrefilterChoice::Q1, PrefilterChoice::Q2})
       EXPECT_LE(max_error(cubic, 9, f, q), 1e-11) << f.name() << " q" << static_cast<int>(q);
 }
 
 TEST(Reconstruction, WithoutAPrefilterCubicsAreNotReproduced) {
   const TestFunction& cubic = find_test_function("cubic");
-  for (const SplineFilter& f : {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")})
+  for (const SplineFilter& f :
+       {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")})
     EXPECT_GT(max_error(cubic, 9, f, PrefilterChoice::None), 1e-4) << f.name();
 }
 
@@ -68,7 +72,8 @@ TEST(Reconstruction, RmsErrorFallsAtOrderFour) {
   // Halving h should divide the RMS error by about 2^4 = 16 with a prefilter; the slope over
   // three densities (N = 9, 17, 33 gives h = 1/8, 1/16, 1/32) must be at least 3.5.
   const TestFunction& g = find_test_function("gaussian");
-  for (const SplineFilter& f : {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")}) {
+  for (const SplineFilter& f :
+       {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")}) {
     const double e1 = rms_error(g, 9, f, PrefilterChoice::Q2),
                  e2 = rms_error(g, 17, f, PrefilterChoice::Q2),
                  e3 = rms_error(g, 33, f, PrefilterChoice::Q2);
@@ -105,7 +110,8 @@ TEST(Reconstruction, BatchEqualsSingleEvaluationAndFloatIsClose) {
   const TestFunction& fn = find_test_function("ml");
   const LatticeVolume<double> volume = test::sample_bcc_cube<double>(fn.value, 17, 2);
   const LatticeVolume<float> volume_f = test::sample_bcc_cube<float>(fn.value, 17, 2);
-  for (const SplineFilter& f : {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")}) {
+  for (const SplineFilter& f :
+       {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")}) {
     const Reconstructor<double> r(volume, f);
     const Reconstructor<float> rf(volume_f, f);
     const auto points = random_points(3000, 5);
@@ -129,7 +135,8 @@ TEST(Reconstruction, UncheckedAndCheckedFetchesAgreeEverywhere) {
   const LatticeVolume<double> volume = test::sample_bcc_cube<double>(fn.value, 9, 2);
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-1.6, 1.6);  // beyond [-1,1]: into and past the margin
-  for (const SplineFilter& f : {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")}) {
+  for (const SplineFilter& f :
+       {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")}) {
     const Reconstructor<double> r(volume, f);
     int inside = 0, refused = 0;
     for (int i = 0; i < 4000; ++i) {
@@ -142,14 +149,13 @@ TEST(Reconstruction, UncheckedAndCheckedFetchesAgreeEverywhere) {
       try {
         expected = f == SplineFilter::parse("m7")   ? generated::m7::evaluate<double>(x, checked)
                    : f == SplineFilter::parse("m8") ? generated::m8::evaluate<double>(x, checked)
-                                     : generated::m12::evaluate<double>(x, checked);
+                                                    : generated::m12::evaluate<double>(x, checked);
       } catch (const std::out_of_range&) {
         evaluable = false;
       }
       if (evaluable) {
         ++inside;
-        EXPECT_EQ(r.value(p), expected)
-            << f.name() << " at " << p[0] << " " << p[1] << " " << p[2];
+        EXPECT_EQ(r.value(p), expected) << f.name() << " at " << p[0] << " " << p[1] << " " << p[2];
       } else {
         ++refused;
         EXPECT_THROW(r.value(p), std::out_of_range) << f.name();
@@ -169,7 +175,8 @@ TEST(Reconstruction, HessianIsTheEvaluatorsInWorldUnitsAndMatchesGradientDiffere
   const LatticeVolume<double> volume = test::sample_bcc_cube<double>(fn.value, 12, 3);
   const double h = volume.spacing();
   ASSERT_NE(h, 1.0);
-  for (const SplineFilter& f : {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")}) {
+  for (const SplineFilter& f :
+       {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")}) {
     const Reconstructor<double> r(volume, f);
     const auto points = random_points(200, 17);
     std::vector<double> values(points.size());
@@ -190,13 +197,12 @@ TEST(Reconstruction, HessianIsTheEvaluatorsInWorldUnitsAndMatchesGradientDiffere
       std::array<double, 3> lg;
       std::array<double, 6> lh;
       auto fetch = [&](const LatticePoint& j) { return volume.value(j); };
-      const double direct = f == SplineFilter::parse("m7") ? generated::m7::evaluate<double>(x, fetch, &lg, &lh)
-                            : f == SplineFilter::parse("m8")
-                                ? generated::m8::evaluate<double>(x, fetch, &lg, &lh)
-                                : generated::m12::evaluate<double>(x, fetch, &lg, &lh);
+      const double direct =
+          f == SplineFilter::parse("m7")   ? generated::m7::evaluate<double>(x, fetch, &lg, &lh)
+          : f == SplineFilter::parse("m8") ? generated::m8::evaluate<double>(x, fetch, &lg, &lh)
+                                           : generated::m12::evaluate<double>(x, fetch, &lg, &lh);
       EXPECT_EQ(v, direct);
-      for (int k = 0; k < 6; ++k)
-        EXPECT_EQ(hs[k], lh[k] / (h * h)) << f.name() << " entry " << k;
+      for (int k = 0; k < 6; ++k) EXPECT_EQ(hs[k], lh[k] / (h * h)) << f.name() << " entry " << k;
       // Central differences of the gradient along each axis: column a of the Hessian.
       constexpr int kIndex[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
       const double step = 1e-5;
@@ -252,7 +258,8 @@ TEST(Reconstruction, ParsesNamesAndRejectsOthers) {
   EXPECT_THROW(parse_filter("m9"), std::invalid_argument);
   EXPECT_THROW(parse_prefilter("q3"), std::invalid_argument);
   // Generated prefilter taps sum to one (a quasi-interpolant preserves constants).
-  for (const SplineFilter& f : {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")})
+  for (const SplineFilter& f :
+       {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")})
     for (PrefilterChoice q : {PrefilterChoice::Q1, PrefilterChoice::Q2}) {
       double sum = 0;
       for (const auto& [offset, w] : f.prefilter(q)) sum += w;

@@ -1,8 +1,8 @@
 // Resampling onto a Cartesian grid: cubic reproduction against the analytic polynomial, the grid
 // geometry, the NRRD file as Teem reads it, the default box (inside the volume, and tight) and
 // the errors for bad boxes.
-#include "runtime/reconstruction.h"
 #include "runtime/resample.h"
+#include "runtime/reconstruction.h"
 
 #include <gtest/gtest.h>
 #include <teem/biff.h>
@@ -75,7 +75,8 @@ TEST(Resample, FloatVolumesResampleToFloatGrids) {
   // float data: the cubic (|values| <= about 8) to float rounding, 1e-5.
   const CartesianGrid grid = grid_over({{-1, -1, -1}, {1, 1, 1}}, {5, 5, 5});
   const auto values =
-      resample(prefiltered<float>(cubic, 9, SplineFilter::parse("m8"), PrefilterChoice::Q1), SplineFilter::parse("m8"), grid);
+      resample(prefiltered<float>(cubic, 9, SplineFilter::parse("m8"), PrefilterChoice::Q1),
+               SplineFilter::parse("m8"), grid);
   ASSERT_EQ(values.values.size(), 125u);
   for (int k = 0; k < 5; ++k)
     for (int j = 0; j < 5; ++j)
@@ -91,7 +92,8 @@ TEST(Resample, GridGeometryIsWhatWasAsked) {
   EXPECT_EQ(grid.spacing, (Vec3{0.5, 0.5, 0.25}));
   EXPECT_EQ(grid.origin, (Vec3{-1, -0.5, 0}));
 
-  const LatticeVolume<double> volume = prefiltered<double>(cubic, 9, SplineFilter::parse("m7"), PrefilterChoice::Q2);
+  const LatticeVolume<double> volume =
+      prefiltered<double>(cubic, 9, SplineFilter::parse("m7"), PrefilterChoice::Q2);
   const auto out = resample(volume, SplineFilter::parse("m7"), grid);
   EXPECT_EQ(out.sizes, grid.sizes);
   EXPECT_EQ(out.spacing, grid.spacing);
@@ -143,11 +145,13 @@ TEST_F(ResampleNrrd, TeemReadsThePlain3dGrid) {
   const Box box{{-0.9, -1.0 / 3, 0.1}, {0.7, 0.8, 2.0 / 3}};
   const CartesianGrid grid = grid_over(box, {6, 5, 4});
   const auto d =
-      resample(prefiltered<double>(cubic, 9, SplineFilter::parse("m12"), PrefilterChoice::Q1), SplineFilter::parse("m12"), grid);
+      resample(prefiltered<double>(cubic, 9, SplineFilter::parse("m12"), PrefilterChoice::Q1),
+               SplineFilter::parse("m12"), grid);
   write_cartesian_nrrd(dir_ / "d.nrrd", d);
   expect_teem_reads(dir_ / "d.nrrd", d);
   const auto f =
-      resample(prefiltered<float>(cubic, 9, SplineFilter::parse("m7"), PrefilterChoice::None), SplineFilter::parse("m7"), grid);
+      resample(prefiltered<float>(cubic, 9, SplineFilter::parse("m7"), PrefilterChoice::None),
+               SplineFilter::parse("m7"), grid);
   write_cartesian_nrrd(dir_ / "f.nrrd", f);
   expect_teem_reads(dir_ / "f.nrrd", f);
 }
@@ -261,7 +265,8 @@ TEST(Resample, DefaultBoxOfASampledCubeHoldsTheCube) {
 }
 
 TEST(Resample, BadBoxesAndGridsAreErrors) {
-  const LatticeVolume<double> volume = prefiltered<double>(cubic, 5, SplineFilter::parse("m7"), PrefilterChoice::None);
+  const LatticeVolume<double> volume =
+      prefiltered<double>(cubic, 5, SplineFilter::parse("m7"), PrefilterChoice::None);
   const Box inside{{-1, -1, -1}, {1, 1, 1}};
   // Empty, degenerate, inverted or non-finite boxes, and too few points.
   EXPECT_THROW(grid_over({{-1, 0, -1}, {1, 0, 1}}, {3, 3, 3}), std::invalid_argument);
@@ -273,9 +278,11 @@ TEST(Resample, BadBoxesAndGridsAreErrors) {
   EXPECT_THROW(grid_over(inside, {kMaxGridSize, kMaxGridSize, kMaxGridSize}),
                std::invalid_argument);
   // A grid with zero spacing or a non-finite origin.
-  EXPECT_THROW(resample(volume, SplineFilter::parse("m7"), CartesianGrid{{3, 3, 3}, {0.5, 0, 0.5}, {0, 0, 0}}),
+  EXPECT_THROW(resample(volume, SplineFilter::parse("m7"),
+                        CartesianGrid{{3, 3, 3}, {0.5, 0, 0.5}, {0, 0, 0}}),
                std::invalid_argument);
-  EXPECT_THROW(resample(volume, SplineFilter::parse("m7"), CartesianGrid{{3, 3, 3}, {0.5, 0.5, 0.5}, {0, NAN, 0}}),
+  EXPECT_THROW(resample(volume, SplineFilter::parse("m7"),
+                        CartesianGrid{{3, 3, 3}, {0.5, 0.5, 0.5}, {0, NAN, 0}}),
                std::invalid_argument);
   // A box leaving the volume, on either side of any axis: one line naming the allowed region.
   const Box allowed = default_box(volume, SplineFilter::parse("m7"));
@@ -294,8 +301,9 @@ TEST(Resample, BadBoxesAndGridsAreErrors) {
   // A volume too small for the stencil has no default box, and nothing can be resampled from it.
   const LatticeVolume<double> tiny(CosetLattice::bcc(), {2, 9, 9}, 0.5, {0, 0, 0});
   EXPECT_THROW((void)default_box(tiny, SplineFilter::parse("m8")), std::invalid_argument);
-  EXPECT_THROW((void)resample(tiny, SplineFilter::parse("m8"), grid_over({{1, 1, 1}, {2, 2, 2}}, {3, 3, 3})),
-               std::invalid_argument);
+  EXPECT_THROW(
+      (void)resample(tiny, SplineFilter::parse("m8"), grid_over({{1, 1, 1}, {2, 2, 2}}, {3, 3, 3})),
+      std::invalid_argument);
 }
 
 }  // namespace

@@ -19,7 +19,8 @@ TEST(BccSampling, CubeGridGeometry) {
   EXPECT_EQ(g.sizes, (Sizes{33, 33, 33}));
   EXPECT_EQ(g.h, 1.0 / 32);
   EXPECT_EQ(g.origin, (Vec3{-1, -1, -1}));
-  const LatticeGrid m = cube_lattice_grid(CosetLattice::bcc(), 5, 2);  // h = 1/4, origin -1 - 2 h m = -2
+  const LatticeGrid m =
+      cube_lattice_grid(CosetLattice::bcc(), 5, 2);  // h = 1/4, origin -1 - 2 h m = -2
   EXPECT_EQ(m.sizes, (Sizes{9, 9, 9}));
   EXPECT_EQ(m.h, 0.25);
   EXPECT_EQ(m.origin, (Vec3{-2, -2, -2}));
@@ -91,7 +92,8 @@ TEST(BccSampling, BadArgumentsAreRejected) {
   EXPECT_THROW(cube_lattice_grid(CosetLattice::bcc(), 1, 0), std::invalid_argument);
   EXPECT_THROW(cube_lattice_grid(CosetLattice::bcc(), -3, 0), std::invalid_argument);
   EXPECT_THROW(cube_lattice_grid(CosetLattice::bcc(), 5, -1), std::invalid_argument);
-  EXPECT_THROW(cube_lattice_grid(CosetLattice::bcc(), LatticeVolume<double>::kMaxSize, 1), std::invalid_argument);
+  EXPECT_THROW(cube_lattice_grid(CosetLattice::bcc(), LatticeVolume<double>::kMaxSize, 1),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -22,9 +22,9 @@
 
 #include "generated/registry.hpp"
 #include "runtime/batch_threads.h"
-#include "runtime/resample.h"
 #include "runtime/lattice_volume.h"
 #include "runtime/reconstruction.h"
+#include "runtime/resample.h"
 #include "tests/support/bcc_volumes.h"
 
 namespace boxgen::runtime {
