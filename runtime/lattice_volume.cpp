@@ -97,7 +97,7 @@ bool LatticeVolume<T>::contains(std::int64_t x, std::int64_t y, std::int64_t z) 
   const std::int64_t d = lattice_.period();
   const std::int64_t p[3] = {x, y, z};
   for (int a = 0; a < 3; ++a) {
-    const std::int64_t i = ::boxgen::support::floor_div(p[a] - o[a], d);  // exact: p - o is a multiple of d
+    const std::int64_t i = floor_div(p[a] - o[a], d);  // exact: p - o is a multiple of d
     if (i < 0 || i >= sizes_[a]) return false;
   }
   return true;
@@ -115,8 +115,8 @@ bool LatticeVolume<T>::contains_box(const LatticePoint& lo, const LatticePoint& 
     bool empty = false;
     for (int a = 0; a < 3; ++a) {
       first[a] =
-          o[a] + d * ::boxgen::support::floor_div(lo[a] - o[a] + d - 1, d);  // smallest x >= lo with x = off (mod d)
-      last[a] = o[a] + d * ::boxgen::support::floor_div(hi[a] - o[a], d);    // largest x <= hi
+          o[a] + d * floor_div(lo[a] - o[a] + d - 1, d);  // smallest x >= lo with x = off (mod d)
+      last[a] = o[a] + d * floor_div(hi[a] - o[a], d);    // largest x <= hi
       if (first[a] > last[a]) empty = true;
     }
     if (empty) continue;
