@@ -55,7 +55,7 @@ constexpr double kBytesBase = 1.0e7;
 constexpr double kBytesPerKnotCell = 5000;
 constexpr double kBytesPerStoredCoefficient = 41;
 constexpr double kBytesPerStencilPoint = 75;
-constexpr double kEnumerableCells = 2e6;    // above this bound, do not enumerate
+constexpr double kEnumerableCells = 2e6;  // above this bound, do not enumerate
 
 double binomial(double p, int k) {
   double r = 1;
@@ -186,11 +186,10 @@ CostEstimate estimate_cost(const BoxSplineSpec& given, std::size_t knot_cells,
   // second derivation runs; the full checks visit every cell of every symmetry orbit and every
   // fine cell's stencil.
   const double checks = verify ? (full_checks ? 2.0 : 1.0) : 0.5;
-  const double integration =
-      n == 2 ? w.integration * kSecondsPerIntegrationProduct2D +
-                   w.integration_deg * kSecondsPerIntegrationProductDegree2D
-             : w.integration * kSecondsPerIntegrationProduct3D +
-                   w.integration_deg * kSecondsPerIntegrationProductDegree3D;
+  const double integration = n == 2 ? w.integration * kSecondsPerIntegrationProduct2D +
+                                          w.integration_deg * kSecondsPerIntegrationProductDegree2D
+                                    : w.integration * kSecondsPerIntegrationProduct3D +
+                                          w.integration_deg * kSecondsPerIntegrationProductDegree3D;
   e.seconds = kSecondsStart + checks * w.plane_checks * kSecondsPerPlaneCoefficient +
               (verify ? integration : 0.0) +
               (verify && full_checks ? 2.0 : 1.0) * w.stencil * kSecondsPerStencilPoint +

@@ -39,7 +39,7 @@ struct AnalyzeOptions {
   bool verify = true;
   std::string checks = "default";  // default | full
   bool estimate_only = false;      // --estimate: predict time and memory, derive nothing
-  bool progress = false;   // progress on stderr even when it is not a terminal
+  bool progress = false;           // progress on stderr even when it is not a terminal
 };
 int run_analyze(const Common& c, const AnalyzeOptions& options);
 int run_eval(const Common& c, const std::vector<std::string>& points,
