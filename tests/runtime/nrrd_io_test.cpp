@@ -484,7 +484,7 @@ TEST_F(BccNrrd, FailedWritesLeaveNothingBehind) {
 // Headers that lie, and what the data may hold.
 
 // The message of the NrrdError that reading `path` throws ("" and a failure if none).
-std::string read_error(const fs::path& path, NrrdReadLimits limits = {}) {
+std::string read_error(const fs::path& path, const NrrdReadLimits& limits = {}) {
   try {
     (void)read_bcc<double>(path, limits);
   } catch (const NrrdError& e) {

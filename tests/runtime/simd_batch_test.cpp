@@ -86,7 +86,7 @@ std::vector<Vec3> candidate_points(int count, std::uint64_t seed) {
 // cosets are stored the other way round, so that the general lattice tables are used there too.
 template <class T>
 LatticeVolume<T> random_lattice_volume(const SplineFilter& f, std::uint64_t seed) {
-  const CosetLattice lattice = f.lattice();
+  const CosetLattice& lattice = f.lattice();
   const int n = 2 * kSize / lattice.period();
   LatticeVolume<T> volume(lattice, {n, n, n}, kSpacing, kOrigin);
   std::mt19937_64 rng(seed);
