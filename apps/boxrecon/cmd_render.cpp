@@ -43,10 +43,9 @@ RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, const RenderO
   on_lattice.lattice = rf.lattice();
   const auto sampled = [&] {
     const LatticeGrid grid = cube_lattice_grid(rf.lattice(), args.n, rf.required_margin(q));
-    // The samples, and the prefiltered copy beside them.
-    boxgen::app::check_volume_memory(static_cast<std::uint64_t>(rf.lattice().coset_count()) *
-                                         grid.sizes[0] * grid.sizes[1] * grid.sizes[2],
-                                     2 * sizeof(double), fmt::format("--n {}", args.n));
+    boxgen::app::check_memory(static_cast<std::uint64_t>(rf.lattice().coset_count()) *
+                                  grid.sizes[0] * grid.sizes[1] * grid.sizes[2],
+                              sizeof(double), fmt::format("--n {}", args.n), "samples");
     return sample_lattice<double>(find_test_function(args.function).value, grid);
   };
   LatticeVolume<double> volume =

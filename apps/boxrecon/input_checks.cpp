@@ -39,11 +39,6 @@ std::uint64_t volume_memory_budget() {
   return static_cast<std::uint64_t>(pages) / 2 * static_cast<std::uint64_t>(page_size);
 }
 
-void check_volume_memory(std::uint64_t samples, std::uint64_t bytes_per_sample,
-                         const std::string& what) {
-  check_memory(samples, bytes_per_sample, what, "samples");
-}
-
 void check_memory(std::uint64_t items, std::uint64_t bytes_per_item, const std::string& what,
                   const std::string& unit) {
   const std::uint64_t budget = volume_memory_budget();

@@ -113,9 +113,9 @@ int run_error(const std::string& function, int n, const std::string& filter,
     throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", n));
   const CosetLattice& lattice = f.lattice();
   const LatticeGrid grid = cube_lattice_grid(lattice, n, f.required_margin(q));
-  check_volume_memory(static_cast<std::uint64_t>(lattice.coset_count()) * grid.sizes[0] *
-                          grid.sizes[1] * grid.sizes[2],
-                      sizeof(double), fmt::format("--n {}", n));
+  check_memory(static_cast<std::uint64_t>(lattice.coset_count()) * grid.sizes[0] * grid.sizes[1] *
+                   grid.sizes[2],
+               sizeof(double), fmt::format("--n {}", n), "samples");
   LatticeVolume<double> volume = sample_lattice<double>(fn.value, grid);
   if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
   std::mt19937_64 rng(report.seed);

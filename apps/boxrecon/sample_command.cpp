@@ -65,9 +65,9 @@ int run_sample(const std::string& function, int n, const std::optional<double>& 
   runtime::require_output_directory(output);
   runtime::LatticeGrid grid = runtime::cube_lattice_grid(lattice, n, margin);
   const auto per_axis = static_cast<std::uint64_t>(grid.sizes[0]);
-  check_volume_memory(
-      static_cast<std::uint64_t>(lattice.coset_count()) * per_axis * per_axis * per_axis,
-      precision == "float" ? sizeof(float) : sizeof(double), fmt::format("--n {}", n));
+  check_memory(static_cast<std::uint64_t>(lattice.coset_count()) * per_axis * per_axis * per_axis,
+               precision == "float" ? sizeof(float) : sizeof(double), fmt::format("--n {}", n),
+               "samples");
   if (h) {  // --h overrides the spacing; the grid still starts margin cells below -1
     grid.h = *h;
     for (auto& o : grid.origin) o = -1 - lattice.period() * *h * margin;

@@ -94,13 +94,6 @@ TEST_F(AnalysisCli, FiguresAreWrittenAsPngAndNothingElse) {
   EXPECT_EQ(listing(), (std::vector<std::string>{"k.png", "l.png", "p.png"}));
 }
 
-#ifndef BOXRECON_EXE
-#error "BOXRECON_EXE must name the boxrecon binary"
-#endif
-ProcessResult boxrecon(const std::vector<std::string>& args) {
-  return run_process(BOXRECON_EXE, args, kDefaultTimeout);
-}
-
 TEST_F(AnalysisCli, RenderWritesAPngOfTheRequestedSize) {
   const ProcessResult r =
       boxrecon({"render", "--function", "ml", "--n", "17", "--filter", "m7", "--prefilter", "q1",

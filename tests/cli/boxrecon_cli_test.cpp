@@ -24,22 +24,11 @@
 #include "cli_support.h"
 #include "tests/support/scratch_directory.h"
 
-#ifndef BOXRECON_EXE
-#error "BOXRECON_EXE must name the boxrecon binary (set by tests/cli/CMakeLists.txt)"
-#endif
-
 namespace boxgen::test {
 namespace {
 
 namespace fs = std::filesystem;
 using Point = std::array<double, 3>;
-
-// Some failing NRRD reads leak inside Teem (of the cases below, the corrupt gzip volume does); a
-// sanitized boxrecon suppresses those itself (support/lsan_suppressions.cpp), so its stderr stays
-// one line.
-ProcessResult boxrecon(const std::vector<std::string>& args, const std::string& stdout_file = "") {
-  return run_process(BOXRECON_EXE, args, std::chrono::seconds(60 * kSlowdown), stdout_file);
-}
 
 std::string boxrecon_ok(const std::vector<std::string>& args) {
   const ProcessResult r = boxrecon(args);
@@ -272,7 +261,7 @@ TEST_F(BoxreconCli, AFailedWriteToStdoutIsAnError) {
                                  file("points.txt")},
         std::vector<std::string>{"error", "--function", "ml", "--n", "5", "--filter", "m7",
                                  "--points", "10", "--json"}}) {
-    const ProcessResult r = boxrecon(args, "/dev/full");
+    const ProcessResult r = boxrecon(args, {.stdout_file = "/dev/full", .stdin_file = ""});
     ASSERT_TRUE(r.exited) << describe(args, r);
     EXPECT_EQ(r.exit_code, 1) << describe(args, r);
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << describe(args, r);
@@ -289,12 +278,6 @@ struct BadInput {
 };
 
 void PrintTo(const BadInput& c, std::ostream* os) { *os << c.name; }
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
 
 std::vector<std::string> eval_with(const std::string& volume, const std::string& points) {
   return {"eval", "--filter", "m7", "--volume", "@/" + volume, "--points", "@/" + points};

@@ -16,20 +16,10 @@
 #include "cli_support.h"
 #include "tests/support/scratch_directory.h"
 
-#ifndef BOXRECON_EXE
-#error "BOXRECON_EXE must name the boxrecon binary (set by tests/cli/CMakeLists.txt)"
-#endif
-
 namespace boxgen::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-ProcessResult boxrecon(const std::vector<std::string>& args) {
-  const char* other = std::getenv("BOXRECON_UNDER_TEST");
-  return run_process(other && *other ? other : BOXRECON_EXE, args,
-                     std::chrono::seconds(60 * kSlowdown));
-}
 
 void write_bytes(const fs::path& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary);

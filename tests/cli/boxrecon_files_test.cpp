@@ -23,22 +23,10 @@
 #include "cli_support.h"
 #include "tests/support/scratch_directory.h"
 
-#ifndef BOXRECON_EXE
-#error "BOXRECON_EXE must name the boxrecon binary (set by tests/cli/CMakeLists.txt)"
-#endif
-
 namespace boxgen::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-// BOXRECON_UNDER_TEST runs these tests against another boxrecon (a sanitized or installed one, or
-// an older build to show that it fails them).
-ProcessResult boxrecon(const std::vector<std::string>& args, const std::string& stdin_file = "") {
-  const char* other = std::getenv("BOXRECON_UNDER_TEST");
-  return run_process(other && *other ? other : BOXRECON_EXE, args,
-                     std::chrono::seconds(60 * kSlowdown), "", stdin_file);
-}
 
 std::string read_bytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -52,19 +40,13 @@ void write_bytes(const fs::path& path, const std::string& bytes) {
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 class BoxreconFiles : public ScratchDirectoryTest {
  protected:
   BoxreconFiles() : ScratchDirectoryTest("boxrecon-files") {}
   std::string file(const std::string& name) const { return (dir_ / name).string(); }
 
   void ok(const std::vector<std::string>& args, const std::string& stdin_file = "") {
-    const ProcessResult r = boxrecon(args, stdin_file);
+    const ProcessResult r = boxrecon(args, {.stdout_file = "", .stdin_file = stdin_file});
     EXPECT_TRUE(r.exited && r.exit_code == 0) << describe(args, r);
     EXPECT_EQ(r.err, "") << describe(args, r);
     last_out_ = r.out;

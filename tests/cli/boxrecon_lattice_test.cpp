@@ -22,10 +22,6 @@
 #include "cli_support.h"
 #include "tests/support/scratch_directory.h"
 
-#ifndef BOXRECON_EXE
-#error "BOXRECON_EXE must name the boxrecon binary (set by tests/cli/CMakeLists.txt)"
-#endif
-
 namespace boxgen::test {
 namespace {
 
@@ -40,10 +36,6 @@ struct OffBccFilter {
 };
 constexpr OffBccFilter kFilters[] = {
     {"fcc6", "fcc", 3}, {"tricubic", "cartesian", 4}, {"cart7", "cartesian", 4}};
-
-ProcessResult boxrecon(const std::vector<std::string>& args) {
-  return run_process(BOXRECON_EXE, args, std::chrono::seconds(60 * kSlowdown));
-}
 
 std::string boxrecon_ok(const std::vector<std::string>& args) {
   const ProcessResult r = boxrecon(args);

@@ -20,12 +20,6 @@ struct BadInput {
 
 void PrintTo(const BadInput& c, std::ostream* os) { *os << c.name; }
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 // 33 directions spanning R^3 (e1, e2, e3 eleven times each), so the count is the only problem.
 std::string directions_33() {
   std::string s;

@@ -8,8 +8,11 @@
 #include <cln/rational_io.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <chrono>
+#include <cstdlib>
 #include <optional>
 #include <regex>
 #include <sstream>
@@ -20,6 +23,9 @@
 
 #ifndef BOXGEN_EXE
 #error "BOXGEN_EXE must name the boxgen binary (set by tests/cli/CMakeLists.txt)"
+#endif
+#ifndef BOXRECON_EXE
+#error "BOXRECON_EXE must name the boxrecon binary (set by tests/cli/CMakeLists.txt)"
 #endif
 
 namespace boxgen::test {
@@ -53,6 +59,30 @@ inline constexpr std::chrono::seconds kDefaultTimeout{120 * kSlowdown};
 inline ProcessResult boxgen(const std::vector<std::string>& args,
                             std::chrono::seconds timeout = kDefaultTimeout) {
   return run_process(BOXGEN_EXE, args, timeout);
+}
+
+// Where a boxrecon run reads stdin and writes stdout ("": /dev/null and the captured `out`).
+struct Redirect {
+  std::string stdout_file;
+  std::string stdin_file;
+};
+
+// Runs boxrecon: this build's, or the one BOXRECON_UNDER_TEST names (a sanitized or installed
+// build, or an older one to show that a test fails on it). Some failing NRRD reads leak inside
+// Teem; a sanitized boxrecon suppresses those itself (support/lsan_suppressions.cpp), so its
+// stderr stays one line.
+inline ProcessResult boxrecon(const std::vector<std::string>& args, const Redirect& io = {},
+                              std::chrono::seconds timeout = std::chrono::seconds(60 * kSlowdown)) {
+  const char* other = std::getenv("BOXRECON_UNDER_TEST");
+  return run_process(other && *other ? other : BOXRECON_EXE, args, timeout, io.stdout_file,
+                     io.stdin_file);
+}
+
+// Case-insensitive matching of messages.
+inline std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
 }
 
 // Runs a command that must succeed: exit 0, nothing on stderr. Returns stdout.
