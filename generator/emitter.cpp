@@ -206,7 +206,8 @@ std::string evaluator(const Analysis& a, const EmissionRequest& req, const Orbit
   KnotPlaneKeys keys = knot_plane_keys(a);
   const IntColumns hermite = hermite_basis(a);
   const CellTables t = cell_tables(a, keys, hermite);
-  std::vector<std::string> lookup_rows, normal_rows, orbit_sizes, dispatch, functions, costs;
+  std::vector<std::string> lookup_rows, normal_rows, orbit_sizes, dispatch, functions, costs,
+      cost_table;
   for (const auto& row : t.lookup) lookup_rows.push_back(brace_list(row));
   for (const auto& nu : keys.planes) normal_rows.push_back(brace_list(nu));
   normal_rows.push_back(brace_list(IntVec(n, 0)));  // a zero row keeps the arrays non-empty
@@ -220,6 +221,17 @@ std::string evaluator(const Analysis& a, const EmissionRequest& req, const Orbit
     costs.push_back(fmt::format("//   orbit {}: {}, {} / {} / {}", o,
                                 strategy_description(c.strategy, c.form), c.value.total(),
                                 c.gradient.total(), c.hessian.total()));
+    costs.push_back(fmt::format("//     adds {} / {} / {}, muls {} / {} / {}, loads {} / {} / {}, "
+                                "temporaries {} / {} / {}",
+                                c.value.adds, c.gradient.adds, c.hessian.adds, c.value.muls,
+                                c.gradient.muls, c.hessian.muls, c.value.loads, c.gradient.loads,
+                                c.hessian.loads, c.value.temporaries, c.gradient.temporaries,
+                                c.hessian.temporaries));
+    std::vector<std::string> paths;
+    for (const OperationCount* p : {&c.value, &c.gradient, &c.hessian})
+      paths.push_back(fmt::format("{{{}, {}, {}, {}, {}}}", p->adds, p->muls, p->negs, p->loads,
+                                  p->temporaries));
+    cost_table.push_back("{" + join(paths) + "}");
     if (!c.considered.empty())
       costs.push_back("//     chosen by value + gradient from " + considered_text(c.considered));
   }
@@ -234,6 +246,7 @@ std::string evaluator(const Analysis& a, const EmissionRequest& req, const Orbit
       fmt::arg("strategy", code.strategy), fmt::arg("value_ops", code.value.total()),
       fmt::arg("gradient_ops", code.gradient.total()),
       fmt::arg("hessian_ops", code.hessian.total()), fmt::arg("orbit_costs", join(costs, "\n")),
+      fmt::arg("orbit_cost_table", join(cost_table, ",\n    ")),
       fmt::arg("centre", join(centre)), fmt::arg("reach_lo", join_ints(t.reach_lo)),
       fmt::arg("reach_hi", join_ints(t.reach_hi)), fmt::arg("hermite", join(hermite_rows)),
       fmt::arg("scale", s.scale), fmt::arg("cube_count", t.lookup.size()),

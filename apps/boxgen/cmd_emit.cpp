@@ -36,7 +36,9 @@ void write_emitted(const std::vector<EmittedFile>& files, const std::string& dir
 }
 
 nlohmann::json counts_json(const OperationCount& c) {
-  return {{"adds", c.adds}, {"muls", c.muls}, {"total", c.total()}};
+  return {{"adds", c.adds},   {"muls", c.muls},
+          {"negs", c.negs},   {"loads", c.loads},
+          {"total", c.total()}, {"temporaries", c.temporaries}};
 }
 
 void print_report(const EmissionReport& r) {
@@ -49,6 +51,11 @@ void print_report(const EmissionReport& r) {
     fmt::print("  orbit {}: {}{}, {} / {} / {}\n", o, orbit.strategy,
                orbit.form.empty() ? "" : " " + orbit.form, orbit.value.total(),
                orbit.gradient.total(), orbit.hessian.total());
+    fmt::print("    adds {} / {} / {}, muls {} / {} / {}, loads {} / {} / {}, temporaries {} / {} / {}\n",
+               orbit.value.adds, orbit.gradient.adds, orbit.hessian.adds, orbit.value.muls,
+               orbit.gradient.muls, orbit.hessian.muls, orbit.value.loads, orbit.gradient.loads,
+               orbit.hessian.loads, orbit.value.temporaries, orbit.gradient.temporaries,
+               orbit.hessian.temporaries);
     if (!orbit.considered.empty())
       fmt::print("    chosen by value + gradient from {}\n", considered_text(orbit.considered));
   }
