@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <map>
 #include <set>
 
 #include "apps/boxgen/commands.h"
@@ -114,12 +115,31 @@ void check_emit_name(const std::string& name) {
         "--name '{}' is reserved for the implementation in C++ ('__' or '_' and a capital)", name));
 }
 
+// The target and precision, checked before the derivation.
+std::pair<EmissionTarget, bool> parse_language(const EmitLanguage& l, bool registry) {
+  const std::map<std::string, EmissionTarget> targets = {
+      {"cpp", EmissionTarget::Cpp}, {"glsl", EmissionTarget::Glsl}, {"cuda", EmissionTarget::Cuda}};
+  const auto it = targets.find(l.target);
+  if (it == targets.end())
+    fail_input(fmt::format("--target must be cpp, glsl or cuda, got '{}'", l.target.substr(0, 40)));
+  if (l.precision != "float" && l.precision != "double")
+    fail_input(
+        fmt::format("--precision must be float or double, got '{}'", l.precision.substr(0, 40)));
+  if (l.precision == "double" && it->second != EmissionTarget::Glsl)
+    fail_input("--precision double is for --target glsl (C++ and CUDA evaluators are templates)");
+  if (registry && it->second != EmissionTarget::Cpp)
+    fail_input("--registry lists C++ headers: use it with --target cpp");
+  return {it->second, l.precision == "double"};
+}
+
 }  // namespace
 
 int run_emit(const Common& c, const std::string& name, const std::string& out,
-             const std::string& strategy, bool report, const std::vector<std::string>& registry) {
+             const std::string& strategy, bool report, const std::vector<std::string>& registry,
+             const EmitLanguage& language) {
   check_emit_name(name);
   const EmissionStrategy chosen = parse_strategy(strategy);  // before the derivation: fail fast
+  const auto [target, double_precision] = parse_language(language, !registry.empty());
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
   ProgressPrinter progress(false);  // on a terminal, for derivations beyond two seconds
   AnalysisOptions options;
@@ -128,10 +148,14 @@ int run_emit(const Common& c, const std::string& name, const std::string& out,
   progress.finish();
   EmissionRequest request{
       name,
-      fmt::format("boxgen emit {} {}--name {} --strategy {} --out <dir>",
+      fmt::format("boxgen emit {} {}--name {} --strategy {}{} --out <dir>",
                   spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,
-                  c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy),
-      chosen};
+                  c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy,
+                  target == EmissionTarget::Cpp
+                      ? ""
+                      : " --target " + language.target +
+                            (double_precision ? " --precision double" : "")),
+      chosen, target, double_precision};
   EmissionReport r;
   auto files = emit(a, request, &r);
   if (!registry.empty()) {
