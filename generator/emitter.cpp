@@ -107,12 +107,12 @@ std::vector<std::string> orbit_cost_lines(const OrbitCodes& code) {
     costs.push_back(fmt::format("//   orbit {}: {}, {} / {} / {}", o,
                                 strategy_description(c.strategy, c.form), c.value.total(),
                                 c.gradient.total(), c.hessian.total()));
-    costs.push_back(fmt::format("//     adds {} / {} / {}, muls {} / {} / {}, loads {} / {} / {}, "
-                                "temporaries {} / {} / {}",
-                                c.value.adds, c.gradient.adds, c.hessian.adds, c.value.muls,
-                                c.gradient.muls, c.hessian.muls, c.value.loads, c.gradient.loads,
-                                c.hessian.loads, c.value.temporaries, c.gradient.temporaries,
-                                c.hessian.temporaries));
+    costs.push_back(
+        fmt::format("//     adds {} / {} / {}, muls {} / {} / {}, loads {} / {} / {}, "
+                    "temporaries {} / {} / {}",
+                    c.value.adds, c.gradient.adds, c.hessian.adds, c.value.muls, c.gradient.muls,
+                    c.hessian.muls, c.value.loads, c.gradient.loads, c.hessian.loads,
+                    c.value.temporaries, c.gradient.temporaries, c.hessian.temporaries));
     if (!c.considered.empty())
       costs.push_back("//     chosen by value + gradient from " + considered_text(c.considered));
   }
@@ -258,10 +258,10 @@ std::vector<EmittedFile> emit(const Analysis& analysis, const EmissionRequest& r
   }
   switch (request.target) {
     case EmissionTarget::Glsl:
-      return {{request.name + ".glsl",
-               generator::glsl_evaluator(analysis, banner(analysis, request), request.name,
-                                         code.orbits, orbit_cost_lines(code),
-                                         request.double_precision)}};
+      return {
+          {request.name + ".glsl",
+           generator::glsl_evaluator(analysis, banner(analysis, request), request.name, code.orbits,
+                                     orbit_cost_lines(code), request.double_precision)}};
     case EmissionTarget::Cuda:
       return {{request.name + ".cuh", cuda_evaluator(analysis, request, code)}};
     case EmissionTarget::Cpp:

@@ -25,10 +25,10 @@ struct CellTables {
   std::vector<std::string> cells, offsets;
   IntVec reach_lo, reach_hi;  // offsets j - floor(x + c) per axis, over every cell
   std::vector<int> cube, orbit;
-  std::vector<std::vector<int>> keys;          // per cell: floor keys (and a trailing 0)
-  std::vector<std::vector<int>> perm, sign;    // x_ref_i = sign_i (x - t)_perm_i + a_i
+  std::vector<std::vector<int>> keys;        // per cell: floor keys (and a trailing 0)
+  std::vector<std::vector<int>> perm, sign;  // x_ref_i = sign_i (x - t)_perm_i + a_i
   std::vector<IntVec> a;
-  std::vector<std::vector<IntVec>> offset;     // per cell, per stencil point
+  std::vector<std::vector<IntVec>> offset;  // per cell, per stencil point
 };
 
 KnotPlaneKeys knot_plane_keys(const Analysis& a);

@@ -6,8 +6,7 @@ namespace boxgen::generator {
 
 std::size_t ExprGraph::KeyHash::operator()(const Key& k) const {
   std::size_t h = static_cast<std::size_t>(k.op);
-  for (int part : {k.a, k.b, k.index})
-    h = h * 1000003u ^ std::hash<int>{}(part);
+  for (int part : {k.a, k.b, k.index}) h = h * 1000003u ^ std::hash<int>{}(part);
   return h;
 }
 

@@ -11,7 +11,7 @@
 namespace boxgen::generator {
 
 struct Syntax {
-  std::string declaration;                               // "const T " or "float "
+  std::string declaration;                              // "const T " or "float "
   std::function<std::string(const Rational&)> literal;  // an exact constant, rounded
 };
 

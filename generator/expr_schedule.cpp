@@ -118,7 +118,8 @@ Program schedule(ExprGraph graph, const Outputs& outputs, int dimension,
       count_expression(p, s.node, true, false, total);
       ++total.temporaries;
     }
-    for (const auto& [index, id] : p.blocks[b].outputs) count_expression(p, id, !p.is_temporary(id), false, total);
+    for (const auto& [index, id] : p.blocks[b].outputs)
+      count_expression(p, id, !p.is_temporary(id), false, total);
     for (std::size_t i = 0; i < size; ++i)
       if (block[i] == b && g.node(static_cast<NodeId>(i)).op == Op::Load)
         loads.insert(static_cast<NodeId>(i));

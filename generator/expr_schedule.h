@@ -58,7 +58,7 @@ struct Program {
   int dimension = 0;
   std::array<Block, 3> blocks;
   std::unordered_map<NodeId, std::string> names;  // the temporaries' names
-  std::array<OperationCount, 3> cost;  // whole paths: value; value + gradient; + Hessian
+  std::array<OperationCount, 3> cost;             // whole paths: value; value + gradient; + Hessian
 
   bool is_temporary(NodeId id) const { return names.count(id) != 0; }
 };

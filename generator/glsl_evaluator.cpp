@@ -63,10 +63,9 @@ std::string glsl_evaluator(const Analysis& a, const std::string& banner, const s
     std::string text = orbits[o].comment + "\n";
     for (int order = 0; order <= 2; ++order) {
       const std::string f = fmt::format("{}_orbit{}_{}", name, o, order);
-      text += fmt::format(
-          "{0} {1}(in {0} v[{2}], in {0} x[{3}], inout {0} d[{4}]) {{\n{5}}}\n", real, f,
-          s.stencil_max, n, derivatives,
-          print_straight_line(*orbits[o].program, order, syntax, "  "));
+      text += fmt::format("{0} {1}(in {0} v[{2}], in {0} x[{3}], inout {0} d[{4}]) {{\n{5}}}\n",
+                          real, f, s.stencil_max, n, derivatives,
+                          print_straight_line(*orbits[o].program, order, syntax, "  "));
       dispatch.push_back(
           fmt::format("  if (order == {} && o == {}) return {}(v, x, d);", order, o, f));
     }

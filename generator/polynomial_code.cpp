@@ -119,8 +119,8 @@ OrbitCode finish(Build&& b, EmissionStrategy strategy, NodeId value,
   out.value = value;
   out.gradient.assign(derivatives.begin(), derivatives.begin() + n);
   out.hessian.assign(derivatives.begin() + n, derivatives.end());
-  auto program =
-      std::make_shared<const generator::Program>(generator::schedule(std::move(b.g), out, n, b.hints));
+  auto program = std::make_shared<const generator::Program>(
+      generator::schedule(std::move(b.g), out, n, b.hints));
   OrbitCode code;
   code.strategy = strategy;
   code.program = program;
@@ -179,8 +179,7 @@ Coefficients coefficients(Build& b, const std::vector<Poly>& basis, int n, int d
     used.push_back(m);
     rows.push_back(std::move(row));
   }
-  const auto nodes =
-      linear_nodes(b, rows, static_cast<int>(basis.size()), shared, &c.shared_sums);
+  const auto nodes = linear_nodes(b, rows, static_cast<int>(basis.size()), shared, &c.shared_sums);
   const auto& exps = monomial_exponents(n, degree);
   for (std::size_t r = 0; r < used.size(); ++r) {
     b.name(nodes[r], fmt::format("c{}", used[r]));
@@ -231,11 +230,11 @@ OrbitCode monomial_code(const ReferenceRegion& ref, int orbit, int n, int degree
       d[k] = generator::sum(b.g, d[k], generator::product(b.g, term, monomial(lowered)));
     }
   }
-  return finish(std::move(b), EmissionStrategy::Monomial, value, d, n,
-                fmt::format(fmt::runtime(templates::orbit_monomial), fmt::arg("orbit", orbit),
-                            fmt::arg("vertices", orbit_vertices(ref)),
-                            fmt::arg("monomials", c.node.size()),
-                            fmt::arg("stencil", ref.stencil.size())));
+  return finish(
+      std::move(b), EmissionStrategy::Monomial, value, d, n,
+      fmt::format(fmt::runtime(templates::orbit_monomial), fmt::arg("orbit", orbit),
+                  fmt::arg("vertices", orbit_vertices(ref)), fmt::arg("monomials", c.node.size()),
+                  fmt::arg("stencil", ref.stencil.size())));
 }
 
 // ---- horner and shifted ----
@@ -276,8 +275,7 @@ class HornerForm {
       long factor = 1;
       for (int j = 0; j < d[k]; ++j) factor *= a - j;
       const NodeId term = generator::scaled(b_.g, Rational(factor), partial(next, k + 1, rest));
-      acc = a == top ? term
-                     : generator::sum(b_.g, term, generator::product(b_.g, vars_[k], acc));
+      acc = a == top ? term : generator::sum(b_.g, term, generator::product(b_.g, vars_[k], acc));
     }
     memo_.emplace(key, acc);
     return acc;
@@ -309,11 +307,11 @@ HornerNodes horner_nodes(Build& b, const std::vector<Poly>& basis, int n, int de
 OrbitCode horner_code(const ReferenceRegion& ref, int orbit, int n, int degree) {
   Build b;
   const HornerNodes h = horner_nodes(b, ref.basis, n, degree, b.coordinates(n));
-  return finish(std::move(b), EmissionStrategy::Horner, h.value, h.derivatives, n,
-                fmt::format(fmt::runtime(templates::orbit_horner), fmt::arg("orbit", orbit),
-                            fmt::arg("vertices", orbit_vertices(ref)),
-                            fmt::arg("monomials", h.monomials), fmt::arg("shared", h.shared_sums),
-                            fmt::arg("stencil", ref.stencil.size())));
+  return finish(
+      std::move(b), EmissionStrategy::Horner, h.value, h.derivatives, n,
+      fmt::format(fmt::runtime(templates::orbit_horner), fmt::arg("orbit", orbit),
+                  fmt::arg("vertices", orbit_vertices(ref)), fmt::arg("monomials", h.monomials),
+                  fmt::arg("shared", h.shared_sums), fmt::arg("stencil", ref.stencil.size())));
 }
 
 // Candidate origins of the shifted form, exact points of the reference region: its centroid, its
@@ -443,7 +441,8 @@ std::map<ContractionKey, NodeId> stencil_level(Build& b, const TensorGrid& grid,
 
 // Contracts the first remaining axis against its weights (each derivative order that keeps the
 // total within 2), one partial sum per resulting key.
-std::map<ContractionKey, NodeId> contract_axis(Build& b, const std::map<ContractionKey, NodeId>& level,
+std::map<ContractionKey, NodeId> contract_axis(Build& b,
+                                               const std::map<ContractionKey, NodeId>& level,
                                                const WeightNodes& weight, std::size_t g, int axis) {
   std::map<ContractionKey, NodeId> next;
   for (const auto& [key, node] : level) {
@@ -495,11 +494,11 @@ std::optional<OrbitCode> separable_code(const ReferenceRegion& ref, int orbit, i
     for (int x : g.sizes) s.push_back(std::to_string(x));
     shapes.push_back(join(s, "x"));
   }
-  return finish(std::move(b), EmissionStrategy::Separable, result({0, 0, 0}), d, n,
-                fmt::format(fmt::runtime(templates::orbit_separable), fmt::arg("orbit", orbit),
-                            fmt::arg("vertices", orbit_vertices(ref)),
-                            fmt::arg("stencil", ref.stencil.size()),
-                            fmt::arg("grids", join(shapes))));
+  return finish(
+      std::move(b), EmissionStrategy::Separable, result({0, 0, 0}), d, n,
+      fmt::format(fmt::runtime(templates::orbit_separable), fmt::arg("orbit", orbit),
+                  fmt::arg("vertices", orbit_vertices(ref)),
+                  fmt::arg("stencil", ref.stencil.size()), fmt::arg("grids", join(shapes))));
 }
 
 // ---- bernstein ----
@@ -517,8 +516,8 @@ using BBLevels = std::vector<std::vector<NodeId>>;
 
 // De Casteljau from the BB-coefficients `level0`: q^r_b = sum_i l_i q^(r-1)_(b + e_i) for
 // r = 1..d, every level kept (d - 1 and d - 2 give the derivatives).
-BBLevels casteljau_levels(Build& b, const std::vector<NodeId>& level0,
-                          const std::vector<NodeId>& l, int n, int degree) {
+BBLevels casteljau_levels(Build& b, const std::vector<NodeId>& level0, const std::vector<NodeId>& l,
+                          int n, int degree) {
   BBLevels levels{level0};
   for (int r = 1; r <= degree; ++r) {
     const auto previous = index_of(n, degree - r + 1);
@@ -529,8 +528,8 @@ BBLevels casteljau_levels(Build& b, const std::vector<NodeId>& level0,
       for (int i = 0; i <= n; ++i) {
         MultiIndex up = indices[q];
         ++up[i];
-        acc = generator::sum(b.g, acc,
-                             generator::product(b.g, l[i], levels.back()[previous.at(up)]));
+        acc =
+            generator::sum(b.g, acc, generator::product(b.g, l[i], levels.back()[previous.at(up)]));
       }
       next[q] = acc;
       b.name(acc, fmt::format("q{}_{}", r, q));
@@ -629,9 +628,10 @@ std::optional<OrbitCode> bernstein_code(const ReferenceRegion& ref, int orbit, i
 
 // The C++ function of the code: the comment, the template head and the printed body.
 void print_cpp(OrbitCode& code, int orbit) {
-  code.text = fmt::format(fmt::runtime(templates::orbit_function), fmt::arg("comment", code.comment),
-                          fmt::arg("qualifiers", ""), fmt::arg("orbit", orbit),
-                          fmt::arg("body", generator::print_cpp_body(*code.program)));
+  code.text =
+      fmt::format(fmt::runtime(templates::orbit_function), fmt::arg("comment", code.comment),
+                  fmt::arg("qualifiers", ""), fmt::arg("orbit", orbit),
+                  fmt::arg("body", generator::print_cpp_body(*code.program)));
 }
 
 std::optional<OrbitCode> unprinted_orbit_code(const ReferenceRegion& ref, int orbit, int n,

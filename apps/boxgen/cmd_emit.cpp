@@ -37,9 +37,8 @@ void write_emitted(const std::vector<EmittedFile>& files, const std::string& dir
 }
 
 nlohmann::json counts_json(const OperationCount& c) {
-  return {{"adds", c.adds},   {"muls", c.muls},
-          {"negs", c.negs},   {"loads", c.loads},
-          {"total", c.total()}, {"temporaries", c.temporaries}};
+  return {{"adds", c.adds},   {"muls", c.muls},     {"negs", c.negs},
+          {"loads", c.loads}, {"total", c.total()}, {"temporaries", c.temporaries}};
 }
 
 void print_report(const EmissionReport& r) {
@@ -52,11 +51,12 @@ void print_report(const EmissionReport& r) {
     fmt::print("  orbit {}: {}{}, {} / {} / {}\n", o, orbit.strategy,
                orbit.form.empty() ? "" : " " + orbit.form, orbit.value.total(),
                orbit.gradient.total(), orbit.hessian.total());
-    fmt::print("    adds {} / {} / {}, muls {} / {} / {}, loads {} / {} / {}, temporaries {} / {} / {}\n",
-               orbit.value.adds, orbit.gradient.adds, orbit.hessian.adds, orbit.value.muls,
-               orbit.gradient.muls, orbit.hessian.muls, orbit.value.loads, orbit.gradient.loads,
-               orbit.hessian.loads, orbit.value.temporaries, orbit.gradient.temporaries,
-               orbit.hessian.temporaries);
+    fmt::print(
+        "    adds {} / {} / {}, muls {} / {} / {}, loads {} / {} / {}, temporaries {} / {} / {}\n",
+        orbit.value.adds, orbit.gradient.adds, orbit.hessian.adds, orbit.value.muls,
+        orbit.gradient.muls, orbit.hessian.muls, orbit.value.loads, orbit.gradient.loads,
+        orbit.hessian.loads, orbit.value.temporaries, orbit.gradient.temporaries,
+        orbit.hessian.temporaries);
     if (!orbit.considered.empty())
       fmt::print("    chosen by value + gradient from {}\n", considered_text(orbit.considered));
   }
@@ -148,13 +148,13 @@ int run_emit(const Common& c, const std::string& name, const std::string& out,
   progress.finish();
   EmissionRequest request{
       name,
-      fmt::format("boxgen emit {} {}--name {} --strategy {}{} --out <dir>",
-                  spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,
-                  c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy,
-                  target == EmissionTarget::Cpp
-                      ? ""
-                      : " --target " + language.target +
-                            (double_precision ? " --precision double" : "")),
+      fmt::format(
+          "boxgen emit {} {}--name {} --strategy {}{} --out <dir>",
+          spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,
+          c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy,
+          target == EmissionTarget::Cpp
+              ? ""
+              : " --target " + language.target + (double_precision ? " --precision double" : "")),
       chosen, target, double_precision};
   EmissionReport r;
   auto files = emit(a, request, &r);

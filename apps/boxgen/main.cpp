@@ -81,8 +81,8 @@ int run(int argc, char** argv) {
                                    emit_precision = "float";
   bool emit_report = false;
   std::vector<std::string> emit_registry;
-  auto* emit =
-      app.add_subcommand("emit", "emit the evaluator (C++ and prefilter headers, GLSL or CUDA) of a box spline");
+  auto* emit = app.add_subcommand(
+      "emit", "emit the evaluator (C++ and prefilter headers, GLSL or CUDA) of a box spline");
   add_common(emit, c);
   emit->add_option("--name", emit_name, "C++ identifier: namespace boxgen::generated::<name>")
       ->required();

@@ -85,8 +85,8 @@ void check_header(const Costs& costs, const char* name) {
   }
 }
 
-#define BOXGEN_COUNT_TEST(NS)                                                              \
-  TEST(EmittedOperationCounts, NS) {                                                       \
+#define BOXGEN_COUNT_TEST(NS)                                                             \
+  TEST(EmittedOperationCounts, NS) {                                                      \
     check_header<boxgen::generated::NS::Traits>(boxgen::generated::NS::kOrbitCosts, #NS); \
   }
 

@@ -140,9 +140,9 @@ void check_exact(const std::string& preset) {
   int checked = 0;
   for (std::size_t o = 0; o < a.structure.references.size(); ++o) {
     const ReferenceRegion& ref = a.structure.references[o];
-    for (auto s : {EmissionStrategy::Horner, EmissionStrategy::Separable,
-                   EmissionStrategy::Monomial, EmissionStrategy::Shifted,
-                   EmissionStrategy::Bernstein}) {
+    for (auto s :
+         {EmissionStrategy::Horner, EmissionStrategy::Separable, EmissionStrategy::Monomial,
+          EmissionStrategy::Shifted, EmissionStrategy::Bernstein}) {
       const auto code = orbit_code(ref, static_cast<int>(o), n, a.properties.degree, s);
       if (!code) continue;
       ++checked;
@@ -161,8 +161,7 @@ void check_exact(const std::string& preset) {
             expected[at] = expected[at] + v[k] * ref.basis[k].derivative(i).eval(x);
           for (int i = 0; i < n; ++i)
             for (int j = i; j < n; ++j, ++at)
-              expected[at] =
-                  expected[at] + v[k] * ref.basis[k].derivative(i).derivative(j).eval(x);
+              expected[at] = expected[at] + v[k] * ref.basis[k].derivative(i).derivative(j).eval(x);
         }
         EXPECT_EQ(values[p.blocks[0].outputs.at(0).second], expected[0])
             << preset << " " << strategy_name(s);
