@@ -4,9 +4,10 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
-#include "analysis/output_file.h"
+#include "support/output_file.h"
 
 namespace boxgen::analysis {
 
@@ -28,11 +29,11 @@ std::string quoted(const std::string& s) {
 
 void plot_png(const std::string& path, const std::vector<PlotPanel>& panels, int rows, int columns,
               int width, int height, const std::string& title) {
-  AtomicOutput out(path);
+  support::PendingOutput out(path);
   std::string script;
   script +=
       fmt::format("set terminal pngcairo size {},{} enhanced font 'Sans,10'\n", width, height);
-  script += fmt::format("set output {}\n", quoted(out.temporary()));
+  script += fmt::format("set output {}\n", quoted(out.temporary().string()));
   // Data first: one inline block per series.
   for (std::size_t p = 0; p < panels.size(); ++p)
     for (std::size_t s = 0; s < panels[p].series.size(); ++s) {
@@ -70,7 +71,10 @@ void plot_png(const std::string& path, const std::vector<PlotPanel>& panels, int
   if (!written || status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw std::runtime_error(
         fmt::format("gnuplot failed to draw '{}' (is gnuplot-nox installed?)", path));
-  out.commit();
+  std::error_code ec;
+  out.commit(std::filesystem::file_size(out.temporary(), ec) == 0 || ec
+                 ? "gnuplot wrote nothing (disk full?)"
+                 : "");
 }
 
 }  // namespace boxgen::analysis

@@ -4,29 +4,40 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 
-#include "analysis/output_file.h"
+#include "support/output_file.h"
 
 namespace boxgen::analysis {
 
+namespace {
+
+// libpng reports through these instead of printing to stderr: an error ends the write (the
+// caller's setjmp), a warning is dropped (the result is still checked by commit()).
+[[noreturn]] void png_failed(png_structp png, png_const_charp /*message*/) { png_longjmp(png, 1); }
+void png_warned(png_structp /*png*/, png_const_charp /*message*/) {}
+
+}  // namespace
+
 void write_png(const std::string& path, const RgbImage& image) {
-  AtomicOutput out(path);
-  std::FILE* file = std::fopen(out.temporary().c_str(), "wb");
-  if (!file) throw std::invalid_argument("cannot write '" + path + "'");
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  support::PendingOutput out(path);
+  std::FILE* file = out.file();
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, png_failed, png_warned);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!png || !info) {
     png_destroy_write_struct(&png, &info);
-    std::fclose(file);
     throw std::runtime_error("libpng could not start");
   }
   if (setjmp(png_jmpbuf(png))) {
+    // A failed fwrite (a full disk): commit() reports the system's reason from the stream.
+    const int error = errno;
     png_destroy_write_struct(&png, &info);
-    std::fclose(file);
-    throw std::runtime_error("libpng failed to write '" + path + "'");
+    out.abandon(std::ferror(file) && error != 0 ? std::strerror(error)
+                                                : "the image could not be encoded");
   }
   png_init_io(png, file);
   png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
@@ -38,8 +49,6 @@ void write_png(const std::string& path, const RgbImage& image) {
                                              static_cast<std::size_t>(y) * image.width * 3));
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
-  const bool closed = std::fclose(file) == 0;
-  if (!closed) throw std::runtime_error("could not finish writing '" + path + "' (disk full?)");
   out.commit();
 }
 

@@ -11,8 +11,8 @@
 #include <chrono>
 #include <cstdlib>
 
-#include "generator/analysis.h"
 #include "generator/cost_estimate.h"
+#include "generator/derivation.h"
 #include "generator/spec.h"
 
 namespace {
@@ -24,8 +24,8 @@ struct Case {
 };
 
 void analyze_case(benchmark::State& state, Case c) {
-  const boxgen::BoxSplineSpec spec = boxgen::parse_spec(c.spec, c.lattice);
-  const boxgen::CostEstimate estimate = boxgen::estimate_cost(spec);
+  const boxgen::generator::BoxSplineSpec spec = boxgen::generator::parse_spec(c.spec, c.lattice);
+  const boxgen::generator::CostEstimate estimate = boxgen::generator::estimate_cost(spec);
   double peak_mb = 0, user_s = 0;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
@@ -33,7 +33,7 @@ void analyze_case(benchmark::State& state, Case c) {
     if (child == 0) {
       // A failed exact check throws: the child then exits non-zero and the run is an error.
       try {
-        benchmark::DoNotOptimize(boxgen::analyze(spec).pieces);
+        benchmark::DoNotOptimize(boxgen::generator::derive(spec).pieces);
       } catch (...) {
         _exit(1);
       }

@@ -3,7 +3,7 @@
 // clock. Issue 8's limits are shown as target_s.
 #include <benchmark/benchmark.h>
 
-#include "generator/analysis.h"
+#include "generator/derivation.h"
 #include "generator/emitter.h"
 #include "generator/spec.h"
 
@@ -12,8 +12,10 @@ namespace {
 void derive_and_emit(benchmark::State& state, const char* preset, double target_seconds) {
   std::size_t bytes = 0;
   for (auto _ : state) {
-    const boxgen::Analysis a = boxgen::analyze(boxgen::parse_spec(preset));
-    for (const auto& f : boxgen::emit(a, {preset, "bench", boxgen::EmissionStrategy::Auto}))
+    const boxgen::generator::Derivation a =
+        boxgen::generator::derive(boxgen::generator::parse_spec(preset));
+    for (const auto& f :
+         boxgen::generator::emit(a, {preset, "bench", boxgen::generator::EmissionStrategy::Auto}))
       bytes += f.text.size();
     benchmark::DoNotOptimize(bytes);
   }

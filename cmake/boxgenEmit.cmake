@@ -49,7 +49,7 @@ function(boxgen_emit target)
                      COMMENT "boxgen emit ${arg_NAME}"
                      VERBATIM)
   target_sources(${target} PRIVATE ${headers})
-  # The emitted header includes the fixed glue "generated/evaluator_support.hpp" (boxgen::generated).
+  # The emitted header includes the fixed glue "support/evaluator_support.hpp" (boxgen::generated).
   target_include_directories(${target} PRIVATE ${arg_OUTPUT_DIR}
                                                $<TARGET_PROPERTY:boxgen::generated,INTERFACE_INCLUDE_DIRECTORIES>)
   if(arg_HEADERS)

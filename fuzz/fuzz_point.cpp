@@ -14,7 +14,7 @@
 
 namespace {
 
-using namespace boxgen;
+using namespace boxgen::generator;
 
 void require(bool condition, const char* what) {
   if (condition) return;

@@ -4,7 +4,7 @@
 
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 int approximation_order(const IntColumns& xi, int n) {
   if (n != 2 && n != 3) fail_internal("approximation_order: only dimensions 2 and 3 are supported");
@@ -35,4 +35,4 @@ int approximation_order(const IntColumns& xi, int n) {
   return static_cast<int>(m) - most_on_a_hyperplane;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

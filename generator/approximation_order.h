@@ -4,10 +4,10 @@
 #pragma once
 #include "generator/int_linalg.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 // rho for the n x m matrix given by its columns, n = 2 or 3. Exact for any integer columns,
 // repeated or zero columns included. Returns 0 when the columns do not span R^n at all.
 int approximation_order(const IntColumns& xi, int n);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -10,7 +10,7 @@
 #include "generator/recurrence.h"
 #include "generator/symmetry.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -355,4 +355,4 @@ Autocorrelation autocorrelation_continuity(const BoxSplineSpec& spec) {
   return finish(std::move(samples), n);
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -8,7 +8,7 @@
 
 #include "generator/spec.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 struct AutocorrSample {
   IntVec point;
@@ -52,4 +52,4 @@ Autocorrelation autocorrelation_refinement(const BoxSplineSpec& spec,
 inline constexpr unsigned kContinuityMaxSubMultisets = 4096;
 Autocorrelation autocorrelation_continuity(const BoxSplineSpec& spec);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -2,7 +2,7 @@
 
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -157,4 +157,4 @@ RegionBBForm region_bb_form(const ReferenceRegion& region, int degree) {
   return out;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -7,7 +7,7 @@
 
 #include "generator/spline_regions.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 using MultiIndex = std::vector<int>;  // b_0..b_n, |b| = d
 
@@ -39,4 +39,4 @@ struct RegionBBForm {
 
 RegionBBForm region_bb_form(const ReferenceRegion& region, int degree);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

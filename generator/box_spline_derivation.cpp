@@ -3,7 +3,7 @@
 #include "generator/error.h"
 #include "generator/knot_normals.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 std::unique_ptr<BoxSplineDerivation> BoxSplineDerivation::make(const IntColumns& directions, int n,
                                                                DerivationMethod m) {
@@ -104,4 +104,4 @@ Poly TruncatedPowerDerivation::polynomial_at(const RatVec& p) {
   return sum;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

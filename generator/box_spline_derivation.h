@@ -15,7 +15,7 @@
 #include "generator/poly_sum.h"
 #include "generator/spec.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 enum class DerivationMethod { TruncatedPower, DirectionalIntegration };
 
@@ -65,4 +65,4 @@ struct HalfSpaceFlip {
 };
 HalfSpaceFlip flip_into_half_space(const IntColumns& directions, int n);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -4,7 +4,7 @@
 
 #include "generator/approximation_order.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 BoxSplineProperties box_spline_properties(const BoxSplineSpec& spec) {
   const int n = spec.dimension();
@@ -34,4 +34,4 @@ BoxSplineProperties box_spline_properties(const BoxSplineSpec& spec) {
   return p;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

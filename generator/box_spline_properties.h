@@ -4,7 +4,7 @@
 #pragma once
 #include "generator/spec.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 struct BoxSplineProperties {
   int degree = 0;                     // m - n
@@ -17,4 +17,4 @@ struct BoxSplineProperties {
 
 BoxSplineProperties box_spline_properties(const BoxSplineSpec& spec);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -7,7 +7,7 @@
 #include "generator/error.h"
 #include "generator/int_linalg.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -454,4 +454,4 @@ std::vector<std::vector<RatVec>> triangulate(const FineCell& cell, const KnotCom
   }
   return triangulate_polytope(cell.vertices, faces);
 }
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -12,7 +12,7 @@
 #include "generator/knot_normals.h"
 #include "generator/poly.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 struct FineCell {
   CellKey key;                   // per normal: floor(nu . x) (fine) or the interval index (knot)
@@ -103,4 +103,4 @@ struct Plane {
 std::vector<std::vector<RatVec>> triangulate_polytope(const std::vector<RatVec>& vertices,
                                                       const std::vector<Plane>& planes);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

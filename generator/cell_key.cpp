@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace boxgen {
+namespace boxgen::generator {
 
 CellKey floor_key(const std::vector<IntVec>& normals, const RatVec& x) {
   CellKey k;
@@ -58,4 +58,4 @@ bool off_integer_planes(const std::vector<IntVec>& normals, const RatVec& x) {
   return true;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -9,7 +9,7 @@
 #include "generator/knot_normals.h"
 #include "generator/rational.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 using CellKey = std::vector<std::int32_t>;
 
@@ -30,4 +30,4 @@ bool off_knot_planes(const KnotPlanes& planes, const RatVec& x);
 // True if no nu . x is an integer (x lies on no plane of the integer-level arrangement).
 bool off_integer_planes(const std::vector<IntVec>& normals, const RatVec& x);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

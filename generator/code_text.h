@@ -8,7 +8,7 @@
 
 #include "generator/rational.h"
 
-namespace boxgen::code {
+namespace boxgen::generator::code {
 
 // A double literal that round-trips (17 significant digits).
 inline std::string literal(const Rational& r) { return fmt::format("{:.17g}", to_double(r)); }
@@ -36,4 +36,4 @@ inline std::string vertex_text(const RatVec& v) {
   return "(" + join(parts, ",") + ")";
 }
 
-}  // namespace boxgen::code
+}  // namespace boxgen::generator::code

@@ -1,6 +1,6 @@
 #include "generator/common_scale.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -71,4 +71,4 @@ SplineStructure scaled_up(const SplineStructure& s, std::int64_t k) {
   return out;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -11,7 +11,7 @@
 #include "generator/spec.h"
 #include "generator/spline_regions.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 // (Xi / k, G / k), k = common_scale(spec) (spec.h) or a divisor of it; the name and text stay the
 // user's.
@@ -23,4 +23,4 @@ PiecewiseForm scaled_down(const PiecewiseForm& form, std::int64_t k);
 // polynomials B(x / k). The fine cells keep the reduced frame's keys (SplineStructure::scale).
 SplineStructure scaled_up(const SplineStructure& s, std::int64_t k);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

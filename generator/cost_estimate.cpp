@@ -13,7 +13,7 @@
 #include "generator/knot_normals.h"
 #include "generator/piecewise_form.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -168,4 +168,4 @@ void refuse_if_too_costly(const CostEstimate& e, double max_seconds) {
         e.seconds, e.bytes / 1e6, e.knot_cells, e.cells_exact ? "" : " at most", limit));
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

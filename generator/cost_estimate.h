@@ -11,7 +11,7 @@
 
 #include "generator/spec.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 struct CostEstimate {
   double seconds = 0;
@@ -35,4 +35,4 @@ inline constexpr double kDefaultMaxSeconds = 600;
 // Throws InputError, with the prediction in the message, if it exceeds max_seconds (0: default).
 void refuse_if_too_costly(const CostEstimate& e, double max_seconds);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -4,10 +4,10 @@
 #include <string>
 
 #include "boxgen/version.h"
-#include "generator/analysis.h"
+#include "generator/derivation.h"
 #include "generator/polynomial_code.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 inline constexpr const char* kGeneratorVersion = kVersionBanner;  // boxgen/version.h (CMake)
 
@@ -46,7 +46,7 @@ struct EmissionReport {
 // where they exist); GLSL: <name>.glsl; CUDA: <name>.cuh. Throws InputError for a name that is
 // not a C++ identifier.
 // With `report`, also fills it.
-std::vector<EmittedFile> emit(const Analysis& analysis, const EmissionRequest& request,
+std::vector<EmittedFile> emit(const Derivation& analysis, const EmissionRequest& request,
                               EmissionReport* report = nullptr);
 
 // registry.hpp: boxgen::generated::with_filter over the named filters (each with its evaluator and
@@ -56,4 +56,4 @@ EmittedFile emit_registry(const std::vector<std::string>& names, const std::stri
 // Writes the files into `directory` (each through a temporary file and a rename).
 void write_files(const std::vector<EmittedFile>& files, const std::string& directory);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -1,8 +1,8 @@
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 void fail_input(const std::string& message) { throw InputError(message); }
 void fail_internal(const std::string& message) { throw InternalError(message); }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

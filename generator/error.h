@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace boxgen {
+namespace boxgen::generator {
 
 struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -19,4 +19,4 @@ struct InternalError : std::logic_error {
 [[noreturn]] void fail_input(const std::string& message);
 [[noreturn]] void fail_internal(const std::string& message);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -14,7 +14,7 @@ using code::join;
 
 // Knot planes other than the axes and the combined key of floor(nu . r), r in [0,1)^n, that
 // indexes the lookup table: key = sum_k (floor(nu_k . r) - min_k) stride_k.
-KnotPlaneKeys knot_plane_keys(const Analysis& a) {
+KnotPlaneKeys knot_plane_keys(const Derivation& a) {
   const int n = a.spec.dimension();
   const auto& normals = a.form.complex.normals();
   KnotPlaneKeys keys;
@@ -36,7 +36,7 @@ KnotPlaneKeys knot_plane_keys(const Analysis& a) {
 
 // The Hermite basis (columns) recovered from the coset representatives' ranges: the first
 // multiple d e_j that leaves the representatives' box is d e_j - reduce(d e_j) = column j.
-IntColumns hermite_basis(const Analysis& a) {
+IntColumns hermite_basis(const Derivation& a) {
   const int n = a.spec.dimension();
   IntColumns hermite(n, IntVec(n, 0));
   for (int j = 0; j < n; ++j) {
@@ -55,7 +55,7 @@ IntColumns hermite_basis(const Analysis& a) {
   return hermite;
 }
 
-CellTables cell_tables(const Analysis& a, const KnotPlaneKeys& keys, const IntColumns& hermite) {
+CellTables cell_tables(const Derivation& a, const KnotPlaneKeys& keys, const IntColumns& hermite) {
   const SplineStructure& s = a.structure;
   const int n = a.spec.dimension();
   // The cubes and keys of a scaled pair are the reduced frame's (SplineStructure::scale); the

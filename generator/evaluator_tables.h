@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "generator/analysis.h"
+#include "generator/derivation.h"
 
 namespace boxgen::generator {
 
@@ -31,9 +31,9 @@ struct CellTables {
   std::vector<std::vector<IntVec>> offset;  // per cell, per stencil point
 };
 
-KnotPlaneKeys knot_plane_keys(const Analysis& a);
+KnotPlaneKeys knot_plane_keys(const Derivation& a);
 // The Hermite basis (columns) recovered from the coset representatives' ranges.
-IntColumns hermite_basis(const Analysis& a);
-CellTables cell_tables(const Analysis& a, const KnotPlaneKeys& keys, const IntColumns& hermite);
+IntColumns hermite_basis(const Derivation& a);
+CellTables cell_tables(const Derivation& a, const KnotPlaneKeys& keys, const IntColumns& hermite);
 
 }  // namespace boxgen::generator

@@ -5,7 +5,7 @@
 
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -107,4 +107,4 @@ Poly to_poly(const GiNaC::ex& e, const std::vector<GiNaC::symbol>& vars) {
   return p;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

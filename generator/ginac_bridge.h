@@ -8,7 +8,7 @@
 
 #include "generator/poly.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 // The coordinate symbols x, y (and z): one set per process, so that expressions built by
 // different callers compare and parse against the same symbols.
@@ -25,4 +25,4 @@ GiNaC::ex to_ex(const Poly& p);  // in coordinate_symbols(p.vars())
 // Throws InputError if it is not one: another symbol, a non-rational number, a negative power.
 Poly to_poly(const GiNaC::ex& e, const std::vector<GiNaC::symbol>& vars);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

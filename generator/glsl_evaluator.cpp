@@ -30,7 +30,7 @@ std::string flat_rows(const Rows& rows) {
 
 }  // namespace
 
-std::string glsl_evaluator(const Analysis& a, const std::string& banner, const std::string& name,
+std::string glsl_evaluator(const Derivation& a, const std::string& banner, const std::string& name,
                            const std::vector<OrbitCode>& orbits,
                            const std::vector<std::string>& cost_lines, bool double_precision) {
   const int n = a.spec.dimension();

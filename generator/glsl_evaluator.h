@@ -6,14 +6,14 @@
 #include <string>
 #include <vector>
 
-#include "generator/analysis.h"
+#include "generator/derivation.h"
 #include "generator/polynomial_code.h"
 
 namespace boxgen::generator {
 
 // The text of NAME.glsl; `banner` opens it, `cost_lines` are the "//" lines of the C++ header's
 // counts. float, vecN, matN, or with `double_precision` double, dvecN, dmatN.
-std::string glsl_evaluator(const Analysis& a, const std::string& banner, const std::string& name,
+std::string glsl_evaluator(const Derivation& a, const std::string& banner, const std::string& name,
                            const std::vector<OrbitCode>& orbits,
                            const std::vector<std::string>& cost_lines, bool double_precision);
 

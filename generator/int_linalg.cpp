@@ -4,7 +4,7 @@
 
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 std::int64_t det(const IntColumns& a) {
   const size_t n = a.size();
@@ -119,4 +119,4 @@ std::optional<RatVec> solve(const IntColumns& a, const RatVec& b) {
   return x;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

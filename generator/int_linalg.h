@@ -7,7 +7,7 @@
 
 #include "generator/rational.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 using IntColumns = std::vector<IntVec>;  // n x m matrix as m columns of length n
 using RatMatrix = std::vector<RatVec>;   // row-major square matrix
@@ -25,4 +25,4 @@ std::optional<RatVec> solve(const IntColumns& square, const RatVec& b);
 // Inverse of a square integer matrix (columns) as a row-major rational matrix.
 RatMatrix inverse(const IntColumns& square);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -5,7 +5,7 @@
 
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 std::vector<IntVec> knot_normals(const IntColumns& columns, int n) {
   std::set<IntVec> found;
@@ -68,4 +68,4 @@ IntColumns basis_first(const IntColumns& columns, int n) {
   return basis;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -6,7 +6,7 @@
 
 #include "generator/int_linalg.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 // The true knot planes of M_Xi (docs/design.md §4): for each normal nu, the planes nu . x = nu .
 // sum(S) over the sub-multisets S of the columns. Only these carry breaks of the polynomial pieces,
@@ -28,4 +28,4 @@ std::vector<IntVec> arrangement_normals(const IntColumns& columns, int n);
 // Reorders columns so that the first n form a basis (stable otherwise).
 IntColumns basis_first(const IntColumns& columns, int n);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

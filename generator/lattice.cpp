@@ -5,15 +5,13 @@
 #include <map>
 
 #include "generator/error.h"
+#include "support/integer_math.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
-std::int64_t floor_div(std::int64_t a, std::int64_t b) {
-  std::int64_t q = a / b, r = a % b;
-  return (r != 0 && ((r < 0) != (b < 0))) ? q - 1 : q;
-}
+using support::floor_div;
 
 // Column-style Hermite normal form: unimodular column operations make G lower triangular
 // with a positive diagonal.
@@ -154,4 +152,4 @@ std::vector<std::vector<IntVec>> Lattice::shells(int count) const {
   }
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

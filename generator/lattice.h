@@ -7,7 +7,7 @@
 
 #include "generator/int_linalg.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 class Lattice {
  public:
@@ -41,4 +41,4 @@ class Lattice {
   std::int64_t det_abs_;
 };
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

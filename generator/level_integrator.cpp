@@ -6,7 +6,7 @@
 #include "generator/error.h"
 #include "generator/knot_normals.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -195,4 +195,4 @@ const Poly& LevelIntegrator::jump(int level, const CellKey& a, Cell& ca, const C
   return memo.emplace(std::move(memo_key), std::move(r)).first->second;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

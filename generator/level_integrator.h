@@ -21,7 +21,7 @@
 #include "generator/knot_normals.h"
 #include "generator/poly.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 enum class IntegrationPath { UnitSegment, Ray };
 
@@ -82,4 +82,4 @@ class LevelIntegrator {
   Rational base_value_;
 };
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

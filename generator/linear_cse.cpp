@@ -6,7 +6,7 @@
 #include <optional>
 #include <tuple>
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -156,4 +156,4 @@ SharedRows share_partial_sums(const std::vector<LinearRow>& rows, int inputs,
   return out;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

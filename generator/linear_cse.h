@@ -9,7 +9,7 @@
 
 #include "generator/rational.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 using LinearRow = std::vector<std::pair<int, Rational>>;  // (input, weight), weight != 0
 
@@ -28,4 +28,4 @@ struct SharedRows {
 SharedRows share_partial_sums(const std::vector<LinearRow>& rows, int inputs,
                               std::size_t max_entries = 4000);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -6,17 +6,11 @@
 
 #include "generator/error.h"
 #include "generator/simplex_integral.h"
+#include "support/union_find.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int a) { return parent[a] == a ? a : parent[a] = find(parent[a]); }
-  void unite(int a, int b) { parent[find(a)] = find(b); }
-};
 
 // Polynomials by value (trailing zero coefficients do not count), for sharing work between cells
 // with one polynomial.
@@ -109,7 +103,7 @@ RatVec symmetry_image(const SignedPermutation& g, const RatVec& y, const RatVec&
 
 int count_pieces(const PiecewiseForm& form) {
   const auto& cells = form.knots.cells();
-  UnionFind uf(cells.size());
+  support::UnionFind uf(cells.size());
   for (size_t i = 0; i < cells.size(); ++i) {
     if (form.polys[i].is_zero()) continue;
     for (const auto& f : facets_of(cells[i], form.knots.planes())) {
@@ -272,4 +266,4 @@ void check_symmetry(const PiecewiseForm& form, const std::vector<SignedPermutati
     }
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -4,7 +4,7 @@
 #include "generator/piecewise_form.h"
 #include "generator/symmetry.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 // Orbits of the knot cells under the symmetry group of the centred spline, x -> g(x - c) + c
 // (the complex is symmetric, so each image of a cell is a cell): representatives and sizes.
@@ -44,4 +44,4 @@ std::vector<SignedPermutation> generators(const std::vector<SignedPermutation>& 
 RatVec symmetry_image(const SignedPermutation& g, const RatVec& y, const RatVec& centre);
 RatVec spline_centre(const BoxSplineSpec& spec);  // sum(Xi)/2
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

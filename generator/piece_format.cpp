@@ -8,7 +8,7 @@
 #include "generator/error.h"
 #include "generator/ginac_bridge.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 PieceFormat parse_piece_format(std::string_view text) {
   if (text == "text") return PieceFormat::Text;
@@ -331,4 +331,4 @@ std::string format_pieces(const Pieces& pieces, PieceFormat format, const std::s
   fail_internal("unknown piece format");
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

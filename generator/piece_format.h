@@ -14,7 +14,7 @@
 
 #include "generator/pieces.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 enum class PieceFormat { Text, Latex, C, Json };
 PieceFormat parse_piece_format(std::string_view text);  // text | latex | c | json
@@ -31,4 +31,4 @@ GiNaC::ex piece_expression(const Piece& piece, const std::vector<GiNaC::symbol>&
 std::string format_pieces(const Pieces& pieces, PieceFormat format, const std::string& title);
 nlohmann::json pieces_json(const Pieces& pieces, const std::string& title);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

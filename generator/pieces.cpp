@@ -8,8 +8,9 @@
 
 #include "generator/error.h"
 #include "generator/piece_checks.h"
+#include "support/union_find.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 PiecesOf parse_pieces_of(std::string_view text) {
   if (text == "spline") return PiecesOf::Spline;
@@ -30,13 +31,6 @@ PieceSelection parse_piece_selection(std::string_view text) {
 }
 
 namespace {
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int a) { return parent[a] == a ? a : parent[a] = find(parent[a]); }
-  void unite(int a, int b) { parent[find(a)] = find(b); }
-};
 
 RatVec mean(const std::vector<RatVec>& pts) {
   RatVec m(pts.front().size(), Rational(0));
@@ -179,7 +173,7 @@ bool region_of(const PiecewiseForm& form, const std::vector<int>& members, const
 // cells if it is not convex, so that every piece is a convex polytope.
 std::vector<CellUnion> filter_cell_unions(const PiecewiseForm& form) {
   const auto& cells = form.knots.cells();
-  UnionFind uf(cells.size());
+  support::UnionFind uf(cells.size());
   for (size_t i = 0; i < cells.size(); ++i) {
     if (form.polys[i].is_zero()) continue;
     for (const auto& f : facets_of(cells[i], form.knots.planes())) {
@@ -260,7 +254,7 @@ Pieces filter_pieces(const PiecewiseForm& form, const PieceSelection& selection)
     }
   }
   // Orbits under the symmetry group: the image of a piece's interior point lies in its image piece.
-  UnionFind orbits(all.size());
+  support::UnionFind orbits(all.size());
   const std::vector<SignedPermutation> group = symmetry_group(form.spec);
   for (size_t i = 0; i < all.size(); ++i) {
     if (alone[i]) continue;
@@ -310,4 +304,4 @@ Pieces filter_pieces(const PiecewiseForm& form, const PieceSelection& selection)
   return out;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

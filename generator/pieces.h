@@ -13,7 +13,7 @@
 
 #include "generator/spline_regions.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 enum class PiecesOf { Spline, Filter };
 
@@ -54,4 +54,4 @@ Pieces spline_pieces(const PiecewiseForm& form, const SplineStructure& structure
                      const PieceSelection& selection);
 Pieces filter_pieces(const PiecewiseForm& form, const PieceSelection& selection);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

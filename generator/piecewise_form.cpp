@@ -9,7 +9,7 @@
 #include "generator/error.h"
 #include "generator/knot_normals.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 Zonotope::Zonotope(const IntColumns& directions, int n) : lo_(n, 0), hi_(n, 0) {
   for (const auto& xi : directions)
@@ -108,4 +108,4 @@ std::vector<Poly> rederive(const PiecewiseForm& form, DerivationMethod method,
   return derive_on_cells(form.spec, form.knots, method, progress);
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

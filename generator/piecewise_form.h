@@ -10,7 +10,7 @@
 #include "generator/cell_complex.h"
 #include "generator/spec.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 // The bounding box [lo, hi] of the support Xi [0,1]^m.
 class Zonotope {
@@ -98,4 +98,4 @@ PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod metho
 std::vector<Poly> rederive(const PiecewiseForm& form, DerivationMethod method,
                            const ProgressFn& progress = {});
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -5,7 +5,7 @@
 
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -425,4 +425,4 @@ std::vector<Poly> Poly::along_direction(const IntVec& dir) const {
   return q;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -9,7 +9,7 @@
 
 #include "generator/rational.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 using Exponent = std::array<int, 3>;  // unused trailing entries are 0
 
@@ -71,4 +71,4 @@ class Poly {
   std::vector<Rational> c_;
 };
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -4,7 +4,7 @@
 
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 Integer common_denominator(const std::vector<const Poly*>& polys) {
   Integer d = 1;
@@ -100,4 +100,4 @@ bool CommonDenominatorTerms::sum_is_constant(const std::vector<int>& indices,
                      [](const Integer& v) { return cln::zerop(v); });
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

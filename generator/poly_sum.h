@@ -10,7 +10,7 @@
 
 #include "generator/poly.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 // The lcm of the denominators of every coefficient of every polynomial (1 if there are none).
 Integer common_denominator(const std::vector<const Poly*>& polys);
@@ -57,4 +57,4 @@ class CommonDenominatorTerms {
   std::vector<std::vector<Integer>> numerators_;
 };
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -17,7 +17,7 @@
 #include "generator/linear_cse.h"
 #include "generator/separable_form.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 using code::join;
 
@@ -708,4 +708,4 @@ OrbitCode choose_orbit_code(const ReferenceRegion& ref, int orbit, int n, int de
   return std::move(*best);
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -13,7 +13,7 @@
 #include "generator/expr_schedule.h"
 #include "generator/spline_regions.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 // `monomial`: one coefficient per monomial (a linear combination of the stencil values), then a
 //   sum over a table of coordinate powers.
@@ -74,4 +74,4 @@ std::optional<OrbitCode> orbit_code(const ReferenceRegion& ref, int orbit, int n
 OrbitCode choose_orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree,
                             EmissionStrategy strategy);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

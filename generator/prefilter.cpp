@@ -11,7 +11,7 @@
 #include "generator/rational_linear_systems.h"
 #include "generator/symmetry.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -385,4 +385,4 @@ Prefilter derive_prefilter(const BoxSplineSpec& spec, const std::vector<int>& re
   fail_unsupported(spec, all_shells, shells, group, conditions, order);
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

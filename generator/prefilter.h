@@ -12,7 +12,7 @@
 
 #include "generator/spec.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 inline constexpr int kMaxPrefilterShell = 8;
 
@@ -43,4 +43,4 @@ std::vector<int> parse_shells(std::string_view text);
 // would suffice.
 Prefilter derive_prefilter(const BoxSplineSpec& spec, const std::vector<int>& shells);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

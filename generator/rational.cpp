@@ -14,7 +14,7 @@
 
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -244,4 +244,4 @@ std::int64_t dot(const IntVec& a, const IntVec& b) {
   return s;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-namespace boxgen {
+namespace boxgen::generator {
 
 using Rational = cln::cl_RA;
 using Integer = cln::cl_I;
@@ -33,4 +33,4 @@ RatVec to_ratvec(const IntVec& v);
 Rational dot(const IntVec& a, const RatVec& b);
 std::int64_t dot(const IntVec& a, const IntVec& b);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

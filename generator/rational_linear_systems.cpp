@@ -2,7 +2,7 @@
 
 #include <utility>
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -63,4 +63,4 @@ std::vector<RatVec> null_space(std::vector<RatVec> rows, int columns) {
   return basis;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -6,7 +6,7 @@
 
 #include "generator/rational.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 struct LinearSolution {
   RatVec values;
@@ -20,4 +20,4 @@ std::optional<LinearSolution> solve_exactly(std::vector<RatVec> rows, int unknow
 // A basis of { x : A x = 0 } for rows of `columns` entries: one vector per free column.
 std::vector<RatVec> null_space(std::vector<RatVec> rows, int columns);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

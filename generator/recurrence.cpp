@@ -9,7 +9,7 @@
 
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -335,4 +335,4 @@ Rational box_spline_centred_recurrence(const IntColumns& xi, const RatVec& x) {
   return box_spline_recurrence(xi, shifted);
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

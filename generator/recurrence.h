@@ -15,7 +15,7 @@
 
 #include "generator/int_linalg.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 // Primitive normals (first nonzero entry positive) of the hyperplanes spanned by n-1 columns;
 // for n = 1 the single normal (1). Sorted, without duplicates.
@@ -51,4 +51,4 @@ Rational box_spline_recurrence(const IntColumns& xi, const RatVec& x);
 // M^c_Xi(x) = M_Xi(x + sum(Xi)/2).
 Rational box_spline_centred_recurrence(const IntColumns& xi, const RatVec& x);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

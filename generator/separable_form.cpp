@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <map>
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -181,4 +181,4 @@ std::optional<std::vector<TensorGrid>> separable_form(const ReferenceRegion& ref
   return std::nullopt;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -9,7 +9,7 @@
 
 #include "generator/spline_regions.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 // A univariate polynomial, coefficients from degree 0 up.
 using UnivariatePoly = std::vector<Rational>;
@@ -27,4 +27,4 @@ struct TensorGrid {
 // == sum_k v[k] p_k(x) holds term by term (checked exactly before returning).
 std::optional<std::vector<TensorGrid>> separable_form(const ReferenceRegion& ref, int n);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

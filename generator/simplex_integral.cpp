@@ -5,7 +5,7 @@
 
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -164,4 +164,4 @@ Rational integrate_over_simplex(const Poly& p, const std::vector<RatVec>& vertic
   return SimplexIntegrator(p).over(vertices);
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -7,7 +7,7 @@
 
 #include "generator/poly.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 // Integrals of one polynomial over many simplices (its integer form made once).
 class SimplexIntegrator {
@@ -28,4 +28,4 @@ Rational integrate_over_simplex(const Poly& p, const std::vector<RatVec>& vertic
 // Volume of a simplex.
 Rational simplex_volume(const std::vector<RatVec>& vertices);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -12,7 +12,7 @@
 #include "generator/error.h"
 #include "generator/int_linalg.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -342,7 +342,10 @@ BoxSplineSpec parse_spec(std::string_view spec, std::string_view lattice_text) {
   std::string name = "custom";
   std::string_view directions_text = t;
   std::string_view default_lattice;
-  if (std::isalpha(static_cast<unsigned char>(t.front()))) {
+  // A name is a preset; text with ',' or ';' is a direction list even when an entry is not a
+  // number ("nan,1; 0,1"), so the message names the bad entry instead of an unknown preset.
+  const bool looks_like_a_list = t.find_first_of(",;") != std::string_view::npos;
+  if (std::isalpha(static_cast<unsigned char>(t.front())) && !looks_like_a_list) {
     const PresetInfo* preset = find_preset(t);
     if (!preset)
       fail_input(
@@ -380,4 +383,4 @@ std::int64_t common_scale(const BoxSplineSpec& spec) {
   return k == 0 ? 1 : k;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

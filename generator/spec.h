@@ -9,7 +9,7 @@
 
 #include "generator/lattice.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 inline constexpr int kMaxDirections = 32;
 
@@ -45,4 +45,4 @@ std::int64_t common_scale(const BoxSplineSpec& spec);
 // Parses bcc | fcc | cartesian | "<rows of G>" for the given dimension.
 Lattice parse_lattice(std::string_view text, int dimension);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -14,8 +14,9 @@
 #include "generator/error.h"
 #include "generator/piece_checks.h"
 #include "generator/poly_sum.h"
+#include "support/union_find.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 RatVec SpaceGroupElement::apply(const RatVec& x) const {
   RatVec y = g.apply(x);
@@ -259,13 +260,6 @@ std::vector<SplineRegion> merge_regions(Fundamental& fund, const RatVec& c, int 
   return regions;
 }
 
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int a) { return parent[a] == a ? a : parent[a] = find(parent[a]); }
-  void unite(int a, int b) { parent[find(a)] = find(b); }
-};
-
 Rational norm2(const RatVec& v) {
   Rational s = 0;
   for (const auto& x : v) s = s + x * x;
@@ -282,7 +276,7 @@ std::vector<RatVec> image_of(const SpaceGroupElement& e, const std::vector<RatVe
 // Orbits of the regions under the space group: the image of a region's first cell under each
 // symmetry lands in a region of the same orbit. Creates one (empty) reference per orbit.
 void assign_orbits(SplineStructure& s, const Fundamental& fund) {
-  UnionFind orbits(s.regions.size());
+  support::UnionFind orbits(s.regions.size());
   for (size_t r = 0; r < s.regions.size(); ++r) {
     const auto& fc = s.cells[s.regions[r].cells.front()];
     for (const auto& g : s.group) {
@@ -552,4 +546,4 @@ void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& 
       fail_internal("partition of unity fails on a cell of the fundamental region");
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

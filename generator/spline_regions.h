@@ -14,7 +14,7 @@
 #include "generator/piecewise_form.h"
 #include "generator/symmetry.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 struct FundamentalCell {
   FineCell cell;  // uncentred frame, inside F
@@ -72,4 +72,4 @@ SplineStructure spline_structure(const PiecewiseForm& form);
 void check_partition_of_unity(const PiecewiseForm& form, const SplineStructure& s,
                               bool full = true);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

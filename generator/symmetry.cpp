@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
-namespace boxgen {
+namespace boxgen::generator {
 
 IntVec SignedPermutation::apply(const IntVec& x) const {
   IntVec y(x.size());
@@ -90,4 +90,4 @@ std::vector<SignedPermutation> symmetry_group(const BoxSplineSpec& spec) {
   return group;
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

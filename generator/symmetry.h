@@ -5,7 +5,7 @@
 
 #include "generator/spec.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 struct SignedPermutation {
   std::vector<int> perm;  // (g x)_i = sign[i] * x[perm[i]]
@@ -24,4 +24,4 @@ std::vector<SignedPermutation> all_signed_permutations(int n);
 // The subgroup that preserves the lattice and the direction multiset up to signs.
 std::vector<SignedPermutation> symmetry_group(const BoxSplineSpec& spec);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -1,5 +1,5 @@
 // The one evaluation engine of the runtime (docs/design.md §13): an emitted evaluator (its Traits,
-// generated/evaluator_support.hpp) on a volume, for one point (at) and for many (batch: OpenMP
+// support/evaluator_support.hpp) on a volume, for one point (at) and for many (batch: OpenMP
 // threads capped by batch_threads(), and the SIMD chunks of runtime/simd_batch.h for the filters
 // of generated/registry.hpp). Reconstructor (BCC volumes, reconstruction.h) and
 // LatticeReconstructor (any lattice, lattice_reconstruction.h; RegistryReconstructor of
@@ -32,10 +32,10 @@
 #include <string>
 #include <utility>
 
-#include "generated/evaluator_support.hpp"
 #include "runtime/batch_threads.h"
 #include "runtime/bcc_volume.h"
 #include "runtime/simd_batch.h"
+#include "support/evaluator_support.hpp"
 
 namespace boxgen::runtime {
 

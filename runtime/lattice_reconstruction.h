@@ -1,7 +1,7 @@
 // Reconstruction with ANY emitted evaluator on a volume of its lattice: the filters of
 // generated/registry.hpp and a user's own `boxgen emit` / boxgen_emit() header alike. The class is
 // a template on the evaluator's Traits (the struct every emitted header defines, see
-// generated/evaluator_support.hpp), so nothing here lists filters or knows a coefficient.
+// support/evaluator_support.hpp), so nothing here lists filters or knows a coefficient.
 //
 // Example (a header from `boxgen emit "<your matrix>" --name my_filter`, and its prefilters):
 //   auto v = sample_lattice<double>(f, cube_lattice_grid(filter_lattice<my_filter::Traits>(),
@@ -25,11 +25,11 @@
 #include <stdexcept>
 #include <vector>
 
-#include "generated/evaluator_support.hpp"
 #include "runtime/coset_lattice.h"
 #include "runtime/emitted_spline.h"
 #include "runtime/lattice_volume.h"
 #include "runtime/prefilter.h"
+#include "support/evaluator_support.hpp"
 
 namespace boxgen::runtime {
 

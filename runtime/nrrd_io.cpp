@@ -1,6 +1,6 @@
 #include "runtime/nrrd_io.h"
 
-#include "runtime/output_file.h"
+#include "support/output_file.h"
 
 #include <bzlib.h>
 #include <fcntl.h>
@@ -31,6 +31,10 @@
 #include <type_traits>
 
 namespace boxgen::runtime {
+
+using support::check_output_file;
+using support::OutputFileError;
+using support::write_output_file;
 
 namespace {
 

@@ -37,7 +37,7 @@ struct Frame {
 };
 
 // For kChunk points of registry filter `filter` at once: the lattice coordinates, then
-// generated/evaluator_support.hpp's locate() in T, bit for bit the same, and the runtime's stencil
+// support/evaluator_support.hpp's locate() in T, bit for bit the same, and the runtime's stencil
 // box check. In: world[i * kChunk + lane]. Out, rows of kChunk: the corner floor(x + c) (n rows),
 // the cell (-1: none), the reference coordinates (n rows), the cell's orbit, and 1 where the point
 // is near (see Frame), its cell exists and its whole published reach is inside [0, limit], else 0

@@ -4,7 +4,7 @@
 #  2. lint: clang-format and clang-tidy on the project's own sources (scripts/lint.sh);
 #  3. build and run every test under AddressSanitizer + UndefinedBehaviorSanitizer (preset asan);
 #  4. build the libFuzzer targets with clang and run each for 10 seconds (preset fuzz).
-# Long checks carry the CTest label `slow` and are not run here (see README: Tests).
+# Long checks carry the CTest label `slow` and are not run here (see docs/testing.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh

@@ -13,6 +13,9 @@
 
 namespace boxgen::cli {
 
+using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace): the generator's front
+                                      // end
+
 analysis::BoxSplineSpectrum spectrum_of(const BoxSplineSpec& spec);
 analysis::DualLattice dual_of(const BoxSplineSpec& spec);
 std::vector<analysis::LatticeTap> taps_of(const Autocorrelation& a);

@@ -4,8 +4,8 @@
 
 #include "apps/boxgen/commands.h"
 #include "apps/boxgen/progress.h"
-#include "generator/analysis.h"
 #include "generator/cost_estimate.h"
+#include "generator/derivation.h"
 #include "generator/error.h"
 
 namespace boxgen::cli {
@@ -34,12 +34,12 @@ int run_analyze(const Common& c, const AnalyzeOptions& o) {
   }
   // The derivation refuses up front, on the same estimate, what it predicts beyond the limit.
   ProgressPrinter progress(o.progress);
-  AnalysisOptions options;
+  DerivationOptions options;
   options.verify = o.verify;
   options.full_checks = full;
   options.progress = progress.callback();
   options.max_seconds = o.max_seconds;
-  const Analysis a = analyze(spec, options);
+  const Derivation a = derive(spec, options);
   progress.finish();
   if (c.json)
     print_json(to_json(a));

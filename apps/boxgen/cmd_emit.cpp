@@ -10,29 +10,21 @@
 #include "apps/boxgen/progress.h"
 #include "generator/emitter.h"
 #include "generator/error.h"
-#include "runtime/output_file.h"
+#include "support/output_file.h"
 
 namespace boxgen::cli {
 
 namespace {
 
-// Each file through runtime/output_file.h, as boxrecon writes its volumes: links written
-// through, special files refused, a temporary file renamed into place.
+// The files of one emission as a set (support/output_file.h): all written or none, links written
+// through, special files refused, never a half-written or mixed pair.
 void write_emitted(const std::vector<EmittedFile>& files, const std::string& directory) {
-  std::error_code ec;
-  std::filesystem::create_directories(directory, ec);
-  if (ec || !std::filesystem::is_directory(directory))
-    boxgen::fail_input("cannot create output directory '" + directory + "'");
+  std::vector<support::NamedText> set;
+  for (const auto& f : files) set.push_back({f.filename, f.text});
   try {
-    for (const auto& f : files)
-      (void)runtime::check_output_file(std::filesystem::path(directory) / f.filename);
-    for (const auto& f : files)
-      runtime::write_output_file(
-          std::filesystem::path(directory) / f.filename, [&](std::FILE* out) {
-            return std::fwrite(f.text.data(), 1, f.text.size(), out) == f.text.size();
-          });
-  } catch (const runtime::OutputFileError& e) {
-    boxgen::fail_input(e.what());
+    support::write_file_set(directory, set);
+  } catch (const support::OutputFileError& e) {
+    boxgen::generator::fail_input(e.what());
   }
 }
 
@@ -109,6 +101,50 @@ void check_emit_name(const std::string& name) {
                     name));
   if (keywords.count(name))
     fail_input(fmt::format("--name '{}' is a C++ keyword: choose another name", name));
+  // Namespaces the emitted code refers to (boxgen::generated::NAME would shadow them) and the
+  // names of the files beside an evaluator.
+  static const std::set<std::string> taken = {"std",     "boxgen",   "generated",
+                                              "support", "detail",   "cuda",
+                                              "glsl",    "registry", "evaluator_support"};
+  if (taken.count(name))
+    fail_input(fmt::format(
+        "--name '{}' is taken: the emitted code or its folder uses that name; choose another",
+        name));
+  if (name.size() > 11 && name.ends_with("_prefilters"))
+    fail_input(fmt::format(
+        "--name '{}' ends in '_prefilters', the suffix of an evaluator's prefilter file", name));
+  // Macros of the standard headers an evaluator includes (<cmath>, <cstdint>, ...).
+  static const std::set<std::string> macros = {"NULL",
+                                               "EOF",
+                                               "errno",
+                                               "assert",
+                                               "offsetof",
+                                               "INFINITY",
+                                               "NAN",
+                                               "HUGE_VAL",
+                                               "HUGE_VALF",
+                                               "HUGE_VALL",
+                                               "math_errhandling",
+                                               "MATH_ERRNO",
+                                               "MATH_ERREXCEPT",
+                                               "SIZE_MAX",
+                                               "PTRDIFF_MIN",
+                                               "PTRDIFF_MAX",
+                                               "WCHAR_MIN",
+                                               "WCHAR_MAX",
+                                               "WINT_MIN",
+                                               "WINT_MAX",
+                                               "SIG_ATOMIC_MIN",
+                                               "SIG_ATOMIC_MAX",
+                                               "unix",
+                                               "linux"};
+  const bool macro_family = name.starts_with("INT") || name.starts_with("UINT") ||
+                            name.starts_with("FP_") || name.starts_with("M_") ||
+                            name.starts_with("__");
+  if (macros.count(name) ||
+      (macro_family && name.find_first_of("abcdefghijklmnopqrstuvwxyz") == std::string::npos))
+    fail_input(
+        fmt::format("--name '{}' is a macro of the C++ standard headers: choose another", name));
   if (name.find("__") != std::string::npos ||
       (name.size() > 1 && name[0] == '_' && std::isupper(name[1])))
     fail_input(fmt::format(
@@ -132,37 +168,65 @@ std::pair<EmissionTarget, bool> parse_language(const EmitLanguage& l, bool regis
   return {it->second, l.precision == "double"};
 }
 
+// --registry: the names must be identifiers, each once, and each an evaluator that exists in the
+// output folder or is emitted now; checked before any work.
+void check_registry(const std::vector<std::string>& registry, const std::string& emitted,
+                    const std::string& out) {
+  std::set<std::string> seen;
+  for (const auto& n : registry) {
+    if (!seen.insert(n).second)
+      fail_input(fmt::format("--registry lists '{}' twice", n.substr(0, 40)));
+    if (n == emitted) continue;
+    check_emit_name(n);
+    for (const std::string& file : {n + ".hpp", n + "_prefilters.hpp"})
+      if (!std::filesystem::is_regular_file(std::filesystem::path(out) / file))
+        fail_input(fmt::format(
+            "--registry: '{}' has no {} in '{}': emit it there first (boxgen emit SPEC --name {} "
+            "--out {})",
+            n, file, out, n, out));
+  }
+}
+
 }  // namespace
 
 int run_emit(const Common& c, const std::string& name, const std::string& out,
              const std::string& strategy, bool report, const std::vector<std::string>& registry,
              const EmitLanguage& language) {
-  check_emit_name(name);
-  const EmissionStrategy chosen = parse_strategy(strategy);  // before the derivation: fail fast
+  if (c.spec.empty() != name.empty() || (c.spec.empty() && registry.empty()))
+    fail_usage("emit needs a SPEC and --name (an evaluator), or --registry alone, or both");
+  if (!name.empty()) check_emit_name(name);
   const auto [target, double_precision] = parse_language(language, !registry.empty());
-  const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
-  ProgressPrinter progress(false);  // on a terminal, for derivations beyond two seconds
-  AnalysisOptions options;
-  options.progress = progress.callback();
-  const Analysis a = analyze(spec, options);  // the exact checks run before anything is emitted
-  progress.finish();
-  EmissionRequest request{
-      name,
-      fmt::format(
-          "boxgen emit {} {}--name {} --strategy {}{} --out <dir>",
-          spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,
-          c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy,
-          target == EmissionTarget::Cpp
-              ? ""
-              : " --target " + language.target + (double_precision ? " --precision double" : "")),
-      chosen, target, double_precision};
+  if (!registry.empty()) check_registry(registry, name, out);
+  std::vector<EmittedFile> files;
   EmissionReport r;
-  auto files = emit(a, request, &r);
+  if (!name.empty()) {
+    const EmissionStrategy chosen = parse_strategy(strategy);  // before the derivation
+    const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
+    ProgressPrinter progress(false);  // on a terminal, for derivations beyond two seconds
+    DerivationOptions options;
+    options.progress = progress.callback();
+    const Derivation a = derive(spec, options);  // the exact checks run before anything is emitted
+    progress.finish();
+    // The command that rewrites the file byte for byte, run in the file's folder.
+    const EmissionRequest request{
+        name,
+        fmt::format("boxgen emit {} {}--name {} --strategy {}{} --out .",
+                    spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,
+                    c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy,
+                    target == EmissionTarget::Cpp
+                        ? ""
+                        : " --target " + language.target +
+                              (double_precision ? " --precision double" : "")),
+        chosen, target, double_precision};
+    files = emit(a, request, &r);
+  } else if (report) {
+    fail_usage("--report needs an evaluator to report on (a SPEC and --name)");
+  }
   if (!registry.empty()) {
     std::string names;
     for (const auto& n : registry) names += (names.empty() ? "" : ",") + n;
     files.push_back(
-        emit_registry(registry, fmt::format("boxgen emit ... --registry {} --out <dir>", names)));
+        emit_registry(registry, fmt::format("boxgen emit --registry {} --out .", names)));
   }
   write_emitted(files, out);
   if (c.json) {

@@ -5,16 +5,15 @@
 #include <cmath>
 #include <map>
 #include <numbers>
-#include <optional>
 
 #include "analysis/error_kernel.h"
 #include "analysis/gnuplot.h"
-#include "analysis/output_file.h"
 #include "apps/boxgen/analysis_args.h"
 #include "apps/boxgen/analysis_inputs.h"
 #include "apps/boxgen/commands.h"
 #include "generator/autocorr.h"
 #include "generator/error.h"
+#include "support/output_file.h"
 
 namespace boxgen::cli {
 
@@ -60,9 +59,7 @@ int run_kernel(const FrequencyOptions& o) {
   // A plot defaults to the low band of Fig. 13: w from 0.05 to pi/2 (the Nyquist boundary of
   // BCC along (1,1,1)), log-spaced.
   const std::vector<double> w = abscissae(o, plot, 0.05, std::numbers::pi / 2, 120, !plot);
-  std::optional<analysis::AtomicOutput> check;
-  if (plot) check.emplace(o.plot);  // an unwritable --plot fails before the derivations
-  check.reset();
+  if (plot) (void)support::check_output_file(o.plot);  // an unwritable --plot fails first
 
   struct Curves {
     std::string key;

@@ -5,17 +5,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <utility>
 #include <vector>
 
 #include "analysis/gnuplot.h"
-#include "analysis/output_file.h"
 #include "analysis/png_image.h"
 #include "apps/boxgen/analysis_args.h"
 #include "apps/boxgen/analysis_inputs.h"
 #include "apps/boxgen/commands.h"
 #include "generator/error.h"
+#include "support/output_file.h"
 
 namespace boxgen::cli {
 
@@ -53,9 +52,7 @@ int run_line(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs,
   const analysis::DualLattice dual = dual_of(specs.front());
   const double t = nyquist_extent(dual.cell(), d);
   const std::vector<double> w = abscissae(o, false, 0, 4 * t, 801, false);
-  std::optional<analysis::AtomicOutput> check;
-  if (!o.plot.empty()) check.emplace(o.plot);
-  check.reset();
+  if (!o.plot.empty()) (void)support::check_output_file(o.plot);  // before the work
   std::vector<std::vector<double>> magnitude;
   for (const auto& spec : specs) {
     const auto psi = spectrum_of(spec);
@@ -146,7 +143,7 @@ PlaneWindow plane_window(const FrequencyOptions& o, const analysis::DualLattice&
   const double lo = o.from.value_or(-2.5 * circumradius), hi = o.to.value_or(2.5 * circumradius);
   if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo))
     fail_input(fmt::format("empty or inverted range: --from {} --to {} (need from < to)", lo, hi));
-  const int size = o.size != 0 ? o.size : 400;
+  const int size = o.size;
   if (size < 16 || size > 4096)
     fail_input(fmt::format("--size must be between 16 and 4096, got {}", size));
   return {lo, hi, size};
@@ -208,8 +205,7 @@ int run_plane(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs
   require_one_lattice(specs);
   const analysis::DualLattice dual = dual_of(specs.front());
   const PlaneWindow win = plane_window(o, dual);
-  std::optional<analysis::AtomicOutput> check(o.plot);
-  check.reset();
+  (void)support::check_output_file(o.plot);  // before the work
   const int gap = 8;
   const int count = static_cast<int>(specs.size());
   analysis::RgbImage image(count * win.size + (count - 1) * gap, win.size);

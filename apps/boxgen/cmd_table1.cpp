@@ -3,7 +3,7 @@
 #include <fmt/core.h>
 
 #include "apps/boxgen/commands.h"
-#include "generator/analysis.h"
+#include "generator/derivation.h"
 #include "generator/prefilter.h"
 
 namespace boxgen::cli {
@@ -62,7 +62,7 @@ int run_table1(bool json) {
   std::vector<double> seconds;
   for (const auto& col : kPaper) {
     const BoxSplineSpec spec = parse_spec(col.preset);
-    const Analysis a = analyze(spec);
+    const Derivation a = derive(spec);
     seconds.push_back(a.derivation_seconds);
     const auto q1 = two_weights(derive_prefilter(spec, {0, 1}));
     const auto q2 = two_weights(derive_prefilter(spec, {0, 1, 2}));

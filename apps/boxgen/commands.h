@@ -2,6 +2,7 @@
 // derived, so a failure never leaves half an answer behind.
 #pragma once
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,15 @@
 #include "generator/rational.h"
 
 namespace boxgen::cli {
+
+// The CLI is the generator's front end: its types and functions are used unqualified here.
+using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace)
+
+// A combination of options that cannot work together: main prints it as a usage error (exit 2).
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+[[noreturn]] inline void fail_usage(const std::string& message) { throw UsageError(message); }
 
 struct Common {
   std::string spec;
@@ -53,7 +63,7 @@ struct FrequencyOptions {
   int steps = 0;
   std::string plot;         // kernel --plot, spectrum -o
   std::string plane, line;  // spectrum
-  int size = 0;             // spectrum plane: image side in pixels
+  int size = 400;           // spectrum plane: image side in pixels (16..4096)
 };
 int run_metrics(const std::vector<std::string>& specs, const std::string& lattice, bool json);
 int run_kernel(const FrequencyOptions& o);

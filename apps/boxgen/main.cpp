@@ -9,6 +9,7 @@
 #include "apps/common/exit_status.h"
 #include "boxgen/version.h"
 #include "generator/error.h"
+#include "support/output_file.h"
 
 namespace {
 
@@ -20,9 +21,10 @@ void add_common(CLI::App* cmd, boxgen::cli::Common& c, bool needs_spec = true) {
                     "\"1,1,1; 1,-1,-1; ...\"")
         ->required();
   cmd->add_option(
-      "--lattice", c.lattice,
-      "bcc | fcc | cartesian | the ROWS of G, one per ';', whose columns are the lattice basis: "
-      "\"2,0; 0,1\" (default: the preset's, else cartesian)");
+         "--lattice", c.lattice,
+         "bcc | fcc | cartesian | the ROWS of G, one per ';', whose columns are the lattice basis: "
+         "\"2,0; 0,1\" (default: the preset's, else cartesian)")
+      ->check(boxgen::app::kNonEmpty);
   cmd->add_flag("--json", c.json, "machine-readable output");
 }
 
@@ -30,7 +32,10 @@ void add_common(CLI::App* cmd, boxgen::cli::Common& c, bool needs_spec = true) {
 
 int run(int argc, char** argv);
 
-int main(int argc, char** argv) { return boxgen::app::finish(run(argc, argv), "boxgen"); }
+int main(int argc, char** argv) {
+  boxgen::support::handle_signals();  // temporaries removed on SIGINT/SIGTERM; EPIPE, not SIGPIPE
+  return boxgen::app::finish(run(argc, argv), "boxgen");
+}
 
 int run(int argc, char** argv) {
   CLI::App app{
@@ -55,8 +60,10 @@ int run(int argc, char** argv) {
       "default (integral and continuity on one cell per symmetry orbit) or full (every cell)");
   analyze->add_flag("--estimate", analyze_options.estimate_only,
                     "predict time and memory without deriving");
-  analyze->add_option("--max-seconds", analyze_options.max_seconds,
-                      "refuse up front if the predicted time exceeds this (default 600)");
+  analyze
+      ->add_option("--max-seconds", analyze_options.max_seconds,
+                   "refuse up front if the predicted time exceeds this (default 600)")
+      ->check(boxgen::app::kFinitePositive);
   analyze->add_flag("--progress", analyze_options.progress,
                     "progress on stderr even when it is not a terminal");
   auto* eval = app.add_subcommand("eval", "exact value of the filter M = |det G| M^c at points");
@@ -81,11 +88,14 @@ int run(int argc, char** argv) {
                                    emit_precision = "float";
   bool emit_report = false;
   std::vector<std::string> emit_registry;
-  auto* emit = app.add_subcommand(
-      "emit", "emit the evaluator (C++ and prefilter headers, GLSL or CUDA) of a box spline");
-  add_common(emit, c);
-  emit->add_option("--name", emit_name, "C++ identifier: namespace boxgen::generated::<name>")
-      ->required();
+  auto* emit =
+      app.add_subcommand("emit", "emit the evaluator (C++ and prefilter headers, GLSL or CUDA) of a box spline");
+  emit->add_option("SPEC", c.spec,
+                   "preset name or the directions, as for analyze (leave out to write only "
+                   "--registry)");
+  add_common(emit, c, false);
+  emit->add_option("--name", emit_name,
+                   "C++ identifier: namespace boxgen::generated::<name> (with a SPEC)");
   emit->add_option("--out", emit_out, "output directory")->required();
   emit->add_option(
       "--strategy", emit_strategy,
@@ -97,7 +107,8 @@ int run(int argc, char** argv) {
   emit->add_option("--precision", emit_precision, "glsl: float (default) or double");
   emit->add_flag("--report", emit_report, "also print the strategy and operation counts per orbit");
   emit->add_option("--registry", emit_registry,
-                   "also write registry.hpp listing these filters (comma-separated)")
+                   "also (or, without a SPEC, only) write registry.hpp listing these filters "
+                   "(comma-separated; each emitted into --out already or now)")
       ->delimiter(',');
   std::string pieces_of = "spline", pieces_region = "reference", pieces_format = "text";
   auto* pieces = app.add_subcommand(
@@ -118,7 +129,8 @@ int run(int argc, char** argv) {
   auto add_specs = [&](CLI::App* cmd) {
     cmd->add_option("SPEC", ao.specs, "one or more presets or direction lists")->required();
     cmd->add_option("--lattice", ao.lattice,
-                    "bcc | fcc | cartesian | \"<rows of G>\" (default: each preset's)");
+                    "bcc | fcc | cartesian | \"<rows of G>\" (default: each preset's)")
+        ->check(boxgen::app::kNonEmpty);
     cmd->add_flag("--json", ao.json, "machine-readable output");
   };
   auto add_range = [&](CLI::App* cmd) {
@@ -180,7 +192,13 @@ int run(int argc, char** argv) {
                                    emit_registry, {emit_target, emit_precision});
     if (pieces->parsed())
       return boxgen::cli::run_pieces(c, pieces_of, pieces_region, pieces_format);
-  } catch (const boxgen::InputError& e) {
+  } catch (const boxgen::cli::UsageError& e) {
+    std::cerr << "boxgen: usage error: " << e.what() << " (see boxgen --help)\n";
+    return 2;
+  } catch (const boxgen::generator::InputError& e) {
+    std::cerr << "boxgen: error: " << e.what() << '\n';
+    return 1;
+  } catch (const boxgen::support::OutputFileError& e) {  // a file that could not be written
     std::cerr << "boxgen: error: " << e.what() << '\n';
     return 1;
   } catch (
@@ -188,6 +206,7 @@ int run(int argc, char** argv) {
     std::cerr << "boxgen: error: " << e.what() << '\n';
     return 1;
   } catch (const std::exception& e) {
+    if (boxgen::app::is_output_error(e)) return boxgen::app::report_output_error(e, "boxgen");
     std::cerr << "boxgen: internal error: " << e.what() << '\n';
     return 3;
   }

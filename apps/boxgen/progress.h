@@ -12,6 +12,9 @@
 
 namespace boxgen::cli {
 
+using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace): the generator's front
+                                      // end
+
 class ProgressPrinter {
  public:
   explicit ProgressPrinter(bool forced)

@@ -3,12 +3,11 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <filesystem>
 #include <iostream>
-#include <optional>
 #include <stdexcept>
 #include <string>
 
-#include "analysis/output_file.h"
 #include "analysis/png_image.h"
 #include "apps/boxrecon/sample_command.h"
 #include "runtime/lattice_filters.h"
@@ -16,6 +15,7 @@
 #include "runtime/render.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
+#include "support/output_file.h"
 
 namespace boxgen::recon {
 
@@ -107,9 +107,9 @@ int run_render() {
         fmt::format("--width and --height must be 1..8192, got {} x {}", args.width, args.height));
   if (!(args.step >= 0) || !std::isfinite(args.step))
     throw std::invalid_argument("--step must be >= 0");
-  std::optional<analysis::AtomicOutput> check(
-      args.output);  // an unwritable -o fails before the work
-  check.reset();
+  // An unwritable -o, or one that is the input volume, fails before the work.
+  const std::filesystem::path input = args.volume;
+  (void)support::check_output_file(args.output, {&input, args.volume.empty() ? std::size_t{0} : 1});
   RenderOptions o;
   o.width = args.width;
   o.height = args.height;

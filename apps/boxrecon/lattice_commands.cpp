@@ -16,10 +16,10 @@
 #include "apps/boxrecon/cmd_bench.h"
 #include "apps/boxrecon/input_checks.h"
 #include "runtime/batch_threads.h"
-#include "runtime/output_file.h"
 #include "runtime/points_file.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
+#include "support/output_file.h"
 
 namespace boxgen::app {
 

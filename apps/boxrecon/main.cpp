@@ -44,6 +44,7 @@
 #include "runtime/resample.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
+#include "support/output_file.h"
 
 namespace {
 
@@ -59,7 +60,8 @@ struct InputError : std::invalid_argument {
 int exit_code_for(const std::exception& e) {
   const bool bad_input = dynamic_cast<const std::invalid_argument*>(&e) ||
                          dynamic_cast<const std::out_of_range*>(&e) ||
-                         dynamic_cast<const NrrdError*>(&e);
+                         dynamic_cast<const NrrdError*>(&e) ||
+                         dynamic_cast<const boxgen::support::OutputFileError*>(&e);
   return bad_input ? 1 : 3;
 }
 
@@ -308,6 +310,7 @@ int run(int argc, char** argv) {
                                   : run_resample<double>(filter, pre, volume, output, resample_n,
                                                          box_min, box_max, limits);
   } catch (const std::exception& e) {
+    if (boxgen::app::is_output_error(e)) return boxgen::app::report_output_error(e, "boxrecon");
     const int code = exit_code_for(e);
     std::cerr << (code == 1 ? "boxrecon: error: " : "boxrecon: internal error: ") << e.what()
               << '\n';
@@ -318,4 +321,7 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return boxgen::app::finish(run(argc, argv), "boxrecon"); }
+int main(int argc, char** argv) {
+  boxgen::support::handle_signals();  // temporaries removed on SIGINT/SIGTERM; EPIPE, not SIGPIPE
+  return boxgen::app::finish(run(argc, argv), "boxrecon");
+}

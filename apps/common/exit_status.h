@@ -4,10 +4,15 @@
 #pragma once
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <system_error>
 
 namespace boxgen::app {
 
@@ -31,15 +36,58 @@ inline std::optional<int> parse_command_line(CLI::App& app, int argc, char** arg
   return std::nullopt;
 }
 
-// Output goes through both iostreams and stdio (fmt): both are flushed and checked.
+// Output goes through both iostreams and stdio (fmt): both are flushed and checked. A reader
+// that has gone (EPIPE: SIGPIPE is ignored, support::handle_signals) ends the program quietly
+// with status 1, as `yes | head` ends; any other failure (a full disk) is one line and status 1.
 inline int finish(int code, const char* program) {
+  errno = 0;
   std::cout.flush();
   const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
   if (failed && code == 0) {
-    std::cerr << program << ": error: could not write the output (disk full or closed pipe?)\n";
+    if (errno != EPIPE)
+      std::cerr << program << ": error: could not write the output: "
+                << (errno != 0 ? std::strerror(errno) : "disk full or closed pipe?") << '\n';
     return 1;
   }
   return code;
+}
+
+// Option checks the two programs share (CLI11 validators): an option given with an unusable value
+// is a usage error naming it, never a silent fall-back to the default.
+inline const CLI::Validator kNonEmpty(
+    [](std::string& text) {
+      return text.empty() ? std::string("must not be empty") : std::string();
+    },
+    "NONEMPTY");
+inline const CLI::Validator kFinitePositive(
+    [](std::string& text) {
+      double value = 0;
+      std::size_t used = 0;
+      try {
+        value = std::stod(text, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != text.size() || !std::isfinite(value) || value <= 0)
+        return "must be a finite number > 0, got '" + text.substr(0, 40) + "'";
+      return std::string();
+    },
+    "NUMBER > 0");
+
+// fmt::print reports a failed write to stdout as std::system_error: the same output error as
+// finish() reports (quiet for a closed pipe), never an internal error.
+inline bool is_output_error(const std::exception& e) {
+  const auto* system = dynamic_cast<const std::system_error*>(&e);
+  return system && system->code().category() == std::generic_category() &&
+         std::string_view(system->what()).find("cannot write") != std::string_view::npos;
+}
+inline int report_output_error(const std::exception& e, const char* program) {
+  const auto& system = dynamic_cast<const std::system_error&>(e);
+  if (system.code().value() != EPIPE)
+    std::cerr << program
+              << ": error: could not write the output: " << std::strerror(system.code().value())
+              << '\n';
+  return 1;
 }
 
 }  // namespace boxgen::app

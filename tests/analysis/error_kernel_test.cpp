@@ -12,6 +12,9 @@
 namespace boxgen::analysis {
 namespace {
 
+using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace): the generator's
+                                      // lattices and SPECs
+
 constexpr double kPi = std::numbers::pi;
 
 ErrorKernel kernel_of(const BoxSplineSpec& spec, const std::vector<int>& shells) {

@@ -11,6 +11,9 @@
 
 namespace boxgen::test {
 
+using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace): the generator's
+                                      // outputs
+
 inline std::vector<analysis::LatticeTap> autocorrelation_taps(const BoxSplineSpec& spec) {
   std::vector<analysis::LatticeTap> out;
   for (const auto& s : autocorrelation_refinement(spec).samples)

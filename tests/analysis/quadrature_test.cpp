@@ -13,6 +13,9 @@
 namespace boxgen::analysis {
 namespace {
 
+using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace): the generator's
+                                      // lattices and SPECs
+
 constexpr double kPi = std::numbers::pi;
 
 TEST(GaussLegendre, IntegratesPolynomialsOfDegreeBelowTwiceTheOrderExactly) {

@@ -420,7 +420,7 @@ TEST_F(BoxreconFiles, SampleOnEveryLattice) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// boxgen emit writes through the same module (runtime/output_file.h).
+// boxgen emit writes through the same module (support/output_file.h).
 
 TEST_F(BoxreconFiles, EmitWritesThroughLinksAndRefusesSpecialFiles) {
   const std::string spec = "1,0; 0,1; 1,1";  // a small planar box spline: derived in milliseconds

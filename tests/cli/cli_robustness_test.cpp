@@ -1,6 +1,10 @@
 // Regression tests for two robustness bugs found while writing the CLI tests: a failed write to
 // stdout was reported as success, and small generic direction matrices hung in cell enumeration
 // instead of being refused up front.
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 
 #include "cli_support.h"
@@ -14,14 +18,47 @@ namespace {
 TEST(CliRobustness, AFailedWriteToStdoutIsAnError) {
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"presets", "--json"},
-        std::vector<std::string>{"eval", "hex3", "--at", "0 0"}}) {
+        std::vector<std::string>{"eval", "hex3", "--at", "0 0"},
+        std::vector<std::string>{"pieces", "m7", "--region", "all"}}) {
     const ProcessResult r = run_process(BOXGEN_EXE, args, kDefaultTimeout, "/dev/full");
     ASSERT_TRUE(r.exited) << describe(args, r);
-    EXPECT_NE(r.exit_code, 0) << "output was lost but boxgen reported success\n"
+    EXPECT_EQ(r.exit_code, 1) << "output was lost: an output error (1), not success or internal\n"
                               << describe(args, r);
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << describe(args, r);
     EXPECT_EQ(r.err.rfind("boxgen: ", 0), 0u) << describe(args, r);
   }
+}
+
+// A reader that has gone (`boxgen pieces m7 | head -c 0`): the program ends quietly with a
+// non-zero status, as coreutils do, instead of dying of SIGPIPE or printing an error.
+TEST(CliRobustness, AClosedPipeEndsQuietlyWithStatusOne) {
+  int ends[2];
+  ASSERT_EQ(::pipe(ends), 0);
+  int err[2];
+  ASSERT_EQ(::pipe(err), 0);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::close(ends[0]);
+    ::dup2(ends[1], 1);
+    ::dup2(err[1], 2);
+    ::close(err[0]);
+    const int null = ::open("/dev/null", O_RDONLY);
+    ::dup2(null, 0);
+    ::execl(BOXGEN_EXE, BOXGEN_EXE, "pieces", "m7", "--region", "all", nullptr);
+    ::_exit(127);
+  }
+  ::close(ends[0]);  // nobody reads: the child's first write fails
+  ::close(ends[1]);
+  ::close(err[1]);
+  std::string stderr_text;
+  char buffer[256];
+  for (ssize_t n; (n = ::read(err[0], buffer, sizeof buffer)) > 0;) stderr_text.append(buffer, n);
+  ::close(err[0]);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_EQ(stderr_text, "");
 }
 
 // Brief: never "a hang". A linear box spline (degree 4 - 3 = 1) of four small integer directions on

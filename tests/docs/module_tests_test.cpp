@@ -1,4 +1,4 @@
-// The tree's conventions that the README states: every generator module generator/<m>.cpp has
+// The tree's conventions that docs/testing.md states: every generator module generator/<m>.cpp has
 // its test file tests/generator/<m>_test.cpp.
 #include <gtest/gtest.h>
 

@@ -49,7 +49,7 @@
 #include "runtime/reconstruction.h"
 #include "tests/emitted/exact_reference.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 using namespace exact_reference;  // NOLINT(google-build-using-namespace): the shared oracle
@@ -216,7 +216,7 @@ TEST(EmittedThroughBatch, M8) { check_batch("m8", runtime::Filter::M8); }
 TEST(EmittedThroughBatch, M12) { check_batch("m12", runtime::Filter::M12); }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator
 
 namespace {
 

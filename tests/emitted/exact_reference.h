@@ -1,4 +1,4 @@
-// The exact reference of the emitted evaluators' tests (tests/emitted, tests/gl): the spline
+// The exact reference of the emitted evaluators' tests (tests/emitted, tests/gpu): the spline
 // s(x) = sum_j V(j) M(x - j) in exact rationals from the generator's piecewise form, for integer
 // hash data V, at dyadic test points half of which lie within 1e-3 of a knot plane.
 #pragma once
@@ -11,7 +11,7 @@
 #include "generator/piece_checks.h"
 #include "generator/piecewise_form.h"
 
-namespace boxgen::exact_reference {
+namespace boxgen::generator::exact_reference {
 
 constexpr double kMaxV = 1000;
 
@@ -168,4 +168,4 @@ inline std::vector<RatVec> test_points(const Reference& ref, int count) {
   return out;
 }
 
-}  // namespace boxgen::exact_reference
+}  // namespace boxgen::generator::exact_reference

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 TEST(ApproximationOrder, PlanarSetsCountedByHand) {
@@ -34,4 +34,4 @@ TEST(ApproximationOrder, NonSpanningColumnsHaveOrderZero) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

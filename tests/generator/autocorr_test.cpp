@@ -10,13 +10,13 @@
 #include "generator/error.h"
 #include "generator/symmetry.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
-using testing::concat;
-using testing::kXi1;
-using testing::kXi2;
-using testing::negated;
+using fixture::concat;
+using fixture::kXi1;
+using fixture::kXi2;
+using fixture::negated;
 
 BoxSplineSpec m7() { return {"m7", "", concat({kXi1, kXi2}), Lattice::bcc()}; }
 BoxSplineSpec m8() { return {"m8", "", concat({kXi1, kXi1}), Lattice::bcc()}; }
@@ -122,8 +122,8 @@ TEST(Autocorr, CourantElementByTheSimplexFormula) {
   EXPECT_EQ(as_map(a), expected);
 }
 
-using testing::cardinal_bspline;
-using testing::power;
+using fixture::cardinal_bspline;
+using fixture::power;
 
 // Doubled m12 is, per coordinate, the 1-D box spline of eight columns +-2: centred, that is
 // B_8(x/2 + 4)/2 (scaling by 2, centring the order-8 B-spline on [0, 8]).
@@ -165,4 +165,4 @@ TEST(Autocorr, DoubledSpecRepeatsTheColumns) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

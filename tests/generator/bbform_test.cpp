@@ -2,16 +2,16 @@
 #include <gtest/gtest.h>
 
 #include "generator/bbform.h"
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
-using testing::analysis_of;
+using fixture::derivation_of;
 
 TEST(BBForm, RoundTripOnEveryReferenceRegion) {
-  for (const char* preset : testing::kAllPresets) {
-    const Analysis& a = analysis_of(preset);
+  for (const char* preset : fixture::kAllPresets) {
+    const Derivation& a = derivation_of(preset);
     for (const auto& ref : a.structure.references) {
       const RegionBBForm bb = region_bb_form(ref, a.properties.degree);
       for (const auto& s : bb.simplices)
@@ -28,8 +28,8 @@ TEST(BBForm, RoundTripOnEveryReferenceRegion) {
 // vertex, 1 at their vertex and 0 at the others, summing to 1 everywhere.
 TEST(BBForm, BarycentricFormsAreExactAffineCoordinates) {
   int simplices = 0;
-  for (const char* preset : testing::kAllPresets) {
-    const Analysis& a = analysis_of(preset);
+  for (const char* preset : fixture::kAllPresets) {
+    const Derivation& a = derivation_of(preset);
     for (const auto& ref : a.structure.references) {
       const int n = static_cast<int>(ref.vertices[0].size());
       if (static_cast<int>(ref.vertices.size()) != n + 1) continue;
@@ -54,7 +54,7 @@ TEST(BBForm, BarycentricFormsAreExactAffineCoordinates) {
 
 TEST(BBForm, M7HasThePapersTable) {
   // Paper section 4.2 and its supplemental Table 1: 30 stencil points, 35 quartic coefficients.
-  const Analysis& a = analysis_of("m7");
+  const Derivation& a = derivation_of("m7");
   const RegionBBForm bb = region_bb_form(a.structure.references.at(0), 4);
   EXPECT_FALSE(bb.triangulated);
   ASSERT_EQ(bb.simplices.size(), 1u);
@@ -70,7 +70,7 @@ TEST(BBForm, M7HasThePapersTable) {
 }
 
 TEST(BBForm, CubesAreTriangulated) {
-  const Analysis& a = analysis_of("m12");
+  const Derivation& a = derivation_of("m12");
   const RegionBBForm bb = region_bb_form(a.structure.references.at(0), 9);
   EXPECT_TRUE(bb.triangulated);
   EXPECT_GE(bb.simplices.size(), 5u);
@@ -86,4 +86,4 @@ TEST(BBForm, KnownCoefficientsOfASimplePolynomial) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -4,17 +4,17 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
-using testing::analysis_of;
+using fixture::derivation_of;
 
 class DerivationPreset : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(DerivationPreset, TwoDerivationsAgreeCellByCell) {
-  const Analysis& a = analysis_of(GetParam());
+  const Derivation& a = derivation_of(GetParam());
   const PiecewiseForm other = derive_piecewise(a.spec, DerivationMethod::DirectionalIntegration);
   ASSERT_EQ(other.polys.size(), a.form.polys.size());
   int nonzero = 0;
@@ -25,8 +25,8 @@ TEST_P(DerivationPreset, TwoDerivationsAgreeCellByCell) {
   EXPECT_GT(nonzero, 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Presets, DerivationPreset, ::testing::ValuesIn(testing::kAllPresets),
+INSTANTIATE_TEST_SUITE_P(Presets, DerivationPreset, ::testing::ValuesIn(fixture::kAllPresets),
                          [](const auto& p) { return std::string(p.param); });
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

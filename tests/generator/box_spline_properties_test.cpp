@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 TEST(BoxSplineProperties, ThreeDirectionPlanarSpline) {
@@ -40,4 +40,4 @@ TEST(BoxSplineProperties, StencilSizeDividesByTheLatticeDeterminant) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

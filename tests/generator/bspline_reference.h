@@ -3,7 +3,7 @@
 #pragma once
 #include "generator/rational.h"
 
-namespace boxgen::testing {
+namespace boxgen::generator::fixture {
 
 inline Rational power(const Rational& b, int e) {
   Rational r = 1;
@@ -23,4 +23,4 @@ inline Rational cardinal_bspline(int k, const Rational& x) {
   return sum / factorial;
 }
 
-}  // namespace boxgen::testing
+}  // namespace boxgen::generator::fixture

@@ -9,7 +9,7 @@
 #include "generator/knot_normals.h"
 #include "generator/simplex_integral.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 std::set<RatVec> vertex_set(const FineCell& c) { return {c.vertices.begin(), c.vertices.end()}; }
@@ -102,4 +102,4 @@ TEST(CellComplex, AffineRankAndTriangulation) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

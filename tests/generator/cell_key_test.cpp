@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 const std::vector<IntVec> kNormals{{1, 0}, {1, 1}};
@@ -29,4 +29,4 @@ TEST(CellKey, OffIntegerPlanes) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

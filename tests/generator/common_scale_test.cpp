@@ -7,7 +7,7 @@
 
 #include "generator/piece_checks.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 TEST(CommonScale, IsTheGcdOfEveryEntryOfXiAndG) {
@@ -77,4 +77,4 @@ TEST(CommonScale, StretchedBasisIsTheScaledPairsOwnPieceOnEveryReferenceRegion) 
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

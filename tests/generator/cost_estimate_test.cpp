@@ -5,19 +5,19 @@
 #include <gtest/gtest.h>
 
 #include "generator/error.h"
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
-using testing::analysis_of;
+using fixture::derivation_of;
 
 TEST(CostEstimate, CountsTheKnotCellsExactly) {
   for (const char* preset : {"m7", "fcc6", "zp"}) {
     const CostEstimate e = estimate_cost(parse_spec(preset));
     EXPECT_TRUE(e.cells_exact) << preset;
-    EXPECT_EQ(e.knot_cells, analysis_of(preset).form.knots.cells().size()) << preset;
-    EXPECT_EQ(e.fundamental_cells, analysis_of(preset).structure.cells.size()) << preset;
+    EXPECT_EQ(e.knot_cells, derivation_of(preset).form.knots.cells().size()) << preset;
+    EXPECT_EQ(e.fundamental_cells, derivation_of(preset).structure.cells.size()) << preset;
     EXPECT_GT(e.seconds, 0) << preset;
     EXPECT_GT(e.bytes, 1e6) << preset;
   }
@@ -40,4 +40,4 @@ TEST(CostEstimate, RefusalNamesThePredictionAndTheLimit) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -6,10 +6,10 @@
 
 #include <fmt/format.h>
 
-#include "generator/analysis.h"
+#include "generator/derivation.h"
 #include "generator/spec.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 std::vector<std::string> small_planar_sets() {
@@ -37,7 +37,7 @@ TEST(CustomMatrices, EverySmallPlanarSetPassesTheExactChecks) {
   ASSERT_EQ(sets.size(), 282u);
   for (const auto& s : sets) {
     try {
-      const Analysis a = analyze(parse_spec(s));
+      const Derivation a = derive(parse_spec(s));
       EXPECT_GT(a.pieces, 0) << s;
     } catch (const std::exception& e) {
       ADD_FAILURE() << s << ": " << e.what();
@@ -46,4 +46,4 @@ TEST(CustomMatrices, EverySmallPlanarSetPassesTheExactChecks) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

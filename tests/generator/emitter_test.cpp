@@ -6,13 +6,13 @@
 #include <gtest/gtest.h>
 
 #include "generator/error.h"
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 TEST(Emitter, TwoHeadersWithProvenance) {
-  const auto files = emit(testing::analysis_of("zp"),
+  const auto files = emit(fixture::derivation_of("zp"),
                           {"zp_test", "boxgen emit zp --name zp_test", EmissionStrategy::Horner});
   ASSERT_EQ(files.size(), 2u);
   EXPECT_EQ(files[0].filename, "zp_test.hpp");
@@ -27,9 +27,10 @@ TEST(Emitter, TwoHeadersWithProvenance) {
 
 TEST(Emitter, NamesMustBeIdentifiers) {
   for (const char* name : {"", "1abc", "a-b", "a b"})
-    EXPECT_THROW(emit(testing::analysis_of("zp"), {name, "", EmissionStrategy::Horner}), InputError)
+    EXPECT_THROW(emit(fixture::derivation_of("zp"), {name, "", EmissionStrategy::Horner}),
+                 InputError)
         << name;
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

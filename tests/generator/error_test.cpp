@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 TEST(Error, InputErrorsCarryTheirMessage) {
@@ -27,4 +27,4 @@ TEST(Error, InternalErrorsAreNotInputErrors) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

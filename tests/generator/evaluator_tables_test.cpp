@@ -4,14 +4,14 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
 namespace boxgen::generator {
 namespace {
 
 TEST(EvaluatorTables, EveryCellIsInTheLookupWithItsStencil) {
   for (const char* preset : {"m7", "fcc6", "zp"}) {
-    const Analysis& a = testing::analysis_of(preset);
+    const Derivation& a = fixture::derivation_of(preset);
     const KnotPlaneKeys keys = knot_plane_keys(a);
     const CellTables t = cell_tables(a, keys, hermite_basis(a));
     const std::size_t cells = a.structure.cells.size();

@@ -6,7 +6,7 @@
 
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 GiNaC::ex parse(const std::string& text) {
@@ -70,4 +70,4 @@ TEST(GinacBridge, WhatIsNotARationalPolynomialIsRefused) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

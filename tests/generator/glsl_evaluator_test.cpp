@@ -5,12 +5,12 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
 namespace boxgen::generator {
 namespace {
 
-std::vector<OrbitCode> codes(const Analysis& a) {
+std::vector<OrbitCode> codes(const Derivation& a) {
   std::vector<OrbitCode> out;
   for (std::size_t o = 0; o < a.structure.references.size(); ++o)
     out.push_back(choose_orbit_code(a.structure.references[o], static_cast<int>(o),
@@ -20,7 +20,7 @@ std::vector<OrbitCode> codes(const Analysis& a) {
 }
 
 TEST(GlslEvaluator, EntryPointsInEachPrecisionAndDimension) {
-  const Analysis& zp = testing::analysis_of("zp");
+  const Derivation& zp = fixture::derivation_of("zp");
   const std::string f = glsl_evaluator(zp, "banner", "zp", codes(zp), {}, false);
   EXPECT_EQ(f.find("#version"), std::string::npos);
   EXPECT_NE(f.find("float zp_value(vec2 x)"), std::string::npos);
@@ -30,7 +30,7 @@ TEST(GlslEvaluator, EntryPointsInEachPrecisionAndDimension) {
   EXPECT_NE(f.find("zp_fetch(j)"), std::string::npos);
   for (const char* path : {"zp_orbit0_0(", "zp_orbit0_1(", "zp_orbit0_2("})
     EXPECT_NE(f.find(path), std::string::npos) << path;
-  const Analysis& m7 = testing::analysis_of("m7");
+  const Derivation& m7 = fixture::derivation_of("m7");
   const std::string d = glsl_evaluator(m7, "banner", "m7", codes(m7), {}, true);
   EXPECT_NE(d.find("double m7_value_gradient_hessian(dvec3 x, out dvec3 g, out dmat3 h)"),
             std::string::npos);

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 TEST(IntLinalg, DeterminantAndRank) {
@@ -49,4 +49,4 @@ TEST(IntLinalg, SolveAndInverse) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -6,12 +6,12 @@
 #include "generator/error.h"
 #include "generator/piece_checks.h"
 #include "generator/recurrence.h"
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
-using testing::analysis_of;
+using fixture::derivation_of;
 
 TEST(KnotPlanes, LevelsAreTheSubSumsAlongEachNormal) {
   // Directions (20,1), (1,20), (7,5), (-9,4). The normal of (20,1) is +-(1,-20); the dot products
@@ -47,7 +47,7 @@ TEST(KnotPlanes, IntervalKeyCountsTheLevelsStrictlyBelow) {
 }
 
 TEST(KnotComplex, ShiftLocatorAgreesWithRationalLocation) {
-  const PiecewiseForm& form = analysis_of("m7").form;
+  const PiecewiseForm& form = derivation_of("m7").form;
   int inside = 0;
   for (size_t c = 0; c < form.knots.cells().size(); c += 7) {
     const RatVec& p = form.knots.cells()[c].interior;
@@ -92,9 +92,9 @@ TEST(KnotComplex, ShiftLocatorAgreesWithRationalLocationForLargeDenominators) {
 // A scaled direction matrix on the correspondingly scaled lattice is the same spline: the knot
 // complex, the pieces and the structure must not grow with the scale.
 TEST(KnotComplex, ScaledMatrixOnScaledLatticeHasTheSameCells) {
-  const Analysis& hat = analysis_of("hex3");
-  AnalysisOptions options;
-  const Analysis scaled = analyze(parse_spec("64,0; 0,64; 64,64", "64,0; 0,64"), options);
+  const Derivation& hat = derivation_of("hex3");
+  DerivationOptions options;
+  const Derivation scaled = derive(parse_spec("64,0; 0,64; 64,64", "64,0; 0,64"), options);
   EXPECT_EQ(scaled.form.knots.cells().size(), hat.form.knots.cells().size());
   EXPECT_EQ(scaled.pieces, hat.pieces);
   EXPECT_EQ(scaled.structure.regions.size(), hat.structure.regions.size());
@@ -126,7 +126,7 @@ TEST(KnotComplex, LongDirectionsAgreeWithTheRecurrence) {
 
 TEST(ReducedChecks, AgreeWithTheFullChecks) {
   for (const char* preset : {"m7", "cart7", "zp"}) {
-    const Analysis& a = analysis_of(preset);
+    const Derivation& a = derivation_of(preset);
     const CellOrbits orbits = cell_orbits(a.form, a.structure.group);
     std::size_t cells = 0;
     for (int s : orbits.sizes) cells += static_cast<std::size_t>(s);
@@ -142,7 +142,7 @@ TEST(ReducedChecks, AgreeWithTheFullChecks) {
 }
 
 TEST(ReducedChecks, DetectABrokenPiece) {
-  const Analysis& a = analysis_of("m7");
+  const Derivation& a = derivation_of("m7");
   PiecewiseForm broken = a.form;
   broken.polys[0] += Poly::constant(3, Rational(1) / 1000);  // cell 0 represents its orbit
   const CellOrbits orbits = cell_orbits(a.form, a.structure.group);
@@ -152,10 +152,10 @@ TEST(ReducedChecks, DetectABrokenPiece) {
 }
 
 TEST(ReducedChecks, PartitionOfUnityOnReferencesDetectsABrokenBasis) {
-  SplineStructure s = analysis_of("m7").structure;
+  SplineStructure s = derivation_of("m7").structure;
   s.references[0].basis[0] += Poly::constant(3, Rational(1) / 1000);
-  EXPECT_THROW(check_partition_of_unity(analysis_of("m7").form, s, false), InternalError);
+  EXPECT_THROW(check_partition_of_unity(derivation_of("m7").form, s, false), InternalError);
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

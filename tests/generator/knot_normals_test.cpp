@@ -5,7 +5,7 @@
 
 #include <set>
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 std::set<IntVec> as_set(const std::vector<IntVec>& v) { return {v.begin(), v.end()}; }
@@ -40,4 +40,4 @@ TEST(KnotNormals, BasisFirstMovesAnIndependentSetToTheFront) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

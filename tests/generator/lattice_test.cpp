@@ -7,7 +7,7 @@
 #include "generator/error.h"
 #include "generator/symmetry.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 TEST(Lattice, BccMembershipIsAllEvenOrAllOdd) {
@@ -109,4 +109,4 @@ TEST(Symmetry, SignedPermutationGroupLaws) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 const IntColumns kColumns{{1, 0}, {0, 1}, {1, 0}};
@@ -26,4 +26,4 @@ TEST(LevelIntegrator, RaysGiveTheTruncatedPower) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

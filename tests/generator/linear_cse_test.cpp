@@ -6,10 +6,10 @@
 
 #include <map>
 
-#include "generator/analysis.h"
+#include "generator/derivation.h"
 #include "generator/spec.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 // Expands a row over inputs and temporaries back to the original inputs.
@@ -34,7 +34,7 @@ std::map<int, Rational> expand(const LinearRow& row, const SharedRows& s, int in
 
 // The monomial coefficients of M7's reference polynomial, as rows over its 30 stencil values.
 std::vector<LinearRow> m7_rows(int& inputs) {
-  const Analysis a = analyze(parse_spec("m7"));
+  const Derivation a = derive(parse_spec("m7"));
   const ReferenceRegion& ref = a.structure.references.at(0);
   inputs = static_cast<int>(ref.basis.size());
   std::vector<LinearRow> rows;
@@ -69,4 +69,4 @@ TEST(LinearCse, SharedPartialSumsReproduceEveryRowExactlyWithFewerTerms) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -5,7 +5,7 @@
 
 #include "generator/int_linalg.h"
 
-namespace boxgen::testing {
+namespace boxgen::generator::fixture {
 
 inline const IntColumns kXi1 = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
 inline const IntColumns kXi2 = {{2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
@@ -22,4 +22,4 @@ inline IntColumns negated(IntColumns c) {
   return c;
 }
 
-}  // namespace boxgen::testing
+}  // namespace boxgen::generator::fixture

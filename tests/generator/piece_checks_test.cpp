@@ -5,16 +5,16 @@
 #include <gtest/gtest.h>
 
 #include "generator/error.h"
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
-using testing::analysis_of;
+using fixture::derivation_of;
 
 // A copy of M7's form with one nonzero piece changed by a tiny amount.
 PiecewiseForm broken_m7(const Poly& change) {
-  PiecewiseForm f = analysis_of("m7").form;
+  PiecewiseForm f = derivation_of("m7").form;
   for (auto& p : f.polys)
     if (!p.is_zero()) {
       p += change;
@@ -26,7 +26,7 @@ PiecewiseForm broken_m7(const Poly& change) {
 TEST(ExactChecks, DetectABrokenIntegral) {
   const auto f = broken_m7(Poly::constant(3, Rational(1) / 1000));
   EXPECT_NE(total_integral(f), 1);
-  EXPECT_EQ(total_integral(analysis_of("m7").form), 1);
+  EXPECT_EQ(total_integral(derivation_of("m7").form), 1);
 }
 
 TEST(ExactChecks, IntegralOfCellsCutBySlopeOneHalf) {
@@ -42,7 +42,7 @@ TEST(ExactChecks, IntegralOfCellsCutBySlopeOneHalf) {
 
 TEST(ExactChecks, DetectABrokenSymmetry) {
   const auto f = broken_m7(Poly::constant(3, Rational(1) / 1000));
-  EXPECT_THROW(check_symmetry(f, analysis_of("m7").structure.group), InternalError);
+  EXPECT_THROW(check_symmetry(f, derivation_of("m7").structure.group), InternalError);
 }
 
 TEST(ExactChecks, DetectBrokenContinuity) {
@@ -54,8 +54,8 @@ TEST(ExactChecks, DetectBrokenContinuity) {
 
 TEST(ExactChecks, ContinuityOrderIsSharp) {
   // M7 is C^2 and not C^3: asking for order 4 (C^3) must fail somewhere.
-  EXPECT_THROW(check_continuity(analysis_of("m7").form, 4), InternalError);
+  EXPECT_THROW(check_continuity(derivation_of("m7").form, 4), InternalError);
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -8,7 +8,7 @@
 #include "generator/error.h"
 #include "generator/ginac_bridge.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 // A 2-D filter piece M(x, y) = 1/2 x^2 - y on the triangle x >= 0, y >= 0, x + y <= 1.
@@ -111,4 +111,4 @@ TEST(PieceFormat, LatexAndC) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -16,12 +16,12 @@
 #include "generator/ginac_bridge.h"
 #include "generator/piece_format.h"
 #include "generator/recurrence.h"
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
-using testing::analysis_of;
+using fixture::derivation_of;
 
 // The right-hand sides of the lines "  s(x,y,z) = ..." (or M(...)) of the text output. (Plain
 // string matching: std::regex recurses per character and overflows the stack on M12's lines.)
@@ -53,7 +53,7 @@ int count(const std::string& text, const std::string& what) {
 class PiecesOfPreset : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(PiecesOfPreset, TextReadsBackAsTheDerivedPolynomials) {
-  const Analysis& a = analysis_of(GetParam());
+  const Derivation& a = derivation_of(GetParam());
   const int n = a.spec.dimension();
 
   // The spline: coefficient of v_k in s is M(x - j_k) on the reference region.
@@ -147,7 +147,7 @@ void expect_inside(const nlohmann::json& region, const RatVec& x) {
 }
 
 TEST_P(PiecesOfPreset, JsonPiecesAgreeWithTheRecurrence) {
-  const Analysis& a = analysis_of(GetParam());
+  const Derivation& a = derivation_of(GetParam());
   const RatVec c = spline_centre(a.spec);
   const Rational det = Rational(a.spec.lattice.det_abs());
   BoxSplineRecurrence recurrence(a.spec.directions);
@@ -197,7 +197,7 @@ TEST_P(PiecesOfPreset, JsonPiecesAgreeWithTheRecurrence) {
 }
 
 TEST_P(PiecesOfPreset, OrbitsCountsAndRenderingsAreConsistent) {
-  const Analysis& a = analysis_of(GetParam());
+  const Derivation& a = derivation_of(GetParam());
   const Pieces all = filter_pieces(a.form, {PieceSelection::All, 0});
   const Pieces reference = filter_pieces(a.form, {PieceSelection::Reference, 0});
   ASSERT_EQ(static_cast<int>(reference.pieces.size()), reference.orbits);
@@ -228,14 +228,14 @@ TEST_P(PiecesOfPreset, OrbitsCountsAndRenderingsAreConsistent) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllPresets, PiecesOfPreset, ::testing::ValuesIn(testing::kAllPresets));
+INSTANTIATE_TEST_SUITE_P(AllPresets, PiecesOfPreset, ::testing::ValuesIn(fixture::kAllPresets));
 
 TEST(Pieces, BadOptionsAreInputErrors) {
   EXPECT_THROW(parse_pieces_of("splines"), InputError);
   EXPECT_THROW(parse_piece_format("pdf"), InputError);
   for (const char* r : {"", "refrence", "-1", "1.5", "9999999"})
     EXPECT_THROW(parse_piece_selection(r), InputError) << r;
-  const Analysis& a = analysis_of("zp");
+  const Derivation& a = derivation_of("zp");
   EXPECT_THROW(spline_pieces(a.form, a.structure, {PieceSelection::Orbit, 1}),
                InputError);                                                     // one orbit
   EXPECT_THROW(filter_pieces(a.form, {PieceSelection::Orbit, 5}), InputError);  // five orbits
@@ -244,7 +244,7 @@ TEST(Pieces, BadOptionsAreInputErrors) {
 
 // The paper's reference tetrahedron for M7 (section 4.2): (0,0,0), (1,1,1), (1,0,0), (1,1,0).
 TEST(Pieces, M7ReferenceRegionIsThePapersTetrahedron) {
-  const Analysis& a = analysis_of("m7");
+  const Derivation& a = derivation_of("m7");
   const Pieces p = spline_pieces(a.form, a.structure, {PieceSelection::Reference, 0});
   ASSERT_EQ(p.pieces.size(), 1u);
   const std::vector<RatVec> expected{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {1, 1, 1}};
@@ -254,4 +254,4 @@ TEST(Pieces, M7ReferenceRegionIsThePapersTetrahedron) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -6,12 +6,12 @@
 #include "generator/error.h"
 #include "generator/piece_checks.h"
 #include "generator/recurrence.h"
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
-using testing::analysis_of;
+using fixture::derivation_of;
 
 // Generic points: coordinates with large prime denominators, spread over and beyond the support.
 std::vector<RatVec> generic_points(const PiecewiseForm& form, int count) {
@@ -51,7 +51,7 @@ std::vector<RatVec> generic_points(const PiecewiseForm& form, int count) {
 class PiecewisePreset : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(PiecewisePreset, AgreesWithTheRecurrenceAtGenericPoints) {
-  const Analysis& a = analysis_of(GetParam());
+  const Derivation& a = derivation_of(GetParam());
   BoxSplineRecurrence recurrence(a.spec.directions);
   int inside = 0;
   for (const auto& x : generic_points(a.form, 240)) {
@@ -62,18 +62,18 @@ TEST_P(PiecewisePreset, AgreesWithTheRecurrenceAtGenericPoints) {
   EXPECT_GT(inside, 100) << "too few points inside the support to be a test";
 }
 
-INSTANTIATE_TEST_SUITE_P(Presets, PiecewisePreset, ::testing::ValuesIn(testing::kAllPresets),
+INSTANTIATE_TEST_SUITE_P(Presets, PiecewisePreset, ::testing::ValuesIn(fixture::kAllPresets),
                          [](const auto& p) { return std::string(p.param); });
 
 TEST(Eval, ValueOnAKnotPlaneIsTheContinuousLimit) {
   // M7 is continuous: at a point on knot planes the adjacent pieces agree.
-  const auto& form = analysis_of("m7").form;
+  const auto& form = derivation_of("m7").form;
   EXPECT_NO_THROW(form.value_at({1, 1, 1}));
   // The first derivative of the C^0 Courant element jumps across its knot lines.
-  const auto& hat = analysis_of("hex3").form;
+  const auto& hat = derivation_of("hex3").form;
   EXPECT_EQ(hat.value_at({1, 1}), 1);  // the apex, uncentred frame
   EXPECT_THROW(hat.value_at({1, 1}, {1, 0, 0}), InputError);
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -9,12 +9,12 @@
 #include <set>
 
 #include "generator/error.h"
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
-using testing::analysis_of;
+using fixture::derivation_of;
 
 TEST(PolySum, ScaledTermsOfDifferentDenominatorsSumExactly) {
   Poly a(2, 1), b(2, 2);
@@ -48,7 +48,7 @@ TEST(PolySum, CommonDenominatorIsTheLcmOfTheCoefficientDenominators) {
 // in the order the basis lists them, for each reference region's stencil.
 TEST(PolySum, StencilSumsEqualTheRationalSums) {
   for (const char* preset : {"m7", "m8", "hex3", "zp", "cart7"}) {
-    const SplineStructure& s = analysis_of(preset).structure;
+    const SplineStructure& s = derivation_of(preset).structure;
     for (const auto& ref : s.references) {
       std::vector<const Poly*> terms;
       std::vector<int> all, odd;
@@ -88,9 +88,9 @@ TEST(PolySum, StencilSumsEqualTheRationalSums) {
 
 // Long directions: large denominators, and many regions sharing terms.
 TEST(PolySum, LongDirectionsStencilSumsEqualTheRationalSums) {
-  AnalysisOptions options;
+  DerivationOptions options;
   options.verify = false;
-  const Analysis a = analyze(parse_spec("3,1; 1,3; 2,-5"), options);
+  const Derivation a = derive(parse_spec("3,1; 1,3; 2,-5"), options);
   std::vector<const Poly*> terms;
   for (const auto& ref : a.structure.references)
     for (const auto& b : ref.basis) terms.push_back(&b);
@@ -113,7 +113,7 @@ TEST(PolySum, LongDirectionsStencilSumsEqualTheRationalSums) {
 // The reduced check takes each distinct (knot cell, j) term once: a basis polynomial broken in a
 // later region (a term seen before) must still make it fail.
 TEST(PolySum, PartitionOfUnityDetectsABrokenRepeatedTerm) {
-  const Analysis a = analyze(parse_spec("3,1; 1,3; 2,-5"), AnalysisOptions{});
+  const Derivation a = derive(parse_spec("3,1; 1,3; 2,-5"), DerivationOptions{});
   const auto& refs = a.structure.references;
   std::set<std::pair<int, IntVec>> seen;
   std::optional<std::pair<size_t, size_t>> repeated;  // (reference, stencil index)
@@ -135,4 +135,4 @@ TEST(PolySum, PartitionOfUnityDetectsABrokenRepeatedTerm) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

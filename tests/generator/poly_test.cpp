@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 // x^2 y + 3 in two variables.
@@ -127,4 +127,4 @@ TEST(Poly, TranslationWithDenominatorsMatchesCompositionAndValues) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -12,9 +12,9 @@
 
 #include "generator/error.h"
 #include "generator/expr.h"
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 TEST(PolynomialCode, StrategiesByName) {
@@ -32,7 +32,7 @@ TEST(PolynomialCode, StrategiesByName) {
 }
 
 TEST(PolynomialCode, OneFunctionPerOrbitInEachStrategy) {
-  const Analysis& a = testing::analysis_of("zp");
+  const Derivation& a = fixture::derivation_of("zp");
   const ReferenceRegion& ref = a.structure.references[0];
   const auto horner = orbit_code(ref, 0, 2, 2, EmissionStrategy::Horner);
   const auto monomial = orbit_code(ref, 0, 2, 2, EmissionStrategy::Monomial);
@@ -56,7 +56,7 @@ TEST(PolynomialCode, OneFunctionPerOrbitInEachStrategy) {
 // generator chose by its own count: here M8's, the midpoint of two vertices, since the vertex at 0
 // is the Horner form itself. Its code uses y = x - o and no other coordinates.
 TEST(PolynomialCode, ShiftedFormRecordsItsOriginAndWritesY) {
-  const Analysis& a = testing::analysis_of("m8");
+  const Derivation& a = fixture::derivation_of("m8");
   const ReferenceRegion& ref = a.structure.references[0];
   const auto shifted = orbit_code(ref, 0, 3, a.properties.degree, EmissionStrategy::Shifted);
   ASSERT_TRUE(shifted);
@@ -75,7 +75,7 @@ TEST(PolynomialCode, ShiftedFormRecordsItsOriginAndWritesY) {
 // Bernstein-Bezier code exists on simplices only: M7's tetrahedron and zp's triangle, not the
 // cubes of M12; asking for it there is an input error naming the region.
 TEST(PolynomialCode, BernsteinOnSimplicesOnly) {
-  const Analysis& m7 = testing::analysis_of("m7");
+  const Derivation& m7 = fixture::derivation_of("m7");
   const auto bb = orbit_code(m7.structure.references[0], 0, 3, 4, EmissionStrategy::Bernstein);
   ASSERT_TRUE(bb);
   // Degree 4 in 3-D: 35 BB-coefficients, de Casteljau levels of 20, 10, 4 and 1 values.
@@ -88,9 +88,9 @@ TEST(PolynomialCode, BernsteinOnSimplicesOnly) {
   // Barycentric coordinates that are a coordinate itself are no temporaries (l3 = x[2]).
   EXPECT_NE(bb->text.find("const T l0 ="), std::string::npos) << bb->text;
   EXPECT_EQ(bb->text.find("const T l3 ="), std::string::npos) << bb->text;
-  const Analysis& zp = testing::analysis_of("zp");
+  const Derivation& zp = fixture::derivation_of("zp");
   EXPECT_TRUE(orbit_code(zp.structure.references[0], 0, 2, 2, EmissionStrategy::Bernstein));
-  const Analysis& m12 = testing::analysis_of("m12");
+  const Derivation& m12 = fixture::derivation_of("m12");
   const ReferenceRegion& cube = m12.structure.references[0];
   EXPECT_FALSE(orbit_code(cube, 0, 3, m12.properties.degree, EmissionStrategy::Bernstein));
   try {
@@ -104,7 +104,7 @@ TEST(PolynomialCode, BernsteinOnSimplicesOnly) {
 // auto weighs every applicable strategy by the value + gradient count, reports them all, and
 // takes the cheapest; on fcc6 the two orbits each get their own origin.
 TEST(PolynomialCode, AutoConsidersEveryApplicableStrategy) {
-  const Analysis& a = testing::analysis_of("fcc6");
+  const Derivation& a = fixture::derivation_of("fcc6");
   for (std::size_t o = 0; o < a.structure.references.size(); ++o) {
     const ReferenceRegion& ref = a.structure.references[o];
     const OrbitCode chosen =
@@ -130,7 +130,7 @@ TEST(PolynomialCode, AutoConsidersEveryApplicableStrategy) {
 // sum_k v_k p_k(x) and its exact gradient and Hessian: the graph computes the reference
 // polynomial, whatever the simplifier, the sharing and the schedule made of it.
 void check_exact(const std::string& preset) {
-  const Analysis& a = testing::analysis_of(preset);
+  const Derivation& a = fixture::derivation_of(preset);
   const int n = a.spec.dimension();
   std::mt19937_64 rng(7);
   auto rational = [&] {
@@ -187,7 +187,7 @@ TEST(PolynomialCode, DerivativesShareTheValuesHornerForm) {
   const std::pair<const char*, std::array<long, 3>> before[] = {{"m7", {278, 404, 536}},
                                                                 {"m8", {415, 628, 895}}};
   for (const auto& [preset, counts] : before) {
-    const Analysis& a = testing::analysis_of(preset);
+    const Derivation& a = fixture::derivation_of(preset);
     const OrbitCode c = choose_orbit_code(a.structure.references[0], 0, 3, a.properties.degree,
                                           EmissionStrategy::Auto);
     EXPECT_LE(c.value.total(), counts[0]) << preset;
@@ -197,4 +197,4 @@ TEST(PolynomialCode, DerivativesShareTheValuesHornerForm) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -4,12 +4,12 @@
 #include <gtest/gtest.h>
 
 #include "generator/prefilter.h"
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
-using testing::analysis_of;
+using fixture::derivation_of;
 
 Rational monomial(const IntVec& p, const Exponent& e) {
   Rational v = 1;
@@ -41,7 +41,7 @@ Prefilter identity_filter() {
 
 TEST(PrefilterReproduction, CubicsAreReproducedWithQ1AndQ2) {
   for (const char* preset : {"m7", "m8", "m12"}) {
-    const Analysis& a = analysis_of(preset);
+    const Derivation& a = derivation_of(preset);
     const auto& ref = a.structure.references.at(0);
     for (const auto& shells : {std::vector<int>{0, 1}, std::vector<int>{0, 1, 2}}) {
       const Prefilter q = derive_prefilter(a.spec, shells);
@@ -57,7 +57,7 @@ TEST(PrefilterReproduction, CubicsAreReproducedWithQ1AndQ2) {
 
 TEST(PrefilterReproduction, WithoutAPrefilterQuadraticsAreNotReproduced) {
   for (const char* preset : {"m7", "m8", "m12"}) {
-    const auto& ref = analysis_of(preset).structure.references.at(0);
+    const auto& ref = derivation_of(preset).structure.references.at(0);
     // Linear data is reproduced by any box spline (symmetric, order >= 2)...
     Poly x(3, 1);
     x.set_coefficient({1, 0, 0}, 1);
@@ -70,4 +70,4 @@ TEST(PrefilterReproduction, WithoutAPrefilterQuadraticsAreNotReproduced) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

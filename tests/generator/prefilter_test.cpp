@@ -13,7 +13,7 @@
 #include "generator/error.h"
 #include "generator/symmetry.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 // The presets, written out here so these tests do not depend on the SPEC parser.
@@ -331,4 +331,4 @@ TEST(ParseShells, RejectsMalformedLists) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

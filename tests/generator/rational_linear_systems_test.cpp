@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 TEST(RationalLinearSystems, UniqueSolution) {
@@ -42,4 +42,4 @@ TEST(RationalLinearSystems, NullSpaceVectorsSolveTheHomogeneousSystem) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

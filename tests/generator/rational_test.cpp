@@ -6,7 +6,7 @@
 
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 Rational frac(long p, long q) { return Rational(p) / Rational(q); }
@@ -105,4 +105,4 @@ TEST(ParsePoint, NonNumericCoordinateIsAnInputError) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -10,13 +10,13 @@
 #include "generator/error.h"
 #include "generator/lattice.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
-using testing::concat;
-using testing::kXi1;
-using testing::kXi2;
-using testing::negated;
+using fixture::concat;
+using fixture::kXi1;
+using fixture::kXi2;
+using fixture::negated;
 
 const IntColumns kM7 = concat({kXi1, kXi2});
 const IntColumns kM8 = concat({kXi1, kXi1});
@@ -52,8 +52,8 @@ class GenericPoints {
   std::uint64_t state_;
 };
 
-using testing::cardinal_bspline;
-using testing::power;
+using fixture::cardinal_bspline;
+using fixture::power;
 
 TEST(Recurrence, ParallelepipedBaseCase) {
   const IntColumns xi = {{1, 1, 1}, {1, -1, -1}, {0, 2, 0}};
@@ -238,4 +238,4 @@ TEST(Recurrence, KnotPlaneNormals) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

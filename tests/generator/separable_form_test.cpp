@@ -4,15 +4,15 @@
 
 #include <gtest/gtest.h>
 
-#include "generator/analysis.h"
+#include "generator/derivation.h"
 #include "generator/spec.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 TEST(SeparableForm, SeparableFormExactlyForTensorProducts) {
   for (const char* preset : {"m12", "tricubic"}) {
-    const Analysis a = analyze(parse_spec(preset));
+    const Derivation a = derive(parse_spec(preset));
     const auto grids = separable_form(a.structure.references.at(0), 3);
     ASSERT_TRUE(grids.has_value()) << preset;
     std::size_t points = 0;
@@ -24,9 +24,9 @@ TEST(SeparableForm, SeparableFormExactlyForTensorProducts) {
     EXPECT_EQ(grids->size(), std::string(preset) == "m12" ? 2u : 1u)
         << preset;  // BCC: one grid per coset
   }
-  const Analysis m7 = analyze(parse_spec("m7"));
+  const Derivation m7 = derive(parse_spec("m7"));
   EXPECT_FALSE(separable_form(m7.structure.references.at(0), 3).has_value());
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 Poly monomial(int n, const Exponent& e) {
@@ -79,4 +79,4 @@ TEST(SimplexIntegral, RationalTetrahedraAgainstTheAffineSubstitution) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -8,7 +8,7 @@
 
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 // Runs `parse`, requires an InputError whose message is one line and mentions `needle`.
@@ -249,4 +249,4 @@ TEST(SpecErrors, MessagesStayOneLineForAnyInput) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

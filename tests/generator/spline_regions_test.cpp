@@ -9,17 +9,17 @@
 
 #include "generator/error.h"
 #include "generator/spec.h"
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
-using testing::analysis_of;
+using fixture::derivation_of;
 
 TEST(SplineRegions, CourantElementHasTwoTrianglesInOneOrbit) {
   // Z^2: the fundamental region is the unit square, cut by its diagonal; x -> -x plus a lattice
   // translation maps one triangle onto the other. Each triangle sees three hats.
-  const SplineStructure& s = analysis_of("hex3").structure;
+  const SplineStructure& s = derivation_of("hex3").structure;
   EXPECT_EQ(s.regions.size(), 2u);
   ASSERT_EQ(s.references.size(), 1u);
   EXPECT_EQ(s.references[0].regions_in_orbit, 2);
@@ -29,7 +29,7 @@ TEST(SplineRegions, CourantElementHasTwoTrianglesInOneOrbit) {
 }
 
 TEST(SplineRegions, M7HasTwentyFourTetrahedraInOneOrbit) {
-  const SplineStructure& s = analysis_of("m7").structure;
+  const SplineStructure& s = derivation_of("m7").structure;
   EXPECT_EQ(s.regions.size(), 24u);
   ASSERT_EQ(s.references.size(), 1u);
   EXPECT_EQ(s.references[0].stencil.size(), 30u);
@@ -38,7 +38,7 @@ TEST(SplineRegions, M7HasTwentyFourTetrahedraInOneOrbit) {
 }
 
 TEST(SplineRegions, PartitionOfUnityHoldsAndItsCheckCanFail) {
-  const Analysis& a = analysis_of("zp");
+  const Derivation& a = derivation_of("zp");
   EXPECT_NO_THROW(check_partition_of_unity(a.form, a.structure));
   PiecewiseForm broken = a.form;
   for (auto& p : broken.polys)
@@ -118,9 +118,9 @@ std::optional<RatVec> point_across(const FineCell& cell, const Facet& f,
 // matrix, and M7 on BCC.
 TEST(SplineRegions, RegionsAreTheMaximalSetsOfCellsWithTheSameTerms) {
   for (const char* text : {"9,1; 1,9; 4,3; -5,2", "2,1,0; 0,2,1; 1,0,2; 1,1,1", "m7"}) {
-    AnalysisOptions options;
+    DerivationOptions options;
     options.verify = false;
-    const Analysis a = analyze(parse_spec(text), options);
+    const Derivation a = derive(parse_spec(text), options);
     const SplineStructure& s = a.structure;
     const int n = a.form.dimension();
     std::vector<std::optional<Terms>> region_terms(s.regions.size());
@@ -147,4 +147,4 @@ TEST(SplineRegions, RegionsAreTheMaximalSetsOfCellsWithTheSameTerms) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 TEST(Symmetry, AllSignedPermutations) {
@@ -33,4 +33,4 @@ TEST(Symmetry, GroupsOfPresets) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -14,7 +14,7 @@
 #include "tests/gpu/gpu_test_support.h"
 #include "tricubic.cuh"
 
-namespace boxgen::gpu_test {
+namespace boxgen::generator::gpu_test {
 namespace {
 
 template <class Real, int N, class Evaluate>
@@ -73,4 +73,4 @@ BOXGEN_CUDA_HOST_TEST(cart7, 3)
 BOXGEN_CUDA_HOST_TEST(five, 2)
 
 }  // namespace
-}  // namespace boxgen::gpu_test
+}  // namespace boxgen::generator::gpu_test

@@ -16,7 +16,7 @@
 
 #include "tests/gpu/gpu_test_support.h"
 
-namespace boxgen::gpu_test {
+namespace boxgen::generator::gpu_test {
 namespace {
 
 const char* const kInstall =
@@ -193,7 +193,7 @@ TEST_P(Glsl, FloatIsExactToTolerance) { check<float>(GetParam()); }
 TEST_P(Glsl, DoubleIsExactToTolerance) { check<double>(GetParam()); }
 
 INSTANTIATE_TEST_SUITE_P(Filters, Glsl, ::testing::ValuesIn(kFilters),
-                         [](const auto& info) { return std::string(info.param.name); });
+                         [](const auto& p) { return std::string(p.param.name); });
 
 }  // namespace
-}  // namespace boxgen::gpu_test
+}  // namespace boxgen::generator::gpu_test

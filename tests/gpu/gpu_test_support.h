@@ -9,7 +9,7 @@
 
 #include "tests/emitted/exact_reference.h"
 
-namespace boxgen::gpu_test {
+namespace boxgen::generator::gpu_test {
 
 using exact_reference::Exact;
 using exact_reference::kMaxV;
@@ -73,4 +73,4 @@ inline void compare(const Reference& ref, const std::vector<Exact>& exact, const
   EXPECT_GE(hessians, static_cast<int>(exact.size()) / 2) << what;
 }
 
-}  // namespace boxgen::gpu_test
+}  // namespace boxgen::generator::gpu_test

@@ -596,7 +596,7 @@ TEST_F(BccNrrd, NonFiniteSamplesAreRefusedUnlessAllowed) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Where writes go (runtime/output_file.h through write_bcc_nrrd).
+// Where writes go (support/output_file.h through write_bcc_nrrd).
 
 TEST_F(BccNrrd, WritesGoThroughSymbolicLinks) {
   const auto v = random_volume<double>({2, 2, 2}, 0.5, {0, 0, 0}, 11);

@@ -11,11 +11,11 @@
 #include <array>
 #include <vector>
 
-#include "generator/analysis.h"
+#include "generator/derivation.h"
 #include "generator/error.h"
 #include "generator/spec.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
 using Direction = std::array<int, 3>;
@@ -79,7 +79,7 @@ TEST(CustomMatrices, SmallSpatialSetsPassTheExactChecks) {
     for (const auto& s : subsets(dirs, k, step)) {
       const std::string text = spec_text(s);
       try {
-        const Analysis a = analyze(parse_spec(text, "cartesian"));
+        const Derivation a = derive(parse_spec(text, "cartesian"));
         EXPECT_TRUE(spans_space(s)) << text << " was analysed although it does not span R^3";
         EXPECT_GT(a.pieces, 0) << text;
         ++analysed;
@@ -97,4 +97,4 @@ TEST(CustomMatrices, SmallSpatialSetsPassTheExactChecks) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

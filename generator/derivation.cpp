@@ -1,11 +1,11 @@
-#include "generator/analysis.h"
+#include "generator/derivation.h"
 
 #include <chrono>
 #include <sstream>
 
 #include "generator/error.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
 namespace {
 
@@ -23,20 +23,20 @@ nlohmann::json int_rows(const IntColumns& cols) {
 
 }  // namespace
 
-Analysis analyze(const BoxSplineSpec& spec, const AnalysisOptions& options) {
+Derivation derive(const BoxSplineSpec& spec, const DerivationOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const ProgressFn& progress = options.progress;
   auto stage = [&](const char* what) {
     if (progress) progress(what, 0, 0);
   };
-  Analysis a{spec,
-             box_spline_properties(spec),
-             derive_piecewise(spec, DerivationMethod::TruncatedPower, progress,
-                              {options.max_seconds, options.verify, options.full_checks}),
-             {},
-             0,
-             {},
-             0};
+  Derivation a{spec,
+               box_spline_properties(spec),
+               derive_piecewise(spec, DerivationMethod::TruncatedPower, progress,
+                                {options.max_seconds, options.verify, options.full_checks}),
+               {},
+               0,
+               {},
+               0};
   stage("merging pieces");
   a.pieces = count_pieces(a.form);
   stage("spline regions");
@@ -80,7 +80,7 @@ Analysis analyze(const BoxSplineSpec& spec, const AnalysisOptions& options) {
   return a;
 }
 
-nlohmann::json to_json(const Analysis& a) {
+nlohmann::json to_json(const Derivation& a) {
   const auto& p = a.properties;
   nlohmann::json j;
   j["spec"] = a.spec.name;
@@ -117,7 +117,7 @@ nlohmann::json to_json(const Analysis& a) {
   return j;
 }
 
-std::string to_table(const Analysis& a) {
+std::string to_table(const Derivation& a) {
   const auto& p = a.properties;
   std::ostringstream os;
   auto row = [&](const std::string& key, const std::string& value) {
@@ -152,4 +152,4 @@ std::string to_table(const Analysis& a) {
   return os.str();
 }
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -9,9 +9,9 @@
 #include "generator/piecewise_form.h"
 #include "generator/spline_regions.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 
-struct AnalysisChecks {
+struct DerivationChecks {
   bool full = false;           // every check on every cell (else reduced by symmetry)
   bool methods_agree = false;  // truncated power == directional integration, cell by cell
   bool integral_is_one = false;
@@ -21,17 +21,17 @@ struct AnalysisChecks {
   double seconds = 0;
 };
 
-struct Analysis {
+struct Derivation {
   BoxSplineSpec spec;
   BoxSplineProperties properties;
   PiecewiseForm form;  // by the truncated power
   SplineStructure structure;
   int pieces = 0;
-  AnalysisChecks checks;
+  DerivationChecks checks;
   double derivation_seconds = 0;  // derivation and default checks, wall clock
 };
 
-struct AnalysisOptions {
+struct DerivationOptions {
   bool verify = true;  // run the exact checks (a failure throws InternalError)
   // By default the integral and continuity checks visit one cell per symmetry orbit (exact,
   // since symmetry itself is checked on every cell); full visits every cell.
@@ -40,8 +40,8 @@ struct AnalysisOptions {
   double max_seconds = 0;  // refuse what the cost estimate puts beyond this (0: the default limit)
 };
 
-Analysis analyze(const BoxSplineSpec& spec, const AnalysisOptions& options = {});
-nlohmann::json to_json(const Analysis& a);
-std::string to_table(const Analysis& a);
+Derivation derive(const BoxSplineSpec& spec, const DerivationOptions& options = {});
+nlohmann::json to_json(const Derivation& a);
+std::string to_table(const Derivation& a);
 
-}  // namespace boxgen
+}  // namespace boxgen::generator

@@ -25,6 +25,8 @@
 #include <cstdint>
 #include <utility>
 
+#include "support/integer_math.h"
+
 namespace boxgen::generated::support {
 
 // What an evaluation computes: the value, also the gradient, also the Hessian.
@@ -54,12 +56,9 @@ struct Located {
   T x[N];                              // reference coordinates of the point
 };
 
-// floor(a / b) for b > 0 (b is a compile-time constant after inlining: no division is executed
-// for the power-of-two diagonals of the usual lattices).
-constexpr std::int64_t floor_div(std::int64_t a, std::int64_t b) {
-  const std::int64_t q = a / b;
-  return q * b > a ? q - 1 : q;
-}
+// floor(a / b): the one definition (support/integer_math.h); b is a compile-time constant after
+// inlining, so no division is executed for the power-of-two diagonals of the usual lattices.
+using ::boxgen::support::floor_div;
 
 // Rounding put r on an empty key combination (it lies on a knot plane): take the cell of this
 // cube whose slabs it violates least. The spline is continuous there, so either side is right.
@@ -89,8 +88,7 @@ template <class Tr, class T>
 template <class Tr, int K, class T>
 [[gnu::always_inline]] inline int knot_key(const T* r) {
   T s = 0;
-  for (int i = 0; i < Tr::kDimension; ++i)
-    s += static_cast<T>(Tr::kNormals[K][i]) * r[i];
+  for (int i = 0; i < Tr::kDimension; ++i) s += static_cast<T>(Tr::kNormals[K][i]) * r[i];
   int f = 0;
   for (int m = 1; m < Tr::kNormalWidth[K]; ++m) f += s >= static_cast<T>(Tr::kNormalMin[K] + m);
   return f * Tr::kNormalStride[K];
@@ -111,7 +109,8 @@ template <class Tr, class T>
 }
 
 template <class Tr, class T>
-[[gnu::always_inline]] inline Located<Tr::kDimension, T> locate(const std::array<T, Tr::kDimension>& x) {
+[[gnu::always_inline]] inline Located<Tr::kDimension, T> locate(
+    const std::array<T, Tr::kDimension>& x) {
   constexpr int n = Tr::kDimension;
   Located<n, T> out;
   T r[n];
@@ -132,12 +131,14 @@ template <class Tr, class T>
     for (int i = j; i < n; ++i) rep[i] -= q * (Tr::kHermite[j][i] / k);
   }
   int cube = 0;
-  for (int i = n - 1; i >= 0; --i) cube = cube * static_cast<int>(Tr::kHermite[i][i] / k) + static_cast<int>(rep[i]);
+  for (int i = n - 1; i >= 0; --i)
+    cube = cube * static_cast<int>(Tr::kHermite[i][i] / k) + static_cast<int>(rep[i]);
   out.cell = cell_of<Tr>(cube, r);
   const auto& cell = Tr::kCells[out.cell];
   for (int i = 0; i < n; ++i) {
     const int p = cell.perm[i];
-    out.x[i] = static_cast<T>(cell.sign[i]) * (x[p] - static_cast<T>(out.corner[p] - rep[p] * k)) + static_cast<T>(cell.a[i]);
+    out.x[i] = static_cast<T>(cell.sign[i]) * (x[p] - static_cast<T>(out.corner[p] - rep[p] * k)) +
+               static_cast<T>(cell.a[i]);
   }
   return out;
 }
@@ -155,7 +156,8 @@ void from_reference_frame(int cell_index, const T* ref, std::ptrdiff_t stride, T
       for (int j = i; j < n; ++j) {
         const int pi = cell.perm[i], pj = cell.perm[j];
         const int at_user = pi <= pj ? hessian_index(n, pi, pj) : hessian_index(n, pj, pi);
-        d[n + at_user] = static_cast<T>(cell.sign[i] * cell.sign[j]) * ref[(n + hessian_index(n, i, j)) * stride];
+        d[n + at_user] = static_cast<T>(cell.sign[i] * cell.sign[j]) *
+                         ref[(n + hessian_index(n, i, j)) * stride];
       }
   }
 }
@@ -178,7 +180,8 @@ T evaluate_located(const Located<Tr::kDimension, T>& at, const T* v, T* d) {
 
 // The scalar entry point through a user's fetch(const std::array<int64_t, n>& j) -> sample.
 template <class Tr, class T, class Fetch>
-T evaluate(const std::array<T, Tr::kDimension>& x, Fetch&& fetch, std::array<T, Tr::kDimension>* gradient,
+T evaluate(const std::array<T, Tr::kDimension>& x, Fetch&& fetch,
+           std::array<T, Tr::kDimension>* gradient,
            std::array<T, hessian_size(Tr::kDimension)>* hessian) {
   constexpr int n = Tr::kDimension;
   const Located<n, T> at = locate<Tr>(x);

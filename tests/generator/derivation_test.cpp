@@ -3,12 +3,12 @@
 // copied from the generator's output.
 #include <gtest/gtest.h>
 
-#include "tests/generator/analysis_fixture.h"
+#include "tests/generator/derivation_fixture.h"
 
-namespace boxgen {
+namespace boxgen::generator {
 namespace {
 
-using testing::analysis_of;
+using fixture::derivation_of;
 
 struct Expected {
   const char* preset;
@@ -44,7 +44,7 @@ class AnalyzePreset : public ::testing::TestWithParam<Expected> {};
 
 TEST_P(AnalyzePreset, MatchesTheLiterature) {
   const Expected& e = GetParam();
-  const Analysis& a = testing::verified_analysis_of(e.preset);
+  const Derivation& a = fixture::verified_derivation_of(e.preset);
   EXPECT_EQ(a.properties.degree, e.degree);
   EXPECT_EQ(a.properties.approximation_order, e.order);
   EXPECT_EQ(a.properties.continuity, e.order - 2);
@@ -70,7 +70,7 @@ INSTANTIATE_TEST_SUITE_P(Presets, AnalyzePreset, ::testing::ValuesIn(kExpected),
                          [](const auto& p) { return std::string(p.param.preset); });
 
 TEST(Analyze, M7ReferenceTetrahedronIsThePapers) {
-  const auto& ref = analysis_of("m7").structure.references.at(0);
+  const auto& ref = derivation_of("m7").structure.references.at(0);
   // Paper section 4.2: v1 = (0,0,0), v2 = (1,1,1), v3 = (1,0,0), v4 = (1,1,0) (sorted here).
   std::vector<RatVec> expected{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {1, 1, 1}};
   EXPECT_EQ(ref.vertices, expected);
@@ -81,14 +81,14 @@ TEST(Analyze, M7ReferenceTetrahedronIsThePapers) {
 TEST(Analyze, PiecesOfTensorProductSplinesAreCubes) {
   // A tensor-product cubic B-spline has 4 pieces per axis: 64 polynomial pieces, and M12 is one
   // with knot spacing 2. The Courant element has 6 triangles.
-  EXPECT_EQ(analysis_of("tricubic").pieces, 64);
-  EXPECT_EQ(analysis_of("m12").pieces, 64);
-  EXPECT_EQ(analysis_of("hex3").pieces, 6);
+  EXPECT_EQ(derivation_of("tricubic").pieces, 64);
+  EXPECT_EQ(derivation_of("m12").pieces, 64);
+  EXPECT_EQ(derivation_of("hex3").pieces, 6);
 }
 
 TEST(Analyze, EveryRegionMapsOntoItsReference) {
-  for (const char* p : testing::kAllPresets) {
-    const auto& s = analysis_of(p).structure;
+  for (const char* p : fixture::kAllPresets) {
+    const auto& s = derivation_of(p).structure;
     for (const auto& r : s.regions) {
       std::vector<RatVec> image;
       for (const auto& v : r.vertices) image.push_back(r.to_reference.apply(v));
@@ -99,7 +99,7 @@ TEST(Analyze, EveryRegionMapsOntoItsReference) {
 }
 
 TEST(Analyze, JsonHasTheDocumentedKeys) {
-  const auto j = to_json(analysis_of("m7"));
+  const auto j = to_json(derivation_of("m7"));
   for (const char* key :
        {"dimension", "directions", "lattice", "degree", "continuity", "approximation_order",
         "support_volume", "stencil_size", "stencil_size_min", "stencil_size_max",
@@ -110,4 +110,4 @@ TEST(Analyze, JsonHasTheDocumentedKeys) {
 }
 
 }  // namespace
-}  // namespace boxgen
+}  // namespace boxgen::generator

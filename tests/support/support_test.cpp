@@ -1,0 +1,208 @@
+// The support library (support/): the one floor_div and UnionFind, and the atomic writer's
+// guarantees (support/output_file.h): complete files or none, sets all or nothing, temporaries
+// removed on signals and after SIGKILL, never an input overwritten.
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "support/integer_math.h"
+#include "support/output_file.h"
+#include "support/union_find.h"
+#include "tests/support/scratch_directory.h"
+
+namespace boxgen::support {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(IntegerMath, FloorDivIsTheMathematicalFloorForEverySignCombination) {
+  for (std::int64_t a = -50; a <= 50; ++a)
+    for (std::int64_t b = -7; b <= 7; ++b) {
+      if (b == 0) continue;
+      // Reference: the quotient of small integers is exact in long double, so floor is exact.
+      const auto expected = static_cast<std::int64_t>(
+          std::floor(static_cast<long double>(a) / static_cast<long double>(b)));
+      EXPECT_EQ(floor_div(a, b), expected) << a << " / " << b;
+    }
+  static_assert(floor_div(-1, 2) == -1 && floor_div(7, -2) == -4 && floor_div(-8, 4) == -2);
+  EXPECT_EQ(floor_div(-(std::int64_t{1} << 40) - 1, 1 << 20), -(std::int64_t{1} << 20) - 1);
+}
+
+TEST(UnionFind, MergesExactlyTheUnitedSets) {
+  UnionFind sets(8);
+  sets.unite(0, 3);
+  sets.unite(3, 5);
+  sets.unite(6, 7);
+  const std::vector<std::set<int>> expected = {{0, 3, 5}, {1}, {2}, {4}, {6, 7}};
+  for (const auto& group : expected)
+    for (int a : group)
+      for (int b = 0; b < 8; ++b)
+        EXPECT_EQ(sets.find(a) == sets.find(b), group.count(b) == 1) << a << ", " << b;
+}
+
+class OutputFile : public test::ScratchDirectoryTest {
+ protected:
+  OutputFile() : ScratchDirectoryTest("boxgen-support") {}
+
+  static std::string read(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+  static void write(const fs::path& p, const std::string& text) {
+    std::ofstream(p, std::ios::binary) << text;
+  }
+  // Every file in the scratch directory, by name.
+  std::set<std::string> names() const {
+    std::set<std::string> out;
+    for (const auto& e : fs::directory_iterator(dir_)) out.insert(e.path().filename().string());
+    return out;
+  }
+  // Runs `body` in a child process and returns its wait status.
+  template <class F>
+  static int in_child(F body) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      body();
+      ::_exit(0);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    return status;
+  }
+};
+
+TEST_F(OutputFile, PendingOutputReplacesTheTargetOnlyOnCommit) {
+  const fs::path target = dir_ / "a.txt";
+  write(target, "old");
+  {
+    PendingOutput out(target);
+    std::fputs("new", out.file());
+    EXPECT_EQ(read(target), "old");  // nothing visible before commit
+  }
+  EXPECT_EQ(read(target), "old");  // abandoned by the destructor
+  EXPECT_EQ(names(), std::set<std::string>{"a.txt"});
+  {
+    PendingOutput out(target);
+    std::fputs("new", out.file());
+    out.commit();
+  }
+  EXPECT_EQ(read(target), "new");
+  EXPECT_EQ(names(), std::set<std::string>{"a.txt"});
+}
+
+TEST_F(OutputFile, AnOutputThatIsAnInputIsRefusedBeforeAnyWork) {
+  const fs::path input = dir_ / "in.nrrd";
+  write(input, "volume");
+  fs::create_symlink(input, dir_ / "link.png");
+  const std::vector<fs::path> inputs = {input};
+  EXPECT_THROW(PendingOutput(dir_ / "link.png", inputs), OutputFileError);
+  EXPECT_THROW((void)check_output_file(input, inputs), OutputFileError);
+  EXPECT_EQ(read(input), "volume");
+}
+
+TEST_F(OutputFile, AFullDiskLeavesEveryFileOfASetAsItWas) {
+  write(dir_ / "h.hpp", "old evaluator");
+  write(dir_ / "h_prefilters.hpp", "old prefilters");
+  // A file size limit makes the second file's write fail as a full disk does (EFBIG).
+  const int status = in_child([&] {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{1000, 1000};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    const std::vector<NamedText> set = {{"h.hpp", "new evaluator"},
+                                        {"h_prefilters.hpp", std::string(100000, 'x')}};
+    try {
+      write_file_set(dir_, set);
+    } catch (const OutputFileError&) {
+      ::_exit(7);
+    }
+  });
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 7) << "the write should have failed";
+  EXPECT_EQ(read(dir_ / "h.hpp"), "old evaluator");
+  EXPECT_EQ(read(dir_ / "h_prefilters.hpp"), "old prefilters");
+  EXPECT_EQ(names(), (std::set<std::string>{"h.hpp", "h_prefilters.hpp"}));
+}
+
+TEST_F(OutputFile, ASetWithAnUnwritableMemberWritesNothing) {
+  fs::create_directory(dir_ / "b.hpp");  // a directory where a file should go
+  const std::vector<NamedText> set = {{"a.hpp", "a"}, {"b.hpp", "b"}};
+  EXPECT_THROW(write_file_set(dir_, set), OutputFileError);
+  EXPECT_EQ(names(), std::set<std::string>{"b.hpp"});
+}
+
+TEST_F(OutputFile, TwoWritersOfOneSetNeverMixTheirFiles) {
+  for (int round = 0; round < 40; ++round) {
+    std::vector<pid_t> writers;
+    for (char who : {'A', 'B'}) {
+      const pid_t pid = ::fork();
+      if (pid == 0) {
+        const std::string text(20000, who);
+        const std::vector<NamedText> set = {{"h.hpp", text}, {"h_prefilters.hpp", text}};
+        write_file_set(dir_, set);
+        ::_exit(0);
+      }
+      writers.push_back(pid);
+    }
+    for (pid_t pid : writers) {
+      int status = 0;
+      ::waitpid(pid, &status, 0);
+      ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    }
+    ASSERT_EQ(read(dir_ / "h.hpp"), read(dir_ / "h_prefilters.hpp")) << "round " << round;
+    ASSERT_EQ(names(), (std::set<std::string>{"h.hpp", "h_prefilters.hpp"}));
+  }
+}
+
+TEST_F(OutputFile, ASignalRemovesThePendingTemporaries) {
+  for (int signal : {SIGINT, SIGTERM, SIGHUP}) {
+    const int status = in_child([&] {
+      handle_signals();
+      PendingOutput out(dir_ / "out.nrrd");
+      std::fputs("half", out.file());
+      std::fflush(out.file());
+      std::raise(signal);
+    });
+    ASSERT_TRUE(WIFSIGNALED(status)) << "signal " << signal;
+    EXPECT_EQ(WTERMSIG(status), signal);
+    EXPECT_TRUE(names().empty()) << "signal " << signal << " left " << *names().begin();
+  }
+}
+
+TEST_F(OutputFile, ALaterWriteRemovesTheLeftoversOfAKilledWriter) {
+  // A process that has ended (and been reaped): its pid names no process now.
+  const pid_t gone = ::fork();
+  if (gone == 0) ::_exit(0);
+  ::waitpid(gone, nullptr, 0);
+  const std::string stale = ".out.nrrd.tmp-" + std::to_string(gone) + "-0";
+  const std::string live = ".out.nrrd.tmp-" + std::to_string(::getppid()) + "-0";
+  write(dir_ / stale, "left by SIGKILL");
+  write(dir_ / live, "another writer at work");
+  write_output_file(dir_ / "out.nrrd", [](std::FILE* f) { return std::fputs("v", f) >= 0; });
+  EXPECT_EQ(names(), (std::set<std::string>{"out.nrrd", live}));
+}
+
+TEST_F(OutputFile, AClosedPipeIsAnErrorNotADeadProcess) {
+  const int status = in_child([] {
+    handle_signals();
+    int ends[2];
+    if (::pipe(ends) != 0) ::_exit(2);
+    ::close(ends[0]);
+    const bool failed = ::write(ends[1], "x", 1) < 0 && errno == EPIPE;
+    ::_exit(failed ? 5 : 6);
+  });
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 5);
+}
+
+}  // namespace
+}  // namespace boxgen::support
