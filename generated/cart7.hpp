@@ -12,7 +12,7 @@
 // value + gradient / + Hessian:
 //   428 / 500 / 560
 //   orbit 0: shifted about (1/2,1/2,1/2), 428 / 500 / 560
-//     adds 333 / 361 / 383, muls 95 / 139 / 177, loads 53 / 53 / 53, temporaries 153 / 165 / 165
+//     adds 333 / 361 / 383, muls 95 / 139 / 177, loads 53 / 53 / 53, temporaries 154 / 166 / 166
 //     chosen by value + gradient from horner 447 / 519 / 579, monomial 1181 / 1307 / 1409, shifted 428 / 500 / 560, bernstein 1136 / 1144 / 1174
 #pragma once
 #include <array>
@@ -35,7 +35,7 @@ inline constexpr long kHessianOperations = 560;
 // Per orbit and path (value; value + gradient; + Hessian), what its code executes: additions,
 // multiplications, negations, distinct stencil values read, named temporaries.
 inline constexpr int kCostAdds = 0, kCostMuls = 1, kCostNegs = 2, kCostLoads = 3, kCostTemporaries = 4;
-inline constexpr long kOrbitCosts[1][3][5] = {{{333, 95, 0, 53, 153}, {361, 139, 0, 53, 165}, {383, 177, 0, 53, 165}}};
+inline constexpr long kOrbitCosts[1][3][5] = {{{333, 95, 0, 53, 154}, {361, 139, 0, 53, 166}, {383, 177, 0, 53, 166}}};
 
 using Point = std::array<std::int64_t, kDimension>;
 
@@ -195,48 +195,49 @@ T orbit_0(const T* v, const T* x, T* d) {
   const T s123 = s50 - s94;
   const T s68 = v[4] - v[7];
   const T s131 = s99 + (s15 - s68);
-  const T c27 = T(-0.0625) * (s123 + s131);
-  const T t11 = T(0.0625) * (s71 + (s19 - s41 - s50) - s82 - s104) + y2 * c27;
+  const T t11 = s123 + s131;
+  const T c27 = T(-0.0625) * t11;
+  const T t12 = T(0.0625) * (s71 + (s19 - s41 - s50) - s82 - s104) + y2 * c27;
   const T s85 = v[18] - v[19];
   const T c26 = T(0.041666666666666664) * (s91 + (s85 + (s63 + (s54 - s52)))) + T(0.020833333333333332) * (s131 - s123);
-  const T t12 = T(-0.083333333333333329) * (s19 + T(0.5) * s32 + (s22 + s33)) + T(-0.020833333333333332) * (s96 + (s69 + (s17 + T(2) * s26 + (s48 + (s31 + T(4) * s34))))) + T(-0.041666666666666664) * (s57 + s71) + y2 * (c6 + y2 * (T(0.0625) * t8 + y2 * (T(0.020833333333333332) * t9))) + y1 * (t10 + y1 * (t11 + y1 * c26));
+  const T t13 = T(-0.083333333333333329) * (s19 + T(0.5) * s32 + (s22 + s33)) + T(-0.020833333333333332) * (s96 + (s69 + (s17 + T(2) * s26 + (s48 + (s31 + T(4) * s34))))) + T(-0.041666666666666664) * (s57 + s71) + y2 * (c6 + y2 * (T(0.0625) * t8 + y2 * (T(0.020833333333333332) * t9))) + y1 * (t10 + y1 * (t12 + y1 * c26));
   const T s110 = s14 + s58;
   const T c12 = T(0.0625) * (s110 - (s55 + (v[8] + v[11])) - s115);
   const T s117 = s38 - s74;
   const T c24 = T(0.0625) * (s117 + (s88 - s80));
-  const T t13 = T(0.0625) * (s117 + (s70 + (s16 - s7) - s105)) + y2 * c24;
-  const T t14 = T(0.0625) * (s110 + (s16 + s72 - s77)) + y2 * c12 + y1 * t13;
+  const T t14 = T(0.0625) * (s117 + (s70 + (s16 - s7) - s105)) + y2 * c24;
+  const T t15 = T(0.0625) * (s110 + (s16 + s72 - s77)) + y2 * c12 + y1 * t14;
   const T s90 = s15 - s40;
   const T s120 = s43 + T(2) * (s19 + T(0.5) * s21);
   const T s124 = s54 - s68;
   const T c22 = T(0.041666666666666664) * (s43 - s39) + T(0.020833333333333332) * (s94 + (s60 - s90) - s124);
   const T c21 = T(0.020833333333333332) * (s22 + s41 + (s90 - (s17 + s26)) - s124) + T(0.041666666666666664) * (s21 - s85);
-  const T t15 = T(0.020833333333333332) * (s90 + (s17 - s32 - s57) - s103 - s104) + T(0.041666666666666664) * (s120 + (s22 + T(-0.5) * s41 - s26)) + T(0.0625) * (s69 + (s33 + s52)) + y2 * c22 + y1 * c21;
+  const T t16 = T(0.020833333333333332) * (s90 + (s17 - s32 - s57) - s103 - s104) + T(0.041666666666666664) * (s120 + (s22 + T(-0.5) * s41 - s26)) + T(0.0625) * (s69 + (s33 + s52)) + y2 * c22 + y1 * c21;
   const T c20 = T(0.03125) * (v[5] + T(-0.33333333333333331) * v[6] + (v[44] + (v[36] + (v[13] - v[12] - v[35]) - v[43])) - (v[4] + T(-0.33333333333333331) * v[7])) + T(0.010416666666666666) * (v[46] + (v[38] + (v[15] - v[14] - v[37]) - v[45])) + T(0.041666666666666664) * (v[24] - v[25]) + T(0.020833333333333332) * (s120 + (s39 + s85));
-  const T value = T(0.010416666666666666) * (s107 + (s81 + (s45 + (s35 + s38)))) + T(0.09375) * s77 + y2 * (c3 + y2 * (T(0.0625) * t0 + y2 * (c19 + y2 * c34))) + y1 * (t3 + y1 * (t5 + y1 * (t7 + y1 * c30))) + y0 * (t12 + y0 * (t14 + y0 * (t15 + y0 * c20)));
+  const T value = T(0.010416666666666666) * (s107 + (s81 + (s45 + (s35 + s38)))) + T(0.09375) * s77 + y2 * (c3 + y2 * (T(0.0625) * t0 + y2 * (c19 + y2 * c34))) + y1 * (t3 + y1 * (t5 + y1 * (t7 + y1 * c30))) + y0 * (t13 + y0 * (t15 + y0 * (t16 + y0 * c20)));
   if constexpr (Order >= 1) {
-    const T t16 = T(2) * t14;
-    const T t17 = T(2) * t5;
-    const T t18 = T(2) * t11;
-    const T t19 = t10 + y1 * (t18 + y1 * (T(3) * c26));
-    const T t20 = T(0.125) * t0;
-    const T t21 = T(0.125) * t1;
-    const T t22 = c8 + y2 * (t21 + y2 * (T(0.0625) * t2));
-    const T t23 = T(0.125) * t8;
-    const T t24 = T(2) * c28;
-    const T t25 = c14 + y2 * t24;
-    const T t26 = c6 + y2 * (t23 + y2 * (T(0.0625) * t9)) + y1 * (t25 + y1 * c27);
-    const T t27 = c12 + y1 * c24;
-    d[0] = t12 + y0 * (t16 + y0 * (T(3) * t15 + y0 * (T(4) * c20)));
-    d[1] = t3 + y1 * (t17 + y1 * (T(3) * t7 + y1 * (T(4) * c30))) + y0 * (t19 + y0 * (t13 + y0 * c21));
-    d[2] = c3 + y2 * (t20 + y2 * (T(3) * c19 + y2 * (T(4) * c34))) + y1 * (t22 + y1 * (c17 + y1 * c31)) + y0 * (t26 + y0 * (t27 + y0 * c22));
+    const T t17 = T(2) * t15;
+    const T t18 = T(2) * t5;
+    const T t19 = T(2) * t12;
+    const T t20 = t10 + y1 * (t19 + y1 * (T(3) * c26));
+    const T t21 = T(0.125) * t0;
+    const T t22 = T(0.125) * t1;
+    const T t23 = c8 + y2 * (t22 + y2 * (T(0.0625) * t2));
+    const T t24 = T(0.125) * t8;
+    const T t25 = T(2) * c28;
+    const T t26 = c14 + y2 * t25;
+    const T t27 = c6 + y2 * (t24 + y2 * (T(0.0625) * t9)) + y1 * (t26 + y1 * c27);
+    const T t28 = c12 + y1 * c24;
+    d[0] = t13 + y0 * (t17 + y0 * (T(3) * t16 + y0 * (T(4) * c20)));
+    d[1] = t3 + y1 * (t18 + y1 * (T(3) * t7 + y1 * (T(4) * c30))) + y0 * (t20 + y0 * (t14 + y0 * c21));
+    d[2] = c3 + y2 * (t21 + y2 * (T(3) * c19 + y2 * (T(4) * c34))) + y1 * (t23 + y1 * (c17 + y1 * c31)) + y0 * (t27 + y0 * (t28 + y0 * c22));
     if constexpr (Order >= 2) {
-      d[3] = t16 + y0 * (T(6) * t15 + y0 * (T(12) * c20));
-      d[4] = t19 + y0 * (T(2) * t13 + y0 * (T(3) * c21));
-      d[5] = t26 + y0 * (T(2) * t27 + y0 * (T(3) * c22));
-      d[6] = t17 + y1 * (T(6) * t7 + y1 * (T(12) * c30)) + y0 * (t18 + y1 * (T(6) * c26));
-      d[7] = t22 + y1 * (T(0.125) * t4 + y1 * (T(0.0625) * t6)) + y0 * (t25 + y1 * (T(2) * c27) + y0 * c24);
-      d[8] = t20 + y2 * (T(6) * c19 + y2 * (T(12) * c34)) + y1 * (t21 + y2 * (T(0.125) * t2)) + y0 * (t23 + y2 * (T(0.125) * t9) + y1 * t24);
+      d[3] = t17 + y0 * (T(6) * t16 + y0 * (T(12) * c20));
+      d[4] = t20 + y0 * (T(2) * t14 + y0 * (T(3) * c21));
+      d[5] = t27 + y0 * (T(2) * t28 + y0 * (T(3) * c22));
+      d[6] = t18 + y1 * (T(6) * t7 + y1 * (T(12) * c30)) + y0 * (t19 + y1 * (T(6) * c26));
+      d[7] = t23 + y1 * (T(0.125) * t4 + y1 * (T(0.0625) * t6)) + y0 * (t26 + y1 * (T(-0.125) * t11) + y0 * c24);
+      d[8] = t21 + y2 * (T(6) * c19 + y2 * (T(12) * c34)) + y1 * (t22 + y2 * (T(0.125) * t2)) + y0 * (t24 + y2 * (T(0.125) * t9) + y1 * t25);
     }
   }
   return value;

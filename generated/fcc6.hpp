@@ -12,10 +12,10 @@
 // value + gradient / + Hessian:
 //   133 / 172 / 196
 //   orbit 0: shifted about (1,0,0), 129 / 168 / 192
-//     adds 77 / 92 / 101, muls 52 / 76 / 91, loads 16 / 16 / 16, temporaries 39 / 48 / 48
+//     adds 77 / 92 / 101, muls 52 / 76 / 91, loads 16 / 16 / 16, temporaries 36 / 45 / 45
 //     chosen by value + gradient from horner 132 / 171 / 195, monomial 277 / 337 / 370, shifted 129 / 168 / 192, bernstein 196 / 202 / 225
 //   orbit 1: shifted about (1/2,1/2,1/2), 133 / 172 / 196
-//     adds 80 / 95 / 104, muls 53 / 77 / 92, loads 16 / 16 / 16, temporaries 59 / 68 / 68
+//     adds 80 / 95 / 104, muls 53 / 77 / 92, loads 16 / 16 / 16, temporaries 56 / 65 / 65
 //     chosen by value + gradient from horner 155 / 194 / 218, monomial 358 / 418 / 451, shifted 133 / 172 / 196, bernstein 208 / 220 / 265
 #pragma once
 #include <array>
@@ -38,8 +38,8 @@ inline constexpr long kHessianOperations = 196;
 // Per orbit and path (value; value + gradient; + Hessian), what its code executes: additions,
 // multiplications, negations, distinct stencil values read, named temporaries.
 inline constexpr int kCostAdds = 0, kCostMuls = 1, kCostNegs = 2, kCostLoads = 3, kCostTemporaries = 4;
-inline constexpr long kOrbitCosts[2][3][5] = {{{77, 52, 0, 16, 39}, {92, 76, 0, 16, 48}, {101, 91, 0, 16, 48}},
-    {{80, 53, 0, 16, 59}, {95, 77, 0, 16, 68}, {104, 92, 0, 16, 68}}};
+inline constexpr long kOrbitCosts[2][3][5] = {{{77, 52, 0, 16, 36}, {92, 76, 0, 16, 45}, {101, 91, 0, 16, 45}},
+    {{80, 53, 0, 16, 56}, {95, 77, 0, 16, 65}, {104, 92, 0, 16, 65}}};
 
 using Point = std::array<std::int64_t, kDimension>;
 
@@ -84,8 +84,7 @@ T orbit_0(const T* v, const T* x, T* d) {
   const T c8 = T(0.25) * (s4 - s9);
   const T s14 = s4 + s9;
   const T s27 = v[4] - v[8] + (s8 - s14);
-  const T c18 = T(0.125) * s27;
-  const T t1 = T(-0.5) * s8 + x[2] * (c8 + x[2] * c18);
+  const T t1 = T(-0.5) * s8 + x[2] * (c8 + x[2] * (T(0.125) * s27));
   const T s13 = s0 - s3;
   const T s26 = v[1] - v[12] + (s6 - s13);
   const T c17 = T(0.125) * s26;
@@ -95,10 +94,8 @@ T orbit_0(const T* v, const T* x, T* d) {
   const T y0 = x[0] - T(1);
   const T c6 = T(-0.5) * (s6 + T(-0.5) * s13);
   const T s25 = s12 - (s5 - s7);
-  const T c15 = T(0.125) * s25;
   const T c5 = T(-0.5) * (s8 + T(-0.5) * s14);
-  const T c13 = T(-0.125) * s25;
-  const T t3 = T(0.5) * (v[7] - v[6]) + x[2] * (c6 + x[2] * c15) + x[1] * (c5 + x[1] * c13);
+  const T t3 = T(0.5) * (v[7] - v[6]) + x[2] * (c6 + x[2] * (T(0.125) * s25)) + x[1] * (c5 + x[1] * (T(-0.125) * s25));
   const T c12 = T(-0.125) * s26;
   const T c11 = T(-0.125) * s27;
   const T t4 = T(0.5) * v[7] + T(0.125) * s10 + T(-0.25) * s11 + x[2] * c12 + x[1] * c11;
@@ -107,22 +104,22 @@ T orbit_0(const T* v, const T* x, T* d) {
   if constexpr (Order >= 1) {
     const T t5 = T(2) * t4;
     const T t6 = T(2) * t2;
-    const T t7 = T(2) * c13;
+    const T t7 = T(-0.25) * s25;
     const T t8 = c5 + x[1] * t7;
     const T t9 = T(2) * c9;
-    const T t10 = T(2) * c18;
+    const T t10 = T(0.25) * s27;
     const T t11 = c8 + x[2] * t10;
-    const T t12 = T(2) * c15;
+    const T t12 = T(0.25) * s25;
     const T t13 = c6 + x[2] * t12;
     d[0] = t3 + y0 * (t5 + y0 * (T(3) * c10));
     d[1] = t1 + x[1] * (t6 + x[1] * (T(3) * c16)) + y0 * (t8 + y0 * c11);
     d[2] = c3 + x[2] * (t9 + x[2] * (T(3) * c19)) + x[1] * (t11 + x[1] * c17) + y0 * (t13 + y0 * c12);
     if constexpr (Order >= 2) {
       d[3] = t5 + y0 * (T(6) * c10);
-      d[4] = t8 + y0 * (T(2) * c11);
-      d[5] = t13 + y0 * (T(2) * c12);
+      d[4] = t8 + y0 * (T(-0.25) * s27);
+      d[5] = t13 + y0 * (T(-0.25) * s26);
       d[6] = t6 + x[1] * (T(6) * c16) + y0 * t7;
-      d[7] = t11 + x[1] * (T(2) * c17);
+      d[7] = t11 + x[1] * (T(0.25) * s26);
       d[8] = t9 + x[2] * (T(6) * c19) + x[1] * t10 + y0 * t12;
     }
   }
@@ -182,8 +179,7 @@ T orbit_1(const T* v, const T* x, T* d) {
   const T s26 = s16 + s18;
   const T c8 = T(0.25) * s24 + T(0.125) * s26;
   const T s36 = s17 - s20;
-  const T c18 = T(-0.125) * s36;
-  const T t1 = T(-0.25) * s25 + T(-0.03125) * s27 + T(-0.0625) * s32 + y2 * (c8 + y2 * c18);
+  const T t1 = T(-0.25) * s25 + T(-0.03125) * s27 + T(-0.0625) * s32 + y2 * (c8 + y2 * (T(-0.125) * s36));
   const T s37 = s19 - s21;
   const T c17 = T(-0.125) * s37;
   const T t2 = T(0.125) * (s31 - s22) + y2 * c17;
@@ -192,10 +188,8 @@ T orbit_1(const T* v, const T* x, T* d) {
   const T s34 = s4 - s6;
   const T c6 = T(0.25) * s25 + T(-0.125) * s27;
   const T s35 = s16 - s18;
-  const T c15 = T(0.125) * s35;
   const T c5 = T(0.25) * s23 + T(-0.125) * s28;
-  const T c13 = T(-0.125) * s35;
-  const T t3 = T(-0.25) * s24 + T(0.03125) * s26 + T(0.0625) * s34 + y2 * (c6 + y2 * c15) + y1 * (c5 + y1 * c13);
+  const T t3 = T(-0.25) * s24 + T(0.03125) * s26 + T(0.0625) * s34 + y2 * (c6 + y2 * (T(0.125) * s35)) + y1 * (c5 + y1 * (T(-0.125) * s35));
   const T c12 = T(0.125) * s37;
   const T c11 = T(0.125) * s36;
   const T t4 = T(0.125) * (s33 - s22) + y2 * c12 + y1 * c11;
@@ -204,22 +198,22 @@ T orbit_1(const T* v, const T* x, T* d) {
   if constexpr (Order >= 1) {
     const T t5 = T(2) * t4;
     const T t6 = T(2) * t2;
-    const T t7 = T(2) * c13;
+    const T t7 = T(-0.25) * s35;
     const T t8 = c5 + y1 * t7;
     const T t9 = T(0.25) * t0;
-    const T t10 = T(2) * c18;
+    const T t10 = T(-0.25) * s36;
     const T t11 = c8 + y2 * t10;
-    const T t12 = T(2) * c15;
+    const T t12 = T(0.25) * s35;
     const T t13 = c6 + y2 * t12;
     d[0] = t3 + y0 * (t5 + y0 * (T(3) * c10));
     d[1] = t1 + y1 * (t6 + y1 * (T(3) * c16)) + y0 * (t8 + y0 * c11);
     d[2] = c3 + y2 * (t9 + y2 * (T(3) * c19)) + y1 * (t11 + y1 * c17) + y0 * (t13 + y0 * c12);
     if constexpr (Order >= 2) {
       d[3] = t5 + y0 * (T(6) * c10);
-      d[4] = t8 + y0 * (T(2) * c11);
-      d[5] = t13 + y0 * (T(2) * c12);
+      d[4] = t8 + y0 * (T(0.25) * s36);
+      d[5] = t13 + y0 * (T(0.25) * s37);
       d[6] = t6 + y1 * (T(6) * c16) + y0 * t7;
-      d[7] = t11 + y1 * (T(2) * c17);
+      d[7] = t11 + y1 * (T(-0.25) * s37);
       d[8] = t9 + y2 * (T(6) * c19) + y1 * t10 + y0 * t12;
     }
   }

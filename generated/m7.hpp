@@ -12,7 +12,7 @@
 // value + gradient / + Hessian:
 //   278 / 350 / 410
 //   orbit 0: shifted about (1,0,0), 278 / 350 / 410
-//     adds 173 / 201 / 223, muls 105 / 149 / 187, loads 30 / 30 / 30, temporaries 102 / 114 / 114
+//     adds 173 / 201 / 223, muls 105 / 149 / 187, loads 30 / 30 / 30, temporaries 101 / 113 / 113
 //     chosen by value + gradient from horner 281 / 353 / 413, monomial 677 / 803 / 905, shifted 278 / 350 / 410, bernstein 643 / 649 / 673
 #pragma once
 #include <array>
@@ -35,7 +35,7 @@ inline constexpr long kHessianOperations = 410;
 // Per orbit and path (value; value + gradient; + Hessian), what its code executes: additions,
 // multiplications, negations, distinct stencil values read, named temporaries.
 inline constexpr int kCostAdds = 0, kCostMuls = 1, kCostNegs = 2, kCostLoads = 3, kCostTemporaries = 4;
-inline constexpr long kOrbitCosts[1][3][5] = {{{173, 105, 0, 30, 102}, {201, 149, 0, 30, 114}, {223, 187, 0, 30, 114}}};
+inline constexpr long kOrbitCosts[1][3][5] = {{{173, 105, 0, 30, 101}, {201, 149, 0, 30, 113}, {223, 187, 0, 30, 113}}};
 
 using Point = std::array<std::int64_t, kDimension>;
 
@@ -137,7 +137,6 @@ T orbit_0(const T* v, const T* x, T* d) {
   const T s62 = s32 + s37;
   const T c6 = T(0.0625) * s36 + T(0.03125) * s62;
   const T s51 = s25 + T(-0.5) * s30;
-  const T c15 = T(0.125) * s51;
   const T s34 = v[2] - v[3];
   const T s35 = v[27] - v[28];
   const T s65 = s34 - s35;
@@ -153,7 +152,7 @@ T orbit_0(const T* v, const T* x, T* d) {
   const T c27 = T(0.03125) * t9;
   const T t10 = T(0.125) * s25 + T(-0.0625) * s42 + x[2] * c27;
   const T c26 = T(0.020833333333333332) * (s21 - s68) + T(0.010416666666666666) * s55;
-  const T t11 = T(-0.020833333333333332) * (s42 + s54) + T(-0.25) * (s25 + T(0.083333333333333329) * s30) + x[2] * (c6 + x[2] * (c15 + x[2] * c29)) + x[1] * (t8 + x[1] * (t10 + x[1] * c26));
+  const T t11 = T(-0.020833333333333332) * (s42 + s54) + T(-0.25) * (s25 + T(0.083333333333333329) * s30) + x[2] * (c6 + x[2] * (T(0.125) * s51 + x[2] * c29)) + x[1] * (t8 + x[1] * (t10 + x[1] * c26));
   const T c12 = T(-0.03125) * s40 + T(0.0625) * s47;
   const T c24 = t1 + t3;
   const T t12 = T(0.03125) * s39 + t5 + x[2] * c24;
@@ -171,7 +170,7 @@ T orbit_0(const T* v, const T* x, T* d) {
     const T t19 = T(2) * c9;
     const T t20 = T(2) * c18;
     const T t21 = c8 + x[2] * (t20 + x[2] * (T(3) * c33));
-    const T t22 = T(2) * c15;
+    const T t22 = T(0.25) * s51;
     const T t23 = T(0.125) * t7;
     const T t24 = c14 + x[2] * t23;
     const T t25 = c6 + x[2] * (t22 + x[2] * (T(3) * c29)) + x[1] * (t24 + x[1] * c27);

@@ -10,10 +10,10 @@
 // Emission strategy: shifted. Arithmetic per point of the polynomial code (additions +
 // multiplications, counted on its scheduled expression graph, the costliest orbit), value /
 // value + gradient / + Hessian:
-//   405 / 515 / 608
-//   orbit 0: shifted about (1,1,0), 405 / 515 / 608
-//     adds 245 / 287 / 323, muls 160 / 228 / 285, loads 32 / 32 / 32, temporaries 125 / 151 / 153
-//     chosen by value + gradient from horner 419 / 529 / 622, monomial 1173 / 1372 / 1568, shifted 405 / 515 / 608, bernstein 1148 / 1156 / 1190
+//   405 / 512 / 602
+//   orbit 0: shifted about (1,1,0), 405 / 512 / 602
+//     adds 245 / 287 / 323, muls 160 / 225 / 279, loads 32 / 32 / 32, temporaries 122 / 148 / 152
+//     chosen by value + gradient from horner 419 / 526 / 616, monomial 1173 / 1372 / 1568, shifted 405 / 512 / 602, bernstein 1148 / 1156 / 1190
 #pragma once
 #include <array>
 #include <cstdint>
@@ -30,12 +30,12 @@ inline constexpr const char* kSpec = "1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 1,1,1; 1
 inline constexpr const char* kLattice = "bcc";
 inline constexpr const char* kStrategy = "shifted";
 inline constexpr long kValueOperations = 405;
-inline constexpr long kGradientOperations = 515;
-inline constexpr long kHessianOperations = 608;
+inline constexpr long kGradientOperations = 512;
+inline constexpr long kHessianOperations = 602;
 // Per orbit and path (value; value + gradient; + Hessian), what its code executes: additions,
 // multiplications, negations, distinct stencil values read, named temporaries.
 inline constexpr int kCostAdds = 0, kCostMuls = 1, kCostNegs = 2, kCostLoads = 3, kCostTemporaries = 4;
-inline constexpr long kOrbitCosts[1][3][5] = {{{245, 160, 0, 32, 125}, {287, 228, 0, 32, 151}, {323, 285, 0, 32, 153}}};
+inline constexpr long kOrbitCosts[1][3][5] = {{{245, 160, 0, 32, 122}, {287, 225, 0, 32, 148}, {323, 279, 0, 32, 152}}};
 
 using Point = std::array<std::int64_t, kDimension>;
 
@@ -97,7 +97,6 @@ T orbit_0(const T* v, const T* x, T* d) {
   const T s14 = v[31] - s3;
   const T s50 = s31 - (s10 - s14);
   const T s86 = s53 + (s34 - s50);
-  const T c55 = T(-0.0010416666666666667) * s86;
   const T y1 = x[1] - T(1);
   const T s66 = s6 - s7;
   const T s97 = s19 - s54;
@@ -113,9 +112,9 @@ T orbit_0(const T* v, const T* x, T* d) {
   const T c17 = t1 + (T(-0.046875) * s45 + T(0.015625) * s48);
   const T s38 = s17 + s36;
   const T s81 = s38 + T(-2) * s39;
-  const T c23 = T(-0.015625) * (s81 - (s42 - s58));
-  const T c44 = T(0.005208333333333333) * s86;
-  const T t2 = x[2] * (c23 + x[2] * c44);
+  const T s95 = s81 - (s42 - s58);
+  const T c23 = T(-0.015625) * s95;
+  const T t2 = x[2] * (c23 + x[2] * (T(0.005208333333333333) * s86));
   const T t3 = T(0.057291666666666664) * (s17 + (s11 + T(-2.4545454545454546) * s16)) + T(0.005208333333333333) * (s42 - s36) + T(0.010416666666666666) * s39 + x[2] * (c17 + t2);
   const T s23 = v[7] + v[22];
   const T s28 = v[13] + v[17];
@@ -138,7 +137,6 @@ T orbit_0(const T* v, const T* x, T* d) {
   const T s65 = v[13] - v[17];
   const T s108 = s64 + s65;
   const T c30 = T(0.010416666666666666) * (s93 - s11) + T(0.020833333333333332) * s16 + T(0.005208333333333333) * (s108 - (s54 + (s6 + T(5) * s7)));
-  const T c50 = T(0.0031250000000000002) * s90;
   const T y0 = x[0] - T(1);
   const T s29 = v[15] - v[16];
   const T s30 = v[18] - v[19];
@@ -167,8 +165,7 @@ T orbit_0(const T* v, const T* x, T* d) {
   const T s106 = s62 - s63;
   const T c27 = T(0.03125) * (s106 - (s71 + s105));
   const T s89 = s44 - s47 - (s51 + (s32 - s37));
-  const T c47 = T(-0.015625) * s89;
-  const T t7 = T(0.046875) * s29 + T(-0.078125) * s30 + T(-0.03125) * s52 + T(0.015625) * (s32 + T(3) * s37 - s102) + x[2] * (c27 + x[2] * c47);
+  const T t7 = T(0.046875) * s29 + T(-0.078125) * s30 + T(-0.03125) * s52 + T(0.015625) * (s32 + T(3) * s37 - s102) + x[2] * (c27 + x[2] * (T(-0.015625) * s89));
   const T s109 = s64 - s65;
   const T c26 = T(-0.03125) * s29 + T(0.010416666666666666) * (s109 - (s30 + s52)) + T(0.020833333333333332) * s37;
   const T t8 = T(-0.14583333333333334) * s51 + T(-0.010416666666666666) * (s52 + (s32 + T(4) * s37)) + x[2] * (c6 + x[2] * (c15 + x[2] * c29)) + y1 * (t6 + y1 * (t7 + y1 * c26));
@@ -177,54 +174,56 @@ T orbit_0(const T* v, const T* x, T* d) {
   const T c43 = T(-0.046875) * s90;
   const T t9 = T(-0.015625) * (s103 + (s38 + s66)) + T(0.078125) * (s11 - s16) + x[2] * (c24 + x[2] * c43);
   const T c42 = T(0.015625) * s86;
-  const T t10 = c23 + x[2] * c42;
-  const T t11 = T(0.005208333333333333) * (s19 + T(11) * s20 - (s11 + T(27) * s16) - s81) + x[2] * (c12 + t2) + y1 * (t9 + y1 * (t10 + y1 * c41));
+  const T t10 = x[2] * c42;
+  const T t11 = c23 + t10;
+  const T t12 = T(0.005208333333333333) * (s19 + T(11) * s20 - (s11 + T(27) * s16) - s81) + x[2] * (c12 + t2) + y1 * (t9 + y1 * (t11 + y1 * c41));
   const T c22 = T(-0.020833333333333332) * s61 + T(0.010416666666666666) * (s71 + s106);
   const T c38 = T(-0.005208333333333333) * s89;
   const T c21 = T(0.010416666666666666) * (s29 + (s32 + T(-2) * s37) - s109) + T(0.03125) * s30;
-  const T t12 = T(0.078125) * s29 + T(0.036458333333333336) * s30 + T(0.015625) * (s32 + T(-1.6666666666666667) * s37) + T(-0.005208333333333333) * s102 + x[2] * (c22 + x[2] * c38) + y1 * (c21 + y1 * c38);
+  const T t13 = T(0.078125) * s29 + T(0.036458333333333336) * s30 + T(0.015625) * (s32 + T(-1.6666666666666667) * s37) + T(-0.005208333333333333) * s102 + x[2] * (c22 + x[2] * c38) + y1 * (c21 + y1 * c38);
   const T c20 = T(0.020833333333333332) * (s11 + s16) + T(-0.005208333333333333) * (s19 + s108) + T(-0.026041666666666668) * (s6 + T(0.20000000000000001) * s7);
-  const T c35 = T(0.0010416666666666667) * s89;
-  const T value = T(0.0010416666666666667) * (v[0] + T(4) * s1 + (v[31] + T(4) * s3)) + T(0.011458333333333333) * (s17 + (s11 + T(18.454545454545453) * s16)) + T(0.1125) * s39 + T(0.0041666666666666666) * (s19 + T(2.75) * s20) + x[2] * (c3 + x[2] * (c9 + x[2] * (c19 + x[2] * (c34 + x[2] * c55)))) + y1 * (t0 + y1 * (t3 + y1 * (t4 + y1 * (c30 + y1 * c50)))) + y0 * (t8 + y0 * (t11 + y0 * (t12 + y0 * (c20 + y0 * c35))));
+  const T value = T(0.0010416666666666667) * (v[0] + T(4) * s1 + (v[31] + T(4) * s3)) + T(0.011458333333333333) * (s17 + (s11 + T(18.454545454545453) * s16)) + T(0.1125) * s39 + T(0.0041666666666666666) * (s19 + T(2.75) * s20) + x[2] * (c3 + x[2] * (c9 + x[2] * (c19 + x[2] * (c34 + x[2] * (T(-0.0010416666666666667) * s86))))) + y1 * (t0 + y1 * (t3 + y1 * (t4 + y1 * (c30 + y1 * (T(0.0031250000000000002) * s90))))) + y0 * (t8 + y0 * (t12 + y0 * (t13 + y0 * (c20 + y0 * (T(0.0010416666666666667) * s89)))));
   if constexpr (Order >= 1) {
-    const T t13 = T(2) * t11;
-    const T t14 = T(2) * t3;
-    const T t15 = T(2) * t7;
-    const T t16 = t6 + y1 * (t15 + y1 * (T(3) * c26));
-    const T t17 = T(2) * t10;
-    const T t18 = t9 + y1 * (t17 + y1 * (T(3) * c41));
-    const T t19 = T(2) * c38;
-    const T t20 = c21 + y1 * t19;
-    const T t21 = T(2) * c9;
-    const T t22 = T(2) * c18;
-    const T t23 = c8 + x[2] * (t22 + x[2] * (T(3) * c33));
-    const T t24 = T(2) * c23;
-    const T t25 = x[2] * (t24 + x[2] * (T(3) * c44));
-    const T t26 = c17 + t25;
-    const T t27 = T(2) * c41;
-    const T t28 = c31 + x[2] * t27;
-    const T t29 = T(2) * c15;
-    const T t30 = T(2) * c28;
-    const T t31 = c14 + x[2] * t30;
-    const T t32 = T(2) * c47;
-    const T t33 = c27 + x[2] * t32;
-    const T t34 = c6 + x[2] * (t29 + x[2] * (T(3) * c29)) + y1 * (t31 + y1 * t33);
-    const T t35 = T(2) * c43;
-    const T t36 = c24 + x[2] * t35;
-    const T t37 = c12 + t25 + y1 * (t36 + y1 * c42);
-    const T t38 = c22 + x[2] * t19;
-    d[0] = t8 + y0 * (t13 + y0 * (T(3) * t12 + y0 * (T(4) * c20 + y0 * (T(5) * c35))));
-    d[1] = t0 + y1 * (t14 + y1 * (T(3) * t4 + y1 * (T(4) * c30 + y1 * (T(5) * c50)))) + y0 * (t16 + y0 * (t18 + y0 * t20));
-    d[2] = c3 + x[2] * (t21 + x[2] * (T(3) * c19 + x[2] * (T(4) * c34 + x[2] * (T(5) * c55)))) + y1 * (t23 + y1 * (t26 + y1 * t28)) + y0 * (t34 + y0 * (t37 + y0 * t38));
+    const T t14 = T(2) * t12;
+    const T t15 = T(2) * t3;
+    const T t16 = T(2) * t7;
+    const T t17 = t6 + y1 * (t16 + y1 * (T(3) * c26));
+    const T t18 = T(2) * t11;
+    const T t19 = t9 + y1 * (t18 + y1 * c43);
+    const T t20 = T(-0.010416666666666666) * s89;
+    const T t21 = c21 + y1 * t20;
+    const T t22 = T(2) * c9;
+    const T t23 = T(2) * c18;
+    const T t24 = c8 + x[2] * (t23 + x[2] * (T(3) * c33));
+    const T t25 = T(-0.03125) * s95;
+    const T t26 = x[2] * (t10 + t25);
+    const T t27 = c17 + t26;
+    const T t28 = T(-0.03125) * s90;
+    const T t29 = c31 + x[2] * t28;
+    const T t30 = T(2) * c15;
+    const T t31 = T(2) * c28;
+    const T t32 = c14 + x[2] * t31;
+    const T t33 = T(-0.03125) * s89;
+    const T t34 = c27 + x[2] * t33;
+    const T t35 = c6 + x[2] * (t30 + x[2] * (T(3) * c29)) + y1 * (t32 + y1 * t34);
+    const T t36 = T(-0.09375) * s90;
+    const T t37 = c24 + x[2] * t36;
+    const T t38 = c12 + t26 + y1 * (t37 + y1 * c42);
+    const T t39 = c22 + x[2] * t20;
+    d[0] = t8 + y0 * (t14 + y0 * (T(3) * t13 + y0 * (T(4) * c20 + y0 * (T(0.005208333333333333) * s89))));
+    d[1] = t0 + y1 * (t15 + y1 * (T(3) * t4 + y1 * (T(4) * c30 + y1 * (T(0.015625) * s90)))) + y0 * (t17 + y0 * (t19 + y0 * t21));
+    d[2] = c3 + x[2] * (t22 + x[2] * (T(3) * c19 + x[2] * (T(4) * c34 + x[2] * (T(-0.005208333333333333) * s86)))) + y1 * (t24 + y1 * (t27 + y1 * t29)) + y0 * (t35 + y0 * (t38 + y0 * t39));
     if constexpr (Order >= 2) {
-      const T t39 = y0 * t19;
-      const T t40 = t24 + x[2] * (T(6) * c44);
-      d[3] = t13 + y0 * (T(6) * t12 + y0 * (T(12) * c20 + y0 * (T(20) * c35)));
-      d[4] = t16 + y0 * (T(2) * t18 + y0 * (T(3) * t20));
-      d[5] = t34 + y0 * (T(2) * t37 + y0 * (T(3) * t38));
-      d[6] = t14 + y1 * (T(6) * t4 + y1 * (T(12) * c30 + y1 * (T(20) * c50))) + y0 * (t15 + y1 * (T(6) * c26) + y0 * (t17 + y1 * (T(6) * c41) + t39));
-      d[7] = t23 + y1 * (T(2) * t26 + y1 * (T(3) * t28)) + y0 * (t31 + y1 * (T(2) * t33) + y0 * (t36 + y1 * (T(2) * c42)));
-      d[8] = t21 + x[2] * (T(6) * c19 + x[2] * (T(12) * c34 + x[2] * (T(20) * c55))) + y1 * (t22 + x[2] * (T(6) * c33) + y1 * (t40 + y1 * t27)) + y0 * (t29 + x[2] * (T(6) * c29) + y1 * (t30 + y1 * t32) + y0 * (t39 + (t40 + y1 * t35)));
+      const T t40 = y1 * t36;
+      const T t41 = y0 * t20;
+      const T t42 = T(0.03125) * s86;
+      const T t43 = t25 + x[2] * t42;
+      d[3] = t14 + y0 * (T(6) * t13 + y0 * (T(12) * c20 + y0 * (T(0.020833333333333332) * s89)));
+      d[4] = t17 + y0 * (T(2) * t19 + y0 * (T(3) * t21));
+      d[5] = t35 + y0 * (T(2) * t38 + y0 * (T(3) * t39));
+      d[6] = t15 + y1 * (T(6) * t4 + y1 * (T(12) * c30 + y1 * (T(0.0625) * s90))) + y0 * (t16 + y1 * (T(6) * c26) + y0 * (t18 + t40 + t41));
+      d[7] = t24 + y1 * (T(2) * t27 + y1 * (T(3) * t29)) + y0 * (t32 + y1 * (T(2) * t34) + y0 * (t37 + y1 * t42));
+      d[8] = t22 + x[2] * (T(6) * c19 + x[2] * (T(12) * c34 + x[2] * (T(-0.020833333333333332) * s86))) + y1 * (t23 + x[2] * (T(6) * c33) + y1 * (t43 + y1 * t28)) + y0 * (t30 + x[2] * (T(6) * c29) + y1 * (t31 + y1 * t33) + y0 * (t41 + (t40 + t43)));
     }
   }
   return value;

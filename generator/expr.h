@@ -1,4 +1,4 @@
-// The expression graph of the emitted polynomial code (docs/design.md, "The expression graph"):
+// The expression graph of the emitted polynomial code (docs/design.md §15):
 // immutable nodes (exact rational constants, coordinates x[i], stencil values v[k], binary sums
 // and products, negations), hash-consed so that structurally equal subexpressions are one node.
 // Every emission strategy builds into a graph, through the simplifying constructors of

@@ -47,8 +47,11 @@ NodeId product(ExprGraph& g, NodeId a, NodeId b) {
     if (c == -1) return negate(g, b);
     const Node nb = g.node(b);
     if (nb.op == Op::Neg) return product(g, g.constant(-c), nb.a);
+    // c (d y) = (c d) y; make() orders operands by id, so d may stand on either side.
     if (nb.op == Op::Mul && g.is_constant(nb.a))
       return product(g, g.constant(c * g.constant_value(nb.a)), nb.b);
+    if (nb.op == Op::Mul && g.is_constant(nb.b))
+      return product(g, g.constant(c * g.constant_value(nb.b)), nb.a);
     return g.make(Op::Mul, a, b);
   }
   const Node na = g.node(a);  // copies: building may grow the graph
