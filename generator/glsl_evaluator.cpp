@@ -52,12 +52,13 @@ std::string glsl_evaluator(const Derivation& a, const std::string& banner, const
   for (const auto& col : hermite) hermite_rows.insert(hermite_rows.end(), col.begin(), col.end());
   std::vector<int> sizes;
   for (const auto& r : s.references) sizes.push_back(static_cast<int>(r.stencil.size()));
-  std::vector<std::vector<std::int64_t>> offsets;
-  for (const auto& cell : t.offset) {
-    offsets.emplace_back();
+  std::vector<std::vector<std::int64_t>> reference_stencil;
+  for (const auto& r : s.references) {
+    reference_stencil.emplace_back();
     for (int k = 0; k < s.stencil_max; ++k)
       for (int i = 0; i < n; ++i)
-        offsets.back().push_back(k < static_cast<int>(cell.size()) ? cell[k][i] : 0);
+        reference_stencil.back().push_back(
+            k < static_cast<int>(r.stencil.size()) ? r.stencil[k][i] : 0);
   }
   for (std::size_t o = 0; o < orbits.size(); ++o) {
     std::string text = orbits[o].comment + "\n";
@@ -108,8 +109,10 @@ std::string glsl_evaluator(const Derivation& a, const std::string& banner, const
   add("cell_sign", flat_rows(t.sign));
   add("cell_a", flat_rows(t.a));
   add("orbit_count", orbits.size());
+  // One orbit: a constant, so that the compiler folds the reference stencil into the code.
+  add("orbit_of_cell", orbits.size() == 1 ? std::string("0") : name + "_kCellOrbit[cell]");
   add("orbit_stencil_sizes", flat(sizes));
-  add("offsets", flat_rows(offsets));
+  add("reference_stencil", flat_rows(reference_stencil));
   add("orbit_functions", join(functions, "\n"));
   add("orbit_dispatch", join(dispatch, "\n"));
   add("gradient_args", join(gradient));

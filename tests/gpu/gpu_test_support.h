@@ -1,9 +1,11 @@
-// What the GLSL and CUDA exactness tests share: the filters they check, and the comparison of a
-// batch of evaluations (value of each path, gradients, Hessians) with the exact rational values,
-// with the tolerances of tests/emitted/emitted_accuracy_test.cpp.
+// What the GLSL and CUDA runs share (tests/gpu/gpu_exactness_test.cpp): the filters they check,
+// the points with their exact values, and the comparison of a batch of evaluations (value of each
+// path, gradients, Hessians) with them, with the tolerances of
+// tests/emitted/emitted_accuracy_test.cpp.
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -31,9 +33,23 @@ inline const Filter kFilters[] = {{"m7", "m7", ""},
                                   {"cart7", "cart7", ""},
                                   {"five", "1,0; 0,1; 1,1; 1,-1; 1,0", ""}};
 
+inline void PrintTo(const Filter& f, std::ostream* os) { *os << f.name; }
+
 #ifndef BOXGEN_GPU_POINTS
 #define BOXGEN_GPU_POINTS 1000
 #endif
+
+// The test points of a filter and their exact values, computed once for all four targets (the
+// rational evaluation costs more than any of them).
+struct ExactCase {
+  Reference ref;
+  std::vector<RatVec> points;
+  std::vector<Exact> exact;
+  explicit ExactCase(const Filter& f)
+      : ref(f.spec, f.lattice), points(exact_reference::test_points(ref, BOXGEN_GPU_POINTS)) {
+    for (const auto& x : points) exact.push_back(ref.at(x));
+  }
+};
 
 // One evaluation per point of each path: value only; value and gradient; value, gradient and
 // Hessian (all n x n entries).
@@ -41,8 +57,18 @@ struct Evaluations {
   std::vector<double> value0, value1, value2, gradient1, gradient2, hessian;
 };
 
-// The worst errors relative to max|V|, against the tolerance (double 1e-13, float 2e-6; second
-// derivatives 4x that); Hessians only where they exist (C^2 splines, or off knot planes).
+// The tolerances of tests/emitted, relative to max|V| (second derivatives 4x these).
+constexpr double kFloatTolerance = 2e-6;
+constexpr double kDoubleTolerance = 1e-13;
+
+// The four runs (glsl_runner.cpp, cuda_host_runner.cpp); Real is float or double.
+template <class Real>
+void evaluate_glsl(const Filter& f, const ExactCase& c, Evaluations* e);
+template <class Real>
+Evaluations evaluate_cuda_host(const Filter& f, const ExactCase& c);
+
+// The worst errors relative to max|V|, against the tolerance; Hessians only where they exist
+// (C^2 splines, or off knot planes).
 inline void compare(const Reference& ref, const std::vector<Exact>& exact, const Evaluations& e,
                     double tolerance, const std::string& what) {
   const int n = ref.dimension();

@@ -1,8 +1,7 @@
-// The emitted GLSL evaluators (boxgen emit --target glsl, float and double) run in an OpenGL 4.5
-// compute shader on Mesa's llvmpipe through EGL with no display, against the exact rational
-// values: every registry filter and a 2-D matrix of this test's own, values, gradients and
-// Hessians of the three entry points at the points of tests/emitted (half of them near knot
-// planes). Without EGL the test fails, naming the packages to install.
+// The GLSL target on the CPU: the emitted evaluator (boxgen emit --target glsl, float or double)
+// in an OpenGL 4.5 compute shader on Mesa's llvmpipe through EGL with no display, one invocation
+// per point calling the three entry points. Without EGL the run fails, naming the packages to
+// install.
 #define EGL_EGLEXT_PROTOTYPES
 #define GL_GLEXT_PROTOTYPES
 #include <EGL/egl.h>
@@ -112,16 +111,15 @@ GLuint buffer(GLuint binding, const void* data, std::size_t bytes) {
   return b;
 }
 
+}  // namespace
+
 template <class Real>
-void check(const Filter& f) {
+void evaluate_glsl(const Filter& f, const ExactCase& c, Evaluations* e) {
   const std::string status = make_context_current();
   ASSERT_TRUE(status.empty()) << status;
   constexpr bool dbl = sizeof(Real) == 8;
-  const Reference ref(f.spec, f.lattice);
-  const int n = ref.dimension();
-  const auto points = exact_reference::test_points(ref, BOXGEN_GPU_POINTS);
-  std::vector<Exact> exact;
-  for (const auto& x : points) exact.push_back(ref.at(x));
+  const int n = c.ref.dimension();
+  const auto& points = c.points;
   // Samples on a box of integer points around the test points (|x| < 4, reach <= 6).
   const int lo = -12, side = 24;
   std::vector<Real> samples(static_cast<std::size_t>(std::pow(side, n)));
@@ -172,28 +170,20 @@ void check(const Filter& f) {
   glDeleteBuffers(3, buffers);
   glDeleteProgram(program);
   glDeleteShader(sh);
-  Evaluations e;
   for (std::size_t p = 0; p < points.size(); ++p) {
     const Real* r = &results[p * stride];
-    e.value0.push_back(r[0]);
-    e.value1.push_back(r[1]);
-    e.value2.push_back(r[2]);
+    e->value0.push_back(r[0]);
+    e->value1.push_back(r[1]);
+    e->value2.push_back(r[2]);
     for (int i = 0; i < n; ++i) {
-      e.gradient1.push_back(r[3 + i]);
-      e.gradient2.push_back(r[3 + n + i]);
-      for (int j = 0; j < n; ++j) e.hessian.push_back(r[3 + 2 * n + i * n + j]);
+      e->gradient1.push_back(r[3 + i]);
+      e->gradient2.push_back(r[3 + n + i]);
+      for (int j = 0; j < n; ++j) e->hessian.push_back(r[3 + 2 * n + i * n + j]);
     }
   }
-  compare(ref, exact, e, dbl ? 1e-13 : 2e-6, file);
 }
 
-class Glsl : public ::testing::TestWithParam<Filter> {};
+template void evaluate_glsl<float>(const Filter&, const ExactCase&, Evaluations*);
+template void evaluate_glsl<double>(const Filter&, const ExactCase&, Evaluations*);
 
-TEST_P(Glsl, FloatIsExactToTolerance) { check<float>(GetParam()); }
-TEST_P(Glsl, DoubleIsExactToTolerance) { check<double>(GetParam()); }
-
-INSTANTIATE_TEST_SUITE_P(Filters, Glsl, ::testing::ValuesIn(kFilters),
-                         [](const auto& p) { return std::string(p.param.name); });
-
-}  // namespace
 }  // namespace boxgen::generator::gpu_test
