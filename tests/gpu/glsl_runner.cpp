@@ -48,13 +48,6 @@ std::string make_context_current() {
   return status;
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // The compute shader: one point per invocation, the emitted file between the application's
 // fetch (from a box of samples in an SSBO) and main.
 std::string shader(const std::string& name, const std::string& glsl, int n, bool dbl) {
@@ -113,6 +106,45 @@ GLuint buffer(GLuint binding, const void* data, std::size_t bytes) {
 
 }  // namespace
 
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+GLuint compute_program(const std::string& source, const std::string& what) {
+  const std::string status = make_context_current();
+  if (!status.empty()) {
+    ADD_FAILURE() << status;
+    return 0;
+  }
+  const char* text = source.c_str();
+  const GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
+  glShaderSource(sh, 1, &text, nullptr);
+  glCompileShader(sh);
+  GLint ok = 0;
+  glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    std::string log(20000, '\0');
+    glGetShaderInfoLog(sh, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    glDeleteShader(sh);
+    ADD_FAILURE() << what << " does not compile: " << log.c_str();
+    return 0;
+  }
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, sh);
+  glLinkProgram(program);
+  glDeleteShader(sh);  // the program keeps it
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    glDeleteProgram(program);
+    ADD_FAILURE() << what << " does not link";
+    return 0;
+  }
+  return program;
+}
+
 template <class Real>
 void evaluate_glsl(const Filter& f, const ExactCase& c, Evaluations* e) {
   const std::string status = make_context_current();
@@ -135,22 +167,8 @@ void evaluate_glsl(const Filter& f, const ExactCase& c, Evaluations* e) {
   const std::string file =
       fmt::format("{}/{}{}.glsl", BOXGEN_GPU_EMITTED_DIR, f.name, dbl ? "_double" : "");
   const std::string source = shader(f.name, read_text(file), n, dbl);
-  const char* text = source.c_str();
-  const GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
-  glShaderSource(sh, 1, &text, nullptr);
-  glCompileShader(sh);
-  GLint ok = 0;
-  glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    std::string log(20000, '\0');
-    glGetShaderInfoLog(sh, static_cast<GLsizei>(log.size()), nullptr, log.data());
-    FAIL() << file << " does not compile: " << log.c_str();
-  }
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, sh);
-  glLinkProgram(program);
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  ASSERT_TRUE(ok) << file << " does not link";
+  const GLuint program = compute_program(source, file);
+  ASSERT_NE(program, 0u);
   glUseProgram(program);
   const int count = static_cast<int>(points.size());
   glUniform1i(glGetUniformLocation(program, "count"), count);
@@ -169,7 +187,6 @@ void evaluate_glsl(const Filter& f, const ExactCase& c, Evaluations* e) {
   ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
   glDeleteBuffers(3, buffers);
   glDeleteProgram(program);
-  glDeleteShader(sh);
   for (std::size_t p = 0; p < points.size(); ++p) {
     const Real* r = &results[p * stride];
     e->value0.push_back(r[0]);

@@ -32,6 +32,17 @@ TEST_P(GpuTargets, GlslAndCudaAreExactToTolerance) {
           name + ".cuh (double)");
 }
 
+// examples/gpu/m7_volume.comp, with the emitted m7.glsl where it says, compiles and links (its
+// CUDA twin is the test CudaExampleCompilesToPtx): the example cannot rot.
+TEST(GpuExamples, ComputeShaderCompilesWithTheEmittedEvaluator) {
+  std::string source = read_text(BOXGEN_GPU_EXAMPLE_SHADER);
+  const std::string marker = "// ---- the text of m7.glsl goes here ----";
+  const std::size_t at = source.find(marker);
+  ASSERT_NE(at, std::string::npos) << BOXGEN_GPU_EXAMPLE_SHADER << " lost its marker line";
+  source.replace(at, marker.size(), read_text(std::string(BOXGEN_GPU_EMITTED_DIR) + "/m7.glsl"));
+  EXPECT_NE(compute_program(source, BOXGEN_GPU_EXAMPLE_SHADER), 0u);
+}
+
 INSTANTIATE_TEST_SUITE_P(Filters, GpuTargets, ::testing::ValuesIn(kFilters),
                          [](const auto& p) { return std::string(p.param.name); });
 

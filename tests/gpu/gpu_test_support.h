@@ -61,6 +61,11 @@ struct Evaluations {
 constexpr double kFloatTolerance = 2e-6;
 constexpr double kDoubleTolerance = 1e-13;
 
+// A compiled and linked OpenGL compute program (glsl_runner.cpp), or 0 after a test failure
+// naming `what` with the compiler's log.
+unsigned compute_program(const std::string& source, const std::string& what);
+std::string read_text(const std::string& path);
+
 // The four runs (glsl_runner.cpp, cuda_host_runner.cpp); Real is float or double.
 template <class Real>
 void evaluate_glsl(const Filter& f, const ExactCase& c, Evaluations* e);
