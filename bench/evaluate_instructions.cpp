@@ -13,7 +13,10 @@
 
 #define BOXGEN_STRINGIFY2(x) #x
 #define BOXGEN_STRINGIFY(x) BOXGEN_STRINGIFY2(x)
+// A path, not an expression:
+// clang-format off
 #include BOXGEN_STRINGIFY(generated/FILTER.hpp)
+// clang-format on
 
 namespace filter = boxgen::generated::FILTER;
 
@@ -39,8 +42,8 @@ int main(int argc, char** argv) {
     std::array<float, 3> x{uniform(), uniform(), uniform()};
     std::array<float, 3> g{};
     std::array<float, 6> h{};
-    const float v = filter::evaluate<float>(x, fetch, path >= 1 ? &g : nullptr,
-                                            path >= 2 ? &h : nullptr);
+    const float v =
+        filter::evaluate<float>(x, fetch, path >= 1 ? &g : nullptr, path >= 2 ? &h : nullptr);
     sum += v + g[0] + h[0];
   }
   std::printf("checksum %.6g\n", sum);

@@ -188,7 +188,8 @@ std::string evaluator(const Derivation& a, const EmissionRequest& req, const Orb
 }
 
 // NAME.cuh: the same tables and orbit code, callable from host and device code.
-std::string cuda_evaluator(const Derivation& a, const EmissionRequest& req, const OrbitCodes& code) {
+std::string cuda_evaluator(const Derivation& a, const EmissionRequest& req,
+                           const OrbitCodes& code) {
   Args args = cpp_table_args(a, req, code);
   const int n = a.spec.dimension();
   std::vector<std::string> dispatch, functions, fetch_args, fetch_params;

@@ -57,8 +57,8 @@ std::string glsl_evaluator(const Derivation& a, const std::string& banner, const
     reference_stencil.emplace_back();
     for (int k = 0; k < s.stencil_max; ++k)
       for (int i = 0; i < n; ++i)
-        reference_stencil.back().push_back(
-            k < static_cast<int>(r.stencil.size()) ? r.stencil[k][i] : 0);
+        reference_stencil.back().push_back(k < static_cast<int>(r.stencil.size()) ? r.stencil[k][i]
+                                                                                  : 0);
   }
   for (std::size_t o = 0; o < orbits.size(); ++o) {
     std::string text = orbits[o].comment + "\n";

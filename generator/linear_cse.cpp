@@ -175,8 +175,8 @@ class PairCounts {
 // Replaces x_a and x_b by the temporary `next` = x_a + r x_b in every row where they stand in the
 // ratio r of the first row holding both (rows with another exact ratio keep theirs); returns r.
 // Only the pairs with x_a, x_b or the temporary change, and `pairs` follows them.
-Rational replace_pair(std::vector<WorkRow>& work, const WeightTable& table, int a, int b,
-                      int next, PairCounts& pairs) {
+Rational replace_pair(std::vector<WorkRow>& work, const WeightTable& table, int a, int b, int next,
+                      PairCounts& pairs) {
   std::optional<Rational> r;
   for (auto& row : work) {
     auto ia = std::find_if(row.begin(), row.end(), [&](const auto& e) { return e.first == a; });

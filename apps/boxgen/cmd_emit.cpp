@@ -210,13 +210,13 @@ int run_emit(const Common& c, const std::string& name, const std::string& out,
     // The command that rewrites the file byte for byte, run in the file's folder.
     const EmissionRequest request{
         name,
-        fmt::format("boxgen emit {} {}--name {} --strategy {}{} --out .",
-                    spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,
-                    c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy,
-                    target == EmissionTarget::Cpp
-                        ? ""
-                        : " --target " + language.target +
-                              (double_precision ? " --precision double" : "")),
+        fmt::format(
+            "boxgen emit {} {}--name {} --strategy {}{} --out .",
+            spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,
+            c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy,
+            target == EmissionTarget::Cpp
+                ? ""
+                : " --target " + language.target + (double_precision ? " --precision double" : "")),
         chosen, target, double_precision};
     files = emit(a, request, &r);
   } else if (report) {

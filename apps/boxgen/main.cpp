@@ -88,8 +88,8 @@ int run(int argc, char** argv) {
                                    emit_precision = "float";
   bool emit_report = false;
   std::vector<std::string> emit_registry;
-  auto* emit =
-      app.add_subcommand("emit", "emit the evaluator (C++ and prefilter headers, GLSL or CUDA) of a box spline");
+  auto* emit = app.add_subcommand(
+      "emit", "emit the evaluator (C++ and prefilter headers, GLSL or CUDA) of a box spline");
   emit->add_option("SPEC", c.spec,
                    "preset name or the directions, as for analyze (leave out to write only "
                    "--registry)");

@@ -52,8 +52,8 @@ Evaluations run(Evaluate<Real> evaluate, const std::vector<RatVec>& points) {
 
 template <class Real>
 Evaluations evaluate_cuda_host(const Filter& f, const ExactCase& c) {
-#define BOXGEN_CUDA_FILTER(NS, N)                                                            \
-  if (std::string(f.name) == #NS)                                                            \
+#define BOXGEN_CUDA_FILTER(NS, N) \
+  if (std::string(f.name) == #NS) \
     return run<Real, N>(&generated::NS::cuda::evaluate<Real, HashFetch<Real>>, c.points);
   BOXGEN_CUDA_FILTER(m7, 3)
   BOXGEN_CUDA_FILTER(m8, 3)
