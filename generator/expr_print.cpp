@@ -20,7 +20,7 @@ std::string print(const Program& p, NodeId id, const Syntax& s, bool top);
 
 // An operand, parenthesised where the operator it stands under binds tighter than its own.
 std::string operand(const Program& p, NodeId id, const Syntax& s, bool parenthesise_products) {
-  const std::string text = print(p, id, s, false);
+  std::string text = print(p, id, s, false);
   if (!is_inline(p, id)) return text;
   const Op op = p.graph.node(id).op;
   return op == Op::Add || (parenthesise_products && op == Op::Mul) ? "(" + text + ")" : text;

@@ -46,6 +46,48 @@ void count_expression(const Program& p, NodeId id, bool top, bool under_sum, Ope
   for (NodeId o : operands(n)) count_expression(p, o, false, n.op == Op::Add, c);
 }
 
+// A temporary's name: the builder's hint where it gave one, else t0, t1, ... (none a hint).
+class TemporaryNames {
+ public:
+  explicit TemporaryNames(const std::unordered_map<NodeId, std::string>& hints) : hints_(hints) {
+    for (const auto& [id, name] : hints) taken_.insert(name);
+  }
+  std::string operator()(NodeId id) {
+    const auto hint = hints_.find(id);
+    if (hint != hints_.end()) return hint->second;
+    std::string name;
+    do name = fmt::format("t{}", counter_++);
+    while (taken_.count(name));
+    return name;
+  }
+
+ private:
+  const std::unordered_map<NodeId, std::string>& hints_;
+  std::set<std::string> taken_;
+  int counter_ = 0;
+};
+
+// The costs of the scheduled blocks, path by path (each path runs its block and those before);
+// block[i] is the first block that needs node i.
+void count_costs(Program& p, const std::vector<int>& block) {
+  const ExprGraph& g = p.graph;
+  std::set<NodeId> loads;
+  OperationCount total;
+  for (int b = 0; b < 3; ++b) {
+    for (const auto& s : p.blocks[b].temporaries) {
+      count_expression(p, s.node, true, false, total);
+      ++total.temporaries;
+    }
+    for (const auto& [index, id] : p.blocks[b].outputs)
+      count_expression(p, id, !p.is_temporary(id), false, total);
+    for (std::size_t i = 0; i < block.size(); ++i)
+      if (block[i] == b && g.node(static_cast<NodeId>(i)).op == Op::Load)
+        loads.insert(static_cast<NodeId>(i));
+    total.loads = static_cast<long>(loads.size());
+    p.cost[b] = total;
+  }
+}
+
 }  // namespace
 
 Program schedule(ExprGraph graph, const Outputs& outputs, int dimension,
@@ -76,9 +118,7 @@ Program schedule(ExprGraph graph, const Outputs& outputs, int dimension,
   };
   // Depth-first from each block's outputs: a temporary is defined after its operands.
   std::vector<char> placed(size, 0);
-  int counter = 0;
-  std::set<std::string> taken;
-  for (const auto& [id, name] : hints) taken.insert(name);
+  TemporaryNames names(hints);
   for (int b = 0; b < 3; ++b) {
     Block& out = p.blocks[b];
     out.outputs = block_outputs(outputs, b);
@@ -92,14 +132,7 @@ Program schedule(ExprGraph graph, const Outputs& outputs, int dimension,
       if (done) {
         placed[id] = 1;
         if (!wants_name(id)) continue;
-        const auto hint = hints.find(id);
-        std::string name;
-        if (hint != hints.end()) {
-          name = hint->second;
-        } else {
-          do name = fmt::format("t{}", counter++);
-          while (taken.count(name));
-        }
+        const std::string name = names(id);
         p.names.emplace(id, name);
         out.temporaries.push_back({id, name});
         continue;
@@ -110,22 +143,7 @@ Program schedule(ExprGraph graph, const Outputs& outputs, int dimension,
         if (!placed[*o]) stack.emplace_back(*o, false);
     }
   }
-  // Costs, path by path.
-  std::set<NodeId> loads;
-  OperationCount total;
-  for (int b = 0; b < 3; ++b) {
-    for (const auto& s : p.blocks[b].temporaries) {
-      count_expression(p, s.node, true, false, total);
-      ++total.temporaries;
-    }
-    for (const auto& [index, id] : p.blocks[b].outputs)
-      count_expression(p, id, !p.is_temporary(id), false, total);
-    for (std::size_t i = 0; i < size; ++i)
-      if (block[i] == b && g.node(static_cast<NodeId>(i)).op == Op::Load)
-        loads.insert(static_cast<NodeId>(i));
-    total.loads = static_cast<long>(loads.size());
-    p.cost[b] = total;
-  }
+  count_costs(p, block);
   return p;
 }
 
