@@ -9,15 +9,13 @@
 namespace boxgen::generator {
 namespace {
 
-Rational q(long p, long r = 1) { return Rational(p) / Rational(r); }
-
 TEST(ExprPrint, WritesNegationsAsSubtractionsAndKeepsTheTree) {
   ExprGraph g;
   const NodeId x = g.variable(0), v = g.load(2);
   const NodeId shifted = sum(g, x, g.constant(-1));
   const NodeId value = difference(g, product(g, shifted, sum(g, v, g.load(0))), product(g, x, v));
   const NodeId d0 = negate(g, shifted);
-  Outputs out{value, {d0}, {g.constant(q(1, 3))}};
+  Outputs out{value, {d0}, {g.constant(fraction(1, 3))}};
   const Program p = schedule(std::move(g), out, 1);
   EXPECT_EQ(print_expression(p, value, cpp_syntax()), "t0 * (v[2] + v[0]) - x[0] * v[2]");
   EXPECT_EQ(p.blocks[0].temporaries.at(0).name, "t0");

@@ -9,14 +9,12 @@
 namespace boxgen::generator {
 namespace {
 
-Rational q(long p, long r = 1) { return Rational(p) / Rational(r); }
-
 TEST(ExprSchedule, SharedNodesBecomeTemporariesInTheFirstBlockThatNeedsThem) {
   ExprGraph g;
   const NodeId x = g.variable(0), y = g.variable(1);
   const NodeId s = sum(g, g.load(0), g.load(1));
   const NodeId value = product(g, s, x);
-  const NodeId dy = scaled(g, q(2), s);
+  const NodeId dy = scaled(g, fraction(2), s);
   const NodeId dyy = sum(g, dy, y);
   Outputs out{value, {s, dy}, {g.constant(0), dyy, difference(g, x, dyy)}};
   const Program p = schedule(std::move(g), out, 2, {{s, "c0"}});

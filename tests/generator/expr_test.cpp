@@ -9,13 +9,11 @@
 namespace boxgen::generator {
 namespace {
 
-Rational q(long p, long r = 1) { return Rational(p) / Rational(r); }
-
 TEST(ExprGraph, EqualSubexpressionsAreOneNode) {
   ExprGraph g;
   const NodeId x = g.variable(0), v = g.load(3);
   EXPECT_EQ(g.variable(0), x);
-  EXPECT_EQ(g.constant(q(1, 3)), g.constant(q(2, 6)));
+  EXPECT_EQ(g.constant(fraction(1, 3)), g.constant(fraction(2, 6)));
   const NodeId a = g.make(Op::Add, x, v);
   EXPECT_EQ(g.make(Op::Add, v, x), a);  // sums and products commute
   EXPECT_EQ(g.make(Op::Mul, g.make(Op::Add, v, x), x), g.make(Op::Mul, x, a));
@@ -33,9 +31,9 @@ TEST(ExprGraph, EqualSubexpressionsAreOneNode) {
 TEST(ExprGraph, EvaluatesExactly) {
   ExprGraph g;
   const NodeId x = g.variable(0), y = g.variable(1);
-  const NodeId e = sum(g, product(g, scaled(g, q(1, 6), x), y), negate(g, g.load(0)));
-  const auto values = evaluate_exactly(g, {q(3, 7), q(-2, 5)}, {q(11, 13)});
-  EXPECT_EQ(values[e], q(1, 6) * q(3, 7) * q(-2, 5) - q(11, 13));
+  const NodeId e = sum(g, product(g, scaled(g, fraction(1, 6), x), y), negate(g, g.load(0)));
+  const auto values = evaluate_exactly(g, {fraction(3, 7), fraction(-2, 5)}, {fraction(11, 13)});
+  EXPECT_EQ(values[e], fraction(1, 6) * fraction(3, 7) * fraction(-2, 5) - fraction(11, 13));
 }
 
 }  // namespace
