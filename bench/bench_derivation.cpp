@@ -108,6 +108,12 @@ BOXGEN_DERIVATION_BENCHMARK(m7_scaled_by_32,
                             "32,32,32; 32,-32,-32; -32,32,-32; -32,-32,32; 64,0,0; 0,64,0; 0,0,64",
                             "-32,32,32; 32,-32,32; 32,32,-32", 10);
 
+// Issue 19's estimate rows: long axes with a diagonal (the stencil of 274432 points dominates). The
+// two 32-direction rows of docs/performance.md ("Cost estimate") take minutes each and are
+// commands there, not benchmark rows.
+BOXGEN_DERIVATION_BENCHMARK(long_axes_and_diagonal, "64,0,0; 0,64,0; 0,0,64; 1,1,1", "cartesian",
+                            10);
+
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -89,10 +89,10 @@ BOXGEN_SCALAR_BENCHMARK(m12_horner);
 BOXGEN_SCALAR_BENCHMARK(m12_monomial);
 
 template <class T>
-void batch(benchmark::State& state, boxgen::runtime::Filter f) {
+void batch(benchmark::State& state, const char* filter) {
   using namespace boxgen::runtime;
   const int n = static_cast<int>(state.range(0));
-  BccVolume<T> volume({n, n, n}, 1.0, {0, 0, 0});
+  LatticeVolume<T> volume(CosetLattice::bcc(), {n, n, n}, 1.0, {0, 0, 0});
   std::mt19937_64 rng(n);
   for (auto& s : volume.samples()) s = static_cast<T>(static_cast<double>(rng() % 4096) / 4096.0);
   std::uniform_real_distribution<double> u(6.0, 2.0 * n - 7.0);
@@ -100,7 +100,7 @@ void batch(benchmark::State& state, boxgen::runtime::Filter f) {
   for (auto& p : pts) p = {u(rng), u(rng), u(rng)};
   std::vector<T> values(pts.size());
   set_batch_threads(1);
-  const Reconstructor<T> r(volume, f);
+  const Reconstructor<T> r(volume, SplineFilter::parse(filter));
   for (auto _ : state) {
     r.evaluate(pts, values);
     benchmark::DoNotOptimize(values.data());
@@ -108,26 +108,26 @@ void batch(benchmark::State& state, boxgen::runtime::Filter f) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(pts.size()));
 }
 
-void batch_float(benchmark::State& state, boxgen::runtime::Filter f) { batch<float>(state, f); }
-void batch_double(benchmark::State& state, boxgen::runtime::Filter f) { batch<double>(state, f); }
+void batch_float(benchmark::State& state, const char* f) { batch<float>(state, f); }
+void batch_double(benchmark::State& state, const char* f) { batch<double>(state, f); }
 
-#define BOXGEN_BATCH_BENCHMARK(F, T)                                \
-  BENCHMARK_CAPTURE(batch_##T, F##_##T, boxgen::runtime::Filter::F) \
-      ->Name("batch/" #F "/" #T)                                    \
-      ->ArgName("N")                                                \
-      ->Arg(21)                                                     \
-      ->Arg(32)                                                     \
-      ->Arg(45)                                                     \
-      ->Arg(77)                                                     \
-      ->Arg(117)                                                    \
+#define BOXGEN_BATCH_BENCHMARK(F, name, T)    \
+  BENCHMARK_CAPTURE(batch_##T, F##_##T, name) \
+      ->Name("batch/" #F "/" #T)              \
+      ->ArgName("N")                          \
+      ->Arg(21)                               \
+      ->Arg(32)                               \
+      ->Arg(45)                               \
+      ->Arg(77)                               \
+      ->Arg(117)                              \
       ->Unit(benchmark::kMillisecond)
 
-BOXGEN_BATCH_BENCHMARK(M7, float);
-BOXGEN_BATCH_BENCHMARK(M8, float);
-BOXGEN_BATCH_BENCHMARK(M12, float);
-BOXGEN_BATCH_BENCHMARK(M7, double);
-BOXGEN_BATCH_BENCHMARK(M8, double);
-BOXGEN_BATCH_BENCHMARK(M12, double);
+BOXGEN_BATCH_BENCHMARK(M7, "m7", float);
+BOXGEN_BATCH_BENCHMARK(M8, "m8", float);
+BOXGEN_BATCH_BENCHMARK(M12, "m12", float);
+BOXGEN_BATCH_BENCHMARK(M7, "m7", double);
+BOXGEN_BATCH_BENCHMARK(M8, "m8", double);
+BOXGEN_BATCH_BENCHMARK(M12, "m12", double);
 
 }  // namespace
 

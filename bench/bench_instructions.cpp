@@ -9,10 +9,10 @@
 // fetched and summed. Divide the collected count by `points`. With `time` it also prints the
 // thread CPU time per point (best of 10 runs): `build/bench/bench_instructions m7 200000 time`.
 // BOXGEN_SIMD=0 measures the scalar batch path. (valgrind emulates no AVX-512: under it the
-// SIMD path dispatches to AVX2.) Any other registry filter (fcc6, tricubic, cart7) runs through
-// RegistryReconstructor<float>::evaluate on a volume of its own lattice with about as many
-// samples (2 x 32^3), no floor:
-//   valgrind --tool=callgrind --toggle-collect='*RegistryReconstructor<float>::evaluate*'
+// SIMD path dispatches to AVX2.) Any other registry filter (fcc6, tricubic, cart7) runs through the
+// same Reconstructor<float>::evaluate on a volume of its own lattice with about as many samples
+// (2 x 32^3), no floor:
+//   valgrind --tool=callgrind --toggle-collect='*Reconstructor<float>::evaluate*'
 //            build/bench/bench_instructions tricubic 20000
 #include <algorithm>
 #include <cmath>
@@ -25,14 +25,13 @@
 
 #include "generated/registry.hpp"
 #include "runtime/batch_threads.h"
-#include "runtime/lattice_filters.h"
 #include "runtime/lattice_volume.h"
 #include "runtime/reconstruction.h"
 
 using namespace boxgen::runtime;
 
 template <class Tr>
-__attribute__((noinline)) void fetch_floor(const BccVolume<float>& volume,
+__attribute__((noinline)) void fetch_floor(const LatticeVolume<float>& volume,
                                            const std::vector<Vec3>& points,
                                            std::vector<float>& out) {
   const std::int64_t n0 = volume.sizes()[0], n1 = volume.sizes()[1];
@@ -73,30 +72,10 @@ double best_thread_ns(int runs, F&& run) {
   return best;
 }
 
-// M7, M8 or M12 (or its fetch floor) on a 32^3 x 2 float BCC volume.
-double bcc_filter_ns(Filter f, std::vector<float>& values, long count, bool floor, int runs) {
-  const int n = 32;
-  BccVolume<float> volume({n, n, n}, 1.0, {0, 0, 0});
-  std::mt19937_64 rng(1);
-  for (auto& s : volume.samples()) s = static_cast<float>(rng() % 1000) / 1000.f;
-  std::uniform_real_distribution<double> u(6.0, 2.0 * n - 7.0);
-  std::vector<Vec3> points(count > 0 ? count : 1);
-  for (auto& p : points) p = {u(rng), u(rng), u(rng)};
-  values.resize(points.size());
-  const Reconstructor<float> reconstructor(volume, f);
-  return best_thread_ns(runs, [&] {
-    if (floor)
-      boxgen::generated::with_filter(static_cast<int>(f), [&](auto entry) {
-        fetch_floor<typename decltype(entry)::Traits>(volume, points, values);
-      });
-    else
-      reconstructor.evaluate(points, values);
-  });
-}
-
-// Any registry filter on a volume of its own lattice with about 2 x 32^3 samples.
-double lattice_filter_ns(const RegistryFilter& f, std::vector<float>& values, long count,
-                         int runs) {
+// Any registry filter on a volume of its own lattice with about 2 x 32^3 samples (M7, M8, M12:
+// 32^3 x 2 on BCC), or the fetch floor of a BCC filter.
+double filter_ns(const SplineFilter& f, std::vector<float>& values, long count, bool floor,
+                 int runs) {
   const CosetLattice lattice = f.lattice();
   const int n =
       static_cast<int>(std::lround(std::cbrt(2.0 * 32 * 32 * 32 / lattice.coset_count())));
@@ -108,8 +87,15 @@ double lattice_filter_ns(const RegistryFilter& f, std::vector<float>& values, lo
   std::vector<Vec3> points(count > 0 ? count : 1);
   for (auto& p : points) p = {u(rng), u(rng), u(rng)};
   values.resize(points.size());
-  const RegistryReconstructor<float> reconstructor(volume, f);
-  return best_thread_ns(runs, [&] { reconstructor.evaluate(points, values); });
+  const Reconstructor<float> reconstructor(volume, f);
+  return best_thread_ns(runs, [&] {
+    if (floor)
+      boxgen::generated::with_filter(f.registry_index(), [&](auto entry) {
+        fetch_floor<typename decltype(entry)::Traits>(volume, points, values);
+      });
+    else
+      reconstructor.evaluate(points, values);
+  });
 }
 
 int main(int argc, char** argv) {
@@ -124,18 +110,13 @@ int main(int argc, char** argv) {
     timed = timed || std::string(argv[a]) == "time";
   }
   set_batch_threads(1);
-  const RegistryFilter filter = RegistryFilter::parse(argv[1]);
-  std::vector<float> values;
-  double best = 0;
-  if (!filter.has_bcc_filter()) {
-    if (floor) {
-      std::fprintf(stderr, "bench_instructions: the floor is measured for m7, m8 and m12\n");
-      return 2;
-    }
-    best = lattice_filter_ns(filter, values, count, timed ? 10 : 1);
-  } else {
-    best = bcc_filter_ns(filter.bcc_filter(), values, count, floor, timed ? 10 : 1);
+  const SplineFilter filter = SplineFilter::parse(argv[1]);
+  if (floor && !(filter.lattice() == CosetLattice::bcc())) {
+    std::fprintf(stderr, "bench_instructions: the floor is measured for m7, m8 and m12\n");
+    return 2;
   }
+  std::vector<float> values;
+  const double best = filter_ns(filter, values, count, floor, timed ? 10 : 1);
   double sum = 0;
   for (float v : values) sum += v;
   std::printf("%s%s: %ld points, checksum %.6g", argv[1], floor ? " floor" : "", count, sum);

@@ -31,8 +31,9 @@ Derivation derive(const BoxSplineSpec& spec, const DerivationOptions& options) {
   };
   Derivation a{spec,
                box_spline_properties(spec),
-               derive_piecewise(spec, DerivationMethod::TruncatedPower, progress,
-                                {options.max_seconds, options.verify, options.full_checks}),
+               derive_piecewise(
+                   spec, DerivationMethod::TruncatedPower, progress,
+                   {options.max_seconds, options.max_bytes, options.verify, options.full_checks}),
                {},
                0,
                {},

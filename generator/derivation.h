@@ -38,6 +38,7 @@ struct DerivationOptions {
   bool full_checks = false;
   ProgressFn progress;     // stage, done, total; empty for none
   double max_seconds = 0;  // refuse what the cost estimate puts beyond this (0: the default limit)
+  double max_bytes = 0;    // the same for memory (0: the machine's available memory)
 };
 
 Derivation derive(const BoxSplineSpec& spec, const DerivationOptions& options = {});

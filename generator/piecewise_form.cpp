@@ -97,7 +97,7 @@ PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod metho
   refuse_if_too_costly(
       estimate_cost(spec, form.knots.cells().size(), form.complex.unit_cells().size(),
                     budget.with_checks, budget.full_checks),
-      budget.max_seconds);
+      budget.max_seconds, budget.max_bytes);
   form.polys = derive_on_cells(spec, form.knots, method, progress);
   form.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return form;

@@ -84,10 +84,12 @@ struct PiecewiseForm {
 using ProgressFn = std::function<void(const char* stage, std::size_t done, std::size_t total)>;
 
 // Refuses (InputError, before deriving any polynomial) what the cost estimate puts beyond
-// max_seconds; 0 means the default limit (cost_estimate.h). The estimate covers the analysis
-// with its checks (default or full) when the caller will run them.
+// max_seconds or max_bytes; 0 means the default limit (cost_estimate.h: 600 s, the available
+// memory). The estimate covers the analysis with its checks (default or full) when the caller will
+// run them.
 struct DerivationBudget {
   double max_seconds = 0;
+  double max_bytes = 0;
   bool with_checks = false;
   bool full_checks = false;
 };

@@ -6,7 +6,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "runtime/bcc_volume.h"
+#include "runtime/lattice_volume.h"
 
 namespace boxgen::runtime {
 

@@ -191,6 +191,11 @@ void CosetLattice::tabulate() {
   }
 }
 
+std::string CosetLattice::label() const {
+  if (name_ == "bcc" || name_ == "fcc") return name_ == "bcc" ? "BCC" : "FCC";
+  return name_ == "cartesian" ? "Cartesian" : name_;
+}
+
 std::string CosetLattice::rows_text() const {
   return fmt::format("{},{},{}; {},{},{}; {},{},{}", rows_[0][0], rows_[0][1], rows_[0][2],
                      rows_[1][0], rows_[1][1], rows_[1][2], rows_[2][0], rows_[2][1], rows_[2][2]);
@@ -201,6 +206,13 @@ std::string CosetLattice::offsets_text() const {
   for (const Offset& o : offsets_)
     text += fmt::format("{}({},{},{})", text.empty() ? "" : " ", o[0], o[1], o[2]);
   return text;
+}
+
+bool same_points(const CosetLattice& a, const CosetLattice& b) {
+  if (a.period() != b.period() || a.determinant() != b.determinant()) return false;
+  for (const Offset& o : a.offsets())
+    if (!b.contains(o[0], o[1], o[2])) return false;
+  return true;
 }
 
 }  // namespace boxgen::runtime

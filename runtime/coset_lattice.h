@@ -44,6 +44,8 @@ class CosetLattice {
   CosetLattice with_offsets(const std::vector<Offset>& offsets) const;
 
   const std::string& name() const noexcept { return name_; }
+  // The name as messages write it: "BCC", "FCC", "Cartesian" or "custom".
+  std::string label() const;
   const IntRows& rows() const noexcept { return rows_; }
   int period() const noexcept { return d_; }                                      // d
   int coset_count() const noexcept { return static_cast<int>(offsets_.size()); }  // K
@@ -89,5 +91,8 @@ class CosetLattice {
   std::vector<Offset> offsets_;
   std::vector<int> table_;  // coset of each residue class (x mod d) + d (y mod d) + d^2 (z mod d)
 };
+
+// Do two lattices hold the same points (whatever the order of their cosets)?
+bool same_points(const CosetLattice& a, const CosetLattice& b);
 
 }  // namespace boxgen::runtime

@@ -1,15 +1,15 @@
 // The one evaluation engine of the runtime (docs/design.md §13): an emitted evaluator (its Traits,
 // support/evaluator_support.hpp) on a volume, for one point (at) and for many (batch: OpenMP
 // threads capped by batch_threads(), and the SIMD chunks of runtime/simd_batch.h for the filters
-// of generated/registry.hpp). Reconstructor (BCC volumes, reconstruction.h) and
-// LatticeReconstructor (any lattice, lattice_reconstruction.h; RegistryReconstructor of
-// lattice_filters.h for the registry's filters) are this class with their own Stencils, the part
-// that says where a point's stencil lies in the volume's storage:
+// of generated/registry.hpp). Reconstructor (reconstruction.h) reaches it through the
+// EvaluationPath a filter makes (emitted_filter.h) with the Stencils that says where a point's
+// stencil lies in the volume's storage (stencils.h):
 //
 //   using Sample = T; using Index = std::int32_t or std::int64_t;
-//   const Volume& volume() const;  // to_lattice, spacing, origin, contains_box
+//   const Volume& volume() const;  // to_lattice, spacing, origin
 //   double extent(int a) const;    // lattice coordinates beyond extent + kFar are far outside
 //   double last(int a) const;      // lattice coordinates of stored samples lie in [0, last]
+//   bool contains_box(lo, hi) const;  // does the volume hold every lattice point of the box?
 //   bool has_offsets() const;      // false: every fetch goes through sample()
 //   const T* samples() const;
 //   Fetch<Index> fetch(const std::int64_t* corner, int cell) const;  // the stencil of a cell
@@ -33,18 +33,11 @@
 #include <utility>
 
 #include "runtime/batch_threads.h"
-#include "runtime/bcc_volume.h"
 #include "runtime/simd_batch.h"
+#include "runtime/stencils.h"
 #include "support/evaluator_support.hpp"
 
 namespace boxgen::runtime {
-
-// A point's stencil in storage: sample k is samples()[base + offsets[k]].
-template <class Offset>
-struct Fetch {
-  std::int64_t base;
-  const Offset* offsets;
-};
 
 template <class Tr, class Stencils>
 class EmittedSpline {
@@ -107,7 +100,7 @@ class EmittedSpline {
       lo[a] = located.corner[a] + Tr::kStencilReachLo[a];
       hi[a] = located.corner[a] + Tr::kStencilReachHi[a];
     }
-    const bool inside = stencils_.volume().contains_box(lo, hi);
+    const bool inside = stencils_.contains_box(lo, hi);
     if (inside && stencils_.has_offsets()) {
       const std::int64_t corner[3] = {located.corner[0], located.corner[1], located.corner[2]};
       const Fetch<Offset> f = stencils_.fetch(corner, located.cell);
@@ -334,8 +327,8 @@ class EmittedSpline {
   int registry_index_;  // the filter's entry in generated/registry.hpp, for the SIMD kernels
 };
 
-// An EmittedSpline behind a virtual interface, for classes that choose the filter at run time
-// (Reconstructor, RegistryReconstructor): one virtual call per point or per batch.
+// An EmittedSpline behind a virtual interface, for Reconstructor, which chooses the filter at run
+// time: one virtual call per point or per batch.
 template <class T>
 class EvaluationPath {
  public:

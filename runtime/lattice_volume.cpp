@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace boxgen::runtime {
+
+using support::floor_div;
 
 namespace {
 
@@ -19,21 +22,21 @@ std::uint64_t checked_count(const CosetLattice& lattice, const Sizes& sizes, dou
     if (sizes[a] < 1 || sizes[a] > LatticeVolume<double>::kMaxSize)
       throw std::invalid_argument(fmt::format(
           "{} volume size {} x {} x {} per coset is out of range (each must be in 1..{})",
-          lattice.name(), sizes[0], sizes[1], sizes[2], LatticeVolume<double>::kMaxSize));
+          lattice.label(), sizes[0], sizes[1], sizes[2], LatticeVolume<double>::kMaxSize));
     count *=
         static_cast<std::uint64_t>(sizes[a]);  // K <= 64^3, sizes <= 2^24: checked before overflow
     if (count > LatticeVolume<double>::kMaxSamples)
       throw std::invalid_argument(fmt::format(
           "{} volume of {} x {} x {} x {} samples is too large (at most {} samples)",
-          lattice.name(), k, sizes[0], sizes[1], sizes[2], LatticeVolume<double>::kMaxSamples));
+          lattice.label(), k, sizes[0], sizes[1], sizes[2], LatticeVolume<double>::kMaxSamples));
   }
   if (!std::isfinite(h) || h <= 0)
     throw std::invalid_argument(
-        fmt::format("{} volume spacing h = {} must be finite and positive", lattice.name(), h));
+        fmt::format("{} volume spacing h = {} must be finite and positive", lattice.label(), h));
   for (double x : origin)
     if (!std::isfinite(x))
       throw std::invalid_argument(fmt::format("{} volume origin ({}, {}, {}) must be finite",
-                                              lattice.name(), origin[0], origin[1], origin[2]));
+                                              lattice.label(), origin[0], origin[1], origin[2]));
   return count;
 }
 
@@ -59,7 +62,7 @@ LatticeVolume<T>::LatticeVolume(CosetLattice lattice, Sizes sizes, double h, Vec
       origin_(origin) {
   if (samples.size() != checked_count(lattice_, sizes, h, origin))
     throw std::invalid_argument(
-        fmt::format("{} volume of {} x {} x {} x {} samples given {} samples", lattice_.name(), k_,
+        fmt::format("{} volume of {} x {} x {} x {} samples given {} samples", lattice_.label(), k_,
                     sizes[0], sizes[1], sizes[2], samples.size()));
   samples_ = std::move(samples);
 }
@@ -75,7 +78,7 @@ const T& LatticeVolume<T>::at(int c, int i, int j, int k) const {
       k >= sizes_[2])
     throw std::out_of_range(fmt::format(
         "sample (coset {}, {}, {}, {}) is outside the {} volume ({} cosets of {} x {} x {})", c, i,
-        j, k, lattice_.name(), k_, sizes_[0], sizes_[1], sizes_[2]));
+        j, k, lattice_.label(), k_, sizes_[0], sizes_[1], sizes_[2]));
   return samples_[index(c, i, j, k)];
 }
 
@@ -128,37 +131,13 @@ template <class T>
 void LatticeVolume<T>::throw_outside(std::int64_t x, std::int64_t y, std::int64_t z) const {
   if (!lattice_.contains(x, y, z))
     throw std::out_of_range(
-        fmt::format("({}, {}, {}) is not a point of the {} lattice", x, y, z, lattice_.name()));
+        fmt::format("({}, {}, {}) is not a {} lattice point", x, y, z, lattice_.label()));
   throw std::out_of_range(
       fmt::format("{} lattice point ({}, {}, {}) is outside the volume ({} cosets of {} x {} x {})",
-                  lattice_.name(), x, y, z, k_, sizes_[0], sizes_[1], sizes_[2]));
-}
-
-template <class T>
-LatticeVolume<T> to_lattice_volume(BccVolume<T>&& volume) {
-  const Sizes sizes = volume.sizes();
-  const double h = volume.spacing();
-  const Vec3 origin = volume.origin();
-  return LatticeVolume<T>(CosetLattice::bcc(), sizes, h, origin, std::move(volume).release());
-}
-
-template <class T>
-BccVolume<T> to_bcc_volume(LatticeVolume<T>&& volume) {
-  if (!(volume.lattice() == CosetLattice::bcc()))
-    throw std::invalid_argument(fmt::format(
-        "the volume is on the {} lattice (offsets {}), not on BCC with offsets (0,0,0) (1,1,1)",
-        volume.lattice().name(), volume.lattice().offsets_text()));
-  const Sizes sizes = volume.sizes();
-  const double h = volume.spacing();
-  const Vec3 origin = volume.origin();
-  return BccVolume<T>(sizes, h, origin, std::move(volume).release());
+                  lattice_.label(), x, y, z, k_, sizes_[0], sizes_[1], sizes_[2]));
 }
 
 template class LatticeVolume<float>;
 template class LatticeVolume<double>;
-template LatticeVolume<float> to_lattice_volume(BccVolume<float>&&);
-template LatticeVolume<double> to_lattice_volume(BccVolume<double>&&);
-template BccVolume<float> to_bcc_volume(LatticeVolume<float>&&);
-template BccVolume<double> to_bcc_volume(LatticeVolume<double>&&);
 
 }  // namespace boxgen::runtime

@@ -3,23 +3,45 @@
 //
 // Sample (c, i, j, k) sits at the world point o + h (d i + off_c.x, d j + off_c.y, d k + off_c.z);
 // its lattice coordinates are off_c + d (i, j, k). Storage: the coset index fastest, then i, j, k
-// (the NRRD layout of nrrd_io.h). BCC (d = 2, K = 2, offsets (0,0,0) (1,1,1)) is exactly the
-// layout of BccVolume<T>, which stays the BCC type of the reconstruction code; the two convert
-// into each other without copying samples (to_lattice_volume, to_bcc_volume).
+// (the NRRD layout of nrrd_io.h). The one volume type of the runtime: BCC is the lattice with
+// d = 2, K = 2, offsets (0,0,0) (1,1,1) (sample (c, i, j, k) at o + h (2i + c, 2j + c, 2k + c)).
 //
-// Border policy as BccVolume: nothing outside the stored samples is invented. value() throws
+// Border policy: nothing outside the stored samples is invented. value() throws
 // std::out_of_range (one line) for a point outside the volume or not on the lattice; value_or()
 // returns the caller's value there; contains_box() says beforehand whether a box is held.
+// Callers that must not fail sample with enough margin (SplineFilter::required_margin).
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
-#include "runtime/bcc_volume.h"
 #include "runtime/coset_lattice.h"
+#include "support/integer_math.h"
 
 namespace boxgen::runtime {
+
+using Vec3 = std::array<double, 3>;
+// Second derivatives in world units: the upper triangle {xx, xy, xz, yy, yz, zz}.
+using Hessian = std::array<double, 6>;
+using LatticePoint = std::array<std::int64_t, 3>;
+using Sizes = std::array<int, 3>;
+
+// x rounded to T, overflowing to +-infinity as IEEE arithmetic would (converting a finite double
+// beyond float's range with a plain cast is undefined behaviour).
+template <class T>
+T to_sample(double x) noexcept {
+  if constexpr (std::is_same_v<T, float>) {
+    constexpr double kMax = std::numeric_limits<float>::max();
+    if (x > kMax) return std::numeric_limits<float>::infinity();
+    if (x < -kMax) return -std::numeric_limits<float>::infinity();
+  }
+  return static_cast<T>(x);
+}
 
 template <class T>
 class LatticeVolume {
@@ -28,8 +50,11 @@ class LatticeVolume {
 
  public:
   using value_type = T;
-  static constexpr int kMaxSize = BccVolume<double>::kMaxSize;
-  static constexpr std::uint64_t kMaxSamples = BccVolume<double>::kMaxSamples;
+  // Largest number of samples per coset along one axis, and in the whole volume: keeps d N and
+  // every index product far from overflow. (Memory runs out well before the second limit; the
+  // allocation then throws std::bad_alloc.)
+  static constexpr int kMaxSize = 1 << 24;
+  static constexpr std::uint64_t kMaxSamples = std::uint64_t{1} << 34;
 
   // A zero-filled volume. Throws std::invalid_argument (one line) unless every size is in
   // [1, kMaxSize], K N0 N1 N2 <= kMaxSamples, h is finite and > 0 and the origin is finite.
@@ -46,7 +71,7 @@ class LatticeVolume {
   std::size_t sample_count() const noexcept { return samples_.size(); }
   std::span<T> samples() noexcept { return samples_; }
   std::span<const T> samples() const noexcept { return samples_; }
-  // The storage, for moving it elsewhere (to_bcc_volume); the volume is empty afterwards.
+  // The storage, for moving it elsewhere; the volume is empty afterwards.
   std::vector<T> release() && { return std::move(samples_); }
 
   // Position of sample (c, i, j, k) in samples(): c + K (i + N0 (j + N1 k)). Unchecked.
@@ -81,6 +106,17 @@ class LatticeVolume {
     return samples_[lattice_index(x, y, z)];
   }
   T value(const LatticePoint& p) const { return value(p[0], p[1], p[2]); }
+  // c + K (i + N0 (j + N1 k)) for lattice point p = off_c + d (i, j, k), also outside the volume
+  // (then negative or beyond the storage). Unchecked: p must be a lattice point.
+  std::int64_t storage_offset(const LatticePoint& p) const noexcept {
+    const int c = lattice_.coset_of(p[0], p[1], p[2]);
+    const Offset& o = lattice_.offsets()[static_cast<std::size_t>(c)];
+    const std::int64_t d = lattice_.period();
+    using support::floor_div;
+    return c + k_ * (floor_div(p[0] - o[0], d) +
+                     sizes_[0] * (floor_div(p[1] - o[1], d) + static_cast<std::int64_t>(sizes_[1]) *
+                                                                  floor_div(p[2] - o[2], d)));
+  }
   // A lattice point the caller has shown to be inside: no check.
   T value_unchecked(const LatticePoint& p) const noexcept {
     return samples_[lattice_index(p[0], p[1], p[2])];
@@ -107,18 +143,8 @@ class LatticeVolume {
   }
 
  private:
-  static std::int64_t floor_div(std::int64_t a, std::int64_t b) noexcept {
-    const std::int64_t q = a / b;
-    return (a % b != 0 && a < 0) ? q - 1 : q;
-  }
-  // Unchecked: (x, y, z) must be a lattice point.
   std::size_t lattice_index(std::int64_t x, std::int64_t y, std::int64_t z) const noexcept {
-    const int c = lattice_.coset_of(x, y, z);
-    const Offset& o = lattice_.offsets()[static_cast<std::size_t>(c)];
-    const int d = lattice_.period();
-    return index(c, static_cast<int>(floor_div(x - o[0], d)),
-                 static_cast<int>(floor_div(y - o[1], d)),
-                 static_cast<int>(floor_div(z - o[2], d)));
+    return static_cast<std::size_t>(storage_offset({x, y, z}));
   }
   [[noreturn]] void throw_outside(std::int64_t x, std::int64_t y, std::int64_t z) const;
 
@@ -130,19 +156,7 @@ class LatticeVolume {
   std::vector<T> samples_;
 };
 
-// The BCC volume as a lattice volume (the samples move; `volume` is left empty), and back.
-// to_bcc_volume throws std::invalid_argument (one line) unless the volume is on the BCC lattice
-// with the offsets (0,0,0), (1,1,1).
-template <class T>
-LatticeVolume<T> to_lattice_volume(BccVolume<T>&& volume);
-template <class T>
-BccVolume<T> to_bcc_volume(LatticeVolume<T>&& volume);
-
 extern template class LatticeVolume<float>;
 extern template class LatticeVolume<double>;
-extern template LatticeVolume<float> to_lattice_volume(BccVolume<float>&&);
-extern template LatticeVolume<double> to_lattice_volume(BccVolume<double>&&);
-extern template BccVolume<float> to_bcc_volume(LatticeVolume<float>&&);
-extern template BccVolume<double> to_bcc_volume(LatticeVolume<double>&&);
 
 }  // namespace boxgen::runtime

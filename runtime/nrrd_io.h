@@ -1,16 +1,8 @@
-// BCC volumes and Cartesian grids as NRRD files, through Teem's nrrd library.
-//
-// A BCC volume (BccVolume, bcc_volume.h) is a NRRD of dimension 4:
-//   type: float or double          encoding: raw (written); any encoding Teem reads (read)
-//   sizes: 2 N0 N1 N2              the coset axis fastest, then i, j, k
-//   space dimension 3, space directions: none (2h,0,0) (0,2h,0) (0,0,2h)
-//   space origin: o                the world position of sample (0, 0, 0, 0)
-//   kinds: list domain domain domain
-//   lattice:=bcc                   key/value that marks the file as a BCC volume
-// so sample (c, i, j, k) is at o + h (2i + c, 2j + c, 2k + c).
+// Lattice volumes and Cartesian grids as NRRD files, through Teem's nrrd library.
 //
 // A volume on any lattice L = G Z^3 (LatticeVolume, lattice_volume.h), stored as K cosets of
 // d Z^3, is a NRRD of dimension 4 (dimension 3 when K = 1):
+//   type: float or double          encoding: raw (written); any encoding Teem reads (read)
 //   sizes: K N0 N1 N2              the coset axis fastest (N0 N1 N2 when K = 1)
 //   space directions: none (dh,0,0) (0,dh,0) (0,0,dh)    (no "none" when K = 1)
 //   space origin: o                the world position of lattice point (0, 0, 0)
@@ -19,8 +11,9 @@
 //   lattice_rows:=a,b,c; d,e,f; g,h,i        (custom: the rows of G)
 //   coset_offsets:=(x,y,z) (x,y,z) ...        (custom, or a named lattice whose cosets are
 //                                             stored in another order: off_0 ... off_{K-1})
-// so sample (c, i, j, k) is at o + h (d i + off_c.x, d j + off_c.y, d k + off_c.z). The BCC
-// layout above is this layout with d = 2, K = 2, offsets (0,0,0) (1,1,1). A named lattice may
+// so sample (c, i, j, k) is at o + h (d i + off_c.x, d j + off_c.y, d k + off_c.z). A BCC volume
+// is sizes 2 N0 N1 N2, space directions none (2h,0,0) (0,2h,0) (0,0,2h), lattice:=bcc: sample
+// (c, i, j, k) at o + h (2i + c, 2j + c, 2k + c). A named lattice may
 // carry lattice_rows and coset_offsets too (they must then agree with it: the offsets may come in
 // another order, which is then the order of the coset axis).
 //
@@ -33,7 +26,8 @@
 // the target only once it is complete: a failed write never leaves a half-written file behind.
 //
 // Reading checks everything (magic, dimension, sizes, type, space directions consistent with one
-// h, origin, the lattice key) and believes no header that lies: the data must be exactly as long
+// h, origin, the lattice key; nrrd_checks.h checks what Teem does not, before and after Teem reads
+// the file) and believes no header that lies: the data must be exactly as long
 // as type and sizes say (raw: bytes, ascii: numbers, hex: digits, gzip and bzip2: decompressed
 // bytes, counted before Teem decodes them), it is read in the byte order the header
 // declares, and a file whose declared byte order is evidently wrong (at least half of the
@@ -49,10 +43,10 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <stdexcept>
 
-#include "runtime/bcc_volume.h"
 #include "runtime/cartesian_volume.h"
 #include "runtime/lattice_volume.h"
 
@@ -70,6 +64,11 @@ struct NrrdReadLimits {
   std::uint64_t max_data_bytes = std::uint64_t{1} << 36;
   // Accept NaN and infinite samples (a reconstruction near them is NaN or infinite too).
   bool allow_non_finite = false;
+  // The lattice the caller needs (a filter's): a file that does not say its lattice where that
+  // lattice needs saying (a 3-D NRRD or a missing lattice key for BCC) is refused in its terms
+  // ("a bcc volume is a 4-D NRRD"). A file that says another lattice reads as what it says:
+  // the filter refuses it (SplineFilter::check_lattice), naming both.
+  std::optional<CosetLattice> lattice;
 };
 
 // Throws NrrdError (one line) unless `path` may be written (output_file.h: a regular file, or a
@@ -80,22 +79,14 @@ void require_output_file(const std::filesystem::path& path,
 // require_output_file(path, {}).
 void require_output_directory(const std::filesystem::path& path);
 
-// Throws NrrdError if the file cannot be written (the target is left as it was).
-template <class T>
-void write_bcc_nrrd(const std::filesystem::path& path, const BccVolume<T>& volume);
-
-// Reads a BCC volume stored as float or double; samples of the other type are converted to T
-// (double -> float rounds to nearest). Throws NrrdError (one line) for any problem.
-template <class T>
-BccVolume<T> read_bcc_nrrd(const std::filesystem::path& path, const NrrdReadLimits& limits = {});
-
 // A volume on any lattice (lattice_volume.h): the layout in the comment at the top. Throws
 // NrrdError if the file cannot be written.
 template <class T>
 void write_lattice_nrrd(const std::filesystem::path& path, const LatticeVolume<T>& volume);
 
-// Reads a lattice volume (any lattice; BCC files written by write_bcc_nrrd included; a 3-D NRRD
-// without a lattice key is a Cartesian volume). Checks as read_bcc_nrrd. Throws NrrdError.
+// Reads a lattice volume (any lattice; a 3-D NRRD without a lattice key is a Cartesian volume);
+// samples of the other type are converted to T (double -> float rounds to nearest). Throws
+// NrrdError (one line) for any problem.
 template <class T>
 LatticeVolume<T> read_lattice_nrrd(const std::filesystem::path& path,
                                    const NrrdReadLimits& limits = {});
@@ -106,12 +97,6 @@ LatticeVolume<T> read_lattice_nrrd(const std::filesystem::path& path,
 template <class T>
 void write_cartesian_nrrd(const std::filesystem::path& path, const CartesianVolume<T>& grid);
 
-extern template void write_bcc_nrrd<float>(const std::filesystem::path&, const BccVolume<float>&);
-extern template void write_bcc_nrrd<double>(const std::filesystem::path&, const BccVolume<double>&);
-extern template BccVolume<float> read_bcc_nrrd<float>(const std::filesystem::path&,
-                                                      const NrrdReadLimits&);
-extern template BccVolume<double> read_bcc_nrrd<double>(const std::filesystem::path&,
-                                                        const NrrdReadLimits&);
 extern template void write_lattice_nrrd<float>(const std::filesystem::path&,
                                                const LatticeVolume<float>&);
 extern template void write_lattice_nrrd<double>(const std::filesystem::path&,

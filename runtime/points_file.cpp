@@ -57,42 +57,85 @@ bool parse_number(std::string_view token, double& value) {
   return true;
 }
 
-}  // namespace
+// Lines are parsed as they arrive, so that memory follows the points kept, and a file that is
+// not a points file (/dev/zero, an endless stream) is refused once a line or the point count
+// passes its bound, instead of filling memory.
+class PointsParser {
+ public:
+  explicit PointsParser(std::string_view name) : name_(name) {}
 
-std::vector<Vec3> parse_points(std::string_view text, std::string_view name) {
-  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
-  std::vector<Vec3> points;
-  std::size_t number = 0;
-  while (!text.empty()) {
-    ++number;
-    const std::size_t newline = text.find('\n');
-    std::string_view line = text.substr(0, newline);
-    text.remove_prefix(newline == std::string_view::npos ? text.size() : newline + 1);
-    if (const std::size_t hash = line.find('#'); hash != std::string_view::npos)
-      line = line.substr(0, hash);
-    auto fail = [&](const std::string& why) {
-      throw std::invalid_argument(fmt::format("{}:{}: {}", printable(name, 200), number, why));
-    };
-    if (line.find('\0') != std::string_view::npos)
-      fail("expected three numbers 'x y z', found a NUL byte (is it a text file?)");
+  void feed(std::string_view chunk) {
+    while (!chunk.empty()) {
+      const std::size_t newline = chunk.find('\n');
+      const std::string_view piece = chunk.substr(0, newline);
+      if (pending_.size() + piece.size() > kMaxPointsLineBytes)
+        fail(number_ + 1, fmt::format("a line longer than {} bytes (is it a points file?)",
+                                      kMaxPointsLineBytes));
+      if (newline == std::string_view::npos) {
+        pending_.append(piece);
+        return;
+      }
+      if (pending_.empty()) {
+        line(piece);
+      } else {
+        pending_.append(piece);
+        line(pending_);
+        pending_.clear();
+      }
+      chunk.remove_prefix(newline + 1);
+    }
+  }
+  std::vector<Vec3> finish() && {
+    if (!pending_.empty()) line(pending_);
+    return std::move(points_);
+  }
+
+ private:
+  [[noreturn]] void fail(std::size_t number, const std::string& why) const {
+    throw std::invalid_argument(fmt::format("{}:{}: {}", printable(name_, 200), number, why));
+  }
+
+  void line(std::string_view text) {
+    const std::size_t number = ++number_;
+    if (number == 1 && text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 BOM
+    if (const std::size_t hash = text.find('#'); hash != std::string_view::npos)
+      text = text.substr(0, hash);
+    if (text.find('\0') != std::string_view::npos)
+      fail(number, "expected three numbers 'x y z', found a NUL byte (is it a text file?)");
     Vec3 p{};
-    std::string_view rest = line;
+    std::string_view rest = text;
     int found = 0;
     for (std::string_view token = next_token(rest); !token.empty(); token = next_token(rest)) {
       if (found == 3)
-        fail(fmt::format("expected three numbers 'x y z', found more ('{}')", printable(token)));
+        fail(number,
+             fmt::format("expected three numbers 'x y z', found more ('{}')", printable(token)));
       double value = 0;
       if (!parse_number(token, value))
-        fail(fmt::format("expected three numbers 'x y z', '{}' is not a number", printable(token)));
+        fail(number,
+             fmt::format("expected three numbers 'x y z', '{}' is not a number", printable(token)));
       if (!std::isfinite(value))
-        fail(fmt::format("the coordinate '{}' is not finite", printable(token)));
+        fail(number, fmt::format("the coordinate '{}' is not finite", printable(token)));
       p[found++] = value;
     }
-    if (found == 0) continue;  // a blank or comment line
-    if (found < 3) fail(fmt::format("expected three numbers 'x y z', found {}", found));
-    points.push_back(p);
+    if (found == 0) return;  // a blank or comment line
+    if (found < 3) fail(number, fmt::format("expected three numbers 'x y z', found {}", found));
+    if (points_.size() == kMaxPoints)
+      fail(number, fmt::format("more than {} points; split the file", kMaxPoints));
+    points_.push_back(p);
   }
-  return points;
+
+  std::string name_;
+  std::string pending_;
+  std::vector<Vec3> points_;
+  std::size_t number_ = 0;
+};
+
+}  // namespace
+
+std::vector<Vec3> parse_points(std::string_view text, std::string_view name) {
+  PointsParser parser(name);
+  parser.feed(text);
+  return std::move(parser).finish();
 }
 
 std::vector<Vec3> read_points_file(const std::string& path) {
@@ -114,16 +157,22 @@ std::vector<Vec3> read_points_file(const std::string& path) {
   struct stat info {};
   if (::fstat(fd, &info) != 0) fail(std::strerror(errno));
   if (S_ISDIR(info.st_mode)) fail("it is a directory");
-  std::string text;
+  return read_points_stream(fd, name);
+}
+
+std::vector<Vec3> read_points_stream(int fd, std::string_view name) {
+  PointsParser parser(name);
   char buffer[65536];
   for (;;) {
     const ssize_t got = ::read(fd, buffer, sizeof buffer);
     if (got < 0 && errno == EINTR) continue;
-    if (got < 0) fail(std::strerror(errno));
+    if (got < 0)
+      throw std::invalid_argument(fmt::format("cannot read points file '{}': {}",
+                                              printable(name, 200), std::strerror(errno)));
     if (got == 0) break;
-    text.append(buffer, static_cast<std::size_t>(got));
+    parser.feed(std::string_view(buffer, static_cast<std::size_t>(got)));
   }
-  return parse_points(text, name);
+  return std::move(parser).finish();
 }
 
 }  // namespace boxgen::runtime

@@ -8,117 +8,15 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "support/integer_math.h"
+
 namespace boxgen::runtime {
+
+using support::floor_div;
 
 namespace {
 
 constexpr int kMaxOffset = 1 << 20;
-
-void validate(const DiscreteFilter& q) {
-  if (q.empty()) throw std::invalid_argument("prefilter has no taps");
-  for (const auto& [o, w] : q) {
-    for (int x : o)
-      if (x < -kMaxOffset || x > kMaxOffset)
-        throw std::invalid_argument(
-            fmt::format("prefilter offset ({}, {}, {}) is too far out (at most {} per coordinate)",
-                        o[0], o[1], o[2], kMaxOffset));
-    if (!BccVolume<double>::is_lattice_point(o[0], o[1], o[2]))
-      throw std::invalid_argument(
-          fmt::format("prefilter offset ({}, {}, {}) is not a BCC lattice vector (coordinates must "
-                      "be all even or all odd)",
-                      o[0], o[1], o[2]));
-    if (!std::isfinite(w))
-      throw std::invalid_argument(fmt::format(
-          "prefilter weight {} at offset ({}, {}, {}) is not finite", w, o[0], o[1], o[2]));
-  }
-}
-
-int ceil_half(int x) { return (x + 1) / 2; }  // x >= 0
-
-}  // namespace
-
-PrefilterShrink prefilter_shrink(const DiscreteFilter& q) {
-  validate(q);
-  PrefilterShrink shrink{};
-  for (int a = 0; a < 3; ++a) {
-    int max_offset = 0, max_negative = 0;
-    for (const auto& tap : q) {
-      max_offset = std::max(max_offset, tap.first[a]);
-      max_negative = std::max(max_negative, -tap.first[a]);
-    }
-    // Output point x needs 0 <= x - o_a <= 2N - 1 for every tap (each parity class fills that
-    // range): x in [max o_a, 2N - 1 + min o_a]. The first output sample is the even point 2s.
-    shrink.lower[a] = ceil_half(max_offset);
-    shrink.upper[a] = ceil_half(max_negative);
-  }
-  return shrink;
-}
-
-int prefilter_margin(const DiscreteFilter& q) {
-  const PrefilterShrink s = prefilter_shrink(q);
-  int margin = 0;
-  for (int a = 0; a < 3; ++a) margin = std::max({margin, s.lower[a], s.upper[a]});
-  return margin;
-}
-
-template <class T>
-BccVolume<T> prefilter(const BccVolume<T>& volume, const DiscreteFilter& q) {
-  const PrefilterShrink shrink = prefilter_shrink(q);
-  const Sizes& n = volume.sizes();
-  Sizes out_sizes{};
-  Vec3 out_origin{};
-  for (int a = 0; a < 3; ++a) {
-    out_sizes[a] = n[a] - shrink.lower[a] - shrink.upper[a];
-    if (out_sizes[a] < 1)
-      throw std::invalid_argument(
-          fmt::format("volume of {} x {} x {} samples per coset is too small for the prefilter (it "
-                      "needs more than {} per axis to keep any sample)",
-                      n[0], n[1], n[2], shrink.lower[a] + shrink.upper[a]));
-    out_origin[a] = volume.origin()[a] + 2 * volume.spacing() * shrink.lower[a];
-  }
-  BccVolume<T> out(out_sizes, volume.spacing(), out_origin);
-
-  // Output sample (c, i, j, k) is the input lattice point x = 2 (i + s) + c; tap o reads the input
-  // point x - o, which has coset c ^ (o & 1) and coset index (x - o - c') / 2. Relative to the
-  // input sample (c, i + s, j + s, k + s) that is a fixed step in storage per (coset, tap).
-  const std::size_t taps = q.size();
-  std::vector<std::ptrdiff_t> step(2 * taps);
-  std::vector<double> weight(taps);
-  const std::ptrdiff_t stride_j = 2 * static_cast<std::ptrdiff_t>(n[0]);
-  const std::ptrdiff_t stride_k = stride_j * n[1];
-  for (std::size_t t = 0; t < taps; ++t) {
-    const auto& o = q[t].first;
-    weight[t] = q[t].second;
-    for (int c = 0; c < 2; ++c) {
-      const int c_in = c ^ (o[0] & 1);
-      std::ptrdiff_t d[3];
-      for (int a = 0; a < 3; ++a) d[a] = (c - o[a] - c_in) / 2;  // exact: c - o_a - c_in is even
-      step[2 * t + c] = (c_in - c) + 2 * d[0] + stride_j * d[1] + stride_k * d[2];
-    }
-  }
-
-  const T* in = volume.samples().data();
-  for (int k = 0; k < out_sizes[2]; ++k)
-    for (int j = 0; j < out_sizes[1]; ++j)
-      for (int i = 0; i < out_sizes[0]; ++i)
-        for (int c = 0; c < 2; ++c) {
-          const std::size_t base =
-              volume.index(c, i + shrink.lower[0], j + shrink.lower[1], k + shrink.lower[2]);
-          double sum = 0;
-          for (std::size_t t = 0; t < taps; ++t)
-            sum += weight[t] *
-                   static_cast<double>(in[static_cast<std::ptrdiff_t>(base) + step[2 * t + c]]);
-          out(c, i, j, k) = to_sample<T>(sum);
-        }
-  return out;
-}
-
-namespace {
-
-std::int64_t floor_div(std::int64_t a, std::int64_t b) {
-  const std::int64_t q = a / b;
-  return (a % b != 0 && a < 0) ? q - 1 : q;
-}
 
 // delta(c, o) and the coset c' that tap o reads for output coset c (see prefilter.h).
 struct TapStep {
@@ -147,8 +45,8 @@ void validate_on(const DiscreteFilter& q, const CosetLattice& lattice) {
                         o[0], o[1], o[2], kMaxOffset));
     if (!lattice.contains(o[0], o[1], o[2]))
       throw std::invalid_argument(
-          fmt::format("prefilter offset ({}, {}, {}) is not a vector of the {} lattice", o[0], o[1],
-                      o[2], lattice.name()));
+          fmt::format("prefilter offset ({}, {}, {}) is not a {} lattice vector", o[0], o[1], o[2],
+                      lattice.label()));
     if (!std::isfinite(w))
       throw std::invalid_argument(fmt::format(
           "prefilter weight {} at offset ({}, {}, {}) is not finite", w, o[0], o[1], o[2]));
@@ -156,6 +54,13 @@ void validate_on(const DiscreteFilter& q, const CosetLattice& lattice) {
 }
 
 }  // namespace
+
+int prefilter_margin(const DiscreteFilter& q, const CosetLattice& lattice) {
+  const PrefilterShrink s = prefilter_shrink(q, lattice);
+  int margin = 0;
+  for (int a = 0; a < 3; ++a) margin = std::max({margin, s.lower[a], s.upper[a]});
+  return margin;
+}
 
 PrefilterShrink prefilter_shrink(const DiscreteFilter& q, const CosetLattice& lattice) {
   validate_on(q, lattice);
@@ -225,7 +130,5 @@ LatticeVolume<T> prefilter(const LatticeVolume<T>& volume, const DiscreteFilter&
 template LatticeVolume<float> prefilter<float>(const LatticeVolume<float>&, const DiscreteFilter&);
 template LatticeVolume<double> prefilter<double>(const LatticeVolume<double>&,
                                                  const DiscreteFilter&);
-template BccVolume<float> prefilter<float>(const BccVolume<float>&, const DiscreteFilter&);
-template BccVolume<double> prefilter<double>(const BccVolume<double>&, const DiscreteFilter&);
 
 }  // namespace boxgen::runtime

@@ -1,82 +1,68 @@
-// Reconstruction of BCC volumes with the generated evaluators and their generated prefilters,
-// for every filter of generated/registry.hpp (M7, M8, M12). Nothing here knows a polynomial
-// coefficient or a prefilter weight: both come from generated/.
+// Reconstruction: the spline of a filter (spline_filter.h: a registry filter, a user's emitted
+// header, any FilterSource) on a volume of that filter's lattice (lattice_volume.h), evaluated by
+// the runtime's one engine (emitted_spline.h) with the stencil policy the filter picks for the
+// volume (BCC's parity tables on BCC, the general lattice tables elsewhere), on up to
+// batch_threads() threads and, for the registry's filters, in SIMD chunks. Nothing here knows a
+// polynomial coefficient or a prefilter weight: both come from generated/.
+//
+//   const SplineFilter m7 = SplineFilter::parse("m7");
+//   LatticeVolume<double> v = sample_lattice<double>(f, cube_lattice_grid(m7.lattice(), 33,
+//                                                    m7.required_margin(PrefilterChoice::Q2)));
+//   v = prefilter(v, m7.prefilter(PrefilterChoice::Q2));
+//   const Reconstructor<double> r(v, m7);
+//   double s = r.value({0.1, 0.2, 0.3});
+//
+// Border policy: nothing outside the stored samples is invented. A non-finite coordinate is
+// std::invalid_argument; a point whose stencil leaves the volume is std::out_of_range (one line
+// naming the point). The code written for the BCC-only runtime (BccVolume, Filter,
+// RegistryReconstructor, LatticeReconstructor) still compiles through runtime/compat.h, included
+// below.
 #pragma once
-#include <array>
 #include <memory>
 #include <span>
-#include <string_view>
-#include <vector>
 
-#include "runtime/bcc_volume.h"
-#include "runtime/prefilter.h"
+#include "runtime/lattice_volume.h"
+#include "runtime/spline_filter.h"
 
 namespace boxgen::runtime {
-
-// A filter of generated/registry.hpp, by its position there (reconstruction.cpp checks the names).
-enum class Filter { M7, M8, M12 };
-enum class PrefilterChoice { None, Q1, Q2 };
-
-// "m7" | "m8" | "m12" and "none" | "q1" | "q2"; anything else: std::invalid_argument, one line.
-Filter parse_filter(std::string_view name);
-PrefilterChoice parse_prefilter(std::string_view name);
-const char* filter_name(Filter f);
-
-// Offsets j_a - floor(x_a + centre_a) of every lattice point the generated evaluator of a filter
-// may fetch, per axis, and the centre shift c: published by the generator with each evaluator
-// (kStencilReachLo/Hi, kCentre). runtime/resample.h explains the box this gives.
-struct StencilReach {
-  std::array<int, 3> lo{}, hi{};
-  Vec3 centre{};
-};
-StencilReach stencil_reach(Filter f);
-// The reach an emitted evaluator's traits type publishes (any filter, any lattice).
-template <class Tr>
-StencilReach published_reach() {
-  StencilReach reach;
-  for (int a = 0; a < 3; ++a) {
-    reach.lo[a] = Tr::kStencilReachLo[a];
-    reach.hi[a] = Tr::kStencilReachHi[a];
-    reach.centre[a] = Tr::kCentre[a];
-  }
-  return reach;
-}
-
-// The generated quasi-interpolation prefilter (Q^I on shells 0,1; Q^II on shells 0,1,2).
-DiscreteFilter prefilter_taps(Filter f, PrefilterChoice q);
-// Samples beyond [-1,1]^3 (in coset cells) that reconstruction with f, after prefilter q, needs.
-int required_margin(Filter f, PrefilterChoice q);
-
-// How the chosen filter evaluates on a volume: runtime/emitted_spline.h (the runtime's one engine,
-// with the BCC volume's offset tables of reconstruction.cpp).
-template <class T>
-class EvaluationPath;
 
 template <class T>
 class Reconstructor {
  public:
-  Reconstructor(const BccVolume<T>& volume, Filter filter);
+  // Throws std::invalid_argument (one line) if the volume is not on the filter's lattice. The
+  // volume must outlive the reconstructor.
+  Reconstructor(const LatticeVolume<T>& volume, const SplineFilter& filter);
 
-  // The spline at a world point; with `gradient` also its gradient in world units. Throws
-  // std::invalid_argument for a non-finite coordinate and std::out_of_range (one line) when the
-  // stencil leaves the volume: the volume never invents data.
-  T value(const Vec3& world, Vec3* gradient = nullptr) const;
-  // value() with the exact gradient and second derivatives (world units) of the spline.
-  T value_gradient_hessian(const Vec3& world, Vec3& gradient, Hessian& hessian) const;
+  const SplineFilter& filter() const noexcept { return filter_; }
 
-  // value() for many points on up to batch_threads() threads (runtime/batch_threads.h). Throws
-  // the first error, naming the point's index. `gradients` may be empty (values only).
-  void evaluate(std::span<const Vec3> points, std::span<T> values,
-                std::span<Vec3> gradients = {}) const;
-  // The same with second derivatives; `hessians` (and `gradients`) as long as `points`.
-  void evaluate(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients,
-                std::span<Hessian> hessians) const;
+  // The spline at a world point; with `gradient` also its gradient and with `hessian` its second
+  // derivatives {xx, xy, xz, yy, yz, zz}, in world units (hessian needs gradient).
+  T value(const Vec3& world, Vec3* gradient = nullptr, Hessian* hessian = nullptr) const;
+  T value_gradient_hessian(const Vec3& world, Vec3& gradient, Hessian& hessian) const {
+    return value(world, &gradient, &hessian);
+  }
+
+  // value() for many points. `gradients` and `hessians` empty (not computed) or as long as
+  // `points`; hessians need gradients. Throws the first error, naming the point's index (from 1).
+  void evaluate(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients = {},
+                std::span<Hessian> hessians = {}) const;
+
+  // Throws std::domain_error (one line) naming the first point whose value or derivatives are not
+  // finite, and why: the volume's samples are finite but too large for the spline's sums, or the
+  // volume holds non-finite samples. A caller that prints or writes results calls it first.
+  void require_finite(std::span<const Vec3> points, std::span<const T> values,
+                      std::span<const Vec3> gradients = {},
+                      std::span<const Hessian> hessians = {}) const;
 
  private:
-  std::shared_ptr<const EvaluationPath<T>> path_;
+  const LatticeVolume<T>* volume_;
+  SplineFilter filter_;
+  std::shared_ptr<const EvaluationPath<T>> path_;  // the filter on this volume (emitted_spline.h)
 };
 
 extern template class Reconstructor<float>;
 extern template class Reconstructor<double>;
 
 }  // namespace boxgen::runtime
+
+#include "runtime/compat.h"  // IWYU pragma: export

@@ -100,12 +100,9 @@ bool clip_to_box(const Vec3& o, const Vec3& d, const Box& box, double& t0, doubl
 
 RayCaster::RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step,
                      bool cutaway, bool curvature)
-    : RayCaster(
-          [&spline](const Vec3& p, Vec3* gradient, Hessian* hessian) {
-            return hessian ? spline.value_gradient_hessian(p, *gradient, *hessian)
-                           : spline.value(p, gradient);
-          },
-          box, iso, step, cutaway, curvature) {}
+    : RayCaster([&spline](const Vec3& p, Vec3* gradient,
+                          Hessian* hessian) { return spline.value(p, gradient, hessian); },
+                box, iso, step, cutaway, curvature) {}
 
 RayCaster::RayCaster(SplineFunction spline, const Box& box, double iso, double step, bool cutaway,
                      bool curvature)
@@ -122,6 +119,13 @@ RayCaster::RayCaster(SplineFunction spline, const Box& box, double iso, double s
     if (!(box.max[i] > box.min[i])) throw std::invalid_argument("the render box is empty");
   mid_ = scale(add(box.min, box.max), 0.5);
   size_ = std::sqrt(dot(add(box.max, scale(box.min, -1)), add(box.max, scale(box.min, -1))));
+  // A ray crosses at most the box's diagonal: a step that gives more samples than the bound would
+  // run for hours (or, below the coordinates' rounding, for ever).
+  if (size_ / step > static_cast<double>(kMaxStepsPerRay))
+    throw std::invalid_argument(fmt::format(
+        "the marching step {:.3g} gives up to {:.3g} samples per ray across the box "
+        "(diagonal {:.3g}); the limit is {}: use a step of at least {:.3g}",
+        step, size_ / step, size_, kMaxStepsPerRay, size_ / static_cast<double>(kMaxStepsPerRay)));
 }
 
 bool RayCaster::in_region(const Vec3& p) const {
@@ -171,8 +175,9 @@ bool RayCaster::first_crossing(const Vec3& o, const Vec3& d, double t0, double t
     return true;
   }
   double prev = t0;
-  for (double s = t0 + step_;; s += step_) {
-    const double ss = std::min(s, t1);
+  // Steps counted, not accumulated: t0 + k step always moves on (the constructor bounds k).
+  for (std::int64_t k = 1;; ++k) {
+    const double ss = std::min(t0 + static_cast<double>(k) * step_, t1);
     if (inside(add(o, scale(d, ss)))) {
       double lo = prev, hi = ss;
       while (hi - lo > 1e-9 * size_) {
@@ -292,20 +297,9 @@ RgbBuffer render_with(const SplineFunction& spline, double spacing, const Box& b
 
 }  // namespace
 
-RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box& box,
-                            const RenderOptions& o) {
+RgbBuffer render_isosurface(const LatticeVolume<double>& volume, const SplineFilter& f,
+                            const Box& box, const RenderOptions& o) {
   const Reconstructor<double> spline(volume, f);
-  return render_with(
-      [&spline](const Vec3& p, Vec3* gradient, Hessian* hessian) {
-        return hessian ? spline.value_gradient_hessian(p, *gradient, *hessian)
-                       : spline.value(p, gradient);
-      },
-      volume.spacing(), box, o);
-}
-
-RgbBuffer render_isosurface(const LatticeVolume<double>& volume, RegistryFilter f, const Box& box,
-                            const RenderOptions& o) {
-  const RegistryReconstructor<double> spline(volume, f);
   return render_with([&spline](const Vec3& p, Vec3* gradient,
                                Hessian* hessian) { return spline.value(p, gradient, hessian); },
                      volume.spacing(), box, o);

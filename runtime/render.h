@@ -14,7 +14,6 @@
 #include <functional>
 #include <vector>
 
-#include "runtime/lattice_filters.h"
 #include "runtime/reconstruction.h"
 #include "runtime/resample.h"
 
@@ -52,13 +51,17 @@ struct RayHit {
 };
 
 // The spline a caster marches, at a world point: its value, and its gradient and Hessian (world
-// units) where the pointers are not null. Reconstructor<double> and RegistryReconstructor<double>
-// (any registry filter on its lattice) both give one.
+// units) where the pointers are not null; a Reconstructor<double> gives one.
 using SplineFunction = std::function<double(const Vec3&, Vec3*, Hessian*)>;
+
+// The most samples a ray may take across the box (its diagonal divided by the step): 2^16, about
+// 300 times the default step's count on a 64^3 volume.
+inline constexpr std::int64_t kMaxStepsPerRay = std::int64_t{1} << 16;
 
 class RayCaster {
  public:
-  // Throws std::invalid_argument for a non-finite iso, a step <= 0 or an empty box.
+  // Throws std::invalid_argument for a non-finite iso, a step <= 0, a step that gives more than
+  // kMaxStepsPerRay samples across the box's diagonal, or an empty box.
   RayCaster(const Reconstructor<double>& spline, const Box& box, double iso, double step,
             bool cutaway, bool curvature = false);
   RayCaster(SplineFunction spline, const Box& box, double iso, double step, bool cutaway,
@@ -81,12 +84,9 @@ class RayCaster {
 
 // Renders the isosurface s = iso of the spline reconstructed from `volume` with filter f (the
 // volume already prefiltered, as for Reconstructor) inside `box` (where the stencil fits, e.g.
-// default_box). Throws std::invalid_argument for a bad size, iso or step.
-RgbBuffer render_isosurface(const BccVolume<double>& volume, Filter f, const Box& box,
-                            const RenderOptions& options);
-// The same for any registry filter on a volume of its lattice (lattice_filters.h); also throws
-// std::invalid_argument (one line) for a volume of another lattice.
-RgbBuffer render_isosurface(const LatticeVolume<double>& volume, RegistryFilter f, const Box& box,
-                            const RenderOptions& options);
+// default_box). Throws std::invalid_argument for a bad size, iso or step, or a volume of another
+// lattice than f's (one line).
+RgbBuffer render_isosurface(const LatticeVolume<double>& volume, const SplineFilter& f,
+                            const Box& box, const RenderOptions& options);
 
 }  // namespace boxgen::runtime

@@ -8,11 +8,20 @@
 #include <limits>
 #include <span>
 #include <stdexcept>
+#include <string>
 #include <vector>
+
+#include "runtime/reconstruction.h"
 
 namespace boxgen::runtime {
 
 namespace {
+
+// "[x0, x1] x [y0, y1] x [z0, z1]", for messages.
+std::string describe(const Box& b) {
+  return fmt::format("[{}, {}] x [{}, {}] x [{}, {}]", b.min[0], b.max[0], b.min[1], b.max[1],
+                     b.min[2], b.max[2]);
+}
 
 // The evaluable region in lattice coordinates: lo <= x < hi per axis (may be empty).
 struct LatticeRegion {
@@ -20,36 +29,45 @@ struct LatticeRegion {
 };
 
 template <class T>
-LatticeRegion lattice_region(const BccVolume<T>& volume, Filter f) {
-  const StencilReach reach = stencil_reach(f);
+LatticeRegion lattice_region(const LatticeVolume<T>& volume, const SplineFilter& f) {
+  f.check_lattice(volume.lattice());
+  const StencilReach reach = f.reach();
+  const int d = volume.period();
   LatticeRegion region;
   for (int a = 0; a < 3; ++a) {
-    // floor(x + c) + lo >= 0 and floor(x + c) + hi <= 2N - 1, with floor(x + c) an integer.
+    // floor(x + c) + lo >= 0 and floor(x + c) + hi <= d N - 1, with floor(x + c) an integer.
     region.lo[a] = -reach.lo[a] - reach.centre[a];
-    region.hi[a] = 2.0 * volume.sizes()[a] - reach.hi[a] - reach.centre[a];
+    region.hi[a] = static_cast<double>(d) * volume.sizes()[a] - reach.hi[a] - reach.centre[a];
     if (region.hi[a] <= region.lo[a]) {
-      const int needed = (reach.hi[a] - reach.lo[a]) / 2 + 1;  // smallest N with 2N > hi - lo
+      const int needed = (reach.hi[a] - reach.lo[a]) / d + 1;  // smallest N with d N > hi - lo
       throw std::invalid_argument(fmt::format(
-          "BCC volume of 2 x {} x {} x {} samples is too small for the {} stencil (it needs at "
+          "{} volume of {} x {} x {} x {} samples is too small for the {} stencil (it needs at "
           "least {} samples per coset on axis {})",
-          volume.sizes()[0], volume.sizes()[1], volume.sizes()[2], filter_name(f), needed, a));
+          volume.lattice().label(), volume.coset_count(), volume.sizes()[0], volume.sizes()[1],
+          volume.sizes()[2], f.name(), needed, a));
     }
   }
   return region;
 }
 
+// The rounding guard of default_box, in lattice units, for the lattice box [lo, hi] of a volume
+// with this origin and spacing. A grid point on a face reaches the evaluator through
+// world = origin + i * spacing, lattice = (world - o) / h (double), a cast to T and + c (in T):
+// each step errs by a few ulps of the magnitudes involved. 16 ulps of each bound them all.
 template <class T>
-Box to_world(const BccVolume<T>& volume, const Vec3& lo, const Vec3& hi) {
-  return {volume.to_world(lo), volume.to_world(hi)};
+double rounding_guard(const Vec3& lo, const Vec3& hi, const Vec3& origin, double spacing) {
+  double lattice_extent = 0, world_extent = 0;
+  for (int a = 0; a < 3; ++a) {
+    lattice_extent = std::max({lattice_extent, std::abs(lo[a]), std::abs(hi[a])});
+    world_extent = std::max(world_extent, std::abs(origin[a]) / spacing);
+  }
+  return 16 * (std::numeric_limits<T>::epsilon() * (lattice_extent + 2) +
+               std::numeric_limits<double>::epsilon() * (world_extent + lattice_extent + 2));
 }
 
-}  // namespace
-
-std::string describe(const Box& b) {
-  return fmt::format("[{}, {}] x [{}, {}] x [{}, {}]", b.min[0], b.max[0], b.min[1], b.max[1],
-                     b.min[2], b.max[2]);
-}
-
+// A volume with the grid's geometry, its values not yet allocated. Throws std::invalid_argument
+// (one line) for sizes outside [2, kMaxGridSize] or above kMaxGridPoints in all, a non-finite
+// origin, or a spacing that is not finite and > 0.
 template <class T>
 CartesianVolume<T> empty_grid_volume(const CartesianGrid& grid) {
   std::uint64_t count = 1;
@@ -74,23 +92,44 @@ CartesianVolume<T> empty_grid_volume(const CartesianGrid& grid) {
   return out;
 }
 
-void require_grid_in_region(const Box& corners, const Vec3& first, const Vec3& last, const Vec3& lo,
-                            const Vec3& hi, const std::string& filter, const Box& region) {
-  for (int a = 0; a < 3; ++a)
-    if (!(first[a] >= lo[a] && last[a] < hi[a]))
-      throw std::out_of_range(fmt::format(
-          "resampling grid {} leaves the region where the {} stencil lies inside the volume, {}",
-          describe(corners), filter, describe(region)));
+// out.values (allocated here) from the spline, whole z-slices per batch (about 2^16 points): all
+// cores at work, bounded scratch memory. A point within rounding of the region's face that still
+// fails names its slices; a value that is not finite is an error naming its point.
+template <class T>
+void fill_by_slices(CartesianVolume<T>& out, const Reconstructor<T>& spline) {
+  const Sizes& n = out.sizes;
+  const std::size_t slice = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]);
+  out.values.resize(slice * static_cast<std::size_t>(n[2]));
+  const int slices_per_batch =
+      static_cast<int>(std::max<std::size_t>(1, (std::size_t{1} << 16) / slice));
+  std::vector<Vec3> points;
+  for (int k0 = 0; k0 < n[2]; k0 += slices_per_batch) {
+    const int k1 = std::min(n[2], k0 + slices_per_batch);
+    points.clear();
+    for (int k = k0; k < k1; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i) points.push_back(out.position(i, j, k));
+    const std::span<T> values(out.values.data() + out.index(0, 0, k0), points.size());
+    try {
+      spline.evaluate(points, values);
+    } catch (const std::out_of_range& e) {
+      throw std::out_of_range(
+          fmt::format("resampling grid slices z = {}..{}: {}", k0, k1 - 1, e.what()));
+    }
+    spline.require_finite(points, values);
+  }
 }
 
+}  // namespace
+
 template <class T>
-Box evaluable_region(const BccVolume<T>& volume, Filter f) {
+Box evaluable_region(const LatticeVolume<T>& volume, const SplineFilter& f) {
   const LatticeRegion region = lattice_region(volume, f);
-  return to_world(volume, region.lo, region.hi);
+  return {volume.to_world(region.lo), volume.to_world(region.hi)};
 }
 
 template <class T>
-Box default_box(const BccVolume<T>& volume, Filter f) {
+Box default_box(const LatticeVolume<T>& volume, const SplineFilter& f) {
   const LatticeRegion region = lattice_region(volume, f);
   const double guard = rounding_guard<T>(region.lo, region.hi, volume.origin(), volume.spacing());
   Vec3 lo, hi;
@@ -99,10 +138,11 @@ Box default_box(const BccVolume<T>& volume, Filter f) {
     hi[a] = region.hi[a] - guard;
     if (!(lo[a] < hi[a]))
       throw std::invalid_argument(fmt::format(
-          "BCC volume of 2 x {} x {} x {} samples is too small for the {} stencil on axis {}",
-          volume.sizes()[0], volume.sizes()[1], volume.sizes()[2], filter_name(f), a));
+          "{} volume of {} x {} x {} x {} samples is too small for the {} stencil on axis {}",
+          volume.lattice().label(), volume.coset_count(), volume.sizes()[0], volume.sizes()[1],
+          volume.sizes()[2], f.name(), a));
   }
-  return to_world(volume, lo, hi);
+  return {volume.to_world(lo), volume.to_world(hi)};
 }
 
 CartesianGrid grid_over(const Box& box, Sizes n) {
@@ -135,28 +175,32 @@ CartesianGrid grid_over(const Box& box, Sizes n) {
 }
 
 template <class T>
-CartesianVolume<T> resample(const BccVolume<T>& volume, Filter f, const CartesianGrid& grid) {
+CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& f,
+                            const CartesianGrid& grid) {
   CartesianVolume<T> out = empty_grid_volume<T>(grid);
   // The first and last grid points, computed as the evaluation will see them, must lie in the
   // evaluable region; then every point between them does (the region is a box).
   const LatticeRegion region = lattice_region(volume, f);
-  const Box corners = grid_corners(out);
-  require_grid_in_region(corners, volume.to_lattice(corners.min), volume.to_lattice(corners.max),
-                         region.lo, region.hi, filter_name(f),
-                         to_world(volume, region.lo, region.hi));
+  const Sizes& n = out.sizes;
+  const Box corners{out.position(0, 0, 0), out.position(n[0] - 1, n[1] - 1, n[2] - 1)};
+  const Vec3 first = volume.to_lattice(corners.min), last = volume.to_lattice(corners.max);
+  for (int a = 0; a < 3; ++a)
+    if (!(first[a] >= region.lo[a] && last[a] < region.hi[a]))
+      throw std::out_of_range(fmt::format(
+          "resampling grid {} leaves the region where the {} stencil lies inside the volume, {}",
+          describe(corners), f.name(),
+          describe({volume.to_world(region.lo), volume.to_world(region.hi)})));
   fill_by_slices(out, Reconstructor<T>(volume, f));
   return out;
 }
 
-template CartesianVolume<float> empty_grid_volume<float>(const CartesianGrid&);
-template CartesianVolume<double> empty_grid_volume<double>(const CartesianGrid&);
-template Box evaluable_region<float>(const BccVolume<float>&, Filter);
-template Box evaluable_region<double>(const BccVolume<double>&, Filter);
-template Box default_box<float>(const BccVolume<float>&, Filter);
-template Box default_box<double>(const BccVolume<double>&, Filter);
-template CartesianVolume<float> resample<float>(const BccVolume<float>&, Filter,
+template Box evaluable_region<float>(const LatticeVolume<float>&, const SplineFilter&);
+template Box evaluable_region<double>(const LatticeVolume<double>&, const SplineFilter&);
+template Box default_box<float>(const LatticeVolume<float>&, const SplineFilter&);
+template Box default_box<double>(const LatticeVolume<double>&, const SplineFilter&);
+template CartesianVolume<float> resample<float>(const LatticeVolume<float>&, const SplineFilter&,
                                                 const CartesianGrid&);
-template CartesianVolume<double> resample<double>(const BccVolume<double>&, Filter,
+template CartesianVolume<double> resample<double>(const LatticeVolume<double>&, const SplineFilter&,
                                                   const CartesianGrid&);
 
 }  // namespace boxgen::runtime

@@ -180,11 +180,18 @@ PendingOutput::PendingOutput(const fs::path& path, std::span<const fs::path> inp
   for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
     temporary_ = directory_of(target_) / fmt::format(".{}.tmp-{}-{}", target_.filename().string(),
                                                      static_cast<long>(::getpid()), counter++);
+    // Registered before it exists, so that a signal between the two cannot leave it behind (the
+    // name holds our pid: no other live process creates it).
+    slot_ = register_temporary(temporary_);
     fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd < 0 && errno != EEXIST) refuse(path, reason(errno));
+    if (fd < 0) {
+      const int error = errno;
+      unregister_temporary(slot_);
+      slot_ = -1;
+      if (error != EEXIST) refuse(path, reason(error));
+    }
   }
   if (fd < 0) refuse(path, "could not create a temporary file next to it");
-  slot_ = register_temporary(temporary_);
   // The replacement keeps the permissions of the file it replaces (a new file gets 0666 & ~umask).
   if (replacing && ::fchmod(fd, old.st_mode & 07777) != 0) {
     const int error = errno;

@@ -23,7 +23,15 @@ int run_analyze(const Common& c, const AnalyzeOptions& o) {
                   {"estimated_bytes", estimate.bytes},
                   {"knot_cells", estimate.knot_cells},
                   {"fundamental_cells", estimate.fundamental_cells},
-                  {"cells_exact", estimate.cells_exact}});
+                  {"cells_exact", estimate.cells_exact},
+                  {"integration_level_cells", estimate.level_cells},
+                  {"work",
+                   {{"plane_checks", estimate.work.plane_checks},
+                    {"integration", estimate.work.integration},
+                    {"integration_deg", estimate.work.integration_deg},
+                    {"stored", estimate.work.stored},
+                    {"stencil", estimate.work.stencil},
+                    {"fine", estimate.work.fine}}}});
     } else {
       fmt::print("estimated time    {:.3g} s (this machine's calibration)\n", estimate.seconds);
       fmt::print("estimated memory  {:.3g} MB\n", estimate.bytes / 1e6);
@@ -38,7 +46,8 @@ int run_analyze(const Common& c, const AnalyzeOptions& o) {
   options.verify = o.verify;
   options.full_checks = full;
   options.progress = progress.callback();
-  options.max_seconds = o.max_seconds;
+  options.max_seconds = c.max_seconds;
+  options.max_bytes = c.max_memory_mb * 1e6;
   const Derivation a = derive(spec, options);
   progress.finish();
   if (c.json)

@@ -68,7 +68,8 @@ nlohmann::json simplex_coefficients(const SimplexBBForm& sx, int degree, std::st
 
 int run_bbform(const Common& c, const std::string& region) {
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
-  const PiecewiseForm form = derive_piecewise(spec, DerivationMethod::TruncatedPower);
+  const PiecewiseForm form =
+      derive_piecewise(spec, DerivationMethod::TruncatedPower, {}, derivation_budget(c));
   const SplineStructure s = spline_structure(form);
   const std::vector<int> orbits = selected_orbits(region, s.references.size());
   const int degree = box_spline_properties(spec).degree;

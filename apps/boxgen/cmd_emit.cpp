@@ -205,6 +205,8 @@ int run_emit(const Common& c, const std::string& name, const std::string& out,
     ProgressPrinter progress(false);  // on a terminal, for derivations beyond two seconds
     DerivationOptions options;
     options.progress = progress.callback();
+    options.max_seconds = c.max_seconds;
+    options.max_bytes = c.max_memory_mb * 1e6;
     const Derivation a = derive(spec, options);  // the exact checks run before anything is emitted
     progress.finish();
     // The command that rewrites the file byte for byte, run in the file's folder.

@@ -38,8 +38,8 @@ int run_eval(const Common& c, const std::vector<std::string>& points,
             p, kMaxEvalCoordinate));
   }
   ProgressPrinter progress(false);  // on a terminal, for derivations beyond two seconds
-  const PiecewiseForm form =
-      derive_piecewise(spec, DerivationMethod::TruncatedPower, progress.callback());
+  const PiecewiseForm form = derive_piecewise(spec, DerivationMethod::TruncatedPower,
+                                              progress.callback(), derivation_budget(c));
   progress.finish();
   const RatVec centre = spline_centre(spec);
   const Rational scale = Rational(spec.lattice.det_abs());

@@ -19,7 +19,8 @@ int run_pieces(const Common& c, const std::string& of, const std::string& region
       fmt::format("boxgen pieces {}{} --of {} --region {}",
                   spec.name == "custom" ? fmt::format("\"{}\"", spec.directions_text()) : spec.name,
                   c.lattice.empty() ? "" : fmt::format(" --lattice \"{}\"", c.lattice), of, region);
-  const PiecewiseForm form = derive_piecewise(spec, DerivationMethod::TruncatedPower);
+  const PiecewiseForm form =
+      derive_piecewise(spec, DerivationMethod::TruncatedPower, {}, derivation_budget(c));
   const Pieces pieces = what == PiecesOf::Spline
                             ? spline_pieces(form, spline_structure(form), selection)
                             : filter_pieces(form, selection);

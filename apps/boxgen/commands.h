@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "generator/piecewise_form.h"
 #include "generator/rational.h"
 
 namespace boxgen::cli {
@@ -25,15 +26,20 @@ struct Common {
   std::string spec;
   std::string lattice;
   bool json = false;
+  double max_seconds = 0;    // commands that derive: refuse beyond this predicted time (0: 600 s)
+  double max_memory_mb = 0;  // and beyond this predicted memory (0: the available memory)
 };
+// The limits above as the derivation takes them.
+inline DerivationBudget derivation_budget(const Common& c) {
+  return {c.max_seconds, c.max_memory_mb * 1e6};
+}
 
 int run_presets(bool json);
 struct AnalyzeOptions {
   bool verify = true;
   std::string checks = "default";  // default | full
   bool estimate_only = false;      // --estimate: predict time and memory, derive nothing
-  double max_seconds = 0;  // refuse up front beyond this predicted time (0: the default limit)
-  bool progress = false;   // progress on stderr even when it is not a terminal
+  bool progress = false;           // progress on stderr even when it is not a terminal
 };
 int run_analyze(const Common& c, const AnalyzeOptions& options);
 int run_eval(const Common& c, const std::vector<std::string>& points,

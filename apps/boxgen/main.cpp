@@ -28,6 +28,18 @@ void add_common(CLI::App* cmd, boxgen::cli::Common& c, bool needs_spec = true) {
   cmd->add_flag("--json", c.json, "machine-readable output");
 }
 
+// The limits of every command that derives: each refuses up front what the cost estimate
+// (generator/cost_estimate.h) puts beyond them.
+void add_limits(CLI::App* cmd, boxgen::cli::Common& c) {
+  cmd->add_option("--max-seconds", c.max_seconds,
+                  "refuse up front if the predicted time exceeds this (default 600)")
+      ->check(boxgen::app::kFinitePositive);
+  cmd->add_option("--max-memory", c.max_memory_mb,
+                  "refuse up front if the predicted memory exceeds this many MB (default: the "
+                  "machine's available memory)")
+      ->check(boxgen::app::kFinitePositive);
+}
+
 }  // namespace
 
 int run(int argc, char** argv);
@@ -60,20 +72,19 @@ int run(int argc, char** argv) {
       "default (integral and continuity on one cell per symmetry orbit) or full (every cell)");
   analyze->add_flag("--estimate", analyze_options.estimate_only,
                     "predict time and memory without deriving");
-  analyze
-      ->add_option("--max-seconds", analyze_options.max_seconds,
-                   "refuse up front if the predicted time exceeds this (default 600)")
-      ->check(boxgen::app::kFinitePositive);
+  add_limits(analyze, c);
   analyze->add_flag("--progress", analyze_options.progress,
                     "progress on stderr even when it is not a terminal");
   auto* eval = app.add_subcommand("eval", "exact value of the filter M = |det G| M^c at points");
   add_common(eval, c);
+  add_limits(eval, c);
   eval->add_option("--at", points, "a point \"x y z\" (fractions or decimals); repeatable")
       ->required();
   eval->add_option("--derivative", derivative, "orders \"a b c\" of the partial derivative");
   auto* bbform =
       app.add_subcommand("bbform", "stencil and exact BB-coefficients on the reference region");
   add_common(bbform, c);
+  add_limits(bbform, c);
   bbform->add_option("--region", region,
                      "reference (every orbit's reference region) or an orbit index");
   auto* prefilter =
@@ -94,6 +105,7 @@ int run(int argc, char** argv) {
                    "preset name or the directions, as for analyze (leave out to write only "
                    "--registry)");
   add_common(emit, c, false);
+  add_limits(emit, c);
   emit->add_option("--name", emit_name,
                    "C++ identifier: namespace boxgen::generated::<name> (with a SPEC)");
   emit->add_option("--out", emit_out, "output directory")->required();
@@ -114,6 +126,7 @@ int run(int argc, char** argv) {
   auto* pieces = app.add_subcommand(
       "pieces", "explicit piecewise polynomials of the spline or the filter, with their regions");
   add_common(pieces, c);
+  add_limits(pieces, c);
   pieces->add_option("--of", pieces_of,
                      "spline (default): s(x) = sum_j V(j) M(x - j); filter: M itself");
   pieces->add_option("--region", pieces_region,

@@ -3,11 +3,12 @@
 //   the fetch floor: the same number of samples per point, fetched through precomputed linear
 //     offsets (the evaluator's own stencil shape) and summed, with the same per-point addressing;
 //   coherent access: the points in order along rays, as a ray caster issues them;
-//   tricubic: the registry's tricubic B-spline through RegistryReconstructor<T>::evaluate (the
+//   tricubic: the registry's tricubic B-spline through the same Reconstructor<T>::evaluate (the
 //     same engine and SIMD path) on a Cartesian volume with as many samples;
 //   2 threads over 1 (BOXGEN_THREADS-style cap through set_batch_threads).
 // Every ratio is measured in this run; the fastest of `repeats` runs counts.
 #include "apps/boxrecon/cmd_bench.h"
+#include "apps/boxrecon/input_checks.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -24,7 +25,6 @@
 
 #include "generated/registry.hpp"
 #include "runtime/batch_threads.h"
-#include "runtime/lattice_filters.h"
 #include "runtime/lattice_volume.h"
 #include "runtime/reconstruction.h"
 #include "runtime/simd_batch.h"
@@ -35,7 +35,7 @@ namespace {
 
 using namespace boxgen::runtime;
 
-constexpr Filter kFilters[] = {Filter::M7, Filter::M8, Filter::M12};
+constexpr const char* kFilters[] = {"m7", "m8", "m12"};
 
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
@@ -47,8 +47,8 @@ std::string cpu_model() {
 
 // A volume of random samples with unit spacing at the origin: lattice = world coordinates.
 template <class T>
-BccVolume<T> random_volume(int n) {
-  BccVolume<T> volume({n, n, n}, 1.0, {0, 0, 0});
+LatticeVolume<T> random_volume(int n) {
+  LatticeVolume<T> volume(CosetLattice::bcc(), {n, n, n}, 1.0, {0, 0, 0});
   std::mt19937_64 rng(n);
   for (auto& s : volume.samples()) s = static_cast<T>(static_cast<double>(rng() % 4096) / 4096.0);
   return volume;
@@ -84,7 +84,8 @@ std::vector<Vec3> ray_points(int n, long count) {
 // The fetch floor of a filter: per point the corner floor(x + c) and its base index (as the
 // runtime computes them), then kStencilSize samples at fixed precomputed offsets, summed.
 template <class Tr, class T>
-void fetch_floor(const BccVolume<T>& volume, const std::vector<Vec3>& points, std::vector<T>& out) {
+void fetch_floor(const LatticeVolume<T>& volume, const std::vector<Vec3>& points,
+                 std::vector<T>& out) {
   const std::int64_t n0 = volume.sizes()[0], n1 = volume.sizes()[1];
   std::vector<std::int64_t> offsets(Tr::kStencilSize);
   for (int k = 0; k < Tr::kStencilSize; ++k) {
@@ -108,31 +109,31 @@ void fetch_floor(const BccVolume<T>& volume, const std::vector<Vec3>& points, st
 }
 
 template <class T>
-double floor_seconds(Filter f, const BccVolume<T>& volume, const std::vector<Vec3>& points,
+double floor_seconds(const char* f, const LatticeVolume<T>& volume, const std::vector<Vec3>& points,
                      int repeats) {
   std::vector<T> out(points.size());
   namespace g = boxgen::generated;
   return fastest_seconds(repeats, [&] {
-    g::with_filter(static_cast<int>(f), [&](auto entry) {
+    g::with_filter(SplineFilter::parse(f).registry_index(), [&](auto entry) {
       fetch_floor<typename decltype(entry)::Traits>(volume, points, out);
     });
   });
 }
 
 template <class T>
-double filter_seconds(Filter f, const BccVolume<T>& volume, const std::vector<Vec3>& points,
-                      int repeats) {
+double filter_seconds(const char* f, const LatticeVolume<T>& volume,
+                      const std::vector<Vec3>& points, int repeats) {
   std::vector<T> values(points.size());
-  const Reconstructor<T> r(volume, f);
+  const Reconstructor<T> r(volume, SplineFilter::parse(f));
   return fastest_seconds(repeats, [&] { r.evaluate(points, values); });
 }
 
 // The tricubic B-spline on a Cartesian volume of m^3 samples (m^3 ~ 2 n^3), through the runtime's
-// batch API for any registry filter (RegistryReconstructor: the same engine, SIMD path and
-// offset fetching as Reconstructor's BCC path), at the BCC points scaled to its inner box.
+// batch API (Reconstructor: the same engine, SIMD path and offset fetching as on BCC), at the BCC
+// points scaled to its inner box.
 template <class T>
 double tricubic_seconds(int n, const std::vector<Vec3>& bcc_points, int repeats) {
-  const RegistryFilter tricubic = RegistryFilter::parse("tricubic");
+  const SplineFilter tricubic = SplineFilter::parse("tricubic");
   const int m = static_cast<int>(std::lround(n * std::cbrt(2.0)));
   LatticeVolume<T> volume(tricubic.lattice(), {m, m, m}, 1.0, {0, 0, 0});
   std::mt19937_64 rng(m);
@@ -142,7 +143,7 @@ double tricubic_seconds(int n, const std::vector<Vec3>& bcc_points, int repeats)
   for (std::size_t i = 0; i < points.size(); ++i)
     for (int a = 0; a < 3; ++a) points[i][a] = 3.0 + (bcc_points[i][a] - 6.0) * scale;
   std::vector<T> values(points.size());
-  const RegistryReconstructor<T> r(volume, tricubic);
+  const Reconstructor<T> r(volume, tricubic);
   return fastest_seconds(repeats, [&] { r.evaluate(points, values); });
 }
 
@@ -154,7 +155,7 @@ struct Row {
 
 template <class T>
 Row table2_row(int n, long count, int repeats) {
-  const BccVolume<T> volume = random_volume<T>(n);
+  const LatticeVolume<T> volume = random_volume<T>(n);
   const auto points = random_points(n, count);
   Row row{n, sizeof(T) == 4 ? "float" : "double", {}};
   for (int f = 0; f < 3; ++f) row.t[f] = filter_seconds(kFilters[f], volume, points, repeats);
@@ -165,6 +166,9 @@ Row table2_row(int n, long count, int repeats) {
 
 int run_bench(const BenchOptions& o) {
   const long count = o.points > 0 ? o.points : (o.quick ? 200000 : 10000000);
+  // Random and ray points (Vec3 each) and one value per point, in double at most.
+  boxgen::app::check_memory(static_cast<std::uint64_t>(count), 2 * sizeof(Vec3) + sizeof(double),
+                            fmt::format("--points {}", count), "points");
   const auto per_point = [count](double seconds) {
     return 1e9 * seconds / static_cast<double>(count);
   };
@@ -174,7 +178,7 @@ int run_bench(const BenchOptions& o) {
   // The ratios, on one cache-resident volume (32^3 x 2 float: 256 KiB).
   const int n_cache = 32;
   {
-    const BccVolume<float> volume = random_volume<float>(n_cache);
+    const LatticeVolume<float> volume = random_volume<float>(n_cache);
     const auto points = random_points(n_cache, count);
     const auto rays = ray_points(n_cache, count);
     double t[3], floor[3], coherent[3];
@@ -185,7 +189,7 @@ int run_bench(const BenchOptions& o) {
     }
     const double tricubic = tricubic_seconds<float>(n_cache, points, repeats);
     set_batch_threads(2);
-    const double two = filter_seconds(Filter::M7, volume, points, repeats);
+    const double two = filter_seconds("m7", volume, points, repeats);
     set_batch_threads(1);
     result["volume"] = fmt::format("{}^3 x 2 float, {} random points, one thread", n_cache, count);
     result["ns_per_point"] = {{"m7", per_point(t[0])},

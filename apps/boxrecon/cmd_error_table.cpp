@@ -45,11 +45,11 @@ struct Errors {
   }
 };
 
-Row bcc_row(int n, Filter f, PrefilterChoice q, const char* qname,
+Row bcc_row(int n, const SplineFilter& f, PrefilterChoice q, const char* qname,
             const std::vector<Vec3>& points) {
-  BccVolume<double> volume =
-      sample_bcc<double>(marschner_lobb, cube_grid(n, required_margin(f, q)));
-  if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
+  LatticeVolume<double> volume = sample_lattice<double>(
+      marschner_lobb, cube_lattice_grid(f.lattice(), n, f.required_margin(q)));
+  if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
   std::vector<double> values(points.size());
   std::vector<Vec3> gradients(points.size());
   Reconstructor<double>(volume, f).evaluate(points, values, gradients);
@@ -57,7 +57,7 @@ Row bcc_row(int n, Filter f, PrefilterChoice q, const char* qname,
   for (std::size_t i = 0; i < points.size(); ++i) e.add(values[i], gradients[i], points[i]);
   const double k = static_cast<double>(points.size());
   return {n,
-          filter_name(f),
+          f.name(),
           qname,
           std::sqrt(e.sum2 / k),
           e.worst,
@@ -132,11 +132,11 @@ int run_error_table(int points, std::uint64_t seed, bool json) {
   for (auto& p : at) p = {u(rng), u(rng), u(rng)};  // the same points for every row
   std::vector<Row> rows;
   for (int n : kDensities) {
-    for (Filter f : {Filter::M7, Filter::M8, Filter::M12})
-      for (auto [q, name] :
+    for (const char* name : {"m7", "m8", "m12"})
+      for (auto [q, qname] :
            {std::pair{PrefilterChoice::None, "none"}, std::pair{PrefilterChoice::Q1, "q1"},
             std::pair{PrefilterChoice::Q2, "q2"}})
-        rows.push_back(bcc_row(n, f, q, name, at));
+        rows.push_back(bcc_row(n, SplineFilter::parse(name), q, qname, at));
     const int m = static_cast<int>(std::lround(std::cbrt(2.0) * n));  // the same number of samples
     rows.push_back(cartesian_row(n, m, false, at));
     rows.push_back(cartesian_row(n, m, true, at));

@@ -1,4 +1,5 @@
 #include "apps/boxrecon/cmd_render.h"
+#include "apps/boxrecon/input_checks.h"
 
 #include <fmt/format.h>
 
@@ -10,8 +11,8 @@
 
 #include "analysis/png_image.h"
 #include "apps/boxrecon/sample_command.h"
-#include "runtime/lattice_filters.h"
 #include "runtime/nrrd_io.h"
+#include "runtime/prefilter.h"
 #include "runtime/render.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
@@ -34,26 +35,22 @@ struct RenderArgs {
 };
 RenderArgs args;
 
-// The image of the chosen filter's spline: M7, M8 and M12 on BCC through the BCC Reconstructor,
-// every other registry filter through the lattice runtime, on a volume of its own lattice.
-RgbBuffer render_volume(RegistryFilter rf, PrefilterChoice q, const RenderOptions& o) {
+// The image of the chosen filter's spline, on a volume of its own lattice.
+RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, const RenderOptions& o) {
   const Box cube{{-1, -1, -1}, {1, 1, 1}};
   (void)boxgen::app::lattice_for(rf, args.lattice);
-  if (rf.has_bcc_filter()) {
-    const Filter f = rf.bcc_filter();
-    BccVolume<double> volume = args.volume.empty()
-                                   ? sample_bcc<double>(find_test_function(args.function).value,
-                                                        cube_grid(args.n, required_margin(f, q)))
-                                   : read_bcc_nrrd<double>(args.volume);
-    if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
-    const Box box = args.volume.empty() ? cube : default_box(volume, f);
-    return render_isosurface(volume, f, box, o);
-  }
+  NrrdReadLimits on_lattice;
+  on_lattice.lattice = rf.lattice();
+  const auto sampled = [&] {
+    const LatticeGrid grid = cube_lattice_grid(rf.lattice(), args.n, rf.required_margin(q));
+    // The samples, and the prefiltered copy beside them.
+    boxgen::app::check_volume_memory(static_cast<std::uint64_t>(rf.lattice().coset_count()) *
+                                         grid.sizes[0] * grid.sizes[1] * grid.sizes[2],
+                                     2 * sizeof(double), fmt::format("--n {}", args.n));
+    return sample_lattice<double>(find_test_function(args.function).value, grid);
+  };
   LatticeVolume<double> volume =
-      args.volume.empty()
-          ? sample_lattice<double>(find_test_function(args.function).value,
-                                   cube_lattice_grid(rf.lattice(), args.n, rf.required_margin(q)))
-          : read_lattice_nrrd<double>(args.volume);
+      args.volume.empty() ? sampled() : read_lattice_nrrd<double>(args.volume, on_lattice);
   rf.check_lattice(volume.lattice());
   if (q != PrefilterChoice::None) volume = prefilter(volume, rf.prefilter(q));
   const Box box = args.volume.empty() ? cube : default_box(volume, rf);
@@ -76,7 +73,7 @@ CLI::App* add_render_command(CLI::App& app) {
                 "the lattice of --function's samples: only the filter's own (bcc | fcc | cartesian "
                 "| rows of G), default the filter's");
   r->add_option("--filter", args.filter,
-                "a filter of the registry (default m7): " + RegistryFilter::names());
+                "a filter of the registry (default m7): " + SplineFilter::names());
   r->add_option("--prefilter", args.prefilter, "none | q1 | q2 (default q2, as in Fig. 8)");
   r->add_option("--iso", args.iso, "iso value (default 0.5)");
   r->add_flag("--cutaway", args.cutaway,
@@ -93,7 +90,7 @@ CLI::App* add_render_command(CLI::App& app) {
 }
 
 int run_render() {
-  const RegistryFilter rf = RegistryFilter::parse(args.filter);
+  const SplineFilter rf = SplineFilter::parse(args.filter);
   const PrefilterChoice q = parse_prefilter(args.prefilter);
   if (args.shading != "normal" && args.shading != "curvature")
     throw std::invalid_argument("--shading must be normal or curvature, got '" +

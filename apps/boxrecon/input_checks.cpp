@@ -41,13 +41,18 @@ std::uint64_t volume_memory_budget() {
 
 void check_volume_memory(std::uint64_t samples, std::uint64_t bytes_per_sample,
                          const std::string& what) {
+  check_memory(samples, bytes_per_sample, what, "samples");
+}
+
+void check_memory(std::uint64_t items, std::uint64_t bytes_per_item, const std::string& what,
+                  const std::string& unit) {
   const std::uint64_t budget = volume_memory_budget();
-  if (samples > budget / bytes_per_sample) {
+  if (items > budget / bytes_per_item) {
     constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
     throw std::invalid_argument(fmt::format(
-        "{} needs {:.1f} GiB for its {} samples, more than the {:.1f} GiB allowed (half of this "
-        "machine's memory); use a smaller --n",
-        what, static_cast<double>(samples) * static_cast<double>(bytes_per_sample) / kGiB, samples,
+        "{} needs {:.1f} GiB for its {} {}, more than the {:.1f} GiB allowed (half of this "
+        "machine's memory); ask for fewer",
+        what, static_cast<double>(items) * static_cast<double>(bytes_per_item) / kGiB, items, unit,
         static_cast<double>(budget) / kGiB));
   }
 }

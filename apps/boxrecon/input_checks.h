@@ -20,6 +20,12 @@ std::uint64_t parse_seed(const std::string& text);
 void check_volume_memory(std::uint64_t samples, std::uint64_t bytes_per_sample,
                          const std::string& what);
 
+// The one memory pre-check of every command: `items` (samples, points, pixels) of
+// `bytes_per_item` bytes each must fit in volume_memory_budget(); else std::invalid_argument
+// naming the size needed, the budget and `what` (the option that asked, e.g. "--points 1000000").
+void check_memory(std::uint64_t items, std::uint64_t bytes_per_item, const std::string& what,
+                  const std::string& unit);
+
 // Half of the physical memory (the budget check_volume_memory allows), in bytes.
 std::uint64_t volume_memory_budget();
 

@@ -15,8 +15,11 @@
 
 #include "apps/boxrecon/cmd_bench.h"
 #include "apps/boxrecon/input_checks.h"
+#include "apps/boxrecon/sample_command.h"
 #include "runtime/batch_threads.h"
 #include "runtime/points_file.h"
+#include "runtime/prefilter.h"
+#include "runtime/resample.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
 #include "support/output_file.h"
@@ -29,9 +32,11 @@ namespace {
 
 // The volume of a file, on the filter's lattice and prefiltered with q.
 template <class T>
-LatticeVolume<T> read_for(RegistryFilter f, PrefilterChoice q, const std::string& path,
+LatticeVolume<T> read_for(const SplineFilter& f, PrefilterChoice q, const std::string& path,
                           const NrrdReadLimits& limits) {
-  LatticeVolume<T> volume = read_lattice_nrrd<T>(path, limits);
+  NrrdReadLimits on_lattice = limits;
+  on_lattice.lattice = f.lattice();
+  LatticeVolume<T> volume = read_lattice_nrrd<T>(path, on_lattice);
   f.check_lattice(volume.lattice());
   if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
   return volume;
@@ -56,15 +61,19 @@ void print_evaluations(std::span<const T> values, std::span<const Vec3> gradient
 }
 
 template <class T>
-int run_lattice_eval(RegistryFilter f, PrefilterChoice q, const std::string& volume_path,
-                     const std::string& points_path, bool gradient, bool hessian,
-                     const NrrdReadLimits& limits) {
+int run_eval(const std::string& filter, const std::string& pre, const std::string& volume_path,
+             const std::string& points_path, bool gradient, bool hessian,
+             const NrrdReadLimits& limits) {
+  const SplineFilter f = SplineFilter::parse(filter);
+  const PrefilterChoice q = parse_prefilter(pre);
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
   const auto points = read_points_file(points_path);
   std::vector<T> values(points.size());
   std::vector<Vec3> gradients(gradient || hessian ? points.size() : 0);
   std::vector<Hessian> hessians(hessian ? points.size() : 0);
-  RegistryReconstructor<T>(volume, f).evaluate(points, values, gradients, hessians);
+  const Reconstructor<T> spline(volume, f);
+  spline.evaluate(points, values, gradients, hessians);
+  spline.require_finite(points, values, gradients, hessians);
   print_evaluations<T>(values, gradients, hessians, gradient, hessian);
   return 0;
 }
@@ -89,28 +98,33 @@ void print_error_report(const ErrorReport& r, double rms, double max, double gra
   }
 }
 
-int run_lattice_error(const ErrorReport& report, RegistryFilter f, PrefilterChoice q) {
-  const TestFunction& fn = find_test_function(report.function);
-  const int n = report.n, count = report.points;
-  if (n < 2 || n > 1024)
-    throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", n));
+int run_error(const std::string& function, int n, const std::string& filter,
+              const std::string& lattice_text, const std::string& pre, int count,
+              std::uint64_t seed, bool gradient, bool json) {
+  const TestFunction& fn = find_test_function(function);
+  const SplineFilter f = SplineFilter::parse(filter);
+  (void)lattice_for(f, lattice_text);
+  const PrefilterChoice q = parse_prefilter(pre);
   if (count < 1 || count > 100000000)
     throw std::invalid_argument("--points must be between 1 and 100000000");
-  const CosetLattice lattice = f.lattice();
+  const ErrorReport report{function,          filter, pre, n, count, seed, gradient, json,
+                           f.lattice().name()};
+  if (n < 2 || n > 1024)
+    throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", n));
+  const CosetLattice& lattice = f.lattice();
   const LatticeGrid grid = cube_lattice_grid(lattice, n, f.required_margin(q));
   check_volume_memory(static_cast<std::uint64_t>(lattice.coset_count()) * grid.sizes[0] *
                           grid.sizes[1] * grid.sizes[2],
                       sizeof(double), fmt::format("--n {}", n));
   LatticeVolume<double> volume = sample_lattice<double>(fn.value, grid);
   if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
-  // The points of the BCC command: the same seed gives the same points.
   std::mt19937_64 rng(report.seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<Vec3> points(count);
   for (auto& p : points) p = {u(rng), u(rng), u(rng)};
   std::vector<double> values(count);
   std::vector<Vec3> gradients(report.gradient ? count : 0);
-  RegistryReconstructor<double>(volume, f).evaluate(points, values, gradients);
+  Reconstructor<double>(volume, f).evaluate(points, values, gradients);
   double sum2 = 0, worst = 0, gsum2 = 0;
   for (int i = 0; i < count; ++i) {
     const double e = values[i] - fn.value(points[i]);
@@ -126,9 +140,14 @@ int run_lattice_error(const ErrorReport& report, RegistryFilter f, PrefilterChoi
 }
 
 template <class T>
-int run_lattice_resample(RegistryFilter f, PrefilterChoice q, const std::string& volume_path,
-                         const std::string& output, int n, const std::vector<double>& min,
-                         const std::vector<double>& max, const NrrdReadLimits& limits) {
+int run_resample(const std::string& filter, const std::string& pre, const std::string& volume_path,
+                 const std::string& output, int n, const std::vector<double>& min,
+                 const std::vector<double>& max, const NrrdReadLimits& limits) {
+  const SplineFilter f = SplineFilter::parse(filter);
+  const PrefilterChoice q = parse_prefilter(pre);
+  if (n < 2 || n > kMaxResampleN)
+    throw std::invalid_argument(
+        fmt::format("--n must be between 2 and {}, got {}", kMaxResampleN, n));
   const std::filesystem::path input = volume_path;
   require_output_file(output, {&input, 1});  // before the work, not after it; never the input
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
@@ -138,9 +157,9 @@ int run_lattice_resample(RegistryFilter f, PrefilterChoice q, const std::string&
   return 0;
 }
 
-int run_filter_bench(RegistryFilter f, long point_count, int repeats, bool json) {
+int run_filter_bench(const SplineFilter& f, long point_count, int repeats, bool json) {
   const long count = point_count > 0 ? point_count : 1000000;
-  const CosetLattice lattice = f.lattice();
+  const CosetLattice& lattice = f.lattice();
   constexpr int kSize = 48;  // samples per coset and axis: a few MB, as a small data set
   LatticeVolume<double> volume(lattice, {kSize, kSize, kSize}, 1.0, {0, 0, 0});
   std::mt19937_64 rng(1);
@@ -153,7 +172,7 @@ int run_filter_bench(RegistryFilter f, long point_count, int repeats, bool json)
       p[a] = box.min[a] + (box.max[a] - box.min[a]) * (0.5 + 0.5 * u(rng));
   std::vector<double> values(points.size());
   std::vector<Vec3> gradients(points.size());
-  const RegistryReconstructor<double> spline(volume, f);
+  const Reconstructor<double> spline(volume, f);
   const int all = batch_threads();
   struct Timing {
     int threads;
@@ -197,15 +216,15 @@ template void print_evaluations<float>(std::span<const float>, std::span<const V
                                        std::span<const Hessian>, bool, bool);
 template void print_evaluations<double>(std::span<const double>, std::span<const Vec3>,
                                         std::span<const Hessian>, bool, bool);
-template int run_lattice_eval<float>(RegistryFilter, PrefilterChoice, const std::string&,
-                                     const std::string&, bool, bool, const NrrdReadLimits&);
-template int run_lattice_eval<double>(RegistryFilter, PrefilterChoice, const std::string&,
-                                      const std::string&, bool, bool, const NrrdReadLimits&);
-template int run_lattice_resample<float>(RegistryFilter, PrefilterChoice, const std::string&,
-                                         const std::string&, int, const std::vector<double>&,
-                                         const std::vector<double>&, const NrrdReadLimits&);
-template int run_lattice_resample<double>(RegistryFilter, PrefilterChoice, const std::string&,
-                                          const std::string&, int, const std::vector<double>&,
-                                          const std::vector<double>&, const NrrdReadLimits&);
+template int run_eval<float>(const std::string&, const std::string&, const std::string&,
+                             const std::string&, bool, bool, const NrrdReadLimits&);
+template int run_eval<double>(const std::string&, const std::string&, const std::string&,
+                              const std::string&, bool, bool, const NrrdReadLimits&);
+template int run_resample<float>(const std::string&, const std::string&, const std::string&,
+                                 const std::string&, int, const std::vector<double>&,
+                                 const std::vector<double>&, const NrrdReadLimits&);
+template int run_resample<double>(const std::string&, const std::string&, const std::string&,
+                                  const std::string&, int, const std::vector<double>&,
+                                  const std::vector<double>&, const NrrdReadLimits&);
 
 }  // namespace boxgen::app

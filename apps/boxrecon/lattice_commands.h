@@ -1,16 +1,16 @@
-// boxrecon's eval, error, resample and bench for the registry filters that live on other lattices
-// than BCC's Reconstructor (fcc6 on FCC, tricubic and cart7 on the Cartesian lattice, and any
-// filter added to generated/registry.hpp): the same arguments, output and errors as the BCC
-// commands in main.cpp, through runtime/lattice_filters.h on LatticeVolume. A volume of another
-// lattice than the filter's is one line (std::invalid_argument).
+// boxrecon's eval, error, resample and bench --filter for every filter of generated/registry.hpp
+// on a volume of its lattice (M7, M8, M12 on BCC, fcc6 on FCC, tricubic and cart7 on the
+// Cartesian lattice, and any filter added to the registry), through the runtime's one API
+// (runtime/reconstruction.h). A volume of another lattice than the filter's is one line
+// (std::invalid_argument).
 #pragma once
 #include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
 
-#include "runtime/lattice_filters.h"
 #include "runtime/nrrd_io.h"
+#include "runtime/reconstruction.h"
 
 namespace boxgen::app {
 
@@ -20,10 +20,15 @@ template <class T>
 void print_evaluations(std::span<const T> values, std::span<const runtime::Vec3> gradients,
                        std::span<const runtime::Hessian> hessians, bool gradient, bool hessian);
 
+// Largest --n of resample: 512^3 double values are 1 GiB.
+inline constexpr int kMaxResampleN = 512;
+
+// eval: the filter's spline (after prefilter `pre`) at the points of a file, printed; a value
+// that is not finite is an error (std::domain_error), and nothing is printed.
 template <class T>
-int run_lattice_eval(runtime::RegistryFilter f, runtime::PrefilterChoice q,
-                     const std::string& volume_path, const std::string& points_path, bool gradient,
-                     bool hessian, const runtime::NrrdReadLimits& limits);
+int run_eval(const std::string& filter, const std::string& pre, const std::string& volume_path,
+             const std::string& points_path, bool gradient, bool hessian,
+             const runtime::NrrdReadLimits& limits);
 
 // The error report of `error` (text or JSON, the BCC command's keys).
 struct ErrorReport {
@@ -35,18 +40,21 @@ struct ErrorReport {
 };
 void print_error_report(const ErrorReport& r, double rms, double max, double gradient_rms);
 
-// `error` on the filter's lattice: N samples per coset and axis over [-1,1]^3 (cube_lattice_grid).
-int run_lattice_error(const ErrorReport& report, runtime::RegistryFilter f,
-                      runtime::PrefilterChoice q);
+// `error` on the filter's lattice: N samples per coset and axis over [-1,1]^3 (cube_lattice_grid),
+// the RMS and max error at `count` random points.
+int run_error(const std::string& function, int n, const std::string& filter,
+              const std::string& lattice, const std::string& pre, int count, std::uint64_t seed,
+              bool gradient, bool json);
 
+// resample: n^3 grid points over the box (default_box when min and max are empty), written as a
+// Cartesian NRRD; nothing is written when any value is not finite.
 template <class T>
-int run_lattice_resample(runtime::RegistryFilter f, runtime::PrefilterChoice q,
-                         const std::string& volume_path, const std::string& output, int n,
-                         const std::vector<double>& min, const std::vector<double>& max,
-                         const runtime::NrrdReadLimits& limits);
+int run_resample(const std::string& filter, const std::string& pre, const std::string& volume_path,
+                 const std::string& output, int n, const std::vector<double>& min,
+                 const std::vector<double>& max, const runtime::NrrdReadLimits& limits);
 
 // bench --filter NAME: seconds per point of the filter's value (and value + gradient) at random
 // points of a volume of random samples on its lattice, one thread and all threads.
-int run_filter_bench(runtime::RegistryFilter f, long points, int repeats, bool json);
+int run_filter_bench(const runtime::SplineFilter& f, long points, int repeats, bool json);
 
 }  // namespace boxgen::app

@@ -11,9 +11,9 @@
 //                     [--min X Y Z --max X Y Z] [--precision float|double]
 //   boxrecon render (--function F --n N | --volume v.nrrd) [--filter F] ... -o out.png
 //   boxrecon bench [--quick] [--json] [--points K] [--repeats R] [--filter F]
-// Every command: --threads N caps the batch paths' threads, like BOXGEN_THREADS. M7, M8 and M12
-// on BCC volumes go through the BCC Reconstructor (reconstruction.h); the other filters through
-// the general lattice runtime (lattice_filters.h, apps/boxrecon/lattice_commands.h).
+// Every command: --threads N caps the batch paths' threads, like BOXGEN_THREADS. Every filter on
+// every lattice goes through the one runtime API (runtime/reconstruction.h,
+// apps/boxrecon/lattice_commands.h).
 // Errors are one line on stderr with a non-zero exit (1: bad input, 2: bad usage, 3: internal).
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
@@ -37,13 +37,8 @@
 #include "apps/common/exit_status.h"
 #include "boxgen/version.h"
 #include "runtime/batch_threads.h"
-#include "runtime/lattice_filters.h"
 #include "runtime/nrrd_io.h"
-#include "runtime/points_file.h"
-#include "runtime/reconstruction.h"
-#include "runtime/resample.h"
-#include "runtime/sampling.h"
-#include "runtime/test_functions.h"
+#include "runtime/spline_filter.h"
 #include "support/output_file.h"
 
 namespace {
@@ -60,110 +55,17 @@ struct InputError : std::invalid_argument {
 int exit_code_for(const std::exception& e) {
   const bool bad_input = dynamic_cast<const std::invalid_argument*>(&e) ||
                          dynamic_cast<const std::out_of_range*>(&e) ||
+                         dynamic_cast<const std::domain_error*>(&e) ||
                          dynamic_cast<const NrrdError*>(&e) ||
                          dynamic_cast<const boxgen::support::OutputFileError*>(&e);
   return bad_input ? 1 : 3;
 }
 
-// Largest --n of resample: 512^3 double values are 1 GiB.
-constexpr int kMaxResampleN = 512;
-
-// The sampling grid of `error`'s --n, checked to fit in memory before anything is allocated.
-BccGrid grid_for(int n, int margin) {
-  if (n < 2 || n > 1024) throw InputError(fmt::format("--n must be between 2 and 1024, got {}", n));
-  BccGrid grid = cube_grid(n, margin);
-  boxgen::app::check_volume_memory(
-      2 * static_cast<std::uint64_t>(grid.sizes[0]) * grid.sizes[1] * grid.sizes[2], sizeof(double),
-      fmt::format("--n {}", n));
-  return grid;
-}
-
-template <class T>
-int run_eval(const std::string& filter, const std::string& pre, const std::string& volume_path,
-             const std::string& points_path, bool gradient, bool hessian,
-             const NrrdReadLimits& limits) {
-  const RegistryFilter rf = RegistryFilter::parse(filter);
-  const PrefilterChoice q = parse_prefilter(pre);
-  if (!rf.has_bcc_filter())  // a filter of another lattice: the general lattice runtime
-    return boxgen::app::run_lattice_eval<T>(rf, q, volume_path, points_path, gradient, hessian,
-                                            limits);
-  const Filter f = rf.bcc_filter();
-  BccVolume<T> volume = read_bcc_nrrd<T>(volume_path, limits);
-  if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
-  const auto points = read_points_file(points_path);
-  std::vector<T> values(points.size());
-  std::vector<Vec3> gradients(gradient || hessian ? points.size() : 0);
-  std::vector<Hessian> hessians(hessian ? points.size() : 0);
-  if (hessian)
-    Reconstructor<T>(volume, f).evaluate(points, values, gradients, hessians);
-  else
-    Reconstructor<T>(volume, f).evaluate(points, values, gradients);
-  boxgen::app::print_evaluations<T>(values, gradients, hessians, gradient, hessian);
-  return 0;
-}
-
-int run_error(const std::string& function, int n, const std::string& filter,
-              const std::string& lattice, const std::string& pre, int count, std::uint64_t seed,
-              bool gradient, bool json) {
-  const TestFunction& fn = find_test_function(function);
-  const RegistryFilter rf = RegistryFilter::parse(filter);
-  (void)boxgen::app::lattice_for(rf, lattice);
-  const PrefilterChoice q = parse_prefilter(pre);
-  if (count < 1 || count > 100000000) throw InputError("--points must be between 1 and 100000000");
-  const boxgen::app::ErrorReport report{
-      function, filter, pre, n, count, seed, gradient, json, rf.lattice().name()};
-  if (!rf.has_bcc_filter()) return boxgen::app::run_lattice_error(report, rf, q);
-  const Filter f = rf.bcc_filter();
-  BccVolume<double> volume = sample_bcc<double>(fn.value, grid_for(n, required_margin(f, q)));
-  if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Vec3> points(count);
-  for (auto& p : points) p = {u(rng), u(rng), u(rng)};
-  std::vector<double> values(count);
-  std::vector<Vec3> gradients(gradient ? count : 0);
-  Reconstructor<double>(volume, f).evaluate(points, values, gradients);
-  double sum2 = 0, worst = 0, gsum2 = 0;
-  for (int i = 0; i < count; ++i) {
-    const double e = values[i] - fn.value(points[i]);
-    sum2 += e * e;
-    worst = std::max(worst, std::abs(e));
-    if (gradient) {
-      const Vec3 g = fn.gradient(points[i]);
-      for (int d = 0; d < 3; ++d) gsum2 += (gradients[i][d] - g[d]) * (gradients[i][d] - g[d]);
-    }
-  }
-  boxgen::app::print_error_report(report, std::sqrt(sum2 / count), worst, std::sqrt(gsum2 / count));
-  return 0;
-}
-
-// Resampling onto a Cartesian grid: n points per axis over the box (default_box when none given).
-template <class T>
-int run_resample(const std::string& filter, const std::string& pre, const std::string& volume_path,
-                 const std::string& output, int n, const std::vector<double>& min,
-                 const std::vector<double>& max, const NrrdReadLimits& limits) {
-  const RegistryFilter rf = RegistryFilter::parse(filter);
-  const PrefilterChoice q = parse_prefilter(pre);
-  if (n < 2 || n > kMaxResampleN)
-    throw InputError(fmt::format("--n must be between 2 and {}, got {}", kMaxResampleN, n));
-  if (!rf.has_bcc_filter())
-    return boxgen::app::run_lattice_resample<T>(rf, q, volume_path, output, n, min, max, limits);
-  const Filter f = rf.bcc_filter();
-  const std::filesystem::path input = volume_path;
-  require_output_file(output, {&input, 1});  // before the work, not after it; never the input
-  BccVolume<T> volume = read_bcc_nrrd<T>(volume_path, limits);
-  if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
-  const Box box = min.empty() ? default_box(volume, f)
-                              : Box{{min[0], min[1], min[2]}, {max[0], max[1], max[2]}};
-  write_cartesian_nrrd(output, resample(volume, f, grid_over(box, {n, n, n})));
-  return 0;
-}
-
 // "m7 (bcc) | ... | cart7 (cartesian)": every filter of the registry with its lattice.
 std::string filter_choices() {
   std::string out;
-  for (int i = 0; i < RegistryFilter::count(); ++i) {
-    const RegistryFilter f = RegistryFilter::at(i);
+  for (int i = 0; i < SplineFilter::count(); ++i) {
+    const SplineFilter f = SplineFilter::at(i);
     out += fmt::format("{}{} ({})", i ? " | " : "", f.name(), f.lattice().name());
   }
   return out;
@@ -241,8 +143,9 @@ int run(int argc, char** argv) {
   resample->add_option("--prefilter", pre, "none | q1 | q2");
   resample->add_option("--volume", volume, "NRRD volume on the filter's lattice")->required();
   resample->add_option("-o,--output", output, "output NRRD file (Cartesian grid)")->required();
-  resample->add_option("--n", resample_n,
-                       fmt::format("grid points per axis, 2..{} (default 64)", kMaxResampleN));
+  resample->add_option(
+      "--n", resample_n,
+      fmt::format("grid points per axis, 2..{} (default 64)", boxgen::app::kMaxResampleN));
   auto* min_option = resample
                          ->add_option("--min", box_min,
                                       "X Y Z: lower corner of the box (world); default (without "
@@ -278,9 +181,8 @@ int run(int argc, char** argv) {
   try {
     if (threads > 0) set_batch_threads(threads);
     if (bench->parsed() && !bench_filter.empty())
-      return boxgen::app::run_filter_bench(RegistryFilter::parse(bench_filter),
-                                           bench_options.points, bench_options.repeats,
-                                           bench_options.json);
+      return boxgen::app::run_filter_bench(SplineFilter::parse(bench_filter), bench_options.points,
+                                           bench_options.repeats, bench_options.json);
     if (bench->parsed()) return boxrecon::run_bench(bench_options);
     if (precision != "float" && precision != "double")
       throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) +
@@ -290,9 +192,10 @@ int run(int argc, char** argv) {
     NrrdReadLimits limits;
     limits.allow_non_finite = allow_nonfinite;
     if (eval->parsed())
-      return precision == "float"
-                 ? run_eval<float>(filter, pre, volume, points_path, gradient, hessian, limits)
-                 : run_eval<double>(filter, pre, volume, points_path, gradient, hessian, limits);
+      return precision == "float" ? boxgen::app::run_eval<float>(filter, pre, volume, points_path,
+                                                                 gradient, hessian, limits)
+                                  : boxgen::app::run_eval<double>(filter, pre, volume, points_path,
+                                                                  gradient, hessian, limits);
     if (render->parsed()) return boxgen::recon::run_render();
     if (error->parsed() && table)
       return boxgen::recon::run_error_table(count, boxgen::app::parse_seed(seed), json);
@@ -302,13 +205,14 @@ int run(int argc, char** argv) {
       return 2;
     }
     if (error->parsed())
-      return run_error(function, n, filter, lattice, pre, count, boxgen::app::parse_seed(seed),
-                       gradient, json);
+      return boxgen::app::run_error(function, n, filter, lattice, pre, count,
+                                    boxgen::app::parse_seed(seed), gradient, json);
     if (resample->parsed())
-      return precision == "float" ? run_resample<float>(filter, pre, volume, output, resample_n,
-                                                        box_min, box_max, limits)
-                                  : run_resample<double>(filter, pre, volume, output, resample_n,
-                                                         box_min, box_max, limits);
+      return precision == "float"
+                 ? boxgen::app::run_resample<float>(filter, pre, volume, output, resample_n,
+                                                    box_min, box_max, limits)
+                 : boxgen::app::run_resample<double>(filter, pre, volume, output, resample_n,
+                                                     box_min, box_max, limits);
   } catch (const std::exception& e) {
     if (boxgen::app::is_output_error(e)) return boxgen::app::report_output_error(e, "boxrecon");
     const int code = exit_code_for(e);

@@ -7,8 +7,6 @@
 #include <stdexcept>
 
 #include "apps/boxrecon/input_checks.h"
-#include "runtime/lattice_filters.h"
-#include "runtime/lattice_reconstruction.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
@@ -24,8 +22,8 @@ constexpr int kSampleMargin = 3;
 int sample_margin(const runtime::CosetLattice& lattice) {
   using runtime::PrefilterChoice;
   int margin = kSampleMargin;
-  for (int i = 0; i < runtime::RegistryFilter::count(); ++i) {
-    const runtime::RegistryFilter f = runtime::RegistryFilter::at(i);
+  for (int i = 0; i < runtime::SplineFilter::count(); ++i) {
+    const runtime::SplineFilter f = runtime::SplineFilter::at(i);
     if (runtime::same_points(f.lattice(), lattice))
       margin = std::max(
           {margin, f.required_margin(PrefilterChoice::Q1), f.required_margin(PrefilterChoice::Q2)});
@@ -41,7 +39,7 @@ void sample_and_write(const runtime::TestFunction& fn, const runtime::LatticeGri
 
 }  // namespace
 
-runtime::CosetLattice lattice_for(const runtime::RegistryFilter& f, const std::string& lattice) {
+runtime::CosetLattice lattice_for(const runtime::SplineFilter& f, const std::string& lattice) {
   if (lattice.empty()) return f.lattice();
   const runtime::CosetLattice given = runtime::CosetLattice::parse(lattice);
   if (!runtime::same_points(f.lattice(), given))
@@ -54,8 +52,8 @@ int run_sample(const std::string& function, int n, const std::optional<double>& 
                const std::string& lattice_text, const std::string& filter,
                const std::string& precision, const std::string& output) {
   const runtime::TestFunction& fn = runtime::find_test_function(function);
-  std::optional<runtime::RegistryFilter> f;
-  if (!filter.empty()) f = runtime::RegistryFilter::parse(filter);
+  std::optional<runtime::SplineFilter> f;
+  if (!filter.empty()) f = runtime::SplineFilter::parse(filter);
   const runtime::CosetLattice lattice =
       f ? lattice_for(*f, lattice_text)
         : (lattice_text.empty() ? runtime::CosetLattice::bcc()

@@ -1,17 +1,17 @@
 // boxrecon sample: a test function sampled on any lattice (runtime/lattice_volume.h) over
-// [-1,1]^3, written as a lattice NRRD. On BCC the file is the one write_bcc_nrrd writes.
+// [-1,1]^3, written as a lattice NRRD.
 #pragma once
 #include <optional>
 #include <string>
 
-#include "runtime/lattice_filters.h"
+#include "runtime/spline_filter.h"
 
 namespace boxgen::app {
 
 // The lattice `--lattice` names (bcc | fcc | cartesian | rows of G), which must hold the same
 // points as the filter's own lattice; empty: the filter's. Throws std::invalid_argument (one line)
 // for a lattice that is not the filter's: error and render sample on the filter's lattice only.
-runtime::CosetLattice lattice_for(const runtime::RegistryFilter& f, const std::string& lattice);
+runtime::CosetLattice lattice_for(const runtime::SplineFilter& f, const std::string& lattice);
 
 // --function, --n, --h, --lattice (bcc | fcc | cartesian | "a,b,c; d,e,f; g,h,i"; empty: the
 // filter's lattice, else bcc), --filter (a registry filter, or empty: with --lattice, its lattice

@@ -9,15 +9,17 @@
 #include "runtime/render.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
+#include "tests/support/bcc_volumes.h"
 
 namespace boxgen::runtime {
 namespace {
 
 struct Scene {
-  BccVolume<double> volume =
-      prefilter(sample_cube<double>(gaussian, 33, required_margin(Filter::M7, PrefilterChoice::Q1)),
-                prefilter_taps(Filter::M7, PrefilterChoice::Q1));
-  Reconstructor<double> spline{volume, Filter::M7};
+  LatticeVolume<double> volume =
+      prefilter(test::sample_bcc_cube<double>(
+                    gaussian, 33, SplineFilter::parse("m7").required_margin(PrefilterChoice::Q1)),
+                SplineFilter::parse("m7").prefilter(PrefilterChoice::Q1));
+  Reconstructor<double> spline{volume, SplineFilter::parse("m7")};
   Box box{{-1, -1, -1}, {1, 1, 1}};
   double radius = kGaussianWidth * std::sqrt(2 * std::log(2.0));
 };
@@ -82,13 +84,15 @@ TEST(Render, ImageHasTheRequestedSizeAndBadOptionsAreRefused) {
   RenderOptions o;
   o.width = 24;
   o.height = 16;
-  const RgbBuffer img = render_isosurface(s.volume, Filter::M7, s.box, o);
+  const RgbBuffer img = render_isosurface(s.volume, SplineFilter::parse("m7"), s.box, o);
   EXPECT_EQ(img.pixels.size(), 24u * 16u * 3u);
   o.width = 0;
-  EXPECT_THROW(render_isosurface(s.volume, Filter::M7, s.box, o), std::invalid_argument);
+  EXPECT_THROW(render_isosurface(s.volume, SplineFilter::parse("m7"), s.box, o),
+               std::invalid_argument);
   o.width = 8;
   o.iso = std::nan("");
-  EXPECT_THROW(render_isosurface(s.volume, Filter::M7, s.box, o), std::invalid_argument);
+  EXPECT_THROW(render_isosurface(s.volume, SplineFilter::parse("m7"), s.box, o),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -406,7 +406,7 @@ TEST_F(BoxreconFiles, SampleOnEveryLattice) {
   ok({"sample", "--function", "cubic", "--n", "4", "--lattice", "fcc", "-o", file("fcc.nrrd")});
   write_bytes(file("p.txt"), "0 0 0\n");
   refused({"eval", "--filter", "m7", "--volume", file("fcc.nrrd"), "--points", file("p.txt")},
-          {"'fcc', not 'bcc'"});
+          {"filter m7 is for the bcc lattice, but the volume is on the fcc lattice"});
   // z = 0 mod 2 is the custom lattice above: its rows and offsets are in the file.
   EXPECT_EQ(field(read_bytes(file("v.nrrd")), "lattice_rows:="), "1,0,0; 0,1,0; 0,0,2");
   EXPECT_EQ(field(read_bytes(file("v.nrrd")), "coset_offsets:="),

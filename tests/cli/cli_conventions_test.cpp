@@ -1,6 +1,9 @@
 // Issue 11's conventions, as a new user meets them: --help says what a SPEC and --lattice list,
 // --estimate predicts without deriving, the checks modes, eval --json records the derivative,
 // and the prefilter summary names a shell only when all its taps carry the weight it claims.
+#include <algorithm>
+#include <array>
+#include <cstdio>
 #include <map>
 
 #include "cli_support.h"
@@ -36,6 +39,34 @@ TEST(CliConventions, EstimatePrintsPredictionWithoutDeriving) {
   const json ok = boxgen_json({"analyze", "zp", "--max-seconds", "1000", "--json"});
   EXPECT_EQ(ok["pieces"],
             21);  // ZP element: 21 polynomial pieces (de Boor, Hoellig, Riemenschneider)
+}
+
+TEST(CliConventions, PredictedMemoryBeyondMaxMemoryIsRefusedNamingBoth) {
+  const json e = boxgen_json({"analyze", "zp", "--estimate", "--json"});
+  std::array<char, 64> predicted{};  // as the message prints it: 3 significant digits
+  std::snprintf(predicted.data(), predicted.size(), "predicted %.3g MB",
+                e["estimated_bytes"].get<double>() / 1e6);
+  // Every command that derives shares the limit; 0.001 MB is below any prediction.
+  for (const char* command : {"analyze", "eval", "pieces", "bbform"}) {
+    std::vector<std::string> args{command, "zp", "--max-memory", "0.001"};
+    if (std::string(command) == "eval") args.insert(args.end(), {"--at", "0 0"});
+    const ProcessResult r = boxgen(args);
+    EXPECT_EQ(r.exit_code, 1) << describe(args, r);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(predicted.data()), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("0.001 MB of --max-memory"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  boxgen_ok({"analyze", "zp", "--max-memory", "100000"});
+}
+
+TEST(CliConventions, MaxMemoryMustBeAFinitePositiveNumber) {
+  for (const char* value : {"-5", "0", "nan", "", "inf", "lots"}) {
+    const std::vector<std::string> args{"analyze", "zp", "--max-memory", value};
+    const ProcessResult r = boxgen(args);
+    EXPECT_EQ(r.exit_code, 2) << describe(args, r);
+    EXPECT_NE(r.err.find("--max-memory"), std::string::npos) << r.err;
+  }
 }
 
 TEST(CliConventions, ChecksModeIsReported) {

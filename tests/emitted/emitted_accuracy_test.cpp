@@ -168,9 +168,11 @@ BOXGEN_EMITTED_TEST_ON(zp_tripled, "3,0; 0,3; 3,3; -3,3", "3,0; 0,3", 2)
 // and origin -S, so world point x is the generator's point x, exactly.
 template <class T>
 void check_batch(const Reference& ref, const std::vector<RatVec>& exact_points,
-                 const std::vector<Exact>& exact, runtime::Filter filter, double tolerance) {
+                 const std::vector<Exact>& exact, const runtime::SplineFilter& filter,
+                 double tolerance) {
   constexpr int kOffset = 10, kSize = 12;  // points |x| < 4, reach <= 4: inside [0, 2 kSize - 1]
-  runtime::BccVolume<T> volume({kSize, kSize, kSize}, 1.0, {-kOffset, -kOffset, -kOffset});
+  runtime::LatticeVolume<T> volume(runtime::CosetLattice::bcc(), {kSize, kSize, kSize}, 1.0,
+                                   {-kOffset, -kOffset, -kOffset});
   for (int c = 0; c < 2; ++c)
     for (int k = 0; k < kSize; ++k)
       for (int j = 0; j < kSize; ++j)
@@ -202,7 +204,7 @@ void check_batch(const Reference& ref, const std::vector<RatVec>& exact_points,
   EXPECT_LE(worst_hessian / kMaxV, 4 * tolerance) << type << " hessian";
 }
 
-void check_batch(const std::string& preset, runtime::Filter filter) {
+void check_batch(const std::string& preset, const runtime::SplineFilter& filter) {
   const Reference ref(preset);
   const std::vector<RatVec> points = test_points(ref, 1000);
   std::vector<Exact> exact;
@@ -211,9 +213,9 @@ void check_batch(const std::string& preset, runtime::Filter filter) {
   check_batch<float>(ref, points, exact, filter, 2e-6);
 }
 
-TEST(EmittedThroughBatch, M7) { check_batch("m7", runtime::Filter::M7); }
-TEST(EmittedThroughBatch, M8) { check_batch("m8", runtime::Filter::M8); }
-TEST(EmittedThroughBatch, M12) { check_batch("m12", runtime::Filter::M12); }
+TEST(EmittedThroughBatch, M7) { check_batch("m7", runtime::SplineFilter::parse("m7")); }
+TEST(EmittedThroughBatch, M8) { check_batch("m8", runtime::SplineFilter::parse("m8")); }
+TEST(EmittedThroughBatch, M12) { check_batch("m12", runtime::SplineFilter::parse("m12")); }
 
 }  // namespace
 }  // namespace boxgen::generator

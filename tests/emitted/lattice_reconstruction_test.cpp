@@ -27,10 +27,11 @@
 #include "generated/m7_prefilters.hpp"
 #include "generated/m8.hpp"
 #include "generated/m8_prefilters.hpp"
-#include "runtime/lattice_reconstruction.h"
+#include "runtime/emitted_filter.h"
 #include "runtime/reconstruction.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
+#include "tests/support/bcc_volumes.h"
 
 namespace boxgen::runtime {
 namespace {
@@ -64,7 +65,7 @@ void expect_reproduction(const char* expected_lattice, const Tap (&q1)[N], int d
   LatticeVolume<double> v =
       sample_lattice<double>(f, cube_lattice_grid(lattice, 9, margin_for<Tr>(lattice)));
   v = prefilter(v, prefilter_from(q1));
-  const LatticeReconstructor<Tr, double> r(v);
+  const Reconstructor<double> r(v, emitted_filter<Tr>());
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
   for (int i = 0; i < 300; ++i) {
@@ -95,7 +96,7 @@ TEST(LatticeReconstruction, GradientsOfAReproducedPolynomialAreExact) {
   LatticeVolume<double> v =
       sample_lattice<double>(quadratic_poly, cube_lattice_grid(lattice, 9, 6));
   v = prefilter(v, prefilter_from(gen::fcc6::q1));
-  const LatticeReconstructor<gen::fcc6::Traits, double> r(v);
+  const Reconstructor<double> r(v, emitted_filter<gen::fcc6::Traits>());
   for (const Vec3& p : {Vec3{0.1, 0.2, -0.3}, Vec3{-0.7, 0.4, 0.9}}) {
     Vec3 g{};
     std::array<double, 6> hessian{};
@@ -113,7 +114,7 @@ TEST(LatticeReconstruction, AFilterOnAVolumeOfAnotherLatticeIsOneError) {
   const LatticeVolume<double> fcc =
       sample_lattice<double>(cubic_poly, cube_lattice_grid(CosetLattice::fcc(), 5, 4));
   try {
-    const LatticeReconstructor<gen::m7::Traits, double> r(fcc);
+    const Reconstructor<double> r(fcc, emitted_filter<gen::m7::Traits>());
     ADD_FAILURE() << "no error";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(),
@@ -121,30 +122,32 @@ TEST(LatticeReconstruction, AFilterOnAVolumeOfAnotherLatticeIsOneError) {
   }
   const LatticeVolume<float> cart =
       sample_lattice<float>(cubic_poly, cube_lattice_grid(CosetLattice::cartesian(), 5, 4));
-  EXPECT_THROW((LatticeReconstructor<gen::fcc6::Traits, float>(cart)), std::invalid_argument);
+  EXPECT_THROW((Reconstructor<float>(cart, emitted_filter<gen::fcc6::Traits>())),
+               std::invalid_argument);
   // The same points with the cosets in another order are the same lattice.
   const LatticeVolume<double> moved = sample_lattice<double>(
       cubic_poly,
       cube_lattice_grid(
           CosetLattice::fcc().with_offsets({{0, 1, 1}, {0, 0, 0}, {1, 1, 0}, {1, 0, 1}}), 5, 4));
-  EXPECT_NO_THROW((LatticeReconstructor<gen::fcc6::Traits, double>(moved)));
+  EXPECT_NO_THROW((Reconstructor<double>(moved, emitted_filter<gen::fcc6::Traits>())));
   // Points whose stencil leaves the volume, and non-finite points.
-  const LatticeReconstructor<gen::fcc6::Traits, double> r(moved);
+  const Reconstructor<double> r(moved, emitted_filter<gen::fcc6::Traits>());
   EXPECT_THROW((void)r.value({5, 0, 0}), std::out_of_range);
   EXPECT_THROW((void)r.value({1e300, 0, 0}), std::out_of_range);
   EXPECT_THROW((void)r.value({NAN, 0, 0}), std::invalid_argument);
 }
 
-// On BCC the generic path gives what the registry's BCC Reconstructor (runtime/reconstruction.h)
-// gives, for every registry filter: two implementations of the fetch, one evaluator.
-TEST(LatticeReconstruction, OnBccItAgreesWithTheBccReconstructor) {
-  const BccVolume<double> bcc = sample_cube<double>(marschner_lobb, 11, 3);
-  BccVolume<double> copy = bcc;
-  const LatticeVolume<double> lattice = to_lattice_volume(std::move(copy));
-  const LatticeReconstructor<gen::m7::Traits, double> m7(lattice);
-  const LatticeReconstructor<gen::m8::Traits, double> m8(lattice);
-  const LatticeReconstructor<gen::m12::Traits, double> m12(lattice);
-  const Reconstructor<double> r7(bcc, Filter::M7), r8(bcc, Filter::M8), r12(bcc, Filter::M12);
+// On BCC the generic lattice tables (the cosets stored the other way round) give what BCC's parity
+// tables give, for every registry filter: two implementations of the fetch, one evaluator.
+TEST(LatticeReconstruction, OnBccItAgreesWithTheBccParityPath) {
+  const LatticeVolume<double> bcc = test::sample_bcc_cube<double>(marschner_lobb, 11, 3);
+  const LatticeVolume<double> lattice = test::swapped_cosets(bcc);
+  const Reconstructor<double> m7(lattice, emitted_filter<gen::m7::Traits>());
+  const Reconstructor<double> m8(lattice, emitted_filter<gen::m8::Traits>());
+  const Reconstructor<double> m12(lattice, emitted_filter<gen::m12::Traits>());
+  const Reconstructor<double> r7(bcc, SplineFilter::parse("m7"));
+  const Reconstructor<double> r8(bcc, SplineFilter::parse("m8"));
+  const Reconstructor<double> r12(bcc, SplineFilter::parse("m12"));
   std::mt19937_64 rng(8);
   std::uniform_real_distribution<double> u(-1, 1);
   for (int i = 0; i < 500; ++i) {
@@ -164,7 +167,7 @@ double ml_rms(int n, const Tap (*q)[N]) {
   LatticeVolume<double> v = sample_lattice<double>(
       marschner_lobb, cube_lattice_grid(lattice, n, margin_for<Tr>(lattice)));
   if (q) v = prefilter(v, prefilter_from(*q));
-  const LatticeReconstructor<Tr, double> r(v);
+  const Reconstructor<double> r(v, emitted_filter<Tr>());
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> u(-1, 1);
   double sum2 = 0;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "generator/error.h"
 #include "tests/generator/derivation_fixture.h"
 
@@ -20,6 +22,58 @@ TEST(CostEstimate, CountsTheKnotCellsExactly) {
     EXPECT_EQ(e.fundamental_cells, derivation_of(preset).structure.cells.size()) << preset;
     EXPECT_GT(e.seconds, 0) << preset;
     EXPECT_GT(e.bytes, 1e6) << preset;
+  }
+}
+
+// Tensor-product B-splines: the first k columns e1 (p times) and e2 (q times) have p * q unit
+// squares as cells, so every level of the directional integration is counted by hand.
+TEST(CostEstimate, CountsTheIntegrationLevelsOfATensorProduct) {
+  // basis_first: e1, e2, then e1, e1, e2, e2 -> prefixes (1,1), (2,1), (3,1), (3,2).
+  const BoxSplineSpec spec = parse_spec("1,0; 0,1; 1,0; 1,0; 0,1; 0,1", "cartesian");
+  bool exact = false;
+  EXPECT_EQ(integration_level_cells(spec, &exact), (std::vector<std::size_t>{1, 2, 3, 6}));
+  EXPECT_TRUE(exact);
+  // The box e1 x3, e2 x3, e3 x2: levels (1,1,1), (2,1,1), (3,1,1), (3,2,1), (3,3,1).
+  const BoxSplineSpec box = parse_spec("1,0,0; 0,1,0; 0,0,1; 1,0,0; 1,0,0; 0,1,0; 0,1,0; 0,0,1");
+  EXPECT_EQ(integration_level_cells(box), (std::vector<std::size_t>{1, 2, 3, 6, 9}));
+  // The whole estimate carries the same counts.
+  EXPECT_EQ(estimate_cost(spec).level_cells, (std::vector<std::size_t>{1, 2, 3, 6}));
+}
+
+// Counted by hand from Poly::along_direction and LevelIntegrator::jump: degree 1 in 2-D has the
+// monomials 1, x, y; along (1,0) they expand into 1 + 2 + 1 terms, along (1,1) into 1 + 2 + 2;
+// the jump's Horner runs over 3 terms G_e, each a product by an affine form (3 x 6 coefficients
+// of degree <= 2) and two sums of 3 coefficients: 3 x (18 + 6) = 72.
+TEST(CostEstimate, IntegrationWorkFollowsTheLoops) {
+  EXPECT_EQ(integration_work(2, 1, {1, 0}), 4 + 72);
+  EXPECT_EQ(integration_work(2, 1, {1, 1}), 5 + 72);
+  // Degree 0: one monomial; Horner over 2 terms of 4 x 4 + 2 x 1 in 3-D.
+  EXPECT_EQ(integration_work(3, 0, {1, 1, 1}), 1 + 2 * (4 * 4 + 2));
+}
+
+TEST(CostEstimate, RefusesBeyondTheMemoryNamingBothNumbers) {
+  CostEstimate e;
+  e.seconds = 1;
+  e.bytes = 5e9;
+  e.knot_cells = 99;
+  e.cells_exact = true;
+  try {
+    refuse_if_too_costly(e, 100, 1e9);
+    FAIL() << "not refused";
+  } catch (const InputError& err) {
+    const std::string what = err.what();
+    EXPECT_NE(what.find("5e+03 MB"), std::string::npos) << what;
+    EXPECT_NE(what.find("1e+03 MB of --max-memory"), std::string::npos) << what;
+  }
+  EXPECT_NO_THROW(refuse_if_too_costly(e, 100, 1e10));
+  // Without a limit the machine's available memory is the limit.
+  ASSERT_GT(available_memory_bytes(), 0);
+  e.bytes = available_memory_bytes() * 2;
+  try {
+    refuse_if_too_costly(e, 100);
+    FAIL() << "not refused";
+  } catch (const InputError& err) {
+    EXPECT_NE(std::string(err.what()).find("MemAvailable"), std::string::npos) << err.what();
   }
 }
 

@@ -1,5 +1,6 @@
-// BccVolume: storage order, lattice access, the border policy, world <-> lattice coordinates.
-#include "runtime/bcc_volume.h"
+// LatticeVolume on the BCC lattice: storage order, lattice access, the border policy, world <->
+// lattice coordinates.
+#include "runtime/lattice_volume.h"
 
 #include <gtest/gtest.h>
 
@@ -14,8 +15,8 @@ namespace {
 
 // Every sample gets a code that names its own (c, i, j, k).
 template <class T>
-BccVolume<T> coded_volume(Sizes sizes) {
-  BccVolume<T> v(sizes, 0.5, {1, 2, 3});
+LatticeVolume<T> coded_volume(Sizes sizes) {
+  LatticeVolume<T> v(CosetLattice::bcc(), sizes, 0.5, {1, 2, 3});
   for (int k = 0; k < sizes[2]; ++k)
     for (int j = 0; j < sizes[1]; ++j)
       for (int i = 0; i < sizes[0]; ++i)
@@ -33,8 +34,8 @@ std::string message_of(F&& f) {
   return {};
 }
 
-TEST(BccVolume, StorageOrderIsCosetFastestThenIJK) {
-  const BccVolume<double> v({3, 4, 5}, 0.5, {1, 2, 3});
+TEST(BccLatticeVolume, StorageOrderIsCosetFastestThenIJK) {
+  const LatticeVolume<double> v(CosetLattice::bcc(), {3, 4, 5}, 0.5, {1, 2, 3});
   EXPECT_EQ(v.sample_count(), 2u * 3 * 4 * 5);
   EXPECT_EQ(v.index(0, 0, 0, 0), 0u);
   EXPECT_EQ(v.index(1, 0, 0, 0), 1u);
@@ -45,7 +46,7 @@ TEST(BccVolume, StorageOrderIsCosetFastestThenIJK) {
   for (double x : v.samples()) EXPECT_EQ(x, 0.0);  // zero-filled
 }
 
-TEST(BccVolume, LatticeValueFindsTheRightSample) {
+TEST(BccLatticeVolume, LatticeValueFindsTheRightSample) {
   const auto v = coded_volume<float>({3, 4, 5});
   EXPECT_EQ(v.value(0, 0, 0), 0.0f);
   EXPECT_EQ(v.value(3, 5, 7), 1123.0f);  // odd: coset 1, i = 1, j = 2, k = 3
@@ -58,8 +59,8 @@ TEST(BccVolume, LatticeValueFindsTheRightSample) {
           EXPECT_EQ(v.value(2 * i + c, 2 * j + c, 2 * k + c), v.at(c, i, j, k));
 }
 
-TEST(BccVolume, ContainsExactlyTheStoredLatticePoints) {
-  const BccVolume<double> v({3, 4, 5}, 0.5, {1, 2, 3});
+TEST(BccLatticeVolume, ContainsExactlyTheStoredLatticePoints) {
+  const LatticeVolume<double> v(CosetLattice::bcc(), {3, 4, 5}, 0.5, {1, 2, 3});
   int inside = 0;
   for (int z = -3; z <= 12; ++z)
     for (int y = -3; y <= 10; ++y)
@@ -74,7 +75,7 @@ TEST(BccVolume, ContainsExactlyTheStoredLatticePoints) {
   EXPECT_EQ(inside, 2 * 3 * 4 * 5);
 }
 
-TEST(BccVolume, OutsidePointsThrowOrGiveTheOutsideValue) {
+TEST(BccLatticeVolume, OutsidePointsThrowOrGiveTheOutsideValue) {
   const auto v = coded_volume<double>({3, 4, 5});
   const LatticePoint outside[] = {{-1, -1, -1},
                                   {-2, 0, 0},
@@ -94,18 +95,18 @@ TEST(BccVolume, OutsidePointsThrowOrGiveTheOutsideValue) {
   EXPECT_EQ(v.value_or(5, 7, 9, -1.0), 1234.0);
 }
 
-TEST(BccVolume, MixedParityIsNotALatticePoint) {
+TEST(BccLatticeVolume, MixedParityIsNotALatticePoint) {
   const auto v = coded_volume<double>({3, 4, 5});
-  EXPECT_FALSE(BccVolume<double>::is_lattice_point(0, 1, 0));
-  EXPECT_FALSE(BccVolume<double>::is_lattice_point(-1, 0, 0));
-  EXPECT_TRUE(BccVolume<double>::is_lattice_point(-1, 1, -3));
+  EXPECT_FALSE(CosetLattice::bcc().contains(0, 1, 0));
+  EXPECT_FALSE(CosetLattice::bcc().contains(-1, 0, 0));
+  EXPECT_TRUE(CosetLattice::bcc().contains(-1, 1, -3));
   EXPECT_FALSE(v.contains(1, 0, 0));
   const std::string message = message_of([&] { (void)v.value(1, 2, 2); });
   EXPECT_NE(message.find("not a BCC lattice point"), std::string::npos) << message;
   EXPECT_EQ(v.value_or(1, 2, 2, 42.0), 42.0);
 }
 
-TEST(BccVolume, CheckedAtRejectsBadIndices) {
+TEST(BccLatticeVolume, CheckedAtRejectsBadIndices) {
   auto v = coded_volume<double>({3, 4, 5});
   EXPECT_EQ(v.at(1, 2, 3, 4), 1234.0);
   v.at(0, 1, 1, 1) = 5;
@@ -118,8 +119,8 @@ TEST(BccVolume, CheckedAtRejectsBadIndices) {
   EXPECT_THROW((void)v.at(0, 0, 0, -1), std::out_of_range);
 }
 
-TEST(BccVolume, ContainsBoxAgreesWithEveryPointOfTheBox) {
-  const BccVolume<double> v({2, 3, 2}, 1, {0, 0, 0});
+TEST(BccLatticeVolume, ContainsBoxAgreesWithEveryPointOfTheBox) {
+  const LatticeVolume<double> v(CosetLattice::bcc(), {2, 3, 2}, 1, {0, 0, 0});
   int checked = 0;
   for (int lo = -2; lo <= 3; ++lo)
     for (int hi = lo; hi <= 7; ++hi)
@@ -131,7 +132,7 @@ TEST(BccVolume, ContainsBoxAgreesWithEveryPointOfTheBox) {
         for (std::int64_t z = a[2]; z <= b[2]; ++z)
           for (std::int64_t y = a[1]; y <= b[1]; ++y)
             for (std::int64_t x = a[0]; x <= b[0]; ++x)
-              if (BccVolume<double>::is_lattice_point(x, y, z) && !v.contains(x, y, z)) all = false;
+              if (CosetLattice::bcc().contains(x, y, z) && !v.contains(x, y, z)) all = false;
         EXPECT_EQ(v.contains_box(a, b), all) << "axis " << axis << " [" << lo << ", " << hi << "]";
         ++checked;
       }
@@ -139,8 +140,8 @@ TEST(BccVolume, ContainsBoxAgreesWithEveryPointOfTheBox) {
   EXPECT_TRUE(v.contains_box({3, 0, 0}, {2, 0, 0}));  // empty
 }
 
-TEST(BccVolume, WorldAndLatticeCoordinates) {
-  const BccVolume<double> v({3, 4, 5}, 0.5, {1, 2, 3});
+TEST(BccLatticeVolume, WorldAndLatticeCoordinates) {
+  const LatticeVolume<double> v(CosetLattice::bcc(), {3, 4, 5}, 0.5, {1, 2, 3});
   const Vec3 p = v.sample_position(1, 1, 2, 3);  // o + h (3, 5, 7)
   EXPECT_EQ(p, (Vec3{2.5, 4.5, 6.5}));
   EXPECT_EQ(v.to_lattice(p), (Vec3{3, 5, 7}));
@@ -150,24 +151,34 @@ TEST(BccVolume, WorldAndLatticeCoordinates) {
   for (int a = 0; a < 3; ++a) EXPECT_NEAR(back[a], q[a], 1e-15 * (1 + std::fabs(q[a])));
 }
 
-TEST(BccVolume, InvalidGeometryIsRejected) {
-  EXPECT_THROW(BccVolume<double>({0, 1, 1}, 1, {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(BccVolume<double>({1, -1, 1}, 1, {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(BccVolume<double>({1, 1, BccVolume<double>::kMaxSize + 1}, 1, {0, 0, 0}),
+TEST(BccLatticeVolume, InvalidGeometryIsRejected) {
+  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {0, 1, 1}, 1, {0, 0, 0}),
                std::invalid_argument);
-  EXPECT_THROW(BccVolume<double>({1 << 20, 1 << 20, 1 << 20}, 1, {0, 0, 0}),
-               std::invalid_argument);  // 2^61 samples
-  EXPECT_THROW(BccVolume<double>({1, 1, 1}, 0, {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(BccVolume<double>({1, 1, 1}, -1, {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(BccVolume<double>({1, 1, 1}, std::nan(""), {0, 0, 0}), std::invalid_argument);
-  EXPECT_THROW(BccVolume<float>({1, 1, 1}, 1, {0, std::numeric_limits<double>::infinity(), 0}),
+  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {1, -1, 1}, 1, {0, 0, 0}),
                std::invalid_argument);
-  const std::string message = message_of([] { BccVolume<double>({0, 1, 1}, 1, {0, 0, 0}); });
+  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(),
+                                     {1, 1, LatticeVolume<double>::kMaxSize + 1}, 1, {0, 0, 0}),
+               std::invalid_argument);
+  EXPECT_THROW(
+      LatticeVolume<double>(CosetLattice::bcc(), {1 << 20, 1 << 20, 1 << 20}, 1, {0, 0, 0}),
+      std::invalid_argument);  // 2^61 samples
+  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {1, 1, 1}, 0, {0, 0, 0}),
+               std::invalid_argument);
+  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {1, 1, 1}, -1, {0, 0, 0}),
+               std::invalid_argument);
+  EXPECT_THROW(LatticeVolume<double>(CosetLattice::bcc(), {1, 1, 1}, std::nan(""), {0, 0, 0}),
+               std::invalid_argument);
+  EXPECT_THROW(LatticeVolume<float>(CosetLattice::bcc(), {1, 1, 1}, 1,
+                                    {0, std::numeric_limits<double>::infinity(), 0}),
+               std::invalid_argument);
+  const std::string message = message_of([] {
+    LatticeVolume<double>(CosetLattice::bcc(), {0, 1, 1}, 1, {0, 0, 0});
+  });
   EXPECT_EQ(message.find('\n'), std::string::npos);
   EXPECT_FALSE(message.empty());
 }
 
-TEST(BccVolume, ToSampleOverflowsToInfinityForFloat) {
+TEST(BccLatticeVolume, ToSampleOverflowsToInfinityForFloat) {
   EXPECT_EQ(to_sample<float>(1e300), std::numeric_limits<float>::infinity());
   EXPECT_EQ(to_sample<float>(-1e300), -std::numeric_limits<float>::infinity());
   EXPECT_EQ(to_sample<float>(1.5), 1.5f);

@@ -1,6 +1,6 @@
 // Every filter of generated/registry.hpp through the runtime on its own lattice
-// (runtime/lattice_filters.h). Each test loops over the registry, so a filter added there is
-// covered without a change here.
+// (runtime/spline_filter.h, reconstruction.h, resample.h). Each test loops over the registry, so a
+// filter added there is covered without a change here.
 //
 // Oracle: quasi-interpolation with Q^I (and Q^II) of a filter of approximation order k reproduces
 // every polynomial of degree < k, with its derivatives. The polynomial (every monomial of degree
@@ -14,11 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "runtime/lattice_filters.h"
-#include "runtime/lattice_reconstruction.h"
+#include "runtime/prefilter.h"
 #include "runtime/reconstruction.h"
+#include "runtime/resample.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
+#include "tests/support/bcc_volumes.h"
 
 namespace boxgen::runtime {
 namespace {
@@ -50,17 +51,17 @@ struct Polynomial {
   }
 };
 
-std::vector<RegistryFilter> registry() {
-  std::vector<RegistryFilter> out;
-  for (int i = 0; i < RegistryFilter::count(); ++i) out.push_back(RegistryFilter::at(i));
+std::vector<SplineFilter> registry() {
+  std::vector<SplineFilter> out;
+  for (int i = 0; i < SplineFilter::count(); ++i) out.push_back(SplineFilter::at(i));
   return out;
 }
 
-TEST(RegistryFilters, HoldTheIssuesFiltersOnTheirLattices) {
+TEST(SplineFilters, HoldTheIssuesFiltersOnTheirLattices) {
   std::set<std::string> seen;
-  for (const RegistryFilter& f : registry()) {
+  for (const SplineFilter& f : registry()) {
     seen.insert(f.name());
-    EXPECT_EQ(RegistryFilter::parse(f.name()).index(), f.index());
+    EXPECT_EQ(SplineFilter::parse(f.name()).registry_index(), f.registry_index());
   }
   const std::pair<const char*, const char*> expected[] = {{"m7", "bcc"},
                                                           {"m8", "bcc"},
@@ -71,21 +72,14 @@ TEST(RegistryFilters, HoldTheIssuesFiltersOnTheirLattices) {
   for (const auto& [name, lattice] : expected) {
     SCOPED_TRACE(name);
     ASSERT_TRUE(seen.count(name));
-    EXPECT_EQ(RegistryFilter::parse(name).lattice().name(), lattice);
+    EXPECT_EQ(SplineFilter::parse(name).lattice().name(), lattice);
   }
-  // The BCC Reconstructor's filters are the registry's m7, m8 and m12.
-  for (const Filter f : {Filter::M7, Filter::M8, Filter::M12}) {
-    const RegistryFilter r = RegistryFilter::parse(filter_name(f));
-    EXPECT_TRUE(r.has_bcc_filter());
-    EXPECT_EQ(r.bcc_filter(), f);
-  }
-  EXPECT_FALSE(RegistryFilter::parse("fcc6").has_bcc_filter());
   try {
-    (void)RegistryFilter::parse("m9");
+    (void)SplineFilter::parse("m9");
     ADD_FAILURE() << "no error";
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), "unknown filter 'm9': expected " + RegistryFilter::names());
-    EXPECT_NE(RegistryFilter::names().find("fcc6"), std::string::npos);
+    EXPECT_EQ(std::string(e.what()), "unknown filter 'm9': expected " + SplineFilter::names());
+    EXPECT_NE(SplineFilter::names().find("fcc6"), std::string::npos);
   }
 }
 
@@ -93,8 +87,8 @@ TEST(RegistryFilters, HoldTheIssuesFiltersOnTheirLattices) {
 // the filter's lattice (the margin required_margin gives), prefiltered with q1 and with q2, give
 // back the polynomial to 1e-11 and its gradient to 1e-9, at random points and at the cube's
 // corners and faces (which required_margin must cover).
-TEST(RegistryFilters, PrefilteredReconstructionReproducesPolynomialsBelowTheOrder) {
-  for (const RegistryFilter& f : registry()) {
+TEST(SplineFilters, PrefilteredReconstructionReproducesPolynomialsBelowTheOrder) {
+  for (const SplineFilter& f : registry()) {
     SCOPED_TRACE(f.name());
     const int order = f.approximation_order();
     ASSERT_GE(order, 3) << "every registry filter reproduces at least quadratics";
@@ -104,7 +98,7 @@ TEST(RegistryFilters, PrefilteredReconstructionReproducesPolynomialsBelowTheOrde
       LatticeVolume<double> v =
           sample_lattice<double>(fn, cube_lattice_grid(f.lattice(), 6, f.required_margin(q)));
       v = prefilter(v, f.prefilter(q));
-      const RegistryReconstructor<double> r(v, f);
+      const Reconstructor<double> r(v, f);
       std::vector<Vec3> points;
       std::mt19937_64 rng(5);
       std::uniform_real_distribution<double> u(-1, 1);
@@ -125,17 +119,17 @@ TEST(RegistryFilters, PrefilteredReconstructionReproducesPolynomialsBelowTheOrde
   }
 }
 
-TEST(RegistryFilters, AVolumeOfAnotherLatticeIsOneLine) {
+TEST(SplineFilters, AVolumeOfAnotherLatticeIsOneLine) {
   const CosetLattice lattices[] = {CosetLattice::bcc(), CosetLattice::fcc(),
                                    CosetLattice::cartesian(),
                                    CosetLattice::parse("1,0,0; 0,1,0; 0,0,2")};
-  for (const RegistryFilter& f : registry())
+  for (const SplineFilter& f : registry())
     for (const CosetLattice& l : lattices) {
       if (same_points(f.lattice(), l)) continue;
       SCOPED_TRACE(std::string(f.name()) + " on " + l.name());
       const LatticeVolume<float> v(l, {8, 8, 8}, 0.25, {0, 0, 0});
       try {
-        const RegistryReconstructor<float> r(v, f);
+        const Reconstructor<float> r(v, f);
         ADD_FAILURE() << "no error";
       } catch (const std::invalid_argument& e) {
         EXPECT_EQ(std::string(e.what()),
@@ -146,35 +140,40 @@ TEST(RegistryFilters, AVolumeOfAnotherLatticeIsOneLine) {
     }
 }
 
-// The registry path and the BCC Reconstructor: two fetch implementations, one evaluator.
-TEST(RegistryFilters, OnBccTheyAgreeWithTheBccReconstructor) {
-  const BccVolume<double> bcc = sample_cube<double>(marschner_lobb, 9, 3);
-  BccVolume<double> copy = bcc;
-  const LatticeVolume<double> lattice = to_lattice_volume(std::move(copy));
-  for (const RegistryFilter& f : registry()) {
-    if (!f.has_bcc_filter()) continue;
+// On BCC two fetch implementations, one evaluator: BCC's parity tables (the offsets (0,0,0)
+// (1,1,1)) and the general lattice tables (the same samples stored with the cosets swapped).
+TEST(SplineFilters, OnBccTheParityPathAgreesWithTheLatticePath) {
+  const CosetLattice bcc = CosetLattice::bcc();
+  const LatticeVolume<double> parity =
+      sample_lattice<double>(marschner_lobb, cube_lattice_grid(bcc, 9, 3));
+  const LatticeVolume<double> swapped = test::swapped_cosets(parity);
+  for (const SplineFilter& f : registry()) {
+    if (!(f.lattice() == bcc)) continue;
     SCOPED_TRACE(f.name());
-    const RegistryReconstructor<double> general(lattice, f);
-    const Reconstructor<double> special(bcc, f.bcc_filter());
+    const Reconstructor<double> general(swapped, f);
+    const Reconstructor<double> special(parity, f);
     std::mt19937_64 rng(2);
     std::uniform_real_distribution<double> u(-1, 1);
-    for (int i = 0; i < 100; ++i) {
-      const Vec3 p{u(rng), u(rng), u(rng)};
+    std::vector<Vec3> points(100);
+    for (Vec3& p : points) p = {u(rng), u(rng), u(rng)};
+    for (const Vec3& p : points) {
       Vec3 g{}, g_bcc{};
       Hessian h{}, h_bcc{};
       EXPECT_NEAR(general.value(p, &g, &h), special.value_gradient_hessian(p, g_bcc, h_bcc), 1e-14);
       for (int a = 0; a < 3; ++a) EXPECT_NEAR(g[a], g_bcc[a], 1e-11);
       for (int a = 0; a < 6; ++a) EXPECT_NEAR(h[a], h_bcc[a], 1e-8);
     }
-    EXPECT_EQ(f.required_margin(PrefilterChoice::Q2),
-              required_margin(f.bcc_filter(), PrefilterChoice::Q2));
+    std::vector<double> batch(points.size()), batch_bcc(points.size());
+    general.evaluate(points, batch);
+    special.evaluate(points, batch_bcc);
+    for (std::size_t i = 0; i < points.size(); ++i) EXPECT_EQ(batch[i], batch_bcc[i]);
   }
 }
 
 // Resampling: the default box evaluates everywhere (and one grid step more does not), and each
 // grid value is the spline's value at the grid point.
-TEST(RegistryFilters, ResampleGivesTheSplineOnTheDefaultBox) {
-  for (const RegistryFilter& f : registry()) {
+TEST(SplineFilters, ResampleGivesTheSplineOnTheDefaultBox) {
+  for (const SplineFilter& f : registry()) {
     SCOPED_TRACE(f.name());
     const LatticeVolume<double> v = sample_lattice<double>(
         marschner_lobb,
@@ -182,7 +181,7 @@ TEST(RegistryFilters, ResampleGivesTheSplineOnTheDefaultBox) {
     const Box box = default_box(v, f);
     const CartesianGrid grid = grid_over(box, {4, 5, 3});
     const CartesianVolume<double> out = resample(v, f, grid);
-    const RegistryReconstructor<double> r(v, f);
+    const Reconstructor<double> r(v, f);
     for (int k = 0; k < 3; ++k)
       for (int j = 0; j < 5; ++j)
         for (int i = 0; i < 4; ++i)

@@ -16,7 +16,9 @@
 
 #include "runtime/nrrd_io.h"
 #include "runtime/prefilter.h"
+#include "runtime/reconstruction.h"
 #include "runtime/sampling.h"
+#include "tests/support/bcc_volumes.h"
 #include "tests/support/scratch_directory.h"
 
 namespace boxgen::runtime {
@@ -217,43 +219,27 @@ TEST(LatticeVolume, StorageAndLatticeAccessAgree) {
       std::invalid_argument);
 }
 
-TEST(LatticeVolume, BccVolumesConvertWithoutChange) {
-  BccVolume<float> bcc({3, 2, 2}, 0.25, {1, 2, 3});
-  for (std::size_t s = 0; s < bcc.sample_count(); ++s)
-    bcc.samples()[s] = static_cast<float>(s) * 0.5f;
-  const BccVolume<float> copy = bcc;
-  LatticeVolume<float> l = to_lattice_volume(std::move(bcc));
-  EXPECT_EQ(l.lattice(), CosetLattice::bcc());
-  for (std::int64_t x = 0; x < 6; ++x)
-    for (std::int64_t y = 0; y < 4; ++y)
-      for (std::int64_t z = 0; z < 4; ++z) {
-        ASSERT_EQ(l.contains(x, y, z), copy.contains(x, y, z));
-        if (copy.contains(x, y, z)) {
-          EXPECT_EQ(l.value(x, y, z), copy.value(x, y, z));
-        }
-      }
-  const BccVolume<float> back = to_bcc_volume(std::move(l));
-  EXPECT_TRUE(std::equal(back.samples().begin(), back.samples().end(), copy.samples().begin(),
-                         copy.samples().end()));
-  EXPECT_EQ(back.origin(), copy.origin());
-  EXPECT_THROW(
-      (void)to_bcc_volume(LatticeVolume<float>(CosetLattice::fcc(), {1, 1, 1}, 1, {0, 0, 0})),
-      std::invalid_argument);
-}
-
 // ---------------------------------------------------------------------------------------------
 // Sampling
 
 double smooth(const Vec3& p) { return std::sin(p[0]) + p[1] * p[1] - 0.5 * p[2] + p[0] * p[2]; }
 
-TEST(LatticeSampling, OnBccItIsTheBccSamplingBitForBit) {
+// On BCC the grid is docs/design.md §13's: h = 1/(N-1), origin -1 - 2 h m, sample (c, i, j, k) at
+// o + h (2i + c, 2j + c, 2k + c), every value f there exactly.
+TEST(LatticeSampling, OnBccItIsTheDesignsGridBitForBit) {
   const LatticeVolume<double> l =
       sample_lattice<double>(smooth, cube_lattice_grid(CosetLattice::bcc(), 7, 2));
-  const BccVolume<double> b = sample_cube<double>(smooth, 7, 2);
-  EXPECT_EQ(l.sizes(), b.sizes());
-  EXPECT_EQ(l.spacing(), b.spacing());
-  EXPECT_EQ(l.origin(), b.origin());
-  EXPECT_EQ(std::memcmp(l.samples().data(), b.samples().data(), b.samples().size_bytes()), 0);
+  const double h = 1.0 / 6;
+  EXPECT_EQ(l.sizes(), (Sizes{11, 11, 11}));
+  EXPECT_EQ(l.spacing(), h);
+  EXPECT_EQ(l.origin(), (Vec3{-1 - 2 * h * 2, -1 - 2 * h * 2, -1 - 2 * h * 2}));
+  const double o = -1 - 2 * h * 2;
+  for (int k = 0; k < 11; ++k)
+    for (int j = 0; j < 11; ++j)
+      for (int i = 0; i < 11; ++i)
+        for (int c = 0; c < 2; ++c)
+          ASSERT_EQ(l(c, i, j, k),
+                    smooth({o + h * (2 * i + c), o + h * (2 * j + c), o + h * (2 * k + c)}));
 }
 
 TEST(LatticeSampling, EverySampleIsTheFunctionAtItsLatticePoint) {
@@ -285,21 +271,28 @@ TEST(LatticeSampling, EverySampleIsTheFunctionAtItsLatticePoint) {
 // ---------------------------------------------------------------------------------------------
 // Prefiltering
 
+// On BCC the result loses ceil(max o_a / 2) coset cells below and ceil(-min o_a / 2) above, and
+// each sample is the taps' sum in double, in the taps' order, of the input read through value().
 TEST(LatticePrefilter, OnBccItIsTheBccPrefilterBitForBit) {
-  const BccVolume<double> b = sample_cube<double>(smooth, 6, 2);
+  const LatticeVolume<double> b = test::sample_bcc_cube<double>(smooth, 6, 2);
   const DiscreteFilter q = {{{0, 0, 0}, 2.0},
                             {{1, 1, 1}, -0.125},
                             {{-1, 1, -1}, -0.125},
                             {{2, 0, 0}, 0.0625},
                             {{0, -2, 0}, 0.25}};
-  const BccVolume<double> expected = prefilter(b, q);
-  BccVolume<double> copy = b;
-  const LatticeVolume<double> got = prefilter(to_lattice_volume(std::move(copy)), q);
-  EXPECT_EQ(got.sizes(), expected.sizes());
-  EXPECT_EQ(got.origin(), expected.origin());
-  EXPECT_EQ(
-      std::memcmp(got.samples().data(), expected.samples().data(), expected.samples().size_bytes()),
-      0);
+  const LatticeVolume<double> got = prefilter(b, q);
+  // x: offsets up to 2 and down to -1, y: 1 and -2, z: 1 and -1: one cell each side.
+  EXPECT_EQ(got.sizes(), (Sizes{b.sizes()[0] - 2, b.sizes()[1] - 2, b.sizes()[2] - 2}));
+  for (int a = 0; a < 3; ++a) EXPECT_EQ(got.origin()[a], b.origin()[a] + 2 * b.spacing());
+  for (int k = 0; k < got.sizes()[2]; ++k)
+    for (int j = 0; j < got.sizes()[1]; ++j)
+      for (int i = 0; i < got.sizes()[0]; ++i)
+        for (int c = 0; c < 2; ++c) {
+          const LatticePoint x = b.lattice_point(c, i + 1, j + 1, k + 1);
+          double sum = 0;
+          for (const auto& [o, w] : q) sum += w * b.value(x[0] - o[0], x[1] - o[1], x[2] - o[2]);
+          ASSERT_EQ(got(c, i, j, k), sum);
+        }
 }
 
 TEST(LatticePrefilter, IsTheConvolutionOnEveryLattice) {
@@ -427,25 +420,33 @@ TEST_F(LatticeNrrd, RoundTripsOnEveryLattice) {
 }
 
 TEST_F(LatticeNrrd, BccFilesAreLatticeFilesAndBack) {
-  BccVolume<double> b({2, 3, 2}, 0.125, {1, 2, 3});
+  LatticeVolume<double> b(CosetLattice::bcc(), {2, 3, 2}, 0.125, {1, 2, 3});
   for (std::size_t s = 0; s < b.sample_count(); ++s)
     b.samples()[s] = std::sqrt(static_cast<double>(s) + 0.5);
-  write_bcc_nrrd(file("b.nrrd"), b);
+  write_lattice_nrrd(file("b.nrrd"), b);
   const LatticeVolume<double> l = read_lattice_nrrd<double>(file("b.nrrd"));
-  BccVolume<double> copy = b;
-  expect_identical(l, to_lattice_volume(std::move(copy)));
+  expect_identical(l, b);
   write_lattice_nrrd(file("l.nrrd"), l);
-  const BccVolume<double> again = read_bcc_nrrd<double>(file("l.nrrd"));
+  const LatticeVolume<double> again = read_lattice_nrrd<double>(file("l.nrrd"));
   EXPECT_EQ(std::memcmp(again.samples().data(), b.samples().data(), b.samples().size_bytes()), 0);
-  // A BCC file written by the BCC writer and by the lattice writer are the same bytes.
+  // Written again, the same bytes; a BCC file is the layout of nrrd_io.h (no coset_offsets key
+  // for the offsets (0,0,0) (1,1,1)).
   std::ifstream x(file("b.nrrd"), std::ios::binary), y(file("l.nrrd"), std::ios::binary);
   std::stringstream bx, by;
   bx << x.rdbuf();
   by << y.rdbuf();
   EXPECT_EQ(bx.str(), by.str());
-  // An FCC file is no BCC volume.
+  const std::string header = bx.str().substr(0, bx.str().find("\n\n") + 1);
+  for (const char* field : {"dimension: 4\n", "sizes: 2 2 3 2\n",
+                            "space directions: none (0.25,0,0) (0,0.25,0) (0,0,0.25)\n",
+                            "space origin: (1,2,3)\n", "lattice:=bcc\n"})
+    EXPECT_NE(header.find(field), std::string::npos) << field << " in " << header;
+  EXPECT_EQ(header.find("coset_offsets"), std::string::npos) << header;
+  // An FCC file is no BCC volume: no BCC filter takes it.
   write_lattice_nrrd(file("fcc.nrrd"), random_volume<double>(CosetLattice::fcc(), {2, 2, 2}, 9));
-  EXPECT_THROW((void)read_bcc_nrrd<double>(file("fcc.nrrd")), NrrdError);
+  const LatticeVolume<double> fcc = read_lattice_nrrd<double>(file("fcc.nrrd"));
+  EXPECT_EQ(fcc.lattice(), CosetLattice::fcc());
+  EXPECT_THROW(Reconstructor<double>(fcc, SplineFilter::parse("m7")), std::invalid_argument);
 }
 
 TEST_F(LatticeNrrd, APlain3dNrrdIsACartesianVolume) {

@@ -18,8 +18,8 @@ double lattice_function(std::int64_t x, std::int64_t y, std::int64_t z) {
 }
 
 template <class T>
-BccVolume<T> lattice_volume(Sizes sizes, double h = 1, Vec3 origin = {0, 0, 0}) {
-  BccVolume<T> v(sizes, h, origin);
+LatticeVolume<T> lattice_volume(Sizes sizes, double h = 1, Vec3 origin = {0, 0, 0}) {
+  LatticeVolume<T> v(CosetLattice::bcc(), sizes, h, origin);
   for (int k = 0; k < sizes[2]; ++k)
     for (int j = 0; j < sizes[1]; ++j)
       for (int i = 0; i < sizes[0]; ++i)
@@ -35,11 +35,11 @@ const DiscreteFilter kFilter = {
 TEST(BccPrefilter, ShrinkFollowsTheOffsets) {
   // Axis x: offsets 0, 1, -1, 2: lower ceil(2/2) = 1, upper ceil(1/2) = 1. Axis y: 0, 1, -1, 0:
   // 1 and 1. Axis z: 0, 1, 1, 0: lower 1, upper 0.
-  const PrefilterShrink s = prefilter_shrink(kFilter);
+  const PrefilterShrink s = prefilter_shrink(kFilter, CosetLattice::bcc());
   EXPECT_EQ(s.lower, (Sizes{1, 1, 1}));
   EXPECT_EQ(s.upper, (Sizes{1, 1, 0}));
-  EXPECT_EQ(prefilter_margin(kFilter), 1);
-  EXPECT_EQ(prefilter_margin({{{0, 0, 0}, 1.0}}), 0);
+  EXPECT_EQ(prefilter_margin(kFilter, CosetLattice::bcc()), 1);
+  EXPECT_EQ(prefilter_margin({{{0, 0, 0}, 1.0}}, CosetLattice::bcc()), 0);
   // Taps on the shells S1 and S2 (max-norm 2), the support of Q^I and Q^II: one cell.
   DiscreteFilter shells{{{0, 0, 0}, 1.0}};
   for (int sx : {-1, 1})
@@ -51,8 +51,8 @@ TEST(BccPrefilter, ShrinkFollowsTheOffsets) {
       o[a] = s2;
       shells.push_back({o, 0.1});
     }
-  EXPECT_EQ(prefilter_margin(shells), 1);
-  EXPECT_EQ(prefilter_margin({{{3, 3, -3}, 1.0}}), 2);
+  EXPECT_EQ(prefilter_margin(shells, CosetLattice::bcc()), 1);
+  EXPECT_EQ(prefilter_margin({{{3, 3, -3}, 1.0}}, CosetLattice::bcc()), 2);
 }
 
 TEST(BccPrefilter, HandComputedSamples) {
@@ -97,7 +97,7 @@ TEST(BccPrefilter, AgreesWithTheDefinitionForRandomFilters) {
                    weight(random)});
     }
     const auto out = prefilter(v, q);
-    const PrefilterShrink s = prefilter_shrink(q);
+    const PrefilterShrink s = prefilter_shrink(q, CosetLattice::bcc());
     for (int a = 0; a < 3; ++a) EXPECT_EQ(out.sizes()[a], v.sizes()[a] - s.lower[a] - s.upper[a]);
     for (int k = 0; k < out.sizes()[2]; ++k)
       for (int j = 0; j < out.sizes()[1]; ++j)
@@ -116,10 +116,10 @@ TEST(BccPrefilter, AgreesWithTheDefinitionForRandomFilters) {
 
 // The shrink is tight: one more coset cell at either end would need a sample that is not there.
 TEST(BccPrefilter, ShrinkIsNoLargerThanNeeded) {
-  const BccVolume<double> v({6, 6, 6}, 1, {0, 0, 0});
+  const LatticeVolume<double> v(CosetLattice::bcc(), {6, 6, 6}, 1, {0, 0, 0});
   const DiscreteFilter q = {
       {{0, 0, 0}, 1.0}, {{1, 1, 1}, 1.0}, {{-2, 0, 0}, 1.0}, {{0, 2, 0}, 1.0}};
-  const PrefilterShrink s = prefilter_shrink(q);
+  const PrefilterShrink s = prefilter_shrink(q, CosetLattice::bcc());
   for (int a = 0; a < 3; ++a) {
     auto neighbourhood_inside = [&](std::int64_t x_a) {
       for (int c = 0; c < 2; ++c)
@@ -171,7 +171,7 @@ TEST(BccPrefilter, BadFiltersAndSmallVolumesAreErrors) {
   }
   // Taps reaching 4 lattice units each way cost 2 coset cells per side: 3 samples are too few.
   EXPECT_THROW((void)prefilter(v, {{{4, 4, 4}, 1.0}, {{-4, -4, -4}, 1.0}}), std::invalid_argument);
-  const BccVolume<double> one({1, 1, 1}, 1, {0, 0, 0});
+  const LatticeVolume<double> one(CosetLattice::bcc(), {1, 1, 1}, 1, {0, 0, 0});
   EXPECT_THROW((void)prefilter(one, {{{1, 1, 1}, 1.0}, {{-1, -1, -1}, 1.0}}),
                std::invalid_argument);
   EXPECT_NO_THROW((void)prefilter(one, {{{0, 0, 0}, 1.0}}));

@@ -14,6 +14,7 @@
 #include "runtime/batch_threads.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
+#include "tests/support/bcc_volumes.h"
 
 namespace boxgen::runtime {
 namespace {
@@ -27,9 +28,10 @@ std::vector<Vec3> random_points(int count, std::uint64_t seed) {
 }
 
 // Largest |s - f| over random points of [-1,1]^3 for data sampled from f on N^3 x 2 points.
-double max_error(const TestFunction& fn, int n, Filter f, PrefilterChoice q, int count = 300) {
-  BccVolume<double> volume = sample_cube<double>(fn.value, n, required_margin(f, q));
-  if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
+double max_error(const TestFunction& fn, int n, const SplineFilter& f, PrefilterChoice q,
+                 int count = 300) {
+  LatticeVolume<double> volume = test::sample_bcc_cube<double>(fn.value, n, f.required_margin(q));
+  if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
   const Reconstructor<double> r(volume, f);
   double worst = 0;
   for (const auto& p : random_points(count, 7))
@@ -37,9 +39,10 @@ double max_error(const TestFunction& fn, int n, Filter f, PrefilterChoice q, int
   return worst;
 }
 
-double rms_error(const TestFunction& fn, int n, Filter f, PrefilterChoice q, int count = 2000) {
-  BccVolume<double> volume = sample_cube<double>(fn.value, n, required_margin(f, q));
-  if (q != PrefilterChoice::None) volume = prefilter(volume, prefilter_taps(f, q));
+double rms_error(const TestFunction& fn, int n, const SplineFilter& f, PrefilterChoice q,
+                 int count = 2000) {
+  LatticeVolume<double> volume = test::sample_bcc_cube<double>(fn.value, n, f.required_margin(q));
+  if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
   const auto points = random_points(count, 11);
   std::vector<double> values(points.size());
   Reconstructor<double>(volume, f).evaluate(points, values);
@@ -52,27 +55,30 @@ double rms_error(const TestFunction& fn, int n, Filter f, PrefilterChoice q, int
 TEST(Reconstruction, CubicsAreReproducedWithTheGeneratedPrefilters) {
   // The `cubic` test function is a cubic polynomial; order-4 quasi-interpolation reproduces it.
   const TestFunction& cubic = find_test_function("cubic");
-  for (Filter f : {Filter::M7, Filter::M8, Filter::M12})
+  for (const SplineFilter& f :
+       {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")})
     for (PrefilterChoice q : {PrefilterChoice::Q1, PrefilterChoice::Q2})
-      EXPECT_LE(max_error(cubic, 9, f, q), 1e-11) << filter_name(f) << " q" << static_cast<int>(q);
+      EXPECT_LE(max_error(cubic, 9, f, q), 1e-11) << f.name() << " q" << static_cast<int>(q);
 }
 
 TEST(Reconstruction, WithoutAPrefilterCubicsAreNotReproduced) {
   const TestFunction& cubic = find_test_function("cubic");
-  for (Filter f : {Filter::M7, Filter::M8, Filter::M12})
-    EXPECT_GT(max_error(cubic, 9, f, PrefilterChoice::None), 1e-4) << filter_name(f);
+  for (const SplineFilter& f :
+       {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")})
+    EXPECT_GT(max_error(cubic, 9, f, PrefilterChoice::None), 1e-4) << f.name();
 }
 
 TEST(Reconstruction, RmsErrorFallsAtOrderFour) {
   // Halving h should divide the RMS error by about 2^4 = 16 with a prefilter; the slope over
   // three densities (N = 9, 17, 33 gives h = 1/8, 1/16, 1/32) must be at least 3.5.
   const TestFunction& g = find_test_function("gaussian");
-  for (Filter f : {Filter::M7, Filter::M8, Filter::M12}) {
+  for (const SplineFilter& f :
+       {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")}) {
     const double e1 = rms_error(g, 9, f, PrefilterChoice::Q2),
                  e2 = rms_error(g, 17, f, PrefilterChoice::Q2),
                  e3 = rms_error(g, 33, f, PrefilterChoice::Q2);
     const double slope = std::log2(e1 / e3) / 2;
-    EXPECT_GE(slope, 3.5) << filter_name(f) << " errors " << e1 << " " << e2 << " " << e3;
+    EXPECT_GE(slope, 3.5) << f.name() << " errors " << e1 << " " << e2 << " " << e3;
     EXPECT_LT(e2, e1);
     EXPECT_LT(e3, e2);
   }
@@ -80,8 +86,8 @@ TEST(Reconstruction, RmsErrorFallsAtOrderFour) {
 
 TEST(Reconstruction, PointsOutsideTheVolumeAndNaNAreErrors) {
   const TestFunction& fn = find_test_function("ml");
-  const BccVolume<double> volume = sample_cube<double>(fn.value, 9, 2);
-  const Reconstructor<double> r(volume, Filter::M7);
+  const LatticeVolume<double> volume = test::sample_bcc_cube<double>(fn.value, 9, 2);
+  const Reconstructor<double> r(volume, SplineFilter::parse("m7"));
   EXPECT_NO_THROW(r.value({0.9, -0.9, 0.5}));
   EXPECT_THROW(r.value({5, 0, 0}), std::out_of_range);
   EXPECT_THROW(r.value({std::nan(""), 0, 0}), std::invalid_argument);
@@ -102,9 +108,10 @@ TEST(Reconstruction, PointsOutsideTheVolumeAndNaNAreErrors) {
 
 TEST(Reconstruction, BatchEqualsSingleEvaluationAndFloatIsClose) {
   const TestFunction& fn = find_test_function("ml");
-  const BccVolume<double> volume = sample_cube<double>(fn.value, 17, 2);
-  const BccVolume<float> volume_f = sample_cube<float>(fn.value, 17, 2);
-  for (Filter f : {Filter::M7, Filter::M8, Filter::M12}) {
+  const LatticeVolume<double> volume = test::sample_bcc_cube<double>(fn.value, 17, 2);
+  const LatticeVolume<float> volume_f = test::sample_bcc_cube<float>(fn.value, 17, 2);
+  for (const SplineFilter& f :
+       {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")}) {
     const Reconstructor<double> r(volume, f);
     const Reconstructor<float> rf(volume_f, f);
     const auto points = random_points(3000, 5);
@@ -125,10 +132,11 @@ TEST(Reconstruction, BatchEqualsSingleEvaluationAndFloatIsClose) {
 // for bit, and near the faces a point either evaluates or is refused, never reads outside.
 TEST(Reconstruction, UncheckedAndCheckedFetchesAgreeEverywhere) {
   const TestFunction& fn = find_test_function("ml");
-  const BccVolume<double> volume = sample_cube<double>(fn.value, 9, 2);
+  const LatticeVolume<double> volume = test::sample_bcc_cube<double>(fn.value, 9, 2);
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-1.6, 1.6);  // beyond [-1,1]: into and past the margin
-  for (Filter f : {Filter::M7, Filter::M8, Filter::M12}) {
+  for (const SplineFilter& f :
+       {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")}) {
     const Reconstructor<double> r(volume, f);
     int inside = 0, refused = 0;
     for (int i = 0; i < 4000; ++i) {
@@ -139,23 +147,22 @@ TEST(Reconstruction, UncheckedAndCheckedFetchesAgreeEverywhere) {
       double expected = 0;
       bool evaluable = true;
       try {
-        expected = f == Filter::M7   ? generated::m7::evaluate<double>(x, checked)
-                   : f == Filter::M8 ? generated::m8::evaluate<double>(x, checked)
-                                     : generated::m12::evaluate<double>(x, checked);
+        expected = f == SplineFilter::parse("m7")   ? generated::m7::evaluate<double>(x, checked)
+                   : f == SplineFilter::parse("m8") ? generated::m8::evaluate<double>(x, checked)
+                                                    : generated::m12::evaluate<double>(x, checked);
       } catch (const std::out_of_range&) {
         evaluable = false;
       }
       if (evaluable) {
         ++inside;
-        EXPECT_EQ(r.value(p), expected)
-            << filter_name(f) << " at " << p[0] << " " << p[1] << " " << p[2];
+        EXPECT_EQ(r.value(p), expected) << f.name() << " at " << p[0] << " " << p[1] << " " << p[2];
       } else {
         ++refused;
-        EXPECT_THROW(r.value(p), std::out_of_range) << filter_name(f);
+        EXPECT_THROW(r.value(p), std::out_of_range) << f.name();
       }
     }
-    EXPECT_GT(inside, 100) << filter_name(f);
-    EXPECT_GT(refused, 100) << filter_name(f);
+    EXPECT_GT(inside, 100) << f.name();
+    EXPECT_GT(refused, 100) << f.name();
   }
 }
 
@@ -165,10 +172,11 @@ TEST(Reconstruction, UncheckedAndCheckedFetchesAgreeEverywhere) {
 // order). The batch with Hessians equals single evaluation.
 TEST(Reconstruction, HessianIsTheEvaluatorsInWorldUnitsAndMatchesGradientDifferences) {
   const TestFunction& fn = find_test_function("ml");
-  const BccVolume<double> volume = sample_cube<double>(fn.value, 12, 3);
+  const LatticeVolume<double> volume = test::sample_bcc_cube<double>(fn.value, 12, 3);
   const double h = volume.spacing();
   ASSERT_NE(h, 1.0);
-  for (Filter f : {Filter::M7, Filter::M8, Filter::M12}) {
+  for (const SplineFilter& f :
+       {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")}) {
     const Reconstructor<double> r(volume, f);
     const auto points = random_points(200, 17);
     std::vector<double> values(points.size());
@@ -189,13 +197,12 @@ TEST(Reconstruction, HessianIsTheEvaluatorsInWorldUnitsAndMatchesGradientDiffere
       std::array<double, 3> lg;
       std::array<double, 6> lh;
       auto fetch = [&](const LatticePoint& j) { return volume.value(j); };
-      const double direct = f == Filter::M7 ? generated::m7::evaluate<double>(x, fetch, &lg, &lh)
-                            : f == Filter::M8
-                                ? generated::m8::evaluate<double>(x, fetch, &lg, &lh)
-                                : generated::m12::evaluate<double>(x, fetch, &lg, &lh);
+      const double direct =
+          f == SplineFilter::parse("m7")   ? generated::m7::evaluate<double>(x, fetch, &lg, &lh)
+          : f == SplineFilter::parse("m8") ? generated::m8::evaluate<double>(x, fetch, &lg, &lh)
+                                           : generated::m12::evaluate<double>(x, fetch, &lg, &lh);
       EXPECT_EQ(v, direct);
-      for (int k = 0; k < 6; ++k)
-        EXPECT_EQ(hs[k], lh[k] / (h * h)) << filter_name(f) << " entry " << k;
+      for (int k = 0; k < 6; ++k) EXPECT_EQ(hs[k], lh[k] / (h * h)) << f.name() << " entry " << k;
       // Central differences of the gradient along each axis: column a of the Hessian.
       constexpr int kIndex[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
       const double step = 1e-5;
@@ -212,8 +219,8 @@ TEST(Reconstruction, HessianIsTheEvaluatorsInWorldUnitsAndMatchesGradientDiffere
         }
       }
     }
-    EXPECT_GT(scale, 1.0) << filter_name(f);
-    EXPECT_LT(worst_difference, 1e-5 * scale) << filter_name(f);
+    EXPECT_GT(scale, 1.0) << f.name();
+    EXPECT_LT(worst_difference, 1e-5 * scale) << f.name();
   }
 }
 
@@ -221,8 +228,8 @@ TEST(Reconstruction, HessianIsTheEvaluatorsInWorldUnitsAndMatchesGradientDiffere
 // depend on the count; a malformed value is refused in one line; a program's own cap wins.
 TEST(Reconstruction, ThreadCapFromEnvironmentAndProgram) {
   const TestFunction& fn = find_test_function("ml");
-  const BccVolume<float> volume = sample_cube<float>(fn.value, 10, 2);
-  const Reconstructor<float> r(volume, Filter::M7);
+  const LatticeVolume<float> volume = test::sample_bcc_cube<float>(fn.value, 10, 2);
+  const Reconstructor<float> r(volume, SplineFilter::parse("m7"));
   const auto points = random_points(5000, 3);
   std::vector<float> one(points.size()), two(points.size());
   ASSERT_EQ(setenv("BOXGEN_THREADS", "1", 1), 0);
@@ -246,15 +253,16 @@ TEST(Reconstruction, ThreadCapFromEnvironmentAndProgram) {
 }
 
 TEST(Reconstruction, ParsesNamesAndRejectsOthers) {
-  EXPECT_EQ(parse_filter("m8"), Filter::M8);
+  EXPECT_EQ(parse_filter("m8"), SplineFilter::parse("m8"));
   EXPECT_EQ(parse_prefilter("q2"), PrefilterChoice::Q2);
   EXPECT_THROW(parse_filter("m9"), std::invalid_argument);
   EXPECT_THROW(parse_prefilter("q3"), std::invalid_argument);
   // Generated prefilter taps sum to one (a quasi-interpolant preserves constants).
-  for (Filter f : {Filter::M7, Filter::M8, Filter::M12})
+  for (const SplineFilter& f :
+       {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")})
     for (PrefilterChoice q : {PrefilterChoice::Q1, PrefilterChoice::Q2}) {
       double sum = 0;
-      for (const auto& [offset, w] : prefilter_taps(f, q)) sum += w;
+      for (const auto& [offset, w] : f.prefilter(q)) sum += w;
       EXPECT_NEAR(sum, 1.0, 1e-15);
     }
 }

@@ -2,6 +2,7 @@
 // geometry, the NRRD file as Teem reads it, the default box (inside the volume, and tight) and
 // the errors for bad boxes.
 #include "runtime/resample.h"
+#include "runtime/reconstruction.h"
 
 #include <gtest/gtest.h>
 #include <teem/biff.h>
@@ -21,6 +22,7 @@
 #include "runtime/nrrd_io.h"
 #include "runtime/prefilter.h"
 #include "runtime/sampling.h"
+#include "tests/support/bcc_volumes.h"
 #include "tests/support/scratch_directory.h"
 
 namespace boxgen::runtime {
@@ -28,7 +30,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr Filter kFilters[] = {Filter::M7, Filter::M8, Filter::M12};
+const SplineFilter kFilters[] = {SplineFilter::parse("m7"), SplineFilter::parse("m8"),
+                                 SplineFilter::parse("m12")};
 
 // A cubic with every kind of cubic term and no symmetry, written here rather than taken from
 // runtime/test_functions so the expected values do not come from the code under test.
@@ -39,9 +42,10 @@ double cubic(const Vec3& p) {
 }
 
 template <class T>
-BccVolume<T> prefiltered(const ScalarFunction& f, int n, Filter filter, PrefilterChoice q) {
-  BccVolume<T> volume = sample_cube<T>(f, n, required_margin(filter, q));
-  return q == PrefilterChoice::None ? volume : prefilter(volume, prefilter_taps(filter, q));
+LatticeVolume<T> prefiltered(const ScalarFunction& f, int n, const SplineFilter& filter,
+                             PrefilterChoice q) {
+  LatticeVolume<T> volume = test::sample_bcc_cube<T>(f, n, filter.required_margin(q));
+  return q == PrefilterChoice::None ? volume : prefilter(volume, filter.prefilter(q));
 }
 
 double max_cubic_error(const CartesianVolume<double>& grid) {
@@ -59,11 +63,11 @@ TEST(Resample, CubicIsReproducedOnTheCartesianGridWithQ1) {
   // at the grid point up to rounding. Without a prefilter it is not (so this test can fail).
   // The grid [-1,1]^3 with 7 points per axis puts points on lattice points, cell faces and inside.
   const CartesianGrid grid = grid_over({{-1, -1, -1}, {1, 1, 1}}, {7, 7, 7});
-  for (Filter f : kFilters) {
+  for (const SplineFilter& f : kFilters) {
     const auto with_q1 = resample(prefiltered<double>(cubic, 9, f, PrefilterChoice::Q1), f, grid);
-    EXPECT_LE(max_cubic_error(with_q1), 1e-11) << filter_name(f);
+    EXPECT_LE(max_cubic_error(with_q1), 1e-11) << f.name();
     const auto without = resample(prefiltered<double>(cubic, 9, f, PrefilterChoice::None), f, grid);
-    EXPECT_GT(max_cubic_error(without), 1e-4) << filter_name(f);
+    EXPECT_GT(max_cubic_error(without), 1e-4) << f.name();
   }
 }
 
@@ -71,7 +75,8 @@ TEST(Resample, FloatVolumesResampleToFloatGrids) {
   // float data: the cubic (|values| <= about 8) to float rounding, 1e-5.
   const CartesianGrid grid = grid_over({{-1, -1, -1}, {1, 1, 1}}, {5, 5, 5});
   const auto values =
-      resample(prefiltered<float>(cubic, 9, Filter::M8, PrefilterChoice::Q1), Filter::M8, grid);
+      resample(prefiltered<float>(cubic, 9, SplineFilter::parse("m8"), PrefilterChoice::Q1),
+               SplineFilter::parse("m8"), grid);
   ASSERT_EQ(values.values.size(), 125u);
   for (int k = 0; k < 5; ++k)
     for (int j = 0; j < 5; ++j)
@@ -87,15 +92,16 @@ TEST(Resample, GridGeometryIsWhatWasAsked) {
   EXPECT_EQ(grid.spacing, (Vec3{0.5, 0.5, 0.25}));
   EXPECT_EQ(grid.origin, (Vec3{-1, -0.5, 0}));
 
-  const BccVolume<double> volume = prefiltered<double>(cubic, 9, Filter::M7, PrefilterChoice::Q2);
-  const auto out = resample(volume, Filter::M7, grid);
+  const LatticeVolume<double> volume =
+      prefiltered<double>(cubic, 9, SplineFilter::parse("m7"), PrefilterChoice::Q2);
+  const auto out = resample(volume, SplineFilter::parse("m7"), grid);
   EXPECT_EQ(out.sizes, grid.sizes);
   EXPECT_EQ(out.spacing, grid.spacing);
   EXPECT_EQ(out.origin, grid.origin);
   ASSERT_EQ(out.values.size(), 60u);
   // The last point is the box's upper corner; storage is x fastest (index = i + 5 (j + 3 k)).
   EXPECT_EQ(out.position(4, 2, 3), box.max);
-  const Reconstructor<double> r(volume, Filter::M7);
+  const Reconstructor<double> r(volume, SplineFilter::parse("m7"));
   for (int k = 0; k < 4; ++k)
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 5; ++i) {
@@ -139,11 +145,13 @@ TEST_F(ResampleNrrd, TeemReadsThePlain3dGrid) {
   const Box box{{-0.9, -1.0 / 3, 0.1}, {0.7, 0.8, 2.0 / 3}};
   const CartesianGrid grid = grid_over(box, {6, 5, 4});
   const auto d =
-      resample(prefiltered<double>(cubic, 9, Filter::M12, PrefilterChoice::Q1), Filter::M12, grid);
+      resample(prefiltered<double>(cubic, 9, SplineFilter::parse("m12"), PrefilterChoice::Q1),
+               SplineFilter::parse("m12"), grid);
   write_cartesian_nrrd(dir_ / "d.nrrd", d);
   expect_teem_reads(dir_ / "d.nrrd", d);
   const auto f =
-      resample(prefiltered<float>(cubic, 9, Filter::M7, PrefilterChoice::None), Filter::M7, grid);
+      resample(prefiltered<float>(cubic, 9, SplineFilter::parse("m7"), PrefilterChoice::None),
+               SplineFilter::parse("m7"), grid);
   write_cartesian_nrrd(dir_ / "f.nrrd", f);
   expect_teem_reads(dir_ / "f.nrrd", f);
 }
@@ -151,8 +159,8 @@ TEST_F(ResampleNrrd, TeemReadsThePlain3dGrid) {
 // The generated evaluator's own view of its stencil: every lattice point it fetches, relative to
 // floor(x + c), over many random points (a recording fetch, independent of the tables).
 template <class Evaluate>
-void expect_reach_matches_fetches(Filter f, Evaluate evaluate) {
-  const StencilReach reach = stencil_reach(f);
+void expect_reach_matches_fetches(const SplineFilter& f, Evaluate evaluate) {
+  const StencilReach reach = f.reach();
   std::array<int, 3> seen_lo{99, 99, 99}, seen_hi{-99, -99, -99};
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-4, 4);
@@ -168,18 +176,18 @@ void expect_reach_matches_fetches(Filter f, Evaluate evaluate) {
       return 1.0;
     });
   }
-  EXPECT_EQ(seen_lo, reach.lo) << filter_name(f);
-  EXPECT_EQ(seen_hi, reach.hi) << filter_name(f);
+  EXPECT_EQ(seen_lo, reach.lo) << f.name();
+  EXPECT_EQ(seen_hi, reach.hi) << f.name();
 }
 
 TEST(Resample, StencilReachIsWhatTheEvaluatorsFetch) {
-  expect_reach_matches_fetches(Filter::M7, [](const auto& x, auto&& fetch) {
+  expect_reach_matches_fetches(SplineFilter::parse("m7"), [](const auto& x, auto&& fetch) {
     return generated::m7::evaluate<double>(x, fetch);
   });
-  expect_reach_matches_fetches(Filter::M8, [](const auto& x, auto&& fetch) {
+  expect_reach_matches_fetches(SplineFilter::parse("m8"), [](const auto& x, auto&& fetch) {
     return generated::m8::evaluate<double>(x, fetch);
   });
-  expect_reach_matches_fetches(Filter::M12, [](const auto& x, auto&& fetch) {
+  expect_reach_matches_fetches(SplineFilter::parse("m12"), [](const auto& x, auto&& fetch) {
     return generated::m12::evaluate<double>(x, fetch);
   });
 }
@@ -188,8 +196,8 @@ TEST(Resample, StencilReachIsWhatTheEvaluatorsFetch) {
 // step (or just 1e-3 lattice units) beyond any of its six faces leaves the volume for some
 // position on that face.
 template <class T>
-void expect_default_box_inside_and_tight(const BccVolume<T>& volume, Filter f) {
-  SCOPED_TRACE(::testing::Message() << filter_name(f) << (sizeof(T) == 4 ? " float" : " double"));
+void expect_default_box_inside_and_tight(const LatticeVolume<T>& volume, const SplineFilter& f) {
+  SCOPED_TRACE(::testing::Message() << f.name() << (sizeof(T) == 4 ? " float" : " double"));
   const Box box = default_box(volume, f);
   const int n = 9;
   const CartesianGrid grid = grid_over(box, {n, n, n});
@@ -235,9 +243,9 @@ void expect_default_box_inside_and_tight(const BccVolume<T>& volume, Filter f) {
 
 TEST(Resample, DefaultBoxIsInsideTheVolumeAndTight) {
   // Unequal sizes, an origin off zero and a spacing with no short binary form.
-  for (Filter f : kFilters) {
-    BccVolume<double> d({9, 10, 11}, 0.1, {0.3, -2, 5});
-    BccVolume<float> s({11, 9, 10}, 1.0 / 3, {-7, 0.25, 100});
+  for (const SplineFilter& f : kFilters) {
+    LatticeVolume<double> d(CosetLattice::bcc(), {9, 10, 11}, 0.1, {0.3, -2, 5});
+    LatticeVolume<float> s(CosetLattice::bcc(), {11, 9, 10}, 1.0 / 3, {-7, 0.25, 100});
     expect_default_box_inside_and_tight(d, f);
     expect_default_box_inside_and_tight(s, f);
   }
@@ -246,18 +254,19 @@ TEST(Resample, DefaultBoxIsInsideTheVolumeAndTight) {
 TEST(Resample, DefaultBoxOfASampledCubeHoldsTheCube) {
   // With required_margin (reconstruction.h) as the sampling margin, [-1,1]^3 is inside the default
   // box.
-  for (Filter f : kFilters)
+  for (const SplineFilter& f : kFilters)
     for (PrefilterChoice q : {PrefilterChoice::None, PrefilterChoice::Q2}) {
       const Box box = default_box(prefiltered<double>(cubic, 5, f, q), f);
       for (int a = 0; a < 3; ++a) {
-        EXPECT_LE(box.min[a], -1) << filter_name(f);
-        EXPECT_GE(box.max[a], 1) << filter_name(f);
+        EXPECT_LE(box.min[a], -1) << f.name();
+        EXPECT_GE(box.max[a], 1) << f.name();
       }
     }
 }
 
 TEST(Resample, BadBoxesAndGridsAreErrors) {
-  const BccVolume<double> volume = prefiltered<double>(cubic, 5, Filter::M7, PrefilterChoice::None);
+  const LatticeVolume<double> volume =
+      prefiltered<double>(cubic, 5, SplineFilter::parse("m7"), PrefilterChoice::None);
   const Box inside{{-1, -1, -1}, {1, 1, 1}};
   // Empty, degenerate, inverted or non-finite boxes, and too few points.
   EXPECT_THROW(grid_over({{-1, 0, -1}, {1, 0, 1}}, {3, 3, 3}), std::invalid_argument);
@@ -269,18 +278,20 @@ TEST(Resample, BadBoxesAndGridsAreErrors) {
   EXPECT_THROW(grid_over(inside, {kMaxGridSize, kMaxGridSize, kMaxGridSize}),
                std::invalid_argument);
   // A grid with zero spacing or a non-finite origin.
-  EXPECT_THROW(resample(volume, Filter::M7, CartesianGrid{{3, 3, 3}, {0.5, 0, 0.5}, {0, 0, 0}}),
+  EXPECT_THROW(resample(volume, SplineFilter::parse("m7"),
+                        CartesianGrid{{3, 3, 3}, {0.5, 0, 0.5}, {0, 0, 0}}),
                std::invalid_argument);
-  EXPECT_THROW(resample(volume, Filter::M7, CartesianGrid{{3, 3, 3}, {0.5, 0.5, 0.5}, {0, NAN, 0}}),
+  EXPECT_THROW(resample(volume, SplineFilter::parse("m7"),
+                        CartesianGrid{{3, 3, 3}, {0.5, 0.5, 0.5}, {0, NAN, 0}}),
                std::invalid_argument);
   // A box leaving the volume, on either side of any axis: one line naming the allowed region.
-  const Box allowed = default_box(volume, Filter::M7);
+  const Box allowed = default_box(volume, SplineFilter::parse("m7"));
   for (int a = 0; a < 3; ++a)
     for (int side = 0; side < 2; ++side) {
       Box out = inside;
       (side ? out.max : out.min)[a] = side ? allowed.max[a] + 0.5 : allowed.min[a] - 0.5;
       try {
-        (void)resample(volume, Filter::M7, grid_over(out, {3, 3, 3}));
+        (void)resample(volume, SplineFilter::parse("m7"), grid_over(out, {3, 3, 3}));
         ADD_FAILURE() << "a box leaving the volume on axis " << a << " was accepted";
       } catch (const std::out_of_range& e) {
         EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
@@ -288,10 +299,11 @@ TEST(Resample, BadBoxesAndGridsAreErrors) {
       }
     }
   // A volume too small for the stencil has no default box, and nothing can be resampled from it.
-  const BccVolume<double> tiny({2, 9, 9}, 0.5, {0, 0, 0});
-  EXPECT_THROW((void)default_box(tiny, Filter::M8), std::invalid_argument);
-  EXPECT_THROW((void)resample(tiny, Filter::M8, grid_over({{1, 1, 1}, {2, 2, 2}}, {3, 3, 3})),
-               std::invalid_argument);
+  const LatticeVolume<double> tiny(CosetLattice::bcc(), {2, 9, 9}, 0.5, {0, 0, 0});
+  EXPECT_THROW((void)default_box(tiny, SplineFilter::parse("m8")), std::invalid_argument);
+  EXPECT_THROW(
+      (void)resample(tiny, SplineFilter::parse("m8"), grid_over({{1, 1, 1}, {2, 2, 2}}, {3, 3, 3})),
+      std::invalid_argument);
 }
 
 }  // namespace

@@ -9,16 +9,18 @@
 #include <vector>
 
 #include "runtime/test_functions.h"
+#include "tests/support/bcc_volumes.h"
 
 namespace boxgen::runtime {
 namespace {
 
 TEST(BccSampling, CubeGridGeometry) {
-  const BccGrid g = cube_grid(33, 0);
+  const LatticeGrid g = cube_lattice_grid(CosetLattice::bcc(), 33, 0);
   EXPECT_EQ(g.sizes, (Sizes{33, 33, 33}));
   EXPECT_EQ(g.h, 1.0 / 32);
   EXPECT_EQ(g.origin, (Vec3{-1, -1, -1}));
-  const BccGrid m = cube_grid(5, 2);  // h = 1/4, origin -1 - 2 h m = -2
+  const LatticeGrid m =
+      cube_lattice_grid(CosetLattice::bcc(), 5, 2);  // h = 1/4, origin -1 - 2 h m = -2
   EXPECT_EQ(m.sizes, (Sizes{9, 9, 9}));
   EXPECT_EQ(m.h, 0.25);
   EXPECT_EQ(m.origin, (Vec3{-2, -2, -2}));
@@ -26,9 +28,9 @@ TEST(BccSampling, CubeGridGeometry) {
 
 TEST(BccSampling, EvenPointsSpanTheCubeAndOddPointsAreCubeCentres) {
   const int n = 5;  // h = 1/4
-  const auto x = sample_cube<double>([](const Vec3& p) { return p[0]; }, n, 0);
-  const auto y = sample_cube<double>([](const Vec3& p) { return p[1]; }, n, 0);
-  const auto z = sample_cube<double>([](const Vec3& p) { return p[2]; }, n, 0);
+  const auto x = test::sample_bcc_cube<double>([](const Vec3& p) { return p[0]; }, n, 0);
+  const auto y = test::sample_bcc_cube<double>([](const Vec3& p) { return p[1]; }, n, 0);
+  const auto z = test::sample_bcc_cube<double>([](const Vec3& p) { return p[2]; }, n, 0);
   EXPECT_EQ(x.at(0, 0, 0, 0), -1.0);
   EXPECT_EQ(x.at(0, n - 1, 0, 0), 1.0);
   EXPECT_EQ(z.at(0, 0, 0, n - 1), 1.0);
@@ -50,13 +52,13 @@ TEST(BccSampling, EvenPointsSpanTheCubeAndOddPointsAreCubeCentres) {
 
 TEST(BccSampling, MarginKeepsTheCubeAtTheSameWorldPositions) {
   const int n = 9, m = 3;  // h = 1/8
-  const auto v = sample_cube<double>(marschner_lobb, n, m);
+  const auto v = test::sample_bcc_cube<double>(marschner_lobb, n, m);
   EXPECT_EQ(v.sizes(), (Sizes{n + 2 * m, n + 2 * m, n + 2 * m}));
   // Lattice (2m, 2m, 2m) is the corner (-1,-1,-1), lattice 2m + 2N - 2 the corner (1,1,1).
   EXPECT_EQ(v.to_world({2.0 * m, 2.0 * m, 2.0 * m}), (Vec3{-1, -1, -1}));
   EXPECT_EQ(v.to_world({2.0 * m + 2 * n - 2, 2.0 * m + 2 * n - 2, 2.0 * m + 2 * n - 2}),
             (Vec3{1, 1, 1}));
-  const auto plain = sample_cube<double>(marschner_lobb, n, 0);
+  const auto plain = test::sample_bcc_cube<double>(marschner_lobb, n, 0);
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
@@ -64,8 +66,8 @@ TEST(BccSampling, MarginKeepsTheCubeAtTheSameWorldPositions) {
 }
 
 TEST(BccSampling, FloatSamplesAreTheRoundedDoubleSamples) {
-  const auto d = sample_cube<double>(gaussian, 6, 1);
-  const auto f = sample_cube<float>(gaussian, 6, 1);
+  const auto d = test::sample_bcc_cube<double>(gaussian, 6, 1);
+  const auto f = test::sample_bcc_cube<float>(gaussian, 6, 1);
   ASSERT_EQ(d.sample_count(), f.sample_count());
   for (std::size_t s = 0; s < d.sample_count(); ++s)
     EXPECT_EQ(f.samples()[s], static_cast<float>(d.samples()[s]));
@@ -74,9 +76,9 @@ TEST(BccSampling, FloatSamplesAreTheRoundedDoubleSamples) {
 }
 
 TEST(BccSampling, SampleBccPlacesEverySampleAtItsWorldPoint) {
-  const BccGrid grid{{2, 3, 4}, 0.3, {0.5, -1, 2}};
+  const LatticeGrid grid{CosetLattice::bcc(), {2, 3, 4}, 0.3, {0.5, -1, 2}};
   const auto v =
-      sample_bcc<double>([](const Vec3& p) { return p[0] + 10 * p[1] + 100 * p[2]; }, grid);
+      sample_lattice<double>([](const Vec3& p) { return p[0] + 10 * p[1] + 100 * p[2]; }, grid);
   for (int k = 0; k < 4; ++k)
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 2; ++i)
@@ -87,10 +89,11 @@ TEST(BccSampling, SampleBccPlacesEverySampleAtItsWorldPoint) {
 }
 
 TEST(BccSampling, BadArgumentsAreRejected) {
-  EXPECT_THROW(cube_grid(1, 0), std::invalid_argument);
-  EXPECT_THROW(cube_grid(-3, 0), std::invalid_argument);
-  EXPECT_THROW(cube_grid(5, -1), std::invalid_argument);
-  EXPECT_THROW(cube_grid(BccVolume<double>::kMaxSize, 1), std::invalid_argument);
+  EXPECT_THROW(cube_lattice_grid(CosetLattice::bcc(), 1, 0), std::invalid_argument);
+  EXPECT_THROW(cube_lattice_grid(CosetLattice::bcc(), -3, 0), std::invalid_argument);
+  EXPECT_THROW(cube_lattice_grid(CosetLattice::bcc(), 5, -1), std::invalid_argument);
+  EXPECT_THROW(cube_lattice_grid(CosetLattice::bcc(), LatticeVolume<double>::kMaxSize, 1),
+               std::invalid_argument);
 }
 
 }  // namespace

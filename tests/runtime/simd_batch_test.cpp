@@ -22,9 +22,10 @@
 
 #include "generated/registry.hpp"
 #include "runtime/batch_threads.h"
-#include "runtime/lattice_filters.h"
 #include "runtime/lattice_volume.h"
 #include "runtime/reconstruction.h"
+#include "runtime/resample.h"
+#include "tests/support/bcc_volumes.h"
 
 namespace boxgen::runtime {
 namespace {
@@ -34,8 +35,8 @@ constexpr double kSpacing = 0.37;
 const Vec3 kOrigin{-1.1, 0.3, 2.0};
 
 template <class T>
-BccVolume<T> random_volume(std::uint64_t seed) {
-  BccVolume<T> volume({kSize, kSize, kSize}, kSpacing, kOrigin);
+LatticeVolume<T> random_volume(std::uint64_t seed) {
+  LatticeVolume<T> volume(CosetLattice::bcc(), {kSize, kSize, kSize}, kSpacing, kOrigin);
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (auto& s : volume.samples()) s = static_cast<T>(u(rng));
@@ -81,16 +82,17 @@ std::vector<Vec3> candidate_points(int count, std::uint64_t seed) {
 }
 
 // A volume of the filter's own lattice with as wide a box as random_volume: lattice coordinates
-// in [0, 2 kSize - 1] on every lattice (2 kSize / d samples per coset and axis).
+// in [0, 2 kSize - 1] on every lattice (2 kSize / d samples per coset and axis). On BCC the
+// cosets are stored the other way round, so that the general lattice tables are used there too.
 template <class T>
-LatticeVolume<T> random_lattice_volume(RegistryFilter f, std::uint64_t seed) {
-  const CosetLattice lattice = f.lattice();
+LatticeVolume<T> random_lattice_volume(const SplineFilter& f, std::uint64_t seed) {
+  const CosetLattice& lattice = f.lattice();
   const int n = 2 * kSize / lattice.period();
   LatticeVolume<T> volume(lattice, {n, n, n}, kSpacing, kOrigin);
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (auto& s : volume.samples()) s = static_cast<T>(u(rng));
-  return volume;
+  return lattice == CosetLattice::bcc() ? test::swapped_cosets(volume) : volume;
 }
 
 // The points the scalar path evaluates (value() does not throw).
@@ -136,10 +138,6 @@ template <class T>
 T scalar_value(const Reconstructor<T>& r, const Vec3& p, Vec3* g, Hessian* h) {
   return h ? r.value_gradient_hessian(p, *g, *h) : r.value(p, g);
 }
-template <class T>
-T scalar_value(const RegistryReconstructor<T>& r, const Vec3& p, Vec3* g, Hessian* h) {
-  return r.value(p, g, h);
-}
 
 template <class T, class Spline>
 void expect_batch_equals_scalar(const Spline& r, std::uint64_t seed) {
@@ -176,56 +174,56 @@ void expect_batch_equals_scalar(const Spline& r, std::uint64_t seed) {
 }
 
 template <class T>
-void expect_batch_equals_scalar(Filter f, std::uint64_t seed) {
-  SCOPED_TRACE(filter_name(f));
-  const BccVolume<T> volume = random_volume<T>(seed);
+void expect_batch_equals_scalar(const SplineFilter& f, std::uint64_t seed) {
+  SCOPED_TRACE(f.name());
+  const LatticeVolume<T> volume = random_volume<T>(seed);
   expect_batch_equals_scalar<T>(Reconstructor<T>(volume, f), seed);
 }
 
-TEST(SimdBatch, EqualsTheScalarPathForEveryBccRegistryFilterInFloat) {
+TEST(SimdBatch, EqualsTheScalarPathForEveryBccSplineFilterInFloat) {
   int tested = 0;
   for (int i = 0; i < generated::kFilterCount; ++i)
     if (std::string_view(generated::kFilterLattices[i]) == "bcc") {
-      expect_batch_equals_scalar<float>(static_cast<Filter>(i), 10 + i);
+      expect_batch_equals_scalar<float>(SplineFilter::at(i), 10 + i);
       ++tested;
     }
   EXPECT_EQ(tested, 3);  // m7, m8, m12: the filters Reconstructor (BCC) takes
 }
 
-TEST(SimdBatch, EqualsTheScalarPathForEveryBccRegistryFilterInDouble) {
+TEST(SimdBatch, EqualsTheScalarPathForEveryBccSplineFilterInDouble) {
   int tested = 0;
   for (int i = 0; i < generated::kFilterCount; ++i)
     if (std::string_view(generated::kFilterLattices[i]) == "bcc") {
-      expect_batch_equals_scalar<double>(static_cast<Filter>(i), 20 + i);
+      expect_batch_equals_scalar<double>(SplineFilter::at(i), 20 + i);
       ++tested;
     }
   EXPECT_EQ(tested, 3);  // m7, m8, m12: the filters Reconstructor (BCC) takes
 }
 
-// Every registry filter, BCC ones included, on a volume of its own lattice through
-// RegistryReconstructor (the SIMD path of the lattice runtime).
+// Every registry filter, BCC ones included, on a volume of its own lattice through the general
+// lattice tables (the SIMD path with LatticeStencils).
 template <class T>
 void expect_every_lattice_filter_equals_scalar(std::uint64_t seed) {
-  for (int i = 0; i < RegistryFilter::count(); ++i) {
-    const RegistryFilter f = RegistryFilter::at(i);
+  for (int i = 0; i < SplineFilter::count(); ++i) {
+    const SplineFilter f = SplineFilter::at(i);
     SCOPED_TRACE(f.name());
     const LatticeVolume<T> volume = random_lattice_volume<T>(f, seed + i);
-    expect_batch_equals_scalar<T>(RegistryReconstructor<T>(volume, f), seed + i);
+    expect_batch_equals_scalar<T>(Reconstructor<T>(volume, f), seed + i);
   }
 }
 
-TEST(SimdBatch, EqualsTheScalarPathForEveryRegistryFilterOnItsLatticeInFloat) {
+TEST(SimdBatch, EqualsTheScalarPathForEverySplineFilterOnItsLatticeInFloat) {
   expect_every_lattice_filter_equals_scalar<float>(40);
 }
 
-TEST(SimdBatch, EqualsTheScalarPathForEveryRegistryFilterOnItsLatticeInDouble) {
+TEST(SimdBatch, EqualsTheScalarPathForEverySplineFilterOnItsLatticeInDouble) {
   expect_every_lattice_filter_equals_scalar<double>(60);
 }
 
 // Two threads split the chunks differently; the results do not change.
 TEST(SimdBatch, ThreadCountDoesNotChangeResults) {
-  const BccVolume<float> volume = random_volume<float>(3);
-  const Reconstructor<float> r(volume, Filter::M8);
+  const LatticeVolume<float> volume = random_volume<float>(3);
+  const Reconstructor<float> r(volume, SplineFilter::parse("m8"));
   const std::vector<Vec3> points = evaluable(r, candidate_points(5000, 4));
   std::vector<float> one(points.size()), two(points.size());
   set_batch_threads(1);
@@ -239,8 +237,8 @@ TEST(SimdBatch, ThreadCountDoesNotChangeResults) {
 // A batch with refused points (non-finite, outside) reports the first of them, with the scalar
 // path's message, whether the other points went through SIMD chunks or not.
 TEST(SimdBatch, ReportsTheFirstBadPointAsTheScalarPathDoes) {
-  const BccVolume<double> volume = random_volume<double>(5);
-  const Reconstructor<double> r(volume, Filter::M7);
+  const LatticeVolume<double> volume = random_volume<double>(5);
+  const Reconstructor<double> r(volume, SplineFilter::parse("m7"));
   std::vector<Vec3> points = evaluable(r, candidate_points(800, 6));
   ASSERT_GT(points.size(), 300u);
   points[37] = world({-20, 3, 3});                                     // outside

@@ -1,0 +1,133 @@
+// An emitted evaluator (the Traits of a `boxgen emit` / boxgen_emit() header, see
+// support/evaluator_support.hpp) as a SplineFilter: the registry's filters are these, and so is
+// a user's own header. Nothing here lists filters or knows a coefficient.
+//
+// Example (a header from `boxgen emit "<your matrix>" --name my_filter`, and its prefilters):
+//   const SplineFilter f = emitted_filter<my_filter::Traits>(my_filter::q1, my_filter::q2,
+//                                                            my_filter::kApproximationOrder);
+//   auto v = sample_lattice<double>(fn, cube_lattice_grid(f.lattice(), 33,
+//                                                         f.required_margin(PrefilterChoice::Q1)));
+//   v = prefilter(v, f.prefilter(PrefilterChoice::Q1));
+//   const Reconstructor<double> r(v, f);
+//   double s = r.value({0.1, 0.2, 0.3});
+#pragma once
+#include <fmt/format.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "runtime/emitted_spline.h"
+#include "runtime/spline_filter.h"
+#include "runtime/stencils.h"
+#include "support/evaluator_support.hpp"
+
+namespace boxgen::runtime {
+
+// The lattice an emitted evaluator was derived on: its Hermite basis holds the columns of G.
+template <class Tr>
+CosetLattice filter_lattice() {
+  static_assert(Tr::kDimension == 3, "volumes are 3-D");
+  IntRows rows{};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) rows[r][c] = Tr::kHermite[c][r];
+  return CosetLattice::from_rows(rows);
+}
+
+// The reach an emitted evaluator's traits type publishes.
+template <class Tr>
+StencilReach published_reach() {
+  StencilReach reach;
+  for (int a = 0; a < 3; ++a) {
+    reach.lo[a] = Tr::kStencilReachLo[a];
+    reach.hi[a] = Tr::kStencilReachHi[a];
+    reach.centre[a] = Tr::kCentre[a];
+  }
+  return reach;
+}
+
+// An emitted prefilter table (q1 or q2 of a *_prefilters.hpp) as taps for prefilter().
+template <class Tap, std::size_t N>
+DiscreteFilter prefilter_from(const Tap (&table)[N]) {
+  DiscreteFilter out;
+  for (const auto& t : table) out.push_back({{t.offset[0], t.offset[1], t.offset[2]}, t.weight});
+  return out;
+}
+
+// The FilterSource of an emitted evaluator. registry_index: its position in
+// generated/registry.hpp, whose filters have SIMD kernels (simd_batch.cpp); -1 for any other
+// header (which this one must not clash with: it includes no registry), which takes the scalar
+// batch path.
+template <class Tr>
+class EmittedFilter final : public FilterSource {
+ public:
+  EmittedFilter(DiscreteFilter q1, DiscreteFilter q2, int approximation_order, int registry_index)
+      : q1_(std::move(q1)),
+        q2_(std::move(q2)),
+        order_(approximation_order),
+        registry_index_(registry_index),
+        lattice_(filter_lattice<Tr>()) {}
+
+  std::string name() const override { return Tr::kName; }
+  CosetLattice lattice() const override { return lattice_; }
+  StencilReach reach() const override { return published_reach<Tr>(); }
+  DiscreteFilter prefilter(PrefilterChoice q) const override {
+    const DiscreteFilter& taps = q == PrefilterChoice::Q1 ? q1_ : q2_;
+    if (taps.empty())
+      throw std::invalid_argument(fmt::format(
+          "filter {} was given no prefilter {} (pass the tables of its _prefilters.hpp)", Tr::kName,
+          q == PrefilterChoice::Q1 ? "q1" : "q2"));
+    return taps;
+  }
+  int approximation_order() const override { return order_; }
+  std::shared_ptr<const EvaluationPath<float>> path(
+      const LatticeVolume<float>& volume) const override {
+    return make_path(volume);
+  }
+  std::shared_ptr<const EvaluationPath<double>> path(
+      const LatticeVolume<double>& volume) const override {
+    return make_path(volume);
+  }
+
+ private:
+  // The stencil policy for this volume: BCC's parity tables where they apply (the fast path,
+  // 32-bit offsets where they fit), the general lattice tables everywhere else.
+  template <class T>
+  std::shared_ptr<const EvaluationPath<T>> make_path(const LatticeVolume<T>& volume) const {
+    if constexpr (std::string_view(Tr::kLattice) == "bcc") {
+      if (volume.lattice() == CosetLattice::bcc()) {
+        if (BccStencils<Tr, T, std::int32_t>::fits(volume))
+          return std::make_shared<EmittedSplinePath<Tr, BccStencils<Tr, T, std::int32_t>>>(
+              BccStencils<Tr, T, std::int32_t>(volume), registry_index_);
+        return std::make_shared<EmittedSplinePath<Tr, BccStencils<Tr, T, std::int64_t>>>(
+            BccStencils<Tr, T, std::int64_t>(volume), registry_index_);
+      }
+    }
+    return std::make_shared<EmittedSplinePath<Tr, LatticeStencils<Tr, T>>>(
+        LatticeStencils<Tr, T>(volume), registry_index_);
+  }
+
+  DiscreteFilter q1_, q2_;
+  int order_;
+  int registry_index_;
+  CosetLattice lattice_;
+};
+
+// A user's emitted header as a SplineFilter, without prefilters (prefilter(q1 or q2) then throws)
+// or with the tables of its _prefilters.hpp (q1, q2, kApproximationOrder).
+template <class Tr>
+SplineFilter emitted_filter() {
+  return SplineFilter(
+      std::make_shared<EmittedFilter<Tr>>(DiscreteFilter{}, DiscreteFilter{}, 0, -1));
+}
+template <class Tr, class Tap, std::size_t N1, std::size_t N2>
+SplineFilter emitted_filter(const Tap (&q1)[N1], const Tap (&q2)[N2], int approximation_order) {
+  return SplineFilter(std::make_shared<EmittedFilter<Tr>>(prefilter_from(q1), prefilter_from(q2),
+                                                          approximation_order, -1));
+}
+
+}  // namespace boxgen::runtime

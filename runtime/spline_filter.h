@@ -1,0 +1,101 @@
+// A reconstruction filter as the runtime sees it, whoever provides it: a filter of
+// generated/registry.hpp chosen by name (m7, m8, m12 on BCC, fcc6 on FCC, tricubic and cart7 on
+// the Cartesian lattice, ...), a user's own emitted header (emitted_filter<Traits>() of
+// runtime/emitted_filter.h), or any other FilterSource, such as one loaded at run time. A
+// SplineFilter is a cheap handle (copies share the source). Reconstructor (reconstruction.h)
+// evaluates it on a volume of its lattice; resample, evaluable_region and default_box
+// (resample.h) take it too.
+#pragma once
+#include <array>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "runtime/coset_lattice.h"
+#include "runtime/prefilter.h"
+
+namespace boxgen::runtime {
+
+enum class PrefilterChoice { None, Q1, Q2 };
+// "none" | "q1" | "q2"; anything else: std::invalid_argument, one line.
+PrefilterChoice parse_prefilter(std::string_view name);
+
+// Offsets j_a - floor(x_a + centre_a) of every lattice point the evaluator of a filter may fetch,
+// per axis, and the centre shift c: published by the generator with each evaluator
+// (kStencilReachLo/Hi, kCentre). runtime/resample.h explains the region this gives.
+struct StencilReach {
+  std::array<int, 3> lo{}, hi{};
+  Vec3 centre{};
+};
+
+// The registry's BCC filters by position (the first three entries). Kept for code written
+// against the BCC-only runtime; a Filter converts to the SplineFilter of that entry.
+enum class Filter { M7, M8, M12 };
+
+template <class T>
+class EvaluationPath;
+
+// What the runtime needs from a filter. Implement it to plug in a filter from elsewhere: the
+// evaluation paths come from the runtime's engine (EmittedSplinePath of emitted_spline.h) or
+// from your own code.
+class FilterSource {
+ public:
+  virtual ~FilterSource() = default;
+  virtual std::string name() const = 0;
+  // The lattice the filter was derived on; a volume must hold the same points.
+  virtual CosetLattice lattice() const = 0;
+  virtual StencilReach reach() const = 0;
+  // The prefilter Q^I (q1) or Q^II (q2); std::invalid_argument (one line) when there is none.
+  virtual DiscreteFilter prefilter(PrefilterChoice q) const = 0;
+  // k: q1 and q2 reproduce every polynomial of degree < k.
+  virtual int approximation_order() const = 0;
+  // Evaluation on `volume` (already checked to be on the filter's lattice); the path may keep a
+  // pointer to the volume, which outlives it.
+  virtual std::shared_ptr<const EvaluationPath<float>> path(
+      const LatticeVolume<float>& volume) const = 0;
+  virtual std::shared_ptr<const EvaluationPath<double>> path(
+      const LatticeVolume<double>& volume) const = 0;
+};
+
+class SplineFilter {
+ public:
+  // The registry's filters: by name (generated::kFilterNames; anything else is
+  // std::invalid_argument, one line naming them), by position (0 <= index < count()).
+  static SplineFilter parse(std::string_view name);
+  static SplineFilter at(int index);
+  static int count();
+  // "m7, m8, m12, fcc6, tricubic or cart7": the registry's names, for messages and help texts.
+  static std::string names();
+
+  explicit SplineFilter(std::shared_ptr<const FilterSource> source);
+  // The registry entry of an old Filter value (implicit, so that code written against the
+  // BCC-only runtime keeps compiling).
+  SplineFilter(Filter f);  // NOLINT(google-explicit-constructor)
+
+  const std::string& name() const noexcept { return name_; }
+  // The position in generated/registry.hpp (whose filters have SIMD kernels), or -1.
+  int registry_index() const noexcept { return registry_index_; }
+  const CosetLattice& lattice() const noexcept { return lattice_; }
+  StencilReach reach() const { return source_->reach(); }
+  // Q^I or Q^II; none: the identity {(0,0,0), 1}.
+  DiscreteFilter prefilter(PrefilterChoice q) const;
+  int approximation_order() const { return source_->approximation_order(); }
+  // Coset cells of margin beyond [-1,1]^3 that cube_lattice_grid needs for reconstruction with
+  // this filter after prefilter q (the one formula of the runtime: spline_filter.cpp).
+  int required_margin(PrefilterChoice q) const;
+  // Throws std::invalid_argument (one line) unless the volume holds the points of the filter's
+  // lattice: "filter fcc6 is for the fcc lattice, but the volume is on the bcc lattice".
+  void check_lattice(const CosetLattice& volume_lattice) const;
+  const FilterSource& source() const noexcept { return *source_; }
+
+  bool operator==(const SplineFilter& other) const noexcept { return source_ == other.source_; }
+
+ private:
+  SplineFilter(std::shared_ptr<const FilterSource> source, int registry_index);
+  std::shared_ptr<const FilterSource> source_;
+  std::string name_;
+  CosetLattice lattice_;
+  int registry_index_ = -1;
+};
+
+}  // namespace boxgen::runtime
