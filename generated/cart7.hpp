@@ -8,10 +8,12 @@
 // output; the glue (cell lookup, symmetry, fetching) is support/evaluator_support.hpp.
 //
 // Emission strategy: shifted. Arithmetic per point of the polynomial code (additions +
-// multiplications as emitted, the costliest orbit), value / value + gradient / + Hessian:
-//   428 / 554 / 686
-//   orbit 0: shifted about (1/2,1/2,1/2), 428 / 554 / 686
-//     chosen by value + gradient from horner 449 / 575 / 707, monomial 1598 / 1781 / 1937, shifted 428 / 554 / 686, bernstein 1146 / 1154 / 1186
+// multiplications, counted on its scheduled expression graph, the costliest orbit), value /
+// value + gradient / + Hessian:
+//   428 / 500 / 560
+//   orbit 0: shifted about (1/2,1/2,1/2), 428 / 500 / 560
+//     adds 333 / 361 / 383, muls 95 / 139 / 177, loads 53 / 53 / 53, temporaries 154 / 166 / 166
+//     chosen by value + gradient from horner 447 / 519 / 579, monomial 1181 / 1307 / 1409, shifted 428 / 500 / 560, bernstein 1136 / 1144 / 1174
 #pragma once
 #include <array>
 #include <cstdint>
@@ -28,8 +30,12 @@ inline constexpr const char* kSpec = "1,0,0; 0,1,0; 0,0,1; 1,1,1; 1,1,-1; 1,-1,1
 inline constexpr const char* kLattice = "cartesian";
 inline constexpr const char* kStrategy = "shifted";
 inline constexpr long kValueOperations = 428;
-inline constexpr long kGradientOperations = 554;
-inline constexpr long kHessianOperations = 686;
+inline constexpr long kGradientOperations = 500;
+inline constexpr long kHessianOperations = 560;
+// Per orbit and path (value; value + gradient; + Hessian), what its code executes: additions,
+// multiplications, negations, distinct stencil values read, named temporaries.
+inline constexpr int kCostAdds = 0, kCostMuls = 1, kCostNegs = 2, kCostLoads = 3, kCostTemporaries = 4;
+inline constexpr long kOrbitCosts[1][3][5] = {{{333, 95, 0, 53, 154}, {361, 139, 0, 53, 166}, {383, 177, 0, 53, 166}}};
 
 using Point = std::array<std::int64_t, kDimension>;
 
@@ -47,193 +53,194 @@ namespace detail {
 // region, the one with the fewest value + gradient operations): 32 coefficients, each an
 // exact linear combination of the 53 stencil values (132 partial sums s shared between
 // coefficients, then values of equal weight grouped), evaluated in nested Horner form in y; each
-// partial derivative is the Horner form of the exact derivative polynomial, sharing the
-// coefficients.
+// partial derivative differentiates that Horner form, so it reuses the inner Horner polynomials of
+// the value (and the gradient's, for the Hessian).
 template <int Order, class T>
 T orbit_0(const T* v, const T* x, T* d) {
-  const T s0 = v[44] + v[45];
-  const T s1 = v[39] + v[49];
-  const T s2 = v[42] + v[50];
-  const T s3 = v[47] + v[52];
-  const T s4 = v[47] - v[52];
-  const T s5 = v[48] + v[51];
-  const T s6 = v[48] - v[51];
-  const T s7 = v[30] + v[31];
-  const T s8 = v[36] + v[37];
-  const T s9 = v[40] + v[41];
-  const T s10 = v[13] + v[14];
+  static_cast<void>(v);  // unused where the polynomial is constant
+  static_cast<void>(x);
+  static_cast<void>(d);  // unused on the value path
+  const T s107 = v[47] + v[52] + (v[48] + v[51]);
   const T s11 = v[21] + v[25];
   const T s12 = v[22] + v[28];
-  const T s13 = v[26] + v[27];
-  const T s14 = v[43] + v[46];
-  const T s15 = v[13] - v[14];
+  const T s46 = s11 + s12;
   const T s16 = v[29] + v[32];
-  const T s17 = v[36] - v[37];
-  const T s18 = v[9] + v[10];
-  const T s19 = v[26] - v[27];
   const T s20 = v[33] + v[34];
-  const T s21 = v[33] - v[34];
-  const T s22 = v[44] - v[45];
-  const T s23 = s4 - s6;
+  const T s49 = s16 + s20;
+  const T s81 = s46 + s49;
+  const T s10 = v[13] + v[14];
+  const T s18 = v[9] + v[10];
+  const T s45 = s10 + s18;
+  const T s1 = v[39] + v[49];
+  const T s2 = v[42] + v[50];
+  const T s35 = s1 + s2;
+  const T s8 = v[36] + v[37];
+  const T s14 = v[43] + v[46];
+  const T s38 = s8 + s14;
+  const T s0 = v[44] + v[45];
+  const T s9 = v[40] + v[41];
+  const T s27 = s0 + s9;
+  const T s7 = v[30] + v[31];
+  const T s13 = v[26] + v[27];
+  const T s37 = s7 + s13;
+  const T s77 = s27 + s37;
+  const T y2 = x[2] - T(0.5);
+  const T s44 = v[51] + v[52];
+  const T s73 = v[49] + v[50];
+  const T s100 = s44 + s73;
+  const T s42 = v[47] + v[48];
+  const T s58 = v[39] + v[42];
+  const T s98 = s38 + s58;
+  const T s119 = s42 + s98;
+  const T s114 = s27 - s37;
+  const T c3 = T(0.041666666666666664) * (s100 - s45) + T(0.020833333333333332) * (s119 - s81) + T(0.083333333333333329) * s114;
+  const T t0 = s100 + (s45 - s77);
+  const T s30 = v[5] + v[6];
+  const T s55 = v[12] + v[15];
+  const T s80 = s30 + s55;
+  const T s128 = s80 + T(-2) * s81;
   const T s24 = v[8] + v[17];
   const T s25 = v[11] + v[16];
-  const T s26 = v[43] - v[46];
-  const T s27 = s0 + s9;
+  const T c19 = T(-0.020833333333333332) * (s128 + (s119 + (s24 + s25))) + T(-0.083333333333333329) * s27 + T(0.041666666666666664) * (s37 + s100);
   const T s28 = v[2] - s24;
   const T s29 = v[3] - s25;
-  const T s30 = v[5] + v[6];
-  const T s31 = v[9] - v[10];
-  const T s32 = v[29] - v[32];
-  const T s33 = v[30] - v[31];
-  const T s34 = v[40] - v[41];
-  const T s35 = s1 + s2;
-  const T s36 = s1 - s2;
-  const T s37 = s7 + s13;
-  const T s38 = s8 + s14;
-  const T s39 = v[0] - v[1];
-  const T s40 = v[12] - v[15];
-  const T s41 = v[35] - v[38];
-  const T s42 = v[47] + v[48];
-  const T s43 = v[49] - v[50];
-  const T s44 = v[51] + v[52];
-  const T s45 = s10 + s18;
-  const T s46 = s11 + s12;
-  const T s47 = s11 - s12;
-  const T s48 = s15 + s21;
-  const T s49 = s16 + s20;
-  const T s50 = s23 - s36;
-  const T s51 = s31 + T(4) * s34;
-  const T s52 = s31 + s34;
-  const T s53 = v[5] + T(-0.33333333333333331) * v[6];
-  const T s54 = v[5] - v[6];
-  const T s55 = v[12] + v[15];
-  const T s56 = v[35] + v[38];
-  const T s57 = v[39] - v[42];
-  const T s58 = v[39] + v[42];
-  const T s59 = s17 + T(2) * s26;
-  const T s60 = s17 - s26;
-  const T s61 = s19 + T(0.5) * s32;
-  const T s62 = s19 - s32;
-  const T s63 = s19 + s32;
-  const T s64 = s33 - s47;
-  const T s65 = s33 + s47;
-  const T s66 = v[0] + v[1];
-  const T s67 = v[4] + T(-0.33333333333333331) * v[7];
-  const T s68 = v[4] - v[7];
-  const T s69 = v[21] - v[22];
-  const T s70 = v[21] + v[22];
-  const T s71 = v[25] - v[28];
-  const T s72 = v[25] + v[28];
-  const T s73 = v[49] + v[50];
-  const T s74 = s0 + s56;
-  const T s75 = s4 + s6;
-  const T s76 = s7 - s13;
-  const T s77 = s27 + s37;
-  const T s78 = s28 - s29;
   const T s79 = s28 + s29;
-  const T s80 = s30 + s55;
-  const T s81 = s46 + s49;
-  const T s82 = s48 - s52;
-  const T s83 = v[4] + v[7];
-  const T s84 = v[16] + v[17];
-  const T s85 = v[18] - v[19];
-  const T s86 = s8 + s70;
-  const T s87 = s10 - s18;
-  const T s88 = s10 + s83;
-  const T s89 = s14 - s35;
-  const T s90 = s15 - s40;
-  const T s91 = s17 - s65;
-  const T s92 = s22 + T(-0.5) * s41;
-  const T s93 = s22 + s41;
-  const T s94 = s22 - s41;
-  const T s95 = s22 + s82;
-  const T s96 = s23 + s43;
-  const T s97 = s35 + s75;
-  const T s98 = s38 + s58;
-  const T s99 = s39 - s78;
-  const T s100 = s44 + s73;
-  const T s101 = s50 - s60;
-  const T s102 = s66 - s79;
-  const T s103 = v[8] - v[11];
-  const T s104 = v[20] - v[23];
-  const T s105 = v[20] + v[23];
-  const T s106 = s0 - s9;
-  const T s107 = s3 + s5;
-  const T s108 = s8 - s84;
-  const T s109 = s9 - s16;
-  const T s110 = s14 + s58;
-  const T s111 = s15 - s68;
-  const T s112 = s19 + T(0.5) * s21;
-  const T s113 = s20 + s42;
-  const T s114 = s27 - s37;
-  const T s115 = s27 - s45;
-  const T s116 = s30 + s76;
-  const T s117 = s38 - s74;
-  const T s118 = s40 - s54;
-  const T s119 = s42 + s98;
-  const T s120 = s43 + T(2) * s112;
-  const T s121 = s44 + s89;
-  const T s122 = s46 - s49;
-  const T s123 = s50 - s94;
-  const T s124 = s54 - s68;
-  const T s125 = s63 - s65;
-  const T s126 = s63 - s91;
-  const T s127 = s74 - s97;
-  const T s128 = s80 + T(-2) * s81;
-  const T s129 = s88 - s102;
-  const T s130 = s95 + s125;
-  const T s131 = s99 + s111;
-  const T c0 = T(0.010416666666666666) * (s35 + s38 + s45 + s81 + s107) + T(0.09375) * s77;
-  const T c1 = T(0.083333333333333329) * (-s22 - s33 - s61) + T(0.020833333333333332) * (-s48 - s51 - s59 - s69 - s96) + T(0.041666666666666664) * (-s57 - s71);
-  const T c2 = T(0.020833333333333332) * (s16 - s72 + s87 + s121) + T(0.083333333333333329) * (s76 + s106) + T(0.041666666666666664) * (-s86 + s113);
-  const T c3 = T(0.041666666666666664) * (-s45 + s100) + T(0.020833333333333332) * (-s81 + s119) + T(0.083333333333333329) * s114;
-  const T c4 = T(0.0625) * (s16 + s72 - s77 + s110);
-  const T c5 = T(0.0625) * (s62 - s64 - s95 - s101);
-  const T c6 = T(0.0625) * (-s22 - s23 - s26 + s31 - s34 - s36 + s48 + s126);
-  const T c7 = T(0.0625) * (-s77 + s86 + s113);
-  const T c8 = T(0.0625) * (-s8 - s76 - s87 + s89 + s106 + s107 + s122);
-  const T c9 = T(0.0625) * (s45 - s77 + s100);
-  const T c10 = T(0.020833333333333332) * (s17 - s32 - s57 + s90 - s103 - s104) + T(0.041666666666666664) * (-s26 + s92 + s120) + T(0.0625) * (s33 + s52 + s69);
-  const T c11 = T(0.0625) * (-s7 + s16 + s70 - s105 + s117);
-  const T c12 = T(0.0625) * (-v[8] - v[11] - s55 + s110 - s115);
-  const T c13 = T(0.0625) * (s19 - s41 - s50 + s71 - s82 - s104);
-  const T c14 = T(0.125) * (-s101 + s130);
-  const T c15 = T(0.0625) * (s21 - s40 - s96 - s103 + s126);
-  const T c16 = T(0.0625) * (-s0 + s13 + s72) + T(0.083333333333333329) * -s7 + T(0.020833333333333332) * (s20 - s30 + s35 - s44 - s56 - s105 - s108) + T(0.041666666666666664) * (s42 - s87 + s109);
-  const T c17 = T(0.0625) * (-s30 + s42 + s108 - s115);
-  const T c18 = T(0.0625) * (s84 - s116 + s121 + s122);
-  const T c19 = T(0.020833333333333332) * (-s24 - s25 - s119 - s128) + T(0.083333333333333329) * -s27 + T(0.041666666666666664) * (s37 + s100);
-  const T c20 = T(0.03125) * (-v[12] + v[13] - v[35] + v[36] - v[43] + v[44] + s53 - s67) + T(0.010416666666666666) * (-v[14] + v[15] - v[37] + v[38] - v[45] + v[46]) + T(0.041666666666666664) * (v[24] - v[25]) + T(0.020833333333333332) * (s39 + s85 + s120);
-  const T c21 = T(0.020833333333333332) * (-s17 - s26 + s90 + s93 - s124) + T(0.041666666666666664) * (s21 - s85);
-  const T c22 = T(0.041666666666666664) * (-s39 + s43) + T(0.020833333333333332) * (s60 - s90 + s94 - s124);
-  const T c24 = T(0.0625) * (-s80 + s88 + s117);
-  const T c26 = T(0.041666666666666664) * (-s52 + s54 + s63 + s85 + s91) + T(0.020833333333333332) * (-s123 + s131);
-  const T c27 = T(0.0625) * (-s123 - s131);
-  const T c28 = T(0.0625) * (s99 - s101 - s118) + T(0.125) * s130;
-  const T c29 = T(0.020833333333333332) * (s39 + s57 - s60 + s78 - s96 - s118);
-  const T c30 = T(0.020833333333333332) * (v[18] + v[19] + s18 + s72 - s86 + s109 - s116) + T(0.010416666666666666) * (-s127 - s129);
-  const T c31 = T(0.020833333333333332) * (-s127 + s129);
-  const T c33 = T(0.020833333333333332) * (s38 - s80 - s97 + s102);
-  const T c34 = T(0.020833333333333332) * (-s45 - s114) + T(0.010416666666666666) * (s66 + s73 - s75 + s79 - s98 - s128);
-  const T y0 = x[0] - T(0.5);
+  const T s66 = v[0] + v[1];
+  const T s4 = v[47] - v[52];
+  const T s6 = v[48] - v[51];
+  const T s75 = s4 + s6;
+  const T c34 = T(-0.020833333333333332) * (s45 + s114) + T(0.010416666666666666) * (s79 + (s66 + s73 - s75) - s98 - s128);
   const T y1 = x[1] - T(0.5);
-  const T y2 = x[2] - T(0.5);
-  static_cast<void>(x);  // unused when the polynomial is constant
-  static_cast<void>(d);  // unused on the value path
+  const T s89 = s14 - s35;
+  const T s121 = s44 + s89;
+  const T s87 = s10 - s18;
+  const T s72 = v[25] + v[28];
+  const T s76 = s7 - s13;
+  const T s106 = s0 - s9;
+  const T s113 = s20 + s42;
+  const T s70 = v[21] + v[22];
+  const T s86 = s8 + s70;
+  const T s122 = s46 - s49;
+  const T c8 = T(0.0625) * (s122 + (s107 + (s106 + (s89 - (s87 + (s8 + s76))))));
+  const T s84 = v[16] + v[17];
+  const T s116 = s30 + s76;
+  const T t1 = s122 + (s121 + (s84 - s116));
+  const T s102 = s66 - s79;
+  const T s97 = s35 + s75;
+  const T t2 = s102 + (s38 - s80 - s97);
+  const T t3 = T(0.020833333333333332) * (s121 + (s87 + (s16 - s72))) + T(0.083333333333333329) * (s76 + s106) + T(0.041666666666666664) * (s113 - s86) + y2 * (c8 + y2 * (T(0.0625) * t1 + y2 * (T(0.020833333333333332) * t2)));
+  const T s115 = s27 - s45;
+  const T s108 = s8 - s84;
+  const T t4 = s108 + (s42 - s30) - s115;
+  const T c17 = T(0.0625) * t4;
+  const T t5 = T(0.0625) * (s113 + (s86 - s77)) + y2 * c17;
+  const T s105 = v[20] + v[23];
+  const T s56 = v[35] + v[38];
+  const T s109 = s9 - s16;
+  const T s88 = s10 + (v[4] + v[7]);
+  const T s129 = s88 - s102;
+  const T s74 = s0 + s56;
+  const T s127 = s74 - s97;
+  const T t6 = s129 - s127;
+  const T c31 = T(0.020833333333333332) * t6;
+  const T t7 = T(0.0625) * (s72 + (s13 - s0)) + T(-0.083333333333333329) * s7 + T(0.020833333333333332) * (s35 + (s20 - s30) - s44 - s56 - s105 - s108) + T(0.041666666666666664) * (s109 + (s42 - s87)) + y2 * c31;
+  const T c30 = T(0.020833333333333332) * (s109 + (s72 + (s18 + (v[18] + v[19])) - s86) - s116) + T(-0.010416666666666666) * (s127 + s129);
+  const T y0 = x[0] - T(0.5);
+  const T s19 = v[26] - v[27];
+  const T s32 = v[29] - v[32];
+  const T s22 = v[44] - v[45];
+  const T s33 = v[30] - v[31];
+  const T s23 = s4 - s6;
+  const T s43 = v[49] - v[50];
+  const T s96 = s23 + s43;
+  const T s69 = v[21] - v[22];
+  const T s17 = v[36] - v[37];
+  const T s26 = v[43] - v[46];
+  const T s15 = v[13] - v[14];
+  const T s21 = v[33] - v[34];
+  const T s48 = s15 + s21;
+  const T s31 = v[9] - v[10];
+  const T s34 = v[40] - v[41];
+  const T s57 = v[39] - v[42];
+  const T s71 = v[25] - v[28];
+  const T s63 = s19 + s32;
+  const T s47 = s11 - s12;
+  const T s65 = s33 + s47;
+  const T s91 = s17 - s65;
+  const T s126 = s63 - s91;
+  const T s36 = s1 - s2;
+  const T c6 = T(0.0625) * (s126 + (s48 + (s31 - (s26 + (s22 + s23)) - s34 - s36)));
+  const T s103 = v[8] - v[11];
+  const T s40 = v[12] - v[15];
+  const T t8 = s126 + (s21 - s40 - s96 - s103);
+  const T s54 = v[5] - v[6];
+  const T s118 = s40 - s54;
+  const T s78 = s28 - s29;
+  const T s60 = s17 - s26;
+  const T s39 = v[0] - v[1];
+  const T t9 = s78 + (s39 + s57 - s60) - s96 - s118;
+  const T s52 = s31 + s34;
+  const T s82 = s48 - s52;
+  const T s95 = s22 + s82;
+  const T s50 = s23 - s36;
+  const T s101 = s50 - s60;
+  const T s130 = s95 + (s63 - s65);
+  const T c14 = T(0.125) * (s130 - s101);
+  const T s99 = s39 - s78;
+  const T c28 = T(0.0625) * (s99 - s101 - s118) + T(0.125) * s130;
+  const T t10 = T(0.0625) * (s19 - s32 - (s33 - s47) - s95 - s101) + y2 * (c14 + y2 * c28);
+  const T s104 = v[20] - v[23];
+  const T s41 = v[35] - v[38];
+  const T s94 = s22 - s41;
+  const T s123 = s50 - s94;
+  const T s68 = v[4] - v[7];
+  const T s131 = s99 + (s15 - s68);
+  const T t11 = s123 + s131;
+  const T c27 = T(-0.0625) * t11;
+  const T t12 = T(0.0625) * (s71 + (s19 - s41 - s50) - s82 - s104) + y2 * c27;
+  const T s85 = v[18] - v[19];
+  const T c26 = T(0.041666666666666664) * (s91 + (s85 + (s63 + (s54 - s52)))) + T(0.020833333333333332) * (s131 - s123);
+  const T t13 = T(-0.083333333333333329) * (s19 + T(0.5) * s32 + (s22 + s33)) + T(-0.020833333333333332) * (s96 + (s69 + (s17 + T(2) * s26 + (s48 + (s31 + T(4) * s34))))) + T(-0.041666666666666664) * (s57 + s71) + y2 * (c6 + y2 * (T(0.0625) * t8 + y2 * (T(0.020833333333333332) * t9))) + y1 * (t10 + y1 * (t12 + y1 * c26));
+  const T s110 = s14 + s58;
+  const T c12 = T(0.0625) * (s110 - (s55 + (v[8] + v[11])) - s115);
+  const T s117 = s38 - s74;
+  const T c24 = T(0.0625) * (s117 + (s88 - s80));
+  const T t14 = T(0.0625) * (s117 + (s70 + (s16 - s7) - s105)) + y2 * c24;
+  const T t15 = T(0.0625) * (s110 + (s16 + s72 - s77)) + y2 * c12 + y1 * t14;
+  const T s90 = s15 - s40;
+  const T s120 = s43 + T(2) * (s19 + T(0.5) * s21);
+  const T s124 = s54 - s68;
+  const T c22 = T(0.041666666666666664) * (s43 - s39) + T(0.020833333333333332) * (s94 + (s60 - s90) - s124);
+  const T c21 = T(0.020833333333333332) * (s22 + s41 + (s90 - (s17 + s26)) - s124) + T(0.041666666666666664) * (s21 - s85);
+  const T t16 = T(0.020833333333333332) * (s90 + (s17 - s32 - s57) - s103 - s104) + T(0.041666666666666664) * (s120 + (s22 + T(-0.5) * s41 - s26)) + T(0.0625) * (s69 + (s33 + s52)) + y2 * c22 + y1 * c21;
+  const T c20 = T(0.03125) * (v[5] + T(-0.33333333333333331) * v[6] + (v[44] + (v[36] + (v[13] - v[12] - v[35]) - v[43])) - (v[4] + T(-0.33333333333333331) * v[7])) + T(0.010416666666666666) * (v[46] + (v[38] + (v[15] - v[14] - v[37]) - v[45])) + T(0.041666666666666664) * (v[24] - v[25]) + T(0.020833333333333332) * (s120 + (s39 + s85));
+  const T value = T(0.010416666666666666) * (s107 + (s81 + (s45 + (s35 + s38)))) + T(0.09375) * s77 + y2 * (c3 + y2 * (T(0.0625) * t0 + y2 * (c19 + y2 * c34))) + y1 * (t3 + y1 * (t5 + y1 * (t7 + y1 * c30))) + y0 * (t13 + y0 * (t15 + y0 * (t16 + y0 * c20)));
   if constexpr (Order >= 1) {
-    d[0] = c1 + y2 * (c6 + y2 * (c15 + y2 * (c29))) + y1 * (c5 + y2 * (c14 + y2 * (c28)) + y1 * (c13 + y2 * (c27) + y1 * (c26))) + y0 * (T(2) * c4 + y2 * (T(2) * c12) + y1 * (T(2) * c11 + y2 * (T(2) * c24)) + y0 * (T(3) * c10 + y2 * (T(3) * c22) + y1 * (T(3) * c21) + y0 * (T(4) * c20)));
-    d[1] = c2 + y2 * (c8 + y2 * (c18 + y2 * (c33))) + y1 * (T(2) * c7 + y2 * (T(2) * c17) + y1 * (T(3) * c16 + y2 * (T(3) * c31) + y1 * (T(4) * c30))) + y0 * (c5 + y2 * (c14 + y2 * (c28)) + y1 * (T(2) * c13 + y2 * (T(2) * c27) + y1 * (T(3) * c26)) + y0 * (c11 + y2 * (c24) + y0 * (c21)));
-    d[2] = c3 + y2 * (T(2) * c9 + y2 * (T(3) * c19 + y2 * (T(4) * c34))) + y1 * (c8 + y2 * (T(2) * c18 + y2 * (T(3) * c33)) + y1 * (c17 + y1 * (c31))) + y0 * (c6 + y2 * (T(2) * c15 + y2 * (T(3) * c29)) + y1 * (c14 + y2 * (T(2) * c28) + y1 * (c27)) + y0 * (c12 + y1 * (c24) + y0 * (c22)));
+    const T t17 = T(2) * t15;
+    const T t18 = T(2) * t5;
+    const T t19 = T(2) * t12;
+    const T t20 = t10 + y1 * (t19 + y1 * (T(3) * c26));
+    const T t21 = T(0.125) * t0;
+    const T t22 = T(0.125) * t1;
+    const T t23 = c8 + y2 * (t22 + y2 * (T(0.0625) * t2));
+    const T t24 = T(0.125) * t8;
+    const T t25 = T(2) * c28;
+    const T t26 = c14 + y2 * t25;
+    const T t27 = c6 + y2 * (t24 + y2 * (T(0.0625) * t9)) + y1 * (t26 + y1 * c27);
+    const T t28 = c12 + y1 * c24;
+    d[0] = t13 + y0 * (t17 + y0 * (T(3) * t16 + y0 * (T(4) * c20)));
+    d[1] = t3 + y1 * (t18 + y1 * (T(3) * t7 + y1 * (T(4) * c30))) + y0 * (t20 + y0 * (t14 + y0 * c21));
+    d[2] = c3 + y2 * (t21 + y2 * (T(3) * c19 + y2 * (T(4) * c34))) + y1 * (t23 + y1 * (c17 + y1 * c31)) + y0 * (t27 + y0 * (t28 + y0 * c22));
+    if constexpr (Order >= 2) {
+      d[3] = t17 + y0 * (T(6) * t16 + y0 * (T(12) * c20));
+      d[4] = t20 + y0 * (T(2) * t14 + y0 * (T(3) * c21));
+      d[5] = t27 + y0 * (T(2) * t28 + y0 * (T(3) * c22));
+      d[6] = t18 + y1 * (T(6) * t7 + y1 * (T(12) * c30)) + y0 * (t19 + y1 * (T(6) * c26));
+      d[7] = t23 + y1 * (T(0.125) * t4 + y1 * (T(0.0625) * t6)) + y0 * (t26 + y1 * (T(-0.125) * t11) + y0 * c24);
+      d[8] = t21 + y2 * (T(6) * c19 + y2 * (T(12) * c34)) + y1 * (t22 + y2 * (T(0.125) * t2)) + y0 * (t24 + y2 * (T(0.125) * t9) + y1 * t25);
+    }
   }
-  if constexpr (Order >= 2) {
-    d[3] = T(2) * c4 + y2 * (T(2) * c12) + y1 * (T(2) * c11 + y2 * (T(2) * c24)) + y0 * (T(6) * c10 + y2 * (T(6) * c22) + y1 * (T(6) * c21) + y0 * (T(12) * c20));
-    d[4] = c5 + y2 * (c14 + y2 * (c28)) + y1 * (T(2) * c13 + y2 * (T(2) * c27) + y1 * (T(3) * c26)) + y0 * (T(2) * c11 + y2 * (T(2) * c24) + y0 * (T(3) * c21));
-    d[5] = c6 + y2 * (T(2) * c15 + y2 * (T(3) * c29)) + y1 * (c14 + y2 * (T(2) * c28) + y1 * (c27)) + y0 * (T(2) * c12 + y1 * (T(2) * c24) + y0 * (T(3) * c22));
-    d[6] = T(2) * c7 + y2 * (T(2) * c17) + y1 * (T(6) * c16 + y2 * (T(6) * c31) + y1 * (T(12) * c30)) + y0 * (T(2) * c13 + y2 * (T(2) * c27) + y1 * (T(6) * c26));
-    d[7] = c8 + y2 * (T(2) * c18 + y2 * (T(3) * c33)) + y1 * (T(2) * c17 + y1 * (T(3) * c31)) + y0 * (c14 + y2 * (T(2) * c28) + y1 * (T(2) * c27) + y0 * (c24));
-    d[8] = T(2) * c9 + y2 * (T(6) * c19 + y2 * (T(12) * c34)) + y1 * (T(2) * c18 + y2 * (T(6) * c33)) + y0 * (T(2) * c15 + y2 * (T(6) * c29) + y1 * (T(2) * c28));
-  }
-  return c0 + y2 * (c3 + y2 * (c9 + y2 * (c19 + y2 * (c34)))) + y1 * (c2 + y2 * (c8 + y2 * (c18 + y2 * (c33))) + y1 * (c7 + y2 * (c17) + y1 * (c16 + y2 * (c31) + y1 * (c30)))) + y0 * (c1 + y2 * (c6 + y2 * (c15 + y2 * (c29))) + y1 * (c5 + y2 * (c14 + y2 * (c28)) + y1 * (c13 + y2 * (c27) + y1 * (c26))) + y0 * (c4 + y2 * (c12) + y1 * (c11 + y2 * (c24)) + y0 * (c10 + y2 * (c22) + y1 * (c21) + y0 * (c20))));
+  return value;
 }
 
 

@@ -8,12 +8,15 @@
 // output; the glue (cell lookup, symmetry, fetching) is support/evaluator_support.hpp.
 //
 // Emission strategy: shifted. Arithmetic per point of the polynomial code (additions +
-// multiplications as emitted, the costliest orbit), value / value + gradient / + Hessian:
-//   133 / 193 / 241
-//   orbit 0: shifted about (1,0,0), 130 / 190 / 238
-//     chosen by value + gradient from horner 134 / 194 / 242, monomial 392 / 473 / 524, shifted 130 / 190 / 238, bernstein 203 / 209 / 233
-//   orbit 1: shifted about (1/2,1/2,1/2), 133 / 193 / 241
-//     chosen by value + gradient from horner 156 / 216 / 264, monomial 476 / 557 / 608, shifted 133 / 193 / 241, bernstein 220 / 232 / 286
+// multiplications, counted on its scheduled expression graph, the costliest orbit), value /
+// value + gradient / + Hessian:
+//   133 / 172 / 196
+//   orbit 0: shifted about (1,0,0), 129 / 168 / 192
+//     adds 77 / 92 / 101, muls 52 / 76 / 91, loads 16 / 16 / 16, temporaries 36 / 45 / 45
+//     chosen by value + gradient from horner 132 / 171 / 195, monomial 277 / 337 / 370, shifted 129 / 168 / 192, bernstein 196 / 202 / 225
+//   orbit 1: shifted about (1/2,1/2,1/2), 133 / 172 / 196
+//     adds 80 / 95 / 104, muls 53 / 77 / 92, loads 16 / 16 / 16, temporaries 56 / 65 / 65
+//     chosen by value + gradient from horner 155 / 194 / 218, monomial 358 / 418 / 451, shifted 133 / 172 / 196, bernstein 208 / 220 / 265
 #pragma once
 #include <array>
 #include <cstdint>
@@ -30,8 +33,13 @@ inline constexpr const char* kSpec = "1,1,0; 1,-1,0; 1,0,1; 1,0,-1; 0,1,1; 0,1,-
 inline constexpr const char* kLattice = "fcc";
 inline constexpr const char* kStrategy = "shifted";
 inline constexpr long kValueOperations = 133;
-inline constexpr long kGradientOperations = 193;
-inline constexpr long kHessianOperations = 241;
+inline constexpr long kGradientOperations = 172;
+inline constexpr long kHessianOperations = 196;
+// Per orbit and path (value; value + gradient; + Hessian), what its code executes: additions,
+// multiplications, negations, distinct stencil values read, named temporaries.
+inline constexpr int kCostAdds = 0, kCostMuls = 1, kCostNegs = 2, kCostLoads = 3, kCostTemporaries = 4;
+inline constexpr long kOrbitCosts[2][3][5] = {{{77, 52, 0, 16, 36}, {92, 76, 0, 16, 45}, {101, 91, 0, 16, 45}},
+    {{80, 53, 0, 16, 56}, {95, 77, 0, 16, 65}, {104, 92, 0, 16, 65}}};
 
 using Point = std::array<std::int64_t, kDimension>;
 
@@ -49,74 +57,73 @@ namespace detail {
 // region, the one with the fewest value + gradient operations): 19 coefficients, each an
 // exact linear combination of the 16 stencil values (28 partial sums s shared between
 // coefficients, then values of equal weight grouped), evaluated in nested Horner form in y; each
-// partial derivative is the Horner form of the exact derivative polynomial, sharing the
-// coefficients.
+// partial derivative differentiates that Horner form, so it reuses the inner Horner polynomials of
+// the value (and the gradient's, for the Hessian).
 template <int Order, class T>
 T orbit_0(const T* v, const T* x, T* d) {
-  const T s0 = v[0] + v[3];
+  static_cast<void>(v);  // unused where the polynomial is constant
+  static_cast<void>(x);
+  static_cast<void>(d);  // unused on the value path
   const T s1 = v[2] + v[13];
   const T s2 = v[5] + v[9];
-  const T s3 = v[11] + v[14];
-  const T s4 = v[0] - v[3];
-  const T s5 = v[1] + v[12];
-  const T s6 = v[2] - v[13];
-  const T s7 = v[4] + v[8];
-  const T s8 = v[5] - v[9];
-  const T s9 = v[11] - v[14];
-  const T s10 = s0 + s3;
   const T s11 = s1 + s2;
-  const T s12 = s1 - s2;
-  const T s13 = s0 - s3;
-  const T s14 = s4 + s9;
-  const T s15 = v[1] - v[12];
-  const T s16 = v[4] - v[8];
   const T s17 = v[6] + v[7];
-  const T s18 = v[6] + T(-0.25) * s10;
-  const T s19 = s5 + s7;
-  const T s20 = s5 - s7;
-  const T s21 = s6 + T(-0.5) * s13;
-  const T s22 = s6 - s13;
-  const T s23 = s8 + T(-0.5) * s14;
-  const T s24 = s8 - s14;
-  const T s25 = s12 - s20;
-  const T s26 = s15 + s22;
-  const T s27 = s16 + s24;
-  const T c0 = T(0.16666666666666666) * (s11 + s17);
-  const T c1 = T(0.5) * (-v[6] + v[7]);
-  const T c2 = T(0.5) * -s8;
-  const T c3 = T(0.5) * -s6;
-  const T c4 = T(0.5) * v[7] + T(0.125) * s10 + T(0.25) * -s11;
-  const T c5 = T(0.5) * -s23;
-  const T c6 = T(0.5) * -s21;
-  const T c7 = T(0.25) * -s12 + T(0.5) * -s18;
+  const T s6 = v[2] - v[13];
+  const T c3 = T(-0.5) * s6;
+  const T s0 = v[0] + v[3];
+  const T s3 = v[11] + v[14];
+  const T s10 = s0 + s3;
+  const T t0 = T(-0.5) * (v[6] + T(-0.25) * s10);
+  const T s12 = s1 - s2;
+  const T c9 = t0 + T(0.25) * s12;
+  const T s7 = v[4] + v[8];
+  const T c19 = T(-0.041666666666666664) * (s0 + (v[1] + v[2])) + T(0.16666666666666666) * (v[6] + v[15]) + T(-0.125) * (s3 + (v[12] + v[13])) + T(0.083333333333333329) * (s2 + s7);
+  const T s8 = v[5] - v[9];
+  const T s4 = v[0] - v[3];
+  const T s9 = v[11] - v[14];
   const T c8 = T(0.25) * (s4 - s9);
-  const T c9 = T(0.25) * s12 + T(0.5) * -s18;
-  const T c10 = T(0.083333333333333329) * s10 + T(0.125) * -s11 + T(0.16666666666666666) * s17 + T(0.041666666666666664) * -s19;
-  const T c11 = T(0.125) * -s27;
-  const T c12 = T(0.125) * -s26;
-  const T c13 = T(0.125) * -s25;
-  const T c15 = T(0.125) * s25;
-  const T c16 = T(0.041666666666666664) * (-v[0] - v[4] - v[5] - v[11]) + T(0.125) * (-v[3] - v[8] - v[9] - v[14]) + T(0.16666666666666666) * (v[6] + v[10]) + T(0.083333333333333329) * (s1 + s5);
+  const T s14 = s4 + s9;
+  const T s27 = v[4] - v[8] + (s8 - s14);
+  const T t1 = T(-0.5) * s8 + x[2] * (c8 + x[2] * (T(0.125) * s27));
+  const T s13 = s0 - s3;
+  const T s26 = v[1] - v[12] + (s6 - s13);
   const T c17 = T(0.125) * s26;
-  const T c18 = T(0.125) * s27;
-  const T c19 = T(0.041666666666666664) * (-v[1] - v[2] - s0) + T(0.16666666666666666) * (v[6] + v[15]) + T(0.125) * (-v[12] - v[13] - s3) + T(0.083333333333333329) * (s2 + s7);
+  const T t2 = T(-0.25) * s12 + t0 + x[2] * c17;
+  const T s5 = v[1] + v[12];
+  const T c16 = T(-0.041666666666666664) * (v[11] + (v[5] + (v[0] + v[4]))) + T(-0.125) * (v[14] + (v[9] + (v[3] + v[8]))) + T(0.16666666666666666) * (v[6] + v[10]) + T(0.083333333333333329) * (s1 + s5);
   const T y0 = x[0] - T(1);
-  static_cast<void>(x);  // unused when the polynomial is constant
-  static_cast<void>(d);  // unused on the value path
+  const T c6 = T(-0.5) * (s6 + T(-0.5) * s13);
+  const T s25 = s12 - (s5 - s7);
+  const T c5 = T(-0.5) * (s8 + T(-0.5) * s14);
+  const T t3 = T(0.5) * (v[7] - v[6]) + x[2] * (c6 + x[2] * (T(0.125) * s25)) + x[1] * (c5 + x[1] * (T(-0.125) * s25));
+  const T c12 = T(-0.125) * s26;
+  const T c11 = T(-0.125) * s27;
+  const T t4 = T(0.5) * v[7] + T(0.125) * s10 + T(-0.25) * s11 + x[2] * c12 + x[1] * c11;
+  const T c10 = T(0.083333333333333329) * s10 + T(-0.125) * s11 + T(0.16666666666666666) * s17 + T(-0.041666666666666664) * (s5 + s7);
+  const T value = T(0.16666666666666666) * (s11 + s17) + x[2] * (c3 + x[2] * (c9 + x[2] * c19)) + x[1] * (t1 + x[1] * (t2 + x[1] * c16)) + y0 * (t3 + y0 * (t4 + y0 * c10));
   if constexpr (Order >= 1) {
-    d[0] = c1 + x[2] * (c6 + x[2] * (c15)) + x[1] * (c5 + x[1] * (c13)) + y0 * (T(2) * c4 + x[2] * (T(2) * c12) + x[1] * (T(2) * c11) + y0 * (T(3) * c10));
-    d[1] = c2 + x[2] * (c8 + x[2] * (c18)) + x[1] * (T(2) * c7 + x[2] * (T(2) * c17) + x[1] * (T(3) * c16)) + y0 * (c5 + x[1] * (T(2) * c13) + y0 * (c11));
-    d[2] = c3 + x[2] * (T(2) * c9 + x[2] * (T(3) * c19)) + x[1] * (c8 + x[2] * (T(2) * c18) + x[1] * (c17)) + y0 * (c6 + x[2] * (T(2) * c15) + y0 * (c12));
+    const T t5 = T(2) * t4;
+    const T t6 = T(2) * t2;
+    const T t7 = T(-0.25) * s25;
+    const T t8 = c5 + x[1] * t7;
+    const T t9 = T(2) * c9;
+    const T t10 = T(0.25) * s27;
+    const T t11 = c8 + x[2] * t10;
+    const T t12 = T(0.25) * s25;
+    const T t13 = c6 + x[2] * t12;
+    d[0] = t3 + y0 * (t5 + y0 * (T(3) * c10));
+    d[1] = t1 + x[1] * (t6 + x[1] * (T(3) * c16)) + y0 * (t8 + y0 * c11);
+    d[2] = c3 + x[2] * (t9 + x[2] * (T(3) * c19)) + x[1] * (t11 + x[1] * c17) + y0 * (t13 + y0 * c12);
+    if constexpr (Order >= 2) {
+      d[3] = t5 + y0 * (T(6) * c10);
+      d[4] = t8 + y0 * (T(-0.25) * s27);
+      d[5] = t13 + y0 * (T(-0.25) * s26);
+      d[6] = t6 + x[1] * (T(6) * c16) + y0 * t7;
+      d[7] = t11 + x[1] * (T(0.25) * s26);
+      d[8] = t9 + x[2] * (T(6) * c19) + x[1] * t10 + y0 * t12;
+    }
   }
-  if constexpr (Order >= 2) {
-    d[3] = T(2) * c4 + x[2] * (T(2) * c12) + x[1] * (T(2) * c11) + y0 * (T(6) * c10);
-    d[4] = c5 + x[1] * (T(2) * c13) + y0 * (T(2) * c11);
-    d[5] = c6 + x[2] * (T(2) * c15) + y0 * (T(2) * c12);
-    d[6] = T(2) * c7 + x[2] * (T(2) * c17) + x[1] * (T(6) * c16) + y0 * (T(2) * c13);
-    d[7] = c8 + x[2] * (T(2) * c18) + x[1] * (T(2) * c17);
-    d[8] = T(2) * c9 + x[2] * (T(6) * c19) + x[1] * (T(2) * c18) + y0 * (T(2) * c15);
-  }
-  return c0 + x[2] * (c3 + x[2] * (c9 + x[2] * (c19))) + x[1] * (c2 + x[2] * (c8 + x[2] * (c18)) + x[1] * (c7 + x[2] * (c17) + x[1] * (c16))) + y0 * (c1 + x[2] * (c6 + x[2] * (c15)) + x[1] * (c5 + x[1] * (c13)) + y0 * (c4 + x[2] * (c12) + x[1] * (c11) + y0 * (c10)));
+  return value;
 }
 
 // Orbit 1: the spline on the reference region with vertices (0,0,1) (0,1,0) (1,0,0) (1,1,1),
@@ -124,86 +131,93 @@ T orbit_0(const T* v, const T* x, T* d) {
 // region, the one with the fewest value + gradient operations): 19 coefficients, each an
 // exact linear combination of the 16 stencil values (38 partial sums s shared between
 // coefficients, then values of equal weight grouped), evaluated in nested Horner form in y; each
-// partial derivative is the Horner form of the exact derivative polynomial, sharing the
-// coefficients.
+// partial derivative differentiates that Horner form, so it reuses the inner Horner polynomials of
+// the value (and the gradient's, for the Hessian).
 template <int Order, class T>
 T orbit_1(const T* v, const T* x, T* d) {
-  const T s0 = v[0] + v[1];
-  const T s1 = v[0] - v[1];
-  const T s2 = v[2] + v[8];
-  const T s3 = v[2] - v[8];
-  const T s4 = v[4] + v[12];
-  const T s5 = v[4] - v[12];
-  const T s6 = v[5] + v[9];
-  const T s7 = v[5] - v[9];
-  const T s8 = v[7] + v[13];
-  const T s9 = v[7] - v[13];
-  const T s10 = v[14] + v[15];
-  const T s11 = v[14] - v[15];
+  static_cast<void>(v);  // unused where the polynomial is constant
+  static_cast<void>(x);
+  static_cast<void>(d);  // unused on the value path
   const T s12 = v[3] + v[6];
   const T s13 = v[10] + v[11];
+  const T s22 = s12 + s13;
+  const T s4 = v[4] + v[12];
+  const T s6 = v[5] + v[9];
+  const T s33 = s4 + s6;
+  const T s0 = v[0] + v[1];
+  const T s10 = v[14] + v[15];
+  const T s29 = s0 + s10;
+  const T s2 = v[2] + v[8];
+  const T s8 = v[7] + v[13];
+  const T s31 = s2 + s8;
+  const T y2 = x[2] - T(0.5);
+  const T s23 = s12 - s13;
+  const T s3 = v[2] - v[8];
+  const T s9 = v[7] - v[13];
+  const T s19 = s3 + s9;
+  const T s5 = v[4] - v[12];
+  const T s7 = v[5] - v[9];
+  const T s21 = s5 + s7;
+  const T s28 = s19 + s21;
+  const T s30 = s0 - s10;
+  const T c3 = T(-0.25) * s23 + T(-0.03125) * s28 + T(-0.0625) * s30;
+  const T t0 = s29 - s22;
+  const T c19 = T(0.16666666666666666) * s23 + T(0.041666666666666664) * s28 + T(-0.083333333333333329) * s30;
+  const T y1 = x[1] - T(0.5);
   const T s14 = v[3] - v[6];
   const T s15 = v[10] - v[11];
-  const T s16 = s1 - s11;
-  const T s17 = s1 + s11;
-  const T s18 = s3 - s9;
-  const T s19 = s3 + s9;
-  const T s20 = s5 - s7;
-  const T s21 = s5 + s7;
-  const T s22 = s12 + s13;
-  const T s23 = s12 - s13;
-  const T s24 = s14 - s15;
   const T s25 = s14 + s15;
-  const T s26 = s16 + s18;
+  const T s1 = v[0] - v[1];
+  const T s11 = v[14] - v[15];
+  const T s17 = s1 + s11;
+  const T s20 = s5 - s7;
   const T s27 = s17 + s20;
-  const T s28 = s19 + s21;
-  const T s29 = s0 + s10;
-  const T s30 = s0 - s10;
-  const T s31 = s2 + s8;
   const T s32 = s2 - s8;
-  const T s33 = s4 + s6;
-  const T s34 = s4 - s6;
-  const T s35 = s16 - s18;
-  const T s36 = s17 - s20;
-  const T s37 = s19 - s21;
-  const T c0 = T(0.21875) * s22 + T(0.010416666666666666) * (s29 + s31 + s33);
-  const T c1 = T(0.25) * -s24 + T(0.03125) * s26 + T(0.0625) * s34;
-  const T c2 = T(0.25) * -s25 + T(0.03125) * -s27 + T(0.0625) * -s32;
-  const T c3 = T(0.25) * -s23 + T(0.03125) * -s28 + T(0.0625) * -s30;
-  const T c4 = T(0.125) * (-s22 + s33);
-  const T c5 = T(0.25) * s23 + T(0.125) * -s28;
-  const T c6 = T(0.25) * s25 + T(0.125) * -s27;
-  const T c7 = T(0.125) * (-s22 + s31);
+  const T s24 = s14 - s15;
+  const T s16 = s1 - s11;
+  const T s18 = s3 - s9;
+  const T s26 = s16 + s18;
   const T c8 = T(0.25) * s24 + T(0.125) * s26;
-  const T c9 = T(0.125) * (-s22 + s29);
-  const T c10 = T(0.16666666666666666) * s24 + T(0.041666666666666664) * -s26 + T(0.083333333333333329) * s34;
-  const T c11 = T(0.125) * s36;
-  const T c12 = T(0.125) * s37;
-  const T c13 = T(0.125) * -s35;
-  const T c15 = T(0.125) * s35;
-  const T c16 = T(0.16666666666666666) * s25 + T(0.041666666666666664) * s27 + T(0.083333333333333329) * -s32;
-  const T c17 = T(0.125) * -s37;
-  const T c18 = T(0.125) * -s36;
-  const T c19 = T(0.16666666666666666) * s23 + T(0.041666666666666664) * s28 + T(0.083333333333333329) * -s30;
+  const T s36 = s17 - s20;
+  const T t1 = T(-0.25) * s25 + T(-0.03125) * s27 + T(-0.0625) * s32 + y2 * (c8 + y2 * (T(-0.125) * s36));
+  const T s37 = s19 - s21;
+  const T c17 = T(-0.125) * s37;
+  const T t2 = T(0.125) * (s31 - s22) + y2 * c17;
+  const T c16 = T(0.16666666666666666) * s25 + T(0.041666666666666664) * s27 + T(-0.083333333333333329) * s32;
   const T y0 = x[0] - T(0.5);
-  const T y1 = x[1] - T(0.5);
-  const T y2 = x[2] - T(0.5);
-  static_cast<void>(x);  // unused when the polynomial is constant
-  static_cast<void>(d);  // unused on the value path
+  const T s34 = s4 - s6;
+  const T c6 = T(0.25) * s25 + T(-0.125) * s27;
+  const T s35 = s16 - s18;
+  const T c5 = T(0.25) * s23 + T(-0.125) * s28;
+  const T t3 = T(-0.25) * s24 + T(0.03125) * s26 + T(0.0625) * s34 + y2 * (c6 + y2 * (T(0.125) * s35)) + y1 * (c5 + y1 * (T(-0.125) * s35));
+  const T c12 = T(0.125) * s37;
+  const T c11 = T(0.125) * s36;
+  const T t4 = T(0.125) * (s33 - s22) + y2 * c12 + y1 * c11;
+  const T c10 = T(0.16666666666666666) * s24 + T(-0.041666666666666664) * s26 + T(0.083333333333333329) * s34;
+  const T value = T(0.21875) * s22 + T(0.010416666666666666) * (s33 + (s29 + s31)) + y2 * (c3 + y2 * (T(0.125) * t0 + y2 * c19)) + y1 * (t1 + y1 * (t2 + y1 * c16)) + y0 * (t3 + y0 * (t4 + y0 * c10));
   if constexpr (Order >= 1) {
-    d[0] = c1 + y2 * (c6 + y2 * (c15)) + y1 * (c5 + y1 * (c13)) + y0 * (T(2) * c4 + y2 * (T(2) * c12) + y1 * (T(2) * c11) + y0 * (T(3) * c10));
-    d[1] = c2 + y2 * (c8 + y2 * (c18)) + y1 * (T(2) * c7 + y2 * (T(2) * c17) + y1 * (T(3) * c16)) + y0 * (c5 + y1 * (T(2) * c13) + y0 * (c11));
-    d[2] = c3 + y2 * (T(2) * c9 + y2 * (T(3) * c19)) + y1 * (c8 + y2 * (T(2) * c18) + y1 * (c17)) + y0 * (c6 + y2 * (T(2) * c15) + y0 * (c12));
+    const T t5 = T(2) * t4;
+    const T t6 = T(2) * t2;
+    const T t7 = T(-0.25) * s35;
+    const T t8 = c5 + y1 * t7;
+    const T t9 = T(0.25) * t0;
+    const T t10 = T(-0.25) * s36;
+    const T t11 = c8 + y2 * t10;
+    const T t12 = T(0.25) * s35;
+    const T t13 = c6 + y2 * t12;
+    d[0] = t3 + y0 * (t5 + y0 * (T(3) * c10));
+    d[1] = t1 + y1 * (t6 + y1 * (T(3) * c16)) + y0 * (t8 + y0 * c11);
+    d[2] = c3 + y2 * (t9 + y2 * (T(3) * c19)) + y1 * (t11 + y1 * c17) + y0 * (t13 + y0 * c12);
+    if constexpr (Order >= 2) {
+      d[3] = t5 + y0 * (T(6) * c10);
+      d[4] = t8 + y0 * (T(0.25) * s36);
+      d[5] = t13 + y0 * (T(0.25) * s37);
+      d[6] = t6 + y1 * (T(6) * c16) + y0 * t7;
+      d[7] = t11 + y1 * (T(-0.25) * s37);
+      d[8] = t9 + y2 * (T(6) * c19) + y1 * t10 + y0 * t12;
+    }
   }
-  if constexpr (Order >= 2) {
-    d[3] = T(2) * c4 + y2 * (T(2) * c12) + y1 * (T(2) * c11) + y0 * (T(6) * c10);
-    d[4] = c5 + y1 * (T(2) * c13) + y0 * (T(2) * c11);
-    d[5] = c6 + y2 * (T(2) * c15) + y0 * (T(2) * c12);
-    d[6] = T(2) * c7 + y2 * (T(2) * c17) + y1 * (T(6) * c16) + y0 * (T(2) * c13);
-    d[7] = c8 + y2 * (T(2) * c18) + y1 * (T(2) * c17);
-    d[8] = T(2) * c9 + y2 * (T(6) * c19) + y1 * (T(2) * c18) + y0 * (T(2) * c15);
-  }
-  return c0 + y2 * (c3 + y2 * (c9 + y2 * (c19))) + y1 * (c2 + y2 * (c8 + y2 * (c18)) + y1 * (c7 + y2 * (c17) + y1 * (c16))) + y0 * (c1 + y2 * (c6 + y2 * (c15)) + y1 * (c5 + y1 * (c13)) + y0 * (c4 + y2 * (c12) + y1 * (c11) + y0 * (c10)));
+  return value;
 }
 
 

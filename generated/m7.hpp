@@ -8,10 +8,12 @@
 // output; the glue (cell lookup, symmetry, fetching) is support/evaluator_support.hpp.
 //
 // Emission strategy: shifted. Arithmetic per point of the polynomial code (additions +
-// multiplications as emitted, the costliest orbit), value / value + gradient / + Hessian:
-//   278 / 404 / 536
-//   orbit 0: shifted about (1,1,1), 278 / 404 / 536
-//     chosen by value + gradient from horner 282 / 408 / 540, monomial 840 / 1023 / 1179, shifted 278 / 404 / 536, bernstein 665 / 671 / 695
+// multiplications, counted on its scheduled expression graph, the costliest orbit), value /
+// value + gradient / + Hessian:
+//   278 / 350 / 410
+//   orbit 0: shifted about (1,0,0), 278 / 350 / 410
+//     adds 173 / 201 / 223, muls 105 / 149 / 187, loads 30 / 30 / 30, temporaries 101 / 113 / 113
+//     chosen by value + gradient from horner 281 / 353 / 413, monomial 677 / 803 / 905, shifted 278 / 350 / 410, bernstein 643 / 649 / 673
 #pragma once
 #include <array>
 #include <cstdint>
@@ -28,8 +30,12 @@ inline constexpr const char* kSpec = "1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 2,0,0; 0
 inline constexpr const char* kLattice = "bcc";
 inline constexpr const char* kStrategy = "shifted";
 inline constexpr long kValueOperations = 278;
-inline constexpr long kGradientOperations = 404;
-inline constexpr long kHessianOperations = 536;
+inline constexpr long kGradientOperations = 350;
+inline constexpr long kHessianOperations = 410;
+// Per orbit and path (value; value + gradient; + Hessian), what its code executes: additions,
+// multiplications, negations, distinct stencil values read, named temporaries.
+inline constexpr int kCostAdds = 0, kCostMuls = 1, kCostNegs = 2, kCostLoads = 3, kCostTemporaries = 4;
+inline constexpr long kOrbitCosts[1][3][5] = {{{173, 105, 0, 30, 101}, {201, 149, 0, 30, 113}, {223, 187, 0, 30, 113}}};
 
 using Point = std::array<std::int64_t, kDimension>;
 
@@ -43,133 +49,145 @@ inline constexpr int kStencilReachHi[kDimension] = {2, 2, 2};
 namespace detail {
 
 // Orbit 0: the spline on the reference region with vertices (0,0,0) (1,0,0) (1,1,0) (1,1,1),
-// in monomials of y = x - o about the origin o = (1,1,1) (of 10 candidate points of the
+// in monomials of y = x - o about the origin o = (1,0,0) (of 10 candidate points of the
 // region, the one with the fewest value + gradient operations): 32 coefficients, each an
-// exact linear combination of the 30 stencil values (68 partial sums s shared between
+// exact linear combination of the 30 stencil values (69 partial sums s shared between
 // coefficients, then values of equal weight grouped), evaluated in nested Horner form in y; each
-// partial derivative is the Horner form of the exact derivative polynomial, sharing the
-// coefficients.
+// partial derivative differentiates that Horner form, so it reuses the inner Horner polynomials of
+// the value (and the gradient's, for the Hessian).
 template <int Order, class T>
 T orbit_0(const T* v, const T* x, T* d) {
-  const T s0 = v[25] + v[26];
-  const T s1 = v[25] - v[26];
-  const T s2 = v[27] + v[28];
-  const T s3 = v[16] + v[17];
-  const T s4 = v[16] - v[17];
-  const T s5 = v[21] + v[23];
-  const T s6 = v[27] - v[28];
-  const T s7 = v[14] + v[15];
-  const T s8 = v[14] - v[15];
-  const T s9 = v[21] - v[23];
-  const T s10 = v[7] - v[9];
-  const T s11 = s0 + s2;
-  const T s12 = s0 - s2;
-  const T s13 = v[0] - v[1];
-  const T s14 = v[5] + v[19];
-  const T s15 = v[5] - v[19];
-  const T s16 = v[7] + v[9];
-  const T s17 = v[10] + T(3) * v[24];
-  const T s18 = v[10] - v[24];
-  const T s19 = v[18] - v[20];
-  const T s20 = v[22] + T(0.055555555555555552) * s5;
-  const T s21 = v[22] + T(-0.5) * s5;
-  const T s22 = s1 + s6;
-  const T s23 = s1 - s6;
-  const T s24 = v[18] + v[20];
-  const T s25 = v[0] + v[1];
-  const T s26 = v[2] - v[3];
-  const T s27 = v[2] + v[3];
-  const T s28 = v[4] + T(-0.33333333333333331) * v[6];
-  const T s29 = v[4] - v[6];
-  const T s30 = s3 + s7;
-  const T s31 = s3 - s7;
-  const T s32 = s4 + s8;
-  const T s33 = s4 - s8;
-  const T s34 = s9 + T(0.5) * s10;
-  const T s35 = s9 - s10;
-  const T s36 = s21 + T(0.5) * s24;
-  const T s37 = v[4] + v[6];
-  const T s38 = v[8] + T(-0.5) * s16;
-  const T s39 = v[11] - v[12];
-  const T s40 = s9 - s19;
-  const T s41 = s13 - s26;
-  const T s42 = s15 + s18;
-  const T s43 = s25 - s27;
-  const T s44 = v[8] + T(-2) * v[22];
-  const T s45 = v[8] - v[22];
-  const T s46 = v[8] + v[22];
-  const T s47 = v[8] + v[29];
-  const T s48 = v[8] - v[29];
-  const T s49 = v[19] + v[24];
-  const T s50 = s1 + s4;
-  const T s51 = s5 - s16;
-  const T s52 = s10 - s29;
-  const T s53 = s11 + s30;
-  const T s54 = s11 - s30;
-  const T s55 = s12 - s18;
-  const T s56 = s12 + T(-2) * s18;
-  const T s57 = s19 - s29;
-  const T s58 = s22 + s32;
-  const T s59 = s22 - s32;
-  const T s60 = s23 - s33;
-  const T s61 = s23 + s41;
-  const T s62 = s36 + T(-0.5) * s37;
-  const T s63 = s38 - s62;
-  const T s64 = s39 + T(0.5) * s40;
-  const T s65 = s42 - s51;
-  const T s66 = s43 - s56;
-  const T s67 = s52 + T(2) * s64;
-  const T c0 = T(0.375) * s20 + T(0.020833333333333332) * (s47 + s49) + T(0.0625) * s53;
-  const T c1 = T(0.083333333333333329) * (-s9 - s58);
-  const T c2 = T(0.083333333333333329) * (-v[19] + v[24] - s12 + s31);
-  const T c3 = T(0.083333333333333329) * (-s48 + s54);
-  const T c4 = T(0.25) * -s21;
-  const T c5 = T(0.125) * s60;
-  const T c6 = T(0.125) * -s59;
-  const T c7 = T(0.25) * -v[22] + T(0.125) * s49;
-  const T c8 = T(0.125) * (-s12 - s31);
-  const T c9 = T(0.125) * (v[29] + s44);
-  const T c10 = T(0.083333333333333329) * s8 + T(0.020833333333333332) * -s19 + T(0.041666666666666664) * (-s34 + s50);
-  const T c11 = T(0.125) * (v[19] - s36);
-  const T c12 = T(0.125) * (-s21 + s38);
-  const T c13 = T(0.0625) * (s40 + s60);
-  const T c14 = T(0.125) * (s23 + s33);
-  const T c15 = T(0.0625) * (s35 - s59);
-  const T c16 = T(0.020833333333333332) * (s12 - s14 + s17) + T(0.0625) * -s31 + T(0.041666666666666664) * -s36;
-  const T c17 = T(0.0625) * -s42 + T(0.125) * s45;
-  const T c18 = T(0.0625) * (-s15 - s31 - s55);
-  const T c19 = T(0.083333333333333329) * (-v[22] + v[29]) + T(0.041666666666666664) * -s54 + T(0.020833333333333332) * -s65;
-  const T c20 = T(0.015625) * (-v[7] - v[18] - v[21] - s28) + T(0.005208333333333333) * (v[9] + v[20] + v[23]) + T(0.020833333333333332) * (v[13] - v[15]) + T(0.010416666666666666) * (s13 + s14 + s39 + s46 + s50);
-  const T c21 = T(0.020833333333333332) * s4 + T(0.010416666666666666) * -s67;
-  const T c22 = T(0.020833333333333332) * (s1 - s13) + T(0.010416666666666666) * (-s35 - s57);
-  const T c24 = T(0.0625) * (-s15 + s63);
-  const T c26 = T(0.020833333333333332) * -s8 + T(0.010416666666666666) * (s61 + s67);
-  const T c27 = T(0.03125) * (s23 + s35 - s41 - s57);
-  const T c28 = T(0.0625) * s33 + T(0.03125) * s61;
-  const T c29 = T(0.010416666666666666) * (s13 - s22 + s26) + T(0.020833333333333332) * s35;
-  const T c30 = T(0.010416666666666666) * (v[10] + v[11] + v[12] + v[24] + s7 + s46) + T(0.020833333333333332) * (-s3 - s14) + T(0.005208333333333333) * (s5 + s12 + s16 - s24 - s37 + s43);
-  const T c31 = T(0.020833333333333332) * s63 + T(0.010416666666666666) * -s66;
-  const T c33 = T(0.020833333333333332) * -s15 + T(0.010416666666666666) * s66;
-  const T c34 = T(0.015625) * -s11 + T(0.005208333333333333) * (s25 + s27) + T(0.010416666666666666) * (s30 - s65) + T(0.020833333333333332) * -s48;
-  const T y0 = x[0] - T(1);
-  const T y1 = x[1] - T(1);
-  const T y2 = x[2] - T(1);
-  static_cast<void>(x);  // unused when the polynomial is constant
+  static_cast<void>(v);  // unused where the polynomial is constant
+  static_cast<void>(x);
   static_cast<void>(d);  // unused on the value path
+  const T s22 = v[14] + v[15];
+  const T s0 = v[7] + v[9];
+  const T s1 = v[21] + v[23];
+  const T s16 = s0 + s1;
+  const T s2 = v[4] + v[6];
+  const T s3 = v[18] + v[20];
+  const T s26 = s2 + s3;
+  const T s38 = s16 + s26;
+  const T s13 = v[5] + v[19];
+  const T s18 = v[8] + v[22];
+  const T s45 = s13 + s18;
+  const T s4 = v[0] + v[1];
+  const T s5 = v[25] + v[26];
+  const T s56 = s4 + s5;
+  const T s20 = v[11] + v[12];
+  const T s23 = v[16] + v[17];
+  const T s59 = s20 + s23;
+  const T s17 = s0 - s1;
+  const T s27 = s2 - s3;
+  const T s40 = s17 + s27;
+  const T s14 = v[5] - v[19];
+  const T s19 = v[8] - v[22];
+  const T s47 = s14 + s19;
+  const T s57 = s4 - s5;
+  const T c3 = T(-0.010416666666666666) * s40 + T(-0.14583333333333334) * s47 + T(-0.041666666666666664) * s57;
+  const T t0 = T(-0.125) * s22;
+  const T c9 = t0 + T(0.0625) * s56;
+  const T s15 = v[27] + v[28];
+  const T s12 = v[2] + v[3];
+  const T s58 = s12 + T(-2) * s17;
+  const T c19 = T(0.041666666666666664) * s14 + T(0.010416666666666666) * (s15 - s58) + T(0.083333333333333329) * s19 + T(-0.03125) * s57;
+  const T s61 = s22 + s23;
+  const T s44 = v[10] - v[24];
+  const T c34 = T(0.020833333333333332) * (v[29] - v[8]) + T(0.005208333333333333) * (s4 + s58) + T(-0.015625) * (s5 + s15) + T(0.010416666666666666) * (s61 - (s14 + s44));
+  const T s39 = s16 - s26;
+  const T s46 = s13 - s18;
+  const T s41 = s17 - s27;
+  const T t1 = T(-0.03125) * s41;
+  const T s48 = s14 - s19;
+  const T c8 = t1 + T(0.1875) * s48;
+  const T s28 = s4 - s12;
+  const T s29 = s5 - s15;
+  const T s52 = s28 + s29;
+  const T c18 = T(0.0625) * (s22 - s23) + T(-0.03125) * s52;
+  const T s53 = s28 - s29;
+  const T c33 = T(0.020833333333333332) * (s44 - s14) + T(0.010416666666666666) * s53;
+  const T t2 = T(0.041666666666666664) * (s23 - s20) + T(0.010416666666666666) * s39 + T(-0.14583333333333334) * s46 + x[2] * (c8 + x[2] * (c18 + x[2] * c33));
+  const T t3 = T(-0.0625) * s48;
+  const T s67 = s41 + s53;
+  const T c17 = t3 + T(0.03125) * s67;
+  const T t4 = t0 + T(0.0625) * s59 + x[2] * c17;
+  const T t5 = T(0.0625) * s46;
+  const T s66 = s39 + s52;
+  const T c31 = T(0.020833333333333332) * (s19 - s44) + T(-0.010416666666666666) * s67;
+  const T t6 = t5 + T(-0.041666666666666664) * s20 + T(0.020833333333333332) * s61 + T(-0.010416666666666666) * s66 + x[2] * c31;
+  const T c30 = T(-0.020833333333333332) * (s13 + s23) + T(0.010416666666666666) * (v[10] + v[24] + (s22 + (s18 + s20))) + T(0.005208333333333333) * s66;
+  const T y0 = x[0] - T(1);
+  const T s21 = v[11] - v[12];
+  const T s24 = v[16] - v[17];
+  const T s42 = s21 + s24;
+  const T s7 = v[7] - v[9];
+  const T s8 = v[21] - v[23];
+  const T s31 = s7 + s8;
+  const T s10 = v[4] - v[6];
+  const T s11 = v[18] - v[20];
+  const T s33 = s10 + s11;
+  const T s54 = s31 + s33;
+  const T s25 = v[14] - v[15];
+  const T s6 = v[0] - v[1];
+  const T s9 = v[25] - v[26];
+  const T s30 = s6 + s9;
+  const T s36 = s6 - s9;
+  const T s32 = s7 - s8;
+  const T s37 = s10 - s11;
+  const T s62 = s32 + s37;
+  const T c6 = T(0.0625) * s36 + T(0.03125) * s62;
+  const T s51 = s25 + T(-0.5) * s30;
+  const T s34 = v[2] - v[3];
+  const T s35 = v[27] - v[28];
+  const T s65 = s34 - s35;
+  const T c29 = T(-0.020833333333333332) * s32 + T(0.010416666666666666) * (s36 + s65);
+  const T s55 = s31 - s33;
+  const T s60 = s21 - s24;
+  const T s63 = s32 - s37;
+  const T c14 = T(0.0625) * s63;
+  const T s68 = s51 + T(0.5) * (s34 + s35);
+  const T t7 = s24 - s68;
+  const T t8 = T(-0.03125) * s55 + T(0.0625) * s60 + x[2] * (c14 + x[2] * (T(0.0625) * t7));
+  const T t9 = s65 - (s36 + s63);
+  const T c27 = T(0.03125) * t9;
+  const T t10 = T(0.125) * s25 + T(-0.0625) * s42 + x[2] * c27;
+  const T c26 = T(0.020833333333333332) * (s21 - s68) + T(0.010416666666666666) * s55;
+  const T t11 = T(-0.020833333333333332) * (s42 + s54) + T(-0.25) * (s25 + T(0.083333333333333329) * s30) + x[2] * (c6 + x[2] * (T(0.125) * s51 + x[2] * c29)) + x[1] * (t8 + x[1] * (t10 + x[1] * c26));
+  const T c12 = T(-0.03125) * s40 + T(0.0625) * s47;
+  const T c24 = t1 + t3;
+  const T t12 = T(0.03125) * s39 + t5 + x[2] * c24;
+  const T t13 = T(0.03125) * s38 + T(-0.0625) * s45 + x[2] * c12 + x[1] * t12;
+  const T c22 = T(-0.020833333333333332) * s36 + T(0.010416666666666666) * s62;
+  const T c21 = T(-0.010416666666666666) * s55 + T(-0.020833333333333332) * s60;
+  const T t14 = T(0.020833333333333332) * (s42 - s54) + T(0.083333333333333329) * (s25 + T(0.25) * s30) + x[2] * c22 + x[1] * c21;
+  const T c20 = T(-0.015625) * (v[21] + (v[18] + (v[4] + v[7]))) + T(0.005208333333333333) * (v[23] + (v[20] + (v[6] + v[9]))) + T(0.020833333333333332) * (v[13] - v[15]) + T(0.010416666666666666) * (s45 + (s30 + s42));
+  const T value = T(0.20833333333333334) * s22 + T(0.005208333333333333) * s38 + T(0.11458333333333333) * s45 + T(0.010416666666666666) * (s56 + s59) + x[2] * (c3 + x[2] * (c9 + x[2] * (c19 + x[2] * c34))) + x[1] * (t2 + x[1] * (t4 + x[1] * (t6 + x[1] * c30))) + y0 * (t11 + y0 * (t13 + y0 * (t14 + y0 * c20)));
   if constexpr (Order >= 1) {
-    d[0] = c1 + y2 * (c6 + y2 * (c15 + y2 * (c29))) + y1 * (c5 + y2 * (c14 + y2 * (c28)) + y1 * (c13 + y2 * (c27) + y1 * (c26))) + y0 * (T(2) * c4 + y2 * (T(2) * c12) + y1 * (T(2) * c11 + y2 * (T(2) * c24)) + y0 * (T(3) * c10 + y2 * (T(3) * c22) + y1 * (T(3) * c21) + y0 * (T(4) * c20)));
-    d[1] = c2 + y2 * (c8 + y2 * (c18 + y2 * (c33))) + y1 * (T(2) * c7 + y2 * (T(2) * c17) + y1 * (T(3) * c16 + y2 * (T(3) * c31) + y1 * (T(4) * c30))) + y0 * (c5 + y2 * (c14 + y2 * (c28)) + y1 * (T(2) * c13 + y2 * (T(2) * c27) + y1 * (T(3) * c26)) + y0 * (c11 + y2 * (c24) + y0 * (c21)));
-    d[2] = c3 + y2 * (T(2) * c9 + y2 * (T(3) * c19 + y2 * (T(4) * c34))) + y1 * (c8 + y2 * (T(2) * c18 + y2 * (T(3) * c33)) + y1 * (c17 + y1 * (c31))) + y0 * (c6 + y2 * (T(2) * c15 + y2 * (T(3) * c29)) + y1 * (c14 + y2 * (T(2) * c28) + y1 * (c27)) + y0 * (c12 + y1 * (c24) + y0 * (c22)));
+    const T t15 = T(2) * t13;
+    const T t16 = T(2) * t4;
+    const T t17 = T(2) * t10;
+    const T t18 = t8 + x[1] * (t17 + x[1] * (T(3) * c26));
+    const T t19 = T(2) * c9;
+    const T t20 = T(2) * c18;
+    const T t21 = c8 + x[2] * (t20 + x[2] * (T(3) * c33));
+    const T t22 = T(0.25) * s51;
+    const T t23 = T(0.125) * t7;
+    const T t24 = c14 + x[2] * t23;
+    const T t25 = c6 + x[2] * (t22 + x[2] * (T(3) * c29)) + x[1] * (t24 + x[1] * c27);
+    const T t26 = c12 + x[1] * c24;
+    d[0] = t11 + y0 * (t15 + y0 * (T(3) * t14 + y0 * (T(4) * c20)));
+    d[1] = t2 + x[1] * (t16 + x[1] * (T(3) * t6 + x[1] * (T(4) * c30))) + y0 * (t18 + y0 * (t12 + y0 * c21));
+    d[2] = c3 + x[2] * (t19 + x[2] * (T(3) * c19 + x[2] * (T(4) * c34))) + x[1] * (t21 + x[1] * (c17 + x[1] * c31)) + y0 * (t25 + y0 * (t26 + y0 * c22));
+    if constexpr (Order >= 2) {
+      d[3] = t15 + y0 * (T(6) * t14 + y0 * (T(12) * c20));
+      d[4] = t18 + y0 * (T(2) * t12 + y0 * (T(3) * c21));
+      d[5] = t25 + y0 * (T(2) * t26 + y0 * (T(3) * c22));
+      d[6] = t16 + x[1] * (T(6) * t6 + x[1] * (T(12) * c30)) + y0 * (t17 + x[1] * (T(6) * c26));
+      d[7] = t21 + x[1] * (T(2) * c17 + x[1] * (T(3) * c31)) + y0 * (t24 + x[1] * (T(0.0625) * t9) + y0 * c24);
+      d[8] = t19 + x[2] * (T(6) * c19 + x[2] * (T(12) * c34)) + x[1] * (t20 + x[2] * (T(6) * c33)) + y0 * (t22 + x[2] * (T(6) * c29) + x[1] * t23);
+    }
   }
-  if constexpr (Order >= 2) {
-    d[3] = T(2) * c4 + y2 * (T(2) * c12) + y1 * (T(2) * c11 + y2 * (T(2) * c24)) + y0 * (T(6) * c10 + y2 * (T(6) * c22) + y1 * (T(6) * c21) + y0 * (T(12) * c20));
-    d[4] = c5 + y2 * (c14 + y2 * (c28)) + y1 * (T(2) * c13 + y2 * (T(2) * c27) + y1 * (T(3) * c26)) + y0 * (T(2) * c11 + y2 * (T(2) * c24) + y0 * (T(3) * c21));
-    d[5] = c6 + y2 * (T(2) * c15 + y2 * (T(3) * c29)) + y1 * (c14 + y2 * (T(2) * c28) + y1 * (c27)) + y0 * (T(2) * c12 + y1 * (T(2) * c24) + y0 * (T(3) * c22));
-    d[6] = T(2) * c7 + y2 * (T(2) * c17) + y1 * (T(6) * c16 + y2 * (T(6) * c31) + y1 * (T(12) * c30)) + y0 * (T(2) * c13 + y2 * (T(2) * c27) + y1 * (T(6) * c26));
-    d[7] = c8 + y2 * (T(2) * c18 + y2 * (T(3) * c33)) + y1 * (T(2) * c17 + y1 * (T(3) * c31)) + y0 * (c14 + y2 * (T(2) * c28) + y1 * (T(2) * c27) + y0 * (c24));
-    d[8] = T(2) * c9 + y2 * (T(6) * c19 + y2 * (T(12) * c34)) + y1 * (T(2) * c18 + y2 * (T(6) * c33)) + y0 * (T(2) * c15 + y2 * (T(6) * c29) + y1 * (T(2) * c28));
-  }
-  return c0 + y2 * (c3 + y2 * (c9 + y2 * (c19 + y2 * (c34)))) + y1 * (c2 + y2 * (c8 + y2 * (c18 + y2 * (c33))) + y1 * (c7 + y2 * (c17) + y1 * (c16 + y2 * (c31) + y1 * (c30)))) + y0 * (c1 + y2 * (c6 + y2 * (c15 + y2 * (c29))) + y1 * (c5 + y2 * (c14 + y2 * (c28)) + y1 * (c13 + y2 * (c27) + y1 * (c26))) + y0 * (c4 + y2 * (c12) + y1 * (c11 + y2 * (c24)) + y0 * (c10 + y2 * (c22) + y1 * (c21) + y0 * (c20))));
+  return value;
 }
 
 

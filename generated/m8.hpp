@@ -8,10 +8,12 @@
 // output; the glue (cell lookup, symmetry, fetching) is support/evaluator_support.hpp.
 //
 // Emission strategy: shifted. Arithmetic per point of the polynomial code (additions +
-// multiplications as emitted, the costliest orbit), value / value + gradient / + Hessian:
-//   415 / 628 / 895
-//   orbit 0: shifted about (1,1,0), 415 / 628 / 895
-//     chosen by value + gradient from horner 428 / 641 / 908, monomial 1677 / 1983 / 2307, shifted 415 / 628 / 895, bernstein 1199 / 1207 / 1242
+// multiplications, counted on its scheduled expression graph, the costliest orbit), value /
+// value + gradient / + Hessian:
+//   405 / 512 / 602
+//   orbit 0: shifted about (1,1,0), 405 / 512 / 602
+//     adds 245 / 287 / 323, muls 160 / 225 / 279, loads 32 / 32 / 32, temporaries 122 / 148 / 152
+//     chosen by value + gradient from horner 419 / 526 / 616, monomial 1173 / 1372 / 1568, shifted 405 / 512 / 602, bernstein 1148 / 1156 / 1190
 #pragma once
 #include <array>
 #include <cstdint>
@@ -27,9 +29,13 @@ inline constexpr int kLatticeDet = 4;
 inline constexpr const char* kSpec = "1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1";
 inline constexpr const char* kLattice = "bcc";
 inline constexpr const char* kStrategy = "shifted";
-inline constexpr long kValueOperations = 415;
-inline constexpr long kGradientOperations = 628;
-inline constexpr long kHessianOperations = 895;
+inline constexpr long kValueOperations = 405;
+inline constexpr long kGradientOperations = 512;
+inline constexpr long kHessianOperations = 602;
+// Per orbit and path (value; value + gradient; + Hessian), what its code executes: additions,
+// multiplications, negations, distinct stencil values read, named temporaries.
+inline constexpr int kCostAdds = 0, kCostMuls = 1, kCostNegs = 2, kCostLoads = 3, kCostTemporaries = 4;
+inline constexpr long kOrbitCosts[1][3][5] = {{{245, 160, 0, 32, 122}, {287, 225, 0, 32, 148}, {323, 279, 0, 32, 152}}};
 
 using Point = std::array<std::int64_t, kDimension>;
 
@@ -47,185 +53,180 @@ namespace detail {
 // region, the one with the fewest value + gradient operations): 47 coefficients, each an
 // exact linear combination of the 32 stencil values (110 partial sums s shared between
 // coefficients, then values of equal weight grouped), evaluated in nested Horner form in y; each
-// partial derivative is the Horner form of the exact derivative polynomial, sharing the
-// coefficients.
+// partial derivative differentiates that Horner form, so it reuses the inner Horner polynomials of
+// the value (and the gradient's, for the Hessian).
 template <int Order, class T>
 T orbit_0(const T* v, const T* x, T* d) {
-  const T s0 = v[1] + v[2];
+  static_cast<void>(v);  // unused where the polynomial is constant
+  static_cast<void>(x);
+  static_cast<void>(d);  // unused on the value path
   const T s1 = v[3] + v[4];
-  const T s2 = v[27] + v[28];
   const T s3 = v[29] + v[30];
-  const T s4 = v[8] + v[23];
-  const T s5 = v[10] + v[25];
+  const T s17 = v[11] + v[26];
+  const T s11 = v[6] + v[21];
+  const T s16 = v[9] + v[24];
   const T s6 = v[15] + v[16];
   const T s7 = v[18] + v[19];
-  const T s8 = v[0] + T(4) * s1;
-  const T s9 = v[0] + T(3) * s1;
-  const T s10 = v[0] - s1;
-  const T s11 = v[6] + v[21];
-  const T s12 = v[31] + T(4) * s3;
-  const T s13 = v[31] + T(3) * s3;
-  const T s14 = v[31] - s3;
-  const T s15 = v[1] - v[2];
-  const T s16 = v[9] + v[24];
-  const T s17 = v[11] + v[26];
-  const T s18 = v[27] - v[28];
+  const T s39 = s6 + s7;
+  const T s0 = v[1] + v[2];
+  const T s2 = v[27] + v[28];
   const T s19 = s0 + s2;
+  const T s4 = v[8] + v[23];
+  const T s5 = v[10] + v[25];
   const T s20 = s4 + s5;
-  const T s21 = v[5] + v[20];
+  const T s31 = s0 - s2;
+  const T s34 = v[9] - v[24];
   const T s22 = v[6] - v[21];
-  const T s23 = v[7] + v[22];
+  const T s26 = v[11] - v[26];
+  const T s45 = s22 + s26;
   const T s24 = v[8] - v[23];
   const T s25 = v[10] - v[25];
-  const T s26 = v[11] - v[26];
-  const T s27 = v[12] + v[14];
-  const T s28 = v[13] + v[17];
-  const T s29 = v[15] - v[16];
-  const T s30 = v[18] - v[19];
-  const T s31 = s0 - s2;
-  const T s32 = s15 + s18;
-  const T s33 = v[3] - v[4];
-  const T s34 = v[9] - v[24];
-  const T s35 = v[29] - v[30];
-  const T s36 = s10 + s14;
-  const T s37 = s4 - s5;
-  const T s38 = s17 + s36;
-  const T s39 = s6 + s7;
-  const T s40 = s19 + T(2.75) * s20;
-  const T s41 = s19 + T(11) * s20;
-  const T s42 = s19 - s20;
-  const T s43 = s21 + s27;
-  const T s44 = s21 - s27;
-  const T s45 = s22 + s26;
-  const T s46 = s23 + s28;
-  const T s47 = s23 - s28;
   const T s48 = s24 + s25;
-  const T s49 = s10 - s14;
-  const T s50 = s31 - s49;
-  const T s51 = s29 + s30;
-  const T s52 = s33 + s35;
   const T s53 = s45 + s48;
+  const T c3 = T(0.005208333333333333) * (v[31] + T(3) * s3 - (v[0] + T(3) * s1)) + T(-0.015625) * s31 + T(-0.25520833333333331) * s34 + T(-0.026041666666666668) * s53;
   const T s54 = s1 + s3;
-  const T s55 = s11 + T(18.454545454545453) * s16;
-  const T s56 = s11 + T(27) * s16;
-  const T s57 = s11 + T(-2.4545454545454546) * s16;
+  const T s93 = s17 + s20;
   const T s58 = s11 + T(3) * s16;
-  const T s59 = s11 - s16;
+  const T s91 = v[0] + v[31];
+  const T c9 = T(0.020833333333333332) * (s19 + s54) + T(-0.083333333333333329) * s39 + T(0.010416666666666666) * (s93 + (s58 + s91));
+  const T s92 = s1 - s3;
+  const T s96 = v[0] - v[31];
+  const T c19 = T(0.010416666666666666) * (s53 - s31 - s92 - s96) + T(0.072916666666666671) * s34;
+  const T c34 = T(0.005208333333333333) * (s91 - s11 - s93) + T(-0.026041666666666668) * s16 + T(0.020833333333333332) * s39;
+  const T s10 = v[0] - s1;
+  const T s14 = v[31] - s3;
+  const T s50 = s31 - (s10 - s14);
+  const T s86 = s53 + (s34 - s50);
+  const T y1 = x[1] - T(1);
+  const T s66 = s6 - s7;
+  const T s97 = s19 - s54;
+  const T s70 = s22 - s26;
+  const T s100 = s31 - s92;
+  const T c8 = T(0.0625) * s70 + T(0.03125) * s100;
+  const T c18 = T(0.0625) * s66 + T(-0.03125) * s97;
+  const T c33 = T(-0.020833333333333332) * s70 + T(0.010416666666666666) * s100;
+  const T t0 = T(0.041666666666666664) * (s17 - s11) + T(-0.14583333333333334) * s66 + T(-0.010416666666666666) * s97 + x[2] * (c8 + x[2] * (c18 + x[2] * c33));
+  const T s42 = s19 - s20;
+  const T s36 = s10 + s14;
+  const T t1 = T(0.140625) * (s34 + T(-0.1111111111111111) * s50);
+  const T c17 = t1 + (T(-0.046875) * s45 + T(0.015625) * s48);
+  const T s38 = s17 + s36;
+  const T s81 = s38 + T(-2) * s39;
+  const T s95 = s81 - (s42 - s58);
+  const T c23 = T(-0.015625) * s95;
+  const T t2 = x[2] * (c23 + x[2] * (T(0.005208333333333333) * s86));
+  const T t3 = T(0.057291666666666664) * (s17 + (s11 + T(-2.4545454545454546) * s16)) + T(0.005208333333333333) * (s42 - s36) + T(0.010416666666666666) * s39 + x[2] * (c17 + t2);
+  const T s23 = v[7] + v[22];
+  const T s28 = v[13] + v[17];
+  const T s46 = s23 + s28;
+  const T s21 = v[5] + v[20];
+  const T s27 = v[12] + v[14];
+  const T s43 = s21 + s27;
+  const T s103 = s46 + T(-2) * (s20 + T(-0.5) * s43);
   const T s60 = s11 + T(1.6666666666666667) * s16;
-  const T s61 = s15 - s18;
   const T s62 = v[5] - v[20];
   const T s63 = v[7] - v[22];
+  const T s107 = s62 + s63;
+  const T c31 = T(-0.020833333333333332) * s31 + T(0.03125) * s34 + T(0.010416666666666666) * (s107 + (s70 + s96));
+  const T s44 = s21 - s27;
+  const T s47 = s23 - s28;
+  const T s90 = s60 + T(-1.6666666666666667) * (s6 + T(0.59999999999999998) * s7) + T(0.33333333333333331) * (s38 + T(-2) * s42 + (s44 + s47));
+  const T c41 = T(-0.015625) * s90;
+  const T t4 = T(0.036458333333333336) * s17 + T(0.010416666666666666) * s19 + T(-0.005208333333333333) * (s103 + (s54 + s91)) + T(-0.015625) * s60 + T(0.057291666666666664) * s66 + x[2] * (c31 + x[2] * c41);
   const T s64 = v[12] - v[14];
   const T s65 = v[13] - v[17];
-  const T s66 = s6 - s7;
-  const T s67 = s6 + T(0.20000000000000001) * s7;
-  const T s68 = s6 + T(5) * s7;
-  const T s69 = s6 + T(0.59999999999999998) * s7;
-  const T s70 = s22 - s26;
-  const T s71 = s24 - s25;
-  const T s72 = s32 + T(4) * s37;
-  const T s73 = s32 + T(-1.6666666666666667) * s37;
-  const T s74 = s32 + T(3) * s37;
-  const T s75 = s32 + T(-2) * s37;
-  const T s76 = s32 - s37;
-  const T s77 = s33 - s35;
-  const T s78 = s34 + T(-0.1111111111111111) * s50;
-  const T s79 = s34 + T(-0.33333333333333331) * s50;
-  const T s80 = s34 - s50;
-  const T s81 = s38 + T(-2) * s39;
-  const T s82 = s38 + T(-2) * s42;
-  const T s83 = s44 - s47;
-  const T s84 = s44 + s47;
-  const T s85 = s51 + s76;
-  const T s86 = s53 + s80;
-  const T s87 = s60 + T(-1.6666666666666667) * s69;
-  const T s88 = s82 + s84;
-  const T s89 = s83 - s85;
-  const T s90 = s87 + T(0.33333333333333331) * s88;
-  const T s91 = v[0] + v[31];
-  const T s92 = s1 - s3;
-  const T s93 = s17 + s20;
-  const T s94 = s42 - s58;
-  const T s95 = s81 - s94;
-  const T s96 = v[0] - v[31];
-  const T s97 = s19 - s54;
-  const T s98 = s20 + T(-0.5) * s43;
-  const T s99 = s29 - s30;
-  const T s100 = s31 - s92;
-  const T s101 = s32 - s52;
-  const T s102 = s43 - s46;
-  const T s103 = s46 + T(-2) * s98;
-  const T s104 = s61 + s77;
-  const T s105 = s61 - s77;
-  const T s106 = s62 - s63;
-  const T s107 = s62 + s63;
   const T s108 = s64 + s65;
-  const T s109 = s64 - s65;
-  const T c0 = T(0.0010416666666666667) * (s8 + s12) + T(0.011458333333333333) * (s17 + s55) + T(0.1125) * s39 + T(0.0041666666666666666) * s40;
-  const T c1 = T(0.14583333333333334) * -s51 + T(0.010416666666666666) * (-s52 - s72);
-  const T c2 = T(0.041666666666666664) * (-s11 + s17) + T(0.14583333333333334) * -s66 + T(0.010416666666666666) * -s97;
-  const T c3 = T(0.005208333333333333) * (-s9 + s13) + T(0.015625) * -s31 + T(0.25520833333333331) * -s34 + T(0.026041666666666668) * -s53;
-  const T c4 = T(0.005208333333333333) * (s41 - s56 - s81);
-  const T c5 = T(0.1875) * s99 + T(0.03125) * s101;
-  const T c6 = T(0.0625) * s71 + T(0.03125) * s104;
-  const T c7 = T(0.057291666666666664) * (s17 + s57) + T(0.005208333333333333) * (-s36 + s42) + T(0.010416666666666666) * s39;
-  const T c8 = T(0.0625) * s70 + T(0.03125) * s100;
-  const T c9 = T(0.020833333333333332) * (s19 + s54) + T(0.083333333333333329) * -s39 + T(0.010416666666666666) * (s58 + s91 + s93);
-  const T c10 = T(0.078125) * s29 + T(0.036458333333333336) * s30 + T(0.015625) * s73 + T(0.005208333333333333) * -s102;
-  const T c11 = T(0.015625) * (-s38 - s66 - s103) + T(0.078125) * s59;
-  const T c12 = T(0.015625) * s45 + T(0.046875) * -s48 + T(0.140625) * s78;
-  const T c13 = T(0.046875) * s29 + T(0.078125) * -s30 + T(0.03125) * -s52 + T(0.015625) * (s74 - s102);
-  const T c14 = T(0.0625) * -s105;
-  const T c15 = T(0.03125) * (-s32 - s52) + T(0.0625) * s51;
-  const T c16 = T(0.036458333333333336) * s17 + T(0.010416666666666666) * s19 + T(0.005208333333333333) * (-s54 - s91 - s103) + T(0.015625) * -s60 + T(0.057291666666666664) * s66;
-  const T c17 = T(0.046875) * -s45 + T(0.015625) * s48 + T(0.140625) * s78;
-  const T c18 = T(0.0625) * s66 + T(0.03125) * -s97;
-  const T c19 = T(0.010416666666666666) * (-s31 + s53 - s92 - s96) + T(0.072916666666666671) * s34;
-  const T c20 = T(0.020833333333333332) * (s11 + s16) + T(0.005208333333333333) * (-s19 - s108) + T(0.026041666666666668) * -s67;
-  const T c21 = T(0.010416666666666666) * (s29 + s75 - s109) + T(0.03125) * s30;
-  const T c22 = T(0.020833333333333332) * -s61 + T(0.010416666666666666) * (s71 + s106);
-  const T c23 = T(0.015625) * -s95;
-  const T c24 = T(0.03125) * (-s70 + s107) + T(0.09375) * s79;
-  const T c25 = T(0.015625) * -s95;
-  const T c26 = T(0.03125) * -s29 + T(0.010416666666666666) * (-s30 - s52 + s109) + T(0.020833333333333332) * s37;
-  const T c27 = T(0.03125) * (-s71 - s105 + s106);
-  const T c28 = T(0.0625) * -s99 + T(0.03125) * s101;
-  const T c29 = T(0.020833333333333332) * -s71 + T(0.010416666666666666) * s104;
-  const T c30 = T(0.010416666666666666) * (-s11 + s93) + T(0.020833333333333332) * s16 + T(0.005208333333333333) * (-s54 - s68 + s108);
-  const T c31 = T(0.020833333333333332) * -s31 + T(0.03125) * s34 + T(0.010416666666666666) * (s70 + s96 + s107);
-  const T c32 = T(0.015625) * -s95;
-  const T c33 = T(0.020833333333333332) * -s70 + T(0.010416666666666666) * s100;
-  const T c34 = T(0.005208333333333333) * (-s11 + s91 - s93) + T(0.026041666666666668) * -s16 + T(0.020833333333333332) * s39;
-  const T c35 = T(0.0010416666666666667) * s89;
-  const T c38 = T(0.005208333333333333) * -s89;
-  const T c40 = T(0.005208333333333333) * -s89;
-  const T c41 = T(0.015625) * -s90;
-  const T c42 = T(0.015625) * s86;
-  const T c43 = T(0.046875) * -s90;
-  const T c44 = T(0.005208333333333333) * s86;
-  const T c47 = T(0.015625) * -s89;
-  const T c50 = T(0.0031250000000000002) * s90;
-  const T c52 = T(0.015625) * -s90;
-  const T c53 = T(0.005208333333333333) * s86;
-  const T c55 = T(0.0010416666666666667) * -s86;
+  const T c30 = T(0.010416666666666666) * (s93 - s11) + T(0.020833333333333332) * s16 + T(0.005208333333333333) * (s108 - (s54 + (s6 + T(5) * s7)));
   const T y0 = x[0] - T(1);
-  const T y1 = x[1] - T(1);
-  static_cast<void>(x);  // unused when the polynomial is constant
-  static_cast<void>(d);  // unused on the value path
+  const T s29 = v[15] - v[16];
+  const T s30 = v[18] - v[19];
+  const T s51 = s29 + s30;
+  const T s33 = v[3] - v[4];
+  const T s35 = v[29] - v[30];
+  const T s52 = s33 + s35;
+  const T s15 = v[1] - v[2];
+  const T s18 = v[27] - v[28];
+  const T s32 = s15 + s18;
+  const T s37 = s4 - s5;
+  const T s71 = s24 - s25;
+  const T s61 = s15 - s18;
+  const T s77 = s33 - s35;
+  const T s104 = s61 + s77;
+  const T c6 = T(0.0625) * s71 + T(0.03125) * s104;
+  const T c15 = T(-0.03125) * (s32 + s52) + T(0.0625) * s51;
+  const T c29 = T(-0.020833333333333332) * s71 + T(0.010416666666666666) * s104;
+  const T s99 = s29 - s30;
+  const T t5 = T(0.03125) * (s32 - s52);
+  const T s105 = s61 - s77;
+  const T c14 = T(-0.0625) * s105;
+  const T c28 = t5 + T(-0.0625) * s99;
+  const T t6 = T(0.1875) * s99 + t5 + x[2] * (c14 + x[2] * c28);
+  const T s102 = s43 - s46;
+  const T s106 = s62 - s63;
+  const T c27 = T(0.03125) * (s106 - (s71 + s105));
+  const T s89 = s44 - s47 - (s51 + (s32 - s37));
+  const T t7 = T(0.046875) * s29 + T(-0.078125) * s30 + T(-0.03125) * s52 + T(0.015625) * (s32 + T(3) * s37 - s102) + x[2] * (c27 + x[2] * (T(-0.015625) * s89));
+  const T s109 = s64 - s65;
+  const T c26 = T(-0.03125) * s29 + T(0.010416666666666666) * (s109 - (s30 + s52)) + T(0.020833333333333332) * s37;
+  const T t8 = T(-0.14583333333333334) * s51 + T(-0.010416666666666666) * (s52 + (s32 + T(4) * s37)) + x[2] * (c6 + x[2] * (c15 + x[2] * c29)) + y1 * (t6 + y1 * (t7 + y1 * c26));
+  const T c12 = T(0.015625) * s45 + T(-0.046875) * s48 + t1;
+  const T c24 = T(0.03125) * (s107 - s70) + T(0.09375) * (s34 + T(-0.33333333333333331) * s50);
+  const T c43 = T(-0.046875) * s90;
+  const T t9 = T(-0.015625) * (s103 + (s38 + s66)) + T(0.078125) * (s11 - s16) + x[2] * (c24 + x[2] * c43);
+  const T c42 = T(0.015625) * s86;
+  const T t10 = x[2] * c42;
+  const T t11 = c23 + t10;
+  const T t12 = T(0.005208333333333333) * (s19 + T(11) * s20 - (s11 + T(27) * s16) - s81) + x[2] * (c12 + t2) + y1 * (t9 + y1 * (t11 + y1 * c41));
+  const T c22 = T(-0.020833333333333332) * s61 + T(0.010416666666666666) * (s71 + s106);
+  const T c38 = T(-0.005208333333333333) * s89;
+  const T c21 = T(0.010416666666666666) * (s29 + (s32 + T(-2) * s37) - s109) + T(0.03125) * s30;
+  const T t13 = T(0.078125) * s29 + T(0.036458333333333336) * s30 + T(0.015625) * (s32 + T(-1.6666666666666667) * s37) + T(-0.005208333333333333) * s102 + x[2] * (c22 + x[2] * c38) + y1 * (c21 + y1 * c38);
+  const T c20 = T(0.020833333333333332) * (s11 + s16) + T(-0.005208333333333333) * (s19 + s108) + T(-0.026041666666666668) * (s6 + T(0.20000000000000001) * s7);
+  const T value = T(0.0010416666666666667) * (v[0] + T(4) * s1 + (v[31] + T(4) * s3)) + T(0.011458333333333333) * (s17 + (s11 + T(18.454545454545453) * s16)) + T(0.1125) * s39 + T(0.0041666666666666666) * (s19 + T(2.75) * s20) + x[2] * (c3 + x[2] * (c9 + x[2] * (c19 + x[2] * (c34 + x[2] * (T(-0.0010416666666666667) * s86))))) + y1 * (t0 + y1 * (t3 + y1 * (t4 + y1 * (c30 + y1 * (T(0.0031250000000000002) * s90))))) + y0 * (t8 + y0 * (t12 + y0 * (t13 + y0 * (c20 + y0 * (T(0.0010416666666666667) * s89)))));
   if constexpr (Order >= 1) {
-    d[0] = c1 + x[2] * (c6 + x[2] * (c15 + x[2] * (c29))) + y1 * (c5 + x[2] * (c14 + x[2] * (c28)) + y1 * (c13 + x[2] * (c27 + x[2] * (c47)) + y1 * (c26))) + y0 * (T(2) * c4 + x[2] * (T(2) * c12 + x[2] * (T(2) * c25 + x[2] * (T(2) * c44))) + y1 * (T(2) * c11 + x[2] * (T(2) * c24 + x[2] * (T(2) * c43)) + y1 * (T(2) * c23 + x[2] * (T(2) * c42) + y1 * (T(2) * c41))) + y0 * (T(3) * c10 + x[2] * (T(3) * c22 + x[2] * (T(3) * c40)) + y1 * (T(3) * c21 + y1 * (T(3) * c38)) + y0 * (T(4) * c20 + y0 * (T(5) * c35))));
-    d[1] = c2 + x[2] * (c8 + x[2] * (c18 + x[2] * (c33))) + y1 * (T(2) * c7 + x[2] * (T(2) * c17 + x[2] * (T(2) * c32 + x[2] * (T(2) * c53))) + y1 * (T(3) * c16 + x[2] * (T(3) * c31 + x[2] * (T(3) * c52)) + y1 * (T(4) * c30 + y1 * (T(5) * c50)))) + y0 * (c5 + x[2] * (c14 + x[2] * (c28)) + y1 * (T(2) * c13 + x[2] * (T(2) * c27 + x[2] * (T(2) * c47)) + y1 * (T(3) * c26)) + y0 * (c11 + x[2] * (c24 + x[2] * (c43)) + y1 * (T(2) * c23 + x[2] * (T(2) * c42) + y1 * (T(3) * c41)) + y0 * (c21 + y1 * (T(2) * c38))));
-    d[2] = c3 + x[2] * (T(2) * c9 + x[2] * (T(3) * c19 + x[2] * (T(4) * c34 + x[2] * (T(5) * c55)))) + y1 * (c8 + x[2] * (T(2) * c18 + x[2] * (T(3) * c33)) + y1 * (c17 + x[2] * (T(2) * c32 + x[2] * (T(3) * c53)) + y1 * (c31 + x[2] * (T(2) * c52)))) + y0 * (c6 + x[2] * (T(2) * c15 + x[2] * (T(3) * c29)) + y1 * (c14 + x[2] * (T(2) * c28) + y1 * (c27 + x[2] * (T(2) * c47))) + y0 * (c12 + x[2] * (T(2) * c25 + x[2] * (T(3) * c44)) + y1 * (c24 + x[2] * (T(2) * c43) + y1 * (c42)) + y0 * (c22 + x[2] * (T(2) * c40))));
+    const T t14 = T(2) * t12;
+    const T t15 = T(2) * t3;
+    const T t16 = T(2) * t7;
+    const T t17 = t6 + y1 * (t16 + y1 * (T(3) * c26));
+    const T t18 = T(2) * t11;
+    const T t19 = t9 + y1 * (t18 + y1 * c43);
+    const T t20 = T(-0.010416666666666666) * s89;
+    const T t21 = c21 + y1 * t20;
+    const T t22 = T(2) * c9;
+    const T t23 = T(2) * c18;
+    const T t24 = c8 + x[2] * (t23 + x[2] * (T(3) * c33));
+    const T t25 = T(-0.03125) * s95;
+    const T t26 = x[2] * (t10 + t25);
+    const T t27 = c17 + t26;
+    const T t28 = T(-0.03125) * s90;
+    const T t29 = c31 + x[2] * t28;
+    const T t30 = T(2) * c15;
+    const T t31 = T(2) * c28;
+    const T t32 = c14 + x[2] * t31;
+    const T t33 = T(-0.03125) * s89;
+    const T t34 = c27 + x[2] * t33;
+    const T t35 = c6 + x[2] * (t30 + x[2] * (T(3) * c29)) + y1 * (t32 + y1 * t34);
+    const T t36 = T(-0.09375) * s90;
+    const T t37 = c24 + x[2] * t36;
+    const T t38 = c12 + t26 + y1 * (t37 + y1 * c42);
+    const T t39 = c22 + x[2] * t20;
+    d[0] = t8 + y0 * (t14 + y0 * (T(3) * t13 + y0 * (T(4) * c20 + y0 * (T(0.005208333333333333) * s89))));
+    d[1] = t0 + y1 * (t15 + y1 * (T(3) * t4 + y1 * (T(4) * c30 + y1 * (T(0.015625) * s90)))) + y0 * (t17 + y0 * (t19 + y0 * t21));
+    d[2] = c3 + x[2] * (t22 + x[2] * (T(3) * c19 + x[2] * (T(4) * c34 + x[2] * (T(-0.005208333333333333) * s86)))) + y1 * (t24 + y1 * (t27 + y1 * t29)) + y0 * (t35 + y0 * (t38 + y0 * t39));
+    if constexpr (Order >= 2) {
+      const T t40 = y1 * t36;
+      const T t41 = y0 * t20;
+      const T t42 = T(0.03125) * s86;
+      const T t43 = t25 + x[2] * t42;
+      d[3] = t14 + y0 * (T(6) * t13 + y0 * (T(12) * c20 + y0 * (T(0.020833333333333332) * s89)));
+      d[4] = t17 + y0 * (T(2) * t19 + y0 * (T(3) * t21));
+      d[5] = t35 + y0 * (T(2) * t38 + y0 * (T(3) * t39));
+      d[6] = t15 + y1 * (T(6) * t4 + y1 * (T(12) * c30 + y1 * (T(0.0625) * s90))) + y0 * (t16 + y1 * (T(6) * c26) + y0 * (t18 + t40 + t41));
+      d[7] = t24 + y1 * (T(2) * t27 + y1 * (T(3) * t29)) + y0 * (t32 + y1 * (T(2) * t34) + y0 * (t37 + y1 * t42));
+      d[8] = t22 + x[2] * (T(6) * c19 + x[2] * (T(12) * c34 + x[2] * (T(-0.020833333333333332) * s86))) + y1 * (t23 + x[2] * (T(6) * c33) + y1 * (t43 + y1 * t28)) + y0 * (t30 + x[2] * (T(6) * c29) + y1 * (t31 + y1 * t33) + y0 * (t41 + (t40 + t43)));
+    }
   }
-  if constexpr (Order >= 2) {
-    d[3] = T(2) * c4 + x[2] * (T(2) * c12 + x[2] * (T(2) * c25 + x[2] * (T(2) * c44))) + y1 * (T(2) * c11 + x[2] * (T(2) * c24 + x[2] * (T(2) * c43)) + y1 * (T(2) * c23 + x[2] * (T(2) * c42) + y1 * (T(2) * c41))) + y0 * (T(6) * c10 + x[2] * (T(6) * c22 + x[2] * (T(6) * c40)) + y1 * (T(6) * c21 + y1 * (T(6) * c38)) + y0 * (T(12) * c20 + y0 * (T(20) * c35)));
-    d[4] = c5 + x[2] * (c14 + x[2] * (c28)) + y1 * (T(2) * c13 + x[2] * (T(2) * c27 + x[2] * (T(2) * c47)) + y1 * (T(3) * c26)) + y0 * (T(2) * c11 + x[2] * (T(2) * c24 + x[2] * (T(2) * c43)) + y1 * (T(4) * c23 + x[2] * (T(4) * c42) + y1 * (T(6) * c41)) + y0 * (T(3) * c21 + y1 * (T(6) * c38)));
-    d[5] = c6 + x[2] * (T(2) * c15 + x[2] * (T(3) * c29)) + y1 * (c14 + x[2] * (T(2) * c28) + y1 * (c27 + x[2] * (T(2) * c47))) + y0 * (T(2) * c12 + x[2] * (T(4) * c25 + x[2] * (T(6) * c44)) + y1 * (T(2) * c24 + x[2] * (T(4) * c43) + y1 * (T(2) * c42)) + y0 * (T(3) * c22 + x[2] * (T(6) * c40)));
-    d[6] = T(2) * c7 + x[2] * (T(2) * c17 + x[2] * (T(2) * c32 + x[2] * (T(2) * c53))) + y1 * (T(6) * c16 + x[2] * (T(6) * c31 + x[2] * (T(6) * c52)) + y1 * (T(12) * c30 + y1 * (T(20) * c50))) + y0 * (T(2) * c13 + x[2] * (T(2) * c27 + x[2] * (T(2) * c47)) + y1 * (T(6) * c26) + y0 * (T(2) * c23 + x[2] * (T(2) * c42) + y1 * (T(6) * c41) + y0 * (T(2) * c38)));
-    d[7] = c8 + x[2] * (T(2) * c18 + x[2] * (T(3) * c33)) + y1 * (T(2) * c17 + x[2] * (T(4) * c32 + x[2] * (T(6) * c53)) + y1 * (T(3) * c31 + x[2] * (T(6) * c52))) + y0 * (c14 + x[2] * (T(2) * c28) + y1 * (T(2) * c27 + x[2] * (T(4) * c47)) + y0 * (c24 + x[2] * (T(2) * c43) + y1 * (T(2) * c42)));
-    d[8] = T(2) * c9 + x[2] * (T(6) * c19 + x[2] * (T(12) * c34 + x[2] * (T(20) * c55))) + y1 * (T(2) * c18 + x[2] * (T(6) * c33) + y1 * (T(2) * c32 + x[2] * (T(6) * c53) + y1 * (T(2) * c52))) + y0 * (T(2) * c15 + x[2] * (T(6) * c29) + y1 * (T(2) * c28 + y1 * (T(2) * c47)) + y0 * (T(2) * c25 + x[2] * (T(6) * c44) + y1 * (T(2) * c43) + y0 * (T(2) * c40)));
-  }
-  return c0 + x[2] * (c3 + x[2] * (c9 + x[2] * (c19 + x[2] * (c34 + x[2] * (c55))))) + y1 * (c2 + x[2] * (c8 + x[2] * (c18 + x[2] * (c33))) + y1 * (c7 + x[2] * (c17 + x[2] * (c32 + x[2] * (c53))) + y1 * (c16 + x[2] * (c31 + x[2] * (c52)) + y1 * (c30 + y1 * (c50))))) + y0 * (c1 + x[2] * (c6 + x[2] * (c15 + x[2] * (c29))) + y1 * (c5 + x[2] * (c14 + x[2] * (c28)) + y1 * (c13 + x[2] * (c27 + x[2] * (c47)) + y1 * (c26))) + y0 * (c4 + x[2] * (c12 + x[2] * (c25 + x[2] * (c44))) + y1 * (c11 + x[2] * (c24 + x[2] * (c43)) + y1 * (c23 + x[2] * (c42) + y1 * (c41))) + y0 * (c10 + x[2] * (c22 + x[2] * (c40)) + y1 * (c21 + y1 * (c38)) + y0 * (c20 + y0 * (c35)))));
+  return value;
 }
 
 

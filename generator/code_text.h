@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "generator/polynomial_code.h"
 #include "generator/rational.h"
 
 namespace boxgen::generator::code {
@@ -35,18 +34,6 @@ inline std::string vertex_text(const RatVec& v) {
   std::vector<std::string> parts;
   for (const auto& x : v) parts.push_back(to_string(x));
   return "(" + join(parts, ",") + ")";
-}
-
-// Additions and multiplications in an emitted expression, which writes every binary operator
-// with a space on each side ("a * b", "a + b", "a - b") and a negation without ("-v[3]").
-inline OperationCount count_operations(const std::string& text) {
-  OperationCount c;
-  for (std::size_t i = 0; i + 2 < text.size(); ++i) {
-    if (text[i] != ' ' || text[i + 2] != ' ') continue;
-    if (text[i + 1] == '*') ++c.muls;
-    if (text[i + 1] == '+' || text[i + 1] == '-') ++c.adds;
-  }
-  return c;
 }
 
 }  // namespace boxgen::generator::code

@@ -1,5 +1,6 @@
 #include "generator/emitter.h"
 
+#include <fmt/args.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -12,6 +13,9 @@
 #include "generator/code_text.h"
 #include "generator/embedded_templates.h"
 #include "generator/error.h"
+#include "generator/evaluator_tables.h"
+#include "generator/expr_print.h"
+#include "generator/glsl_evaluator.h"
 #include "generator/polynomial_code.h"
 #include "generator/prefilter.h"
 
@@ -52,123 +56,6 @@ std::string banner(const Derivation& a, const EmissionRequest& req) {
       req.command);
 }
 
-// Knot planes other than the axes and the combined key of floor(nu . r), r in [0,1)^n, that
-// indexes the lookup table: key = sum_k (floor(nu_k . r) - min_k) stride_k.
-struct KnotPlaneKeys {
-  std::vector<IntVec> planes;
-  std::vector<int> mins, widths, strides{1};
-  long size() const { return strides.back(); }
-};
-
-KnotPlaneKeys knot_plane_keys(const Derivation& a) {
-  const int n = a.spec.dimension();
-  const auto& normals = a.form.complex.normals();
-  KnotPlaneKeys keys;
-  keys.planes.assign(normals.begin() + n, normals.end());  // axes come first in the arrangement
-  for (const auto& nu : keys.planes) {
-    int lo = 0, width = 0;
-    for (auto v : nu) {
-      lo += v < 0 ? static_cast<int>(v) : 0;
-      width += static_cast<int>(v < 0 ? -v : v);
-    }
-    keys.mins.push_back(lo);
-    keys.widths.push_back(width);
-    keys.strides.push_back(keys.strides.back() * width);
-  }
-  if (keys.size() > 1 << 20)
-    fail_input("emission: too many knot planes per unit cube for a lookup table");
-  return keys;
-}
-
-// The Hermite basis (columns) recovered from the coset representatives' ranges: the first
-// multiple d e_j that leaves the representatives' box is d e_j - reduce(d e_j) = column j.
-IntColumns hermite_basis(const Derivation& a) {
-  const int n = a.spec.dimension();
-  IntColumns hermite(n, IntVec(n, 0));
-  for (int j = 0; j < n; ++j) {
-    IntVec e(n, 0);
-    for (std::int64_t d = 1;; ++d) {
-      e[j] = d;
-      const IntVec r = a.spec.lattice.reduce(e);
-      IntVec col(n);
-      for (int i = 0; i < n; ++i) col[i] = e[i] - r[i];
-      if (col[j] != 0) {
-        hermite[j] = col;
-        break;
-      }
-    }
-  }
-  return hermite;
-}
-
-// Per fundamental cell: its row of the cell table, its stencil offsets from the corner, and its
-// place in the lookup table; with the stencil reach over all cells.
-struct CellTables {
-  std::vector<std::vector<int>> lookup;  // [cube][key] -> cell or -1
-  std::vector<std::string> cells, offsets;
-  IntVec reach_lo, reach_hi;  // offsets j - floor(x + c) per axis, over every cell
-};
-
-CellTables cell_tables(const Derivation& a, const KnotPlaneKeys& keys, const IntColumns& hermite) {
-  const SplineStructure& s = a.structure;
-  const int n = a.spec.dimension();
-  // The cubes and keys of a scaled pair are the reduced frame's (SplineStructure::scale); the
-  // offsets and translations below are in the user's frame.
-  const std::int64_t k = s.scale;
-  auto cube_index = [&](const IntVec& rep) {
-    int idx = 0;
-    for (int i = n - 1; i >= 0; --i)
-      idx = idx * static_cast<int>(hermite[i][i] / k) + static_cast<int>(rep[i]);
-    return idx;
-  };
-  std::int64_t cubes = a.spec.lattice.det_abs();
-  for (int i = 0; i < n; ++i) cubes /= k;
-  CellTables t;
-  t.lookup.assign(cubes, std::vector<int>(keys.size(), -1));
-  t.reach_lo.assign(n, std::numeric_limits<std::int64_t>::max());
-  t.reach_hi.assign(n, std::numeric_limits<std::int64_t>::min());
-  for (size_t c = 0; c < s.cells.size(); ++c) {
-    const auto& fc = s.cells[c];
-    const IntVec rep(fc.cell.key.begin(), fc.cell.key.begin() + n);
-    const int cube = cube_index(rep);
-    std::vector<int> local_keys;
-    long index = 0;
-    for (size_t p = 0; p < keys.planes.size(); ++p) {
-      const int local = fc.cell.key[n + p] - static_cast<int>(dot(keys.planes[p], rep));
-      local_keys.push_back(local);
-      index += static_cast<long>(local - keys.mins[p]) * keys.strides[p];
-    }
-    t.lookup[cube][index] = static_cast<int>(c);
-    IntVec corner_offset = rep;  // rep in the user's frame
-    for (auto& v : corner_offset) v *= k;
-    local_keys.push_back(0);
-    const auto& region = s.regions[fc.region];
-    const auto& g = region.to_reference.g;
-    // x_ref = g (x - t + p) + l = g (x - t) + (g p + l), t = corner - rep
-    IntVec gp = g.apply(fc.placement), av(n);
-    for (int i = 0; i < n; ++i) av[i] = gp[i] + region.to_reference.l[i];
-    // Stencil point k of the orbit sits at j[perm_i] = sign_i (s_i - a_i) + t[perm_i].
-    std::vector<std::string> points;
-    for (const auto& sp : s.references[region.orbit].stencil) {
-      IntVec d(n);
-      for (int i = 0; i < n; ++i) {
-        const int axis = g.perm[i];
-        d[axis] = g.sign[i] * (sp[i] - av[i]) - corner_offset[axis];
-        t.reach_lo[axis] = std::min(t.reach_lo[axis], d[axis]);
-        t.reach_hi[axis] = std::max(t.reach_hi[axis], d[axis]);
-      }
-      points.push_back(brace_list(d));
-    }
-    for (size_t m = points.size(); m < static_cast<size_t>(s.stencil_max); ++m)
-      points.push_back(brace_list(IntVec(n, 0)));
-    t.offsets.push_back("{" + join(points) + "}");
-    t.cells.push_back(fmt::format("{{{}, {}, {}, {}, {}, {}}}", cube, region.orbit,
-                                  brace_list(local_keys), brace_list(g.perm), brace_list(g.sign),
-                                  brace_list(av)));
-  }
-  return t;
-}
-
 // The polynomial code of every orbit, and the costliest orbit's counts.
 struct OrbitCodes {
   std::vector<OrbitCode> orbits;
@@ -200,13 +87,41 @@ std::string ints(const std::vector<int>& v) {
   return join(parts);
 }
 
-std::string evaluator(const Derivation& a, const EmissionRequest& req, const OrbitCodes& code) {
+using Args = fmt::dynamic_format_arg_store<fmt::format_context>;
+
+template <class V>
+void add(Args& args, const char* name, const V& value) {
+  args.push_back(fmt::arg(name, value));
+}
+
+// "//   orbit 0: shifted about (1,1,1), 278 / 350 / 410" and the detailed counts, per orbit.
+std::vector<std::string> orbit_cost_lines(const OrbitCodes& code) {
+  std::vector<std::string> costs;
+  for (std::size_t o = 0; o < code.orbits.size(); ++o) {
+    const OrbitCode& c = code.orbits[o];
+    costs.push_back(fmt::format("//   orbit {}: {}, {} / {} / {}", o,
+                                strategy_description(c.strategy, c.form), c.value.total(),
+                                c.gradient.total(), c.hessian.total()));
+    costs.push_back(
+        fmt::format("//     adds {} / {} / {}, muls {} / {} / {}, loads {} / {} / {}, "
+                    "temporaries {} / {} / {}",
+                    c.value.adds, c.gradient.adds, c.hessian.adds, c.value.muls, c.gradient.muls,
+                    c.hessian.muls, c.value.loads, c.gradient.loads, c.hessian.loads,
+                    c.value.temporaries, c.gradient.temporaries, c.hessian.temporaries));
+    if (!c.considered.empty())
+      costs.push_back("//     chosen by value + gradient from " + considered_text(c.considered));
+  }
+  return costs;
+}
+
+// What the C++ and CUDA templates share: the tables as C++ initialisers, the counts.
+Args cpp_table_args(const Derivation& a, const EmissionRequest& req, const OrbitCodes& code) {
   const SplineStructure& s = a.structure;
   const int n = a.spec.dimension();
   KnotPlaneKeys keys = knot_plane_keys(a);
   const IntColumns hermite = hermite_basis(a);
   const CellTables t = cell_tables(a, keys, hermite);
-  std::vector<std::string> lookup_rows, normal_rows, orbit_sizes, dispatch, functions, costs;
+  std::vector<std::string> lookup_rows, normal_rows, orbit_sizes, cost_table;
   for (const auto& row : t.lookup) lookup_rows.push_back(brace_list(row));
   for (const auto& nu : keys.planes) normal_rows.push_back(brace_list(nu));
   normal_rows.push_back(brace_list(IntVec(n, 0)));  // a zero row keeps the arrays non-empty
@@ -214,38 +129,87 @@ std::string evaluator(const Derivation& a, const EmissionRequest& req, const Orb
   keys.widths.push_back(1);
   for (size_t o = 0; o < s.references.size(); ++o) {
     orbit_sizes.push_back(std::to_string(s.references[o].stencil.size()));
-    dispatch.push_back(fmt::format("      case {0}: return detail::orbit_{0}<Order>(v, x, d);", o));
-    functions.push_back(code.orbits[o].text);
     const OrbitCode& c = code.orbits[o];
-    costs.push_back(fmt::format("//   orbit {}: {}, {} / {} / {}", o,
-                                strategy_description(c.strategy, c.form), c.value.total(),
-                                c.gradient.total(), c.hessian.total()));
-    if (!c.considered.empty())
-      costs.push_back("//     chosen by value + gradient from " + considered_text(c.considered));
+    std::vector<std::string> paths;
+    for (const OperationCount* p : {&c.value, &c.gradient, &c.hessian})
+      paths.push_back(fmt::format("{{{}, {}, {}, {}, {}}}", p->adds, p->muls, p->negs, p->loads,
+                                  p->temporaries));
+    cost_table.push_back("{" + join(paths) + "}");
   }
   std::vector<std::string> centre, hermite_rows;
   for (const auto& c : s.centre) centre.push_back(literal(c));
   for (const auto& col : hermite) hermite_rows.push_back(brace_list(col));
-  return fmt::format(
-      fmt::runtime(templates::evaluator_hpp), fmt::arg("banner", banner(a, req)),
-      fmt::arg("name", req.name), fmt::arg("dimension", n), fmt::arg("degree", a.properties.degree),
-      fmt::arg("stencil_size", s.stencil_max), fmt::arg("lattice_det", a.spec.lattice.det_abs()),
-      fmt::arg("spec_text", a.spec.directions_text()), fmt::arg("lattice", a.spec.lattice.name()),
-      fmt::arg("strategy", code.strategy), fmt::arg("value_ops", code.value.total()),
-      fmt::arg("gradient_ops", code.gradient.total()),
-      fmt::arg("hessian_ops", code.hessian.total()), fmt::arg("orbit_costs", join(costs, "\n")),
-      fmt::arg("centre", join(centre)), fmt::arg("reach_lo", join_ints(t.reach_lo)),
-      fmt::arg("reach_hi", join_ints(t.reach_hi)), fmt::arg("hermite", join(hermite_rows)),
-      fmt::arg("scale", s.scale), fmt::arg("cube_count", t.lookup.size()),
-      fmt::arg("normal_count", keys.planes.size()), fmt::arg("normals", join(normal_rows)),
-      fmt::arg("normal_min", ints(keys.mins)), fmt::arg("normal_width", ints(keys.widths)),
-      fmt::arg("normal_stride", ints(keys.strides)), fmt::arg("lookup_size", keys.size()),
-      fmt::arg("lookup", join(lookup_rows, ",\n      ")), fmt::arg("cell_count", t.cells.size()),
-      fmt::arg("cells", join(t.cells, ",\n      ")), fmt::arg("orbit_count", s.references.size()),
-      fmt::arg("orbit_stencil_sizes", join(orbit_sizes)),
-      fmt::arg("offsets", join(t.offsets, ",\n      ")),
-      fmt::arg("orbit_functions", join(functions, "\n")),
-      fmt::arg("orbit_dispatch", join(dispatch, "\n")));
+  Args args;
+  add(args, "banner", banner(a, req));
+  add(args, "name", req.name);
+  add(args, "dimension", n);
+  add(args, "degree", a.properties.degree);
+  add(args, "stencil_size", s.stencil_max);
+  add(args, "lattice_det", a.spec.lattice.det_abs());
+  add(args, "spec_text", a.spec.directions_text());
+  add(args, "lattice", a.spec.lattice.name());
+  add(args, "strategy", code.strategy);
+  add(args, "value_ops", code.value.total());
+  add(args, "gradient_ops", code.gradient.total());
+  add(args, "hessian_ops", code.hessian.total());
+  add(args, "orbit_costs", join(orbit_cost_lines(code), "\n"));
+  add(args, "orbit_cost_table", join(cost_table, ",\n    "));
+  add(args, "centre", join(centre));
+  add(args, "reach_lo", join_ints(t.reach_lo));
+  add(args, "reach_hi", join_ints(t.reach_hi));
+  add(args, "hermite", join(hermite_rows));
+  add(args, "scale", s.scale);
+  add(args, "cube_count", t.lookup.size());
+  add(args, "normal_count", keys.planes.size());
+  add(args, "normals", join(normal_rows));
+  add(args, "normal_min", ints(keys.mins));
+  add(args, "normal_width", ints(keys.widths));
+  add(args, "normal_stride", ints(keys.strides));
+  add(args, "lookup_size", keys.size());
+  add(args, "lookup", join(lookup_rows, ",\n      "));
+  add(args, "cell_count", t.cells.size());
+  add(args, "cells", join(t.cells, ",\n      "));
+  add(args, "orbit_count", s.references.size());
+  add(args, "orbit_stencil_sizes", join(orbit_sizes));
+  add(args, "offsets", join(t.offsets, ",\n      "));
+  return args;
+}
+
+std::string evaluator(const Derivation& a, const EmissionRequest& req, const OrbitCodes& code) {
+  Args args = cpp_table_args(a, req, code);
+  std::vector<std::string> dispatch, functions;
+  for (size_t o = 0; o < code.orbits.size(); ++o) {
+    dispatch.push_back(fmt::format("      case {0}: return detail::orbit_{0}<Order>(v, x, d);", o));
+    functions.push_back(code.orbits[o].text);
+  }
+  add(args, "orbit_functions", join(functions, "\n"));
+  add(args, "orbit_dispatch", join(dispatch, "\n"));
+  return fmt::vformat(templates::evaluator_hpp, args);
+}
+
+// NAME.cuh: the same tables and orbit code, callable from host and device code.
+std::string cuda_evaluator(const Derivation& a, const EmissionRequest& req,
+                           const OrbitCodes& code) {
+  Args args = cpp_table_args(a, req, code);
+  const int n = a.spec.dimension();
+  std::vector<std::string> dispatch, functions, fetch_args, fetch_params;
+  for (size_t o = 0; o < code.orbits.size(); ++o) {
+    dispatch.push_back(fmt::format("    case {0}: return orbit_{0}<Order>(v, x, d);", o));
+    functions.push_back(fmt::format(
+        fmt::runtime(templates::orbit_function), fmt::arg("comment", code.orbits[o].comment),
+        fmt::arg("qualifiers", "BOXGEN_HOST_DEVICE "), fmt::arg("orbit", o),
+        fmt::arg("body", generator::print_cpp_body(*code.orbits[o].program))));
+  }
+  for (int i = 0; i < n; ++i) {
+    fetch_args.push_back(fmt::format("static_cast<int>(corner[{0}] + o[{0}])", i));
+    fetch_params.push_back(fmt::format("int j{}", i));
+  }
+  add(args, "orbit_functions", join(functions, "\n"));
+  add(args, "orbit_dispatch", join(dispatch, "\n"));
+  add(args, "fetch_args", join(fetch_args));
+  add(args, "fetch_params", join(fetch_params));
+  add(args, "hessian_order", n == 3 ? "xx xy xz yy yz zz" : "xx xy yy");
+  return fmt::vformat(templates::evaluator_cuh, args);
 }
 
 std::string prefilters(const Derivation& a, const EmissionRequest& req) {
@@ -287,6 +251,17 @@ std::vector<EmittedFile> emit(const Derivation& analysis, const EmissionRequest&
     for (const auto& o : code.orbits)
       report->orbits.push_back(
           {strategy_name(o.strategy), o.value, o.gradient, o.hessian, o.form, o.considered});
+  }
+  switch (request.target) {
+    case EmissionTarget::Glsl:
+      return {
+          {request.name + ".glsl",
+           generator::glsl_evaluator(analysis, banner(analysis, request), request.name, code.orbits,
+                                     orbit_cost_lines(code), request.double_precision)}};
+    case EmissionTarget::Cuda:
+      return {{request.name + ".cuh", cuda_evaluator(analysis, request, code)}};
+    case EmissionTarget::Cpp:
+      break;
   }
   return {{request.name + ".hpp", evaluator(analysis, request, code)},
           {request.name + "_prefilters.hpp", prefilters(analysis, request)}};

@@ -16,10 +16,16 @@ struct EmittedFile {
   std::string text;
 };
 
+// The language of the evaluator: C++ (<name>.hpp and <name>_prefilters.hpp), GLSL 4.30
+// (<name>.glsl) or CUDA (<name>.cuh), all printed from the same scheduled expression graphs.
+enum class EmissionTarget { Cpp, Glsl, Cuda };
+
 struct EmissionRequest {
   std::string name;     // C++ identifier: the namespace boxgen::generated::<name>
   std::string command;  // the command that reproduces the file, for its header
   EmissionStrategy strategy = EmissionStrategy::Auto;  // see generator/polynomial_code.h
+  EmissionTarget target = EmissionTarget::Cpp;
+  bool double_precision = false;  // GLSL: double, dvec3, dmat3 instead of float, vec3, mat3
 };
 
 // What the emitted evaluator costs: the strategy of each orbit and its operation counts (value;
@@ -36,8 +42,9 @@ struct EmissionReport {
   OperationCount value, gradient, hessian;  // the costliest orbit's
 };
 
-// <name>.hpp (evaluator) and <name>_prefilters.hpp (Q^I on shells 0,1 and Q^II on 0,1,2 where
-// they exist). Throws InputError for a name that is not a C++ identifier.
+// C++: <name>.hpp (evaluator) and <name>_prefilters.hpp (Q^I on shells 0,1 and Q^II on 0,1,2
+// where they exist); GLSL: <name>.glsl; CUDA: <name>.cuh. Throws InputError for a name that is
+// not a C++ identifier.
 // With `report`, also fills it.
 std::vector<EmittedFile> emit(const Derivation& analysis, const EmissionRequest& request,
                               EmissionReport* report = nullptr);

@@ -1,13 +1,16 @@
 // C++ code for one orbit's reference polynomial (docs/design.md §11): the spline on the reference
 // region is sum_k v[k] p_k(x) over its stencil, and a strategy decides how that sum and its exact
-// derivatives are written out. Each strategy counts the arithmetic it emits, so the emitter can
-// choose the cheapest (`auto`) and record the counts in the header.
+// derivatives are built into an expression graph (generator/expr.h), shared between the value,
+// the gradient and the Hessian; the counts of the scheduled graph let the emitter choose the
+// cheapest strategy (`auto`) and are recorded in the header.
 #pragma once
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "generator/expr_schedule.h"
 #include "generator/spline_regions.h"
 
 namespace boxgen::generator {
@@ -34,28 +37,21 @@ enum class EmissionStrategy { Auto, Monomial, Horner, Separable, Shifted, Bernst
 EmissionStrategy parse_strategy(std::string_view name);
 const char* strategy_name(EmissionStrategy s);
 
-// Floating-point operations of straight-line code: additions (and subtractions) and
-// multiplications, counted on the emitted expressions.
-struct OperationCount {
-  long adds = 0, muls = 0;
-  long total() const { return adds + muls; }
-  OperationCount& operator+=(const OperationCount& o) {
-    adds += o.adds;
-    muls += o.muls;
-    return *this;
-  }
-};
+using generator::OperationCount;
 
-// The function `template <int Order, class T> T orbit_<orbit>(const T* v, const T* x, T* d)`
-// (support::evaluate_located describes d) and what each path costs.
 struct StrategyCost {
   EmissionStrategy strategy = EmissionStrategy::Horner;
   OperationCount value, gradient, hessian;  // whole paths: value; value + gradient; + Hessian
 };
 
+// The code of one orbit: its expression graph scheduled (generator/expr_schedule.h), which every
+// target prints, and the C++ function `template <int Order, class T> T orbit_<orbit>(const T* v,
+// const T* x, T* d)` (support::evaluate_located describes d) printed from it.
 struct OrbitCode {
   EmissionStrategy strategy = EmissionStrategy::Horner;
-  std::string text;
+  std::shared_ptr<const generator::Program> program;
+  std::string comment;  // what the code computes, as "// " lines (templates/orbit_*.fmt)
+  std::string text;     // the C++ function, comment included
   OperationCount value, gradient, hessian;  // whole paths: value; value + gradient; + Hessian
   std::string form;  // what the strategy chose, for comments and reports ("about (1,1,1)"), or ""
   std::vector<StrategyCost> considered;  // auto: every applicable strategy, in the order tried

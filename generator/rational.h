@@ -28,6 +28,8 @@ Rational floor_rational(const Rational& r);  // as a rational integer
 bool is_integer(const Rational& r);
 std::int64_t floor_to_int64(const Rational& r);
 Rational rational_from(std::int64_t value);
+// p / q exactly (q != 0).
+inline Rational fraction(long p, long q = 1) { return Rational(p) / Rational(q); }
 
 RatVec to_ratvec(const IntVec& v);
 Rational dot(const IntVec& a, const RatVec& b);

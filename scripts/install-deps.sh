@@ -17,6 +17,8 @@ PACKAGES=(
   libhwy-dev                            # SIMD batch path of the runtime (runtime/simd_batch.cpp)
   clang libclang-rt-14-dev libomp-dev   # libFuzzer targets (label: fuzz); libomp: OpenMP under clang
   clang-format-14 clang-tidy-14         # formatting and static analysis (scripts/lint.sh, in CI)
+  libegl-dev libopengl-dev libgl-dev    # EGL and OpenGL 4.5 headers and loaders: the GLSL evaluators'
+  libgl1-mesa-dri                       #   exactness tests run as compute shaders on Mesa's llvmpipe (label gpu)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

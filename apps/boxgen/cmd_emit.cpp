@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <map>
 #include <set>
 
 #include "apps/boxgen/commands.h"
@@ -28,7 +29,8 @@ void write_emitted(const std::vector<EmittedFile>& files, const std::string& dir
 }
 
 nlohmann::json counts_json(const OperationCount& c) {
-  return {{"adds", c.adds}, {"muls", c.muls}, {"total", c.total()}};
+  return {{"adds", c.adds},   {"muls", c.muls},     {"negs", c.negs},
+          {"loads", c.loads}, {"total", c.total()}, {"temporaries", c.temporaries}};
 }
 
 void print_report(const EmissionReport& r) {
@@ -41,6 +43,12 @@ void print_report(const EmissionReport& r) {
     fmt::print("  orbit {}: {}{}, {} / {} / {}\n", o, orbit.strategy,
                orbit.form.empty() ? "" : " " + orbit.form, orbit.value.total(),
                orbit.gradient.total(), orbit.hessian.total());
+    fmt::print(
+        "    adds {} / {} / {}, muls {} / {} / {}, loads {} / {} / {}, temporaries {} / {} / {}\n",
+        orbit.value.adds, orbit.gradient.adds, orbit.hessian.adds, orbit.value.muls,
+        orbit.gradient.muls, orbit.hessian.muls, orbit.value.loads, orbit.gradient.loads,
+        orbit.hessian.loads, orbit.value.temporaries, orbit.gradient.temporaries,
+        orbit.hessian.temporaries);
     if (!orbit.considered.empty())
       fmt::print("    chosen by value + gradient from {}\n", considered_text(orbit.considered));
   }
@@ -143,6 +151,23 @@ void check_emit_name(const std::string& name) {
         "--name '{}' is reserved for the implementation in C++ ('__' or '_' and a capital)", name));
 }
 
+// The target and precision, checked before the derivation.
+std::pair<EmissionTarget, bool> parse_language(const EmitLanguage& l, bool registry) {
+  const std::map<std::string, EmissionTarget> targets = {
+      {"cpp", EmissionTarget::Cpp}, {"glsl", EmissionTarget::Glsl}, {"cuda", EmissionTarget::Cuda}};
+  const auto it = targets.find(l.target);
+  if (it == targets.end())
+    fail_input(fmt::format("--target must be cpp, glsl or cuda, got '{}'", l.target.substr(0, 40)));
+  if (l.precision != "float" && l.precision != "double")
+    fail_input(
+        fmt::format("--precision must be float or double, got '{}'", l.precision.substr(0, 40)));
+  if (l.precision == "double" && it->second != EmissionTarget::Glsl)
+    fail_input("--precision double is for --target glsl (C++ and CUDA evaluators are templates)");
+  if (registry && it->second != EmissionTarget::Cpp)
+    fail_input("--registry lists C++ headers: use it with --target cpp");
+  return {it->second, l.precision == "double"};
+}
+
 // --registry: the names must be identifiers, each once, and each an evaluator that exists in the
 // output folder or is emitted now; checked before any work.
 void check_registry(const std::vector<std::string>& registry, const std::string& emitted,
@@ -165,10 +190,12 @@ void check_registry(const std::vector<std::string>& registry, const std::string&
 }  // namespace
 
 int run_emit(const Common& c, const std::string& name, const std::string& out,
-             const std::string& strategy, bool report, const std::vector<std::string>& registry) {
+             const std::string& strategy, bool report, const std::vector<std::string>& registry,
+             const EmitLanguage& language) {
   if (c.spec.empty() != name.empty() || (c.spec.empty() && registry.empty()))
     fail_usage("emit needs a SPEC and --name (an evaluator), or --registry alone, or both");
   if (!name.empty()) check_emit_name(name);
+  const auto [target, double_precision] = parse_language(language, !registry.empty());
   if (!registry.empty()) check_registry(registry, name, out);
   std::vector<EmittedFile> files;
   EmissionReport r;
@@ -185,10 +212,14 @@ int run_emit(const Common& c, const std::string& name, const std::string& out,
     // The command that rewrites the file byte for byte, run in the file's folder.
     const EmissionRequest request{
         name,
-        fmt::format("boxgen emit {} {}--name {} --strategy {} --out .",
-                    spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,
-                    c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy),
-        chosen};
+        fmt::format(
+            "boxgen emit {} {}--name {} --strategy {}{} --out .",
+            spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,
+            c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy,
+            target == EmissionTarget::Cpp
+                ? ""
+                : " --target " + language.target + (double_precision ? " --precision double" : "")),
+        chosen, target, double_precision};
     files = emit(a, request, &r);
   } else if (report) {
     fail_usage("--report needs an evaluator to report on (a SPEC and --name)");

@@ -48,8 +48,13 @@ int run_bbform(const Common& c, const std::string& region);
 int run_prefilter(const Common& c, const std::string& shells);
 int run_autocorr(const Common& c, const std::string& method);
 int run_table1(bool json);
+// --target cpp|glsl|cuda and --precision float|double (glsl only).
+struct EmitLanguage {
+  std::string target = "cpp", precision = "float";
+};
 int run_emit(const Common& c, const std::string& name, const std::string& out,
-             const std::string& strategy, bool report, const std::vector<std::string>& registry);
+             const std::string& strategy, bool report, const std::vector<std::string>& registry,
+             const EmitLanguage& language = {});
 
 // The frequency-domain analysis (analysis/, docs/design.md §10): cmd_metrics.cpp, cmd_kernel.cpp,
 // cmd_spectrum.cpp.

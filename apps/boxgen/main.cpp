@@ -95,11 +95,12 @@ int run(int argc, char** argv) {
       app.add_subcommand("autocorr", "lattice samples of the doubled box spline (autocorrelation)");
   add_common(autocorr, c);
   autocorr->add_option("--method", method, "refinement (default) or continuity");
-  std::string emit_name, emit_out, emit_strategy = "auto";
+  std::string emit_name, emit_out, emit_strategy = "auto", emit_target = "cpp",
+                                   emit_precision = "float";
   bool emit_report = false;
   std::vector<std::string> emit_registry;
-  auto* emit =
-      app.add_subcommand("emit", "emit the C++ evaluator and prefilter headers of a box spline");
+  auto* emit = app.add_subcommand(
+      "emit", "emit the evaluator (C++ and prefilter headers, GLSL or CUDA) of a box spline");
   emit->add_option("SPEC", c.spec,
                    "preset name or the directions, as for analyze (leave out to write only "
                    "--registry)");
@@ -112,6 +113,10 @@ int run(int argc, char** argv) {
       "--strategy", emit_strategy,
       "how polynomials are written: auto (default: the cheapest), horner, shifted, bernstein, "
       "separable or monomial");
+  emit->add_option("--target", emit_target,
+                   "cpp (default: NAME.hpp and NAME_prefilters.hpp), glsl (NAME.glsl, GLSL 4.30) "
+                   "or cuda (NAME.cuh)");
+  emit->add_option("--precision", emit_precision, "glsl: float (default) or double");
   emit->add_flag("--report", emit_report, "also print the strategy and operation counts per orbit");
   emit->add_option("--registry", emit_registry,
                    "also (or, without a SPEC, only) write registry.hpp listing these filters "
@@ -197,7 +202,7 @@ int run(int argc, char** argv) {
     if (spectrum->parsed()) return boxgen::cli::run_spectrum(ao);
     if (emit->parsed())
       return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy, emit_report,
-                                   emit_registry);
+                                   emit_registry, {emit_target, emit_precision});
     if (pieces->parsed())
       return boxgen::cli::run_pieces(c, pieces_of, pieces_region, pieces_format);
   } catch (const boxgen::cli::UsageError& e) {
