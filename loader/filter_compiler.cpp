@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <fmt/format.h>
 #include <sstream>
 
@@ -129,8 +130,20 @@ void find_engine(Toolchain& t) {
 
 }  // namespace
 
+// The processor, for -march=native: a cache shared by machines of other kinds keeps one entry
+// for each.
+std::string processor() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line, model, flags;
+  while (std::getline(in, line) && (model.empty() || flags.empty())) {
+    if (model.empty() && line.rfind("model name", 0) == 0) model = line;
+    if (flags.empty() && line.rfind("flags", 0) == 0) flags = line;
+  }
+  return model + "\n" + flags;
+}
+
 std::string Toolchain::identity() const {
-  std::string id = compiler + "\n" + version + "\n";
+  std::string id = compiler + "\n" + version + "\n" + processor() + "\n";
   for (const auto& f : flags) id += f + " ";
   std::error_code ec;
   const auto size = fs::file_size(archive, ec);
@@ -145,11 +158,13 @@ Toolchain find_toolchain(const CompileOptions& options) {
   t.compiler = find_compiler(options);
   find_engine(t);
   t.version = first_line_of(shell_quote(t.compiler) + " --version 2>/dev/null");
-  // The build's optimisation flags (as the registry's evaluators get), position independent, only
-  // the factory exported, OpenMP for the batch paths, no fused multiply-adds (the SIMD path and
-  // the scalar path round alike, as in the runtime).
+  // The build's optimisation flags (as the registry's evaluators get), this machine's instruction
+  // set (the object's SIMD kernels are compiled for it alone, not for every Highway target as the
+  // runtime's are: a quarter of the compile), position independent, only the two entry points
+  // exported, OpenMP for the batch paths, no fused multiply-adds (the SIMD path and the scalar
+  // path round alike, as in the runtime).
   t.flags = words(config::kFlags);
-  for (const char* f : {"-std=c++20", "-fPIC", "-shared", "-fvisibility=hidden",
+  for (const char* f : {"-march=native", "-std=c++20", "-fPIC", "-shared", "-fvisibility=hidden",
                         "-fvisibility-inlines-hidden", "-fopenmp", "-ffp-contract=off", "-Wno-psabi",
                         "-w"})
     t.flags.emplace_back(f);

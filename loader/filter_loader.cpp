@@ -98,15 +98,33 @@ std::string glue_source(const std::string& name, const std::vector<gen::EmittedF
 #include <span>
 #include <string>
 
+// One instruction set, this machine's (-march=native): no dynamic dispatch inside the object.
+#define HWY_COMPILE_ONLY_STATIC 1
+#include <hwy/highway.h>
+
 #include "runtime/batch_threads.h"
 #include "runtime/emitted_filter.h"
 
 {evaluator}
 {prefilters}
+#include "runtime/simd_kernels-inl.h"
+
 namespace {{
 namespace g = boxgen::generated::{name};
 namespace rt = boxgen::runtime;
 using HostThreads = int (*)();
+
+// The SIMD kernels of this filter for the instruction set it is compiled for (-march=native);
+// none for a scaled pair, which the kernels do not handle (the scalar path serves it).
+template <class Tr>
+const rt::simd::Kernels* own_kernels() {{
+  if constexpr (Tr::kScale == 1) {{
+    static const rt::simd::Kernels kernels = rt::simd::HWY_NAMESPACE::kernels_for<Tr>();
+    return &kernels;
+  }} else {{
+    return nullptr;
+  }}
+}}
 
 template <class T>
 class Path final : public rt::EvaluationPath<T> {{
@@ -127,7 +145,8 @@ class Path final : public rt::EvaluationPath<T> {{
 class Source final : public rt::FilterSource {{
  public:
   Source(std::string name, HostThreads threads)
-      : filter_({q1}, {q2}, g::kApproximationOrder, -1), name_(std::move(name)), threads_(threads) {{}}
+      : filter_({q1}, {q2}, g::kApproximationOrder, -1, own_kernels<g::Traits>()),
+        name_(std::move(name)), threads_(threads) {{}}
   std::string name() const override {{ return name_; }}
   rt::CosetLattice lattice() const override {{ return filter_.lattice(); }}
   rt::StencilReach reach() const override {{ return filter_.reach(); }}
