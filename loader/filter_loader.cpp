@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <fmt/format.h>
@@ -178,6 +179,21 @@ extern "C" __attribute__((visibility("default"))) rt::FilterSource* boxgen_filte
       fmt::arg("q1", table("q1")), fmt::arg("q2", table("q2")), fmt::arg("stamp", stamp));
 }
 
+// dlopen of the entry's object through a name of its own (a hard link removed again at once):
+// glibc hands back an object already loaded under the same name without looking at the file, so
+// an entry rebuilt in this process would otherwise still load as the old object. The same file
+// loaded twice is still recognised (glibc compares device and inode) and mapped once.
+void* load_library(const fs::path& so) {
+  static std::atomic<int> counter{0};
+  const fs::path link = so.parent_path() / fmt::format(".{}.load-{}-{}", so.filename().string(),
+                                                       ::getpid(), counter++);
+  std::error_code ec;
+  fs::create_hard_link(so, link, ec);
+  void* handle = ::dlopen((ec ? so : link).c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!ec) fs::remove(link, ec);
+  return handle;
+}
+
 using StampFn = const char* (*)();
 using CreateFn = rt::FilterSource* (*)(const char*, int (*)());
 
@@ -190,7 +206,7 @@ std::shared_ptr<const rt::FilterSource> open_entry(const CacheEntry& entry, cons
   if (!info) return why = "no complete entry", nullptr;
   if (info->stamp != stamp) return why = "built for another boxgen", nullptr;
   if (!entry_intact(entry, *info)) return why = "its shared object is not the one built", nullptr;
-  void* handle = ::dlopen(entry.file(".so").c_str(), RTLD_NOW | RTLD_LOCAL);
+  void* handle = load_library(entry.file(".so"));
   if (!handle) {
     const char* error = ::dlerror();
     return why = error ? error : "dlopen failed", nullptr;
