@@ -38,7 +38,7 @@ constexpr const char* kBccSpec = "1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 2,0,0; 0,2,0
 constexpr const char* kFccSpec = "1,1,0; 1,-1,0; 1,0,1; 1,0,-1; 0,1,1";
 // A lattice that is none of the three (rows of G, |det G| = 3), and four of its points.
 constexpr const char* kCustomLattice = "1,0,0; 0,1,0; 1,1,3";
-constexpr const char* kCustomSpec = "1,0,1; 0,1,1; 1,1,-1; -1,1,0; 1,0,1";
+constexpr const char* kCustomSpec = "1,0,1; 0,1,1; 1,1,-1; 1,-1,0; 0,0,3";
 
 class LoaderTest : public test::ScratchDirectoryTest {
  protected:
