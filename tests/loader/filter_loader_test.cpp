@@ -99,8 +99,8 @@ void expect_exact_on_delta(const rt::SplineFilter& f, const std::string& spec,
     const rt::Vec3 x{static_cast<double>(j[0]) + gen::to_double(d[0]),
                      static_cast<double>(j[1]) + gen::to_double(d[1]),
                      static_cast<double>(j[2]) + gen::to_double(d[2])};
-    EXPECT_NEAR(r.value(x), exact, 1e-13)
-        << spec << " at offset " << x[0] - j[0] << " " << x[1] - j[1] << " " << x[2] - j[2];
+    EXPECT_NEAR(r.value(x), exact, 1e-13) << spec << " at offset " << gen::to_double(d[0]) << " "
+                                          << gen::to_double(d[1]) << " " << gen::to_double(d[2]);
     std::vector<rt::Vec3> points{x};
     std::vector<double> values(1);
     r.evaluate(points, values);  // the batch path (SIMD where the filter has kernels)
