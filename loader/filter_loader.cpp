@@ -269,13 +269,10 @@ rt::SplineFilter load_filter(const std::string& spec_or_name, std::optional<std:
     if (!lattice) return *registry;
     const rt::CosetLattice given = rt::CosetLattice::parse(*lattice);
     if (rt::same_points(registry->lattice(), given)) return *registry;
-    std::string directions;
-    for (const auto& p : gen::presets())
-      if (p.name == spec_or_name) directions = p.directions;
-    throw LoadError(fmt::format(
-        "filter {} is for the {} lattice, but --lattice is {} (its directions on another lattice "
-        "are a SPEC: \"{}\")",
-        registry->name(), registry->lattice().name(), given.name(), directions));
+    // The registry's own message (boxrecon's contract); the directions on another lattice are a
+    // SPEC (boxgen presets lists them).
+    throw LoadError(fmt::format("filter {} is for the {} lattice, but --lattice is {}",
+                                registry->name(), registry->lattice().name(), given.name()));
   }
   gen::BoxSplineSpec spec = [&] {
     try {
