@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/input_checks.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/sampling.h"
@@ -53,7 +54,7 @@ int run_sample(const std::string& function, int n, const std::optional<double>& 
                const std::string& precision, const std::string& output) {
   const runtime::TestFunction& fn = runtime::find_test_function(function);
   std::optional<runtime::SplineFilter> f;
-  if (!filter.empty()) f = runtime::SplineFilter::parse(filter);
+  if (!filter.empty()) f = filter_from(filter, lattice_text);
   const runtime::CosetLattice lattice =
       f ? lattice_for(*f, lattice_text)
         : (lattice_text.empty() ? runtime::CosetLattice::bcc()
