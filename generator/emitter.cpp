@@ -214,10 +214,12 @@ std::string cuda_evaluator(const Derivation& a, const EmissionRequest& req,
 
 std::string prefilters(const Derivation& a, const EmissionRequest& req) {
   std::string filters;
-  const std::pair<const char*, std::vector<int>> wanted[] = {{"q1", {0, 1}}, {"q2", {0, 1, 2}}};
-  for (const auto& [id, shells] : wanted) {
-    std::string taps;
+  for (const int which : {1, 2}) {
+    const std::string id = "q" + std::to_string(which);
+    std::vector<int> shells = req.shells;
+    if (!shells.empty() && which == 2) shells.push_back(shells.back() + 1);
     try {
+      if (shells.empty()) shells = quasi_interpolation_shells(a.spec, which);
       const Prefilter q = derive_prefilter(a.spec, shells);
       std::vector<std::string> rows;
       for (const auto& w : q.weights)
@@ -227,8 +229,9 @@ std::string prefilters(const Derivation& a, const EmissionRequest& req) {
           "// Shells {}: {} parametrisation.\ninline constexpr PrefilterTap {}[] = {{\n{}\n}};\n\n",
           brace_list(shells), q.parametrisation, id, join(rows, "\n"));
     } catch (const InputError& e) {
-      filters += fmt::format("// No prefilter of order {} on shells {}: {}\n\n",
-                             a.properties.approximation_order, brace_list(shells), e.what());
+      filters += fmt::format("// No prefilter {} of order {}{}: {}\n\n", id,
+                             a.properties.approximation_order,
+                             shells.empty() ? "" : " on shells " + brace_list(shells), e.what());
     }
   }
   return fmt::format(fmt::runtime(templates::prefilters_hpp), fmt::arg("banner", banner(a, req)),

@@ -26,6 +26,9 @@ struct EmissionRequest {
   EmissionStrategy strategy = EmissionStrategy::Auto;  // see generator/polynomial_code.h
   EmissionTarget target = EmissionTarget::Cpp;
   bool double_precision = false;  // GLSL: double, dvec3, dmat3 instead of float, vec3, mat3
+  // The shells of q1 (q2: these and the next shell); empty: the smallest on which a prefilter of
+  // full order exists (quasi_interpolation_shells, generator/prefilter.h).
+  std::vector<int> shells;
 };
 
 // What the emitted evaluator costs: the strategy of each orbit and its operation counts (value;
@@ -42,7 +45,7 @@ struct EmissionReport {
   OperationCount value, gradient, hessian;  // the costliest orbit's
 };
 
-// C++: <name>.hpp (evaluator) and <name>_prefilters.hpp (Q^I on shells 0,1 and Q^II on 0,1,2
+// C++: <name>.hpp (evaluator) and <name>_prefilters.hpp (q1 and q2 on the request's shells,
 // where they exist); GLSL: <name>.glsl; CUDA: <name>.cuh. Throws InputError for a name that is
 // not a C++ identifier.
 // With `report`, also fills it.

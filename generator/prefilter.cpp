@@ -385,4 +385,26 @@ Prefilter derive_prefilter(const BoxSplineSpec& spec, const std::vector<int>& re
   fail_unsupported(spec, all_shells, shells, group, conditions, order);
 }
 
+std::vector<int> quasi_interpolation_shells(const BoxSplineSpec& spec, int which) {
+  const int n = spec.dimension();
+  const int order = approximation_order(spec.directions, n);
+  if (order == 0)
+    fail_input("the directions of " + spec.name + " do not span R^" + std::to_string(n));
+  const auto all_shells = spec.lattice.shells(kMaxPrefilterShell + 1);
+  const auto group = symmetry_group(spec);
+  const OrderConditions conditions(spec.directions, n, order);
+  // One weight per orbit is the most general parametrisation: where it fails, all fail.
+  for (int k = 0; k + (which == 2 ? 1 : 0) <= kMaxPrefilterShell; ++k) {
+    std::vector<int> leading(k + 1);
+    for (int s = 0; s <= k; ++s) leading[s] = s;
+    if (conditions.fit(weight_per_orbit(points_of(all_shells, leading), group).groups)) {
+      if (which == 2) leading.push_back(k + 1);
+      return leading;
+    }
+  }
+  fail_input("no prefilter q" + std::to_string(which) + " of approximation order " +
+             std::to_string(order) + " for " + spec.name + ": none exists on the shells 0 to " +
+             std::to_string(kMaxPrefilterShell));
+}
+
 }  // namespace boxgen::generator

@@ -43,4 +43,11 @@ std::vector<int> parse_shells(std::string_view text);
 // would suffice.
 Prefilter derive_prefilter(const BoxSplineSpec& spec, const std::vector<int>& shells);
 
+// The shells of the prefilters q1 and q2 of a filter (`boxgen emit`, `kernel --prefilter`, the
+// run-time filters of loader/): q1 on the leading shells 0..k for the smallest k on which a
+// prefilter of the full approximation order exists, q2 (which = 2) on 0..k+1, the next larger.
+// Throws InputError (one line, naming no option) when no k <= kMaxPrefilterShell (k + 1 for q2)
+// has one.
+std::vector<int> quasi_interpolation_shells(const BoxSplineSpec& spec, int which);
+
 }  // namespace boxgen::generator

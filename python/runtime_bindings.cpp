@@ -16,6 +16,7 @@
 #include <variant>
 #include <vector>
 
+#include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/sample_command.h"
 #include "generator/box_spline_properties.h"
 #include "generator/spec.h"
@@ -198,24 +199,18 @@ VolumePtr sample_callable(const py::function& f, const rt::LatticeGrid& grid) {
   return volume;
 }
 
+// A registry filter, or any SPEC through the loader (compiled and cached on first use, exactly
+// as boxrecon --filter SPEC --lattice L gets it), with the generator's properties of its SPEC.
 Filter make_filter(const std::string& spec_text, const std::optional<std::string>& lattice) {
   const std::string lattice_text = lattice.value_or("");
-  Filter f{rt::SplineFilter::at(0), spec_text, lattice_text, gen::parse_spec(spec_text, lattice_text),
-           {}};
-  f.properties = gen::box_spline_properties(f.spec);
-  for (int i = 0; i < rt::SplineFilter::count(); ++i) {
-    const rt::SplineFilter r = rt::SplineFilter::at(i);
-    if (r.name() != spec_text) continue;
-    if (!lattice_text.empty() && !rt::same_points(r.lattice(), rt::CosetLattice::parse(lattice_text)))
-      break;
-    f.filter = r;
-    return f;
+  std::optional<rt::SplineFilter> filter;
+  {
+    py::gil_scoped_release release;  // a first use derives and compiles: seconds
+    filter = app::filter_from(spec_text, lattice_text);
   }
-  throw std::invalid_argument(fmt::format(
-      "no evaluator for '{}'{}: the registry has {} (each on its own lattice); this build "
-      "compiles no other SPEC at run time",
-      spec_text.substr(0, 80), lattice_text.empty() ? "" : " on lattice " + lattice_text,
-      rt::SplineFilter::names()));
+  gen::BoxSplineSpec spec = gen::parse_spec(spec_text, lattice_text);
+  gen::BoxSplineProperties properties = gen::box_spline_properties(spec);
+  return {*filter, spec_text, lattice_text, std::move(spec), std::move(properties)};
 }
 
 py::object evaluate(const Filter& f, const Volume& volume, const py::handle& points_obj,

@@ -65,11 +65,14 @@ DiscreteFilter prefilter_from(const Tap (&table)[N]) {
 template <class Tr>
 class EmittedFilter final : public FilterSource {
  public:
-  EmittedFilter(DiscreteFilter q1, DiscreteFilter q2, int approximation_order, int registry_index)
+  // kernels: SIMD kernels compiled with the filter (simd_batch.h), for one outside the registry.
+  EmittedFilter(DiscreteFilter q1, DiscreteFilter q2, int approximation_order, int registry_index,
+                const simd::Kernels* kernels = nullptr)
       : q1_(std::move(q1)),
         q2_(std::move(q2)),
         order_(approximation_order),
         registry_index_(registry_index),
+        kernels_(kernels),
         lattice_(filter_lattice<Tr>()) {}
 
   std::string name() const override { return Tr::kName; }
@@ -102,18 +105,19 @@ class EmittedFilter final : public FilterSource {
       if (volume.lattice() == CosetLattice::bcc()) {
         if (BccStencils<Tr, T, std::int32_t>::fits(volume))
           return std::make_shared<EmittedSplinePath<Tr, BccStencils<Tr, T, std::int32_t>>>(
-              BccStencils<Tr, T, std::int32_t>(volume), registry_index_);
+              BccStencils<Tr, T, std::int32_t>(volume), registry_index_, kernels_);
         return std::make_shared<EmittedSplinePath<Tr, BccStencils<Tr, T, std::int64_t>>>(
-            BccStencils<Tr, T, std::int64_t>(volume), registry_index_);
+            BccStencils<Tr, T, std::int64_t>(volume), registry_index_, kernels_);
       }
     }
     return std::make_shared<EmittedSplinePath<Tr, LatticeStencils<Tr, T>>>(
-        LatticeStencils<Tr, T>(volume), registry_index_);
+        LatticeStencils<Tr, T>(volume), registry_index_, kernels_);
   }
 
   DiscreteFilter q1_, q2_;
   int order_;
   int registry_index_;
+  const simd::Kernels* kernels_;
   CosetLattice lattice_;
 };
 

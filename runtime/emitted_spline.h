@@ -50,8 +50,11 @@ class EmittedSpline {
   // registry_index: the evaluator's position in generated/registry.hpp, whose filters have SIMD
   // kernels (simd_batch.cpp); -1 for any other emitted evaluator (a user's own header, which
   // this header must not clash with: it includes no registry), which takes the scalar path.
-  explicit EmittedSpline(Stencils stencils, int registry_index = -1)
-      : stencils_(std::move(stencils)), registry_index_(registry_index) {}
+  // kernels: the filter's own SIMD kernels (simd_batch.h), which a registry filter need not give.
+  explicit EmittedSpline(Stencils stencils, int registry_index = -1,
+                         const simd::Kernels* kernels = nullptr)
+      : stencils_(std::move(stencils)),
+        kernels_(kernels ? kernels : simd::registry_kernels(registry_index)) {}
 
   // One point; gradient and hessian may be null (not computed).
   T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const {
@@ -160,10 +163,10 @@ class EmittedSpline {
     }
   }
 
-  // The SIMD path serves registry filters on volumes whose lattice coordinates it can carry as
+  // The SIMD path serves filters with kernels on volumes whose lattice coordinates it can carry as
   // exact integers in T (below 2^22) and whose stencils it can fetch through offsets.
   bool simd_serves() const {
-    if (registry_index_ < 0 || !stencils_.has_offsets() || !simd::enabled()) return false;
+    if (!kernels_ || !stencils_.has_offsets() || !simd::enabled()) return false;
     for (int a = 0; a < 3; ++a)
       if (!(stencils_.extent(a) + kFar < double(1 << 22))) return false;
     return true;
@@ -222,7 +225,7 @@ class EmittedSpline {
       }
       for (int lane = lanes; lane < kLanes; ++lane)  // a partial chunk: repeat lane 0
         for (int a = 0; a < 3; ++a) world[a * kLanes + lane] = world[a * kLanes];
-      simd::locate_chunk(registry_index_, world, frame, located);
+      kernels_->locate(world, frame, located);
 
       // Gather the stencils of the lanes that stay; the others take the scalar path.
       const T* const cells = located + 3 * kLanes;
@@ -258,7 +261,7 @@ class EmittedSpline {
           tables[lane] = tables[first_lane];
         }
       gather(size, bases, tables, v);
-      simd::orbit_chunk(registry_index_, orbit, Order, v, reference, out, simd::kChunk);
+      kernels_->orbit(orbit, Order, v, reference, out, simd::kChunk);
       store<Order>(lanes, stays, index, cells, out, values, gradients, hessians);
     }
   }
@@ -324,7 +327,7 @@ class EmittedSpline {
   }
 
   Stencils stencils_;
-  int registry_index_;  // the filter's entry in generated/registry.hpp, for the SIMD kernels
+  const simd::Kernels* kernels_;  // the SIMD kernels of the filter, or null (the scalar path)
 };
 
 // An EmittedSpline behind a virtual interface, for Reconstructor, which chooses the filter at run
@@ -344,8 +347,8 @@ class EmittedSplinePath final : public EvaluationPath<typename Stencils::Sample>
   using T = typename Stencils::Sample;
 
  public:
-  EmittedSplinePath(Stencils stencils, int registry_index)
-      : spline_(std::move(stencils), registry_index) {}
+  EmittedSplinePath(Stencils stencils, int registry_index, const simd::Kernels* kernels = nullptr)
+      : spline_(std::move(stencils), registry_index, kernels) {}
   T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const override {
     return spline_.at(world, gradient, hessian);
   }

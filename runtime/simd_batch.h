@@ -57,4 +57,32 @@ void orbit_chunk(int filter, int orbit, int order, const float* v, const float* 
 void orbit_chunk(int filter, int orbit, int order, const double* v, const double* x, double* out,
                  int lanes);
 
+// The kernels of one filter, as the engine calls them (emitted_spline.h): locate_chunk and
+// orbit_chunk above bound to a registry filter (registry_kernels), or a filter's own, compiled
+// with it (runtime/simd_kernels-inl.h: kernels_for<Traits>(), as a filter compiled at run time
+// by loader/ does).
+struct Kernels {
+  void (*locate_float)(const double* world, const Frame& frame, float* out);
+  void (*locate_double)(const double* world, const Frame& frame, double* out);
+  void (*orbit_float)(int orbit, int order, const float* v, const float* x, float* out, int lanes);
+  void (*orbit_double)(int orbit, int order, const double* v, const double* x, double* out,
+                       int lanes);
+
+  void locate(const double* world, const Frame& frame, float* out) const {
+    locate_float(world, frame, out);
+  }
+  void locate(const double* world, const Frame& frame, double* out) const {
+    locate_double(world, frame, out);
+  }
+  void orbit(int o, int order, const float* v, const float* x, float* out, int lanes) const {
+    orbit_float(o, order, v, x, out, lanes);
+  }
+  void orbit(int o, int order, const double* v, const double* x, double* out, int lanes) const {
+    orbit_double(o, order, v, x, out, lanes);
+  }
+};
+
+// The kernels of registry filter `index` (generated/registry.hpp), or null outside the registry.
+const Kernels* registry_kernels(int index);
+
 }  // namespace boxgen::runtime::simd

@@ -10,6 +10,7 @@
 #include "apps/boxgen/progress.h"
 #include "generator/emitter.h"
 #include "generator/error.h"
+#include "generator/prefilter.h"
 #include "support/output_file.h"
 
 namespace boxgen::cli {
@@ -201,6 +202,8 @@ int run_emit(const Common& c, const std::string& name, const std::string& out,
   EmissionReport r;
   if (!name.empty()) {
     const EmissionStrategy chosen = parse_strategy(strategy);  // before the derivation
+    const std::vector<int> shells =
+        language.shells.empty() ? std::vector<int>{} : parse_shells(language.shells);
     const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
     ProgressPrinter progress(false);  // on a terminal, for derivations beyond two seconds
     DerivationOptions options;
@@ -217,9 +220,9 @@ int run_emit(const Common& c, const std::string& name, const std::string& out,
             spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,
             c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy,
             target == EmissionTarget::Cpp
-                ? ""
+                ? (shells.empty() ? "" : " --shells " + language.shells)
                 : " --target " + language.target + (double_precision ? " --precision double" : "")),
-        chosen, target, double_precision};
+        chosen, target, double_precision, shells};
     files = emit(a, request, &r);
   } else if (report) {
     fail_usage("--report needs an evaluator to report on (a SPEC and --name)");

@@ -81,9 +81,16 @@ KernelCurves kernel_curves(const FrequencyOptions& o, bool plot) {
                                                ? std::vector<std::string>{"none", "q1", "q2", "min"}
                                                : std::vector<std::string>{o.prefilter};
     for (const auto& name : names) {
-      const analysis::ErrorKernel e(
-          spectrum_of(spec), det, taps,
-          name == "min" ? std::vector<analysis::LatticeTap>{} : prefilter_taps_of(spec, name));
+      std::vector<analysis::LatticeTap> prefilter;
+      try {
+        if (name != "min") prefilter = prefilter_taps_of(spec, name);
+      } catch (const InputError& e) {
+        if (!plot) throw;
+        // A plot draws the curves that exist and says which one it leaves out.
+        fmt::print(stderr, "boxgen: kernel: {} left out of the plot: {}\n", name, e.what());
+        continue;
+      }
+      const analysis::ErrorKernel e(spectrum_of(spec), det, taps, prefilter);
       c.e[name] = kernel_values(e, d, w, name == "min");
     }
     all.push_back(std::move(c));
@@ -122,7 +129,8 @@ int run_kernel(const FrequencyOptions& o) {
         {"none", "no prefilter"}, {"q1", "Q^I"}, {"q2", "Q^{II}"}};
     for (std::size_t i = all.size(); i-- > 0;) {  // the first SPEC drawn last, on top
       for (const std::string name : {"none", "q1", "q2"})
-        panel.series.push_back(
+        if (all[i].e.count(name))
+          panel.series.push_back(
             {fmt::format("{} {}", all[i].key, label.at(name)), w, all[i].e.at(name),
              fmt::format("lines lw 2 lc rgb '{}' {}", colour(i), dash.at(name))});
       panel.series.push_back({fmt::format("{} E_{{min}}", all[i].key), w, all[i].e.at("min"),

@@ -57,6 +57,7 @@ int run_table1(bool json);
 // --target cpp|glsl|cuda and --precision float|double (glsl only).
 struct EmitLanguage {
   std::string target = "cpp", precision = "float";
+  std::string shells;  // --shells of q1 (q2: and the next); empty: the smallest that exist
 };
 int run_emit(const Common& c, const std::string& name, const std::string& out,
              const std::string& strategy, bool report, const std::vector<std::string>& registry,

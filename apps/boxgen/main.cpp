@@ -118,6 +118,10 @@ int run(int argc, char** argv) {
                    "or cuda (NAME.cuh)");
   emit->add_option("--precision", emit_precision, "glsl: float (default) or double");
   emit->add_flag("--report", emit_report, "also print the strategy and operation counts per orbit");
+  std::string emit_shells;
+  emit->add_option("--shells", emit_shells,
+                   "shells of the prefilter q1, e.g. 0,1 (q2: these and the next shell); default: "
+                   "the smallest on which a prefilter of full order exists");
   emit->add_option("--registry", emit_registry,
                    "also (or, without a SPEC, only) write registry.hpp listing these filters "
                    "(comma-separated; each emitted into --out already or now)")
@@ -202,7 +206,7 @@ int run(int argc, char** argv) {
     if (spectrum->parsed()) return boxgen::cli::run_spectrum(ao);
     if (emit->parsed())
       return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy, emit_report,
-                                   emit_registry, {emit_target, emit_precision});
+                                   emit_registry, {emit_target, emit_precision, emit_shells});
     if (pieces->parsed())
       return boxgen::cli::run_pieces(c, pieces_of, pieces_region, pieces_format);
   } catch (const boxgen::cli::UsageError& e) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "analysis/png_image.h"
+#include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/sample_command.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/prefilter.h"
@@ -69,10 +70,11 @@ CLI::App* add_render_command(CLI::App& app) {
                             "a NRRD volume on the filter's lattice instead of --function");
   fn->excludes(vol);
   r->add_option("--lattice", args.lattice,
-                "the lattice of --function's samples: only the filter's own (bcc | fcc | cartesian "
-                "| rows of G), default the filter's");
+                "the lattice of a SPEC --filter and of --function's samples: only the filter's own "
+                "(bcc | fcc | cartesian | rows of G), default the filter's");
   r->add_option("--filter", args.filter,
-                "a filter of the registry (default m7): " + SplineFilter::names());
+                "a filter of the registry (default m7): " + SplineFilter::names() +
+                    ", or any SPEC of boxgen (on --lattice), compiled on first use");
   r->add_option("--prefilter", args.prefilter, "none | q1 | q2 (default q2, as in Fig. 8)");
   r->add_option("--iso", args.iso, "iso value (default 0.5)");
   r->add_flag("--cutaway", args.cutaway,
@@ -88,8 +90,10 @@ CLI::App* add_render_command(CLI::App& app) {
   return r;
 }
 
+bool render_quiet() { return args.quiet; }
+
 int run_render() {
-  const SplineFilter rf = SplineFilter::parse(args.filter);
+  const SplineFilter rf = app::filter_from(args.filter, args.lattice);
   const PrefilterChoice q = parse_prefilter(args.prefilter);
   if (args.shading != "normal" && args.shading != "curvature")
     throw std::invalid_argument("--shading must be normal or curvature, got '" +

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "apps/boxrecon/cmd_bench.h"
+#include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/sample_command.h"
 #include "runtime/batch_threads.h"
@@ -61,10 +62,10 @@ void print_evaluations(std::span<const T> values, std::span<const Vec3> gradient
 }
 
 template <class T>
-int run_eval(const std::string& filter, const std::string& pre, const std::string& volume_path,
-             const std::string& points_path, bool gradient, bool hessian,
-             const NrrdReadLimits& limits) {
-  const SplineFilter f = SplineFilter::parse(filter);
+int run_eval(const std::string& filter, const std::string& lattice, const std::string& pre,
+             const std::string& volume_path, const std::string& points_path, bool gradient,
+             bool hessian, const NrrdReadLimits& limits) {
+  const SplineFilter f = filter_from(filter, lattice);
   const PrefilterChoice q = parse_prefilter(pre);
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
   const auto points = read_points_file(points_path);
@@ -102,7 +103,7 @@ int run_error(const std::string& function, int n, const std::string& filter,
               const std::string& lattice_text, const std::string& pre, int count,
               std::uint64_t seed, bool gradient, bool json) {
   const TestFunction& fn = find_test_function(function);
-  const SplineFilter f = SplineFilter::parse(filter);
+  const SplineFilter f = filter_from(filter, lattice_text);
   (void)lattice_for(f, lattice_text);
   const PrefilterChoice q = parse_prefilter(pre);
   if (count < 1 || count > 100000000)
@@ -140,10 +141,11 @@ int run_error(const std::string& function, int n, const std::string& filter,
 }
 
 template <class T>
-int run_resample(const std::string& filter, const std::string& pre, const std::string& volume_path,
-                 const std::string& output, int n, const std::vector<double>& min,
-                 const std::vector<double>& max, const NrrdReadLimits& limits) {
-  const SplineFilter f = SplineFilter::parse(filter);
+int run_resample(const std::string& filter, const std::string& lattice, const std::string& pre,
+                 const std::string& volume_path, const std::string& output, int n,
+                 const std::vector<double>& min, const std::vector<double>& max,
+                 const NrrdReadLimits& limits) {
+  const SplineFilter f = filter_from(filter, lattice);
   const PrefilterChoice q = parse_prefilter(pre);
   if (n < 2 || n > kMaxResampleN)
     throw std::invalid_argument(
@@ -217,14 +219,18 @@ template void print_evaluations<float>(std::span<const float>, std::span<const V
 template void print_evaluations<double>(std::span<const double>, std::span<const Vec3>,
                                         std::span<const Hessian>, bool, bool);
 template int run_eval<float>(const std::string&, const std::string&, const std::string&,
-                             const std::string&, bool, bool, const NrrdReadLimits&);
+                             const std::string&, const std::string&, bool, bool,
+                             const NrrdReadLimits&);
 template int run_eval<double>(const std::string&, const std::string&, const std::string&,
-                              const std::string&, bool, bool, const NrrdReadLimits&);
+                              const std::string&, const std::string&, bool, bool,
+                              const NrrdReadLimits&);
 template int run_resample<float>(const std::string&, const std::string&, const std::string&,
-                                 const std::string&, int, const std::vector<double>&,
-                                 const std::vector<double>&, const NrrdReadLimits&);
+                                 const std::string&, const std::string&, int,
+                                 const std::vector<double>&, const std::vector<double>&,
+                                 const NrrdReadLimits&);
 template int run_resample<double>(const std::string&, const std::string&, const std::string&,
-                                  const std::string&, int, const std::vector<double>&,
-                                  const std::vector<double>&, const NrrdReadLimits&);
+                                  const std::string&, const std::string&, int,
+                                  const std::vector<double>&, const std::vector<double>&,
+                                  const NrrdReadLimits&);
 
 }  // namespace boxgen::app

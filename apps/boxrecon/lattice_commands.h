@@ -26,9 +26,9 @@ inline constexpr int kMaxResampleN = 512;
 // eval: the filter's spline (after prefilter `pre`) at the points of a file, printed; a value
 // that is not finite is an error (std::domain_error), and nothing is printed.
 template <class T>
-int run_eval(const std::string& filter, const std::string& pre, const std::string& volume_path,
-             const std::string& points_path, bool gradient, bool hessian,
-             const runtime::NrrdReadLimits& limits);
+int run_eval(const std::string& filter, const std::string& lattice, const std::string& pre,
+             const std::string& volume_path, const std::string& points_path, bool gradient,
+             bool hessian, const runtime::NrrdReadLimits& limits);
 
 // The error report of `error` (text or JSON, the BCC command's keys).
 struct ErrorReport {
@@ -49,9 +49,10 @@ int run_error(const std::string& function, int n, const std::string& filter,
 // resample: n^3 grid points over the box (default_box when min and max are empty), written as a
 // Cartesian NRRD; nothing is written when any value is not finite.
 template <class T>
-int run_resample(const std::string& filter, const std::string& pre, const std::string& volume_path,
-                 const std::string& output, int n, const std::vector<double>& min,
-                 const std::vector<double>& max, const runtime::NrrdReadLimits& limits);
+int run_resample(const std::string& filter, const std::string& lattice, const std::string& pre,
+                 const std::string& volume_path, const std::string& output, int n,
+                 const std::vector<double>& min, const std::vector<double>& max,
+                 const runtime::NrrdReadLimits& limits);
 
 // bench --filter NAME: seconds per point of the filter's value (and value + gradient) at random
 // points of a volume of random samples on its lattice, one thread and all threads.

@@ -31,6 +31,7 @@
 #include "apps/boxrecon/cmd_bench.h"
 #include "apps/boxrecon/cmd_error_table.h"
 #include "apps/boxrecon/cmd_render.h"
+#include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/lattice_commands.h"
 #include "apps/boxrecon/sample_command.h"
@@ -75,7 +76,15 @@ int run(int argc, char** argv) {
   CLI::App app{"boxrecon: reconstruct lattice volumes with the generated box-spline evaluators"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("boxrecon ") + boxgen::kVersion);
-  const std::string filters = filter_choices();
+  const std::string filters =
+      filter_choices() + ", or any SPEC of boxgen (on --lattice), compiled on first use";
+  const std::string spec_lattice =
+      "the lattice of a SPEC --filter: bcc | fcc | cartesian | \"a,b,c; d,e,f; g,h,i\" (rows of "
+      "G); default the preset's";
+  bool quiet = false;
+  const auto add_quiet = [&](CLI::App* command) {
+    command->add_flag("--quiet", quiet, "no progress while a SPEC filter is compiled");
+  };
   std::string function = "ml", lattice, sample_filter, output, filter = "m7", pre = "none", volume,
               points_path, precision = "double";
   int n = 33, count = 100000;
@@ -105,6 +114,7 @@ int run(int argc, char** argv) {
   sample->add_option("-o,--output", output, "output NRRD file")->required();
   auto* eval = app.add_subcommand("eval", "evaluate the reconstruction at the points of a file");
   eval->add_option("--filter", filter, filters)->required();
+  eval->add_option("--lattice", lattice, spec_lattice);
   eval->add_option("--prefilter", pre, "none | q1 | q2");
   eval->add_option("--volume", volume, "NRRD volume on the filter's lattice")->required();
   eval->add_option("--points", points_path,
@@ -129,8 +139,8 @@ int run(int argc, char** argv) {
                       "tricubic on Cartesian");
   error
       ->add_option("--lattice", lattice,
-                   "the lattice it samples on: only the filter's own (bcc | fcc | cartesian | rows "
-                   "of G), default the filter's")
+                   "the lattice it samples on, and of a SPEC --filter: only the filter's own (bcc "
+                   "| fcc | cartesian | rows of G), default the filter's")
       ->excludes(table_flag);
   error->add_option("--prefilter", pre, "none | q1 | q2");
   error->add_option("--points", count, "number of random points");
@@ -140,6 +150,7 @@ int run(int argc, char** argv) {
   auto* resample = app.add_subcommand(
       "resample", "resample the reconstruction onto a Cartesian grid (a plain 3-D NRRD)");
   resample->add_option("--filter", filter, filters)->required();
+  resample->add_option("--lattice", lattice, spec_lattice);
   resample->add_option("--prefilter", pre, "none | q1 | q2");
   resample->add_option("--volume", volume, "NRRD volume on the filter's lattice")->required();
   resample->add_option("-o,--output", output, "output NRRD file (Cartesian grid)")->required();
@@ -173,15 +184,22 @@ int run(int argc, char** argv) {
   std::string bench_filter;
   bench->add_option("--filter", bench_filter,
                     "only this filter: ns per point on its lattice, 1 and all threads: " + filters);
+  bench->add_option("--lattice", lattice, spec_lattice);
   bench
       ->add_option("--repeats", bench_options.repeats,
                    "runs per measurement; the fastest counts (default 3)")
       ->check(CLI::Range(1, 100));
+  for (auto* command : {sample, eval, error, resample, bench}) add_quiet(command);
+  auto* filters_command = app.add_subcommand(
+      "filters", "list the registry's filters and the SPEC filters compiled into the cache");
   if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxrecon")) return *stop;
   try {
     if (threads > 0) set_batch_threads(threads);
+    boxgen::app::set_quiet(quiet || boxgen::recon::render_quiet());
+    if (filters_command->parsed()) return boxgen::app::run_filters();
     if (bench->parsed() && !bench_filter.empty())
-      return boxgen::app::run_filter_bench(SplineFilter::parse(bench_filter), bench_options.points,
+      return boxgen::app::run_filter_bench(boxgen::app::filter_from(bench_filter, lattice),
+                                           bench_options.points,
                                            bench_options.repeats, bench_options.json);
     if (bench->parsed()) return boxrecon::run_bench(bench_options);
     if (precision != "float" && precision != "double")
@@ -192,10 +210,12 @@ int run(int argc, char** argv) {
     NrrdReadLimits limits;
     limits.allow_non_finite = allow_nonfinite;
     if (eval->parsed())
-      return precision == "float" ? boxgen::app::run_eval<float>(filter, pre, volume, points_path,
-                                                                 gradient, hessian, limits)
-                                  : boxgen::app::run_eval<double>(filter, pre, volume, points_path,
-                                                                  gradient, hessian, limits);
+      return precision == "float" ? boxgen::app::run_eval<float>(filter, lattice, pre, volume,
+                                                                 points_path, gradient, hessian,
+                                                                 limits)
+                                  : boxgen::app::run_eval<double>(filter, lattice, pre, volume,
+                                                                  points_path, gradient, hessian,
+                                                                  limits);
     if (render->parsed()) return boxgen::recon::run_render();
     if (error->parsed() && table)
       return boxgen::recon::run_error_table(count, boxgen::app::parse_seed(seed), json);
@@ -209,9 +229,9 @@ int run(int argc, char** argv) {
                                     boxgen::app::parse_seed(seed), gradient, json);
     if (resample->parsed())
       return precision == "float"
-                 ? boxgen::app::run_resample<float>(filter, pre, volume, output, resample_n,
+                 ? boxgen::app::run_resample<float>(filter, lattice, pre, volume, output, resample_n,
                                                     box_min, box_max, limits)
-                 : boxgen::app::run_resample<double>(filter, pre, volume, output, resample_n,
+                 : boxgen::app::run_resample<double>(filter, lattice, pre, volume, output, resample_n,
                                                      box_min, box_max, limits);
   } catch (const std::exception& e) {
     if (boxgen::app::is_output_error(e)) return boxgen::app::report_output_error(e, "boxrecon");

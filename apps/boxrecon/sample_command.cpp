@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/input_checks.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/sampling.h"
@@ -52,7 +53,7 @@ runtime::LatticeGrid sample_grid(int n, const std::optional<double>& h,
                                  const std::string& lattice_text, const std::string& filter,
                                  std::size_t bytes_per_sample) {
   std::optional<runtime::SplineFilter> f;
-  if (!filter.empty()) f = runtime::SplineFilter::parse(filter);
+  if (!filter.empty()) f = filter_from(filter, lattice_text);
   const runtime::CosetLattice lattice =
       f ? lattice_for(*f, lattice_text)
         : (lattice_text.empty() ? runtime::CosetLattice::bcc()

@@ -43,8 +43,10 @@ def test_unknown_names(files):
         boxgen.read_volume(str(d / "missing.nrrd"), lattice="bcc")
     same_message(e, "boxrecon", "eval", "--filter", "m7", "--volume", str(d / "missing.nrrd"),
                  "--points", pts)
-    with pytest.raises(ValueError, match="registry"):  # derivable, but no evaluator in this build
-        boxgen.Filter("1,0,0; 0,1,0; 0,0,1; 1,1,1", lattice="cartesian")
+    with pytest.raises(ValueError) as e:
+        boxgen.Filter("fcc6", lattice="bcc")
+    same_message(e, "boxrecon", "eval", "--filter", "fcc6", "--lattice", "bcc", "--volume", bcc,
+                 "--points", pts)
 
 
 def test_wrong_lattice_and_points_outside(files):

@@ -188,3 +188,25 @@ def test_threads_honour_boxgen_threads(ml_volume, rng, monkeypatch):
     assert boxgen.threads() == 1
     boxgen.set_threads(0)
     assert boxgen.threads() == 2
+
+
+# A SPEC no preset has (M7 without its third axis direction): compiled at run time on first use
+# and cached (BOXGEN_CACHE_DIR, set by CTest in the build tree), as `boxrecon --filter SPEC`.
+SPEC = "1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 2,0,0; 0,2,0"
+
+
+def test_a_spec_filter_compiled_at_run_time(tmp_path, rng):
+    import pickle
+    f = boxgen.Filter(SPEC, lattice="bcc")
+    assert (f.lattice, f.degree, f.approximation_order, f.directions) == ("bcc", 3, 3, 6)
+    assert pickle.loads(pickle.dumps(f)).spec == f.spec
+    v = boxgen.sample("ml", 7)
+    points = rng.uniform(-1, 1, (100, 3))  # boxrecon's margin holds [-1, 1]^3 for the stencil
+    values, gradients = f.evaluate(v, points, "q1", gradient=True)
+    cli = eval_cli(tmp_path, v, points, "--filter", SPEC, "--lattice", "bcc", "--prefilter", "q1",
+                   "--gradient")
+    assert np.array_equal(cli[:, 0], values) and np.array_equal(cli[:, 1:], gradients)
+    # Order 3 with Q^I: quadratics are reproduced.
+    q = boxgen.sample(lambda p: 1 + p[:, 0] * p[:, 1] - 2 * p[:, 2] ** 2, 9)
+    x, y, z = points.T
+    assert np.allclose(f.evaluate(q, points, "q1"), 1 + x * y - 2 * z**2, atol=1e-11, rtol=0)

@@ -1,0 +1,39 @@
+#include "apps/boxrecon/filter_choice.h"
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "loader/filter_loader.h"
+
+namespace boxgen::app {
+
+namespace {
+bool quiet_flag = false;
+}  // namespace
+
+void set_quiet(bool quiet) { quiet_flag = quiet; }
+
+runtime::SplineFilter filter_from(const std::string& filter, const std::string& lattice) {
+  loader::CompileOptions options;
+  options.progress = !quiet_flag && isatty(STDERR_FILENO) != 0;
+  return loader::load_filter(filter, lattice.empty() ? std::nullopt : std::optional(lattice),
+                             options);
+}
+
+int run_filters() {
+  fmt::print("registry filters (built in):\n");
+  for (int i = 0; i < runtime::SplineFilter::count(); ++i) {
+    const runtime::SplineFilter f = runtime::SplineFilter::at(i);
+    fmt::print("  {:<10} {}\n", f.name(), f.lattice().name());
+  }
+  const auto cached = loader::cached_filters();
+  fmt::print("compiled filters (cached in {}): {}\n", loader::cache_directory().string(),
+             cached.empty() ? "none" : std::to_string(cached.size()));
+  for (const auto& c : cached)
+    fmt::print("  \"{}\" --lattice {}  ({})\n", c.spec,
+               c.lattice == "custom" ? "\"" + c.rows + "\"" : c.lattice, c.library.string());
+  return 0;
+}
+
+}  // namespace boxgen::app

@@ -1,0 +1,291 @@
+// The run-time path from a SPEC to a filter (loader/filter_loader.h), for SPECs no preset has:
+// the compiled evaluator against the generator's exact rational values (the de Boor-Hoellig
+// recurrence, which shares nothing with the emitted code) on delta data, polynomial reproduction
+// of the filter's order with q1 (the smallest prefilter), and the cache: a second use loads without
+// compiling, a corrupt or stale entry is rebuilt, concurrent first uses both succeed, no compiler
+// is one line. Each compile takes seconds: the tests named Slow* (label slow) hold the FCC and
+// custom-lattice cases, the truncated object and the stale stamp rebuilt, and the concurrent first
+// uses; the fast suite compiles one BCC filter once.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <thread>
+
+#include "../support/scratch_directory.h"
+#include "generator/approximation_order.h"
+#include "generator/rational.h"
+#include "generator/recurrence.h"
+#include "generator/spec.h"
+#include "loader/filter_cache.h"
+#include "loader/filter_loader.h"
+#include "runtime/prefilter.h"
+#include "runtime/reconstruction.h"
+#include "runtime/resample.h"
+#include "runtime/sampling.h"
+
+namespace boxgen::loader {
+namespace {
+
+namespace fs = std::filesystem;
+namespace rt = boxgen::runtime;
+namespace gen = boxgen::generator;
+
+// Six of M7's seven directions (no preset): a cubic on BCC.
+constexpr const char* kBccSpec = "1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 2,0,0; 0,2,0";
+// Five of fcc6's six directions on FCC.
+constexpr const char* kFccSpec = "1,1,0; 1,-1,0; 1,0,1; 1,0,-1; 0,1,1";
+// A lattice that is none of the three (rows of G, |det G| = 3), and four of its points.
+constexpr const char* kCustomLattice = "1,0,0; 0,1,0; 1,1,3";
+constexpr const char* kCustomSpec = "1,0,1; 0,1,1; 1,1,-1; -1,1,0; 1,0,1";
+
+class LoaderTest : public test::ScratchDirectoryTest {
+ protected:
+  LoaderTest() : ScratchDirectoryTest("boxgen-loader") {}
+  CompileOptions options() const {
+    CompileOptions o;
+    o.cache_dir = dir_;
+    return o;
+  }
+  // The one entry of the cache (the tests compile one filter each unless they say otherwise).
+  fs::path only(const char* extension) const {
+    for (const auto& e : fs::directory_iterator(dir_))
+      if (e.path().extension() == extension) return e.path();
+    return {};
+  }
+};
+
+// Replaces `target` by a new file holding the first `bytes` bytes of `source` (renamed into
+// place, so that the object this process has loaded from `target` stays intact).
+void replace_with_prefix(const fs::path& target, const fs::path& source, std::uintmax_t bytes) {
+  std::ifstream in(source, std::ios::binary);
+  std::string data(bytes, '\0');
+  in.read(data.data(), static_cast<std::streamsize>(bytes));
+  const fs::path temporary = target.string() + ".new";
+  std::ofstream(temporary, std::ios::binary).write(data.data(), static_cast<std::streamsize>(bytes));
+  fs::rename(temporary, target);
+}
+
+// A generic rational near 0 (large prime denominators keep it off every knot plane).
+gen::Rational generic(std::mt19937_64& rng, int range, long denominator) {
+  std::uniform_int_distribution<long> u(-range * denominator, range * denominator);
+  return gen::Rational(u(rng)) / gen::Rational(denominator);
+}
+
+// The filter on a volume that is 0 except for a 1 at lattice point j: s(x) = M(x - j), which the
+// recurrence gives exactly as |det G| M^c_Xi(x - j). Values, at 40 generic points around j.
+void expect_exact_on_delta(const rt::SplineFilter& f, const std::string& spec,
+                           const std::string& lattice) {
+  const gen::BoxSplineSpec s = gen::parse_spec(spec, lattice);
+  const rt::CosetLattice& l = f.lattice();
+  const int n = 12;
+  rt::LatticeVolume<double> v(l, {n, n, n}, 1.0, {0, 0, 0});
+  const rt::Offset& o = l.offsets()[0];
+  const rt::LatticePoint j{o[0] + l.period() * n / 2, o[1] + l.period() * n / 2,
+                           o[2] + l.period() * n / 2};
+  v.samples()[static_cast<std::size_t>(v.storage_offset(j))] = 1.0;
+  const rt::Reconstructor<double> r(v, f);
+  std::mt19937_64 rng(7);
+  const long denominators[3] = {1009, 1013, 1019};
+  int checked = 0;
+  for (int t = 0; t < 40; ++t) {
+    gen::RatVec d(3);
+    for (int a = 0; a < 3; ++a) d[a] = generic(rng, 2, denominators[a]);
+    if (!gen::is_generic_point(s.directions, d)) continue;
+    const double exact =
+        gen::to_double(gen::Rational(s.lattice.det_abs()) *
+                       gen::box_spline_centred_recurrence(s.directions, d));
+    const rt::Vec3 x{static_cast<double>(j[0]) + gen::to_double(d[0]),
+                     static_cast<double>(j[1]) + gen::to_double(d[1]),
+                     static_cast<double>(j[2]) + gen::to_double(d[2])};
+    EXPECT_NEAR(r.value(x), exact, 1e-13) << spec << " at offset " << x[0] - j[0] << " "
+                                          << x[1] - j[1] << " " << x[2] - j[2];
+    std::vector<rt::Vec3> points{x};
+    std::vector<double> values(1);
+    r.evaluate(points, values);  // the batch path (SIMD where the filter has kernels)
+    EXPECT_NEAR(values[0], exact, 1e-13);
+    ++checked;
+  }
+  EXPECT_GT(checked, 30);
+}
+
+// q1 reproduces every polynomial of degree < the filter's order: a product of linear factors of
+// that degree, sampled over [-1,1]^3, prefiltered with q1 and evaluated at random points there.
+void expect_reproduction(const rt::SplineFilter& f, const std::string& spec,
+                         const std::string& lattice) {
+  const gen::BoxSplineSpec s = gen::parse_spec(spec, lattice);
+  const int order = gen::approximation_order(s.directions, 3);
+  ASSERT_EQ(f.approximation_order(), order);
+  ASSERT_GE(order, 2);
+  const auto poly = [order](const rt::Vec3& p) {
+    double y = 1;
+    for (int k = 0; k < order - 1; ++k) y *= 0.3 + p[k % 3] - 0.5 * p[(k + 1) % 3];
+    return y;
+  };
+  const rt::PrefilterChoice q = rt::PrefilterChoice::Q1;
+  rt::LatticeVolume<double> v = rt::sample_lattice<double>(
+      poly, rt::cube_lattice_grid(f.lattice(), 9, f.required_margin(q)));
+  v = rt::prefilter(v, f.prefilter(q));
+  const rt::Reconstructor<double> r(v, f);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int t = 0; t < 200; ++t) {
+    const rt::Vec3 p{u(rng), u(rng), u(rng)};
+    EXPECT_NEAR(r.value(p), poly(p), 1e-10) << spec << " at " << p[0] << " " << p[1] << " "
+                                            << p[2];
+  }
+}
+
+TEST_F(LoaderTest, RegistryNamesAreTheRegistrysFilters) {
+  const rt::SplineFilter m7 = load_filter("m7", std::nullopt, options());
+  EXPECT_EQ(m7, rt::SplineFilter::parse("m7"));
+  EXPECT_EQ(load_filter("fcc6", "fcc", options()), rt::SplineFilter::parse("fcc6"));
+  try {
+    load_filter("fcc6", "bcc", options());
+    FAIL() << "fcc6 on bcc was accepted";
+  } catch (const LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("filter fcc6 is for the fcc lattice, but --lattice is bcc"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(fs::is_empty(dir_));  // nothing compiled
+}
+
+TEST_F(LoaderTest, RefusesWhatCannotBeAFilterInOneLine) {
+  for (const auto& [spec, lattice, words] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"zp", "", "2-D"}, {"1,1,1; 1,0,0", "cartesian", "span"},
+           {"1,0,0; 0,1,0; 0,0,1", "bcc", "lattice"}, {"nonsense", "", "nonsense"}}) {
+    try {
+      load_filter(spec, lattice, options());
+      ADD_FAILURE() << spec << " was accepted";
+    } catch (const LoadError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+      EXPECT_NE(what.find(words), std::string::npos) << spec << ": " << what;
+    }
+  }
+}
+
+TEST_F(LoaderTest, NoCompilerSaysWhatToInstall) {
+  CompileOptions o = options();
+  o.compiler = (dir_ / "no-such-compiler").string();
+  try {
+    load_filter(kBccSpec, "bcc", o);
+    FAIL() << "compiled without a compiler";
+  } catch (const LoadError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("install g++"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
+// One BCC filter: exact, reproduces with q1, then loaded from the cache without a compile.
+TEST_F(LoaderTest, BccSpecIsExactReproducesAndIsCached) {
+  const rt::SplineFilter f = load_filter(kBccSpec, "bcc", options());
+  EXPECT_EQ(f.name(), kBccSpec);
+  EXPECT_EQ(f.lattice(), rt::CosetLattice::bcc());
+  EXPECT_EQ(f.registry_index(), -1);
+  expect_exact_on_delta(f, kBccSpec, "bcc");
+  expect_reproduction(f, kBccSpec, "bcc");
+
+  const fs::path so = only(".so");
+  ASSERT_FALSE(so.empty());
+  const auto size = fs::file_size(so);
+  const auto time = fs::last_write_time(so);
+  ASSERT_GT(size, 0U);
+  // Second use: the same file, untouched (no compile), the same values.
+  const rt::SplineFilter again = load_filter(kBccSpec, "bcc", options());
+  EXPECT_EQ(fs::last_write_time(so), time);
+  EXPECT_EQ(fs::file_size(so), size);
+  expect_exact_on_delta(again, kBccSpec, "bcc");
+  ASSERT_EQ(cached_filters(options()).size(), 1U);
+  EXPECT_EQ(cached_filters(options())[0].spec, kBccSpec);
+  EXPECT_EQ(cached_filters(options())[0].lattice, "bcc");
+}
+
+// A truncated object (a crash mid-copy, a full disk) is never loaded: it is rebuilt.
+TEST_F(LoaderTest, SlowTruncatedObjectIsRebuilt) {
+  (void)load_filter(kBccSpec, "bcc", options());
+  const fs::path so = only(".so");
+  const auto size = fs::file_size(so);
+  // Put in place as another program would (a new file renamed over it): truncating the file in
+  // place would pull the pages from under this process, which has the object mapped.
+  replace_with_prefix(so, so, size / 2);
+  const rt::SplineFilter rebuilt = load_filter(kBccSpec, "bcc", options());
+  EXPECT_EQ(fs::file_size(so), size);
+  expect_exact_on_delta(rebuilt, kBccSpec, "bcc");
+}
+
+TEST_F(LoaderTest, SlowFccSpecIsExactAndReproduces) {
+  const rt::SplineFilter f = load_filter(kFccSpec, "fcc", options());
+  EXPECT_EQ(f.lattice(), rt::CosetLattice::fcc());
+  expect_exact_on_delta(f, kFccSpec, "fcc");
+  expect_reproduction(f, kFccSpec, "fcc");
+}
+
+TEST_F(LoaderTest, SlowCustomLatticeSpecIsExactAndReproduces) {
+  const rt::SplineFilter f = load_filter(kCustomSpec, kCustomLattice, options());
+  EXPECT_EQ(f.lattice().name(), "custom");
+  expect_exact_on_delta(f, kCustomSpec, kCustomLattice);
+  expect_reproduction(f, kCustomSpec, kCustomLattice);
+}
+
+// An entry whose object is intact but was built for another entry (its stamp, read through the
+// exported boxgen_filter_stamp(), names another key): rebuilt, never trusted.
+TEST_F(LoaderTest, SlowStaleStampIsRebuilt) {
+  (void)load_filter(kFccSpec, "fcc", options());
+  const fs::path fcc_so = only(".so"), fcc_json = only(".json");
+  const fs::path other = dir_ / "other";
+  fs::create_directories(other);
+  CompileOptions o = options();
+  o.cache_dir = other;
+  (void)load_filter(kBccSpec, "bcc", o);
+  fs::path bcc_so, bcc_json;
+  for (const auto& e : fs::directory_iterator(other)) {
+    if (e.path().extension() == ".so") bcc_so = e.path();
+    if (e.path().extension() == ".json") bcc_json = e.path();
+  }
+  // The BCC entry's .so under the FCC entry's name, its description made to match the file.
+  replace_with_prefix(fcc_so, bcc_so, fs::file_size(bcc_so));
+  const CacheEntry entry{dir_, fcc_so.stem().string()};
+  EntryInfo info = read_entry(entry).value();
+  info.so_size = fs::file_size(fcc_so);
+  info.so_hash = hash_file(fcc_so).value();
+  write_entry(entry, info);
+  const rt::SplineFilter f = load_filter(kFccSpec, "fcc", options());
+  EXPECT_EQ(f.lattice(), rt::CosetLattice::fcc());
+  EXPECT_NE(hash_file(fcc_so).value(), hash_file(bcc_so).value());
+  expect_exact_on_delta(f, kFccSpec, "fcc");
+}
+
+// Two first uses at once (threads here; the entry lock is a file lock, so processes alike): both
+// get the filter, one entry results, no temporary is left.
+TEST_F(LoaderTest, SlowConcurrentFirstUsesBothSucceed) {
+  std::optional<rt::SplineFilter> a, b;
+  std::string error_a, error_b;
+  const auto use = [&](std::optional<rt::SplineFilter>& out, std::string& error) {
+    try {
+      out = load_filter(kBccSpec, "bcc", options());
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  };
+  std::thread first(use, std::ref(a), std::ref(error_a));
+  std::thread second(use, std::ref(b), std::ref(error_b));
+  first.join();
+  second.join();
+  ASSERT_TRUE(a && b) << error_a << " / " << error_b;
+  expect_exact_on_delta(*a, kBccSpec, "bcc");
+  expect_exact_on_delta(*b, kBccSpec, "bcc");
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir_)) {
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+    ++files;
+  }
+  EXPECT_EQ(files, 4);  // .so, .cpp, .json, .lock
+}
+
+}  // namespace
+}  // namespace boxgen::loader
