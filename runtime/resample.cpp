@@ -92,11 +92,19 @@ CartesianVolume<T> empty_grid_volume(const CartesianGrid& grid) {
   return out;
 }
 
-// out.values (allocated here) from the spline, whole z-slices per batch (about 2^16 points): all
-// cores at work, bounded scratch memory. A point within rounding of the region's face that still
-// fails names its slices; a value that is not finite is an error naming its point.
+// Grid point (i, j, k) of the whole grid (the one formula: a block's points are the grid's).
+Vec3 grid_point(const CartesianGrid& grid, int i, int j, int k) noexcept {
+  return {grid.origin[0] + i * grid.spacing[0], grid.origin[1] + j * grid.spacing[1],
+          grid.origin[2] + k * grid.spacing[2]};
+}
+
+// out.values (allocated here) from the spline at the block's grid points, whole z-slices of the
+// block per batch (about 2^16 points): all cores at work, bounded scratch memory. A point within
+// rounding of the region's face that still fails names its slices; a value that is not finite is
+// an error naming its point.
 template <class T>
-void fill_by_slices(CartesianVolume<T>& out, const Reconstructor<T>& spline) {
+void fill_by_slices(CartesianVolume<T>& out, const CartesianGrid& grid, const GridBlock& block,
+                    const Reconstructor<T>& spline) {
   const Sizes& n = out.sizes;
   const std::size_t slice = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]);
   out.values.resize(slice * static_cast<std::size_t>(n[2]));
@@ -108,13 +116,15 @@ void fill_by_slices(CartesianVolume<T>& out, const Reconstructor<T>& spline) {
     points.clear();
     for (int k = k0; k < k1; ++k)
       for (int j = 0; j < n[1]; ++j)
-        for (int i = 0; i < n[0]; ++i) points.push_back(out.position(i, j, k));
+        for (int i = 0; i < n[0]; ++i)
+          points.push_back(grid_point(grid, block.begin[0] + i, block.begin[1] + j,
+                                      block.begin[2] + k));
     const std::span<T> values(out.values.data() + out.index(0, 0, k0), points.size());
     try {
       spline.evaluate(points, values);
     } catch (const std::out_of_range& e) {
-      throw std::out_of_range(
-          fmt::format("resampling grid slices z = {}..{}: {}", k0, k1 - 1, e.what()));
+      throw std::out_of_range(fmt::format("resampling grid slices z = {}..{}: {}",
+                                          block.begin[2] + k0, block.begin[2] + k1 - 1, e.what()));
     }
     spline.require_finite(points, values);
   }
@@ -177,12 +187,25 @@ CartesianGrid grid_over(const Box& box, Sizes n) {
 template <class T>
 CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& f,
                             const CartesianGrid& grid) {
+  return resample(volume, f, grid, GridBlock{{0, 0, 0}, grid.sizes});
+}
+
+template <class T>
+CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& f,
+                            const CartesianGrid& grid, const GridBlock& block) {
   CartesianVolume<T> out = empty_grid_volume<T>(grid);
-  // The first and last grid points, computed as the evaluation will see them, must lie in the
-  // evaluable region; then every point between them does (the region is a box).
+  for (int a = 0; a < 3; ++a)
+    if (!(0 <= block.begin[a] && block.begin[a] < block.end[a] && block.end[a] <= grid.sizes[a]))
+      throw std::invalid_argument(fmt::format(
+          "grid block [{}, {}) on axis {} is empty or outside the grid's {} points",
+          block.begin[a], block.end[a], a, grid.sizes[a]));
+  for (int a = 0; a < 3; ++a) out.sizes[a] = block.end[a] - block.begin[a];
+  out.origin = grid_point(grid, block.begin[0], block.begin[1], block.begin[2]);
+  // The first and last points of the block, computed as the evaluation will see them, must lie
+  // in the evaluable region; then every point between them does (the region is a box).
   const LatticeRegion region = lattice_region(volume, f);
-  const Sizes& n = out.sizes;
-  const Box corners{out.position(0, 0, 0), out.position(n[0] - 1, n[1] - 1, n[2] - 1)};
+  const Box corners{out.origin,
+                    grid_point(grid, block.end[0] - 1, block.end[1] - 1, block.end[2] - 1)};
   const Vec3 first = volume.to_lattice(corners.min), last = volume.to_lattice(corners.max);
   for (int a = 0; a < 3; ++a)
     if (!(first[a] >= region.lo[a] && last[a] < region.hi[a]))
@@ -190,7 +213,7 @@ CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& 
           "resampling grid {} leaves the region where the {} stencil lies inside the volume, {}",
           describe(corners), f.name(),
           describe({volume.to_world(region.lo), volume.to_world(region.hi)})));
-  fill_by_slices(out, Reconstructor<T>(volume, f));
+  fill_by_slices(out, grid, block, Reconstructor<T>(volume, f));
   return out;
 }
 
@@ -202,5 +225,9 @@ template CartesianVolume<float> resample<float>(const LatticeVolume<float>&, con
                                                 const CartesianGrid&);
 template CartesianVolume<double> resample<double>(const LatticeVolume<double>&, const SplineFilter&,
                                                   const CartesianGrid&);
+template CartesianVolume<float> resample<float>(const LatticeVolume<float>&, const SplineFilter&,
+                                                const CartesianGrid&, const GridBlock&);
+template CartesianVolume<double> resample<double>(const LatticeVolume<double>&, const SplineFilter&,
+                                                  const CartesianGrid&, const GridBlock&);
 
 }  // namespace boxgen::runtime

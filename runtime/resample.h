@@ -71,6 +71,20 @@ template <class T>
 CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& f,
                             const CartesianGrid& grid);
 
+// A block of a grid's points, begin <= (i, j, k) < end, for chunked work (the Python module's
+// dask resampling evaluates one block per task).
+struct GridBlock {
+  Sizes begin{}, end{};
+};
+// resample() at the points of one block only: each value bit for bit the one the whole grid
+// gets (the point is the grid's origin + index * spacing with the grid's own index), as a
+// CartesianVolume of the block's sizes whose origin is the block's first point. Throws as
+// resample(), and std::invalid_argument (one line) for a block that is empty or not inside the
+// grid.
+template <class T>
+CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& f,
+                            const CartesianGrid& grid, const GridBlock& block);
+
 extern template Box evaluable_region<float>(const LatticeVolume<float>&, const SplineFilter&);
 extern template Box evaluable_region<double>(const LatticeVolume<double>&, const SplineFilter&);
 extern template Box default_box<float>(const LatticeVolume<float>&, const SplineFilter&);
@@ -79,5 +93,11 @@ extern template CartesianVolume<float> resample<float>(const LatticeVolume<float
                                                        const SplineFilter&, const CartesianGrid&);
 extern template CartesianVolume<double> resample<double>(const LatticeVolume<double>&,
                                                          const SplineFilter&, const CartesianGrid&);
+extern template CartesianVolume<float> resample<float>(const LatticeVolume<float>&,
+                                                       const SplineFilter&, const CartesianGrid&,
+                                                       const GridBlock&);
+extern template CartesianVolume<double> resample<double>(const LatticeVolume<double>&,
+                                                         const SplineFilter&, const CartesianGrid&,
+                                                         const GridBlock&);
 
 }  // namespace boxgen::runtime

@@ -10,6 +10,21 @@
 
 namespace boxgen::cli {
 
+Derivation analyze_derivation(const Common& c, const AnalyzeOptions& o,
+                              const ProgressFn& progress) {
+  const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
+  if (o.checks != "default" && o.checks != "full")
+    fail_input(fmt::format("--checks must be default or full, got '{}'", o.checks));
+  // The derivation refuses up front, on the same estimate, what it predicts beyond the limit.
+  DerivationOptions options;
+  options.verify = o.verify;
+  options.full_checks = o.checks == "full";
+  options.progress = progress;
+  options.max_seconds = c.max_seconds;
+  options.max_bytes = c.max_memory_mb * 1e6;
+  return derive(spec, options);
+}
+
 int run_analyze(const Common& c, const AnalyzeOptions& o) {
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
   if (o.checks != "default" && o.checks != "full")
@@ -40,15 +55,8 @@ int run_analyze(const Common& c, const AnalyzeOptions& o) {
     }
     return 0;
   }
-  // The derivation refuses up front, on the same estimate, what it predicts beyond the limit.
   ProgressPrinter progress(o.progress);
-  DerivationOptions options;
-  options.verify = o.verify;
-  options.full_checks = full;
-  options.progress = progress.callback();
-  options.max_seconds = c.max_seconds;
-  options.max_bytes = c.max_memory_mb * 1e6;
-  const Derivation a = derive(spec, options);
+  const Derivation a = analyze_derivation(c, o, progress.callback());
   progress.finish();
   if (c.json)
     print_json(to_json(a));

@@ -31,6 +31,11 @@ std::string dark_colour(std::size_t i) {
   return colours[i % 7];
 }
 
+struct Curves {
+  std::string key;
+  std::map<std::string, std::vector<double>> e;  // prefilter name -> E
+};
+
 std::vector<double> kernel_values(const analysis::ErrorKernel& e, const analysis::Vec& d,
                                   const std::vector<double>& w, bool minimum) {
   std::vector<double> out;
@@ -41,9 +46,15 @@ std::vector<double> kernel_values(const analysis::ErrorKernel& e, const analysis
   return out;
 }
 
-}  // namespace
+// The curves of every SPEC at the abscissae: the one prefilter asked for, or, for a plot, none, q1,
+// q2 and the minimum.
+struct KernelCurves {
+  std::string direction;
+  std::vector<double> w;
+  std::vector<Curves> all;
+};
 
-int run_kernel(const FrequencyOptions& o) {
+KernelCurves kernel_curves(const FrequencyOptions& o, bool plot) {
   std::vector<BoxSplineSpec> specs;
   for (const auto& s : o.specs) specs.push_back(parse_spec(s, o.lattice));
   const int n = specs.front().dimension();
@@ -55,16 +66,11 @@ int run_kernel(const FrequencyOptions& o) {
                "': expected none, q1, q2 or min");
   const std::string direction = !o.direction.empty() ? o.direction : (n == 3 ? "1,1,1" : "1,1");
   const analysis::Vec d = parse_direction(direction, n, "--direction");
-  const bool plot = !o.plot.empty();
   // A plot defaults to the low band of Fig. 13: w from 0.05 to pi/2 (the Nyquist boundary of
   // BCC along (1,1,1)), log-spaced.
   const std::vector<double> w = abscissae(o, plot, 0.05, std::numbers::pi / 2, 120, !plot);
   if (plot) (void)support::check_output_file(o.plot);  // an unwritable --plot fails first
 
-  struct Curves {
-    std::string key;
-    std::map<std::string, std::vector<double>> e;  // prefilter name -> E
-  };
   std::vector<Curves> all;
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const auto& spec = specs[i];
@@ -89,7 +95,27 @@ int run_kernel(const FrequencyOptions& o) {
     }
     all.push_back(std::move(c));
   }
+  return {direction, w, std::move(all)};
+}
 
+}  // namespace
+
+nlohmann::json kernel_json(const FrequencyOptions& o) {
+  const KernelCurves k = kernel_curves(o, false);
+  const std::string& name = o.prefilter;
+  if (k.all.size() == 1) return {{"w", k.w}, {"E", k.all.front().e.at(name)}};
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& c : k.all) out[c.key] = {{"w", k.w}, {"E", c.e.at(name)}};
+  return out;
+}
+
+int run_kernel(const FrequencyOptions& o) {
+  const bool plot = !o.plot.empty();
+  if (o.json && !plot) {
+    print_json(kernel_json(o));
+    return 0;
+  }
+  const auto [direction, w, all] = kernel_curves(o, plot);
   if (plot) {
     analysis::PlotPanel panel;
     panel.title = fmt::format("Error kernels E(w ({}))", direction);
@@ -114,16 +140,6 @@ int run_kernel(const FrequencyOptions& o) {
     return 0;
   }
   const std::string& name = o.prefilter;
-  if (o.json) {
-    if (all.size() == 1) {
-      print_json({{"w", w}, {"E", all.front().e.at(name)}});
-    } else {
-      nlohmann::json out = nlohmann::json::object();
-      for (const auto& c : all) out[c.key] = {{"w", w}, {"E", c.e.at(name)}};
-      print_json(out);
-    }
-    return 0;
-  }
   fmt::print("error kernel E(w d), d = ({}), prefilter {}\n", direction, name);
   fmt::print("{:>14}", "w");
   for (const auto& c : all) fmt::print(" {:>14}", c.key);

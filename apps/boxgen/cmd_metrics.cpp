@@ -28,17 +28,17 @@ std::optional<PaperRow> paper_table3(const std::string& preset) {
   return it->second;
 }
 
-}  // namespace
+struct MetricsRow {
+  std::string key;
+  BoxSplineSpec spec;
+  Rational a0;
+  analysis::FilterMetrics m;
+  double seconds;
+};
 
-int run_metrics(const std::vector<std::string>& specs, const std::string& lattice, bool json) {
-  struct Row {
-    std::string key;
-    BoxSplineSpec spec;
-    Rational a0;
-    analysis::FilterMetrics m;
-    double seconds;
-  };
-  std::vector<Row> rows;
+std::vector<MetricsRow> metrics_rows(const std::vector<std::string>& specs,
+                                     const std::string& lattice) {
+  std::vector<MetricsRow> rows;
   for (const auto& text : specs) {  // parse them all first: a bad SPEC fails before any work
     BoxSplineSpec spec = parse_spec(text, lattice);
     rows.push_back({text, std::move(spec), Rational(0), {}, 0});
@@ -49,26 +49,37 @@ int run_metrics(const std::vector<std::string>& specs, const std::string& lattic
     r.m = analysis::filter_metrics(spectrum_of(r.spec), dual_of(r.spec), to_double(r.a0));
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
+  return rows;
+}
+
+}  // namespace
+
+nlohmann::json metrics_json(const std::vector<std::string>& specs, const std::string& lattice) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& r : metrics_rows(specs, lattice)) {
+    nlohmann::json steps = nlohmann::json::array();
+    for (const auto& s : r.m.steps)
+      steps.push_back(
+          {{"order", s.order}, {"iterated", s.iterated}, {"simplex_fan", s.simplex_fan}});
+    out[r.key] = {{"smoothing", r.m.smoothing},
+                  {"postaliasing", r.m.postaliasing},
+                  {"integral_squared", to_string(r.a0)},
+                  {"lattice", r.spec.lattice.name()},
+                  {"nyquist_volume", r.m.nyquist_volume},
+                  {"integral_inside", r.m.inside},
+                  {"integral_total", r.m.total},
+                  {"estimated_error", r.m.estimated_error},
+                  {"quadrature", steps}};
+  }
+  return out;
+}
+
+int run_metrics(const std::vector<std::string>& specs, const std::string& lattice, bool json) {
   if (json) {
-    nlohmann::json out = nlohmann::json::object();
-    for (const auto& r : rows) {
-      nlohmann::json steps = nlohmann::json::array();
-      for (const auto& s : r.m.steps)
-        steps.push_back(
-            {{"order", s.order}, {"iterated", s.iterated}, {"simplex_fan", s.simplex_fan}});
-      out[r.key] = {{"smoothing", r.m.smoothing},
-                    {"postaliasing", r.m.postaliasing},
-                    {"integral_squared", to_string(r.a0)},
-                    {"lattice", r.spec.lattice.name()},
-                    {"nyquist_volume", r.m.nyquist_volume},
-                    {"integral_inside", r.m.inside},
-                    {"integral_total", r.m.total},
-                    {"estimated_error", r.m.estimated_error},
-                    {"quadrature", steps}};
-    }
-    print_json(out);
+    print_json(metrics_json(specs, lattice));
     return 0;
   }
+  const std::vector<MetricsRow> rows = metrics_rows(specs, lattice);
   fmt::print(
       "Marschner-Lobb filter metrics of psi = M^c (S = 1 - (1/|N|) int_N |psi_hat|^2, "
       "P = (1/|N|) int_outside N |psi_hat|^2)\n");

@@ -9,8 +9,8 @@
 
 namespace boxgen::cli {
 
-int run_pieces(const Common& c, const std::string& of, const std::string& region,
-               const std::string& format) {
+std::string pieces_text(const Common& c, const std::string& of, const std::string& region,
+                        const std::string& format) {
   const PiecesOf what = parse_pieces_of(of);
   const PieceSelection selection = parse_piece_selection(region);
   const PieceFormat printer = c.json ? PieceFormat::Json : parse_piece_format(format);
@@ -24,7 +24,12 @@ int run_pieces(const Common& c, const std::string& of, const std::string& region
   const Pieces pieces = what == PiecesOf::Spline
                             ? spline_pieces(form, spline_structure(form), selection)
                             : filter_pieces(form, selection);
-  fmt::print("{}", format_pieces(pieces, printer, title));
+  return format_pieces(pieces, printer, title);
+}
+
+int run_pieces(const Common& c, const std::string& of, const std::string& region,
+               const std::string& format) {
+  fmt::print("{}", pieces_text(c, of, region, format));
   return 0;
 }
 

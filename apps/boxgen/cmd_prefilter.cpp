@@ -58,22 +58,31 @@ std::string formula(const Prefilter& q, const Lattice& lattice) {
   return out;
 }
 
+
+nlohmann::json prefilter_json(const Prefilter& q) {
+  nlohmann::json w = nlohmann::json::array();
+  for (const auto& x : q.weights)
+    w.push_back({{"offset", x.offset}, {"weight", to_string(x.weight)}});
+  return {{"order", q.order},
+          {"shells", q.shells},
+          {"parametrisation", q.parametrisation},
+          {"note", q.note},
+          {"weights", w}};
+}
+
 }  // namespace
+
+nlohmann::json prefilter_json(const Common& c, const std::string& shells_text) {
+  const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
+  return prefilter_json(derive_prefilter(spec, parse_shells(shells_text)));
+}
 
 int run_prefilter(const Common& c, const std::string& shells_text) {
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
   const std::vector<int> shells = parse_shells(shells_text);
   const Prefilter q = derive_prefilter(spec, shells);
   if (c.json) {
-    nlohmann::json w = nlohmann::json::array();
-    for (const auto& x : q.weights)
-      w.push_back({{"offset", x.offset}, {"weight", to_string(x.weight)}});
-    nlohmann::json out{{"order", q.order},
-                       {"shells", q.shells},
-                       {"parametrisation", q.parametrisation},
-                       {"note", q.note},
-                       {"weights", w}};
-    print_json(out);
+    print_json(prefilter_json(q));
     return 0;
   }
   fmt::print("prefilter of approximation order {} for {} on shells {}\n", q.order, spec.name,

@@ -46,7 +46,14 @@ void require_one_lattice(const std::vector<BoxSplineSpec>& specs) {
       fail_input("all SPECs of one spectrum must be on the same lattice");
 }
 
-int run_line(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
+// |psi_hat(w d)| of every SPEC along the line of o.line, with the Nyquist extent t.
+struct LineCurves {
+  std::vector<double> w;
+  double t;
+  std::vector<std::vector<double>> magnitude;
+};
+
+LineCurves line_curves(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
   const analysis::Vec d = parse_direction(o.line, n, "--line");
   require_one_lattice(specs);
   const analysis::DualLattice dual = dual_of(specs.front());
@@ -60,6 +67,22 @@ int run_line(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs,
     for (double x : w) m.push_back(std::abs(psi({x * d[0], x * d[1], x * d[2]})));
     magnitude.push_back(std::move(m));
   }
+  return {w, t, std::move(magnitude)};
+}
+
+nlohmann::json line_json(const FrequencyOptions& o, const LineCurves& c) {
+  const double t = c.t;
+  if (c.magnitude.size() == 1)
+    return {{"w", c.w}, {"magnitude", c.magnitude.front()}, {"nyquist_interval", {-t, t}}};
+  nlohmann::json out = nlohmann::json::object();
+  for (std::size_t i = 0; i < c.magnitude.size(); ++i)
+    out[o.specs[i]] = {{"w", c.w}, {"magnitude", c.magnitude[i]}, {"nyquist_interval", {-t, t}}};
+  return out;
+}
+
+int run_line(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
+  const LineCurves curves = line_curves(o, specs, n);
+  const auto& [w, t, magnitude] = curves;
   if (!o.plot.empty()) {
     const std::string shade = fmt::format(
         "set object 1 rect from {:.10g}, graph 0 to {:.10g}, graph 1 behind fc rgb '#d8d8d8' fs "
@@ -85,14 +108,7 @@ int run_line(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs,
     return 0;
   }
   if (o.json) {
-    if (specs.size() == 1) {
-      print_json({{"w", w}, {"magnitude", magnitude.front()}, {"nyquist_interval", {-t, t}}});
-    } else {
-      nlohmann::json out = nlohmann::json::object();
-      for (std::size_t i = 0; i < specs.size(); ++i)
-        out[o.specs[i]] = {{"w", w}, {"magnitude", magnitude[i]}, {"nyquist_interval", {-t, t}}};
-      print_json(out);
-    }
+    print_json(line_json(o, curves));
     return 0;
   }
   fmt::print("|psi_hat(w d)|, d = ({}); Nyquist interval [{:.10g}, {:.10g}]\n{:>14}", o.line, -t, t,
@@ -222,14 +238,27 @@ int run_plane(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs
   return 0;
 }
 
-}  // namespace
-
-int run_spectrum(const FrequencyOptions& o) {
+// The SPECs of one spectrum, all of one dimension.
+std::vector<BoxSplineSpec> spectrum_specs(const FrequencyOptions& o) {
   std::vector<BoxSplineSpec> specs;
   for (const auto& s : o.specs) specs.push_back(parse_spec(s, o.lattice));
-  const int n = specs.front().dimension();
   for (const auto& s : specs)
-    if (s.dimension() != n) fail_input("all SPECs of one spectrum must have the same dimension");
+    if (s.dimension() != specs.front().dimension())
+      fail_input("all SPECs of one spectrum must have the same dimension");
+  return specs;
+}
+
+}  // namespace
+
+nlohmann::json spectrum_json(const FrequencyOptions& o) {
+  const std::vector<BoxSplineSpec> specs = spectrum_specs(o);
+  if (o.line.empty()) fail_input("a spectrum as numbers is along a line: give --line a,b,c");
+  return line_json(o, line_curves(o, specs, specs.front().dimension()));
+}
+
+int run_spectrum(const FrequencyOptions& o) {
+  const std::vector<BoxSplineSpec> specs = spectrum_specs(o);
+  const int n = specs.front().dimension();
   if (o.plane.empty() == o.line.empty())
     fail_input("give exactly one of --plane a,b,c or --line a,b,c");
   return o.line.empty() ? run_plane(o, specs, n) : run_line(o, specs, n);

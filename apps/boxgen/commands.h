@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "generator/derivation.h"
 #include "generator/piecewise_form.h"
 #include "generator/rational.h"
 
@@ -42,10 +43,15 @@ struct AnalyzeOptions {
   bool progress = false;           // progress on stderr even when it is not a terminal
 };
 int run_analyze(const Common& c, const AnalyzeOptions& options);
+// The derivation `analyze` runs (its JSON is to_json() of it), with `progress` (may be empty).
+Derivation analyze_derivation(const Common& c, const AnalyzeOptions& options,
+                              const ProgressFn& progress);
 int run_eval(const Common& c, const std::vector<std::string>& points,
              const std::string& derivative);
 int run_bbform(const Common& c, const std::string& region);
 int run_prefilter(const Common& c, const std::string& shells);
+// What `prefilter --json` prints (also boxgen.prefilter() in Python).
+nlohmann::json prefilter_json(const Common& c, const std::string& shells);
 int run_autocorr(const Common& c, const std::string& method);
 int run_table1(bool json);
 // --target cpp|glsl|cuda and --precision float|double (glsl only).
@@ -77,6 +83,14 @@ int run_kernel(const FrequencyOptions& o);
 int run_spectrum(const FrequencyOptions& o);
 int run_pieces(const Common& c, const std::string& of, const std::string& region,
                const std::string& format);
+// What `metrics --json`, `kernel --json` and `spectrum --line --json` print (also the Python
+// module's metrics(), kernel() and spectrum(); kernel_json ignores o.plot, spectrum_json needs
+// o.line), and the text `pieces` prints (JSON when c.json).
+nlohmann::json metrics_json(const std::vector<std::string>& specs, const std::string& lattice);
+nlohmann::json kernel_json(const FrequencyOptions& o);
+nlohmann::json spectrum_json(const FrequencyOptions& o);
+std::string pieces_text(const Common& c, const std::string& of, const std::string& region,
+                        const std::string& format);
 
 // Shared output helpers.
 nlohmann::json rational_list(const RatVec& v);

@@ -49,10 +49,9 @@ runtime::CosetLattice lattice_for(const runtime::SplineFilter& f, const std::str
   return f.lattice();
 }
 
-int run_sample(const std::string& function, int n, const std::optional<double>& h,
-               const std::string& lattice_text, const std::string& filter,
-               const std::string& precision, const std::string& output) {
-  const runtime::TestFunction& fn = runtime::find_test_function(function);
+runtime::LatticeGrid sample_grid(int n, const std::optional<double>& h,
+                                 const std::string& lattice_text, const std::string& filter,
+                                 std::size_t bytes_per_sample) {
   std::optional<runtime::SplineFilter> f;
   if (!filter.empty()) f = filter_from(filter, lattice_text);
   const runtime::CosetLattice lattice =
@@ -63,16 +62,24 @@ int run_sample(const std::string& function, int n, const std::optional<double>& 
   if (n < 2 || n > 1024)
     throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", n));
   check_spacing(h);
-  runtime::require_output_directory(output);
   runtime::LatticeGrid grid = runtime::cube_lattice_grid(lattice, n, margin);
   const auto per_axis = static_cast<std::uint64_t>(grid.sizes[0]);
   check_memory(static_cast<std::uint64_t>(lattice.coset_count()) * per_axis * per_axis * per_axis,
-               precision == "float" ? sizeof(float) : sizeof(double), fmt::format("--n {}", n),
-               "samples");
+               bytes_per_sample, fmt::format("--n {}", n), "samples");
   if (h) {  // --h overrides the spacing; the grid still starts margin cells below -1
     grid.h = *h;
     for (auto& o : grid.origin) o = -1 - lattice.period() * *h * margin;
   }
+  return grid;
+}
+
+int run_sample(const std::string& function, int n, const std::optional<double>& h,
+               const std::string& lattice_text, const std::string& filter,
+               const std::string& precision, const std::string& output) {
+  const runtime::TestFunction& fn = runtime::find_test_function(function);
+  const runtime::LatticeGrid grid =
+      sample_grid(n, h, lattice_text, filter, precision == "float" ? sizeof(float) : sizeof(double));
+  runtime::require_output_directory(output);
   if (precision == "float")
     sample_and_write<float>(fn, grid, output);
   else

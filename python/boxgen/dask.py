@@ -1,0 +1,64 @@
+"""boxgen.dask: resampling as a dask.array, one task per block of the output grid.
+
+resample() builds a graph whose blocks each evaluate their own grid points only (through the same
+C++ path as boxgen.resample, so .compute() equals it bit for bit). The volume (prefiltered once,
+here) and the filter are single keys of the graph: a distributed scheduler ships them to each
+worker once, not once per block. docs/python.md says how to run it on a cluster.
+"""
+import itertools
+
+import numpy as np
+import dask.array as da
+from dask.base import tokenize
+from dask.highlevelgraph import HighLevelGraph
+
+from . import _core
+
+
+def _shape3(shape):
+    if isinstance(shape, (int, np.integer)):
+        return (int(shape),) * 3
+    shape = tuple(int(s) for s in shape)
+    if len(shape) != 3:
+        raise ValueError(f"shape must be one integer or three, got {shape}")
+    return shape
+
+
+def _block(volume, filter, lo, hi, shape, begin, end):
+    return _core._resample_block(volume, filter, None, lo, hi, shape, (begin, end))
+
+
+def resample(volume, filter, prefilter=None, lo=None, hi=None, shape=64, chunks=64):
+    """boxgen.resample(volume, filter, prefilter, lo, hi, shape) as a dask.array of `chunks`.
+
+    chunks: anything dask.array accepts for this shape (an integer, a tuple, "auto", ...).
+    The arguments are checked here, as boxgen.resample checks them, before any graph is built.
+    """
+    shape = _shape3(shape)
+    if prefilter is not None and prefilter != "none":
+        volume = filter.prefilter_volume(volume, prefilter)
+    if (lo is None) != (hi is None):
+        raise ValueError("give both lo and hi, or neither")
+    if lo is None:
+        lo, hi = filter.default_box(volume)
+    lo = tuple(float(x) for x in lo)
+    hi = tuple(float(x) for x in hi)
+    # The corners and the grid are checked once, by the block holding both corners.
+    _core._resample_block(volume, filter, None, lo, hi, shape, ((0, 0, 0), (1, 1, 1)))
+    _core._resample_block(volume, filter, None, lo, hi, shape,
+                          (tuple(s - 1 for s in shape), shape))
+    chunks = da.core.normalize_chunks(chunks, shape, dtype=np.float64)
+    token = tokenize(volume.samples, volume.lattice_rows, volume.coset_offsets, volume.spacing,
+                     volume.origin, filter.name, filter.spec, filter.lattice_rows, lo, hi, shape,
+                     chunks)
+    name = "boxgen-resample-" + token
+    volume_key = "boxgen-volume-" + token
+    filter_key = "boxgen-filter-" + token
+    graph = {volume_key: volume, filter_key: filter}
+    starts = [np.concatenate(([0], np.cumsum(c)[:-1])).astype(int).tolist() for c in chunks]
+    for index in itertools.product(*(range(len(c)) for c in chunks)):
+        begin = tuple(starts[a][index[a]] for a in range(3))
+        end = tuple(begin[a] + chunks[a][index[a]] for a in range(3))
+        graph[(name,) + index] = (_block, volume_key, filter_key, lo, hi, shape, begin, end)
+    layers = HighLevelGraph.from_collections(name, graph, dependencies=())
+    return da.Array(layers, name, chunks, dtype=np.float64)

@@ -1,0 +1,522 @@
+// boxgen.Volume, Filter, read_volume, write_volume, sample, resample: the runtime's one API
+// (docs/runtime.md) for Python, NumPy in and out. A Volume's samples are a NumPy view of the
+// runtime's storage (no copy); evaluation and resampling run without the GIL, on the runtime's
+// batch threads (BOXGEN_THREADS), and check their arguments with the messages boxrecon prints.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "apps/boxrecon/filter_choice.h"
+#include "apps/boxrecon/sample_command.h"
+#include "generator/box_spline_properties.h"
+#include "generator/spec.h"
+#include "python/bindings.h"
+#include "runtime/batch_threads.h"
+#include "runtime/nrrd_io.h"
+#include "runtime/prefilter.h"
+#include "runtime/reconstruction.h"
+#include "runtime/resample.h"
+#include "runtime/sampling.h"
+#include "runtime/test_functions.h"
+
+namespace py = pybind11;
+namespace rt = boxgen::runtime;
+namespace gen = boxgen::generator;
+
+namespace boxgen::python {
+
+namespace {
+
+using Volume = rt::LatticeVolume<double>;
+using VolumePtr = std::shared_ptr<Volume>;
+
+// A box spline filter: the runtime's SplineFilter and the generator's SPEC and properties.
+struct Filter {
+  rt::SplineFilter filter;
+  std::string spec_text, lattice_text;  // as given (for pickling)
+  gen::BoxSplineSpec spec;
+  gen::BoxSplineProperties properties;
+};
+
+std::string shape_text(const py::array& a) {
+  std::string out = "(";
+  for (py::ssize_t i = 0; i < a.ndim(); ++i)
+    out += fmt::format("{}{}", i ? ", " : "", a.shape(i));
+  return out + (a.ndim() == 1 ? ",)" : ")");
+}
+
+// `what` as a float64 array: real numbers only (TypeError for strings, objects, complex, bool).
+py::array_t<double> real_array(const py::handle& obj, const char* what) {
+  const py::array a = py::array::ensure(obj);
+  if (!a) throw py::type_error(fmt::format("{} must be a NumPy array of real numbers", what));
+  const char kind = a.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u')
+    throw py::type_error(fmt::format("{} must hold real numbers, got dtype {}", what,
+                                     py::str(a.dtype()).cast<std::string>()));
+  return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+}
+
+// An (n, 3) array of finite world coordinates, C-contiguous float64 (copied only if needed).
+py::array_t<double> points_array(const py::handle& obj) {
+  py::array_t<double> p = real_array(obj, "points");
+  if (p.ndim() != 2 || p.shape(1) != 3)
+    throw py::value_error(fmt::format(
+        "points must be an (n, 3) array of world coordinates x y z, got shape {}", shape_text(p)));
+  const double* x = p.data();
+  for (py::ssize_t i = 0; i < p.shape(0) * 3; ++i)
+    if (!std::isfinite(x[i]))
+      throw py::value_error(
+          fmt::format("points[{}]: the coordinate '{}' is not finite", i / 3, x[i]));
+  return p;
+}
+
+std::array<double, 3> three(const py::handle& obj, const char* what) {
+  const py::array_t<double> a = real_array(obj, what);
+  if (a.ndim() != 1 || a.shape(0) != 3)
+    throw py::value_error(fmt::format("{} must be three numbers x y z, got shape {}", what,
+                                      shape_text(a)));
+  return {a.at(0), a.at(1), a.at(2)};
+}
+
+rt::PrefilterChoice prefilter_choice(const std::optional<std::string>& name) {
+  return rt::parse_prefilter(name.value_or("none"));
+}
+
+// The volume the filter evaluates after prefilter q: the volume itself, or its prefiltered copy
+// in `storage`. The lattice is checked first (one line naming both lattices).
+const Volume& prepared(const Volume& volume, const Filter& f, rt::PrefilterChoice q,
+                       std::optional<Volume>& storage) {
+  f.filter.check_lattice(volume.lattice());
+  if (q == rt::PrefilterChoice::None) return volume;
+  storage.emplace(rt::prefilter(volume, f.filter.prefilter(q)));
+  return *storage;
+}
+
+// A float64 array over a vector it takes over (no copy), Fortran order when `fortran`.
+py::array_t<double> adopt(std::vector<double>&& values, const std::vector<py::ssize_t>& shape,
+                          bool fortran) {
+  auto* owned = new std::vector<double>(std::move(values));
+  py::capsule base(owned, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+  std::vector<py::ssize_t> strides(shape.size());
+  py::ssize_t stride = sizeof(double);
+  if (fortran) {
+    for (std::size_t a = 0; a < shape.size(); ++a) strides[a] = stride, stride *= shape[a];
+  } else {
+    for (std::size_t a = shape.size(); a-- > 0;) strides[a] = stride, stride *= shape[a];
+  }
+  return py::array_t<double>(shape, strides, owned->data(), base);
+}
+
+py::array_t<double> grid_array(rt::CartesianVolume<double>&& grid) {
+  const rt::Sizes n = grid.sizes;
+  return adopt(std::move(grid.values), {n[0], n[1], n[2]}, true);  // x fastest: [i, j, k]
+}
+
+// The samples array (K, N0, N1, N2), any layout, as storage order (coset fastest).
+std::vector<double> storage_of(const py::handle& samples, const rt::CosetLattice& lattice) {
+  py::array_t<double> a = real_array(samples, "samples");
+  const int k = lattice.coset_count();
+  if (a.ndim() != 4 || a.shape(0) != k)
+    throw py::value_error(fmt::format(
+        "samples of shape {} do not fit the {} lattice: give a ({}, N0, N1, N2) array, its "
+        "first axis the {} coset(s)",
+        shape_text(a), lattice.name(), k, k));
+  const auto fortran =
+      py::array_t<double, py::array::f_style | py::array::forcecast>::ensure(a);
+  return {fortran.data(), fortran.data() + fortran.size()};
+}
+
+rt::CosetLattice lattice_of(const std::string& text,
+                            const std::optional<std::vector<std::array<int, 3>>>& offsets) {
+  rt::CosetLattice lattice = rt::CosetLattice::parse(text);
+  if (!offsets) return lattice;
+  std::vector<rt::Offset> o;
+  for (const auto& x : *offsets) o.push_back({x[0], x[1], x[2]});
+  return lattice.with_offsets(o);
+}
+
+std::vector<std::array<int, 3>> offsets_of(const rt::CosetLattice& lattice) {
+  std::vector<std::array<int, 3>> out;
+  for (const auto& o : lattice.offsets())
+    out.push_back({static_cast<int>(o[0]), static_cast<int>(o[1]), static_cast<int>(o[2])});
+  return out;
+}
+
+VolumePtr make_volume(const py::handle& samples, const std::string& lattice_text, double spacing,
+                      const py::handle& origin,
+                      const std::optional<std::vector<std::array<int, 3>>>& offsets) {
+  const rt::CosetLattice lattice = lattice_of(lattice_text, offsets);
+  std::vector<double> storage = storage_of(samples, lattice);
+  const py::array a = py::array::ensure(samples);
+  const rt::Sizes sizes{static_cast<int>(a.shape(1)), static_cast<int>(a.shape(2)),
+                        static_cast<int>(a.shape(3))};
+  return std::make_shared<Volume>(lattice, sizes, spacing, three(origin, "origin"),
+                                  std::move(storage));
+}
+
+// The world position of every sample, (K N0 N1 N2, 3) in storage order (the positions
+// sample_lattice evaluates a function at).
+py::array_t<double> positions(const Volume& v) {
+  std::vector<double> out;
+  out.reserve(v.sample_count() * 3);
+  const rt::Sizes& n = v.sizes();
+  for (int z = 0; z < n[2]; ++z)
+    for (int y = 0; y < n[1]; ++y)
+      for (int x = 0; x < n[0]; ++x)
+        for (int c = 0; c < v.coset_count(); ++c)
+          for (double p : v.sample_position(c, x, y, z)) out.push_back(p);
+  return adopt(std::move(out), {static_cast<py::ssize_t>(v.sample_count()), 3}, false);
+}
+
+// A Python callable sampled once at every sample position (storage order), vectorised.
+VolumePtr sample_callable(const py::function& f, const rt::LatticeGrid& grid) {
+  auto volume = std::make_shared<Volume>(grid.lattice, grid.sizes, grid.h, grid.origin);
+  const auto m = static_cast<py::ssize_t>(volume->sample_count());
+  const py::array_t<double> values = real_array(f(positions(*volume)), "the function's result");
+  if (values.ndim() != 1 || values.shape(0) != m)
+    throw py::value_error(fmt::format(
+        "the function returned shape {} for {} points: it must return one value per point, "
+        "shape ({},)",
+        shape_text(values), m, m));
+  const double* v = values.data();
+  auto out = volume->samples();
+  for (py::ssize_t i = 0; i < m; ++i) {
+    if (!std::isfinite(v[i]))
+      throw py::value_error(fmt::format("the function's value {} at sample {} is not finite",
+                                        v[i], i));
+    out[static_cast<std::size_t>(i)] = v[i];
+  }
+  return volume;
+}
+
+// A registry filter, or any SPEC through the loader (compiled and cached on first use, exactly
+// as boxrecon --filter SPEC --lattice L gets it), with the generator's properties of its SPEC.
+Filter make_filter(const std::string& spec_text, const std::optional<std::string>& lattice) {
+  const std::string lattice_text = lattice.value_or("");
+  std::optional<rt::SplineFilter> filter;
+  {
+    py::gil_scoped_release release;  // a first use derives and compiles: seconds
+    filter = app::filter_from(spec_text, lattice_text);
+  }
+  gen::BoxSplineSpec spec = gen::parse_spec(spec_text, lattice_text);
+  gen::BoxSplineProperties properties = gen::box_spline_properties(spec);
+  return {*filter, spec_text, lattice_text, std::move(spec), std::move(properties)};
+}
+
+py::object evaluate(const Filter& f, const Volume& volume, const py::handle& points_obj,
+                    const std::optional<std::string>& prefilter, bool gradient, bool hessian) {
+  const rt::PrefilterChoice q = prefilter_choice(prefilter);
+  const py::array_t<double> points = points_array(points_obj);
+  const auto n = static_cast<std::size_t>(points.shape(0));
+  const auto count = static_cast<py::ssize_t>(n);
+  py::array_t<double> values(count);
+  const bool derivatives = gradient || hessian;
+  py::array_t<double> gradients(std::vector<py::ssize_t>{derivatives ? count : 0, 3});
+  py::array_t<double> hessians(std::vector<py::ssize_t>{hessian ? count : 0, 6});
+  const std::span<const rt::Vec3> p(reinterpret_cast<const rt::Vec3*>(points.data()), n);
+  const std::span<double> v(values.mutable_data(), n);
+  const std::span<rt::Vec3> g(reinterpret_cast<rt::Vec3*>(gradients.mutable_data()),
+                              derivatives ? n : 0);
+  const std::span<rt::Hessian> h(reinterpret_cast<rt::Hessian*>(hessians.mutable_data()),
+                                 hessian ? n : 0);
+  {
+    py::gil_scoped_release release;
+    std::optional<Volume> storage;
+    const rt::Reconstructor<double> spline(prepared(volume, f, q, storage), f.filter);
+    spline.evaluate(p, v, g, h);
+    spline.require_finite(p, v, g, h);
+  }
+  if (hessian) return py::make_tuple(values, gradients, hessians);
+  if (gradient) return py::make_tuple(values, gradients);
+  return values;
+}
+
+rt::Sizes shape_of(const std::variant<int, std::array<int, 3>>& shape) {
+  if (const auto* n = std::get_if<int>(&shape)) return {*n, *n, *n};
+  const auto& s = std::get<std::array<int, 3>>(shape);
+  return {s[0], s[1], s[2]};
+}
+
+// The grid of lo..hi with `shape` points, lo and hi defaulting to the filter's default_box.
+rt::CartesianGrid grid_of(const Volume& volume, const Filter& f, const py::handle& lo,
+                          const py::handle& hi, const rt::Sizes& shape) {
+  if (lo.is_none() != hi.is_none()) throw py::value_error("give both lo and hi, or neither");
+  const rt::Box box = lo.is_none() ? rt::default_box(volume, f.filter)
+                                   : rt::Box{three(lo, "lo"), three(hi, "hi")};
+  return rt::grid_over(box, shape);
+}
+
+py::array_t<double> resample(const VolumePtr& volume, const Filter& f,
+                             const std::optional<std::string>& prefilter, const py::handle& lo,
+                             const py::handle& hi, const std::variant<int, std::array<int, 3>>& shape,
+                             const std::optional<std::array<std::array<int, 3>, 2>>& block) {
+  const rt::PrefilterChoice q = prefilter_choice(prefilter);
+  std::optional<Volume> storage;
+  const Volume* v = nullptr;
+  {
+    py::gil_scoped_release release;
+    v = &prepared(*volume, f, q, storage);
+  }
+  const rt::CartesianGrid grid = grid_of(*v, f, lo, hi, shape_of(shape));
+  const rt::GridBlock b = block ? rt::GridBlock{(*block)[0], (*block)[1]}
+                                : rt::GridBlock{{0, 0, 0}, grid.sizes};
+  rt::CartesianVolume<double> out;
+  {
+    py::gil_scoped_release release;
+    out = rt::resample(*v, f.filter, grid, b);
+  }
+  return grid_array(std::move(out));
+}
+
+py::tuple box_tuple(const rt::Box& b) {
+  return py::make_tuple(py::make_tuple(b.min[0], b.min[1], b.min[2]),
+                        py::make_tuple(b.max[0], b.max[1], b.max[2]));
+}
+
+py::int_ big_int(const gen::Integer& x) {
+  return py::int_(py::str(gen::to_string(gen::Rational(x))));
+}
+
+void bind_volume(py::module_& m) {
+  py::class_<Volume, VolumePtr>(m, "Volume",
+                                "Samples on a lattice (docs/python.md): `samples` is a (K, N0, "
+                                "N1, N2) view of the storage, sample (c, i, j, k) at origin + "
+                                "spacing * (d (i, j, k) + offset_c).")
+      .def(py::init(&make_volume), py::arg("samples"), py::arg("lattice") = "bcc",
+           py::arg("spacing") = 1.0, py::arg("origin") = std::array<double, 3>{0, 0, 0},
+           py::arg("coset_offsets") = py::none())
+      .def_property_readonly(
+          "samples",
+          [](py::object self) {
+            auto& v = self.cast<Volume&>();
+            const auto k = static_cast<py::ssize_t>(v.coset_count());
+            const rt::Sizes& n = v.sizes();
+            const py::ssize_t s = sizeof(double);
+            return py::array_t<double>({k, py::ssize_t{n[0]}, py::ssize_t{n[1]}, py::ssize_t{n[2]}},
+                                       {s, s * k, s * k * n[0], s * k * n[0] * n[1]},
+                                       v.samples().data(), self);
+          },
+          "The samples as a writable NumPy array (K, N0, N1, N2) without a copy")
+      .def_property_readonly("lattice", [](const Volume& v) { return v.lattice().name(); })
+      .def_property_readonly("lattice_rows", [](const Volume& v) { return v.lattice().rows_text(); })
+      .def_property_readonly("coset_offsets",
+                             [](const Volume& v) { return offsets_of(v.lattice()); })
+      .def_property_readonly("period", &Volume::period)
+      .def_property_readonly("spacing", &Volume::spacing)
+      .def_property_readonly("origin",
+                             [](const Volume& v) {
+                               const rt::Vec3& o = v.origin();
+                               return py::make_tuple(o[0], o[1], o[2]);
+                             })
+      .def_property_readonly("sizes", [](const Volume& v) { return v.sizes(); })
+      .def("positions", &positions,
+           "World positions of the samples, (K N0 N1 N2, 3) in storage order (coset fastest)")
+      .def("__repr__",
+           [](const Volume& v) {
+             return fmt::format("boxgen.Volume({} lattice, {} x {} x {} x {} samples, spacing {}, "
+                                "origin ({}, {}, {}))",
+                                v.lattice().name(), v.coset_count(), v.sizes()[0], v.sizes()[1],
+                                v.sizes()[2], v.spacing(), v.origin()[0], v.origin()[1],
+                                v.origin()[2]);
+           })
+      .def(py::pickle(
+          [](py::object self) {
+            const auto& v = self.cast<const Volume&>();
+            const std::string lattice =
+                v.lattice().name() == "custom" ? v.lattice().rows_text() : v.lattice().name();
+            return py::make_tuple(self.attr("samples").attr("copy")(), lattice, v.spacing(),
+                                  self.attr("origin"), offsets_of(v.lattice()));
+          },
+          [](const py::tuple& t) {
+            return make_volume(t[0], t[1].cast<std::string>(), t[2].cast<double>(), t[3],
+                               t[4].cast<std::vector<std::array<int, 3>>>());
+          }));
+
+  m.def(
+      "read_volume",
+      [](const std::string& path, bool allow_nonfinite, const std::optional<std::string>& lattice) {
+        rt::NrrdReadLimits limits;
+        limits.allow_non_finite = allow_nonfinite;
+        if (lattice) limits.lattice = rt::CosetLattice::parse(*lattice);
+        py::gil_scoped_release release;
+        return std::make_shared<Volume>(rt::read_lattice_nrrd<double>(path, limits));
+      },
+      py::arg("path"), py::arg("allow_nonfinite") = false, py::arg("lattice") = py::none(),
+      "A lattice NRRD file (docs/runtime.md#nrrd-layout) as a Volume of doubles; `lattice`: the "
+      "one the caller needs (a file that does not say its lattice is then refused in its terms)");
+  m.def(
+      "write_volume",
+      [](const std::string& path, const Volume& v) {
+        py::gil_scoped_release release;
+        rt::write_lattice_nrrd(path, v);
+      },
+      py::arg("path"), py::arg("volume"),
+      "Writes the volume as a lattice NRRD, atomically (the old file stays if the write fails)");
+  m.def(
+      "sample",
+      [](const py::object& function, int n, const std::optional<std::string>& lattice,
+         const std::optional<std::string>& filter, std::optional<double> h) {
+        const rt::LatticeGrid grid =
+            app::sample_grid(n, h, lattice.value_or(""), filter.value_or(""), sizeof(double));
+        if (py::isinstance<py::str>(function)) {
+          const rt::TestFunction& fn = rt::find_test_function(function.cast<std::string>());
+          py::gil_scoped_release release;
+          return std::make_shared<Volume>(rt::sample_lattice<double>(fn.value, grid));
+        }
+        if (!py::isinstance<py::function>(function))
+          throw py::type_error(fmt::format(
+              "function must be a name ({}) or a callable on an (m, 3) array of points",
+              rt::test_function_names()));
+        return sample_callable(function.cast<py::function>(), grid);
+      },
+      py::arg("function"), py::arg("n"), py::arg("lattice") = py::none(),
+      py::arg("filter") = py::none(), py::arg("h") = py::none(),
+      "`boxrecon sample`: a test function (ml, cubic, sphere, gaussian) or a Python callable "
+      "(called once with every sample position, an (m, 3) array, returning m values) on N^3 x K "
+      "lattice points over [-1,1]^3 with boxrecon's margin");
+}
+
+void bind_filter(py::module_& m) {
+  py::class_<Filter>(m, "Filter", "A box-spline filter with its evaluator (docs/python.md)")
+      .def(py::init(&make_filter), py::arg("spec"), py::arg("lattice") = py::none())
+      .def_property_readonly("name", [](const Filter& f) { return f.filter.name(); })
+      .def_property_readonly("spec", [](const Filter& f) { return f.spec.directions_text(); })
+      .def_property_readonly("lattice", [](const Filter& f) { return f.filter.lattice().name(); })
+      .def_property_readonly("lattice_rows",
+                             [](const Filter& f) { return f.filter.lattice().rows_text(); })
+      .def_property_readonly("dimension", [](const Filter& f) { return f.spec.dimension(); })
+      .def_property_readonly("directions", [](const Filter& f) { return f.spec.count(); })
+      .def_property_readonly("degree", [](const Filter& f) { return f.properties.degree; })
+      .def_property_readonly("approximation_order",
+                             [](const Filter& f) { return f.filter.approximation_order(); })
+      .def_property_readonly("continuity", [](const Filter& f) { return f.properties.continuity; },
+                             "k of C^k")
+      .def_property_readonly("support_volume",
+                             [](const Filter& f) { return big_int(f.properties.support_volume); })
+      .def_property_readonly("stencil_size",
+                             [](const Filter& f) { return big_int(f.properties.stencil_size); })
+      .def_property_readonly("linearly_independent",
+                             [](const Filter& f) { return f.properties.linearly_independent; })
+      .def_property_readonly("reach",
+                             [](const Filter& f) {
+                               const rt::StencilReach r = f.filter.reach();
+                               py::dict d;
+                               d["lo"] = r.lo;
+                               d["hi"] = r.hi;
+                               d["centre"] = r.centre;
+                               return d;
+                             })
+      .def_property_readonly(
+          "prefilters",
+          [](const Filter& f) {
+            py::dict out;
+            for (const auto& [name, q] :
+                 {std::pair{"q1", rt::PrefilterChoice::Q1}, std::pair{"q2", rt::PrefilterChoice::Q2}}) {
+              const rt::DiscreteFilter taps = f.filter.prefilter(q);
+              py::array_t<long> offsets(std::vector<py::ssize_t>{static_cast<py::ssize_t>(taps.size()), 3});
+              py::array_t<double> weights(static_cast<py::ssize_t>(taps.size()));
+              for (std::size_t i = 0; i < taps.size(); ++i) {
+                for (int a = 0; a < 3; ++a)
+                  offsets.mutable_at(static_cast<py::ssize_t>(i), a) = taps[i].first[static_cast<std::size_t>(a)];
+                weights.mutable_at(static_cast<py::ssize_t>(i)) = taps[i].second;
+              }
+              out[name] = py::make_tuple(offsets, weights);
+            }
+            return out;
+          },
+          "{'q1': (offsets (m, 3), weights (m,)), 'q2': ...}: the quasi-interpolation prefilters")
+      .def("required_margin",
+           [](const Filter& f, const std::optional<std::string>& q) {
+             return f.filter.required_margin(prefilter_choice(q));
+           },
+           py::arg("prefilter") = py::none())
+      .def("evaluate", &evaluate, py::arg("volume"), py::arg("points"),
+           py::arg("prefilter") = py::none(), py::arg("gradient") = false,
+           py::arg("hessian") = false,
+           "The spline at (n, 3) world points: values (n,), or (values, gradients (n, 3)[, "
+           "Hessians (n, 6) xx xy xz yy yz zz]); bit for bit `boxrecon eval`")
+      .def("prefilter_volume",
+           [](const Filter& f, const Volume& volume, const std::string& q) {
+             std::optional<Volume> storage;
+             py::gil_scoped_release release;
+             (void)prepared(volume, f, rt::parse_prefilter(q), storage);
+             return std::make_shared<Volume>(storage ? std::move(*storage) : volume);
+           },
+           py::arg("volume"), py::arg("prefilter"),
+           "The volume prefiltered with q1 or q2 (a new Volume)")
+      .def("evaluable_region",
+           [](const Filter& f, const Volume& v) { return box_tuple(rt::evaluable_region(v, f.filter)); })
+      .def("default_box",
+           [](const Filter& f, const Volume& v) { return box_tuple(rt::default_box(v, f.filter)); })
+      .def("__repr__",
+           [](const Filter& f) {
+             return fmt::format("boxgen.Filter('{}' on the {} lattice: degree {}, C^{}, order {})",
+                                f.filter.name(), f.filter.lattice().name(), f.properties.degree,
+                                f.properties.continuity, f.filter.approximation_order());
+           })
+      .def(py::pickle(
+          [](const Filter& f) {
+            return py::make_tuple(f.spec_text, f.lattice_text.empty()
+                                                   ? py::object(py::none())
+                                                   : py::object(py::str(f.lattice_text)));
+          },
+          [](const py::tuple& t) {
+            return make_filter(t[0].cast<std::string>(),
+                               t[1].cast<std::optional<std::string>>());
+          }));
+}
+
+}  // namespace
+
+void bind_runtime(py::module_& m) {
+  bind_volume(m);
+  bind_filter(m);
+  m.def(
+      "resample",
+      [](const VolumePtr& volume, const Filter& f, const std::optional<std::string>& prefilter,
+         const py::object& lo, const py::object& hi,
+         const std::variant<int, std::array<int, 3>>& shape) {
+        return resample(volume, f, prefilter, lo, hi, shape, std::nullopt);
+      },
+      py::arg("volume"), py::arg("filter"), py::arg("prefilter") = py::none(),
+      py::arg("lo") = py::none(), py::arg("hi") = py::none(), py::arg("shape") = 64,
+      "The spline on the grid lo + (i, j, k) (hi - lo) / (shape - 1): an array of that shape "
+      "(lo, hi default to filter.default_box of the prefiltered volume)");
+  m.def(
+      "_resample_block",
+      [](const VolumePtr& volume, const Filter& f, const std::optional<std::string>& prefilter,
+         const py::object& lo, const py::object& hi,
+         const std::variant<int, std::array<int, 3>>& shape,
+         const std::array<std::array<int, 3>, 2>& block) {
+        return resample(volume, f, prefilter, lo, hi, shape, block);
+      },
+      py::arg("volume"), py::arg("filter"), py::arg("prefilter"), py::arg("lo"), py::arg("hi"),
+      py::arg("shape"), py::arg("block"),
+      "resample() at the grid points begin <= (i, j, k) < end of block = (begin, end) only");
+  m.def("filters", [] {
+    std::vector<std::string> names;
+    for (int i = 0; i < rt::SplineFilter::count(); ++i) names.push_back(rt::SplineFilter::at(i).name());
+    return names;
+  }, "The registry's filters");
+  m.def("test_functions", [] {
+    std::vector<std::string> names;
+    for (const auto& f : rt::test_functions()) names.emplace_back(f.name);
+    return names;
+  }, "The test functions of sample()");
+  m.def("threads", &rt::batch_threads,
+        "Threads of the batch paths: set_threads(n), else BOXGEN_THREADS, else all cores");
+  m.def("set_threads", &rt::set_batch_threads, py::arg("n"),
+        "Caps the batch paths at n threads (0: back to BOXGEN_THREADS / all cores)");
+}
+
+}  // namespace boxgen::python
