@@ -95,9 +95,14 @@ LatticeVolume<T> prefilter(const LatticeVolume<T>& volume, const DiscreteFilter&
           fmt::format("volume of {} x {} x {} samples per coset is too small for the prefilter (it "
                       "needs more than {} per axis to keep any sample)",
                       n[0], n[1], n[2], shrink.lower[a] + shrink.upper[a]));
-    out_origin[a] = volume.origin()[a] + lattice.period() * volume.spacing() * shrink.lower[a];
+    out_origin[a] =
+        volume.origin()[a] + lattice.period() * volume.axis_spacing()[a] * shrink.lower[a];
   }
-  LatticeVolume<T> out(lattice, out_sizes, volume.spacing(), out_origin);
+  LatticeVolume<T> out(lattice, out_sizes, volume.axis_spacing(), out_origin,
+                       std::vector<T>(static_cast<std::size_t>(volume.coset_count()) *
+                                      static_cast<std::size_t>(out_sizes[0]) *
+                                      static_cast<std::size_t>(out_sizes[1]) *
+                                      static_cast<std::size_t>(out_sizes[2])));
 
   // Tap t of output coset c reads input coset c' at index (i + s + delta): a fixed step in storage
   // from the input sample (c, i + s, j + s, k + s).

@@ -55,11 +55,11 @@ LatticeRegion lattice_region(const LatticeVolume<T>& volume, const SplineFilter&
 // world = origin + i * spacing, lattice = (world - o) / h (double), a cast to T and + c (in T):
 // each step errs by a few ulps of the magnitudes involved. 16 ulps of each bound them all.
 template <class T>
-double rounding_guard(const Vec3& lo, const Vec3& hi, const Vec3& origin, double spacing) {
+double rounding_guard(const Vec3& lo, const Vec3& hi, const Vec3& origin, const Vec3& spacing) {
   double lattice_extent = 0, world_extent = 0;
   for (int a = 0; a < 3; ++a) {
     lattice_extent = std::max({lattice_extent, std::abs(lo[a]), std::abs(hi[a])});
-    world_extent = std::max(world_extent, std::abs(origin[a]) / spacing);
+    world_extent = std::max(world_extent, std::abs(origin[a]) / spacing[a]);
   }
   return 16 * (std::numeric_limits<T>::epsilon() * (lattice_extent + 2) +
                std::numeric_limits<double>::epsilon() * (world_extent + lattice_extent + 2));
@@ -131,7 +131,8 @@ Box evaluable_region(const LatticeVolume<T>& volume, const SplineFilter& f) {
 template <class T>
 Box default_box(const LatticeVolume<T>& volume, const SplineFilter& f) {
   const LatticeRegion region = lattice_region(volume, f);
-  const double guard = rounding_guard<T>(region.lo, region.hi, volume.origin(), volume.spacing());
+  const double guard =
+      rounding_guard<T>(region.lo, region.hi, volume.origin(), volume.axis_spacing());
   Vec3 lo, hi;
   for (int a = 0; a < 3; ++a) {
     lo[a] = region.lo[a] + guard;

@@ -17,6 +17,7 @@
 #include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/sample_command.h"
 #include "runtime/batch_threads.h"
+#include "runtime/nifti_io.h"
 #include "runtime/points_file.h"
 #include "runtime/prefilter.h"
 #include "runtime/resample.h"
@@ -36,7 +37,7 @@ LatticeVolume<T> read_for(const SplineFilter& f, PrefilterChoice q, const std::s
                           const NrrdReadLimits& limits) {
   NrrdReadLimits on_lattice = limits;
   on_lattice.lattice = f.lattice();
-  LatticeVolume<T> volume = read_lattice_nrrd<T>(path, on_lattice);
+  LatticeVolume<T> volume = read_volume_file<T>(path, on_lattice);
   f.check_lattice(volume.lattice());
   if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
   return volume;

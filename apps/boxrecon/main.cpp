@@ -106,7 +106,9 @@ int run(int argc, char** argv) {
   auto* eval = app.add_subcommand("eval", "evaluate the reconstruction at the points of a file");
   eval->add_option("--filter", filter, filters)->required();
   eval->add_option("--prefilter", pre, "none | q1 | q2");
-  eval->add_option("--volume", volume, "NRRD volume on the filter's lattice")->required();
+  eval->add_option("--volume", volume,
+                   "volume on the filter's lattice (NRRD, or NIfTI .nii/.nii.gz: Cartesian)")
+      ->required();
   eval->add_option("--points", points_path,
                    "file with one 'x y z' (world) per line, '#' comments; - reads stdin")
       ->required();
@@ -141,7 +143,10 @@ int run(int argc, char** argv) {
       "resample", "resample the reconstruction onto a Cartesian grid (a plain 3-D NRRD)");
   resample->add_option("--filter", filter, filters)->required();
   resample->add_option("--prefilter", pre, "none | q1 | q2");
-  resample->add_option("--volume", volume, "NRRD volume on the filter's lattice")->required();
+  resample
+      ->add_option("--volume", volume,
+                   "volume on the filter's lattice (NRRD, or NIfTI .nii/.nii.gz: Cartesian)")
+      ->required();
   resample->add_option("-o,--output", output, "output NRRD file (Cartesian grid)")->required();
   resample->add_option(
       "--n", resample_n,
