@@ -29,9 +29,6 @@ namespace boxgen::app {
 
 using namespace boxgen::runtime;
 
-namespace {
-
-// The volume of a file, on the filter's lattice and prefiltered with q.
 template <class T>
 LatticeVolume<T> read_for(const SplineFilter& f, PrefilterChoice q, const std::string& path,
                           const NrrdReadLimits& limits) {
@@ -43,7 +40,10 @@ LatticeVolume<T> read_for(const SplineFilter& f, PrefilterChoice q, const std::s
   return volume;
 }
 
-}  // namespace
+template LatticeVolume<float> read_for<float>(const SplineFilter&, PrefilterChoice,
+                                              const std::string&, const NrrdReadLimits&);
+template LatticeVolume<double> read_for<double>(const SplineFilter&, PrefilterChoice,
+                                                const std::string&, const NrrdReadLimits&);
 
 template <class T>
 void print_evaluations(std::span<const T> values, std::span<const Vec3> gradients,

@@ -10,6 +10,8 @@
 //   boxrecon resample --filter F [--prefilter P] --volume v.nrrd -o grid.nrrd [--n N]
 //                     [--min X Y Z --max X Y Z] [--precision float|double]
 //   boxrecon render (--function F --n N | --volume v.nrrd) [--filter F] ... -o out.png
+//   boxrecon subsample --volume IN --lattice L (--fraction F | --spacing H) [--filter F] ... -o OUT
+//   boxrecon compare --reference IN --volume LAT --filter F [--prefilter P] [--mask-above V] ...
 //   boxrecon bench [--quick] [--json] [--points K] [--repeats R] [--filter F]
 // Every command: --threads N caps the batch paths' threads, like BOXGEN_THREADS. Every filter on
 // every lattice goes through the one runtime API (runtime/reconstruction.h,
@@ -31,6 +33,7 @@
 #include "apps/boxrecon/cmd_bench.h"
 #include "apps/boxrecon/cmd_error_table.h"
 #include "apps/boxrecon/cmd_render.h"
+#include "apps/boxrecon/cmd_volumes.h"
 #include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/lattice_commands.h"
 #include "apps/boxrecon/sample_command.h"
@@ -165,6 +168,8 @@ int run(int argc, char** argv) {
   resample->add_flag("--allow-nonfinite", allow_nonfinite,
                      "accept NaN and infinite samples in the volume (refused by default)");
   auto* render = boxgen::recon::add_render_command(app);
+  auto* subsample = boxgen::recon::add_subsample_command(app);
+  auto* compare = boxgen::recon::add_compare_command(app);
   boxrecon::BenchOptions bench_options;
   auto* bench = app.add_subcommand(
       "bench", "evaluation speed: the paper's Table 2, fetch floors, tricubic, threads");
@@ -202,6 +207,8 @@ int run(int argc, char** argv) {
                                   : boxgen::app::run_eval<double>(filter, pre, volume, points_path,
                                                                   gradient, hessian, limits);
     if (render->parsed()) return boxgen::recon::run_render();
+    if (subsample->parsed()) return boxgen::recon::run_subsample();
+    if (compare->parsed()) return boxgen::recon::run_compare();
     if (error->parsed() && table)
       return boxgen::recon::run_error_table(count, boxgen::app::parse_seed(seed), json);
     if (error->parsed() && (error_n->count() == 0 || error_filter->count() == 0)) {
