@@ -14,4 +14,7 @@ int run_subsample();
 CLI::App* add_compare_command(CLI::App& app);
 int run_compare();
 
+CLI::App* add_slice_command(CLI::App& app);
+int run_slice();
+
 }  // namespace boxgen::recon

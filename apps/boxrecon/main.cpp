@@ -12,7 +12,8 @@
 //   boxrecon render (--function F --n N | --volume v.nrrd) [--filter F] ... -o out.png
 //   boxrecon subsample --volume IN --lattice L (--fraction F | --spacing H) [--filter F] ... -o OUT
 //   boxrecon compare --reference IN --volume LAT --filter F [--prefilter P] [--mask-above V] ...
-//   boxrecon bench [--quick] [--json] [--points K] [--repeats R] [--filter F]
+//   boxrecon slice (--volume V --filter F[,F2,...] | --reference IN) --axis x|y|z --at W ... -o
+//   s.png boxrecon bench [--quick] [--json] [--points K] [--repeats R] [--filter F]
 // Every command: --threads N caps the batch paths' threads, like BOXGEN_THREADS. Every filter on
 // every lattice goes through the one runtime API (runtime/reconstruction.h,
 // apps/boxrecon/lattice_commands.h).
@@ -170,6 +171,7 @@ int run(int argc, char** argv) {
   auto* render = boxgen::recon::add_render_command(app);
   auto* subsample = boxgen::recon::add_subsample_command(app);
   auto* compare = boxgen::recon::add_compare_command(app);
+  auto* slice = boxgen::recon::add_slice_command(app);
   boxrecon::BenchOptions bench_options;
   auto* bench = app.add_subcommand(
       "bench", "evaluation speed: the paper's Table 2, fetch floors, tricubic, threads");
@@ -209,6 +211,7 @@ int run(int argc, char** argv) {
     if (render->parsed()) return boxgen::recon::run_render();
     if (subsample->parsed()) return boxgen::recon::run_subsample();
     if (compare->parsed()) return boxgen::recon::run_compare();
+    if (slice->parsed()) return boxgen::recon::run_slice();
     if (error->parsed() && table)
       return boxgen::recon::run_error_table(count, boxgen::app::parse_seed(seed), json);
     if (error->parsed() && (error_n->count() == 0 || error_filter->count() == 0)) {

@@ -3,6 +3,7 @@
 // match a case checked by hand, slices have the asked size and values, and every bad input is one
 // line, a non-zero exit and no file. The volumes are small (seconds in all).
 #include <nifti2_io.h>
+#include <png.h>
 #include <teem/nrrd.h>
 
 #include <algorithm>
@@ -184,6 +185,75 @@ TEST_F(BoxreconVolumes, CompareMatchesAHandCheckedCase) {
   EXPECT_NEAR(at(6, 3, 6), -1.5, 1e-6);
   EXPECT_EQ(at(2, 4, 4), 0.0f);
   EXPECT_EQ(at(7, 4, 4), 0.0f);
+}
+
+// A PNG read with libpng's simplified API: width, height and RGB bytes (top row first).
+struct Png {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+  std::array<int, 3> at(int x, int y) const {
+    const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                           static_cast<std::size_t>(x)) *
+                          3;
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+  }
+};
+Png read_png(const std::string& path) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  Png png;
+  if (!png_image_begin_read_from_file(&image, path.c_str())) {
+    ADD_FAILURE() << "libpng cannot read " << path;
+    return png;
+  }
+  image.format = PNG_FORMAT_RGB;
+  png.width = static_cast<int>(image.width);
+  png.height = static_cast<int>(image.height);
+  png.rgb.resize(PNG_IMAGE_SIZE(image));
+  EXPECT_TRUE(png_image_finish_read(&image, nullptr, png.rgb.data(), 0, nullptr));
+  return png;
+}
+
+// Reference v(i, j, k) = 10 i on a 10^3 grid: its z slice is 10 x 10 pixels, x along i, the top
+// row the largest j, grey round(255 v / 90) over the range [0, 90]. A constant 10 reconstructed
+// by the tricubic (partition of unity) over --range 0 20 is grey round(127.5) = 128 everywhere,
+// and three filters side by side are 3 panels and 2 gaps of 4 pixels.
+TEST_F(BoxreconVolumes, SlicePngsHaveTheirSizeAndValues) {
+  save_cartesian(file("ramp.nrrd"), 10, [](int i, int, int) { return 10.0f * i; });
+  ok({"slice", "--reference", file("ramp.nrrd"), "--axis", "z", "--at", "4", "-o", file("r.png")});
+  const Png r = read_png(file("r.png"));
+  ASSERT_EQ(r.width, 10);
+  ASSERT_EQ(r.height, 10);
+  for (int x : {0, 3, 9})
+    for (int y : {0, 5, 9}) {
+      const int grey = static_cast<int>(std::lround(255.0 * 10 * x / 90));
+      EXPECT_EQ(r.at(x, y), (std::array<int, 3>{grey, grey, grey})) << x << " " << y;
+    }
+  save_cartesian(file("ten.nrrd"), 12, [](int, int, int) { return 10.0f; });
+  ok({"slice", "--volume", file("ten.nrrd"), "--filter", "tricubic,cart7,tricubic", "--axis", "y",
+      "--at", "5.5", "--size", "8", "6", "--range", "0", "20", "-o", file("t.png")});
+  const Png t = read_png(file("t.png"));
+  ASSERT_EQ(t.width, 3 * 8 + 2 * 4);
+  ASSERT_EQ(t.height, 6);
+  for (int x : {0, 7, 12, 19, 24, 31})
+    EXPECT_EQ(t.at(x, 3), (std::array<int, 3>{128, 128, 128})) << x;
+  for (int x : {8, 11, 20, 23})
+    EXPECT_EQ(t.at(x, 3), (std::array<int, 3>{255, 255, 255})) << x;  // gaps
+  // The difference to the ramp at its voxels, 10 - 10 i, over [-20, 20]: white at i = 1, half
+  // way to blue at i = 2 (-10: 255 (1 - 1/2) rounds to 128), blue at i = 3 (-20) and beyond.
+  ok({"slice", "--volume", file("ten.nrrd"), "--filter", "tricubic", "--axis", "z", "--at", "5",
+      "--difference-to", file("ramp.nrrd"), "--range", "-20", "20", "-o", file("d.png")});
+  const Png d = read_png(file("d.png"));
+  ASSERT_EQ(d.width, 10);
+  EXPECT_EQ(d.at(1, 5), (std::array<int, 3>{255, 255, 255}));
+  EXPECT_EQ(d.at(2, 5), (std::array<int, 3>{128, 128, 255}));
+  EXPECT_EQ(d.at(3, 5), (std::array<int, 3>{0, 0, 255}));
+  EXPECT_EQ(d.at(5, 5), (std::array<int, 3>{0, 0, 255}));
+  refused({"slice", "--reference", file("ramp.nrrd"), "--filter", "m7", "--at", "4", "-o",
+           file("x.png")},
+          "no effect", file("x.png"));
+  refused({"slice", "--reference", file("ramp.nrrd"), "--at", "40", "-o", file("x.png")}, "outside",
+          file("x.png"));
 }
 
 // A NIfTI-1 file written through nifticlib: 12^3 int16 voxels (all 0), spacing 1, the given sform.
