@@ -8,7 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 boxrecon="${1:-build}/apps/boxrecon"
-work="${2:-fig10-work}"
+work="${2:-${1:-build}/fig10}"
 input=/usr/share/mricron/templates/ch2better.nii.gz
 box=(--min -60 -92 -55 --max 60 62 73)  # inside every filter's region at 3%
 mkdir -p "$work"
