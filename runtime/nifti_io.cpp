@@ -155,32 +155,9 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
     fail("its data is missing or cut short (a truncated or corrupt file)");
   std::vector<T> samples(static_cast<std::size_t>(count));
   const auto n = static_cast<std::size_t>(count);
-  switch (im.datatype) {
-    case DT_INT8:
-      convert<T, std::int8_t>(im.data, n, im.scl_slope, im.scl_inter, samples);
-      break;
-    case DT_UINT8:
-      convert<T, std::uint8_t>(im.data, n, im.scl_slope, im.scl_inter, samples);
-      break;
-    case DT_INT16:
-      convert<T, std::int16_t>(im.data, n, im.scl_slope, im.scl_inter, samples);
-      break;
-    case DT_UINT16:
-      convert<T, std::uint16_t>(im.data, n, im.scl_slope, im.scl_inter, samples);
-      break;
-    case DT_INT32:
-      convert<T, std::int32_t>(im.data, n, im.scl_slope, im.scl_inter, samples);
-      break;
-    case DT_UINT32:
-      convert<T, std::uint32_t>(im.data, n, im.scl_slope, im.scl_inter, samples);
-      break;
-    case DT_FLOAT32:
-      convert<T, float>(im.data, n, im.scl_slope, im.scl_inter, samples);
-      break;
-    default:
-      convert<T, double>(im.data, n, im.scl_slope, im.scl_inter, samples);
-      break;
-  }
+  (void)visit_sample_type(type, [&](auto tag) {
+    convert<T, decltype(tag)>(im.data, n, im.scl_slope, im.scl_inter, samples);
+  });
   image.reset();  // the file's copy of the data is no longer needed
   if (!limits.allow_non_finite)
     if (const std::string why = nrrd_checks::check_finite<T>(samples, 1, sizes); !why.empty())

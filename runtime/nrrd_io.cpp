@@ -280,6 +280,42 @@ std::string file_lattice(const Nrrd* nrrd, VolumeHeader& header) {
   return {};
 }
 
+// The spacing of each domain axis from the space directions (header.steps): Z^3 may have one per
+// axis, and negative ones (read_lattice_nrrd flips those axes); every other lattice has one h > 0.
+std::string read_steps(const Nrrd* nrrd, unsigned first, int k, int d, const std::string& name,
+                       VolumeHeader& header) {
+  const bool cartesian = k == 1 && d == 1;
+  if (cartesian) {
+    for (int a = 0; a < 3; ++a) {
+      const double step = nrrd->axis[a].spaceDirection[a];
+      bool aligned = std::isfinite(step) && step != 0;
+      for (int b = 0; b < 3; ++b)
+        if (b != a && !(std::fabs(nrrd->axis[a].spaceDirection[b]) <= 1e-9 * std::fabs(step)))
+          aligned = false;
+      if (!aligned)
+        return "its space directions are not along the axes ((sx,0,0) (0,sy,0) (0,0,sz)): "
+               "oblique or permuted grids are not supported";
+      header.steps[a] = step;
+    }
+  } else {
+    const double step = nrrd->axis[first].spaceDirection[0];
+    bool consistent = std::isfinite(step) && step / d > 0;
+    for (int a = 0; a < 3 && consistent; ++a)
+      for (int b = 0; b < 3; ++b) {
+        const double v = nrrd->axis[first + a].spaceDirection[b];
+        if (!std::isfinite(v) || std::fabs(v - (a == b ? step : 0.0)) > 1e-9 * step)
+          consistent = false;
+      }
+    if (!consistent)
+      return fmt::format(
+          "its space directions are not (dh,0,0) (0,dh,0) (0,0,dh) for one h > 0 (d = {} for the "
+          "{} lattice)",
+          d, name);
+    header.steps = {step / d, step / d, step / d};
+  }
+  return {};
+}
+
 // Checks that `nrrd` describes a lattice volume (nrrd_io.h); a file without a lattice key where
 // `expected` needs one is refused in `expected`'s terms. Returns what it says or an error text.
 std::string check_lattice_header(const Nrrd* nrrd, const std::optional<CosetLattice>& expected,
@@ -335,37 +371,7 @@ std::string check_lattice_header(const Nrrd* nrrd, const std::optional<CosetLatt
     for (int b = 0; b < 3; ++b)
       if (!std::isnan(nrrd->axis[0].spaceDirection[b]))
         return "axis 0 (the coset axis) must have the space direction 'none'";
-  // Z^3 may have a spacing per axis, and negative ones (read_lattice_nrrd flips those axes); every
-  // other lattice has one h > 0.
-  const bool cartesian = k == 1 && d == 1;
-  if (cartesian) {
-    for (int a = 0; a < 3; ++a) {
-      const double step = nrrd->axis[a].spaceDirection[a];
-      bool aligned = std::isfinite(step) && step != 0;
-      for (int b = 0; b < 3; ++b)
-        if (b != a && !(std::fabs(nrrd->axis[a].spaceDirection[b]) <= 1e-9 * std::fabs(step)))
-          aligned = false;
-      if (!aligned)
-        return "its space directions are not along the axes ((sx,0,0) (0,sy,0) (0,0,sz)): "
-               "oblique or permuted grids are not supported";
-      header.steps[a] = step;
-    }
-  } else {
-    const double step = nrrd->axis[first].spaceDirection[0];
-    bool consistent = std::isfinite(step) && step / d > 0;
-    for (int a = 0; a < 3 && consistent; ++a)
-      for (int b = 0; b < 3; ++b) {
-        const double v = nrrd->axis[first + a].spaceDirection[b];
-        if (!std::isfinite(v) || std::fabs(v - (a == b ? step : 0.0)) > 1e-9 * step)
-          consistent = false;
-      }
-    if (!consistent)
-      return fmt::format(
-          "its space directions are not (dh,0,0) (0,dh,0) (0,0,dh) for one h > 0 (d = {} for the "
-          "{} lattice)",
-          d, name);
-    header.steps = {step / d, step / d, step / d};
-  }
+  if (std::string why = read_steps(nrrd, first, k, d, name, header); !why.empty()) return why;
   for (int b = 0; b < 3; ++b) {
     header.origin[b] = nrrd->spaceOrigin[b];
     if (!std::isfinite(header.origin[b])) return "its space origin is missing or not finite";
@@ -554,32 +560,7 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, c
     }
     std::transform(in.begin(), in.end(), out.begin(), [](S x) { return static_cast<T>(x); });
   };
-  switch (full.type) {
-    case nrrdTypeChar:
-      convert(std::int8_t{});
-      break;
-    case nrrdTypeUChar:
-      convert(std::uint8_t{});
-      break;
-    case nrrdTypeShort:
-      convert(std::int16_t{});
-      break;
-    case nrrdTypeUShort:
-      convert(std::uint16_t{});
-      break;
-    case nrrdTypeInt:
-      convert(std::int32_t{});
-      break;
-    case nrrdTypeUInt:
-      convert(std::uint32_t{});
-      break;
-    case nrrdTypeFloat:
-      convert(float{});
-      break;
-    default:
-      convert(double{});
-      break;
-  }
+  if (!visit_sample_type(sample_type_name(full.type), convert)) fail("unknown sample type");
   if (!limits.allow_non_finite)
     check(nrrd_checks::check_finite<T>(out, full.lattice.coset_count(), full.sizes));
   return out;

@@ -145,11 +145,12 @@ LatticeVolume<T> gaussian_smooth(const LatticeVolume<T>& volume, double sigma) {
     throw std::invalid_argument(
         fmt::format("Gaussian width {} must be finite, > 0 and at most 1000 samples", sigma));
   const int radius = static_cast<int>(std::ceil(3 * sigma));
-  std::vector<double> weights(static_cast<std::size_t>(2 * radius + 1));
+  std::vector<double> weights;
   double total = 0;
-  for (int t = -radius; t <= radius; ++t)
-    total += weights[static_cast<std::size_t>(t + radius)] =
-        std::exp(-0.5 * t * t / (sigma * sigma));
+  for (int t = -radius; t <= radius; ++t) {
+    weights.push_back(std::exp(-0.5 * t * t / (sigma * sigma)));
+    total += weights.back();
+  }
   for (double& w : weights) w /= total;
   Sizes n = volume.sizes();
   Vec3 origin = volume.origin();
@@ -175,7 +176,8 @@ LatticeVolume<T> gaussian_smooth(const LatticeVolume<T>& volume, double sigma) {
           double sum = 0;
           for (int t = -radius; t <= radius; ++t)
             sum += weights[static_cast<std::size_t>(t + radius)] *
-                   static_cast<double>(data[static_cast<std::size_t>(centre + t * stride[axis])]);
+                   static_cast<double>(data[static_cast<std::size_t>(
+                       centre + static_cast<std::ptrdiff_t>(t) * stride[axis])]);
           next[static_cast<std::size_t>(i) +
                static_cast<std::size_t>(m[0]) *
                    (static_cast<std::size_t>(j) +

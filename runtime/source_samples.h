@@ -5,8 +5,10 @@
 #pragma once
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "runtime/lattice_volume.h"
@@ -19,6 +21,21 @@ struct SourceSamples {
   std::string type;
   double min = 0, max = 0;
 };
+
+// Calls f(S{}) with S the C++ type of a sample type named as SourceSamples::type names it; false
+// (f not called) for any other name. The one dispatch of the readers' conversions.
+template <class F>
+bool visit_sample_type(std::string_view name, F&& f) {
+  if (name == "int8") return f(std::int8_t{}), true;
+  if (name == "uint8") return f(std::uint8_t{}), true;
+  if (name == "int16") return f(std::int16_t{}), true;
+  if (name == "uint16") return f(std::uint16_t{}), true;
+  if (name == "int32") return f(std::int32_t{}), true;
+  if (name == "uint32") return f(std::uint32_t{}), true;
+  if (name == "float") return f(float{}), true;
+  if (name == "double") return f(double{}), true;
+  return false;
+}
 
 template <class T>
 SourceSamples describe_samples(std::span<const T> samples, std::string type) {

@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <iostream>
@@ -56,6 +57,88 @@ std::vector<std::string> split_filters(const std::string& text) {
   return names;
 }
 
+// Every argument check that needs no file, before any work.
+void check_slice_args() {
+  const bool reconstruct = !args.volume.empty();
+  if (reconstruct == !args.reference.empty())
+    throw std::invalid_argument("give --volume FILE --filter F or --reference FILE");
+  if (reconstruct && args.filters.empty()) throw std::invalid_argument("--volume needs --filter");
+  if (!reconstruct &&
+      (!args.filters.empty() || args.prefilter != "none" || !args.difference_to.empty()))
+    throw std::invalid_argument(
+        "--filter, --prefilter and --difference-to have no effect with --reference");
+  if (args.axis != "x" && args.axis != "y" && args.axis != "z")
+    throw std::invalid_argument("--axis must be x, y or z, got '" + args.axis.substr(0, 20) + "'");
+  if (args.colormap != "grey" && args.colormap != "viridis")
+    throw std::invalid_argument("--colormap must be grey or viridis, got '" +
+                                args.colormap.substr(0, 20) + "'");
+  if (!args.difference_to.empty() && args.colormap != "grey")
+    throw std::invalid_argument("--colormap has no effect with --difference-to (blue-white-red)");
+  if (!std::isfinite(*args.at)) throw std::invalid_argument("--at must be finite");
+  if (!args.size.empty() &&
+      (args.size[0] < 1 || args.size[1] < 1 || args.size[0] > 8192 || args.size[1] > 8192))
+    throw std::invalid_argument("--size must be 1..8192 pixels each way");
+  if (!args.range.empty() && !(std::isfinite(args.range[0]) && std::isfinite(args.range[1]) &&
+                               args.range[0] < args.range[1]))
+    throw std::invalid_argument("--range needs finite LO < HI");
+}
+
+// Pixels per panel: --size, the reference's voxels, or 512 on the box's longer side.
+std::array<int, 2> panel_size(const Box& box, int u, int v,
+                              const std::optional<LatticeVolume<float>>& reference) {
+  if (!args.size.empty()) return {args.size[0], args.size[1]};
+  if (reference) return {reference->sizes()[u], reference->sizes()[v]};
+  const double wu = box.max[u] - box.min[u], wv = box.max[v] - box.min[v];
+  return {std::max(1, static_cast<int>(std::lround(wu >= wv ? 512 : 512 * wu / wv))),
+          std::max(1, static_cast<int>(std::lround(wv >= wu ? 512 : 512 * wv / wu)))};
+}
+
+// A value's colour: blue - white - red for a difference, else viridis or grey, over [lo, hi].
+std::array<std::uint8_t, 3> colour_of(double value, double lo, double hi, bool difference) {
+  const double t = std::clamp((value - lo) / (hi - lo), 0.0, 1.0);
+  std::uint8_t r = 0, g = 0, b = 0;
+  if (difference) {
+    const double s = 2 * t - 1;
+    const auto fade = [](double w) { return static_cast<std::uint8_t>(std::lround(255 * w)); };
+    r = s < 0 ? fade(1 + s) : 255;
+    g = fade(1 - std::fabs(s));
+    b = s > 0 ? fade(1 - s) : 255;
+  } else if (args.colormap == "viridis") {
+    analysis::colour_map(t, r, g, b);
+  } else {
+    r = g = b = static_cast<std::uint8_t>(std::lround(255 * t));
+  }
+  return {r, g, b};
+}
+
+// The values of one reconstructed panel at `points` (NaN outside the filter's region or where
+// the reference has no voxel), minus the reference's with --difference-to.
+std::vector<double> reconstructed_panel(const LatticeVolume<float>& volume,
+                                        const SplineFilter& filter, const std::vector<Vec3>& points,
+                                        const std::vector<double>& ref_values, bool has_reference) {
+  std::vector<double> values(points.size(), NAN);
+  const Reconstructor<float> spline(volume, filter);
+  const Box region = evaluable_region(volume, filter);
+  std::vector<Vec3> inside;
+  std::vector<std::size_t> where;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    bool in = !has_reference || !std::isnan(ref_values[i]);
+    for (int a = 0; a < 3; ++a)
+      in = in && points[i][a] >= region.min[a] && points[i][a] < region.max[a];
+    if (in) {
+      inside.push_back(points[i]);
+      where.push_back(i);
+    }
+  }
+  std::vector<float> out(inside.size());
+  spline.evaluate(inside, out);
+  spline.require_finite(inside, out);
+  for (std::size_t k = 0; k < inside.size(); ++k)
+    values[where[k]] =
+        static_cast<double>(out[k]) - (args.difference_to.empty() ? 0.0 : ref_values[where[k]]);
+  return values;
+}
+
 }  // namespace
 
 CLI::App* add_slice_command(CLI::App& app) {
@@ -86,28 +169,8 @@ CLI::App* add_slice_command(CLI::App& app) {
 }
 
 int run_slice() {
+  check_slice_args();
   const bool reconstruct = !args.volume.empty();
-  if (reconstruct == !args.reference.empty())
-    throw std::invalid_argument("give --volume FILE --filter F or --reference FILE");
-  if (reconstruct && args.filters.empty()) throw std::invalid_argument("--volume needs --filter");
-  if (!reconstruct &&
-      (!args.filters.empty() || args.prefilter != "none" || !args.difference_to.empty()))
-    throw std::invalid_argument(
-        "--filter, --prefilter and --difference-to have no effect with --reference");
-  if (args.axis != "x" && args.axis != "y" && args.axis != "z")
-    throw std::invalid_argument("--axis must be x, y or z, got '" + args.axis.substr(0, 20) + "'");
-  if (args.colormap != "grey" && args.colormap != "viridis")
-    throw std::invalid_argument("--colormap must be grey or viridis, got '" +
-                                args.colormap.substr(0, 20) + "'");
-  if (!args.difference_to.empty() && args.colormap != "grey")
-    throw std::invalid_argument("--colormap has no effect with --difference-to (blue-white-red)");
-  if (!std::isfinite(*args.at)) throw std::invalid_argument("--at must be finite");
-  if (!args.size.empty() &&
-      (args.size[0] < 1 || args.size[1] < 1 || args.size[0] > 8192 || args.size[1] > 8192))
-    throw std::invalid_argument("--size must be 1..8192 pixels each way");
-  if (!args.range.empty() && !(std::isfinite(args.range[0]) && std::isfinite(args.range[1]) &&
-                               args.range[0] < args.range[1]))
-    throw std::invalid_argument("--range needs finite LO < HI");
   const std::vector<std::string> names = split_filters(args.filters);
   if (reconstruct && names.empty()) throw std::invalid_argument("--filter names no filter");
   const PrefilterChoice q = parse_prefilter(args.prefilter);
@@ -153,20 +216,7 @@ int run_slice() {
         "--at {} is outside the slice's range [{:.6g}, {:.6g}] on {} (the region every panel "
         "reconstructs, or the reference's grid)",
         *args.at, box.min[axis], box.max[axis], args.axis));
-  int width = 0, height = 0;
-  if (!args.size.empty()) {
-    width = args.size[0];
-    height = args.size[1];
-  } else if (reference) {
-    width = reference->sizes()[u];
-    height = reference->sizes()[v];
-  } else {
-    const double wu = box.max[u] - box.min[u], wv = box.max[v] - box.min[v];
-    width = static_cast<int>(std::lround(wu >= wv ? 512 : 512 * wu / wv));
-    height = static_cast<int>(std::lround(wv >= wu ? 512 : 512 * wv / wu));
-    width = std::max(width, 1);
-    height = std::max(height, 1);
-  }
+  const auto [width, height] = panel_size(box, u, v, reference);
   // Pixel (x, y) of a panel: its centre on the plane; the first and last pixels on the box faces.
   const auto pixel_point = [&](int x, int y) {
     Vec3 p{};
@@ -186,30 +236,11 @@ int run_slice() {
   if (reference)
     for (std::size_t i = 0; i < pixels; ++i)
       if (const auto r = nearest_voxel(*reference, points[i])) ref_values[i] = *r;
-  for (std::size_t f = 0; f < panels; ++f) {
-    if (!reconstruct) {
-      std::copy(ref_values.begin(), ref_values.end(), values.begin());
-      break;
-    }
-    const Reconstructor<float> spline(volumes[f], filters[f]);
-    const Box region = evaluable_region(volumes[f], filters[f]);
-    std::vector<Vec3> inside;
-    std::vector<std::size_t> where;
-    for (std::size_t i = 0; i < pixels; ++i) {
-      bool in = true;
-      for (int a = 0; a < 3; ++a)
-        in = in && points[i][a] >= region.min[a] && points[i][a] < region.max[a];
-      if (in && (!reference || !std::isnan(ref_values[i]))) {
-        inside.push_back(points[i]);
-        where.push_back(i);
-      }
-    }
-    std::vector<float> out(inside.size());
-    spline.evaluate(inside, out);
-    spline.require_finite(inside, out);
-    for (std::size_t k = 0; k < inside.size(); ++k)
-      values[f * pixels + where[k]] =
-          static_cast<double>(out[k]) - (args.difference_to.empty() ? 0.0 : ref_values[where[k]]);
+  if (!reconstruct) std::copy(ref_values.begin(), ref_values.end(), values.begin());
+  for (std::size_t f = 0; reconstruct && f < panels; ++f) {
+    const std::vector<double> panel =
+        reconstructed_panel(volumes[f], filters[f], points, ref_values, reference.has_value());
+    std::copy(panel.begin(), panel.end(), values.begin() + static_cast<std::ptrdiff_t>(f * pixels));
   }
   const bool difference = !args.difference_to.empty();
   double lo = source.min, hi = source.max;
@@ -237,21 +268,7 @@ int run_slice() {
           image.set(px, y, kOutside[0], kOutside[1], kOutside[2]);
           continue;
         }
-        const double t = std::clamp((value - lo) / (hi - lo), 0.0, 1.0);
-        std::uint8_t r = 0, g = 0, b = 0;
-        if (difference) {  // blue (negative) - white (0) - red (positive)
-          const double s = 2 * t - 1;
-          const auto fade = [](double w) {
-            return static_cast<std::uint8_t>(std::lround(255 * w));
-          };
-          r = s < 0 ? fade(1 + s) : 255;
-          g = fade(1 - std::fabs(s));
-          b = s > 0 ? fade(1 - s) : 255;
-        } else if (args.colormap == "viridis") {
-          analysis::colour_map(t, r, g, b);
-        } else {
-          r = g = b = static_cast<std::uint8_t>(std::lround(255 * t));
-        }
+        const auto [r, g, b] = colour_of(value, lo, hi, difference);
         image.set(px, y, r, g, b);
       }
   analysis::write_png(args.output, image);

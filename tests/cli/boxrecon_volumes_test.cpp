@@ -145,7 +145,8 @@ TEST_F(BoxreconVolumes, SubsampleReproducesACubicOnBcc) {
 // each: RMS sqrt(5/4), max 1.5, mean |e| 1, PSNR 20 log10(9 / sqrt(5/4)). Mask v > 10.8: i = 6
 // only (v = 11.5): 16 points, all errors -1.5.
 TEST_F(BoxreconVolumes, CompareMatchesAHandCheckedCase) {
-  save_cartesian(file("ref.nrrd"), 10, [](int i, int, int) { return 10 + (i - 4.5f); });
+  save_cartesian(file("ref.nrrd"), 10,
+                 [](int i, int, int) { return 10 + (static_cast<float>(i) - 4.5f); });
   save_cartesian(file("ten.nrrd"), 10, [](int, int, int) { return 10.0f; });
   const nlohmann::json j = nlohmann::json::parse(ok({"compare",
                                                      "--reference",
@@ -179,7 +180,8 @@ TEST_F(BoxreconVolumes, CompareMatchesAHandCheckedCase) {
   const TeemVolume e = load(file("err.nrrd"));
   ASSERT_EQ(e.samples.size(), 1000u);
   const auto at = [&](int i, int j2, int k) {
-    return e.samples[static_cast<std::size_t>(i + 10 * (j2 + 10 * k))];
+    return e.samples[static_cast<std::size_t>(i) +
+                     10 * (static_cast<std::size_t>(j2) + 10 * static_cast<std::size_t>(k))];
   };
   EXPECT_NEAR(at(3, 4, 5), 1.5, 1e-6);
   EXPECT_NEAR(at(6, 3, 6), -1.5, 1e-6);
@@ -219,7 +221,8 @@ Png read_png(const std::string& path) {
 // by the tricubic (partition of unity) over --range 0 20 is grey round(127.5) = 128 everywhere,
 // and three filters side by side are 3 panels and 2 gaps of 4 pixels.
 TEST_F(BoxreconVolumes, SlicePngsHaveTheirSizeAndValues) {
-  save_cartesian(file("ramp.nrrd"), 10, [](int i, int, int) { return 10.0f * i; });
+  save_cartesian(file("ramp.nrrd"), 10,
+                 [](int i, int, int) { return 10.0f * static_cast<float>(i); });
   ok({"slice", "--reference", file("ramp.nrrd"), "--axis", "z", "--at", "4", "-o", file("r.png")});
   const Png r = read_png(file("r.png"));
   ASSERT_EQ(r.width, 10);

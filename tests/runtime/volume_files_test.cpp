@@ -333,7 +333,8 @@ TEST_F(VolumeFiles, BadNiftiFilesAreRefusedInOneLine) {
   write_nifti(file("whole.nii.gz"), big);
   std::ifstream in(file("whole.nii.gz"), std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::ofstream(file("cut.nii.gz"), std::ios::binary).write(bytes.data(), bytes.size() / 2);
+  std::ofstream(file("cut.nii.gz"), std::ios::binary)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
   expect_refused(file("cut.nii.gz"), "cut short");
 
   std::ofstream(file("text.nii")) << "not a NIfTI file\n";
