@@ -174,10 +174,11 @@ LatticeVolume<T> gaussian_smooth(const LatticeVolume<T>& volume, double sigma) {
           std::ptrdiff_t centre = 0;  // the input sample under output (i, j, k)
           for (int a = 0; a < 3; ++a) centre += (p[a] + (a == axis ? radius : 0)) * stride[a];
           double sum = 0;
-          for (int t = -radius; t <= radius; ++t)
-            sum += weights[static_cast<std::size_t>(t + radius)] *
-                   static_cast<double>(data[static_cast<std::size_t>(
-                       centre + static_cast<std::ptrdiff_t>(t) * stride[axis])]);
+          // Tap w reads the sample w - radius steps along the axis from the centre.
+          const std::ptrdiff_t first = centre - static_cast<std::ptrdiff_t>(radius) * stride[axis];
+          for (std::size_t w = 0; w < weights.size(); ++w)
+            sum += weights[w] * static_cast<double>(data[static_cast<std::size_t>(
+                                    first + static_cast<std::ptrdiff_t>(w) * stride[axis])]);
           next[static_cast<std::size_t>(i) +
                static_cast<std::size_t>(m[0]) *
                    (static_cast<std::size_t>(j) +

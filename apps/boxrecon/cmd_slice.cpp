@@ -216,7 +216,8 @@ int run_slice() {
         "--at {} is outside the slice's range [{:.6g}, {:.6g}] on {} (the region every panel "
         "reconstructs, or the reference's grid)",
         *args.at, box.min[axis], box.max[axis], args.axis));
-  const auto [width, height] = panel_size(box, u, v, reference);
+  const std::array<int, 2> size = panel_size(box, u, v, reference);
+  const int width = size[0], height = size[1];
   // Pixel (x, y) of a panel: its centre on the plane; the first and last pixels on the box faces.
   const auto pixel_point = [&](int x, int y) {
     Vec3 p{};

@@ -178,6 +178,29 @@ TEST_F(VolumeFiles, AnisotropicTricubicReproducesACubicInWorldCoordinates) {
   }
 }
 
+// A symmetric, normalised kernel keeps a linear function: after the Gaussian low-pass (sigma 1,
+// radius 3) each remaining sample of an anisotropic grid still holds the function at its point,
+// and the volume lost 3 samples per side (origin moved by 3 spacings).
+TEST_F(VolumeFiles, GaussianLowPassKeepsALinearFunctionAndShrinks) {
+  const auto f = [](const Vec3& p) { return 2 * p[0] + 3 * p[1] - p[2] + 1; };
+  const Vec3 h{1, 0.5, 2}, o{-1, 2, 3};
+  std::vector<double> samples;
+  for (int k = 0; k < 12; ++k)
+    for (int j = 0; j < 12; ++j)
+      for (int i = 0; i < 12; ++i)
+        samples.push_back(f({o[0] + h[0] * i, o[1] + h[1] * j, o[2] + h[2] * k}));
+  const LatticeVolume<double> v(CosetLattice::cartesian(), {12, 12, 12}, h, o, std::move(samples));
+  const LatticeVolume<double> s = gaussian_smooth(v, 1.0);
+  EXPECT_EQ(s.sizes(), (Sizes{6, 6, 6}));
+  EXPECT_EQ(s.origin(), (Vec3{o[0] + 3 * h[0], o[1] + 3 * h[1], o[2] + 3 * h[2]}));
+  for (int k = 0; k < 6; ++k)
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 6; ++i)
+        EXPECT_NEAR(s(0, i, j, k), f(s.sample_position(0, i, j, k)), 1e-12);
+  EXPECT_THROW((void)gaussian_smooth(v, 2.0), std::invalid_argument);  // radius 6: nothing left
+  EXPECT_THROW((void)gaussian_smooth(v, 0.0), std::invalid_argument);
+}
+
 // A NIfTI file written through nifticlib: `dims` voxels of `datatype` holding 0, 1, 2, ... (in the
 // type), with the given sform (if sform_code > 0) and qform, in NIfTI-1 or NIfTI-2.
 struct NiftiSpec {
