@@ -114,12 +114,9 @@ class EmittedSpline {
     }
     T d[3 + 6] = {};
     const T value = support::evaluate_located<Order, Tr>(located, v, d);
-    const double h = stencils_.volume().spacing();
     if constexpr (Order >= support::kGradient)
-      if (gradient)
-        for (int i = 0; i < 3; ++i) (*gradient)[i] = static_cast<double>(d[i]) / h;
-    if constexpr (Order >= support::kHessian)
-      for (int i = 0; i < 6; ++i) (*hessian)[i] = static_cast<double>(d[3 + i]) / (h * h);
+      to_world_derivatives<Order>(d, gradient ? gradient->data() : nullptr,
+                                  hessian ? hessian->data() : nullptr);
     return value;
   }
 
@@ -266,12 +263,28 @@ class EmittedSpline {
     }
   }
 
+  // Derivatives d (lattice units: gradient d[0..2], Hessian's upper triangle d[3..8]) in world
+  // units: divided by the spacing of each axis they differentiate along (h_a, or h_a h_b). Either
+  // output may be null (not wanted).
+  template <int Order>
+  void to_world_derivatives(const T* d, double* gradient, double* hessian) const {
+    const Vec3& h = stencils_.volume().axis_spacing();
+    if (gradient)
+      for (int a = 0; a < 3; ++a) gradient[a] = static_cast<double>(d[a]) / h[a];
+    if constexpr (Order >= generated::support::kHessian) {
+      if (!hessian) return;
+      constexpr int kRow[6] = {0, 0, 0, 1, 1, 2}, kColumn[6] = {0, 1, 2, 1, 2, 2};
+      for (int i = 0; i < 6; ++i)
+        hessian[i] = static_cast<double>(d[3 + i]) / (h[kRow[i]] * h[kColumn[i]]);
+    }
+  }
+
   // The world-to-lattice frame and the bounds of locate_chunk.
   simd::Frame simd_frame() const {
     simd::Frame frame{};
-    frame.h = stencils_.volume().spacing();
     frame.lower = -kFar;
     for (int a = 0; a < 3; ++a) {
+      frame.h[a] = stencils_.volume().axis_spacing()[a];
       frame.origin[a] = stencils_.volume().origin()[a];
       frame.upper[a] = stencils_.extent(a) + kFar;
       frame.limit[a] = stencils_.last(a);
@@ -310,7 +323,6 @@ class EmittedSpline {
              std::span<Hessian> hessians) const {
     namespace support = generated::support;
     constexpr int kLanes = simd::kChunk;
-    const double h = stencils_.volume().spacing();
     for (int lane = 0; lane < lanes; ++lane) {
       if (!stays[lane]) continue;
       const std::ptrdiff_t p = index[lane];
@@ -319,9 +331,8 @@ class EmittedSpline {
         T d[3 + 6];
         support::from_reference_frame<Order, Tr>(static_cast<int>(cells[lane]), out + kLanes + lane,
                                                  kLanes, d);
-        for (int a = 0; a < 3; ++a) gradients[p][a] = static_cast<double>(d[a]) / h;
-        if constexpr (Order >= support::kHessian)
-          for (int a = 0; a < 6; ++a) hessians[p][a] = static_cast<double>(d[3 + a]) / (h * h);
+        to_world_derivatives<Order>(d, gradients[p].data(),
+                                    Order >= support::kHessian ? hessians[p].data() : nullptr);
       }
     }
   }

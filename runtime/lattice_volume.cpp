@@ -14,7 +14,7 @@ using support::floor_div;
 
 namespace {
 
-std::uint64_t checked_count(const CosetLattice& lattice, const Sizes& sizes, double h,
+std::uint64_t checked_count(const CosetLattice& lattice, const Sizes& sizes, const Vec3& h,
                             const Vec3& origin) {
   const int k = lattice.coset_count();
   std::uint64_t count = static_cast<std::uint64_t>(k);
@@ -30,9 +30,14 @@ std::uint64_t checked_count(const CosetLattice& lattice, const Sizes& sizes, dou
           "{} volume of {} x {} x {} x {} samples is too large (at most {} samples)",
           lattice.label(), k, sizes[0], sizes[1], sizes[2], LatticeVolume<double>::kMaxSamples));
   }
-  if (!std::isfinite(h) || h <= 0)
-    throw std::invalid_argument(
-        fmt::format("{} volume spacing h = {} must be finite and positive", lattice.label(), h));
+  for (double x : h)
+    if (!std::isfinite(x) || x <= 0)
+      throw std::invalid_argument(
+          fmt::format("{} volume spacing h = {} must be finite and positive", lattice.label(), x));
+  if ((h[0] != h[1] || h[1] != h[2]) && (lattice.coset_count() != 1 || lattice.period() != 1))
+    throw std::invalid_argument(fmt::format(
+        "{} volume spacings ({}, {}, {}) differ: only Cartesian volumes may be anisotropic",
+        lattice.label(), h[0], h[1], h[2]));
   for (double x : origin)
     if (!std::isfinite(x))
       throw std::invalid_argument(fmt::format("{} volume origin ({}, {}, {}) must be finite",
@@ -47,24 +52,38 @@ LatticeVolume<T>::LatticeVolume(CosetLattice lattice, Sizes sizes, double h, Vec
     : lattice_(std::move(lattice)),
       k_(lattice_.coset_count()),
       sizes_(sizes),
-      h_(h),
+      h_{h, h, h},
       origin_(origin) {
-  samples_.assign(static_cast<std::size_t>(checked_count(lattice_, sizes, h, origin)), T{0});
+  samples_.assign(static_cast<std::size_t>(checked_count(lattice_, sizes, h_, origin)), T{0});
 }
 
 template <class T>
 LatticeVolume<T>::LatticeVolume(CosetLattice lattice, Sizes sizes, double h, Vec3 origin,
                                 std::vector<T>&& samples)
+    : LatticeVolume(std::move(lattice), sizes, Vec3{h, h, h}, origin, std::move(samples)) {}
+
+template <class T>
+LatticeVolume<T>::LatticeVolume(CosetLattice lattice, Sizes sizes, Vec3 spacing, Vec3 origin,
+                                std::vector<T>&& samples)
     : lattice_(std::move(lattice)),
       k_(lattice_.coset_count()),
       sizes_(sizes),
-      h_(h),
+      h_(spacing),
       origin_(origin) {
-  if (samples.size() != checked_count(lattice_, sizes, h, origin))
+  if (samples.size() != checked_count(lattice_, sizes, h_, origin))
     throw std::invalid_argument(
         fmt::format("{} volume of {} x {} x {} x {} samples given {} samples", lattice_.label(), k_,
                     sizes[0], sizes[1], sizes[2], samples.size()));
   samples_ = std::move(samples);
+}
+
+template <class T>
+double LatticeVolume<T>::spacing() const {
+  if (!is_isotropic())
+    throw std::logic_error(
+        fmt::format("the {} volume is anisotropic (spacings {}, {}, {}): it has no one spacing",
+                    lattice_.label(), h_[0], h_[1], h_[2]));
+  return h_[0];
 }
 
 template <class T>

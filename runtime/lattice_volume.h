@@ -61,12 +61,22 @@ class LatticeVolume {
   LatticeVolume(CosetLattice lattice, Sizes sizes, double h, Vec3 origin);
   // Takes the samples of `samples` (K N0 N1 N2 of them, in storage order).
   LatticeVolume(CosetLattice lattice, Sizes sizes, double h, Vec3 origin, std::vector<T>&& samples);
+  // A volume with a spacing per axis: lattice point p sits at o + (h0 p.x, h1 p.y, h2 p.z). Only
+  // the Cartesian lattice Z^3 may have unequal spacings (scanners' anisotropic voxels); on any
+  // other lattice they would distort it into another lattice, and are std::invalid_argument.
+  LatticeVolume(CosetLattice lattice, Sizes sizes, Vec3 spacing, Vec3 origin,
+                std::vector<T>&& samples);
 
   const CosetLattice& lattice() const noexcept { return lattice_; }
   int coset_count() const noexcept { return k_; }
   int period() const noexcept { return lattice_.period(); }
   const Sizes& sizes() const noexcept { return sizes_; }
-  double spacing() const noexcept { return h_; }
+  // The one spacing h of an isotropic volume; std::logic_error for an anisotropic one, whose
+  // callers use axis_spacing().
+  double spacing() const;
+  // The spacing along each axis (all equal unless the volume is anisotropic).
+  const Vec3& axis_spacing() const noexcept { return h_; }
+  bool is_isotropic() const noexcept { return h_[0] == h_[1] && h_[1] == h_[2]; }
   const Vec3& origin() const noexcept { return origin_; }
   std::size_t sample_count() const noexcept { return samples_.size(); }
   std::span<T> samples() noexcept { return samples_; }
@@ -129,12 +139,12 @@ class LatticeVolume {
   }
 
   Vec3 to_lattice(const Vec3& world) const noexcept {
-    return {(world[0] - origin_[0]) / h_, (world[1] - origin_[1]) / h_,
-            (world[2] - origin_[2]) / h_};
+    return {(world[0] - origin_[0]) / h_[0], (world[1] - origin_[1]) / h_[1],
+            (world[2] - origin_[2]) / h_[2]};
   }
   Vec3 to_world(const Vec3& lattice) const noexcept {
-    return {origin_[0] + h_ * lattice[0], origin_[1] + h_ * lattice[1],
-            origin_[2] + h_ * lattice[2]};
+    return {origin_[0] + h_[0] * lattice[0], origin_[1] + h_[1] * lattice[1],
+            origin_[2] + h_[2] * lattice[2]};
   }
   Vec3 sample_position(int c, int i, int j, int k) const noexcept {
     const LatticePoint p = lattice_point(c, i, j, k);
@@ -151,7 +161,7 @@ class LatticeVolume {
   CosetLattice lattice_;
   int k_;
   Sizes sizes_;
-  double h_;
+  Vec3 h_;
   Vec3 origin_;
   std::vector<T> samples_;
 };

@@ -179,11 +179,28 @@ std::optional<std::string> key_value(const Nrrd* nrrd, const char* key) {
 struct VolumeHeader {
   CosetLattice lattice = CosetLattice::bcc();
   Sizes sizes;
-  double h;
+  Vec3 steps;  // the space direction of each domain axis, divided by d (negative: a flipped axis)
   Vec3 origin;
-  int type;  // nrrdTypeFloat or nrrdTypeDouble
+  int type;  // one of kSampleTypes
   std::uint64_t data_bytes;
 };
+
+// The sample types the reader converts, with the names SourceSamples::type gives them. Teem's
+// 64-bit integers are refused: neither float nor double holds them all exactly.
+struct SampleType {
+  int teem;
+  const char* name;
+};
+constexpr SampleType kSampleTypes[] = {{nrrdTypeChar, "int8"},   {nrrdTypeUChar, "uint8"},
+                                       {nrrdTypeShort, "int16"}, {nrrdTypeUShort, "uint16"},
+                                       {nrrdTypeInt, "int32"},   {nrrdTypeUInt, "uint32"},
+                                       {nrrdTypeFloat, "float"}, {nrrdTypeDouble, "double"}};
+
+const char* sample_type_name(int teem) {
+  for (const SampleType& t : kSampleTypes)
+    if (t.teem == teem) return t.name;
+  return nullptr;
+}
 
 // "(x,y,z) (x,y,z) ..." as written by CosetLattice::offsets_text.
 std::optional<std::vector<Offset>> parse_offsets(std::string_view text) {
@@ -263,6 +280,42 @@ std::string file_lattice(const Nrrd* nrrd, VolumeHeader& header) {
   return {};
 }
 
+// The spacing of each domain axis from the space directions (header.steps): Z^3 may have one per
+// axis, and negative ones (read_lattice_nrrd flips those axes); every other lattice has one h > 0.
+std::string read_steps(const Nrrd* nrrd, unsigned first, int k, int d, const std::string& name,
+                       VolumeHeader& header) {
+  const bool cartesian = k == 1 && d == 1;
+  if (cartesian) {
+    for (int a = 0; a < 3; ++a) {
+      const double step = nrrd->axis[a].spaceDirection[a];
+      bool aligned = std::isfinite(step) && step != 0;
+      for (int b = 0; b < 3; ++b)
+        if (b != a && !(std::fabs(nrrd->axis[a].spaceDirection[b]) <= 1e-9 * std::fabs(step)))
+          aligned = false;
+      if (!aligned)
+        return "its space directions are not along the axes ((sx,0,0) (0,sy,0) (0,0,sz)): "
+               "oblique or permuted grids are not supported";
+      header.steps[a] = step;
+    }
+  } else {
+    const double step = nrrd->axis[first].spaceDirection[0];
+    bool consistent = std::isfinite(step) && step / d > 0;
+    for (int a = 0; a < 3 && consistent; ++a)
+      for (int b = 0; b < 3; ++b) {
+        const double v = nrrd->axis[first + a].spaceDirection[b];
+        if (!std::isfinite(v) || std::fabs(v - (a == b ? step : 0.0)) > 1e-9 * step)
+          consistent = false;
+      }
+    if (!consistent)
+      return fmt::format(
+          "its space directions are not (dh,0,0) (0,dh,0) (0,0,dh) for one h > 0 (d = {} for the "
+          "{} lattice)",
+          d, name);
+    header.steps = {step / d, step / d, step / d};
+  }
+  return {};
+}
+
 // Checks that `nrrd` describes a lattice volume (nrrd_io.h); a file without a lattice key where
 // `expected` needs one is refused in `expected`'s terms. Returns what it says or an error text.
 std::string check_lattice_header(const Nrrd* nrrd, const std::optional<CosetLattice>& expected,
@@ -303,11 +356,13 @@ std::string check_lattice_header(const Nrrd* nrrd, const std::optional<CosetLatt
       return fmt::format("its samples are too many (at most {})",
                          LatticeVolume<double>::kMaxSamples);
   }
-  if (nrrd->type != nrrdTypeFloat && nrrd->type != nrrdTypeDouble)
-    return fmt::format("its sample type '{}' is not supported (float or double)",
-                       printable(airEnumStr(nrrdType, nrrd->type)));
+  if (!sample_type_name(nrrd->type))
+    return fmt::format(
+        "its sample type '{}' is not supported (int8, uint8, int16, uint16, int32, uint32, float "
+        "or double)",
+        printable(airEnumStr(nrrdType, nrrd->type)));
   header.type = nrrd->type;
-  header.data_bytes = count * (nrrd->type == nrrdTypeFloat ? 4 : 8);
+  header.data_bytes = count * nrrdTypeSize[nrrd->type];
   if (nrrd->spaceDim != 3)
     return fmt::format(
         "it has no 3-D space directions; a {} volume needs (dh,0,0) (0,dh,0) (0,0,dh), d = {}",
@@ -316,20 +371,7 @@ std::string check_lattice_header(const Nrrd* nrrd, const std::optional<CosetLatt
     for (int b = 0; b < 3; ++b)
       if (!std::isnan(nrrd->axis[0].spaceDirection[b]))
         return "axis 0 (the coset axis) must have the space direction 'none'";
-  const double step = nrrd->axis[first].spaceDirection[0];
-  bool consistent = std::isfinite(step) && step / d > 0;
-  for (int a = 0; a < 3 && consistent; ++a)
-    for (int b = 0; b < 3; ++b) {
-      const double v = nrrd->axis[first + a].spaceDirection[b];
-      if (!std::isfinite(v) || std::fabs(v - (a == b ? step : 0.0)) > 1e-9 * step)
-        consistent = false;
-    }
-  if (!consistent)
-    return fmt::format(
-        "its space directions are not (dh,0,0) (0,dh,0) (0,0,dh) for one h > 0 (d = {} for the {} "
-        "lattice)",
-        d, name);
-  header.h = step / d;
+  if (std::string why = read_steps(nrrd, first, k, d, name, header); !why.empty()) return why;
   for (int b = 0; b < 3; ++b) {
     header.origin[b] = nrrd->spaceOrigin[b];
     if (!std::isfinite(header.origin[b])) return "its space origin is missing or not finite";
@@ -388,7 +430,7 @@ void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume) {
   const Sizes& n = volume.sizes();
   const CosetLattice& lattice = volume.lattice();
   const int k = volume.coset_count();
-  const double step = lattice.period() * volume.spacing();
+  const Vec3& h = volume.axis_spacing();
   // K = 1: a plain 3-D NRRD, which any NRRD reader takes for what it is.
   const unsigned first = k == 1 ? 0 : 1, dim = 3 + first;
   const std::size_t sizes[4] = {
@@ -398,7 +440,8 @@ void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume) {
   if (first == 1) nrrd->axis[0].kind = nrrdKindList;
   for (unsigned a = 0; a < 3; ++a) {
     nrrd->axis[first + a].kind = nrrdKindDomain;
-    for (unsigned b = 0; b < 3; ++b) nrrd->axis[first + a].spaceDirection[b] = a == b ? step : 0.0;
+    for (unsigned b = 0; b < 3; ++b)
+      nrrd->axis[first + a].spaceDirection[b] = a == b ? lattice.period() * h[a] : 0.0;
   }
   set_origin(nrrd.get(), volume.origin());
   bool ok = nrrdKeyValueAdd(nrrd.get(), "lattice", lattice.name().c_str()) == 0;
@@ -495,7 +538,7 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, c
   if (header.data_bytes > limits.max_data_bytes)
     fail(fmt::format("its data of {} bytes exceeds the limit of {} bytes", header.data_bytes,
                      limits.max_data_bytes));
-  const std::uint64_t sample_count = header.data_bytes / (header.type == nrrdTypeFloat ? 4 : 8);
+  const std::uint64_t sample_count = header.data_bytes / nrrdTypeSize[header.type];
   check(nrrd_checks::check_data_length(file.get(), layout.start, layout.encoding, file_size,
                                        header.data_bytes, sample_count));
 
@@ -505,19 +548,19 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, c
   if (full.data_bytes != header.data_bytes) fail("the file changed while it was read");
   if (!nrrd->data) fail("Teem returned no data");
   const auto count = static_cast<std::size_t>(sample_count);
-  const std::span<const float> floats(static_cast<const float*>(nrrd->data), count);
-  const std::span<const double> doubles(static_cast<const double*>(nrrd->data), count);
-  if (layout.encoding != nrrd_checks::Encoding::Ascii)
-    check(full.type == nrrdTypeFloat ? nrrd_checks::check_byte_order(floats, layout.endian)
-                                     : nrrd_checks::check_byte_order(doubles, layout.endian));
   std::vector<T> out(count);
-  if (full.type == nrrdTypeFloat) {
-    std::copy(floats.begin(), floats.end(), out.begin());
-  } else {
-    if constexpr (std::is_same_v<T, float>) check(nrrd_checks::check_float_range(doubles));
-    std::transform(doubles.begin(), doubles.end(), out.begin(),
-                   [](double x) { return static_cast<T>(x); });
-  }
+  const auto convert = [&](auto type_tag) {
+    using S = decltype(type_tag);
+    const std::span<const S> in(static_cast<const S*>(nrrd->data), count);
+    if constexpr (std::is_floating_point_v<S>) {
+      if (layout.encoding != nrrd_checks::Encoding::Ascii)
+        check(nrrd_checks::check_byte_order(in, layout.endian));
+      if constexpr (std::is_same_v<T, float> && std::is_same_v<S, double>)
+        check(nrrd_checks::check_float_range(in));
+    }
+    std::transform(in.begin(), in.end(), out.begin(), [](S x) { return static_cast<T>(x); });
+  };
+  if (!visit_sample_type(sample_type_name(full.type), convert)) fail("unknown sample type");
   if (!limits.allow_non_finite)
     check(nrrd_checks::check_finite<T>(out, full.lattice.coset_count(), full.sizes));
   return out;
@@ -526,19 +569,25 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, c
 }  // namespace
 
 template <class T>
-LatticeVolume<T> read_lattice_nrrd(const fs::path& path, const NrrdReadLimits& limits) {
+LatticeVolume<T> read_lattice_nrrd(const fs::path& path, const NrrdReadLimits& limits,
+                                   SourceSamples* source) {
   VolumeHeader header{};
   const std::string kind =
       limits.lattice ? limits.lattice->label() + " volume" : std::string("lattice volume");
   std::vector<T> samples = read_volume<T>(path, limits, kind.c_str(), header);
-  return LatticeVolume<T>(header.lattice, header.sizes, header.h, header.origin,
-                          std::move(samples));
+  Vec3 spacing = header.steps, origin = header.origin;
+  orient_axes_positive(std::span<T>(samples), header.sizes, spacing, origin);
+  LatticeVolume<T> volume(header.lattice, header.sizes, spacing, origin, std::move(samples));
+  if (source) *source = describe_samples<T>(volume.samples(), sample_type_name(header.type));
+  return volume;
 }
 
 template void write_lattice_nrrd<float>(const fs::path&, const LatticeVolume<float>&);
 template void write_lattice_nrrd<double>(const fs::path&, const LatticeVolume<double>&);
-template LatticeVolume<float> read_lattice_nrrd<float>(const fs::path&, const NrrdReadLimits&);
-template LatticeVolume<double> read_lattice_nrrd<double>(const fs::path&, const NrrdReadLimits&);
+template LatticeVolume<float> read_lattice_nrrd<float>(const fs::path&, const NrrdReadLimits&,
+                                                       SourceSamples*);
+template LatticeVolume<double> read_lattice_nrrd<double>(const fs::path&, const NrrdReadLimits&,
+                                                         SourceSamples*);
 template void write_cartesian_nrrd<float>(const fs::path&, const CartesianVolume<float>&);
 template void write_cartesian_nrrd<double>(const fs::path&, const CartesianVolume<double>&);
 

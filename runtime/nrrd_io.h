@@ -2,7 +2,8 @@
 //
 // A volume on any lattice L = G Z^3 (LatticeVolume, lattice_volume.h), stored as K cosets of
 // d Z^3, is a NRRD of dimension 4 (dimension 3 when K = 1):
-//   type: float or double          encoding: raw (written); any encoding Teem reads (read)
+//   type: float or double (written; read: also signed and unsigned 8, 16 and 32-bit integers)
+//   encoding: raw (written); any encoding Teem reads (read)
 //   sizes: K N0 N1 N2              the coset axis fastest (N0 N1 N2 when K = 1)
 //   space directions: none (dh,0,0) (0,dh,0) (0,0,dh)    (no "none" when K = 1)
 //   space origin: o                the world position of lattice point (0, 0, 0)
@@ -49,6 +50,7 @@
 
 #include "runtime/cartesian_volume.h"
 #include "runtime/lattice_volume.h"
+#include "runtime/source_samples.h"
 
 namespace boxgen::runtime {
 
@@ -84,12 +86,17 @@ void require_output_directory(const std::filesystem::path& path);
 template <class T>
 void write_lattice_nrrd(const std::filesystem::path& path, const LatticeVolume<T>& volume);
 
-// Reads a lattice volume (any lattice; a 3-D NRRD without a lattice key is a Cartesian volume);
-// samples of the other type are converted to T (double -> float rounds to nearest). Throws
+// Reads a lattice volume (any lattice; a 3-D NRRD without a lattice key is a Cartesian volume).
+// Samples of any type in int8, uint8, int16, uint16, int32, uint32, float, double are converted
+// to T (exact, except double -> float and integers beyond 2^24 -> float, which round to nearest);
+// `source`, when given, receives the file's type and the samples' range. A Cartesian file may
+// have a spacing per axis (anisotropic voxels) and negative ones: such an axis is stored flipped
+// (the origin moved to its other end), so that every world point keeps its sample. Throws
 // NrrdError (one line) for any problem.
 template <class T>
 LatticeVolume<T> read_lattice_nrrd(const std::filesystem::path& path,
-                                   const NrrdReadLimits& limits = {});
+                                   const NrrdReadLimits& limits = {},
+                                   SourceSamples* source = nullptr);
 
 // Throws std::invalid_argument for an inconsistent grid (sizes < 1, values.size() different
 // from N0 N1 N2, spacing not finite and > 0, origin not finite) and NrrdError if the file
@@ -102,9 +109,11 @@ extern template void write_lattice_nrrd<float>(const std::filesystem::path&,
 extern template void write_lattice_nrrd<double>(const std::filesystem::path&,
                                                 const LatticeVolume<double>&);
 extern template LatticeVolume<float> read_lattice_nrrd<float>(const std::filesystem::path&,
-                                                              const NrrdReadLimits&);
+                                                              const NrrdReadLimits&,
+                                                              SourceSamples*);
 extern template LatticeVolume<double> read_lattice_nrrd<double>(const std::filesystem::path&,
-                                                                const NrrdReadLimits&);
+                                                                const NrrdReadLimits&,
+                                                                SourceSamples*);
 extern template void write_cartesian_nrrd<float>(const std::filesystem::path&,
                                                  const CartesianVolume<float>&);
 extern template void write_cartesian_nrrd<double>(const std::filesystem::path&,

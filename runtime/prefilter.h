@@ -43,6 +43,16 @@ int prefilter_margin(const DiscreteFilter& q, const CosetLattice& lattice);
 template <class T>
 LatticeVolume<T> prefilter(const LatticeVolume<T>& volume, const DiscreteFilter& q);
 
+// A Gaussian low-pass of a Cartesian volume against aliasing before subsampling: standard
+// deviation sigma samples along each axis (anisotropic volumes: sigma of each axis's own spacing),
+// separable, truncated at r = ceil(3 sigma) samples and normalised to sum 1, under the border
+// policy above (r samples fewer on each side). Throws std::invalid_argument (one line) for another
+// lattice, sigma not in (0, 1000] or a volume of at most 2 r samples on some axis.
+template <class T>
+LatticeVolume<T> gaussian_smooth(const LatticeVolume<T>& volume, double sigma);
+
+extern template LatticeVolume<float> gaussian_smooth<float>(const LatticeVolume<float>&, double);
+extern template LatticeVolume<double> gaussian_smooth<double>(const LatticeVolume<double>&, double);
 extern template LatticeVolume<float> prefilter<float>(const LatticeVolume<float>&,
                                                       const DiscreteFilter&);
 extern template LatticeVolume<double> prefilter<double>(const LatticeVolume<double>&,

@@ -302,7 +302,8 @@ RgbBuffer render_isosurface(const LatticeVolume<double>& volume, const SplineFil
   const Reconstructor<double> spline(volume, f);
   return render_with([&spline](const Vec3& p, Vec3* gradient,
                                Hessian* hessian) { return spline.value(p, gradient, hessian); },
-                     volume.spacing(), box, o);
+                     *std::min_element(volume.axis_spacing().begin(), volume.axis_spacing().end()),
+                     box, o);
 }
 
 }  // namespace boxgen::runtime

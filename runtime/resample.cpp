@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <stdexcept>
@@ -55,11 +57,11 @@ LatticeRegion lattice_region(const LatticeVolume<T>& volume, const SplineFilter&
 // world = origin + i * spacing, lattice = (world - o) / h (double), a cast to T and + c (in T):
 // each step errs by a few ulps of the magnitudes involved. 16 ulps of each bound them all.
 template <class T>
-double rounding_guard(const Vec3& lo, const Vec3& hi, const Vec3& origin, double spacing) {
+double rounding_guard(const Vec3& lo, const Vec3& hi, const Vec3& origin, const Vec3& spacing) {
   double lattice_extent = 0, world_extent = 0;
   for (int a = 0; a < 3; ++a) {
     lattice_extent = std::max({lattice_extent, std::abs(lo[a]), std::abs(hi[a])});
-    world_extent = std::max(world_extent, std::abs(origin[a]) / spacing);
+    world_extent = std::max(world_extent, std::abs(origin[a]) / spacing[a]);
   }
   return 16 * (std::numeric_limits<T>::epsilon() * (lattice_extent + 2) +
                std::numeric_limits<double>::epsilon() * (world_extent + lattice_extent + 2));
@@ -117,8 +119,8 @@ void fill_by_slices(CartesianVolume<T>& out, const CartesianGrid& grid, const Gr
     for (int k = k0; k < k1; ++k)
       for (int j = 0; j < n[1]; ++j)
         for (int i = 0; i < n[0]; ++i)
-          points.push_back(grid_point(grid, block.begin[0] + i, block.begin[1] + j,
-                                      block.begin[2] + k));
+          points.push_back(
+              grid_point(grid, block.begin[0] + i, block.begin[1] + j, block.begin[2] + k));
     const std::span<T> values(out.values.data() + out.index(0, 0, k0), points.size());
     try {
       spline.evaluate(points, values);
@@ -141,7 +143,8 @@ Box evaluable_region(const LatticeVolume<T>& volume, const SplineFilter& f) {
 template <class T>
 Box default_box(const LatticeVolume<T>& volume, const SplineFilter& f) {
   const LatticeRegion region = lattice_region(volume, f);
-  const double guard = rounding_guard<T>(region.lo, region.hi, volume.origin(), volume.spacing());
+  const double guard =
+      rounding_guard<T>(region.lo, region.hi, volume.origin(), volume.axis_spacing());
   Vec3 lo, hi;
   for (int a = 0; a < 3; ++a) {
     lo[a] = region.lo[a] + guard;
@@ -196,9 +199,9 @@ CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& 
   CartesianVolume<T> out = empty_grid_volume<T>(grid);
   for (int a = 0; a < 3; ++a)
     if (!(0 <= block.begin[a] && block.begin[a] < block.end[a] && block.end[a] <= grid.sizes[a]))
-      throw std::invalid_argument(fmt::format(
-          "grid block [{}, {}) on axis {} is empty or outside the grid's {} points",
-          block.begin[a], block.end[a], a, grid.sizes[a]));
+      throw std::invalid_argument(
+          fmt::format("grid block [{}, {}) on axis {} is empty or outside the grid's {} points",
+                      block.begin[a], block.end[a], a, grid.sizes[a]));
   for (int a = 0; a < 3; ++a) out.sizes[a] = block.end[a] - block.begin[a];
   out.origin = grid_point(grid, block.begin[0], block.begin[1], block.begin[2]);
   // The first and last points of the block, computed as the evaluation will see them, must lie
@@ -217,6 +220,120 @@ CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& 
   return out;
 }
 
+namespace {
+
+// Coset cells per axis of lattice_grid_in, and the lowest and highest offset on each axis.
+struct FittedAxes {
+  std::array<std::int64_t, 3> cells;
+  Vec3 lowest, highest;
+};
+
+FittedAxes fit_axes(const CosetLattice& lattice, const Box& box, double h) {
+  if (!std::isfinite(h) || h <= 0)
+    throw std::invalid_argument(fmt::format("lattice spacing {} must be finite and > 0", h));
+  FittedAxes fit{};
+  const double d = lattice.period();
+  for (int a = 0; a < 3; ++a) {
+    if (!std::isfinite(box.min[a]) || !std::isfinite(box.max[a]) || !(box.min[a] <= box.max[a]))
+      throw std::invalid_argument(fmt::format("box {} is not finite or empty", describe(box)));
+    fit.lowest[a] = d;
+    fit.highest[a] = 0;
+    for (const Offset& o : lattice.offsets()) {
+      fit.lowest[a] = std::min(fit.lowest[a], static_cast<double>(o[a]));
+      fit.highest[a] = std::max(fit.highest[a], static_cast<double>(o[a]));
+    }
+    // Every coset's N cells span h (highest - lowest + d (N - 1)) <= the box's width.
+    const double room = (box.max[a] - box.min[a]) / h - (fit.highest[a] - fit.lowest[a]);
+    const double cells = room < 0 ? 0 : std::floor(room / d) + 1;
+    if (cells < 1)
+      throw std::invalid_argument(
+          fmt::format("no {} sample at spacing {} fits in the box {} on axis {}", lattice.label(),
+                      h, describe(box), a));
+    fit.cells[a] = cells > 1e12 ? std::int64_t{1} << 40 : static_cast<std::int64_t>(cells);
+  }
+  return fit;
+}
+
+}  // namespace
+
+std::uint64_t lattice_grid_count(const CosetLattice& lattice, const Box& box, double h) {
+  const FittedAxes fit = fit_axes(lattice, box, h);
+  double count = lattice.coset_count();
+  for (std::int64_t n : fit.cells) count *= static_cast<double>(n);
+  return count > 1e18 ? std::uint64_t{1} << 60 : static_cast<std::uint64_t>(count);
+}
+
+LatticeGrid lattice_grid_in(const CosetLattice& lattice, const Box& box, double h) {
+  const FittedAxes fit = fit_axes(lattice, box, h);
+  LatticeGrid grid{lattice, {}, h, {}};
+  const double d = lattice.period();
+  for (int a = 0; a < 3; ++a) {
+    if (fit.cells[a] > LatticeVolume<double>::kMaxSize)
+      throw std::invalid_argument(
+          fmt::format("spacing {} gives {} samples per coset on axis {} (at most {})", h,
+                      fit.cells[a], a, LatticeVolume<double>::kMaxSize));
+    grid.sizes[a] = static_cast<int>(fit.cells[a]);
+    const double span = h * (fit.highest[a] - fit.lowest[a] + d * (grid.sizes[a] - 1));
+    // Centred: the slack is split between the two sides; lattice point 0 sits `lowest` below the
+    // first sample.
+    grid.origin[a] = box.min[a] + 0.5 * ((box.max[a] - box.min[a]) - span) - h * fit.lowest[a];
+  }
+  if (lattice_grid_count(lattice, box, h) > LatticeVolume<double>::kMaxSamples)
+    throw std::invalid_argument(fmt::format("spacing {} gives too many samples", h));
+  return grid;
+}
+
+double spacing_for_count(const CosetLattice& lattice, const Box& box, double count) {
+  if (!std::isfinite(count) || count < 1)
+    throw std::invalid_argument(fmt::format("sample count {} must be finite and >= 1", count));
+  double volume = 1;
+  for (int a = 0; a < 3; ++a) volume *= box.max[a] - box.min[a];
+  // K samples per cube of side d h: the estimate, then bisection on the monotone count.
+  const double d = lattice.period();
+  const double guess = std::cbrt(lattice.coset_count() * volume / count) / d;
+  double more = guess / 8, fewer = guess * 8;  // count(more) > count >= count(fewer)
+  const auto fits = [&](double h) {
+    try {
+      return static_cast<double>(lattice_grid_count(lattice, box, h));
+    } catch (const std::invalid_argument&) {
+      return 0.0;
+    }
+  };
+  while (fits(more) <= count && more > 1e-300) more /= 2;
+  while (fits(fewer) > count) fewer *= 2;
+  for (int i = 0; i < 200 && fewer - more > 1e-15 * fewer; ++i) {
+    const double mid = 0.5 * (more + fewer);
+    (fits(mid) > count ? more : fewer) = mid;
+  }
+  return count - fits(fewer) <= fits(more) - count ? fewer : more;
+}
+
+template <class T>
+LatticeVolume<T> resample_to_lattice(const LatticeVolume<T>& volume, const SplineFilter& f,
+                                     const LatticeGrid& grid) {
+  LatticeVolume<T> out(grid.lattice, grid.sizes, grid.h, grid.origin);
+  const Reconstructor<T> spline(volume, f);
+  const Sizes& n = grid.sizes;
+  const int k_count = out.coset_count();
+  std::vector<Vec3> points;
+  // Whole k-slabs of about 2^16 samples per batch: all cores at work, bounded scratch memory.
+  const std::size_t slab = static_cast<std::size_t>(k_count) * static_cast<std::size_t>(n[0]) *
+                           static_cast<std::size_t>(n[1]);
+  const int per_batch = static_cast<int>(std::max<std::size_t>(1, (std::size_t{1} << 16) / slab));
+  for (int k0 = 0; k0 < n[2]; k0 += per_batch) {
+    const int k1 = std::min(n[2], k0 + per_batch);
+    points.clear();
+    for (int k = k0; k < k1; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i)
+          for (int c = 0; c < k_count; ++c) points.push_back(out.sample_position(c, i, j, k));
+    const std::span<T> values(out.samples().data() + out.index(0, 0, 0, k0), points.size());
+    spline.evaluate(points, values);
+    spline.require_finite(points, values);
+  }
+  return out;
+}
+
 template Box evaluable_region<float>(const LatticeVolume<float>&, const SplineFilter&);
 template Box evaluable_region<double>(const LatticeVolume<double>&, const SplineFilter&);
 template Box default_box<float>(const LatticeVolume<float>&, const SplineFilter&);
@@ -229,5 +346,9 @@ template CartesianVolume<float> resample<float>(const LatticeVolume<float>&, con
                                                 const CartesianGrid&, const GridBlock&);
 template CartesianVolume<double> resample<double>(const LatticeVolume<double>&, const SplineFilter&,
                                                   const CartesianGrid&, const GridBlock&);
+template LatticeVolume<float> resample_to_lattice<float>(const LatticeVolume<float>&,
+                                                         const SplineFilter&, const LatticeGrid&);
+template LatticeVolume<double> resample_to_lattice<double>(const LatticeVolume<double>&,
+                                                           const SplineFilter&, const LatticeGrid&);
 
 }  // namespace boxgen::runtime

@@ -23,6 +23,7 @@
 
 #include "runtime/cartesian_volume.h"
 #include "runtime/lattice_volume.h"
+#include "runtime/sampling.h"
 #include "runtime/spline_filter.h"
 
 namespace boxgen::runtime {
@@ -84,6 +85,24 @@ struct GridBlock {
 template <class T>
 CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& f,
                             const CartesianGrid& grid, const GridBlock& block);
+// Subsampling onto another lattice (boxrecon subsample: a Cartesian scan onto BCC, as in the
+// paper's Fig. 10). The grid of `lattice` at spacing h (sample (c, i, j, k) at
+// o + h (d i + off_c)) with as many coset cells per axis as fit in `box`, centred in it. Throws
+// std::invalid_argument (one line) for h not finite and > 0, a box that is not finite or holds no
+// sample on some axis, or more samples than a LatticeVolume holds.
+LatticeGrid lattice_grid_in(const CosetLattice& lattice, const Box& box, double h);
+// The number of samples of lattice_grid_in(lattice, box, h).
+std::uint64_t lattice_grid_count(const CosetLattice& lattice, const Box& box, double h);
+// The spacing h whose lattice_grid_in(lattice, box, h) holds the sample count nearest `count`
+// (ties: the larger count). Throws std::invalid_argument for count < 1 or not finite.
+double spacing_for_count(const CosetLattice& lattice, const Box& box, double count);
+
+// The spline of f on `volume` (prefilter it first for quasi-interpolation) at every sample of
+// `grid`, evaluated on all cores: a volume on the grid's lattice. Throws as resample does (a
+// sample outside evaluable_region(volume, f) is std::out_of_range).
+template <class T>
+LatticeVolume<T> resample_to_lattice(const LatticeVolume<T>& volume, const SplineFilter& f,
+                                     const LatticeGrid& grid);
 
 extern template Box evaluable_region<float>(const LatticeVolume<float>&, const SplineFilter&);
 extern template Box evaluable_region<double>(const LatticeVolume<double>&, const SplineFilter&);
@@ -99,5 +118,11 @@ extern template CartesianVolume<float> resample<float>(const LatticeVolume<float
 extern template CartesianVolume<double> resample<double>(const LatticeVolume<double>&,
                                                          const SplineFilter&, const CartesianGrid&,
                                                          const GridBlock&);
+extern template LatticeVolume<float> resample_to_lattice<float>(const LatticeVolume<float>&,
+                                                                const SplineFilter&,
+                                                                const LatticeGrid&);
+extern template LatticeVolume<double> resample_to_lattice<double>(const LatticeVolume<double>&,
+                                                                  const SplineFilter&,
+                                                                  const LatticeGrid&);
 
 }  // namespace boxgen::runtime

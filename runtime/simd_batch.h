@@ -25,12 +25,12 @@ bool enabled();
 // Rows of locate_chunk's output for a filter of dimension n (kChunk values each).
 constexpr int locate_rows(int n) { return 2 * n + 3; }
 
-// A volume's frame for locate_chunk: lattice = (world - origin) / h, as BccVolume::to_lattice
+// A volume's frame for locate_chunk: lattice = (world - origin) / h (per axis), as to_lattice
 // computes it; a point goes on only when every lattice coordinate i lies in (lower, upper[i])
 // (also false for NaN and infinities); limit[i] is the largest lattice coordinate of the volume.
 struct Frame {
   double origin[3];
-  double h;
+  double h[3];
   double lower;
   double upper[3];
   double limit[3];

@@ -125,7 +125,7 @@ HWY_ATTR void lattice_lanes(int n, const double* world, const Frame& frame, T* x
     for (int i = 0; i < n; ++i) {
       lattice[i] =
           hn::Div(hn::Sub(hn::LoadU(dd, world + i * kRow + at), hn::Set(dd, frame.origin[i])),
-                  hn::Set(dd, frame.h));
+                  hn::Set(dd, frame.h[i]));
       ok = hn::And(ok, hn::And(hn::Gt(lattice[i], hn::Set(dd, frame.lower)),
                                hn::Lt(lattice[i], hn::Set(dd, frame.upper[i]))));
     }

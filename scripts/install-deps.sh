@@ -14,6 +14,8 @@ PACKAGES=(
   zlib1g-dev libbz2-dev                 # length check of gzip/bzip2 NRRD data (runtime/nrrd_io.cpp)
   gnuplot-nox                           # line plots of kernels and spectra (boxgen kernel/spectrum)
   libpng-dev                            # PNG images of spectra and renders
+  libnifti2-dev                         # NIfTI-1/2 volumes (.nii, .nii.gz) read by the runtime (runtime/nifti_io.cpp)
+  mricron-data                          # MRI templates (ch2better.nii.gz): the Fig. 10 replica and the NIfTI test on a shipped file
   libhwy-dev                            # SIMD batch path of the runtime (runtime/simd_batch.cpp)
   clang libclang-rt-14-dev libomp-dev   # libFuzzer targets (label: fuzz); libomp: OpenMP under clang
   clang-format-14 clang-tidy-14         # formatting and static analysis (scripts/lint.sh, in CI)

@@ -12,7 +12,7 @@
 #include "analysis/png_image.h"
 #include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/sample_command.h"
-#include "runtime/nrrd_io.h"
+#include "runtime/nifti_io.h"
 #include "runtime/prefilter.h"
 #include "runtime/render.h"
 #include "runtime/sampling.h"
@@ -50,7 +50,7 @@ RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, const RenderO
     return sample_lattice<double>(find_test_function(args.function).value, grid);
   };
   LatticeVolume<double> volume =
-      args.volume.empty() ? sampled() : read_lattice_nrrd<double>(args.volume, on_lattice);
+      args.volume.empty() ? sampled() : read_volume_file<double>(args.volume, on_lattice);
   rf.check_lattice(volume.lattice());
   if (q != PrefilterChoice::None) volume = prefilter(volume, rf.prefilter(q));
   const Box box = args.volume.empty() ? cube : default_box(volume, rf);
@@ -67,7 +67,8 @@ CLI::App* add_render_command(CLI::App& app) {
   r->add_option("--n", args.n,
                 "N for --function: N^3 x K samples over [-1,1]^3 on the filter's lattice");
   auto* vol = r->add_option("--volume", args.volume,
-                            "a NRRD volume on the filter's lattice instead of --function");
+                            "a volume on the filter's lattice (NRRD, or NIfTI .nii/.nii.gz: "
+                            "Cartesian) instead of --function");
   fn->excludes(vol);
   r->add_option("--lattice", args.lattice,
                 "the lattice of a SPEC --filter and of --function's samples: only the filter's own "

@@ -18,6 +18,7 @@
 #include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/sample_command.h"
 #include "runtime/batch_threads.h"
+#include "runtime/nifti_io.h"
 #include "runtime/points_file.h"
 #include "runtime/prefilter.h"
 #include "runtime/resample.h"
@@ -29,21 +30,21 @@ namespace boxgen::app {
 
 using namespace boxgen::runtime;
 
-namespace {
-
-// The volume of a file, on the filter's lattice and prefiltered with q.
 template <class T>
 LatticeVolume<T> read_for(const SplineFilter& f, PrefilterChoice q, const std::string& path,
                           const NrrdReadLimits& limits) {
   NrrdReadLimits on_lattice = limits;
   on_lattice.lattice = f.lattice();
-  LatticeVolume<T> volume = read_lattice_nrrd<T>(path, on_lattice);
+  LatticeVolume<T> volume = read_volume_file<T>(path, on_lattice);
   f.check_lattice(volume.lattice());
   if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
   return volume;
 }
 
-}  // namespace
+template LatticeVolume<float> read_for<float>(const SplineFilter&, PrefilterChoice,
+                                              const std::string&, const NrrdReadLimits&);
+template LatticeVolume<double> read_for<double>(const SplineFilter&, PrefilterChoice,
+                                                const std::string&, const NrrdReadLimits&);
 
 template <class T>
 void print_evaluations(std::span<const T> values, std::span<const Vec3> gradients,

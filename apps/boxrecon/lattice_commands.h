@@ -14,6 +14,12 @@
 
 namespace boxgen::app {
 
+// The volume of a file (NRRD or NIfTI: runtime/nifti_io.h), on the filter's lattice and
+// prefiltered with q.
+template <class T>
+runtime::LatticeVolume<T> read_for(const runtime::SplineFilter& f, runtime::PrefilterChoice q,
+                                   const std::string& path, const runtime::NrrdReadLimits& limits);
+
 // eval's output: one line per point, the value and (when asked) the gradient and the Hessian's
 // upper triangle h_xx h_xy h_xz h_yy h_yz h_zz, each with 17 significant digits.
 template <class T>

@@ -10,7 +10,10 @@
 //   boxrecon resample --filter F [--prefilter P] --volume v.nrrd -o grid.nrrd [--n N]
 //                     [--min X Y Z --max X Y Z] [--precision float|double]
 //   boxrecon render (--function F --n N | --volume v.nrrd) [--filter F] ... -o out.png
-//   boxrecon bench [--quick] [--json] [--points K] [--repeats R] [--filter F]
+//   boxrecon subsample --volume IN --lattice L (--fraction F | --spacing H) [--filter F] ... -o OUT
+//   boxrecon compare --reference IN --volume LAT --filter F [--prefilter P] [--mask-above V] ...
+//   boxrecon slice (--volume V --filter F[,F2,...] | --reference IN) --axis x|y|z --at W ... -o
+//   s.png boxrecon bench [--quick] [--json] [--points K] [--repeats R] [--filter F]
 // Every command: --threads N caps the batch paths' threads, like BOXGEN_THREADS. Every filter on
 // every lattice goes through the one runtime API (runtime/reconstruction.h,
 // apps/boxrecon/lattice_commands.h).
@@ -31,6 +34,7 @@
 #include "apps/boxrecon/cmd_bench.h"
 #include "apps/boxrecon/cmd_error_table.h"
 #include "apps/boxrecon/cmd_render.h"
+#include "apps/boxrecon/cmd_volumes.h"
 #include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/lattice_commands.h"
@@ -116,7 +120,9 @@ int run(int argc, char** argv) {
   eval->add_option("--filter", filter, filters)->required();
   eval->add_option("--lattice", lattice, spec_lattice);
   eval->add_option("--prefilter", pre, "none | q1 | q2");
-  eval->add_option("--volume", volume, "NRRD volume on the filter's lattice")->required();
+  eval->add_option("--volume", volume,
+                   "volume on the filter's lattice (NRRD, or NIfTI .nii/.nii.gz: Cartesian)")
+      ->required();
   eval->add_option("--points", points_path,
                    "file with one 'x y z' (world) per line, '#' comments; - reads stdin")
       ->required();
@@ -152,7 +158,10 @@ int run(int argc, char** argv) {
   resample->add_option("--filter", filter, filters)->required();
   resample->add_option("--lattice", lattice, spec_lattice);
   resample->add_option("--prefilter", pre, "none | q1 | q2");
-  resample->add_option("--volume", volume, "NRRD volume on the filter's lattice")->required();
+  resample
+      ->add_option("--volume", volume,
+                   "volume on the filter's lattice (NRRD, or NIfTI .nii/.nii.gz: Cartesian)")
+      ->required();
   resample->add_option("-o,--output", output, "output NRRD file (Cartesian grid)")->required();
   resample->add_option(
       "--n", resample_n,
@@ -171,6 +180,9 @@ int run(int argc, char** argv) {
   resample->add_flag("--allow-nonfinite", allow_nonfinite,
                      "accept NaN and infinite samples in the volume (refused by default)");
   auto* render = boxgen::recon::add_render_command(app);
+  auto* subsample = boxgen::recon::add_subsample_command(app);
+  auto* compare = boxgen::recon::add_compare_command(app);
+  auto* slice = boxgen::recon::add_slice_command(app);
   boxrecon::BenchOptions bench_options;
   auto* bench = app.add_subcommand(
       "bench", "evaluation speed: the paper's Table 2, fetch floors, tricubic, threads");
@@ -216,6 +228,9 @@ int run(int argc, char** argv) {
                  : boxgen::app::run_eval<double>(filter, lattice, pre, volume, points_path,
                                                  gradient, hessian, limits);
     if (render->parsed()) return boxgen::recon::run_render();
+    if (subsample->parsed()) return boxgen::recon::run_subsample();
+    if (compare->parsed()) return boxgen::recon::run_compare();
+    if (slice->parsed()) return boxgen::recon::run_slice();
     if (error->parsed() && table)
       return boxgen::recon::run_error_table(count, boxgen::app::parse_seed(seed), json);
     if (error->parsed() && (error_n->count() == 0 || error_filter->count() == 0)) {

@@ -336,7 +336,7 @@ std::vector<BadFile> bad_files() {
            data,
        "space directions"},
       {"missing origin", replace(h, "space origin: (1,2,3)\n", "") + data, "origin"},
-      {"int samples", replace(h, "type: float", "type: int") + data, "'int'"},
+      {"64-bit integer samples", replace(h, "type: float", "type: int64") + data, "not supported"},
       {"unparsable sizes", replace(h, "sizes: 2 2 1 1", "sizes: 2 two 1 1") + data, ""},
       {"unknown field", replace(h, "encoding: raw", "encoding: raw\nfrobnicate: yes") + data, ""},
       {"detached data", replace(h, "encoding: raw", "data file: missing.raw\nencoding: raw"),

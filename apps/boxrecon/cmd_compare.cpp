@@ -1,0 +1,216 @@
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <iostream>
+#include <limits>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "apps/boxrecon/cmd_volumes.h"
+#include "apps/boxrecon/lattice_commands.h"
+#include "runtime/nifti_io.h"
+#include "runtime/resample.h"
+#include "support/output_file.h"
+
+namespace boxgen::recon {
+
+namespace {
+
+using namespace boxgen::runtime;
+
+struct CompareArgs {
+  std::string reference, volume, filter, prefilter = "none", error_volume;
+  std::optional<double> mask_above;
+  std::vector<double> min, max;
+  bool json = false;
+};
+CompareArgs args;
+
+// Error sums over a set of points, in double.
+struct ErrorSums {
+  std::uint64_t count = 0;
+  double squares = 0, absolute = 0, max = 0;
+  void add(double error) {
+    ++count;
+    squares += error * error;
+    absolute += std::fabs(error);
+    max = std::max(max, std::fabs(error));
+  }
+  double rms() const { return std::sqrt(squares / static_cast<double>(count)); }
+  double mean_abs() const { return absolute / static_cast<double>(count); }
+};
+
+// Reference grid indices whose world points lie in [box.min, box.max] on axis a.
+struct IndexRange {
+  int first, last;  // empty when first > last
+};
+IndexRange indices_inside(const LatticeVolume<float>& ref, const Box& box, int a) {
+  const double o = ref.origin()[a], s = ref.axis_spacing()[a];
+  const double lo = std::ceil((box.min[a] - o) / s), hi = std::floor((box.max[a] - o) / s);
+  IndexRange r{static_cast<int>(std::clamp(lo, 0.0, static_cast<double>(ref.sizes()[a]))),
+               static_cast<int>(std::clamp(hi, -1.0, static_cast<double>(ref.sizes()[a] - 1)))};
+  // The division may round across the face: keep exactly the points the box holds.
+  while (r.first <= r.last && o + s * r.first < box.min[a]) ++r.first;
+  while (r.first <= r.last && o + s * r.last > box.max[a]) --r.last;
+  return r;
+}
+
+nlohmann::json stats_json(const ErrorSums& e, double peak) {
+  const double psnr = 20 * std::log10(peak / e.rms());
+  return {{"points", e.count},
+          {"rms", e.rms()},
+          {"max", e.max},
+          {"mean_abs", e.mean_abs()},
+          {"psnr_db", std::isfinite(psnr) ? nlohmann::json(psnr) : nlohmann::json(nullptr)}};
+}
+
+std::string stats_text(const ErrorSums& e, double peak) {
+  return fmt::format("{} points  rms {:.6g}  max {:.6g}  mean_abs {:.6g}  psnr {:.4f} dB", e.count,
+                     e.rms(), e.max, e.mean_abs(), 20 * std::log10(peak / e.rms()));
+}
+
+}  // namespace
+
+CLI::App* add_compare_command(CLI::App& app) {
+  auto* c = app.add_subcommand(
+      "compare",
+      "errors of a reconstruction against a reference volume at the reference's grid points "
+      "(RMS, max, mean absolute, PSNR)");
+  c->add_option("--reference", args.reference,
+                "the original Cartesian volume (NRRD, or NIfTI .nii/.nii.gz)")
+      ->required();
+  c->add_option("--volume", args.volume, "the lattice volume to reconstruct (NRRD)")->required();
+  c->add_option("--filter", args.filter, "a filter of the registry: " + SplineFilter::names())
+      ->required();
+  c->add_option("--prefilter", args.prefilter, "none | q1 | q2 (default none)");
+  c->add_option("--mask-above", args.mask_above,
+                "V: also the errors over the points whose reference value exceeds V");
+  auto* min = c->add_option("--min", args.min,
+                            "X Y Z: compare only in the box from here to --max (world), which "
+                            "must lie in the region the filter reconstructs (default: that region)")
+                  ->expected(3);
+  auto* max = c->add_option("--max", args.max, "X Y Z: the box's upper corner")->expected(3);
+  min->needs(max);
+  max->needs(min);
+  c->add_flag("--json", args.json, "one JSON object");
+  c->add_option("--error-volume", args.error_volume,
+                "NRRD on the reference's grid: reconstruction minus reference (0 outside the "
+                "region compared)");
+  return c;
+}
+
+int run_compare() {
+  const SplineFilter filter = SplineFilter::parse(args.filter);
+  const PrefilterChoice q = parse_prefilter(args.prefilter);
+  const std::filesystem::path inputs[2] = {args.reference, args.volume};
+  if (!args.error_volume.empty()) {
+    if (is_nifti_path(args.error_volume))
+      throw std::invalid_argument("--error-volume must name a NRRD file, not NIfTI");
+    (void)support::check_output_file(args.error_volume, inputs);
+  }
+  if (args.mask_above && !std::isfinite(*args.mask_above))
+    throw std::invalid_argument("--mask-above must be finite");
+  SourceSamples source;
+  const LatticeVolume<float> ref = read_volume_file<float>(args.reference, {}, &source);
+  if (ref.coset_count() != 1 || ref.period() != 1)
+    throw std::invalid_argument(
+        fmt::format("--reference must be a Cartesian volume, not a {} one", ref.lattice().label()));
+  const LatticeVolume<float> volume = app::read_for<float>(filter, q, args.volume, {});
+  const Box region = default_box(volume, filter);
+  Box box = region;
+  if (!args.min.empty()) {
+    for (int a = 0; a < 3; ++a) {
+      box.min[a] = args.min[static_cast<std::size_t>(a)];
+      box.max[a] = args.max[static_cast<std::size_t>(a)];
+      if (!(std::isfinite(box.min[a]) && std::isfinite(box.max[a]) && box.min[a] <= box.max[a]))
+        throw std::invalid_argument("--min and --max must be finite with min <= max");
+      if (box.min[a] < region.min[a] || box.max[a] > region.max[a])
+        throw std::out_of_range(fmt::format(
+            "the box --min --max leaves the region the {} filter reconstructs, [{:.9g}, {:.9g}] x "
+            "[{:.9g}, {:.9g}] x [{:.9g}, {:.9g}]",
+            filter.name(), region.min[0], region.max[0], region.min[1], region.max[1],
+            region.min[2], region.max[2]));
+    }
+  }
+  IndexRange range[3];
+  for (int a = 0; a < 3; ++a) range[a] = indices_inside(ref, box, a);
+  const Reconstructor<float> spline(volume, filter);
+
+  std::optional<LatticeVolume<float>> error_volume;
+  if (!args.error_volume.empty())
+    error_volume.emplace(ref.lattice(), ref.sizes(), ref.axis_spacing(), ref.origin(),
+                         std::vector<float>(ref.sample_count(), 0.0f));
+  ErrorSums all, masked;
+  std::vector<Vec3> points;
+  std::vector<float> values;
+  std::vector<std::size_t> where;
+  const auto flush = [&] {
+    values.resize(points.size());
+    spline.evaluate(points, values);
+    spline.require_finite(points, values);
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      const float reference = ref.samples()[where[p]];
+      const double error = static_cast<double>(values[p]) - static_cast<double>(reference);
+      all.add(error);
+      if (args.mask_above && reference > *args.mask_above) masked.add(error);
+      if (error_volume) error_volume->samples()[where[p]] = static_cast<float>(error);
+    }
+    points.clear();
+    where.clear();
+  };
+  for (int k = range[2].first; k <= range[2].last; ++k) {
+    for (int j = range[1].first; j <= range[1].last; ++j)
+      for (int i = range[0].first; i <= range[0].last; ++i) {
+        points.push_back(ref.sample_position(0, i, j, k));
+        where.push_back(ref.index(0, i, j, k));
+      }
+    if (points.size() >= (std::size_t{1} << 16)) flush();
+  }
+  if (!points.empty()) flush();
+  if (all.count == 0)
+    throw std::invalid_argument(fmt::format(
+        "no reference grid point lies in the region the {} filter reconstructs from '{}'",
+        filter.name(), args.volume));
+  if (args.mask_above && masked.count == 0)
+    throw std::invalid_argument(fmt::format(
+        "the mask is empty: no compared reference value exceeds {} (the reference's range is "
+        "[{}, {}])",
+        *args.mask_above, source.min, source.max));
+  const double peak = source.max - source.min;
+  if (!(peak > 0))
+    throw std::invalid_argument("the reference is constant: PSNR (peak = its range) is undefined");
+  if (error_volume) write_lattice_nrrd(args.error_volume, *error_volume);
+  if (args.json) {
+    nlohmann::json j{{"reference", args.reference},
+                     {"volume", args.volume},
+                     {"filter", filter.name()},
+                     {"prefilter", args.prefilter},
+                     {"peak", peak},
+                     {"reference_points", ref.sample_count()},
+                     {"box", {{"min", box.min}, {"max", box.max}}},
+                     {"region", stats_json(all, peak)}};
+    if (args.mask_above) {
+      j["mask_above"] = *args.mask_above;
+      j["mask"] = stats_json(masked, peak);
+    }
+    std::cout << j.dump(2) << '\n';
+  } else {
+    std::cout << fmt::format(
+        "{} ({}) against '{}' (peak = range {:.6g}, {} of {} grid points in [{:.6g}, {:.6g}] x "
+        "[{:.6g}, {:.6g}] x [{:.6g}, {:.6g}])\n",
+        filter.name(), args.prefilter, args.reference, peak, all.count, ref.sample_count(),
+        box.min[0], box.max[0], box.min[1], box.max[1], box.min[2], box.max[2]);
+    std::cout << "region: " << stats_text(all, peak) << '\n';
+    if (args.mask_above)
+      std::cout << fmt::format("mask > {}: ", *args.mask_above) << stats_text(masked, peak) << '\n';
+  }
+  return 0;
+}
+
+}  // namespace boxgen::recon

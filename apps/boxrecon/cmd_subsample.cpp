@@ -1,0 +1,100 @@
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdint>
+#include <iostream>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "apps/boxrecon/cmd_volumes.h"
+#include "runtime/nifti_io.h"
+#include "runtime/prefilter.h"
+#include "runtime/resample.h"
+#include "support/output_file.h"
+
+namespace boxgen::recon {
+
+namespace {
+
+using namespace boxgen::runtime;
+
+struct SubsampleArgs {
+  std::string volume, lattice, filter = "tricubic", prefilter = "q2", output;
+  std::optional<double> fraction, spacing, smooth;
+};
+SubsampleArgs args;
+
+}  // namespace
+
+CLI::App* add_subsample_command(CLI::App& app) {
+  auto* s = app.add_subcommand(
+      "subsample",
+      "a volume onto another lattice (bcc, fcc, a coarser cartesian grid) over its box, each "
+      "sample the reconstruction of the input there (Fig. 10)");
+  s->add_option("--volume", args.volume, "input volume (NRRD, or NIfTI .nii/.nii.gz)")->required();
+  s->add_option("--lattice", args.lattice,
+                "the output lattice: bcc | fcc | cartesian | \"a,b,c; d,e,f; g,h,i\" (rows of G)")
+      ->required();
+  auto* fraction =
+      s->add_option("--fraction", args.fraction,
+                    "about this fraction of the input's sample count, in (0, 1] (Fig. 10: 0.03)");
+  auto* spacing = s->add_option("--spacing", args.spacing,
+                                "the output lattice's spacing h (world units; BCC: sample "
+                                "(c,i,j,k) at o + h (2i+c, 2j+c, 2k+c))");
+  fraction->excludes(spacing);
+  s->add_option("--filter", args.filter,
+                "the filter that reconstructs the input (default tricubic; any registry filter "
+                "of the input's lattice)");
+  s->add_option("--prefilter", args.prefilter,
+                "none | q1 | q2: the input filter's prefilter (default q2)");
+  s->add_option("--smooth", args.smooth,
+                "SIGMA: a Gaussian low-pass of this width (input samples) first, against aliasing");
+  s->add_option("-o,--output", args.output, "output NRRD file (the lattice volume)")->required();
+  return s;
+}
+
+int run_subsample() {
+  if (args.fraction.has_value() == args.spacing.has_value())
+    throw std::invalid_argument("give --fraction F or --spacing H");
+  if (args.fraction && !(*args.fraction > 0 && *args.fraction <= 1))
+    throw std::invalid_argument(
+        fmt::format("--fraction must be in (0, 1], got {}", *args.fraction));
+  if (args.spacing && !(std::isfinite(*args.spacing) && *args.spacing > 0))
+    throw std::invalid_argument(
+        fmt::format("--spacing must be finite and > 0, got {}", *args.spacing));
+  if (is_nifti_path(args.output))
+    throw std::invalid_argument(
+        "-o must name a NRRD file: lattice volumes are written as NRRD, not NIfTI");
+  const CosetLattice lattice = CosetLattice::parse(args.lattice);
+  const SplineFilter filter = SplineFilter::parse(args.filter);
+  const PrefilterChoice q = parse_prefilter(args.prefilter);
+  const std::filesystem::path input = args.volume;
+  (void)support::check_output_file(args.output, {&input, 1});
+
+  LatticeVolume<float> volume = read_volume_file<float>(args.volume);
+  filter.check_lattice(volume.lattice());
+  const std::uint64_t input_count = volume.sample_count();
+  if (args.smooth) volume = gaussian_smooth(volume, *args.smooth);
+  if (q != PrefilterChoice::None) volume = prefilter(volume, filter.prefilter(q));
+  const Box box = default_box(volume, filter);
+  const double h =
+      args.spacing
+          ? *args.spacing
+          : spacing_for_count(lattice, box, *args.fraction * static_cast<double>(input_count));
+  const LatticeGrid grid = lattice_grid_in(lattice, box, h);
+  const LatticeVolume<float> out = resample_to_lattice(volume, filter, grid);
+  write_lattice_nrrd(args.output, out);
+  const std::uint64_t kept = out.sample_count();
+  std::cout << fmt::format(
+      "kept {} of {} samples: fraction {}/{} = {:.6f}, {} lattice h = {:.9g}, {} x {} x {} x {} "
+      "samples, origin ({:.9g}, {:.9g}, {:.9g}); input reconstructed with {} after {}{}\n",
+      kept, input_count, kept, input_count,
+      static_cast<double>(kept) / static_cast<double>(input_count), lattice.name(), h,
+      out.coset_count(), out.sizes()[0], out.sizes()[1], out.sizes()[2], out.origin()[0],
+      out.origin()[1], out.origin()[2], filter.name(), args.prefilter,
+      args.smooth ? fmt::format(" and a Gaussian of width {}", *args.smooth) : std::string());
+  return 0;
+}
+
+}  // namespace boxgen::recon

@@ -1,0 +1,314 @@
+// boxrecon's commands for real volumes (subsample, compare, slice) as a user meets them: a
+// polynomial subsampled onto BCC is reproduced where the filter's order allows, compare's numbers
+// match a case checked by hand, slices have the asked size and values, and every bad input is one
+// line, a non-zero exit and no file. The volumes are small (seconds in all).
+#include <nifti2_io.h>
+#include <png.h>
+#include <teem/nrrd.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "cli_support.h"
+#include "tests/support/scratch_directory.h"
+
+namespace boxgen::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A NRRD read with Teem, as users' tools read it: float samples, sizes, and for each of the last
+// three axes its space direction's diagonal entry; the origin.
+struct TeemVolume {
+  std::vector<float> samples;
+  std::vector<std::size_t> sizes;
+  std::array<double, 3> step{}, origin{};
+};
+
+TeemVolume load(const std::string& path) {
+  TeemVolume v;
+  Nrrd* nrrd = nrrdNew();
+  if (nrrdLoad(nrrd, path.c_str(), nullptr) != 0) {
+    ADD_FAILURE() << "Teem cannot read " << path;
+    nrrdNuke(nrrd);
+    return v;
+  }
+  Nrrd* floats = nrrdNew();
+  EXPECT_EQ(nrrdConvert(floats, nrrd, nrrdTypeFloat), 0);
+  std::size_t count = 1;
+  for (unsigned a = 0; a < nrrd->dim; ++a) {
+    v.sizes.push_back(nrrd->axis[a].size);
+    count *= nrrd->axis[a].size;
+  }
+  const unsigned first = nrrd->dim - 3;
+  for (int a = 0; a < 3; ++a) {
+    v.step[a] = nrrd->axis[first + a].spaceDirection[a];
+    v.origin[a] = nrrd->spaceOrigin[a];
+  }
+  const float* data = static_cast<const float*>(floats->data);
+  v.samples.assign(data, data + count);
+  nrrdNuke(floats);
+  nrrdNuke(nrrd);
+  return v;
+}
+
+// A Cartesian NRRD of n^3 float samples f(i, j, k), spacing 1, origin 0, written with Teem.
+void save_cartesian(const std::string& path, std::size_t n,
+                    const std::function<float(int, int, int)>& f) {
+  std::vector<float> values;
+  for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t i = 0; i < n; ++i)
+        values.push_back(f(static_cast<int>(i), static_cast<int>(j), static_cast<int>(k)));
+  Nrrd* nrrd = nrrdNew();
+  const std::size_t sizes[3] = {n, n, n};
+  ASSERT_EQ(nrrdWrap_nva(nrrd, values.data(), nrrdTypeFloat, 3, sizes), 0);
+  ASSERT_EQ(nrrdSpaceSet(nrrd, nrrdSpace3DRightHanded), 0);
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) nrrd->axis[a].spaceDirection[b] = a == b ? 1.0 : 0.0;
+  double origin[3] = {0, 0, 0};
+  ASSERT_EQ(nrrdSpaceOriginSet(nrrd, origin), 0);
+  ASSERT_EQ(nrrdSave(path.c_str(), nrrd, nullptr), 0);
+  nrrdNix(nrrd);
+}
+
+class BoxreconVolumes : public ScratchDirectoryTest {
+ protected:
+  BoxreconVolumes() : ScratchDirectoryTest("boxrecon-volumes") {}
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+
+  std::string ok(const std::vector<std::string>& args) {
+    const ProcessResult r = boxrecon(args);
+    EXPECT_TRUE(r.exited && r.exit_code == 0) << describe(args, r);
+    EXPECT_EQ(r.err, "") << describe(args, r);
+    return r.out;
+  }
+  // Refused: a non-zero exit, one line on stderr mentioning `mention`, and `output` not written.
+  void refused(const std::vector<std::string>& args, const std::string& mention,
+               const std::string& output) {
+    const ProcessResult r = boxrecon(args);
+    const std::string what = describe(args, r);
+    ASSERT_TRUE(r.exited) << what;
+    EXPECT_NE(r.exit_code, 0) << what;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what;
+    EXPECT_NE(lower(r.err).find(lower(mention)), std::string::npos) << what;
+    if (!output.empty()) {
+      EXPECT_FALSE(fs::exists(output)) << what;
+    }
+  }
+};
+
+// boxrecon's `cubic` (degree 3) sampled on a Cartesian grid and subsampled onto BCC with the
+// tricubic after Q^II, which reproduces every polynomial of degree < 4: each BCC sample must be
+// the cubic at its own position (to float rounding: the volumes are float, values near 1).
+TEST_F(BoxreconVolumes, SubsampleReproducesACubicOnBcc) {
+  ok({"sample", "--function", "cubic", "--lattice", "cartesian", "--n", "17", "-o",
+      file("c.nrrd")});
+  const std::string out = ok({"subsample", "--volume", file("c.nrrd"), "--lattice", "bcc",
+                              "--fraction", "0.1", "-o", file("b.nrrd")});
+  const TeemVolume in = load(file("c.nrrd")), b = load(file("b.nrrd"));
+  ASSERT_EQ(b.sizes.size(), 4u);
+  ASSERT_EQ(b.sizes[0], 2u);
+  const std::size_t kept = 2 * b.sizes[1] * b.sizes[2] * b.sizes[3];
+  const std::size_t total = in.samples.size();
+  // "kept K of N samples: fraction K/N = ..."
+  EXPECT_NE(out.find("kept " + std::to_string(kept) + " of " + std::to_string(total)),
+            std::string::npos)
+      << out;
+  EXPECT_NEAR(static_cast<double>(kept) / static_cast<double>(total), 0.1, 0.05) << out;
+  const double h = b.step[0] / 2;  // space direction 2h
+  double worst = 0;
+  std::size_t s = 0;
+  for (std::size_t k = 0; k < b.sizes[3]; ++k)
+    for (std::size_t j = 0; j < b.sizes[2]; ++j)
+      for (std::size_t i = 0; i < b.sizes[1]; ++i)
+        for (std::size_t c = 0; c < 2; ++c, ++s) {
+          const std::array<double, 3> p{b.origin[0] + h * static_cast<double>(2 * i + c),
+                                        b.origin[1] + h * static_cast<double>(2 * j + c),
+                                        b.origin[2] + h * static_cast<double>(2 * k + c)};
+          worst = std::max(worst, std::fabs(b.samples[s] - cubic(p)));
+        }
+  EXPECT_LT(worst, 2e-5);
+}
+
+// Reference v(i, j, k) = 10 + (i - 4.5) on a 10^3 grid of spacing 1 (range 9); the volume is
+// the constant 10 (the tricubic's B-splines sum to 1: it reconstructs 10 exactly). In the box
+// [3, 6]^3: 64 points, errors 4.5 - i for i = 3..6, i.e. 1.5, 0.5, -0.5, -1.5 on 16 points
+// each: RMS sqrt(5/4), max 1.5, mean |e| 1, PSNR 20 log10(9 / sqrt(5/4)). Mask v > 10.8: i = 6
+// only (v = 11.5): 16 points, all errors -1.5.
+TEST_F(BoxreconVolumes, CompareMatchesAHandCheckedCase) {
+  save_cartesian(file("ref.nrrd"), 10,
+                 [](int i, int, int) { return 10 + (static_cast<float>(i) - 4.5f); });
+  save_cartesian(file("ten.nrrd"), 10, [](int, int, int) { return 10.0f; });
+  const nlohmann::json j = nlohmann::json::parse(ok({"compare",
+                                                     "--reference",
+                                                     file("ref.nrrd"),
+                                                     "--volume",
+                                                     file("ten.nrrd"),
+                                                     "--filter",
+                                                     "tricubic",
+                                                     "--min",
+                                                     "3",
+                                                     "3",
+                                                     "3",
+                                                     "--max",
+                                                     "6",
+                                                     "6",
+                                                     "6",
+                                                     "--mask-above",
+                                                     "10.8",
+                                                     "--json",
+                                                     "--error-volume",
+                                                     file("err.nrrd")}));
+  EXPECT_EQ(j["region"]["points"], 64);
+  EXPECT_NEAR(j["region"]["rms"].get<double>(), std::sqrt(1.25), 1e-6);
+  EXPECT_NEAR(j["region"]["max"].get<double>(), 1.5, 1e-6);
+  EXPECT_NEAR(j["region"]["mean_abs"].get<double>(), 1.0, 1e-6);
+  EXPECT_NEAR(j["region"]["psnr_db"].get<double>(), 20 * std::log10(9 / std::sqrt(1.25)), 1e-5);
+  EXPECT_EQ(j["peak"], 9.0);
+  EXPECT_EQ(j["mask"]["points"], 16);
+  EXPECT_NEAR(j["mask"]["rms"].get<double>(), 1.5, 1e-6);
+  // The error volume: reconstruction minus reference inside the box, 0 outside.
+  const TeemVolume e = load(file("err.nrrd"));
+  ASSERT_EQ(e.samples.size(), 1000u);
+  const auto at = [&](int i, int j2, int k) {
+    return e.samples[static_cast<std::size_t>(i) +
+                     10 * (static_cast<std::size_t>(j2) + 10 * static_cast<std::size_t>(k))];
+  };
+  EXPECT_NEAR(at(3, 4, 5), 1.5, 1e-6);
+  EXPECT_NEAR(at(6, 3, 6), -1.5, 1e-6);
+  EXPECT_EQ(at(2, 4, 4), 0.0f);
+  EXPECT_EQ(at(7, 4, 4), 0.0f);
+}
+
+// A PNG read with libpng's simplified API: width, height and RGB bytes (top row first).
+struct Png {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+  std::array<int, 3> at(int x, int y) const {
+    const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                           static_cast<std::size_t>(x)) *
+                          3;
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+  }
+};
+Png read_png(const std::string& path) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  Png png;
+  if (!png_image_begin_read_from_file(&image, path.c_str())) {
+    ADD_FAILURE() << "libpng cannot read " << path;
+    return png;
+  }
+  image.format = PNG_FORMAT_RGB;
+  png.width = static_cast<int>(image.width);
+  png.height = static_cast<int>(image.height);
+  png.rgb.resize(PNG_IMAGE_SIZE(image));
+  EXPECT_TRUE(png_image_finish_read(&image, nullptr, png.rgb.data(), 0, nullptr));
+  return png;
+}
+
+// Reference v(i, j, k) = 10 i on a 10^3 grid: its z slice is 10 x 10 pixels, x along i, the top
+// row the largest j, grey round(255 v / 90) over the range [0, 90]. A constant 10 reconstructed
+// by the tricubic (partition of unity) over --range 0 20 is grey round(127.5) = 128 everywhere,
+// and three filters side by side are 3 panels and 2 gaps of 4 pixels.
+TEST_F(BoxreconVolumes, SlicePngsHaveTheirSizeAndValues) {
+  save_cartesian(file("ramp.nrrd"), 10,
+                 [](int i, int, int) { return 10.0f * static_cast<float>(i); });
+  ok({"slice", "--reference", file("ramp.nrrd"), "--axis", "z", "--at", "4", "-o", file("r.png")});
+  const Png r = read_png(file("r.png"));
+  ASSERT_EQ(r.width, 10);
+  ASSERT_EQ(r.height, 10);
+  for (int x : {0, 3, 9})
+    for (int y : {0, 5, 9}) {
+      const int grey = static_cast<int>(std::lround(255.0 * 10 * x / 90));
+      EXPECT_EQ(r.at(x, y), (std::array<int, 3>{grey, grey, grey})) << x << " " << y;
+    }
+  save_cartesian(file("ten.nrrd"), 12, [](int, int, int) { return 10.0f; });
+  ok({"slice", "--volume", file("ten.nrrd"), "--filter", "tricubic,cart7,tricubic", "--axis", "y",
+      "--at", "5.5", "--size", "8", "6", "--range", "0", "20", "-o", file("t.png")});
+  const Png t = read_png(file("t.png"));
+  ASSERT_EQ(t.width, 3 * 8 + 2 * 4);
+  ASSERT_EQ(t.height, 6);
+  for (int x : {0, 7, 12, 19, 24, 31})
+    EXPECT_EQ(t.at(x, 3), (std::array<int, 3>{128, 128, 128})) << x;
+  for (int x : {8, 11, 20, 23})
+    EXPECT_EQ(t.at(x, 3), (std::array<int, 3>{255, 255, 255})) << x;  // gaps
+  // The difference to the ramp at its voxels, 10 - 10 i, over [-20, 20]: white at i = 1, half
+  // way to blue at i = 2 (-10: 255 (1 - 1/2) rounds to 128), blue at i = 3 (-20) and beyond.
+  ok({"slice", "--volume", file("ten.nrrd"), "--filter", "tricubic", "--axis", "z", "--at", "5",
+      "--difference-to", file("ramp.nrrd"), "--range", "-20", "20", "-o", file("d.png")});
+  const Png d = read_png(file("d.png"));
+  ASSERT_EQ(d.width, 10);
+  EXPECT_EQ(d.at(1, 5), (std::array<int, 3>{255, 255, 255}));
+  EXPECT_EQ(d.at(2, 5), (std::array<int, 3>{128, 128, 255}));
+  EXPECT_EQ(d.at(3, 5), (std::array<int, 3>{0, 0, 255}));
+  EXPECT_EQ(d.at(5, 5), (std::array<int, 3>{0, 0, 255}));
+  refused({"slice", "--reference", file("ramp.nrrd"), "--filter", "m7", "--at", "4", "-o",
+           file("x.png")},
+          "no effect", file("x.png"));
+  refused({"slice", "--reference", file("ramp.nrrd"), "--at", "40", "-o", file("x.png")}, "outside",
+          file("x.png"));
+}
+
+// A NIfTI-1 file written through nifticlib: 12^3 int16 voxels (all 0), spacing 1, the given sform.
+void save_nifti(const std::string& path, double shear) {
+  const std::int64_t dims[8] = {3, 12, 12, 12, 1, 1, 1, 1};
+  nifti_image* nim = nifti_make_new_nim(dims, DT_INT16, 1);
+  ASSERT_NE(nim, nullptr);
+  nim->sform_code = 1;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) nim->sto_xyz.m[r][c] = r == c ? 1 : 0;
+  nim->sto_xyz.m[0][1] = shear;
+  nim->nifti_type = NIFTI_FTYPE_NIFTI1_1;
+  ASSERT_EQ(nifti_set_filenames(nim, path.c_str(), 0, 1), 0);
+  nifti_image_write(nim);
+  nifti_image_free(nim);
+}
+
+TEST_F(BoxreconVolumes, BadInputIsOneLineAndWritesNothing) {
+  ok({"sample", "--function", "cubic", "--lattice", "cartesian", "--n", "9", "-o", file("c.nrrd")});
+  const std::string out = file("out.nrrd");
+  const auto subsample = [&](const std::string& volume, std::vector<std::string> more) {
+    std::vector<std::string> a{"subsample", "--volume", volume, "-o", out};
+    a.insert(a.end(), more.begin(), more.end());
+    return a;
+  };
+  refused(subsample(file("c.nrrd"), {"--lattice", "hexagonal", "--fraction", "0.1"}), "lattice",
+          out);
+  refused(subsample(file("c.nrrd"), {"--lattice", "bcc", "--fraction", "0"}), "--fraction", out);
+  refused(subsample(file("c.nrrd"), {"--lattice", "bcc", "--fraction", "-0.5"}), "--fraction", out);
+  refused(subsample(file("c.nrrd"), {"--lattice", "bcc", "--fraction", "1.5"}), "--fraction", out);
+  refused(subsample(file("c.nrrd"), {"--lattice", "bcc"}), "--fraction", out);
+  save_nifti(file("oblique.nii.gz"), 0.4);
+  refused(subsample(file("oblique.nii.gz"), {"--lattice", "bcc", "--fraction", "0.1"}), "oblique",
+          out);
+  save_nifti(file("good.nii.gz"), 0);
+  std::ifstream in(file("good.nii.gz"), std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ofstream(file("cut.nii.gz"), std::ios::binary)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size() - 20));
+  refused(subsample(file("cut.nii.gz"), {"--lattice", "bcc", "--fraction", "0.1"}), "cut short",
+          out);
+  // The good file works (so the refusals above are about the files, not the command).
+  ok(subsample(file("good.nii.gz"), {"--lattice", "bcc", "--spacing", "1"}));
+  EXPECT_TRUE(fs::exists(out));
+  fs::remove(out);
+  // compare: a mask nothing passes, and the error volume is then not written.
+  refused({"compare", "--reference", file("c.nrrd"), "--volume", file("c.nrrd"), "--filter",
+           "tricubic", "--mask-above", "1e6", "--error-volume", out},
+          "mask is empty", out);
+  refused({"compare", "--reference", file("c.nrrd"), "--volume", file("c.nrrd"), "--filter", "m7"},
+          "bcc", "");
+}
+
+}  // namespace
+}  // namespace boxgen::test
