@@ -37,12 +37,12 @@ struct Frame {
 };
 
 // For kChunk points of registry filter `filter` at once: the lattice coordinates, then
-// support/evaluator_support.hpp's locate() in T, bit for bit the same, and the runtime's stencil
-// box check. In: world[i * kChunk + lane]. Out, rows of kChunk: the corner floor(x + c) (n rows),
-// the cell (-1: none), the reference coordinates (n rows), the cell's orbit, and 1 where the point
-// is near (see Frame), its cell exists and its whole published reach is inside [0, limit], else 0
-// (the caller then takes the scalar path, which decides and reports). Integers are carried as T:
-// callers keep upper[i] below 2^22.
+// support/evaluator_support.hpp's locate_in() on packs of T (the scalar path's own code, so bit
+// for bit the same), and the runtime's stencil box check. In: world[i * kChunk + lane]. Out, rows
+// of kChunk: the corner floor(x + c) (n rows), the cell (-1: none), the reference coordinates (n
+// rows), the cell's orbit, and 1 where the point is near (see Frame), its cell exists and its
+// whole published reach is inside [0, limit], else 0 (the caller then takes the scalar path, which
+// decides and reports). Integers are carried as T: callers keep upper[i] below 2^22.
 void locate_chunk(int filter, const double* world, const Frame& frame, float* out);
 void locate_chunk(int filter, const double* world, const Frame& frame, double* out);
 

@@ -1,5 +1,5 @@
 // The SIMD kernels of the runtime's batch path for one emitted evaluator (its Traits Tr):
-// locate_lanes (support::locate for kChunk points at once) and run (the orbit polynomial, one
+// locate_lanes (support::locate_in for kChunk points at once) and run (the orbit polynomial, one
 // point per lane). A Highway per-target header: include it after hwy/highway.h (once per target
 // under foreach_target.h, or once for the static target), inside nothing. simd_batch.cpp
 // instantiates it for the registry's filters; a filter compiled at run time (loader/) for its own.
@@ -15,6 +15,7 @@
 #include <hwy/highway.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <type_traits>
 
 #include "runtime/simd_batch.h"
@@ -103,6 +104,57 @@ constexpr LocateTables<Tr, T> locate_tables() {
   return t;
 }
 
+template <class Tr, class T>
+inline constexpr LocateTables<Tr, T> kLocateTables = locate_tables<Tr, T>();
+
+// The arithmetic of support::locate_in() on one point per lane (support/evaluator_support.hpp
+// lists what it must provide): integers are carried as T (exact, as the caller keeps |x| below
+// 2^23), table lookups are gathers, and a missing cell stays -1 for the caller (it takes the
+// scalar path, which settles it).
+template <class T>
+struct PackArith {
+  using Scalar = T;
+  using Real = Pack<T>;
+  using Whole = Pack<T>;
+  using D = typename Pack<T>::D;
+
+  HWY_ATTR static Real floor(Real s) { return Real(hn::Floor(s.v)); }
+  HWY_ATTR static Real real(Whole w) { return w; }
+  HWY_ATTR static Whole whole(Real f) { return f; }
+  HWY_ATTR static Whole constant(std::int64_t c) { return Whole(static_cast<double>(c)); }
+  HWY_ATTR static Real constant_real(T c) { return Real(static_cast<double>(c)); }
+  HWY_ATTR static Whole floor_div(Whole a, std::int64_t b) {
+    return b == 1 ? a : Whole(hn::Floor(hn::Div(a.v, hn::Set(D(), static_cast<T>(b)))));
+  }
+  HWY_ATTR static Whole at_least(Real s, T c) {
+    return Whole(hn::IfThenElseZero(hn::Ge(s.v, hn::Set(D(), c)), hn::Set(D(), T(1))));
+  }
+  // Any valid index for the lanes without a cell: their gathers are not used.
+  HWY_ATTR static auto index(Whole cell) {
+    return hn::ConvertTo(hn::RebindToSigned<D>(), hn::Max(cell.v, hn::Zero(D())));
+  }
+  template <class Tr>
+  HWY_ATTR static Whole cell_of(Whole cube, Whole key, const Real* /*r*/) {
+    const Whole entry = cube * constant(Tr::kLookupSize) + key;
+    return Whole(hn::GatherIndex(D(), kLocateTables<Tr, T>.lookup,
+                                 hn::ConvertTo(hn::RebindToSigned<D>(), entry.v)));
+  }
+  template <class Tr>
+  HWY_ATTR static support::CellMap<Whole, Real> cell_map(Whole cell, int i) {
+    const auto at = index(cell);
+    const auto& t = kLocateTables<Tr, T>;
+    return {Whole(hn::GatherIndex(D(), t.perm[i], at)), Real(hn::GatherIndex(D(), t.sign[i], at)),
+            Real(hn::GatherIndex(D(), t.a[i], at))};
+  }
+  template <int N>
+  HWY_ATTR static Pack<T> pick(Whole p, const Pack<T>* xs) {
+    hn::Vec<D> r = xs[N - 1].v;
+    for (int q = N - 2; q >= 0; --q)
+      r = hn::IfThenElse(hn::Eq(p.v, hn::Set(D(), static_cast<T>(q))), xs[q].v, r);
+    return Pack<T>(r);
+  }
+};
+
 // World to lattice coordinates in double, as BccVolume::to_lattice, rounded to T as the scalar
 // path rounds them; x[i * kRow + lane] and near[lane] (1 or 0). Lanes that are not near get
 // x = 0, so that nothing below converts a huge or non-finite number to an integer.
@@ -135,83 +187,38 @@ HWY_ATTR void lattice_lanes(int n, const double* world, const Frame& frame, T* x
   }
 }
 
-// support::locate() for kChunk points at once, with the same operations in the same order (so the
+// support::locate_in() for kChunk points at once (the same operations in the same order, so the
 // same cells and the same reference coordinates, bit for bit), and the stencil box check of the
-// runtime. Integers are carried as T (exact: the caller keeps |x| below 2^23).
+// runtime.
 template <class Tr, class T>
 [[gnu::flatten]] HWY_ATTR void locate_lanes(const double* world, const Frame& frame, T* out) {
   constexpr int n = Tr::kDimension;
   static_assert(Tr::kScale == 1, "the registry's filters are not scaled pairs");
-  static constexpr LocateTables<Tr, T> kTables = locate_tables<Tr, T>();
-  const hn::ScalableTag<T> d;
-  const hn::RebindToSigned<decltype(d)> di;
-  using V = hn::Vec<decltype(d)>;
+  using A = PackArith<T>;
+  using P = Pack<T>;
+  const typename A::D d;
   alignas(64) T x[n * kRow];
   alignas(64) T near[kChunk];
   lattice_lanes(n, world, frame, x, near);
   const int width = static_cast<int>(hn::Lanes(d));
   for (int at = 0; at < kChunk; at += width) {
-    V xs[n], r[n], corner[n], rep[n];
+    P xs[n], corner[n], ref[n], cell;
+    for (int i = 0; i < n; ++i) xs[i] = P(hn::LoadU(d, x + i * kRow + at));
+    support::locate_in<Tr, A>(xs, corner, cell, ref);
+    auto ok = hn::And(hn::Ge(cell.v, hn::Zero(d)), hn::Gt(hn::LoadU(d, near + at), hn::Zero(d)));
     for (int i = 0; i < n; ++i) {
-      xs[i] = hn::LoadU(d, x + i * kRow + at);
-      const V u = hn::Add(xs[i], hn::Set(d, static_cast<T>(Tr::kCentre[i])));
-      corner[i] = hn::Floor(u);
-      r[i] = hn::Sub(u, corner[i]);
-      rep[i] = corner[i];
+      const auto lo = hn::Add(corner[i].v, hn::Set(d, static_cast<T>(Tr::kStencilReachLo[i])));
+      const auto hi = hn::Add(corner[i].v, hn::Set(d, static_cast<T>(Tr::kStencilReachHi[i])));
+      ok = hn::And(ok, hn::And(hn::Ge(lo, hn::Zero(d)),
+                               hn::Le(hi, hn::Set(d, static_cast<T>(frame.limit[i])))));
     }
-    // The coset representative of the corner (Hermite reduction) names its cube.
-    for (int j = 0; j < n; ++j) {
-      const V q = Tr::kHermite[j][j] == 1
-                      ? rep[j]
-                      : hn::Floor(hn::Div(rep[j], hn::Set(d, static_cast<T>(Tr::kHermite[j][j]))));
-      for (int i = j; i < n; ++i)
-        rep[i] = hn::Sub(rep[i], hn::Mul(q, hn::Set(d, static_cast<T>(Tr::kHermite[j][i]))));
-    }
-    V cube = hn::Zero(d);
-    for (int i = n - 1; i >= 0; --i)
-      cube = hn::Add(hn::Mul(cube, hn::Set(d, static_cast<T>(Tr::kHermite[i][i]))), rep[i]);
-    // The combined knot-plane key: per normal, how many of its levels r lies at or above.
-    V key = hn::Zero(d);
-    for (int k = 0; k < Tr::kNormalCount; ++k) {
-      V dot = hn::Zero(d);
-      for (int i = 0; i < n; ++i)
-        dot = hn::Add(dot, hn::Mul(hn::Set(d, static_cast<T>(Tr::kNormals[k][i])), r[i]));
-      for (int m = 1; m < Tr::kNormalWidth[k]; ++m)
-        key = hn::Add(
-            key, hn::IfThenElseZero(hn::Ge(dot, hn::Set(d, static_cast<T>(Tr::kNormalMin[k] + m))),
-                                    hn::Set(d, static_cast<T>(Tr::kNormalStride[k]))));
-    }
-    const V entry = hn::Add(hn::Mul(cube, hn::Set(d, static_cast<T>(Tr::kLookupSize))), key);
-    const V cell = hn::GatherIndex(d, kTables.lookup, hn::ConvertTo(di, entry));
-    // No cell (rounding put r on a knot plane): the caller takes the scalar path, so any valid
-    // index serves for the gathers below.
-    const auto index = hn::ConvertTo(di, hn::Max(cell, hn::Zero(d)));
-    V ok = hn::IfThenElseZero(
-        hn::And(hn::Ge(cell, hn::Zero(d)), hn::Gt(hn::LoadU(d, near + at), hn::Zero(d))),
-        hn::Set(d, T(1)));
+    hn::StoreU(cell.v, d, out + n * kRow + at);
+    hn::StoreU(hn::IfThenElseZero(ok, hn::Set(d, T(1))), d, out + (2 * n + 2) * kRow + at);
+    hn::StoreU(hn::GatherIndex(d, kLocateTables<Tr, T>.orbit, A::index(cell)), d,
+               out + (2 * n + 1) * kRow + at);
     for (int i = 0; i < n; ++i) {
-      const V lo = hn::Add(corner[i], hn::Set(d, static_cast<T>(Tr::kStencilReachLo[i])));
-      const V hi = hn::Add(corner[i], hn::Set(d, static_cast<T>(Tr::kStencilReachHi[i])));
-      ok = hn::IfThenElseZero(
-          hn::And(hn::Ge(lo, hn::Zero(d)), hn::Le(hi, hn::Set(d, static_cast<T>(frame.limit[i])))),
-          ok);
-    }
-    hn::StoreU(cell, d, out + n * kRow + at);
-    hn::StoreU(ok, d, out + (2 * n + 2) * kRow + at);
-    hn::StoreU(hn::GatherIndex(d, kTables.orbit, index), d, out + (2 * n + 1) * kRow + at);
-    for (int i = 0; i < n; ++i) {
-      hn::StoreU(corner[i], d, out + i * kRow + at);
-      // x_ref_i = sign_i (x_p - (corner_p - rep_p)) + a_i, p = perm_i.
-      const V p = hn::GatherIndex(d, kTables.perm[i], index);
-      V xp = xs[n - 1], shift = hn::Sub(corner[n - 1], rep[n - 1]);
-      for (int q = n - 2; q >= 0; --q) {
-        const auto is_q = hn::Eq(p, hn::Set(d, static_cast<T>(q)));
-        xp = hn::IfThenElse(is_q, xs[q], xp);
-        shift = hn::IfThenElse(is_q, hn::Sub(corner[q], rep[q]), shift);
-      }
-      const V ref = hn::Add(hn::Mul(hn::GatherIndex(d, kTables.sign[i], index), hn::Sub(xp, shift)),
-                            hn::GatherIndex(d, kTables.a[i], index));
-      hn::StoreU(ref, d, out + (n + 1 + i) * kRow + at);
+      hn::StoreU(corner[i].v, d, out + i * kRow + at);
+      hn::StoreU(ref[i].v, d, out + (n + 1 + i) * kRow + at);
     }
   }
 }

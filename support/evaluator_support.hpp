@@ -83,63 +83,124 @@ template <class Tr, class T>
   return best;
 }
 
-// floor(nu_K . r) - min_K for r in [0,1)^n by comparisons: the normal is a compile-time constant,
-// so after inlining this is a few adds and compares, no floor and no branch.
-template <class Tr, int K, class T>
-[[gnu::always_inline]] inline int knot_key(const T* r) {
-  T s = 0;
-  for (int i = 0; i < Tr::kDimension; ++i) s += static_cast<T>(Tr::kNormals[K][i]) * r[i];
-  int f = 0;
-  for (int m = 1; m < Tr::kNormalWidth[K]; ++m) f += s >= static_cast<T>(Tr::kNormalMin[K] + m);
-  return f * Tr::kNormalStride[K];
+// The arithmetic locate_in() is written in, so that one algorithm locates one point (ScalarArith,
+// below) and a SIMD pack of points (runtime/simd_batch.cpp): Real holds coordinates (of Scalar,
+// float or double), Whole the integers (corners, cube and cell indices). An Arith provides
+//   Real floor(Real), Real real(Whole), Whole whole(Real) (of an integral Real),
+//   Whole constant(int64), Real constant_real(Scalar), Whole floor_div(Whole, int64 constant),
+//   Whole at_least(Real s, Scalar c): 1 where s >= c, else 0,
+//   Whole cell_of<Tr>(Whole cube, Whole key, const Real* r): kLookup[cube][key] (the scalar
+//     arithmetic settles an empty entry; a pack leaves -1 to its caller),
+//   CellMap<Whole, Real> cell_map<Tr>(Whole cell, int i): perm_i, sign_i and a_i of the cell,
+//   X pick<n>(Whole p, const X* xs): xs[p], for p in [0, n).
+template <class Whole, class Real>
+struct CellMap {
+  Whole perm;
+  Real sign, a;
+};
+
+// One point in T, its integers in int64.
+template <class T>
+struct ScalarArith {
+  using Scalar = T;
+  using Real = T;
+  using Whole = std::int64_t;
+  [[gnu::always_inline]] static Real floor(Real s) { return std::floor(s); }
+  [[gnu::always_inline]] static Real real(Whole w) { return static_cast<T>(w); }
+  [[gnu::always_inline]] static Whole whole(Real f) { return static_cast<Whole>(f); }
+  [[gnu::always_inline]] static Whole constant(std::int64_t c) { return c; }
+  [[gnu::always_inline]] static Real constant_real(T c) { return c; }
+  [[gnu::always_inline]] static Whole floor_div(Whole a, std::int64_t b) {
+    return ::boxgen::support::floor_div(a, b);
+  }
+  [[gnu::always_inline]] static Whole at_least(Real s, Scalar c) { return s >= c; }
+  template <class Tr>
+  [[gnu::always_inline]] static Whole cell_of(Whole cube, Whole key, const Real* r) {
+    const int cell = Tr::kLookup[cube][key];
+    return cell >= 0 ? cell : nearest_cell<Tr>(static_cast<int>(cube), r);
+  }
+  template <class Tr>
+  [[gnu::always_inline]] static CellMap<Whole, Real> cell_map(Whole cell, int i) {
+    const auto& c = Tr::kCells[cell];
+    return {c.perm[i], static_cast<T>(c.sign[i]), static_cast<T>(c.a[i])};
+  }
+  template <int N, class X>
+  [[gnu::always_inline]] static X pick(Whole p, const X* xs) {
+    return xs[p];
+  }
+};
+
+// floor(nu_K . r) - min_K times the key's stride, for r in [0,1)^n, by comparisons: K is a
+// template argument so that the normal's components are constants and the zero ones vanish.
+template <class Tr, class A, int K>
+[[gnu::always_inline]] inline typename A::Whole knot_level(const typename A::Real* r) {
+  using Scalar = typename A::Scalar;
+  typename A::Real dot = A::constant_real(0);
+  for (int i = 0; i < Tr::kDimension; ++i)
+    dot = dot + A::constant_real(static_cast<Scalar>(Tr::kNormals[K][i])) * r[i];
+  typename A::Whole levels = A::constant(0);
+  for (int m = 1; m < Tr::kNormalWidth[K]; ++m)
+    levels = levels + A::at_least(dot, static_cast<Scalar>(Tr::kNormalMin[K] + m));
+  return levels * A::constant(Tr::kNormalStride[K]);
 }
 
-template <class Tr, class T, int... K>
-[[gnu::always_inline]] inline int lookup_index(const T* r, std::integer_sequence<int, K...>) {
+template <class Tr, class A, int... K>
+[[gnu::always_inline]] inline typename A::Whole knot_key(const typename A::Real* r,
+                                                         std::integer_sequence<int, K...>) {
   static_cast<void>(r);  // no knot planes besides the axes (M12, tricubic)
-  return (0 + ... + knot_key<Tr, K>(r));
+  return (A::constant(0) + ... + knot_level<Tr, A, K>(r));
 }
 
-// The cell of cube `cube` holding r in [0,1)^n: the combined knot-plane key, one table lookup.
-template <class Tr, class T>
-[[gnu::always_inline]] inline int cell_of(int cube, const T* r) {
-  const int index = lookup_index<Tr>(r, std::make_integer_sequence<int, Tr::kNormalCount>{});
-  const int cell = Tr::kLookup[cube][index];
-  return cell >= 0 ? cell : nearest_cell<Tr>(cube, r);
+// The cell of x (lattice coordinates) and its reference coordinates, in the arithmetic A: the one
+// implementation of locating (docs/design.md, "Evaluating a piece"). corner = floor(x + c), cell
+// indexes Traits::kCells, xref = g (x - t) + a maps the point onto its orbit's reference region.
+template <class Tr, class A>
+[[gnu::always_inline]] inline void locate_in(const typename A::Real* x, typename A::Whole* corner,
+                                             typename A::Whole& cell, typename A::Real* xref) {
+  using Real = typename A::Real;
+  using Whole = typename A::Whole;
+  using Scalar = typename A::Scalar;
+  constexpr int n = Tr::kDimension;
+  // A scaled pair (kScale = k) locates in the reduced frame (x + c) / k: its cubes have side k.
+  constexpr std::int64_t k = Tr::kScale;
+  Real r[n];
+  Whole rep[n];  // the cube's corner, then its coset representative, in that frame
+  for (int i = 0; i < n; ++i) {
+    const Real u = x[i] + A::constant_real(static_cast<Scalar>(Tr::kCentre[i]));
+    Real s = u;
+    if constexpr (k != 1) s = u / A::constant_real(static_cast<Scalar>(k));
+    const Real f = A::floor(s);
+    rep[i] = A::whole(f);
+    corner[i] = k == 1 ? rep[i] : rep[i] * A::constant(k);
+    r[i] = s - f;
+  }
+  // The coset representative of the corner (reduction by the Hermite basis) names its cube.
+  for (int j = 0; j < n; ++j) {
+    const Whole q = A::floor_div(rep[j], Tr::kHermite[j][j] / k);
+    for (int i = j; i < n; ++i) rep[i] = rep[i] - q * A::constant(Tr::kHermite[j][i] / k);
+  }
+  Whole cube = A::constant(0);
+  for (int i = n - 1; i >= 0; --i) cube = cube * A::constant(Tr::kHermite[i][i] / k) + rep[i];
+  // The combined knot-plane key: per normal, how many of its levels r lies at or above.
+  const Whole key = knot_key<Tr, A>(r, std::make_integer_sequence<int, Tr::kNormalCount>{});
+  cell = A::template cell_of<Tr>(cube, key, r);
+  // x_ref_i = sign_i (x_p - t_p) + a_i, p = perm_i, with the cell's translation t = corner - rep.
+  Whole t[n];
+  for (int i = 0; i < n; ++i) t[i] = corner[i] - (k == 1 ? rep[i] : rep[i] * A::constant(k));
+  for (int i = 0; i < n; ++i) {
+    const CellMap<Whole, Real> g = A::template cell_map<Tr>(cell, i);
+    xref[i] =
+        g.sign * (A::template pick<n>(g.perm, x) - A::real(A::template pick<n>(g.perm, t))) + g.a;
+  }
 }
 
 template <class Tr, class T>
 [[gnu::always_inline]] inline Located<Tr::kDimension, T> locate(
     const std::array<T, Tr::kDimension>& x) {
-  constexpr int n = Tr::kDimension;
-  Located<n, T> out;
-  T r[n];
-  // A scaled pair (kScale = k) locates in the reduced frame (x + c) / k: its cubes have side k.
-  constexpr std::int64_t k = Tr::kScale;
-  std::int64_t rep[n];  // the cube's corner, then its coset representative, in that frame
-  for (int i = 0; i < n; ++i) {
-    const T u = x[i] + static_cast<T>(Tr::kCentre[i]);
-    const T s = k == 1 ? u : u / static_cast<T>(k);
-    const T f = std::floor(s);
-    rep[i] = static_cast<std::int64_t>(f);
-    out.corner[i] = rep[i] * k;
-    r[i] = s - f;
-  }
-  // The coset representative of the corner (reduction by the Hermite basis) names its cube.
-  for (int j = 0; j < n; ++j) {
-    const std::int64_t q = floor_div(rep[j], Tr::kHermite[j][j] / k);
-    for (int i = j; i < n; ++i) rep[i] -= q * (Tr::kHermite[j][i] / k);
-  }
-  int cube = 0;
-  for (int i = n - 1; i >= 0; --i)
-    cube = cube * static_cast<int>(Tr::kHermite[i][i] / k) + static_cast<int>(rep[i]);
-  out.cell = cell_of<Tr>(cube, r);
-  const auto& cell = Tr::kCells[out.cell];
-  for (int i = 0; i < n; ++i) {
-    const int p = cell.perm[i];
-    out.x[i] = static_cast<T>(cell.sign[i]) * (x[p] - static_cast<T>(out.corner[p] - rep[p] * k)) +
-               static_cast<T>(cell.a[i]);
-  }
+  Located<Tr::kDimension, T> out;
+  std::int64_t cell = 0;
+  locate_in<Tr, ScalarArith<T>>(x.data(), out.corner.data(), cell, out.x);
+  out.cell = static_cast<int>(cell);
   return out;
 }
 
