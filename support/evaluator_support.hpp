@@ -152,7 +152,7 @@ template <class Tr, class A, int... K>
 }
 
 // The cell of x (lattice coordinates) and its reference coordinates, in the arithmetic A: the one
-// implementation of locating (docs/design.md, "Evaluating a piece"). corner = floor(x + c), cell
+// implementation of locating (docs/design.md §11). corner = floor(x + c), cell
 // indexes Traits::kCells, xref = g (x - t) + a maps the point onto its orbit's reference region.
 template <class Tr, class A>
 [[gnu::always_inline]] inline void locate_in(const typename A::Real* x, typename A::Whole* corner,
