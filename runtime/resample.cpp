@@ -117,8 +117,8 @@ void fill_by_slices(CartesianVolume<T>& out, const CartesianGrid& grid, const Gr
     for (int k = k0; k < k1; ++k)
       for (int j = 0; j < n[1]; ++j)
         for (int i = 0; i < n[0]; ++i)
-          points.push_back(grid_point(grid, block.begin[0] + i, block.begin[1] + j,
-                                      block.begin[2] + k));
+          points.push_back(
+              grid_point(grid, block.begin[0] + i, block.begin[1] + j, block.begin[2] + k));
     const std::span<T> values(out.values.data() + out.index(0, 0, k0), points.size());
     try {
       spline.evaluate(points, values);
@@ -196,9 +196,9 @@ CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& 
   CartesianVolume<T> out = empty_grid_volume<T>(grid);
   for (int a = 0; a < 3; ++a)
     if (!(0 <= block.begin[a] && block.begin[a] < block.end[a] && block.end[a] <= grid.sizes[a]))
-      throw std::invalid_argument(fmt::format(
-          "grid block [{}, {}) on axis {} is empty or outside the grid's {} points",
-          block.begin[a], block.end[a], a, grid.sizes[a]));
+      throw std::invalid_argument(
+          fmt::format("grid block [{}, {}) on axis {} is empty or outside the grid's {} points",
+                      block.begin[a], block.end[a], a, grid.sizes[a]));
   for (int a = 0; a < 3; ++a) out.sizes[a] = block.end[a] - block.begin[a];
   out.origin = grid_point(grid, block.begin[0], block.begin[1], block.begin[2]);
   // The first and last points of the block, computed as the evaluation will see them, must lie

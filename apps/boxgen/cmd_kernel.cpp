@@ -131,8 +131,8 @@ int run_kernel(const FrequencyOptions& o) {
       for (const std::string name : {"none", "q1", "q2"})
         if (all[i].e.count(name))
           panel.series.push_back(
-            {fmt::format("{} {}", all[i].key, label.at(name)), w, all[i].e.at(name),
-             fmt::format("lines lw 2 lc rgb '{}' {}", colour(i), dash.at(name))});
+              {fmt::format("{} {}", all[i].key, label.at(name)), w, all[i].e.at(name),
+               fmt::format("lines lw 2 lc rgb '{}' {}", colour(i), dash.at(name))});
       panel.series.push_back({fmt::format("{} E_{{min}}", all[i].key), w, all[i].e.at("min"),
                               fmt::format("lines lw 2 lc rgb '{}' dt 1", dark_colour(i))});
     }
