@@ -28,7 +28,7 @@ struct EmissionRequest {
   bool double_precision = false;  // GLSL: double, dvec3, dmat3 instead of float, vec3, mat3
   // The shells of q1 (q2: these and the next shell); empty: the smallest on which a prefilter of
   // full order exists (quasi_interpolation_shells, generator/prefilter.h).
-  std::vector<int> shells;
+  std::vector<int> shells{};
 };
 
 // What the emitted evaluator costs: the strategy of each orbit and its operation counts (value;

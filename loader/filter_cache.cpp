@@ -95,8 +95,8 @@ bool entry_intact(const CacheEntry& entry, const EntryInfo& info) {
 }
 
 void write_entry(const CacheEntry& entry, const EntryInfo& info) {
-  const nlohmann::json j{{"spec", info.spec},   {"lattice", info.lattice},
-                         {"rows", info.rows},   {"stamp", info.stamp},
+  const nlohmann::json j{{"spec", info.spec},       {"lattice", info.lattice},
+                         {"rows", info.rows},       {"stamp", info.stamp},
                          {"so_hash", info.so_hash}, {"so_size", info.so_size}};
   const std::string text = j.dump(2) + "\n";
   support::write_output_file(entry.file(".json"), [&](std::FILE* f) {
@@ -107,8 +107,7 @@ void write_entry(const CacheEntry& entry, const EntryInfo& info) {
 EntryLock::EntryLock(const CacheEntry& entry) {
   const fs::path path = entry.file(".lock");
   fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0)
-    throw LoadError("cannot create " + path.string() + ": " + std::strerror(errno));
+  if (fd_ < 0) throw LoadError("cannot create " + path.string() + ": " + std::strerror(errno));
   while (::flock(fd_, LOCK_EX) != 0)
     if (errno != EINTR) {
       const int error = errno;

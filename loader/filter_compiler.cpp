@@ -6,12 +6,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <cerrno>  // program_invocation_name (glibc)
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <fmt/format.h>
 #include <sstream>
 
 #include "boxgen/loader_config.h"
@@ -89,8 +89,7 @@ std::string find_compiler(const CompileOptions& options) {
 // The binary (program or shared library) that holds this code.
 fs::path this_binary() {
   Dl_info info{};
-  if (::dladdr(reinterpret_cast<void*>(&find_toolchain), &info) == 0 || !info.dli_fname)
-    return {};
+  if (::dladdr(reinterpret_cast<void*>(&find_toolchain), &info) == 0 || !info.dli_fname) return {};
   std::error_code ec;
   // In the program itself, dladdr names it as it was started (argv[0]): ask the kernel instead.
   const std::string name = info.dli_fname;
@@ -164,9 +163,9 @@ Toolchain find_toolchain(const CompileOptions& options) {
   // exported, OpenMP for the batch paths, no fused multiply-adds (the SIMD path and the scalar
   // path round alike, as in the runtime).
   t.flags = words(config::kFlags);
-  for (const char* f : {"-march=native", "-std=c++20", "-fPIC", "-shared", "-fvisibility=hidden",
-                        "-fvisibility-inlines-hidden", "-fopenmp", "-ffp-contract=off", "-Wno-psabi",
-                        "-w"})
+  for (const char* f :
+       {"-march=native", "-std=c++20", "-fPIC", "-shared", "-fvisibility=hidden",
+        "-fvisibility-inlines-hidden", "-fopenmp", "-ffp-contract=off", "-Wno-psabi", "-w"})
     t.flags.emplace_back(f);
   t.flags.push_back("-I" + t.include_dir.string());
   t.libraries = words(config::kLibraries);
@@ -195,12 +194,12 @@ void compile_shared_object(const Toolchain& t, const fs::path& source, const fs:
   const int spawned = ::posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0)
-    throw LoadError(fmt::format("cannot run the C++ compiler {}: {}", t.compiler,
-                                std::strerror(spawned)));
+    throw LoadError(
+        fmt::format("cannot run the C++ compiler {}: {}", t.compiler, std::strerror(spawned)));
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) throw LoadError(fmt::format("waiting for {}: {}", t.compiler,
-                                                    std::strerror(errno)));
+    if (errno != EINTR)
+      throw LoadError(fmt::format("waiting for {}: {}", t.compiler, std::strerror(errno)));
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw LoadError(fmt::format("compiling filter {} failed (the compiler's messages: {})", what,
                                 log.string()));

@@ -10,11 +10,12 @@ namespace boxgen::loader {
 struct CompileOptions;
 
 struct Toolchain {
-  std::string compiler;              // absolute path
-  std::string version;               // the first line of `compiler --version`
-  std::vector<std::string> flags;    // every argument before the source
-  std::filesystem::path include_dir;  // holds runtime/, support/ (the build tree or <prefix>/include/boxgen)
-  std::filesystem::path archive;     // the runtime's static library the object links
+  std::string compiler;            // absolute path
+  std::string version;             // the first line of `compiler --version`
+  std::vector<std::string> flags;  // every argument before the source
+  std::filesystem::path
+      include_dir;  // holds runtime/, support/ (the build tree or <prefix>/include/boxgen)
+  std::filesystem::path archive;       // the runtime's static library the object links
   std::vector<std::string> libraries;  // after the archive
   // What the cache key needs to know about all this: compiler, version, flags, and the engine
   // (the archive's size and modification time: a rebuilt runtime is a new engine).

@@ -3,10 +3,10 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
-#include <fmt/format.h>
 
 #include "boxgen/version.h"
 #include "generator/derivation.h"
@@ -200,7 +200,8 @@ using CreateFn = rt::FilterSource* (*)(const char*, int (*)());
 // The entry's filter, or nothing (with the reason) when it is missing, incomplete, corrupt or
 // built for another loader, boxgen or key. The library stays loaded for the life of the process:
 // the paths it makes may outlive the filter.
-std::shared_ptr<const rt::FilterSource> open_entry(const CacheEntry& entry, const std::string& stamp,
+std::shared_ptr<const rt::FilterSource> open_entry(const CacheEntry& entry,
+                                                   const std::string& stamp,
                                                    const std::string& name, std::string& why) {
   const auto info = read_entry(entry);
   if (!info) return why = "no complete entry", nullptr;
@@ -233,7 +234,8 @@ void build_entry(const CacheEntry& entry, const gen::BoxSplineSpec& spec, const 
   const std::string name = "spec_" + entry.key;
   gen::EmissionRequest request;
   request.name = name;
-  request.command = fmt::format("the run-time filter \"{}\" --lattice \"{}\"", info.spec, info.rows);
+  request.command =
+      fmt::format("the run-time filter \"{}\" --lattice \"{}\"", info.spec, info.rows);
   const auto files = gen::emit(derivation, request);
   const std::string source = glue_source(name, files, info.stamp);
   try {
@@ -267,13 +269,10 @@ rt::SplineFilter load_filter(const std::string& spec_or_name, std::optional<std:
     if (!lattice) return *registry;
     const rt::CosetLattice given = rt::CosetLattice::parse(*lattice);
     if (rt::same_points(registry->lattice(), given)) return *registry;
-    std::string directions;
-    for (const auto& p : gen::presets())
-      if (p.name == spec_or_name) directions = p.directions;
-    throw LoadError(fmt::format(
-        "filter {} is for the {} lattice, but --lattice is {} (its directions on another lattice "
-        "are a SPEC: \"{}\")",
-        registry->name(), registry->lattice().name(), given.name(), directions));
+    // The registry's own message (boxrecon's contract); the directions on another lattice are a
+    // SPEC (boxgen presets lists them).
+    throw LoadError(fmt::format("filter {} is for the {} lattice, but --lattice is {}",
+                                registry->name(), registry->lattice().name(), given.name()));
   }
   gen::BoxSplineSpec spec = [&] {
     try {
@@ -295,13 +294,13 @@ rt::SplineFilter load_filter(const std::string& spec_or_name, std::optional<std:
   const std::string identity = fmt::format("abi {}\n{}\n{}\n{}\n{}", kAbiVersion, kVersion,
                                            info.spec, info.rows, toolchain.identity());
   CacheEntry entry{resolve_cache_dir(options.cache_dir), hash_text(identity)};
-  info.stamp = fmt::format("boxgen-filter abi {}; boxgen {}; key {}", kAbiVersion, kVersion,
-                           entry.key);
+  info.stamp =
+      fmt::format("boxgen-filter abi {}; boxgen {}; key {}", kAbiVersion, kVersion, entry.key);
   std::error_code ec;
   fs::create_directories(entry.dir, ec);
   if (ec)
-    throw LoadError(fmt::format("cannot create the filter cache {}: {}", entry.dir.string(),
-                                ec.message()));
+    throw LoadError(
+        fmt::format("cannot create the filter cache {}: {}", entry.dir.string(), ec.message()));
   const std::string name = info.spec;
   std::string why;
   if (auto source = open_entry(entry, info.stamp, name, why)) return rt::SplineFilter(source);
@@ -316,8 +315,8 @@ rt::SplineFilter load_filter(const std::string& spec_or_name, std::optional<std:
     }
   }
   if (auto source = open_entry(entry, info.stamp, name, why)) return rt::SplineFilter(source);
-  throw LoadError(fmt::format("the compiled filter {} cannot be loaded: {}",
-                              entry.file(".so").string(), why));
+  throw LoadError(
+      fmt::format("the compiled filter {} cannot be loaded: {}", entry.file(".so").string(), why));
 }
 
 std::vector<CachedFilter> cached_filters(const CompileOptions& options) {

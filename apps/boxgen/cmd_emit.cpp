@@ -222,7 +222,10 @@ int run_emit(const Common& c, const std::string& name, const std::string& out,
             target == EmissionTarget::Cpp
                 ? (shells.empty() ? "" : " --shells " + language.shells)
                 : " --target " + language.target + (double_precision ? " --precision double" : "")),
-        chosen, target, double_precision, shells};
+        chosen,
+        target,
+        double_precision,
+        shells};
     files = emit(a, request, &r);
   } else if (report) {
     fail_usage("--report needs an evaluator to report on (a SPEC and --name)");

@@ -199,8 +199,8 @@ int run(int argc, char** argv) {
     if (filters_command->parsed()) return boxgen::app::run_filters();
     if (bench->parsed() && !bench_filter.empty())
       return boxgen::app::run_filter_bench(boxgen::app::filter_from(bench_filter, lattice),
-                                           bench_options.points,
-                                           bench_options.repeats, bench_options.json);
+                                           bench_options.points, bench_options.repeats,
+                                           bench_options.json);
     if (bench->parsed()) return boxrecon::run_bench(bench_options);
     if (precision != "float" && precision != "double")
       throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) +
@@ -210,12 +210,11 @@ int run(int argc, char** argv) {
     NrrdReadLimits limits;
     limits.allow_non_finite = allow_nonfinite;
     if (eval->parsed())
-      return precision == "float" ? boxgen::app::run_eval<float>(filter, lattice, pre, volume,
-                                                                 points_path, gradient, hessian,
-                                                                 limits)
-                                  : boxgen::app::run_eval<double>(filter, lattice, pre, volume,
-                                                                  points_path, gradient, hessian,
-                                                                  limits);
+      return precision == "float"
+                 ? boxgen::app::run_eval<float>(filter, lattice, pre, volume, points_path, gradient,
+                                                hessian, limits)
+                 : boxgen::app::run_eval<double>(filter, lattice, pre, volume, points_path,
+                                                 gradient, hessian, limits);
     if (render->parsed()) return boxgen::recon::run_render();
     if (error->parsed() && table)
       return boxgen::recon::run_error_table(count, boxgen::app::parse_seed(seed), json);
@@ -229,10 +228,10 @@ int run(int argc, char** argv) {
                                     boxgen::app::parse_seed(seed), gradient, json);
     if (resample->parsed())
       return precision == "float"
-                 ? boxgen::app::run_resample<float>(filter, lattice, pre, volume, output, resample_n,
-                                                    box_min, box_max, limits)
-                 : boxgen::app::run_resample<double>(filter, lattice, pre, volume, output, resample_n,
-                                                     box_min, box_max, limits);
+                 ? boxgen::app::run_resample<float>(filter, lattice, pre, volume, output,
+                                                    resample_n, box_min, box_max, limits)
+                 : boxgen::app::run_resample<double>(filter, lattice, pre, volume, output,
+                                                     resample_n, box_min, box_max, limits);
   } catch (const std::exception& e) {
     if (boxgen::app::is_output_error(e)) return boxgen::app::report_output_error(e, "boxrecon");
     const int code = exit_code_for(e);

@@ -123,6 +123,38 @@ class BoxreconCli : public test::ScratchDirectoryTest {
   }
 };
 
+// `boxrecon filters` lists the registry's filters and the cache's (none in a fresh cache). A SPEC
+// filter without a compiler is one line saying what to install, before any work (compiled SPEC
+// filters are tested in tests/loader).
+TEST_F(BoxreconCli, FiltersListsTheRegistryAndTheCache) {
+  const std::string cache = file("cache");
+  ::setenv("BOXGEN_CACHE_DIR", cache.c_str(), 1);
+  const std::string out = boxrecon_ok({"filters"});
+  for (const char* line :
+       {"  m7         bcc\n", "  m8         bcc\n", "  m12        bcc\n", "  fcc6       fcc\n",
+        "  tricubic   cartesian\n", "  cart7      cartesian\n"})
+    EXPECT_NE(out.find(line), std::string::npos) << out;
+  EXPECT_NE(out.find("compiled filters (cached in " + cache + "): none\n"), std::string::npos)
+      << out;
+  ::setenv("BOXGEN_CXX", file("no-compiler").c_str(), 1);
+  const std::vector<std::string> args{"eval",
+                                      "--filter",
+                                      "1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 2,0,0",
+                                      "--lattice",
+                                      "bcc",
+                                      "--volume",
+                                      file("none.nrrd"),
+                                      "--points",
+                                      "-"};
+  const ProcessResult r = boxrecon(args);
+  ::unsetenv("BOXGEN_CXX");
+  ::unsetenv("BOXGEN_CACHE_DIR");
+  EXPECT_TRUE(r.exited && r.exit_code == 1) << describe(args, r);
+  EXPECT_NE(r.err.find("install g++"), std::string::npos) << describe(args, r);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << describe(args, r);
+  EXPECT_FALSE(fs::exists(cache) && !fs::is_empty(cache));
+}
+
 TEST_F(BoxreconCli, SampleThenEvalReproducesTheCubic) {
   EXPECT_EQ(boxrecon_ok({"sample", "--function", "cubic", "--n", "9", "-o", file("vol.nrrd")}), "");
   const auto points = write_points("points.txt", 40);
