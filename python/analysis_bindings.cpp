@@ -77,7 +77,7 @@ py::object json_result(Build&& build) {
 // The keys holding sampled curves become float64 arrays, at the top level and one level down
 // (one entry per SPEC).
 py::object with_arrays(py::object result, const std::vector<std::string>& keys) {
-  auto convert = [&](py::dict d) {
+  auto convert = [&](const py::dict& d) {
     for (const auto& key : keys)
       if (d.contains(key)) d[py::str(key)] = py::array_t<double>(d[py::str(key)]);
   };

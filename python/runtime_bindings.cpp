@@ -9,8 +9,8 @@
 
 #include <array>
 #include <bit>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -80,8 +80,8 @@ py::array_t<double> points_array(const py::handle& obj) {
   constexpr std::uint64_t kExponent = 0x7ff0000000000000ULL;
   std::uint64_t non_finite = 0;
   for (std::size_t i = 0; i < count; ++i)
-    non_finite |= static_cast<std::uint64_t>((std::bit_cast<std::uint64_t>(x[i]) & kExponent) ==
-                                           kExponent);
+    non_finite |=
+        static_cast<std::uint64_t>((std::bit_cast<std::uint64_t>(x[i]) & kExponent) == kExponent);
   if (non_finite != 0)
     for (std::size_t i = 0; i < count; ++i)
       if (!std::isfinite(x[i]))
@@ -307,7 +307,7 @@ void bind_volume(py::module_& m) {
            py::arg("coset_offsets") = py::none())
       .def_property_readonly(
           "samples",
-          [](py::object self) {
+          [](const py::object& self) {
             auto& v = self.cast<Volume&>();
             const auto k = static_cast<py::ssize_t>(v.coset_count());
             const rt::Sizes& n = v.sizes();
@@ -341,7 +341,7 @@ void bind_volume(py::module_& m) {
                  v.spacing(), v.origin()[0], v.origin()[1], v.origin()[2]);
            })
       .def(py::pickle(
-          [](py::object self) {
+          [](const py::object& self) {
             const auto& v = self.cast<const Volume&>();
             const std::string lattice =
                 v.lattice().name() == "custom" ? v.lattice().rows_text() : v.lattice().name();
@@ -465,7 +465,8 @@ void bind_filter(py::module_& m) {
             std::optional<Volume> storage;
             py::gil_scoped_release release;
             (void)prepared(volume, f, rt::parse_prefilter(q), storage);
-            return std::make_shared<Volume>(storage ? std::move(*storage) : volume);
+            if (!storage) return std::make_shared<Volume>(volume);  // "none": a copy
+            return std::make_shared<Volume>(std::move(*storage));
           },
           py::arg("volume"), py::arg("prefilter"),
           "The volume prefiltered with q1 or q2 (a new Volume)")
