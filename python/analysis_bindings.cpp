@@ -77,7 +77,7 @@ py::object json_result(Build&& build) {
 // The keys holding sampled curves become float64 arrays, at the top level and one level down
 // (one entry per SPEC).
 py::object with_arrays(py::object result, const std::vector<std::string>& keys) {
-  auto convert = [&](py::dict d) {
+  auto convert = [&](const py::dict& d) {
     for (const auto& key : keys)
       if (d.contains(key)) d[py::str(key)] = py::array_t<double>(d[py::str(key)]);
   };
@@ -122,8 +122,9 @@ void bind_analysis(py::module_& m) {
          const std::string& checks) {
         cli::AnalyzeOptions o;
         o.checks = checks;
-        return json_result(
-            [&] { return generator::to_json(cli::analyze_derivation(common(spec, lattice), o, {})); });
+        return json_result([&] {
+          return generator::to_json(cli::analyze_derivation(common(spec, lattice), o, {}));
+        });
       },
       py::arg("spec"), py::arg("lattice") = py::none(), py::arg("checks") = "default",
       "Everything `boxgen analyze SPEC --json` derives, as a dict.");
@@ -132,8 +133,7 @@ void bind_analysis(py::module_& m) {
       [](const std::string& spec, const std::optional<std::string>& lattice, const std::string& of,
          const std::string& region) {
         return json_result([&] {
-          return nlohmann::json::parse(
-              cli::pieces_text(common(spec, lattice), of, region, "json"));
+          return nlohmann::json::parse(cli::pieces_text(common(spec, lattice), of, region, "json"));
         });
       },
       py::arg("spec"), py::arg("lattice") = py::none(), py::arg("of") = "spline",
@@ -158,7 +158,8 @@ void bind_analysis(py::module_& m) {
         return json_result([&] { return cli::metrics_json(list, l); });
       },
       py::arg("specs"), py::arg("lattice") = py::none(),
-      "`boxgen metrics SPEC... --json`: smoothing and postaliasing per SPEC, a dict keyed by SPEC.");
+      "`boxgen metrics SPEC... --json`: smoothing and postaliasing per SPEC, a dict keyed by "
+      "SPEC.");
   m.def(
       "kernel",
       [](const Specs& specs, const std::optional<std::string>& lattice,
@@ -182,8 +183,7 @@ void bind_analysis(py::module_& m) {
          std::optional<double> w_to, int steps) {
         cli::FrequencyOptions o = frequency_options(specs, lattice, w, w_from, w_to, steps);
         o.line = line;
-        return with_arrays(json_result([&] { return cli::spectrum_json(o); }),
-                           {"w", "magnitude"});
+        return with_arrays(json_result([&] { return cli::spectrum_json(o); }), {"w", "magnitude"});
       },
       py::arg("specs"), py::arg("line"), py::arg("lattice") = py::none(), py::arg("w") = py::none(),
       py::arg("w_from") = py::none(), py::arg("w_to") = py::none(), py::arg("steps") = 0,

@@ -58,7 +58,6 @@ std::string formula(const Prefilter& q, const Lattice& lattice) {
   return out;
 }
 
-
 nlohmann::json prefilter_json(const Prefilter& q) {
   nlohmann::json w = nlohmann::json::array();
   for (const auto& x : q.weights)

@@ -77,8 +77,8 @@ int run_sample(const std::string& function, int n, const std::optional<double>& 
                const std::string& lattice_text, const std::string& filter,
                const std::string& precision, const std::string& output) {
   const runtime::TestFunction& fn = runtime::find_test_function(function);
-  const runtime::LatticeGrid grid =
-      sample_grid(n, h, lattice_text, filter, precision == "float" ? sizeof(float) : sizeof(double));
+  const runtime::LatticeGrid grid = sample_grid(
+      n, h, lattice_text, filter, precision == "float" ? sizeof(float) : sizeof(double));
   runtime::require_output_directory(output);
   if (precision == "float")
     sample_and_write<float>(fn, grid, output);
