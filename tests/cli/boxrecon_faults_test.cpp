@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "boxrecon_scratch_test.h"
 #include "cli_support.h"
-#include "tests/support/scratch_directory.h"
 
 namespace boxgen::test {
 namespace {
@@ -43,17 +43,9 @@ std::string doubles(const std::vector<double>& values) {
   return bytes;
 }
 
-class BoxreconFaults : public ScratchDirectoryTest {
+class BoxreconFaults : public BoxreconScratchTest {
  protected:
-  BoxreconFaults() : ScratchDirectoryTest("boxrecon-faults") {}
-  std::string file(const std::string& name) const { return (dir_ / name).string(); }
-
-  std::string ok(const std::vector<std::string>& args) {
-    const ProcessResult r = boxrecon(args);
-    EXPECT_TRUE(r.exited && r.exit_code == 0) << describe(args, r);
-    EXPECT_EQ(r.err, "") << describe(args, r);
-    return r.out;
-  }
+  BoxreconFaults() : BoxreconScratchTest("boxrecon-faults") {}
   // A refused command: exit 1, one line on stderr naming `mention`, nothing on stdout.
   void refused(const std::vector<std::string>& args, const std::string& mention) {
     const ProcessResult r = boxrecon(args);

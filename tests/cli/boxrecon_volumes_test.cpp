@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "boxrecon_scratch_test.h"
 #include "cli_support.h"
-#include "tests/support/scratch_directory.h"
 
 namespace boxgen::test {
 namespace {
@@ -80,17 +80,9 @@ void save_cartesian(const std::string& path, std::size_t n,
   nrrdNix(nrrd);
 }
 
-class BoxreconVolumes : public ScratchDirectoryTest {
+class BoxreconVolumes : public BoxreconScratchTest {
  protected:
-  BoxreconVolumes() : ScratchDirectoryTest("boxrecon-volumes") {}
-  std::string file(const std::string& name) const { return (dir_ / name).string(); }
-
-  std::string ok(const std::vector<std::string>& args) {
-    const ProcessResult r = boxrecon(args);
-    EXPECT_TRUE(r.exited && r.exit_code == 0) << describe(args, r);
-    EXPECT_EQ(r.err, "") << describe(args, r);
-    return r.out;
-  }
+  BoxreconVolumes() : BoxreconScratchTest("boxrecon-volumes") {}
   // Refused: a non-zero exit, one line on stderr mentioning `mention`, and `output` not written.
   void refused(const std::vector<std::string>& args, const std::string& mention,
                const std::string& output) {
