@@ -193,24 +193,18 @@ class EmittedSpline {
   }
 
   // Points [first, last) in chunks of simd::kChunk: their world coordinates converted and located
-  // in one SIMD call, their stencils gathered into lanes, the chunk's polynomial evaluated in one
-  // SIMD call (runtime/simd_batch.h), the derivatives mapped back per lane. A point takes the
-  // scalar path, point(), with its errors, when it is not finite or far outside, when its stencil
-  // box is not inside the volume, when rounding put it on a knot plane (no cell in the table), or
-  // when its orbit is not the chunk's.
+  // in one SIMD call, then each orbit present in the chunk evaluated in one SIMD call (simd_orbit;
+  // fcc6 has two orbits, so a chunk of random points takes two). A point takes the scalar path,
+  // point(), with its errors, when it is not finite or far outside, when its stencil box is not
+  // inside the volume, or when rounding put it on a knot plane (no cell in the table).
   template <int Order>
   void simd_block(std::ptrdiff_t first, std::ptrdiff_t last, std::span<const Vec3> points,
                   std::span<T> values, std::span<Vec3> gradients, std::span<Hessian> hessians,
                   FirstError& error) const {
-    namespace support = generated::support;
     constexpr std::ptrdiff_t kLanes = simd::kChunk;
-    constexpr int kLocated = simd::locate_rows(3);
-    constexpr int kOut =
-        1 + (Order == support::kValue ? 0 : 3) + (Order == support::kHessian ? 6 : 0);
+    constexpr bool kOneOrbit = std::size(Tr::kOrbitStencilSize) == 1;
     alignas(64) double world[3 * kLanes];
-    alignas(64) T located[kLocated * kLanes];
-    alignas(64) T v[kStencil * kLanes];
-    alignas(64) T out[kOut * kLanes];
+    alignas(64) T located[simd::locate_rows(3) * kLanes];
     std::ptrdiff_t index[kLanes];
     const simd::Frame frame = simd_frame();
 
@@ -224,43 +218,83 @@ class EmittedSpline {
         for (int a = 0; a < 3; ++a) world[a * kLanes + lane] = world[a * kLanes];
       kernels_->locate(world, frame, located);
 
-      // Gather the stencils of the lanes that stay; the others take the scalar path.
-      const T* const cells = located + 3 * kLanes;
-      const T* const reference = located + 4 * kLanes;
+      // The lanes of the chunk's first orbit gathered, the lanes of other orbits deferred, the
+      // lanes the kernels cannot take on the scalar path now.
       const T* const orbits = located + 7 * kLanes;
       const T* const inside = located + 8 * kLanes;
-      int orbit = -1, size = 0, first_lane = -1;
-      bool stays[kLanes] = {};
-      const T* bases[kLanes];
-      const Offset* tables[kLanes];
+      int orbit = -1, deferred = 0;
+      int others[kLanes];
+      Lanes chunk;
       for (int lane = 0; lane < lanes; ++lane) {
-        if (inside[lane] == T(0) || (orbit >= 0 && static_cast<int>(orbits[lane]) != orbit)) {
+        if (inside[lane] == T(0)) {
           scalar_point<Order>(index[lane], points, values, gradients, hessians, error);
           continue;
         }
-        if (orbit < 0) {
-          orbit = static_cast<int>(orbits[lane]);
-          size = Tr::kOrbitStencilSize[orbit];
-          first_lane = lane;
-        }
-        stays[lane] = true;
-        const std::int64_t corner[3] = {static_cast<std::int64_t>(located[lane]),
-                                        static_cast<std::int64_t>(located[kLanes + lane]),
-                                        static_cast<std::int64_t>(located[2 * kLanes + lane])};
-        const Fetch<Offset> f = stencils_.fetch(corner, static_cast<int>(cells[lane]));
-        bases[lane] = stencils_.samples() + f.base;
-        tables[lane] = f.offsets;
+        const int o = static_cast<int>(orbits[lane]);
+        if (orbit < 0) orbit = o;
+        if (kOneOrbit || o == orbit)
+          chunk.take(lane, located, stencils_);
+        else
+          others[deferred++] = lane;
       }
       if (orbit < 0) continue;
-      for (int lane = 0; lane < kLanes; ++lane)  // lanes that left or were never filled
-        if (lane >= lanes || !stays[lane]) {
-          bases[lane] = bases[first_lane];
-          tables[lane] = tables[first_lane];
+      for (;;) {  // one SIMD call per orbit (fcc6 has two)
+        simd_orbit<Order>(orbit, chunk, lanes, located, index, values, gradients, hessians);
+        if (kOneOrbit || deferred == 0) break;
+        orbit = static_cast<int>(orbits[others[0]]);  // the next orbit, the rest kept deferred
+        chunk = Lanes{};
+        int kept = 0;
+        for (int k = 0; k < deferred; ++k) {
+          if (static_cast<int>(orbits[others[k]]) == orbit)
+            chunk.take(others[k], located, stencils_);
+          else
+            others[kept++] = others[k];
         }
-      gather(size, bases, tables, v);
-      kernels_->orbit(orbit, Order, v, reference, out, simd::kChunk);
-      store<Order>(lanes, stays, index, cells, out, values, gradients, hessians);
+        deferred = kept;
+      }
     }
+  }
+
+  // The lanes of one orbit in a chunk, with where each one's stencil lies.
+  struct Lanes {
+    bool stays[simd::kChunk] = {};
+    const T* bases[simd::kChunk];
+    const Offset* tables[simd::kChunk];
+    int first = -1;
+    void take(int lane, const T* located, const Stencils& stencils) {
+      constexpr int kLanes = simd::kChunk;
+      const std::int64_t corner[3] = {static_cast<std::int64_t>(located[lane]),
+                                      static_cast<std::int64_t>(located[kLanes + lane]),
+                                      static_cast<std::int64_t>(located[2 * kLanes + lane])};
+      const Fetch<Offset> f = stencils.fetch(corner, static_cast<int>(located[3 * kLanes + lane]));
+      bases[lane] = stencils.samples() + f.base;
+      tables[lane] = f.offsets;
+      stays[lane] = true;
+      if (first < 0) first = lane;
+    }
+  };
+
+  // One orbit's lanes of a chunk: their stencils gathered into lanes, the orbit's polynomial
+  // evaluated in one SIMD call (runtime/simd_batch.h), the derivatives mapped back per lane. The
+  // lanes not taken repeat the first one's stencil.
+  template <int Order>
+  void simd_orbit(int orbit, Lanes& taken, int lanes, const T* located, const std::ptrdiff_t* index,
+                  std::span<T> values, std::span<Vec3> gradients,
+                  std::span<Hessian> hessians) const {
+    namespace support = generated::support;
+    constexpr int kLanes = simd::kChunk;
+    constexpr int kOut =
+        1 + (Order == support::kValue ? 0 : 3) + (Order == support::kHessian ? 6 : 0);
+    alignas(64) T v[kStencil * kLanes];
+    alignas(64) T out[kOut * kLanes];
+    for (int lane = 0; lane < kLanes; ++lane)  // lanes of other orbits or never filled
+      if (!taken.stays[lane]) {
+        taken.bases[lane] = taken.bases[taken.first];
+        taken.tables[lane] = taken.tables[taken.first];
+      }
+    gather(Tr::kOrbitStencilSize[orbit], taken.bases, taken.tables, v);
+    kernels_->orbit(orbit, Order, v, located + 4 * kLanes, out, simd::kChunk);
+    store<Order>(lanes, taken.stays, index, located + 3 * kLanes, out, values, gradients, hessians);
   }
 
   // Derivatives d (lattice units: gradient d[0..2], Hessian's upper triangle d[3..8]) in world
