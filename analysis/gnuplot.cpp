@@ -8,7 +8,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
+#include <string_view>
 
 #include "analysis/png_image.h"
 #include "support/output_file.h"
@@ -29,6 +31,18 @@ std::string quoted(const std::string& s) {
   return out + "'";
 }
 
+// Whether the file ends with a PNG's IEND chunk: gnuplot exits 0 even when its output was cut
+// short (a file size limit, a full disk).
+bool png_complete(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const auto size = static_cast<std::streamoff>(in.tellg());
+  if (!in || size < 12) return false;
+  char tail[8] = {};
+  in.seekg(size - 8);
+  in.read(tail, 8);
+  return in && std::string_view(tail, 8) == std::string_view("IEND\xae\x42\x60\x82", 8);
+}
+
 // Runs gnuplot on `script` (everything after the terminal and output) and commits the PNG.
 void run_gnuplot(const std::string& path, int width, int height, const std::string& body) {
   support::PendingOutput out(path);
@@ -43,10 +57,9 @@ void run_gnuplot(const std::string& path, int width, int height, const std::stri
   if (!written || status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw std::runtime_error(
         fmt::format("gnuplot failed to draw '{}' (is gnuplot-nox installed?)", path));
-  std::error_code ec;
-  out.commit(std::filesystem::file_size(out.temporary(), ec) == 0 || ec
-                 ? "gnuplot wrote nothing (disk full?)"
-                 : "");
+  out.commit(png_complete(out.temporary())
+                 ? ""
+                 : "gnuplot could not write the whole PNG (file too large, or the disk is full)");
 }
 
 // gnuplot's palette as colour_map(): the same colours at six evenly spaced stops, linear between.
