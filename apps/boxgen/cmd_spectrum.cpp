@@ -91,9 +91,10 @@ std::string nyquist_marks(const LineCurves& c) {
   std::string out;
   for (std::size_t i = 0; i < c.t.size(); ++i)
     for (const double x : {-c.t[i], c.t[i]})
-      out += fmt::format(
-          "set arrow from {:.10g}, graph 0 to {:.10g}, graph 1 nohead lc rgb '{}' dt 2 lw 1.5\n", x,
-          x, colour(i));
+      if (x >= c.w.front() && x <= c.w.back())  // gnuplot does not clip arrows to the graph
+        out += fmt::format(
+            "set arrow from {:.10g}, graph 0 to {:.10g}, graph 1 nohead lc rgb '{}' dt 2 lw 1.5\n",
+            x, x, colour(i));
   return out;
 }
 
