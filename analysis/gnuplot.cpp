@@ -3,10 +3,16 @@
 #include <fmt/format.h>
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
+#include <string_view>
 
+#include "analysis/png_image.h"
 #include "support/output_file.h"
 
 namespace boxgen::analysis {
@@ -25,15 +31,114 @@ std::string quoted(const std::string& s) {
   return out + "'";
 }
 
+// Whether the file ends with a PNG's IEND chunk: gnuplot exits 0 even when its output was cut
+// short (a file size limit, a full disk).
+bool png_complete(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const auto size = static_cast<std::streamoff>(in.tellg());
+  if (!in || size < 12) return false;
+  char tail[8] = {};
+  in.seekg(size - 8);
+  in.read(tail, 8);
+  return in && std::string_view(tail, 8) == std::string_view("IEND\xae\x42\x60\x82", 8);
+}
+
+// Runs gnuplot on `script` (everything after the terminal and output) and commits the PNG.
+void run_gnuplot(const std::string& path, int width, int height, const std::string& body) {
+  support::PendingOutput out(path);
+  std::string script =
+      fmt::format("set terminal pngcairo size {},{} enhanced font 'Sans,10'\n", width, height);
+  script += fmt::format("set output {}\n", quoted(out.temporary().string()));
+  script += body;
+  std::FILE* pipe = ::popen("gnuplot 2>&1 >/dev/null", "w");
+  if (!pipe) throw std::runtime_error("cannot start gnuplot (install gnuplot-nox)");
+  const bool written = std::fwrite(script.data(), 1, script.size(), pipe) == script.size();
+  const int status = ::pclose(pipe);
+  if (!written || status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw std::runtime_error(
+        fmt::format("gnuplot failed to draw '{}' (is gnuplot-nox installed?)", path));
+  out.commit(png_complete(out.temporary())
+                 ? ""
+                 : "gnuplot could not write the whole PNG (file too large, or the disk is full)");
+}
+
+// gnuplot's palette as colour_map(): the same colours at six evenly spaced stops, linear between.
+std::string palette() {
+  std::string out = "set palette defined (";
+  for (int i = 0; i <= 5; ++i) {
+    std::uint8_t r = 0, g = 0, b = 0;
+    colour_map(i / 5.0, r, g, b);
+    out += fmt::format("{}{} '#{:02x}{:02x}{:02x}'", i ? ", " : "", i, r, g, b);
+  }
+  return out + ")\n";
+}
+
+// Values below this are written for NaN (gnuplot warns about NaN in a matrix) and drawn as NaN.
+constexpr double kBlank = -1e300;
+
 }  // namespace
+
+void image_png(const std::string& path, const std::vector<ImagePanel>& panels) {
+  // Each panel: 70 pixels for the y axis, the image, a gap of 15, the colour bar 20 wide, 95 for
+  // its tics and label; 60 below the image for the x axis, 40 above it for the title.
+  int width = 0, height = 0;
+  for (const auto& panel : panels) {
+    width += panel.columns + kImagePanelMarginX;
+    height = std::max(height, panel.rows + kImagePanelMarginY);
+  }
+  std::string script;
+  for (std::size_t p = 0; p < panels.size(); ++p) {
+    const auto& panel = panels[p];
+    script += fmt::format("$i{} << EOD\n", p);
+    for (int y = 0; y < panel.rows; ++y) {
+      for (int x = 0; x < panel.columns; ++x) {
+        const double v = panel.values[static_cast<std::size_t>(y) * panel.columns + x];
+        script += fmt::format("{}{:.6g}", x ? " " : "", std::isnan(v) ? kBlank : v);
+      }
+      script += "\n";
+    }
+    script += fmt::format("EOD\n$p{} << EOD\n", p);
+    for (const auto& [a, b] : panel.dots) script += fmt::format("{:.10g} {:.10g}\n", a, b);
+    script += "EOD\n";
+  }
+  script += "set multiplot\n";
+  int x0 = 0;  // the panel's left edge, pixels
+  for (std::size_t p = 0; p < panels.size(); ++p) {
+    const auto& panel = panels[p];
+    const double dx = (panel.x_hi - panel.x_lo) / panel.columns,
+                 dy = (panel.y_hi - panel.y_lo) / panel.rows;
+    const auto sx = [&](int px) { return static_cast<double>(px) / width; };
+    const auto sy = [&](int px) { return static_cast<double>(px) / height; };
+    const int left = x0 + 70, bottom = 60;
+    script += "reset\n" + palette();
+    script += fmt::format(
+        "set lmargin at screen {:.8f}\nset rmargin at screen {:.8f}\nset bmargin at screen "
+        "{:.8f}\nset tmargin at screen {:.8f}\nset colorbox user origin screen {:.8f}, screen "
+        "{:.8f} size screen {:.8f}, screen {:.8f}\n",
+        sx(left), sx(left + panel.columns), sy(bottom), sy(bottom + panel.rows),
+        sx(left + panel.columns + 15), sy(bottom), sx(20), sy(panel.rows));
+    x0 += panel.columns + kImagePanelMarginX;
+    script += fmt::format(
+        "set title {} noenhanced\nset xlabel {} noenhanced\nset ylabel {} noenhanced\n"
+        "set cblabel {} noenhanced\nset xrange [{:.10g}:{:.10g}]\nset yrange [{:.10g}:{:.10g}]\n"
+        "set cbrange [{:.10g}:{:.10g}]\n",
+        quoted(panel.title), quoted(panel.xlabel), quoted(panel.ylabel), quoted(panel.value_label),
+        panel.x_lo, panel.x_hi, panel.y_lo, panel.y_hi, panel.value_lo, panel.value_hi);
+    script += fmt::format(
+        "plot $i{0} matrix using ({1:.10g} + ($1 + 0.5) * {2:.10g}):({3:.10g} + ($2 + 0.5) * "
+        "{4:.10g}):($3 < {5} ? NaN : $3) with image notitle",
+        p, panel.x_lo, dx, panel.y_lo, dy, kBlank / 10);
+    if (!panel.dots.empty())
+      script += fmt::format(", $p{} using 1:2 with points pt 7 ps 0.5 lc rgb 'white' notitle", p);
+    script += "\n";
+  }
+  script += "unset multiplot\nset output\n";
+  run_gnuplot(path, width, height, script);
+}
 
 void plot_png(const std::string& path, const std::vector<PlotPanel>& panels, int rows, int columns,
               int width, int height, const std::string& title) {
-  support::PendingOutput out(path);
   std::string script;
-  script +=
-      fmt::format("set terminal pngcairo size {},{} enhanced font 'Sans,10'\n", width, height);
-  script += fmt::format("set output {}\n", quoted(out.temporary().string()));
   // Data first: one inline block per series.
   for (std::size_t p = 0; p < panels.size(); ++p)
     for (std::size_t s = 0; s < panels[p].series.size(); ++s) {
@@ -64,17 +169,7 @@ void plot_png(const std::string& path, const std::vector<PlotPanel>& panels, int
     script += "\n";
   }
   script += "unset multiplot\nset output\n";
-  std::FILE* pipe = ::popen("gnuplot 2>&1 >/dev/null", "w");
-  if (!pipe) throw std::runtime_error("cannot start gnuplot (install gnuplot-nox)");
-  const bool written = std::fwrite(script.data(), 1, script.size(), pipe) == script.size();
-  const int status = ::pclose(pipe);
-  if (!written || status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw std::runtime_error(
-        fmt::format("gnuplot failed to draw '{}' (is gnuplot-nox installed?)", path));
-  std::error_code ec;
-  out.commit(std::filesystem::file_size(out.temporary(), ec) == 0 || ec
-                 ? "gnuplot wrote nothing (disk full?)"
-                 : "");
+  run_gnuplot(path, width, height, script);
 }
 
 }  // namespace boxgen::analysis

@@ -2,6 +2,7 @@
 // writes a script with inline data blocks into a pipe to gnuplot.
 #pragma once
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace boxgen::analysis {
@@ -19,10 +20,28 @@ struct PlotPanel {
   std::vector<PlotSeries> series;
 };
 
+// An image panel: `values` (columns x rows, row-major, bottom row first) filling [x_lo, x_hi] x
+// [y_lo, y_hi], coloured by colour_map() (png_image.h) over [value_lo, value_hi]
+// with a colour bar labelled `value_label`; NaN values are left white, and `dots` are drawn as
+// white discs.
+struct ImagePanel {
+  std::string title, xlabel, ylabel, value_label;
+  int columns = 0, rows = 0;
+  std::vector<double> values;
+  double x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1, value_lo = 0, value_hi = 1;
+  std::vector<std::pair<double, double>> dots;
+};
+
 // Draws the panels (rows x columns, in reading order) into a PNG of the given size at `path`,
 // atomically. Throws std::invalid_argument for an unwritable path and std::runtime_error if
 // gnuplot is missing or fails.
 void plot_png(const std::string& path, const std::vector<PlotPanel>& panels, int rows, int columns,
               int width, int height, const std::string& title = "");
+// The pixels around each image panel: its title, axes and colour bar.
+inline constexpr int kImagePanelMarginX = 200, kImagePanelMarginY = 100;
+// Draws image panels side by side into a PNG at `path`, atomically, each image's values one for one
+// on its pixels: the PNG is the sum of (columns + kImagePanelMarginX) by the largest rows +
+// kImagePanelMarginY. Throws as plot_png.
+void image_png(const std::string& path, const std::vector<ImagePanel>& panels);
 
 }  // namespace boxgen::analysis

@@ -1,4 +1,4 @@
-// RGB images written as PNG through libpng (spectra on planes, renders), atomically.
+// RGB images written as PNG through libpng (renders, slices), atomically.
 #pragma once
 #include <cstdint>
 #include <string>

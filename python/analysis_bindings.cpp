@@ -88,16 +88,25 @@ py::object with_arrays(py::object result, const std::vector<std::string>& keys) 
   return result;
 }
 
-// --w LIST or --from/--to/--steps.
-cli::FrequencyOptions frequency_options(const Specs& specs,
-                                        const std::optional<std::string>& lattice,
-                                        const std::optional<std::vector<double>>& w,
-                                        std::optional<double> w_from, std::optional<double> w_to,
-                                        int steps) {
+// The SPECs (each SPEC or SPEC@LATTICE), the default lattice and the labels (one per SPEC).
+cli::FrequencyOptions spec_options(const Specs& specs, const std::optional<std::string>& lattice,
+                                   const std::optional<std::vector<std::string>>& labels) {
   cli::FrequencyOptions o;
   o.specs = spec_list(specs);
   o.lattice = lattice.value_or("");
+  o.labels = labels.value_or(std::vector<std::string>{});
   o.json = true;
+  return o;
+}
+
+// With --w LIST or --from/--to/--steps.
+cli::FrequencyOptions frequency_options(const Specs& specs,
+                                        const std::optional<std::string>& lattice,
+                                        const std::optional<std::vector<std::string>>& labels,
+                                        const std::optional<std::vector<double>>& w,
+                                        std::optional<double> w_from, std::optional<double> w_to,
+                                        int steps) {
+  cli::FrequencyOptions o = spec_options(specs, lattice, labels);
   if (w) o.w = *w;
   o.from = w_from;
   o.to = w_to;
@@ -152,43 +161,47 @@ void bind_analysis(py::module_& m) {
       "[0, 1]), as a dict.");
   m.def(
       "metrics",
-      [](const Specs& specs, const std::optional<std::string>& lattice) {
-        const std::vector<std::string> list = spec_list(specs);
-        const std::string l = lattice.value_or("");
-        return json_result([&] { return cli::metrics_json(list, l); });
+      [](const Specs& specs, const std::optional<std::string>& lattice,
+         const std::optional<std::vector<std::string>>& labels) {
+        const cli::FrequencyOptions o = spec_options(specs, lattice, labels);
+        return json_result([&] { return cli::metrics_json(o); });
       },
-      py::arg("specs"), py::arg("lattice") = py::none(),
-      "`boxgen metrics SPEC... --json`: smoothing and postaliasing per SPEC, a dict keyed by "
-      "SPEC.");
+      py::arg("specs"), py::arg("lattice") = py::none(), py::arg("labels") = py::none(),
+      "`boxgen metrics SPEC... --json`: smoothing and postaliasing per SPEC (each SPEC or "
+      "SPEC@LATTICE), a dict keyed by SPEC or by its label.");
   m.def(
       "kernel",
       [](const Specs& specs, const std::optional<std::string>& lattice,
          const std::string& prefilter, const std::optional<std::string>& direction,
          const std::optional<std::vector<double>>& w, std::optional<double> w_from,
-         std::optional<double> w_to, int steps) {
-        cli::FrequencyOptions o = frequency_options(specs, lattice, w, w_from, w_to, steps);
+         std::optional<double> w_to, int steps,
+         const std::optional<std::vector<std::string>>& labels) {
+        cli::FrequencyOptions o = frequency_options(specs, lattice, labels, w, w_from, w_to, steps);
         o.prefilter = prefilter;
         o.direction = direction.value_or("");
         return with_arrays(json_result([&] { return cli::kernel_json(o); }), {"w", "E"});
       },
       py::arg("specs"), py::arg("lattice") = py::none(), py::arg("prefilter") = "q2",
       py::arg("direction") = py::none(), py::arg("w") = py::none(), py::arg("w_from") = py::none(),
-      py::arg("w_to") = py::none(), py::arg("steps") = 0,
+      py::arg("w_to") = py::none(), py::arg("steps") = 0, py::arg("labels") = py::none(),
       "`boxgen kernel SPEC... --json`: the error kernel E(w d) at w (or w_from..w_to in steps "
-      "points); {'w', 'E'} as NumPy arrays, keyed by SPEC when there are several.");
+      "points); {'w', 'E'} as NumPy arrays, keyed by SPEC (or label) when there are several.");
   m.def(
       "spectrum",
       [](const Specs& specs, const std::string& line, const std::optional<std::string>& lattice,
          const std::optional<std::vector<double>>& w, std::optional<double> w_from,
-         std::optional<double> w_to, int steps) {
-        cli::FrequencyOptions o = frequency_options(specs, lattice, w, w_from, w_to, steps);
+         std::optional<double> w_to, int steps,
+         const std::optional<std::vector<std::string>>& labels) {
+        cli::FrequencyOptions o = frequency_options(specs, lattice, labels, w, w_from, w_to, steps);
         o.line = line;
         return with_arrays(json_result([&] { return cli::spectrum_json(o); }), {"w", "magnitude"});
       },
       py::arg("specs"), py::arg("line"), py::arg("lattice") = py::none(), py::arg("w") = py::none(),
       py::arg("w_from") = py::none(), py::arg("w_to") = py::none(), py::arg("steps") = 0,
-      "`boxgen spectrum SPEC... --line a,b,c --json`: |psi_hat(w d)| and the Nyquist interval; "
-      "{'w', 'magnitude'} as NumPy arrays, keyed by SPEC when there are several.");
+      py::arg("labels") = py::none(),
+      "`boxgen spectrum SPEC... --line a,b,c --json`: |psi_hat(w d)| and the Nyquist interval of "
+      "each SPEC's lattice; {'w', 'magnitude'} as NumPy arrays, keyed by SPEC (or label) when "
+      "there are several.");
 }
 
 }  // namespace boxgen::python

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 namespace boxgen::runtime {
 
@@ -50,24 +51,46 @@ Vec3 curvature_colour(double k1, double k2, double scale_) {
   return c;
 }
 
-struct Camera {
-  Vec3 eye, forward, right, up;
-  double tan_half;
-};
+constexpr double kPi = 3.14159265358979;
 
-Camera camera_for(const Box& box, bool closeup) {
+}  // namespace
+
+Vec3 Camera::ray(int x, int y, int width, int height) const {
+  const double sx = (2 * (x + 0.5) / width - 1) * tan_half * width / height;
+  const double sy = (1 - 2 * (y + 0.5) / height) * tan_half;
+  return normalise(add(forward, add(scale(right, sx), scale(up, sy))));
+}
+
+Camera camera_for(const Box& box, const CameraView& view) {
+  const bool angles = view.azimuth || view.elevation;
+  if (view.closeup && (angles || view.distance))
+    throw std::invalid_argument(
+        "--closeup is a fixed camera: leave out --azimuth, --elevation and --distance");
+  if ((view.azimuth && !std::isfinite(*view.azimuth)) ||
+      (view.elevation && !(std::abs(*view.elevation) < 90)))
+    throw std::invalid_argument("--azimuth must be finite and --elevation between -90 and 90");
+  const double distance = view.distance.value_or(1.6);
+  if (!(distance > 0) || !std::isfinite(distance))
+    throw std::invalid_argument("--distance must be > 0 (box diagonals from the centre)");
   const Vec3 centre = scale(add(box.min, box.max), 0.5);
   const double radius =
       0.5 * std::sqrt(dot(add(box.max, scale(box.min, -1)), add(box.max, scale(box.min, -1))));
   Vec3 eye, target;
   double fov;
-  if (closeup) {  // Fig. 9: the first rims seen from above, at a grazing angle
+  if (view.closeup) {  // Fig. 9: the first rims seen from above, at a grazing angle
     target = add(centre, scale(Vec3{-0.3, -0.3, -0.12}, radius));
     eye = add(centre, scale(Vec3{0.75, 0.55, 0.95}, radius));
     fov = 38;
   } else {  // Fig. 8: the whole cube from above one corner, looking into the cut-away
+    const Vec3 fig8{1.0, 0.78, 0.82};
+    Vec3 direction = normalise(fig8);
+    if (angles) {  // the unset angle keeps Fig. 8's
+      const double a = view.azimuth.value_or(std::atan2(fig8[1], fig8[0]) * 180 / kPi) * kPi / 180;
+      const double e = view.elevation.value_or(std::asin(direction[2]) * 180 / kPi) * kPi / 180;
+      direction = {std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)};
+    }
     target = add(centre, Vec3{0, 0, -0.08 * radius});
-    eye = add(centre, scale(normalise(Vec3{1.0, 0.78, 0.82}), 3.2 * radius));
+    eye = add(centre, scale(direction, 2 * distance * radius));
     fov = 36;
   }
   Camera c;
@@ -75,9 +98,11 @@ Camera camera_for(const Box& box, bool closeup) {
   c.forward = normalise(add(target, scale(eye, -1)));
   c.right = normalise(cross(c.forward, Vec3{0, 0, 1}));
   c.up = cross(c.right, c.forward);
-  c.tan_half = std::tan(fov * 3.14159265358979 / 360);
+  c.tan_half = std::tan(fov * kPi / 360);
   return c;
 }
+
+namespace {
 
 // [t0, t1] of the ray inside the box; false if it misses.
 bool clip_to_box(const Vec3& o, const Vec3& d, const Box& box, double& t0, double& t1) {
@@ -249,10 +274,14 @@ RgbBuffer render_with(const SplineFunction& spline, double spacing, const Box& b
   if (o.width < 1 || o.height < 1 || o.width > 8192 || o.height > 8192)
     throw std::invalid_argument(
         fmt::format("image size must be 1..8192 per side, got {} x {}", o.width, o.height));
+  if (!(o.value_hi > o.value_lo) || !std::isfinite(o.value_lo) || !std::isfinite(o.value_hi))
+    throw std::invalid_argument(
+        fmt::format("the cut faces' value range [{}, {}] must be finite and not empty", o.value_lo,
+                    o.value_hi));
   const double step = o.step > 0 ? o.step : 0.5 * spacing;
   const RayCaster caster(spline, box, o.iso, step, o.cutaway, o.shading == Shading::Curvature);
   const double curvature_scale = 5 * spacing;
-  const Camera cam = camera_for(box, o.closeup);
+  const Camera cam = camera_for(box, o.camera);
   const Vec3 light =
       normalise(add(scale(cam.forward, -1), add(scale(cam.up, 0.6), scale(cam.right, -0.3))));
   RgbBuffer image{o.width, o.height,
@@ -262,15 +291,14 @@ RgbBuffer render_with(const SplineFunction& spline, double spacing, const Box& b
 #pragma omp parallel for schedule(dynamic, 1)
   for (int y = 0; y < o.height; ++y) {
     for (int x = 0; x < o.width; ++x) {
-      const double sx = (2 * (x + 0.5) / o.width - 1) * cam.tan_half * o.width / o.height;
-      const double sy = (1 - 2 * (y + 0.5) / o.height) * cam.tan_half;
-      const Vec3 d = normalise(add(cam.forward, add(scale(cam.right, sx), scale(cam.up, sy))));
+      const Vec3 d = cam.ray(x, y, o.width, o.height);
       // Background: a light vertical gradient.
       Vec3 colour{0.93 - 0.12 * (y / static_cast<double>(o.height)),
                   0.94 - 0.1 * (y / static_cast<double>(o.height)), 0.96};
       const RayHit h = caster.cast(cam.eye, d);
       if (h.hit) {
-        Vec3 base = h.on_cut ? value_colour(h.value) : Vec3{0.82, 0.80, 0.76};
+        Vec3 base = h.on_cut ? value_colour((h.value - o.value_lo) / (o.value_hi - o.value_lo))
+                             : Vec3{0.82, 0.80, 0.76};
         if (!h.on_cut && o.shading == Shading::Curvature)
           base = curvature_colour(h.k1, h.k2, curvature_scale);
         const double diffuse = std::max(0.0, dot(h.normal, light));
@@ -304,6 +332,25 @@ RgbBuffer render_isosurface(const LatticeVolume<double>& volume, const SplineFil
                                Hessian* hessian) { return spline.value(p, gradient, hessian); },
                      *std::min_element(volume.axis_spacing().begin(), volume.axis_spacing().end()),
                      box, o);
+}
+
+IsoChoice percentile_iso(std::span<const double> samples) {
+  if (samples.empty()) throw std::invalid_argument("the volume has no samples");
+  std::vector<double> sorted(samples.begin(), samples.end());
+  const auto percentile = [&](double p) {
+    const double h = p * static_cast<double>(sorted.size() - 1);
+    const auto lo = static_cast<std::size_t>(std::floor(h));
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(lo),
+                     sorted.end());
+    const double a = sorted[lo];
+    if (lo + 1 == sorted.size()) return a;
+    // The next rank: the smallest of the elements after lo.
+    const double b =
+        *std::min_element(sorted.begin() + static_cast<std::ptrdiff_t>(lo) + 1, sorted.end());
+    return a + (h - static_cast<double>(lo)) * (b - a);
+  };
+  const double p1 = percentile(0.01), p99 = percentile(0.99);
+  return {0.5 * (p1 + p99), p1, p99};
 }
 
 }  // namespace boxgen::runtime

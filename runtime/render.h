@@ -8,10 +8,13 @@
 // spline as a colour (the cross-section view). With curvature shading the isosurface is coloured
 // by its principal curvatures from the exact Hessian (as the paper's author does in his own ray
 // caster): convex orange, concave blue, saddles green, flat grey, saturating at curvature radii of
-// about five lattice spacings. Rows are spread over all cores (OpenMP).
+// about five lattice spacings. The cut faces are coloured over a value range (the data's, for a
+// volume). Rows are spread over all cores (OpenMP).
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "runtime/reconstruction.h"
@@ -21,15 +24,48 @@ namespace boxgen::runtime {
 
 enum class Shading { Normal, Curvature };
 
+// Where the camera stands (docs/runtime.md, "Camera"). The default view: the eye at distance 1.6
+// box diagonals from the box's centre in the direction (1, 0.78, 0.82) (azimuth 37.95 degrees,
+// elevation 32.89 degrees), looking at the centre lowered by 0.04 diagonals, field of view 36
+// degrees. Azimuth turns the eye about the z axis from +x towards +y, elevation lifts it above the
+// xy plane; an angle left unset keeps the default view's.
+struct CameraView {
+  std::optional<double> azimuth, elevation;  // degrees; |elevation| < 90
+  std::optional<double> distance;  // from the box's centre in box diagonals, > 0; default 1.6
+  bool closeup = false;            // the fixed camera of Fig. 9, close to the top rims (no angles)
+};
+
+// A pinhole camera: the eye, its unit frame and tan(field of view / 2). The one camera of every
+// renderer (the CPU ray caster here, the GPU one): ray() is the direction through a pixel.
+struct Camera {
+  Vec3 eye{}, forward{}, right{}, up{};
+  double tan_half = 0;
+  // The unit direction through the centre of pixel (x, y) of a width x height image (y down).
+  Vec3 ray(int x, int y, int width, int height) const;
+};
+
+// The camera of `view` for `box`. Throws std::invalid_argument for a non-finite angle, an
+// elevation outside (-90, 90), a distance <= 0 or not finite, or angles with the close-up.
+Camera camera_for(const Box& box, const CameraView& view);
+
 struct RenderOptions {
   int width = 512, height = 512;
   Shading shading = Shading::Normal;  // Curvature: colour by the principal curvatures (k1, k2)
   double iso = 0.5;
   bool cutaway = false;
-  bool closeup = false;   // the camera of Fig. 9: close to the top rims
-  double step = 0;        // marching step (world); 0: half the volume's spacing
-  bool progress = false;  // a progress bar on stderr
+  CameraView camera;
+  double value_lo = 0, value_hi = 1;  // the values the cut faces' colour map spans
+  double step = 0;                    // marching step (world); 0: half the volume's spacing
+  bool progress = false;              // a progress bar on stderr
 };
+
+// The default iso value of a volume: the midpoint of the 1st and 99th percentiles of its samples
+// (each percentile interpolated linearly between the two nearest ranks, as NumPy's default).
+// Throws std::invalid_argument for no samples.
+struct IsoChoice {
+  double iso, p1, p99;
+};
+IsoChoice percentile_iso(std::span<const double> samples);
 
 struct RgbBuffer {
   int width = 0, height = 0;

@@ -3,7 +3,9 @@
 # (mricron-data) subsampled onto BCC and onto a coarser Cartesian grid at 3%, 10% and 25% of its
 # samples, reconstructed with m12, m8, m7 (BCC) and tricubic, cart7 (Cartesian), each after its
 # Q^II, and compared with the original at every voxel of one common box (the same points for
-# every filter). Prints one markdown table row per case. Deterministic.
+# every filter). Prints one markdown table row per case, and renders each reconstruction's
+# isosurface at the data-derived iso (boxrecon render's default) into WORK_DIR/render-*.png from
+# two cameras: the cut-away view and the left side. Deterministic.
 # Usage: scripts/fig10.sh [BUILD_DIR [WORK_DIR]]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -31,5 +33,17 @@ print(f"| {sys.argv[2]} | {sys.argv[3]} | {sys.argv[4]} | {sys.argv[5]} | {r['rm
       f"{r['psnr_db']:.3f} | {m['rms']:.4f} | {m['psnr_db']:.3f} |")
 PY
     done
+  done
+done
+# Renders (docs/fig10.md, "Renders"): 240 x 240, Q^II, iso from the data.
+for fraction in 0.03 0.10 0.25; do
+  for filter in m12 m8 m7 tricubic cart7; do
+    case "$filter" in tricubic|cart7) lattice=cartesian ;; *) lattice=bcc ;; esac
+    common=(--volume "$work/$lattice-$fraction.nrrd" --filter "$filter" --prefilter q2
+            --width 240 --height 240 --quiet)
+    "$boxrecon" render "${common[@]}" --cutaway --distance 1.1 \
+      -o "$work/render-cut-$fraction-$filter.png" > /dev/null
+    "$boxrecon" render "${common[@]}" --azimuth 180 --elevation 20 --distance 1.1 \
+      -o "$work/render-left-$fraction-$filter.png" > /dev/null
   done
 done

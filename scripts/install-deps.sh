@@ -12,8 +12,8 @@ PACKAGES=(
   libbenchmark-dev                      # benchmarks
   libteem-dev                           # NRRD volume files (runtime)
   zlib1g-dev libbz2-dev                 # length check of gzip/bzip2 NRRD data (runtime/nrrd_io.cpp)
-  gnuplot-nox                           # line plots of kernels and spectra (boxgen kernel/spectrum)
-  libpng-dev                            # PNG images of spectra and renders
+  gnuplot-nox                           # figures of kernels and spectra (boxgen kernel/spectrum)
+  libpng-dev                            # PNG images of renders and slices
   libnifti2-dev                         # NIfTI-1/2 volumes (.nii, .nii.gz) read by the runtime (runtime/nifti_io.cpp)
   mricron-data                          # MRI templates (ch2better.nii.gz): the Fig. 10 replica and the NIfTI test on a shipped file
   libhwy-dev                            # SIMD batch path of the runtime (runtime/simd_batch.cpp)

@@ -10,6 +10,7 @@
 #include "analysis/gnuplot.h"
 #include "apps/boxgen/analysis_args.h"
 #include "apps/boxgen/analysis_inputs.h"
+#include "apps/boxgen/analysis_specs.h"
 #include "apps/boxgen/commands.h"
 #include "generator/autocorr.h"
 #include "generator/error.h"
@@ -55,11 +56,10 @@ struct KernelCurves {
 };
 
 KernelCurves kernel_curves(const FrequencyOptions& o, bool plot) {
-  std::vector<BoxSplineSpec> specs;
-  for (const auto& s : o.specs) specs.push_back(parse_spec(s, o.lattice));
-  const int n = specs.front().dimension();
+  const std::vector<NamedSpec> specs = parse_named_specs(o.specs, o.lattice, o.labels);
+  const int n = specs.front().spec.dimension();
   for (const auto& s : specs)
-    if (s.dimension() != n)
+    if (s.spec.dimension() != n)
       fail_input("all SPECs of one kernel command must have the same dimension");
   if (o.prefilter != "none" && o.prefilter != "q1" && o.prefilter != "q2" && o.prefilter != "min")
     fail_input("unknown prefilter '" + o.prefilter.substr(0, 40) +
@@ -72,18 +72,20 @@ KernelCurves kernel_curves(const FrequencyOptions& o, bool plot) {
   if (plot) (void)support::check_output_file(o.plot);  // an unwritable --plot fails first
 
   std::vector<Curves> all;
-  for (std::size_t i = 0; i < specs.size(); ++i) {
-    const auto& spec = specs[i];
-    const auto taps = taps_of(autocorrelation_refinement(spec));
+  for (const auto& named : specs) {
+    const auto& spec = named.spec;
+    const auto taps =
+        about_spec(named.text, [&] { return taps_of(autocorrelation_refinement(spec)); });
     const double det = static_cast<double>(spec.lattice.det_abs());
-    Curves c{o.specs[i], {}};
+    Curves c{named.key, {}};
     const std::vector<std::string> names = plot
                                                ? std::vector<std::string>{"none", "q1", "q2", "min"}
                                                : std::vector<std::string>{o.prefilter};
     for (const auto& name : names) {
       std::vector<analysis::LatticeTap> prefilter;
       try {
-        if (name != "min") prefilter = prefilter_taps_of(spec, name);
+        if (name != "min")
+          prefilter = about_spec(named.text, [&] { return prefilter_taps_of(spec, name); });
       } catch (const InputError& e) {
         if (!plot) throw;
         // A plot draws the curves that exist and says which one it leaves out.

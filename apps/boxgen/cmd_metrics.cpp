@@ -8,6 +8,7 @@
 
 #include "analysis/filter_metrics.h"
 #include "apps/boxgen/analysis_inputs.h"
+#include "apps/boxgen/analysis_specs.h"
 #include "apps/boxgen/commands.h"
 #include "generator/autocorr.h"
 
@@ -29,24 +30,21 @@ std::optional<PaperRow> paper_table3(const std::string& preset) {
 }
 
 struct MetricsRow {
-  std::string key;
-  BoxSplineSpec spec;
+  NamedSpec s;
   Rational a0;
   analysis::FilterMetrics m;
   double seconds;
 };
 
-std::vector<MetricsRow> metrics_rows(const std::vector<std::string>& specs,
-                                     const std::string& lattice) {
+std::vector<MetricsRow> metrics_rows(const FrequencyOptions& o) {
   std::vector<MetricsRow> rows;
-  for (const auto& text : specs) {  // parse them all first: a bad SPEC fails before any work
-    BoxSplineSpec spec = parse_spec(text, lattice);
-    rows.push_back({text, std::move(spec), Rational(0), {}, 0});
-  }
+  for (auto& s : parse_named_specs(o.specs, o.lattice, o.labels))  // all parsed before any work
+    rows.push_back({std::move(s), Rational(0), {}, 0});
   for (auto& r : rows) {
     const auto start = std::chrono::steady_clock::now();
-    r.a0 = autocorrelation_refinement(r.spec).integral_squared;
-    r.m = analysis::filter_metrics(spectrum_of(r.spec), dual_of(r.spec), to_double(r.a0));
+    r.a0 =
+        about_spec(r.s.text, [&] { return autocorrelation_refinement(r.s.spec).integral_squared; });
+    r.m = analysis::filter_metrics(spectrum_of(r.s.spec), dual_of(r.s.spec), to_double(r.a0));
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   return rows;
@@ -54,32 +52,32 @@ std::vector<MetricsRow> metrics_rows(const std::vector<std::string>& specs,
 
 }  // namespace
 
-nlohmann::json metrics_json(const std::vector<std::string>& specs, const std::string& lattice) {
+nlohmann::json metrics_json(const FrequencyOptions& o) {
   nlohmann::json out = nlohmann::json::object();
-  for (const auto& r : metrics_rows(specs, lattice)) {
+  for (const auto& r : metrics_rows(o)) {
     nlohmann::json steps = nlohmann::json::array();
     for (const auto& s : r.m.steps)
       steps.push_back(
           {{"order", s.order}, {"iterated", s.iterated}, {"simplex_fan", s.simplex_fan}});
-    out[r.key] = {{"smoothing", r.m.smoothing},
-                  {"postaliasing", r.m.postaliasing},
-                  {"integral_squared", to_string(r.a0)},
-                  {"lattice", r.spec.lattice.name()},
-                  {"nyquist_volume", r.m.nyquist_volume},
-                  {"integral_inside", r.m.inside},
-                  {"integral_total", r.m.total},
-                  {"estimated_error", r.m.estimated_error},
-                  {"quadrature", steps}};
+    out[r.s.key] = {{"smoothing", r.m.smoothing},
+                    {"postaliasing", r.m.postaliasing},
+                    {"integral_squared", to_string(r.a0)},
+                    {"lattice", r.s.spec.lattice.name()},
+                    {"nyquist_volume", r.m.nyquist_volume},
+                    {"integral_inside", r.m.inside},
+                    {"integral_total", r.m.total},
+                    {"estimated_error", r.m.estimated_error},
+                    {"quadrature", steps}};
   }
   return out;
 }
 
-int run_metrics(const std::vector<std::string>& specs, const std::string& lattice, bool json) {
-  if (json) {
-    print_json(metrics_json(specs, lattice));
+int run_metrics(const FrequencyOptions& o) {
+  if (o.json) {
+    print_json(metrics_json(o));
     return 0;
   }
-  const std::vector<MetricsRow> rows = metrics_rows(specs, lattice);
+  const std::vector<MetricsRow> rows = metrics_rows(o);
   fmt::print(
       "Marschner-Lobb filter metrics of psi = M^c (S = 1 - (1/|N|) int_N |psi_hat|^2, "
       "P = (1/|N|) int_outside N |psi_hat|^2)\n");
@@ -87,9 +85,10 @@ int run_metrics(const std::vector<std::string>& specs, const std::string& lattic
              "smoothing", "postaliasing", "error<=", "paper S", "paper P", "int (M^c)^2 = a(0)");
   for (const auto& r : rows) {
     // The paper's row only for the preset on its own lattice.
-    const auto paper = r.spec.lattice.name() == "bcc" ? paper_table3(r.spec.name) : std::nullopt;
-    fmt::print("{:<10} {:<10} {:>12.7g} {:>12.7g} {:>9.1e} {:>10} {:>10}  {}\n", r.key,
-               r.spec.lattice.name(), r.m.smoothing, r.m.postaliasing, r.m.estimated_error,
+    const auto& spec = r.s.spec;
+    const auto paper = spec.lattice.name() == "bcc" ? paper_table3(spec.name) : std::nullopt;
+    fmt::print("{:<10} {:<10} {:>12.7g} {:>12.7g} {:>9.1e} {:>10} {:>10}  {}\n", r.s.key,
+               spec.lattice.name(), r.m.smoothing, r.m.postaliasing, r.m.estimated_error,
                paper ? fmt::format("{:.5f}", paper->smoothing) : "-",
                paper ? fmt::format("{:.5f}", paper->postaliasing) : "-", to_string(r.a0));
   }
@@ -98,8 +97,8 @@ int run_metrics(const std::vector<std::string>& specs, const std::string& lattic
       "independent "
       "rules)\n");
   for (const auto& r : rows) {
-    fmt::print("{} (|N| = {:.12g}, (2 pi)^n a(0) = {:.15g}, {:.2f} s)\n", r.key, r.m.nyquist_volume,
-               r.m.total, r.seconds);
+    fmt::print("{} (|N| = {:.12g}, (2 pi)^n a(0) = {:.15g}, {:.2f} s)\n", r.s.key,
+               r.m.nyquist_volume, r.m.total, r.seconds);
     fmt::print("  {:>5} {:>22} {:>22} {:>10}\n", "order", "iterated (breakpoints)",
                "simplex fan (Duffy)", "difference");
     for (const auto& s : r.m.steps)

@@ -5,13 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
 #include "analysis/gnuplot.h"
-#include "analysis/png_image.h"
 #include "apps/boxgen/analysis_args.h"
 #include "apps/boxgen/analysis_inputs.h"
+#include "apps/boxgen/analysis_specs.h"
 #include "apps/boxgen/commands.h"
 #include "generator/error.h"
 #include "support/output_file.h"
@@ -40,80 +41,100 @@ double nyquist_extent(const analysis::VoronoiCell& cell, const analysis::Vec& d)
   return t;
 }
 
-void require_one_lattice(const std::vector<BoxSplineSpec>& specs) {
-  for (const auto& s : specs)
-    if (s.lattice.generator() != specs.front().lattice.generator())
-      fail_input("all SPECs of one spectrum must be on the same lattice");
-}
-
-// |psi_hat(w d)| of every SPEC along the line of o.line, with the Nyquist extent t.
+// |psi_hat(w d)| of every SPEC along the line of o.line, with the Nyquist extent t of each SPEC's
+// lattice.
 struct LineCurves {
   std::vector<double> w;
-  double t;
+  std::vector<double> t;
   std::vector<std::vector<double>> magnitude;
+  bool one_lattice() const {
+    return std::all_of(t.begin(), t.end(), [&](double x) { return x == t.front(); });
+  }
 };
 
-LineCurves line_curves(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
+LineCurves line_curves(const FrequencyOptions& o, const std::vector<NamedSpec>& specs, int n) {
   const analysis::Vec d = parse_direction(o.line, n, "--line");
-  require_one_lattice(specs);
-  const analysis::DualLattice dual = dual_of(specs.front());
-  const double t = nyquist_extent(dual.cell(), d);
-  const std::vector<double> w = abscissae(o, false, 0, 4 * t, 801, false);
+  std::vector<double> t;
+  for (const auto& s : specs) t.push_back(nyquist_extent(dual_of(s.spec).cell(), d));
+  const std::vector<double> w =
+      abscissae(o, false, 0, 4 * *std::max_element(t.begin(), t.end()), 801, false);
   if (!o.plot.empty()) (void)support::check_output_file(o.plot);  // before the work
   std::vector<std::vector<double>> magnitude;
-  for (const auto& spec : specs) {
-    const auto psi = spectrum_of(spec);
+  for (const auto& s : specs) {
+    const auto psi = spectrum_of(s.spec);
     std::vector<double> m;
     for (double x : w) m.push_back(std::abs(psi({x * d[0], x * d[1], x * d[2]})));
     magnitude.push_back(std::move(m));
   }
-  return {w, t, std::move(magnitude)};
+  return {w, std::move(t), std::move(magnitude)};
 }
 
-nlohmann::json line_json(const FrequencyOptions& o, const LineCurves& c) {
-  const double t = c.t;
-  if (c.magnitude.size() == 1)
-    return {{"w", c.w}, {"magnitude", c.magnitude.front()}, {"nyquist_interval", {-t, t}}};
+nlohmann::json line_json(const std::vector<NamedSpec>& specs, const LineCurves& c) {
+  auto entry = [&](std::size_t i) {
+    return nlohmann::json{
+        {"w", c.w}, {"magnitude", c.magnitude[i]}, {"nyquist_interval", {-c.t[i], c.t[i]}}};
+  };
+  if (c.magnitude.size() == 1) return entry(0);
   nlohmann::json out = nlohmann::json::object();
-  for (std::size_t i = 0; i < c.magnitude.size(); ++i)
-    out[o.specs[i]] = {{"w", c.w}, {"magnitude", c.magnitude[i]}, {"nyquist_interval", {-t, t}}};
+  for (std::size_t i = 0; i < c.magnitude.size(); ++i) out[specs[i].key] = entry(i);
   return out;
 }
 
-int run_line(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
+// The Nyquist interval shaded when all SPECs share it, else each SPEC's bounds as dashed lines
+// in its colour.
+std::string nyquist_marks(const LineCurves& c) {
+  if (c.one_lattice())
+    return fmt::format(
+        "set object 1 rect from {:.10g}, graph 0 to {:.10g}, graph 1 behind fc rgb '#d8d8d8' fs "
+        "solid 1.0 noborder\n",
+        -c.t.front(), c.t.front());
+  std::string out;
+  for (std::size_t i = 0; i < c.t.size(); ++i)
+    for (const double x : {-c.t[i], c.t[i]})
+      if (x >= c.w.front() && x <= c.w.back())  // gnuplot does not clip arrows to the graph
+        out += fmt::format(
+            "set arrow from {:.10g}, graph 0 to {:.10g}, graph 1 nohead lc rgb '{}' dt 2 lw 1.5\n",
+            x, x, colour(i));
+  return out;
+}
+
+int run_line(const FrequencyOptions& o, const std::vector<NamedSpec>& specs, int n) {
   const LineCurves curves = line_curves(o, specs, n);
   const auto& [w, t, magnitude] = curves;
   if (!o.plot.empty()) {
-    const std::string shade = fmt::format(
-        "set object 1 rect from {:.10g}, graph 0 to {:.10g}, graph 1 behind fc rgb '#d8d8d8' fs "
-        "solid 1.0 noborder\n"
-        "set xrange [{:.10g}:{:.10g}]",
-        -t, t, w.front(), w.back());
+    const std::string marks =
+        nyquist_marks(curves) + fmt::format("set xrange [{:.10g}:{:.10g}]", w.front(), w.back());
     analysis::PlotPanel full{
         fmt::format("|psi_hat(w ({}))|", o.line),           "w", "|psi_hat|", false, false,
-        shade + "\nset yrange [0:1.05]\nset key top right", {}};
+        marks + "\nset yrange [0:1.05]\nset key top right", {}};
     analysis::PlotPanel zoom{"magnified x100",
                              "w",
                              "|psi_hat|",
                              false,
                              false,
-                             shade + "\nset yrange [0:0.0105]\nset key top right",
+                             marks + "\nset yrange [0:0.0105]\nset key top right",
                              {}};
     for (std::size_t i = 0; i < specs.size(); ++i) {
       const std::string style = fmt::format("lines lw 2 lc rgb '{}'", colour(i));
-      full.series.push_back({o.specs[i], w, magnitude[i], style});
-      zoom.series.push_back({o.specs[i], w, magnitude[i], style});
+      full.series.push_back({specs[i].key, w, magnitude[i], style});
+      zoom.series.push_back({specs[i].key, w, magnitude[i], style});
     }
     analysis::plot_png(o.plot, {full, zoom}, 1, 2, 1200, 450);
     return 0;
   }
   if (o.json) {
-    print_json(line_json(o, curves));
+    print_json(line_json(specs, curves));
     return 0;
   }
-  fmt::print("|psi_hat(w d)|, d = ({}); Nyquist interval [{:.10g}, {:.10g}]\n{:>14}", o.line, -t, t,
-             "w");
-  for (const auto& s : o.specs) fmt::print(" {:>14}", s);
+  fmt::print("|psi_hat(w d)|, d = ({}); Nyquist interval", o.line);
+  if (curves.one_lattice())
+    fmt::print(" [{:.10g}, {:.10g}]\n", -t.front(), t.front());
+  else
+    for (std::size_t i = 0; i < specs.size(); ++i)
+      fmt::print("{} {} [{:.10g}, {:.10g}]{}", i ? "," : "", specs[i].key, -t[i], t[i],
+                 i + 1 == specs.size() ? "\n" : "");
+  fmt::print("{:>14}", "w");
+  for (const auto& s : specs) fmt::print(" {:>14}", s.key);
   fmt::print("\n");
   for (std::size_t k = 0; k < w.size(); ++k) {
     fmt::print("{:>14.8g}", w[k]);
@@ -151,10 +172,14 @@ struct PlaneWindow {
   double pixel() const { return (hi - lo) / size; }
 };
 
-PlaneWindow plane_window(const FrequencyOptions& o, const analysis::DualLattice& dual) {
+// The default square holds 2.5 circumradii of the largest Voronoi cell of the SPECs' dual
+// lattices, so every panel shows the same frequencies.
+PlaneWindow plane_window(const FrequencyOptions& o,
+                         const std::vector<analysis::DualLattice>& duals) {
   double circumradius = 0;
-  for (const auto& x : dual.cell().vertices)
-    circumradius = std::max(circumradius, std::sqrt(dot(x, x)));
+  for (const auto& dual : duals)
+    for (const auto& x : dual.cell().vertices)
+      circumradius = std::max(circumradius, std::sqrt(dot(x, x)));
   if ((o.from.has_value()) != (o.to.has_value())) fail_input("--from and --to go together");
   const double lo = o.from.value_or(-2.5 * circumradius), hi = o.to.value_or(2.5 * circumradius);
   if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo))
@@ -165,85 +190,65 @@ PlaneWindow plane_window(const FrequencyOptions& o, const analysis::DualLattice&
   return {lo, hi, size};
 }
 
-// log10 |psi_hat| from -4 (dark) to 0 (yellow); white where a Voronoi boundary of the dual
-// lattice crosses the pixel.
+// One panel: log10 |psi_hat| over [-4, 0] (the colour bar); NaN (white) where a Voronoi boundary
+// of the dual lattice crosses the pixel; the dual lattice points lying in the plane as white
+// discs.
 template <class Psi>
-void paint_magnitude(analysis::RgbImage& image, int x0, const Psi& psi,
-                     const analysis::DualLattice& dual, const PlaneFrame& f,
-                     const PlaneWindow& win) {
+analysis::ImagePanel magnitude_panel(const Psi& psi, const analysis::DualLattice& dual,
+                                     const PlaneFrame& f, const PlaneWindow& win) {
+  analysis::ImagePanel panel;
+  panel.columns = panel.rows = win.size;
+  panel.x_lo = panel.y_lo = win.lo;
+  panel.x_hi = panel.y_hi = win.hi;
+  panel.value_lo = -4;
+  panel.value_hi = 0;
+  panel.value_label = "log10 |psi_hat|";
+  panel.xlabel = "u";
+  panel.ylabel = "v";
   const double pixel = win.pixel();
-  for (int py = 0; py < win.size; ++py)
+  for (int py = 0; py < win.size; ++py)  // bottom row first
     for (int px = 0; px < win.size; ++px) {
-      const double a = win.lo + (px + 0.5) * pixel, b = win.hi - (py + 0.5) * pixel;
+      const double a = win.lo + (px + 0.5) * pixel, b = win.lo + (py + 0.5) * pixel;
       const analysis::Vec w{a * f.u[0] + b * f.v[0], a * f.u[1] + b * f.v[1],
                             a * f.u[2] + b * f.v[2]};
       double g = 0;
       dual.nearest(w, &g);
-      std::uint8_t r = 255, gg = 255, bb = 255;
-      if (g >= 1.2 * pixel)
-        analysis::colour_map((std::log10(std::max(std::abs(psi(w)), 1e-300)) + 4) / 4, r, gg, bb);
-      image.set(x0 + px, py, r, gg, bb);
+      panel.values.push_back(g >= 1.2 * pixel ? std::log10(std::max(std::abs(psi(w)), 1e-300))
+                                              : std::numeric_limits<double>::quiet_NaN());
     }
-}
-
-// The dual lattice points lying in the plane, in its (u, v) coordinates.
-std::vector<std::pair<double, double>> points_in_plane(const analysis::DualLattice& dual,
-                                                       const PlaneFrame& f,
-                                                       const PlaneWindow& win) {
-  std::vector<std::pair<double, double>> dots;
-  const double reach = std::max(std::abs(win.lo), std::abs(win.hi)) * std::sqrt(2.0) + win.pixel();
+  const double reach = std::max(std::abs(win.lo), std::abs(win.hi)) * std::sqrt(2.0) + pixel;
   for (const auto& k : dual.points_within(reach))
-    if (std::abs(dot(k, f.normal)) < 1e-9 * (1 + reach)) dots.push_back({dot(k, f.u), dot(k, f.v)});
-  return dots;
+    if (std::abs(dot(k, f.normal)) < 1e-9 * (1 + reach))
+      panel.dots.push_back({dot(k, f.u), dot(k, f.v)});
+  return panel;
 }
 
-void draw_disc(analysis::RgbImage& image, int x0, const PlaneWindow& win, double cx, double cy,
-               double radius) {
-  const int reach = 4 * static_cast<int>(radius);
-  for (int dy = -reach; dy <= reach; ++dy)
-    for (int dx = -reach; dx <= reach; ++dx) {
-      const int px = static_cast<int>(std::floor(cx)) + dx,
-                py = static_cast<int>(std::floor(cy)) + dy;
-      if (px < 0 || px >= win.size || py < 0 || py >= win.size) continue;
-      if (std::hypot(px + 0.5 - cx, py + 0.5 - cy) <= radius) image.set(x0 + px, py, 255, 255, 255);
-    }
-}
-
-// One panel per filter, side by side: log10 |psi_hat|, the boundaries of the dual lattice's
-// Voronoi cells in the plane (white) and the dual lattice points lying in the plane (white discs).
-int run_plane(const FrequencyOptions& o, const std::vector<BoxSplineSpec>& specs, int n) {
+// One panel per filter, side by side, each titled with its key and lattice, with a colour bar.
+int run_plane(const FrequencyOptions& o, const std::vector<NamedSpec>& specs, int n) {
   if (n != 3) fail_input("--plane needs 3-D filters (for 2-D filters use --line)");
   if (o.plot.empty()) fail_input("--plane draws an image: give -o out.png");
   if (o.json) fail_input("--json is for --line (a plane is an image)");
   if (!o.w.empty() || o.steps != 0)
     fail_input("--plane takes --from/--to (the square's range), not --w or --steps");
   const PlaneFrame frame = plane_frame(parse_direction(o.plane, 3, "--plane"));
-  require_one_lattice(specs);
-  const analysis::DualLattice dual = dual_of(specs.front());
-  const PlaneWindow win = plane_window(o, dual);
+  std::vector<analysis::DualLattice> duals;
+  for (const auto& s : specs) duals.push_back(dual_of(s.spec));
+  const PlaneWindow win = plane_window(o, duals);
   (void)support::check_output_file(o.plot);  // before the work
-  const int gap = 8;
-  const int count = static_cast<int>(specs.size());
-  analysis::RgbImage image(count * win.size + (count - 1) * gap, win.size);
-  std::fill(image.pixels.begin(), image.pixels.end(), 255);
-  const auto dots = points_in_plane(dual, frame, win);
-  const double radius = std::max(2.0, win.size / 120.0);
-  for (int s = 0; s < count; ++s) {
-    const int x0 = s * (win.size + gap);
-    paint_magnitude(image, x0, spectrum_of(specs[s]), dual, frame, win);
-    for (const auto& [a, b] : dots)
-      draw_disc(image, x0, win, (a - win.lo) / win.pixel(), (win.hi - b) / win.pixel(), radius);
+  std::vector<analysis::ImagePanel> panels;
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    panels.push_back(magnitude_panel(spectrum_of(specs[i].spec), duals[i], frame, win));
+    panels.back().title = fmt::format("{} ({})", specs[i].key, specs[i].spec.lattice.name());
   }
-  analysis::write_png(o.plot, image);
+  analysis::image_png(o.plot, panels);  // count * (size + 200) by size + 100 pixels
   return 0;
 }
 
 // The SPECs of one spectrum, all of one dimension.
-std::vector<BoxSplineSpec> spectrum_specs(const FrequencyOptions& o) {
-  std::vector<BoxSplineSpec> specs;
-  for (const auto& s : o.specs) specs.push_back(parse_spec(s, o.lattice));
+std::vector<NamedSpec> spectrum_specs(const FrequencyOptions& o) {
+  std::vector<NamedSpec> specs = parse_named_specs(o.specs, o.lattice, o.labels);
   for (const auto& s : specs)
-    if (s.dimension() != specs.front().dimension())
+    if (s.spec.dimension() != specs.front().spec.dimension())
       fail_input("all SPECs of one spectrum must have the same dimension");
   return specs;
 }
@@ -251,14 +256,14 @@ std::vector<BoxSplineSpec> spectrum_specs(const FrequencyOptions& o) {
 }  // namespace
 
 nlohmann::json spectrum_json(const FrequencyOptions& o) {
-  const std::vector<BoxSplineSpec> specs = spectrum_specs(o);
+  const std::vector<NamedSpec> specs = spectrum_specs(o);
   if (o.line.empty()) fail_input("a spectrum as numbers is along a line: give --line a,b,c");
-  return line_json(o, line_curves(o, specs, specs.front().dimension()));
+  return line_json(specs, line_curves(o, specs, specs.front().spec.dimension()));
 }
 
 int run_spectrum(const FrequencyOptions& o) {
-  const std::vector<BoxSplineSpec> specs = spectrum_specs(o);
-  const int n = specs.front().dimension();
+  const std::vector<NamedSpec> specs = spectrum_specs(o);
+  const int n = specs.front().spec.dimension();
   if (o.plane.empty() == o.line.empty())
     fail_input("give exactly one of --plane a,b,c or --line a,b,c");
   return o.line.empty() ? run_plane(o, specs, n) : run_line(o, specs, n);

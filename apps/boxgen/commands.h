@@ -66,8 +66,9 @@ int run_emit(const Common& c, const std::string& name, const std::string& out,
 // The frequency-domain analysis (analysis/, docs/design.md §10): cmd_metrics.cpp, cmd_kernel.cpp,
 // cmd_spectrum.cpp.
 struct FrequencyOptions {
-  std::vector<std::string> specs;
-  std::string lattice;
+  std::vector<std::string> specs;   // each SPEC or SPEC@LATTICE (apps/boxgen/analysis_specs.h)
+  std::string lattice;              // the lattice of a SPEC without '@'
+  std::vector<std::string> labels;  // --label: one per SPEC, or none
   bool json = false;
   std::string prefilter = "q2";    // kernel: none | q1 | q2 | min
   std::string direction;           // kernel: w * direction (default: all ones)
@@ -78,7 +79,7 @@ struct FrequencyOptions {
   std::string plane, line;  // spectrum
   int size = 400;           // spectrum plane: image side in pixels (16..4096)
 };
-int run_metrics(const std::vector<std::string>& specs, const std::string& lattice, bool json);
+int run_metrics(const FrequencyOptions& o);
 int run_kernel(const FrequencyOptions& o);
 int run_spectrum(const FrequencyOptions& o);
 int run_pieces(const Common& c, const std::string& of, const std::string& region,
@@ -86,7 +87,7 @@ int run_pieces(const Common& c, const std::string& of, const std::string& region
 // What `metrics --json`, `kernel --json` and `spectrum --line --json` print (also the Python
 // module's metrics(), kernel() and spectrum(); kernel_json ignores o.plot, spectrum_json needs
 // o.line), and the text `pieces` prints (JSON when c.json).
-nlohmann::json metrics_json(const std::vector<std::string>& specs, const std::string& lattice);
+nlohmann::json metrics_json(const FrequencyOptions& o);
 nlohmann::json kernel_json(const FrequencyOptions& o);
 nlohmann::json spectrum_json(const FrequencyOptions& o);
 std::string pieces_text(const Common& c, const std::string& of, const std::string& region,

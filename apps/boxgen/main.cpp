@@ -144,10 +144,17 @@ int run(int argc, char** argv) {
   // Frequency-domain analysis of one or more filters (analysis/).
   boxgen::cli::FrequencyOptions ao;
   auto add_specs = [&](CLI::App* cmd) {
-    cmd->add_option("SPEC", ao.specs, "one or more presets or direction lists")->required();
+    cmd->add_option("SPEC", ao.specs,
+                    "one or more presets or direction lists, each optionally SPEC@LATTICE "
+                    "(e.g. m7 fcc6@fcc \"1,1,1; ...@bcc\")")
+        ->required();
     cmd->add_option("--lattice", ao.lattice,
-                    "bcc | fcc | cartesian | \"<rows of G>\" (default: each preset's)")
+                    "lattice of every SPEC without @: bcc | fcc | cartesian | \"<rows of G>\" "
+                    "(default: each preset's)")
         ->check(boxgen::app::kNonEmpty);
+    cmd->add_option("--label", ao.labels,
+                    "name of a SPEC in tables, JSON keys and legends; repeat once per SPEC, in "
+                    "order (default: the SPEC as given)");
     cmd->add_flag("--json", ao.json, "machine-readable output");
   };
   auto add_range = [&](CLI::App* cmd) {
@@ -201,7 +208,7 @@ int run(int argc, char** argv) {
     if (prefilter->parsed()) return boxgen::cli::run_prefilter(c, shells);
     if (autocorr->parsed()) return boxgen::cli::run_autocorr(c, method);
     if (table1->parsed()) return boxgen::cli::run_table1(c.json);
-    if (metrics->parsed()) return boxgen::cli::run_metrics(ao.specs, ao.lattice, ao.json);
+    if (metrics->parsed()) return boxgen::cli::run_metrics(ao);
     if (kernel->parsed()) return boxgen::cli::run_kernel(ao);
     if (spectrum->parsed()) return boxgen::cli::run_spectrum(ao);
     if (emit->parsed())

@@ -3,9 +3,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -29,15 +31,32 @@ struct RenderArgs {
   std::string function, volume, lattice, filter = "m7", prefilter = "q2", shading = "normal",
                                          output;
   int n = 0;
-  double iso = 0.5;
+  std::optional<double> iso;  // default: 0.5 for --function, the data's for --volume
   bool cutaway = false, closeup = false, quiet = false;
   int width = 512, height = 512;
   double step = 0;
+  std::optional<double> azimuth, elevation, distance;
 };
 RenderArgs args;
 
+// A volume's iso (unless --iso) and the cut faces' value range: from its samples, before the
+// prefilter. The chosen iso is printed, as the only line on stdout.
+void choose_from_data(const LatticeVolume<double>& volume, RenderOptions& o) {
+  const auto samples = volume.samples();
+  const auto [lo, hi] = std::minmax_element(samples.begin(), samples.end());
+  o.value_lo = *lo;
+  o.value_hi = *hi > *lo ? *hi : *lo + 1;  // a constant volume: any non-empty range
+  if (args.iso) return;
+  const IsoChoice choice = percentile_iso(samples);
+  o.iso = choice.iso;
+  fmt::print(
+      "iso = {:.6g} (midpoint of the 1st and 99th percentiles of the samples, {:.6g} and "
+      "{:.6g})\n",
+      choice.iso, choice.p1, choice.p99);
+}
+
 // The image of the chosen filter's spline, on a volume of its own lattice.
-RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, const RenderOptions& o) {
+RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, RenderOptions o) {
   const Box cube{{-1, -1, -1}, {1, 1, 1}};
   (void)boxgen::app::lattice_for(rf, args.lattice);
   NrrdReadLimits on_lattice;
@@ -52,6 +71,7 @@ RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, const RenderO
   LatticeVolume<double> volume =
       args.volume.empty() ? sampled() : read_volume_file<double>(args.volume, on_lattice);
   rf.check_lattice(volume.lattice());
+  if (!args.volume.empty()) choose_from_data(volume, o);
   if (q != PrefilterChoice::None) volume = prefilter(volume, rf.prefilter(q));
   const Box box = args.volume.empty() ? cube : default_box(volume, rf);
   return render_isosurface(volume, rf, box, o);
@@ -77,10 +97,19 @@ CLI::App* add_render_command(CLI::App& app) {
                 "a filter of the registry (default m7): " + SplineFilter::names() +
                     ", or any SPEC of boxgen (on --lattice), compiled on first use");
   r->add_option("--prefilter", args.prefilter, "none | q1 | q2 (default q2, as in Fig. 8)");
-  r->add_option("--iso", args.iso, "iso value (default 0.5)");
+  r->add_option("--iso", args.iso,
+                "iso value (default: 0.5 for --function; for --volume the midpoint of the 1st "
+                "and 99th percentiles of its samples, printed)");
   r->add_flag("--cutaway", args.cutaway,
               "remove 3/8 of the volume {z > 0 and (x > 0 or y > 0)} (Fig. 8)");
-  r->add_flag("--closeup", args.closeup, "the close-up camera of Fig. 9");
+  r->add_flag("--closeup", args.closeup, "the close-up camera of Fig. 9 (a fixed camera)");
+  r->add_option("--azimuth", args.azimuth,
+                "camera: degrees about the z axis from +x towards +y (default 37.95, the direction "
+                "(1, 0.78, 0.82))");
+  r->add_option("--elevation", args.elevation,
+                "camera: degrees above the xy plane, -90 < E < 90 (default 32.89)");
+  r->add_option("--distance", args.distance,
+                "camera: from the box's centre in box diagonals (default 1.6)");
   r->add_option("--shading", args.shading, "normal (default) | curvature");
   r->add_option("--width", args.width, "pixels (default 512)");
   r->add_option("--height", args.height, "pixels (default 512)");
@@ -101,6 +130,8 @@ int run_render() {
                                 args.shading.substr(0, 40) + "'");
   if (args.function.empty() == args.volume.empty())
     throw std::invalid_argument("give --function NAME --n N or --volume FILE");
+  if (!args.volume.empty() && args.n != 0)
+    throw std::invalid_argument("--n has no effect with --volume (the volume fixes the samples)");
   if (!args.function.empty() && (args.n < 2 || args.n > 1024))
     throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", args.n));
   if (args.width < 1 || args.height < 1 || args.width > 8192 || args.height > 8192)
@@ -114,9 +145,10 @@ int run_render() {
   RenderOptions o;
   o.width = args.width;
   o.height = args.height;
-  o.iso = args.iso;
+  o.iso = args.iso.value_or(0.5);
   o.cutaway = args.cutaway;
-  o.closeup = args.closeup;
+  o.camera = {args.azimuth, args.elevation, args.distance, args.closeup};
+  (void)camera_for(Box{{-1, -1, -1}, {1, 1, 1}}, o.camera);  // a bad camera fails before the work
   o.shading = args.shading == "curvature" ? Shading::Curvature : Shading::Normal;
   o.step = args.step;
   o.progress = !args.quiet;

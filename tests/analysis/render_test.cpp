@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+#include <vector>
 
 #include "runtime/render.h"
 #include "runtime/sampling.h"
@@ -93,6 +95,54 @@ TEST(Render, ImageHasTheRequestedSizeAndBadOptionsAreRefused) {
   o.iso = std::nan("");
   EXPECT_THROW(render_isosurface(s.volume, SplineFilter::parse("m7"), s.box, o),
                std::invalid_argument);
+}
+
+// The default camera is the one every figure was rendered with (docs/fig8_*.png, fig9_*.png): the
+// eye 3.2 half-diagonals from the box's centre along (1, 0.78, 0.82), looking at the centre
+// lowered by 0.08 half-diagonals, a 36 degree field of view: written out here as it was before
+// the camera could move.
+TEST(Camera, TheDefaultIsTheFiguresCamera) {
+  const Box box{{-1, -2, 0}, {3, 2, 1}};
+  const Camera c = camera_for(box, {});
+  const double radius = 0.5 * std::sqrt(16.0 + 16.0 + 1.0);
+  const double len = std::sqrt(1.0 + 0.78 * 0.78 + 0.82 * 0.82);
+  const Vec3 eye{1 + 3.2 * radius / len, 3.2 * radius * 0.78 / len,
+                 0.5 + 3.2 * radius * 0.82 / len};
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(c.eye[i], eye[i], 1e-12) << i;
+  const Vec3 to{1 - eye[0], -eye[1], 0.5 - 0.08 * radius - eye[2]};
+  const double d = std::sqrt(to[0] * to[0] + to[1] * to[1] + to[2] * to[2]);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(c.forward[i], to[i] / d, 1e-12) << i;
+  EXPECT_NEAR(c.tan_half, std::tan(18 * std::numbers::pi / 180), 1e-12);
+  // The centre of an odd image looks straight ahead.
+  const Vec3 ahead = c.ray(2, 2, 5, 5);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(ahead[i], c.forward[i], 1e-15) << i;
+  // Azimuth and elevation 0 put the eye on +x, level with the centre, at 1.6 diagonals.
+  CameraView level;
+  level.azimuth = 0;
+  level.elevation = 0;
+  const Camera l = camera_for(box, level);
+  EXPECT_NEAR(l.eye[0], 1 + 3.2 * radius, 1e-12);
+  EXPECT_NEAR(l.eye[1], 0, 1e-12);
+  EXPECT_NEAR(l.eye[2], 0.5, 1e-12);
+  CameraView bad;
+  bad.closeup = true;
+  bad.distance = 2;
+  EXPECT_THROW(camera_for(box, bad), std::invalid_argument);
+}
+
+// NumPy's percentile (linear between ranks) of 0, 1, ..., 100: the 1st is 1, the 99th 99.
+TEST(PercentileIso, IsTheMidpointOfThe1stAnd99thPercentiles) {
+  std::vector<double> v;
+  for (int i = 100; i >= 0; --i) v.push_back(i);
+  const IsoChoice c = percentile_iso(v);
+  EXPECT_DOUBLE_EQ(c.p1, 1);
+  EXPECT_DOUBLE_EQ(c.p99, 99);
+  EXPECT_DOUBLE_EQ(c.iso, 50);
+  // Four values: h = 0.03 and 2.97 between ranks, 0 + 0.03 (10 - 0) and 20 + 0.97 (40 - 20).
+  const IsoChoice f = percentile_iso(std::vector<double>{40, 0, 20, 10});
+  EXPECT_NEAR(f.p1, 0.3, 1e-12);
+  EXPECT_NEAR(f.p99, 39.4, 1e-12);
+  EXPECT_THROW(percentile_iso(std::vector<double>{}), std::invalid_argument);
 }
 
 }  // namespace

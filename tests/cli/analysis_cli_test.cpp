@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli_support.h"
+#include "png_file.h"
 #include "tests/support/scratch_directory.h"
 
 namespace boxgen::test {
@@ -92,6 +93,88 @@ TEST_F(AnalysisCli, FiguresAreWrittenAsPngAndNothingElse) {
   EXPECT_TRUE(is_png(file("l.png")));
   EXPECT_TRUE(is_png(file("p.png")));
   EXPECT_EQ(listing(), (std::vector<std::string>{"k.png", "l.png", "p.png"}));
+}
+
+// FCC's directions as a list (no preset), so its lattice comes from '@' or --lattice only.
+constexpr const char* kFccDirections = "1,1,0; 1,-1,0; 1,0,1; 1,0,-1; 0,1,1; 0,1,-1";
+
+TEST_F(AnalysisCli, EachSpecMayNameItsLattice) {
+  const std::string on_fcc = std::string(kFccDirections) + "@fcc";
+  const auto mixed = boxgen_json({"metrics", "m7", on_fcc, "--json"});
+  const auto fcc = boxgen_json({"metrics", kFccDirections, "--lattice", "fcc", "--json"});
+  const auto cartesian = boxgen_json({"metrics", kFccDirections, "--json"});
+  ASSERT_TRUE(mixed.contains(on_fcc)) << mixed.dump();
+  EXPECT_EQ(mixed[on_fcc]["lattice"], "fcc");
+  EXPECT_EQ(mixed["m7"]["lattice"], "bcc");
+  // SPEC@fcc is the SPEC with --lattice fcc, and not the SPEC on its default (Cartesian) lattice.
+  for (const char* key : {"smoothing", "postaliasing", "integral_squared"})
+    EXPECT_EQ(mixed[on_fcc][key], fcc[kFccDirections][key]) << key;
+  EXPECT_EQ(cartesian[kFccDirections]["lattice"], "cartesian");
+  EXPECT_NE(cartesian[kFccDirections]["smoothing"], fcc[kFccDirections]["smoothing"]);
+  // '@' wins over --lattice, which is the default of the SPECs without one.
+  const auto both = boxgen_json({"metrics", on_fcc, "m7", "--lattice", "bcc", "--json"});
+  EXPECT_EQ(both[on_fcc]["lattice"], "fcc");
+  EXPECT_EQ(both["m7"]["lattice"], "bcc");
+}
+
+// The Nyquist extent along w (1,1,1) by hand: Z^3's dual is 2 pi Z^3, whose Voronoi cell
+// [-pi, pi]^3 gives t = pi; FCC's dual is 2 pi times the BCC lattice Z^3 u (Z^3 + 1/2), whose
+// neighbour k = 2 pi (1/2, 1/2, 1/2) bounds the cell by w . k <= |k|^2 / 2, i.e. 3 pi t <= 3 pi^2 /
+// 2, t = pi / 2.
+TEST_F(AnalysisCli, SpectrumLinesOnTwoLatticesHaveTheirOwnNyquistIntervals) {
+  const auto j = boxgen_json({"spectrum", "fcc6", "fcc6@cartesian", "--line", "1,1,1", "--w", "0,1",
+                              "--label", "FCC", "--label", "Z3", "--json"});
+  ASSERT_TRUE(j.contains("FCC") && j.contains("Z3")) << j.dump();
+  EXPECT_NEAR(j["FCC"]["nyquist_interval"][1].get<double>(), std::numbers::pi / 2, 1e-12);
+  EXPECT_NEAR(j["Z3"]["nyquist_interval"][1].get<double>(), std::numbers::pi, 1e-12);
+  EXPECT_NEAR(j["FCC"]["magnitude"][0].get<double>(), 1.0, 1e-15);  // psi_hat(0) = 1
+}
+
+TEST_F(AnalysisCli, LabelsNameTheRowsAndKeys) {
+  const auto j =
+      boxgen_json({"metrics", "m7", "m8", "--label", "quartic M7", "--label", "M8", "--json"});
+  EXPECT_TRUE(j.contains("quartic M7") && j.contains("M8")) << j.dump();
+  EXPECT_FALSE(j.contains("m7"));
+  const auto k =
+      boxgen_json({"kernel", "m7", "m8", "--w", "0.5", "--label", "a", "--label", "b", "--json"});
+  EXPECT_TRUE(k.contains("a") && k.contains("b")) << k.dump();
+  const ProcessResult r = boxgen({"metrics", "m7", "--label", "quartic"});
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << describe({"metrics"}, r);
+  EXPECT_NE(r.out.find("\nquartic "), std::string::npos) << r.out;  // the table's row
+}
+
+// Two panels of --size 64 are 2 (64 + 200) x (64 + 100) pixels (docs/cli.md). Each panel's
+// colour bar is a column right of its image running from the colour map's top, viridis yellow
+// (0.993, 0.906, 0.144) * 255, down to its bottom, (0.267, 0.005, 0.329) * 255, without white
+// (within 20 of each: gnuplot draws the bar in steps whose colours are sampled inside them);
+// the image itself (64 pixels square, its centre yellow) sits in the left half of the panel.
+TEST_F(AnalysisCli, PlaneImagesHaveAPanelPerSpecWithAColourBar) {
+  boxgen_ok({"spectrum", "m7", "fcc6@fcc", "--plane", "1,1,1", "--size", "64", "--label", "M7",
+             "--label", "FCC6", "-o", file("p.png")});
+  const Png p = read_png(file("p.png"));
+  ASSERT_EQ(p.width, 2 * (64 + 200));
+  ASSERT_EQ(p.height, 64 + 100);
+  const auto near = [](std::array<int, 3> c, std::array<int, 3> want) {
+    return std::abs(c[0] - want[0]) <= 20 && std::abs(c[1] - want[1]) <= 20 &&
+           std::abs(c[2] - want[2]) <= 20;
+  };
+  const std::array<int, 3> top{253, 231, 37}, bottom{68, 1, 84};
+  for (int panel = 0; panel < 2; ++panel) {
+    const int x0 = panel * (64 + 200), x1 = x0 + 64 + 200;
+    int bar = -1;  // the rightmost column of the panel holding the top colour
+    for (int x = x0; x < x1; ++x)
+      for (int y = 0; y < p.height; ++y)
+        if (near(p.at(x, y), top)) bar = x;
+    ASSERT_GE(bar, x0 + (x1 - x0) / 2) << "panel " << panel;
+    int y = 0;
+    while (!near(p.at(bar, y), top)) ++y;
+    int run = 0;
+    for (; y < p.height && !near(p.at(bar, y), bottom); ++y, ++run)
+      ASSERT_NE(p.at(bar, y), (std::array<int, 3>{255, 255, 255}))
+          << "panel " << panel << " y " << y;
+    EXPECT_LT(y, p.height) << "no bottom colour below the top in panel " << panel;
+    EXPECT_GE(run, 32) << "panel " << panel;  // a bar, not a speck
+  }
 }
 
 TEST_F(AnalysisCli, RenderWritesAPngOfTheRequestedSize) {
@@ -254,6 +337,15 @@ INSTANTIATE_TEST_SUITE_P(
                          1,
                          "cannot write"},
         BadAnalysisInput{"BadSpec", {"metrics", "m7", "m99"}, 1, "m99"},
+        BadAnalysisInput{"BadLatticeOfOneSpec", {"metrics", "m7", "m8@hex"}, 1, "'m8@hex'"},
+        BadAnalysisInput{
+            "NoLatticeAfterAt", {"kernel", "m7", "m8@", "--w", "1"}, 1, "'m8@': no lattice"},
+        BadAnalysisInput{"DirectionNotOnItsLattice",
+                         {"spectrum", "m7@fcc", "--line", "1,0,0", "--json"},
+                         1,
+                         "'m7@fcc'"},
+        BadAnalysisInput{"LabelCount", {"metrics", "m7", "m8", "--label", "a"}, 1, "--label"},
+        BadAnalysisInput{"SameKeyTwice", {"metrics", "m7", "m7"}, 1, "--label"},
         BadAnalysisInput{"RenderUnknownShading",
                          {"boxrecon", "render", "--function", "ml", "--n", "9", "--shading",
                           "phong", "-o", "@/r.png"},

@@ -3,7 +3,6 @@
 // match a case checked by hand, slices have the asked size and values, and every bad input is one
 // line, a non-zero exit and no file. The volumes are small (seconds in all).
 #include <nifti2_io.h>
-#include <png.h>
 #include <teem/nrrd.h>
 
 #include <algorithm>
@@ -19,6 +18,7 @@
 
 #include "boxrecon_scratch_test.h"
 #include "cli_support.h"
+#include "png_file.h"
 
 namespace boxgen::test {
 namespace {
@@ -181,33 +181,6 @@ TEST_F(BoxreconVolumes, CompareMatchesAHandCheckedCase) {
   EXPECT_EQ(at(7, 4, 4), 0.0f);
 }
 
-// A PNG read with libpng's simplified API: width, height and RGB bytes (top row first).
-struct Png {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;
-  std::array<int, 3> at(int x, int y) const {
-    const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                           static_cast<std::size_t>(x)) *
-                          3;
-    return {rgb[i], rgb[i + 1], rgb[i + 2]};
-  }
-};
-Png read_png(const std::string& path) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  Png png;
-  if (!png_image_begin_read_from_file(&image, path.c_str())) {
-    ADD_FAILURE() << "libpng cannot read " << path;
-    return png;
-  }
-  image.format = PNG_FORMAT_RGB;
-  png.width = static_cast<int>(image.width);
-  png.height = static_cast<int>(image.height);
-  png.rgb.resize(PNG_IMAGE_SIZE(image));
-  EXPECT_TRUE(png_image_finish_read(&image, nullptr, png.rgb.data(), 0, nullptr));
-  return png;
-}
-
 // Reference v(i, j, k) = 10 i on a 10^3 grid: its z slice is 10 x 10 pixels, x along i, the top
 // row the largest j, grey round(255 v / 90) over the range [0, 90]. A constant 10 reconstructed
 // by the tricubic (partition of unity) over --range 0 20 is grey round(127.5) = 128 everywhere,
@@ -249,6 +222,73 @@ TEST_F(BoxreconVolumes, SlicePngsHaveTheirSizeAndValues) {
           "no effect", file("x.png"));
   refused({"slice", "--reference", file("ramp.nrrd"), "--at", "40", "-o", file("x.png")}, "outside",
           file("x.png"));
+}
+
+// render --volume without --iso: v = i + 10 j + 100 k on 10^3 voxels takes each value 0..999
+// once, so (NumPy's linear percentiles) p1 = 0.01 * 999 = 9.99, p99 = 0.99 * 999 = 989.01 and
+// the iso is their midpoint 499.5, printed on stdout.
+TEST_F(BoxreconVolumes, RenderTakesItsDefaultIsoFromTheData) {
+  save_cartesian(file("ramp.nrrd"), 10,
+                 [](int i, int j, int k) { return static_cast<float>(i + 10 * j + 100 * k); });
+  const std::string out = ok({"render", "--volume", file("ramp.nrrd"), "--filter", "tricubic",
+                              "--width", "8", "--height", "8", "--quiet", "-o", file("r.png")});
+  EXPECT_EQ(out,
+            "iso = 499.5 (midpoint of the 1st and 99th percentiles of the samples, 9.99 and "
+            "989.01)\n");
+  EXPECT_EQ(ok({"render", "--volume", file("ramp.nrrd"), "--filter", "tricubic", "--iso", "300",
+                "--width", "8", "--height", "8", "--quiet", "-o", file("r.png")}),
+            "");  // a given iso is not printed
+}
+
+// A Gaussian blob exp(-r^2 / 8) (iso 1/2 at r = 2.35) centred at (11, 7.5, 7.5) on 16^3 voxels
+// of spacing 1, right (+x) of the render box's centre (7.5, 7.5, 7.5). Seen level (elevation 0)
+// from +y (azimuth 90) the camera's right is -x, so the blob is left of the image's centre; from
+// -y (azimuth 270) it is right of it. By hand: at distance D = 3.2 half-diagonals (about 36
+// voxels for the box inside the tricubic's margin) and tan(18 deg) = 0.325, its centre is
+// 3.5 / 36 / 0.325 = 0.3 half-widths off centre, pixel 22 of 64 (or 41), its radius 6 pixels, and
+// row 30 (the view looks 0.08 half-diagonals below the centre). The mirrored pixel is
+// background: render.cpp's vertical gradient (0.93 - 0.12 t, 0.94 - 0.1 t, 0.96) * 255 with
+// t = row / height.
+TEST_F(BoxreconVolumes, AzimuthTurnsTheCameraAboutTheZAxis) {
+  save_cartesian(file("blob.nrrd"), 16, [](int i, int j, int k) {
+    const double r2 = (i - 11.0) * (i - 11.0) + (j - 7.5) * (j - 7.5) + (k - 7.5) * (k - 7.5);
+    return static_cast<float>(std::exp(-r2 / 8));
+  });
+  const auto render = [&](const char* azimuth) {
+    ok({"render", "--volume", file("blob.nrrd"), "--filter", "tricubic", "--iso", "0.5",
+        "--azimuth", azimuth, "--elevation", "0", "--width", "64", "--height", "64", "--quiet",
+        "-o", file("a.png")});
+    return read_png(file("a.png"));
+  };
+  const double t = 30.0 / 64;
+  const std::array<int, 3> background{static_cast<int>(std::lround(255 * (0.93 - 0.12 * t))),
+                                      static_cast<int>(std::lround(255 * (0.94 - 0.1 * t))),
+                                      static_cast<int>(std::lround(255 * 0.96))};
+  const Png from_y = render("90");
+  EXPECT_NE(from_y.at(22, 30), background);
+  EXPECT_EQ(from_y.at(41, 30), background);
+  const Png from_minus_y = render("270");
+  EXPECT_EQ(from_minus_y.at(22, 30), background);
+  EXPECT_NE(from_minus_y.at(41, 30), background);
+}
+
+TEST_F(BoxreconVolumes, RenderOptionsWithoutEffectOrOutOfRangeAreRefused) {
+  save_cartesian(file("v.nrrd"), 10, [](int i, int, int) { return static_cast<float>(i); });
+  const std::string out = file("r.png");
+  const auto render = [&](std::vector<std::string> more) {
+    std::vector<std::string> a{"render",  "--volume", file("v.nrrd"), "--filter", "tricubic",
+                               "--width", "8",        "--height",     "8",        "-o",
+                               out};
+    a.insert(a.end(), more.begin(), more.end());
+    return a;
+  };
+  refused(render({"--n", "9"}), "--n has no effect", out);
+  refused(render({"--closeup", "--azimuth", "10"}), "--closeup", out);
+  refused(render({"--closeup", "--distance", "2"}), "--closeup", out);
+  refused(render({"--elevation", "90"}), "--elevation", out);
+  refused(render({"--distance", "0"}), "--distance", out);
+  refused(render({"--azimuth", "inf"}), "--azimuth", out);
+  refused({"render", "--function", "ml", "--volume", file("v.nrrd"), "-o", out}, "--function", out);
 }
 
 // A NIfTI-1 file written through nifticlib: 12^3 int16 voxels (all 0), spacing 1, the given sform.

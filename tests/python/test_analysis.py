@@ -62,6 +62,22 @@ def test_metrics_equals_cli():
                                                                    "cartesian")
 
 
+def test_specs_with_lattices_and_labels_equal_cli():
+    # SPEC@LATTICE and labels as on the command line: directions of the checkerboard lattice
+    # {x + y even} (rows of G "1,1; 1,-1") on it and on Z^2.
+    spec = "1,1; 1,-1; 2,0; 0,2"
+    on_checkerboard = spec + "@1,1; 1,-1"
+    py = boxgen.metrics([spec, on_checkerboard], labels=["Z2", "D2"])
+    assert py == cli_json("metrics", spec, on_checkerboard, "--label", "Z2", "--label", "D2")
+    assert py["Z2"]["lattice"] == "cartesian" and py["D2"]["lattice"] != "cartesian"
+    line = boxgen.spectrum(["fcc6", "fcc6@cartesian"], line="1,1,1", w=[0, 1], labels=["a", "b"])
+    assert plain(line) == cli_json("spectrum", "fcc6", "fcc6@cartesian", "--line", "1,1,1", "--w",
+                                   "0,1", "--label", "a", "--label", "b")
+    with pytest.raises(ValueError) as e:
+        boxgen.metrics([PLANAR], labels=["a", "b"])
+    assert str(e.value) == cli_error("boxgen", "metrics", PLANAR, "--label", "a", "--label", "b")
+
+
 def test_kernel_equals_cli_with_arrays():
     py = boxgen.kernel("m7", prefilter="q1", w=[0.5, 1, 2])
     assert isinstance(py["w"], np.ndarray) and isinstance(py["E"], np.ndarray)
