@@ -50,12 +50,10 @@ Vec3 curvature_colour(double k1, double k2, double scale_) {
   return c;
 }
 
-struct Camera {
-  Vec3 eye, forward, right, up;
-  double tan_half;
-};
+}  // namespace
 
-Camera camera_for(const Box& box, bool closeup) {
+Camera render_camera(const Box& box, const RenderOptions& options) {
+  const bool closeup = options.closeup;
   const Vec3 centre = scale(add(box.min, box.max), 0.5);
   const double radius =
       0.5 * std::sqrt(dot(add(box.max, scale(box.min, -1)), add(box.max, scale(box.min, -1))));
@@ -78,6 +76,14 @@ Camera camera_for(const Box& box, bool closeup) {
   c.tan_half = std::tan(fov * 3.14159265358979 / 360);
   return c;
 }
+
+Vec3 Camera::ray(int x, int y, int width, int height) const {
+  const double sx = (2 * (x + 0.5) / width - 1) * tan_half * width / height;
+  const double sy = (1 - 2 * (y + 0.5) / height) * tan_half;
+  return normalise(add(forward, add(scale(right, sx), scale(up, sy))));
+}
+
+namespace {
 
 // [t0, t1] of the ray inside the box; false if it misses.
 bool clip_to_box(const Vec3& o, const Vec3& d, const Box& box, double& t0, double& t1) {
@@ -219,18 +225,33 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
   bool entry_face = false;
   h.hit = first_crossing(origin, d, t0, t1, h.t, entry_face);
   if (!h.hit) return h;
-  h.point = add(origin, scale(d, h.t));
+  const Vec3 point = add(origin, scale(d, h.t));
   Vec3 gradient{};
-  h.value = spline_(h.point, &gradient, nullptr);
+  const double value = spline_(point, &gradient, nullptr);
+  return hit_at(origin, d, h.t, entry_face, value, gradient, [&](Vec3& g) {
+    Hessian hs{};
+    spline_(point, &g, &hs);
+    return hs;
+  });
+}
+
+RayHit RayCaster::hit_at(const Vec3& origin, const Vec3& d, double t, bool entry_face,
+                         double value, const Vec3& gradient,
+                         const std::function<Hessian(Vec3&)>& hessian) const {
+  RayHit h;
+  h.hit = true;
+  h.t = t;
+  h.point = add(origin, scale(d, h.t));
+  h.value = value;
   // The isosurface when the point just before the hit is still in the region, else a cut or box
   // face.
   h.on_cut = entry_face || !in_region(add(origin, scale(d, h.t - 2e-9 * size_)));
   if (!h.on_cut && dot(gradient, gradient) > 0) {
     h.normal = normalise(scale(gradient, -1));  // s grows into the solid
     if (curvature_) {
-      Hessian hs{};
-      spline_(h.point, &gradient, &hs);
-      principal_curvatures(gradient, hs, h.k1, h.k2);
+      Vec3 g = gradient;
+      const Hessian hs = hessian(g);
+      principal_curvatures(g, hs, h.k1, h.k2);
     }
   } else {
     h.on_cut = true;
@@ -246,13 +267,26 @@ namespace {
 // scale).
 RgbBuffer render_with(const SplineFunction& spline, double spacing, const Box& box,
                       const RenderOptions& o) {
+  const RayCaster caster(spline, box, o.iso, render_step(o, spacing), o.cutaway,
+                         o.shading == Shading::Curvature);
+  const Vec3 eye = render_camera(box, o).eye;
+  return shade_pixels(o, box, spacing,
+                      [&](int, int, const Vec3& d) { return caster.cast(eye, d); });
+}
+
+}  // namespace
+
+double render_step(const RenderOptions& o, double spacing) {
   if (o.width < 1 || o.height < 1 || o.width > 8192 || o.height > 8192)
     throw std::invalid_argument(
         fmt::format("image size must be 1..8192 per side, got {} x {}", o.width, o.height));
-  const double step = o.step > 0 ? o.step : 0.5 * spacing;
-  const RayCaster caster(spline, box, o.iso, step, o.cutaway, o.shading == Shading::Curvature);
+  return o.step > 0 ? o.step : 0.5 * spacing;
+}
+
+RgbBuffer shade_pixels(const RenderOptions& o, const Box& box, double spacing,
+                       const PixelHit& hit) {
   const double curvature_scale = 5 * spacing;
-  const Camera cam = camera_for(box, o.closeup);
+  const Camera cam = render_camera(box, o);
   const Vec3 light =
       normalise(add(scale(cam.forward, -1), add(scale(cam.up, 0.6), scale(cam.right, -0.3))));
   RgbBuffer image{o.width, o.height,
@@ -262,13 +296,11 @@ RgbBuffer render_with(const SplineFunction& spline, double spacing, const Box& b
 #pragma omp parallel for schedule(dynamic, 1)
   for (int y = 0; y < o.height; ++y) {
     for (int x = 0; x < o.width; ++x) {
-      const double sx = (2 * (x + 0.5) / o.width - 1) * cam.tan_half * o.width / o.height;
-      const double sy = (1 - 2 * (y + 0.5) / o.height) * cam.tan_half;
-      const Vec3 d = normalise(add(cam.forward, add(scale(cam.right, sx), scale(cam.up, sy))));
+      const Vec3 d = cam.ray(x, y, o.width, o.height);
       // Background: a light vertical gradient.
       Vec3 colour{0.93 - 0.12 * (y / static_cast<double>(o.height)),
                   0.94 - 0.1 * (y / static_cast<double>(o.height)), 0.96};
-      const RayHit h = caster.cast(cam.eye, d);
+      const RayHit h = hit(x, y, d);
       if (h.hit) {
         Vec3 base = h.on_cut ? value_colour(h.value) : Vec3{0.82, 0.80, 0.76};
         if (!h.on_cut && o.shading == Shading::Curvature)
@@ -294,8 +326,6 @@ RgbBuffer render_with(const SplineFunction& spline, double spacing, const Box& b
   if (bar) std::fprintf(stderr, "\n");
   return image;
 }
-
-}  // namespace
 
 RgbBuffer render_isosurface(const LatticeVolume<double>& volume, const SplineFilter& f,
                             const Box& box, const RenderOptions& o) {

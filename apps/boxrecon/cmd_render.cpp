@@ -10,8 +10,10 @@
 #include <string>
 
 #include "analysis/png_image.h"
+#include "apps/boxrecon/device_choice.h"
 #include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/sample_command.h"
+#include "runtime/gl/gl_render.h"
 #include "runtime/nifti_io.h"
 #include "runtime/prefilter.h"
 #include "runtime/render.h"
@@ -27,7 +29,7 @@ using namespace boxgen::runtime;
 
 struct RenderArgs {
   std::string function, volume, lattice, filter = "m7", prefilter = "q2", shading = "normal",
-                                         output;
+                                         output, device = "cpu", precision;
   int n = 0;
   double iso = 0.5;
   bool cutaway = false, closeup = false, quiet = false;
@@ -54,6 +56,8 @@ RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, const RenderO
   rf.check_lattice(volume.lattice());
   if (q != PrefilterChoice::None) volume = prefilter(volume, rf.prefilter(q));
   const Box box = args.volume.empty() ? cube : default_box(volume, rf);
+  if (boxgen::app::parse_device(args.device) == boxgen::app::Device::Gl)
+    return gl::render_isosurface(volume, rf, box, o, args.precision == "double");
   return render_isosurface(volume, rf, box, o);
 }
 
@@ -87,6 +91,9 @@ CLI::App* add_render_command(CLI::App& app) {
   r->add_option("--step", args.step,
                 "ray-marching step in world units (default: half the lattice spacing)");
   r->add_flag("--quiet", args.quiet, "no progress bar");
+  boxgen::app::add_device_option(r, args.device, nullptr);
+  r->add_option("--precision", args.precision,
+                "with --device gl: float (default) | double; the CPU renders in double");
   r->add_option("-o,--output", args.output, "PNG to write")->required();
   return r;
 }
@@ -106,6 +113,14 @@ int run_render() {
   if (args.width < 1 || args.height < 1 || args.width > 8192 || args.height > 8192)
     throw std::invalid_argument(
         fmt::format("--width and --height must be 1..8192, got {} x {}", args.width, args.height));
+  const bool on_gl = boxgen::app::parse_device(args.device) == boxgen::app::Device::Gl;
+  if (!args.precision.empty() && args.precision != "float" && args.precision != "double")
+    throw std::invalid_argument("--precision must be float or double, got '" +
+                                args.precision.substr(0, 40) + "'");
+  if (!on_gl && args.precision == "float")
+    throw std::invalid_argument("the CPU renderer works in double: --precision float needs "
+                                "--device gl");
+  if (on_gl) (void)gl::registry_glsl(rf.name(), args.precision == "double");
   if (!(args.step >= 0) || !std::isfinite(args.step))
     throw std::invalid_argument("--step must be >= 0");
   // An unwritable -o, or one that is the input volume, fails before the work.
@@ -127,8 +142,9 @@ int run_render() {
   analysis::write_png(args.output, png);
   if (!args.quiet)
     std::cerr << fmt::format(
-        "rendered {} x {} in {:.2f} s\n", image.width, image.height,
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        "rendered {} x {} in {:.2f} s{}\n", image.width, image.height,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+        on_gl ? " on the " + boxgen::app::gl_device_line() : "");
   return 0;
 }
 
