@@ -1,4 +1,4 @@
-// The GL device (docs/gpu.md "The GL device", docs/design.md §17): a volume of any lattice in a
+// The GL device (docs/gpu.md "The GL device", docs/design.md §16): a volume of any lattice in a
 // shader storage buffer (all cosets, the storage order of lattice_volume.h) and an emitted GLSL
 // evaluator (`boxgen emit --target glsl`) compiled at run time into compute shaders that evaluate
 // batches of points (one invocation per point) and march isosurface rays (one per pixel). Float or

@@ -94,8 +94,8 @@ template <class Real>
 void evaluate_glsl(const Filter& f, const ExactCase& c, Evaluations* e) {
   try {
     (void)runtime::gl::device();  // the GL device's context (runtime/gl/gl_context.h)
-  } catch (const runtime::gl::GlError& e) {
-    FAIL() << e.what();
+  } catch (const runtime::gl::GlError& error) {
+    FAIL() << error.what();
   }
   constexpr bool dbl = sizeof(Real) == 8;
   const int n = c.ref.dimension();
