@@ -235,9 +235,8 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
   });
 }
 
-RayHit RayCaster::hit_at(const Vec3& origin, const Vec3& d, double t, bool entry_face,
-                         double value, const Vec3& gradient,
-                         const std::function<Hessian(Vec3&)>& hessian) const {
+RayHit RayCaster::hit_at(const Vec3& origin, const Vec3& d, double t, bool entry_face, double value,
+                         const Vec3& gradient, const std::function<Hessian(Vec3&)>& hessian) const {
   RayHit h;
   h.hit = true;
   h.t = t;

@@ -3,7 +3,8 @@
 // along rays of a BCC volume of random samples; the fetch floor of M7 on the GPU (the same number
 // of samples per point, read and summed); milliseconds per 512 x 512 and 1024 x 1024 render of
 // the Marschner-Lobb volume (N = 64, M7, Q^II, curvature shading). The GL renderer is named; on
-// a software renderer (llvmpipe) every GL number measures the CPU's emulation of a GPU, and says so.
+// a software renderer (llvmpipe) every GL number measures the CPU's emulation of a GPU, and says
+// so.
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -38,8 +39,9 @@ nlohmann::json filter_rates(const std::string& name, const LatticeVolume<float>&
   gpu.run(0);  // the compile and first dispatch are not timed
   out["gl_random"] = rate(fastest_seconds(repeats, [&] { gpu.run(0); }));
   if (floor_rate) {
-    gpu.run(-1);
-    *floor_rate = rate(fastest_seconds(repeats, [&] { gpu.run(-1); }));
+    gpu.run(gl::GlSpline<float>::kFetchFloor);
+    *floor_rate =
+        rate(fastest_seconds(repeats, [&] { gpu.run(gl::GlSpline<float>::kFetchFloor); }));
   }
   gpu.upload(rays);
   out["gl_rays"] = rate(fastest_seconds(repeats, [&] { gpu.run(0); }));
@@ -54,9 +56,11 @@ nlohmann::json filter_rates(const std::string& name, const LatticeVolume<float>&
 // march, read back, shading) and its march alone, and the CPU renderer.
 nlohmann::json render_times(const std::vector<int>& sizes, int repeats) {
   const SplineFilter m7 = SplineFilter::parse("m7");
-  const LatticeGrid grid = cube_lattice_grid(m7.lattice(), 64, m7.required_margin(PrefilterChoice::Q2));
-  const LatticeVolume<double> volume = prefilter(
-      sample_lattice<double>(find_test_function("ml").value, grid), m7.prefilter(PrefilterChoice::Q2));
+  const LatticeGrid grid =
+      cube_lattice_grid(m7.lattice(), 64, m7.required_margin(PrefilterChoice::Q2));
+  const LatticeVolume<double> volume =
+      prefilter(sample_lattice<double>(find_test_function("ml").value, grid),
+                m7.prefilter(PrefilterChoice::Q2));
   const LatticeVolume<float> single = gl::float_volume(volume);
   const gl::GlSpline<float> gpu(single, m7, gl::registry_glsl("m7", false));
   const Box cube{{-1, -1, -1}, {1, 1, 1}};
@@ -66,7 +70,8 @@ nlohmann::json render_times(const std::vector<int>& sizes, int repeats) {
     o.width = o.height = size;
     o.shading = Shading::Curvature;
     (void)gl::render_isosurface(gpu, cube, o);  // compiles the caster
-    const double gl_s = fastest_seconds(repeats, [&] { (void)gl::render_isosurface(gpu, cube, o); });
+    const double gl_s =
+        fastest_seconds(repeats, [&] { (void)gl::render_isosurface(gpu, cube, o); });
     const double cpu_s = fastest_seconds(1, [&] { (void)render_isosurface(volume, m7, cube, o); });
     out[std::to_string(size)] = {{"gl_ms", 1e3 * gl_s}, {"cpu_ms", 1e3 * cpu_s}};
   }
@@ -77,9 +82,8 @@ nlohmann::json render_times(const std::vector<int>& sizes, int repeats) {
 
 int run_gl_bench(const BenchOptions& o) {
   const gl::DeviceInfo& device = gl::device();
-  const std::string note = device.software
-                               ? " [llvmpipe: the GL numbers measure the CPU's emulation of a GPU]"
-                               : "";
+  const std::string note =
+      device.software ? " [llvmpipe: the GL numbers measure the CPU's emulation of a GPU]" : "";
   // On a GPU: a 256^3 x 2 volume (128 MiB in float) and 2^23 points; on a software renderer or
   // with --quick, 64^3 x 2 and 2^16 points.
   const bool small = o.quick || device.software;

@@ -118,8 +118,9 @@ int run_render() {
     throw std::invalid_argument("--precision must be float or double, got '" +
                                 args.precision.substr(0, 40) + "'");
   if (!on_gl && args.precision == "float")
-    throw std::invalid_argument("the CPU renderer works in double: --precision float needs "
-                                "--device gl");
+    throw std::invalid_argument(
+        "the CPU renderer works in double: --precision float needs "
+        "--device gl");
   if (on_gl) (void)gl::registry_glsl(rf.name(), args.precision == "double");
   if (!(args.step >= 0) || !std::isfinite(args.step))
     throw std::invalid_argument("--step must be >= 0");

@@ -174,11 +174,11 @@ int run_resample(const std::string& filter, const std::string& lattice, const st
   }
   if (verbose) std::cerr << gl_device_line() << '\n';
   const gl::GlSpline<T> gpu(volume, f, gl::registry_glsl(f.name(), sizeof(T) == 8));
-  write_cartesian_nrrd(output, resample(volume, f, grid, all,
-                                        BatchEvaluate<T>([&gpu](std::span<const Vec3> points,
-                                                                std::span<T> values) {
-                                          gpu.evaluate(points, values);
-                                        })));
+  write_cartesian_nrrd(
+      output, resample(volume, f, grid, all,
+                       BatchEvaluate<T>([&gpu](std::span<const Vec3> points, std::span<T> values) {
+                         gpu.evaluate(points, values);
+                       })));
   return 0;
 }
 

@@ -61,12 +61,11 @@ struct InputError : std::invalid_argument {
 // box outside the volume) or the GL device cannot do the work (no context, a shader the driver
 // refuses, a volume beyond its limits), 3 for anything else (an internal error).
 int exit_code_for(const std::exception& e) {
-  const bool bad_input = dynamic_cast<const std::invalid_argument*>(&e) ||
-                         dynamic_cast<const std::out_of_range*>(&e) ||
-                         dynamic_cast<const std::domain_error*>(&e) ||
-                         dynamic_cast<const NrrdError*>(&e) ||
-                         dynamic_cast<const boxgen::runtime::gl::GlError*>(&e) ||
-                         dynamic_cast<const boxgen::support::OutputFileError*>(&e);
+  const bool bad_input =
+      dynamic_cast<const std::invalid_argument*>(&e) ||
+      dynamic_cast<const std::out_of_range*>(&e) || dynamic_cast<const std::domain_error*>(&e) ||
+      dynamic_cast<const NrrdError*>(&e) || dynamic_cast<const boxgen::runtime::gl::GlError*>(&e) ||
+      dynamic_cast<const boxgen::support::OutputFileError*>(&e);
   return bad_input ? 1 : 3;
 }
 
@@ -133,8 +132,8 @@ int run(int argc, char** argv) {
   eval->add_flag("--gradient", gradient, "also print the three partial derivatives");
   bool hessian = false;
   eval->add_flag("--hessian", hessian, "then the second derivatives h_xx h_xy h_xz h_yy h_yz h_zz");
-  auto* eval_precision = eval->add_option("--precision", precision,
-                                          "float | double (default double; float with --device gl)");
+  auto* eval_precision = eval->add_option(
+      "--precision", precision, "float | double (default double; float with --device gl)");
   std::string device = "cpu";
   bool verbose = false;
   boxgen::app::add_device_option(eval, device, &verbose);
@@ -263,13 +262,12 @@ int run(int argc, char** argv) {
       return boxgen::app::run_error(function, n, filter, lattice, pre, count,
                                     boxgen::app::parse_seed(seed), gradient, json);
     if (resample->parsed())
-      return precision == "float"
-                 ? boxgen::app::run_resample<float>(filter, lattice, pre, volume, output,
-                                                    resample_n, box_min, box_max, limits, on,
-                                                    verbose)
-                 : boxgen::app::run_resample<double>(filter, lattice, pre, volume, output,
-                                                     resample_n, box_min, box_max, limits, on,
-                                                     verbose);
+      return precision == "float" ? boxgen::app::run_resample<float>(filter, lattice, pre, volume,
+                                                                     output, resample_n, box_min,
+                                                                     box_max, limits, on, verbose)
+                                  : boxgen::app::run_resample<double>(filter, lattice, pre, volume,
+                                                                      output, resample_n, box_min,
+                                                                      box_max, limits, on, verbose);
   } catch (const std::exception& e) {
     if (boxgen::app::is_output_error(e)) return boxgen::app::report_output_error(e, "boxrecon");
     const int code = exit_code_for(e);

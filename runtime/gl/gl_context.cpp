@@ -40,8 +40,8 @@ bool make_current(EGLDisplay display) {
   EGLConfig config = EGL_NO_CONFIG_KHR;
   EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, attributes);
   if (context == EGL_NO_CONTEXT) {
-    const EGLint wanted[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE,
-                             EGL_PBUFFER_BIT, EGL_NONE};
+    const EGLint wanted[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
+                             EGL_NONE};
     EGLint found = 0;
     if (eglChooseConfig(display, wanted, &config, 1, &found) && found == 1)
       context = eglCreateContext(display, config, EGL_NO_CONTEXT, attributes);
@@ -88,13 +88,14 @@ DeviceInfo open_device() {
   const bool surfaceless_only = platform && std::string(platform) == "surfaceless";
   if (!surfaceless_only && make_device_current()) {
     info.platform = "EGL device";
-  } else if (make_current(eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA,
-                                                EGL_DEFAULT_DISPLAY, nullptr))) {
+  } else if (make_current(eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
+                                                nullptr))) {
     info.platform = "EGL surfaceless (Mesa)";
   } else {
-    throw GlError(fmt::format("no OpenGL 4.3 context through EGL (no GPU device and no Mesa "
-                              "surfaceless platform): {}",
-                              kInstall));
+    throw GlError(
+        fmt::format("no OpenGL 4.3 context through EGL (no GPU device and no Mesa "
+                    "surfaceless platform): {}",
+                    kInstall));
   }
   info.renderer = gl_string(GL_RENDERER);
   info.vendor = gl_string(GL_VENDOR);

@@ -18,12 +18,12 @@ struct GlError : std::runtime_error {
 };
 
 struct DeviceInfo {
-  std::string renderer;  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
-  std::string vendor;    // GL_VENDOR
-  std::string version;   // GL_VERSION
-  std::string platform;  // "EGL device" (a GPU's driver) or "EGL surfaceless (Mesa)"
-  bool software = false;      // llvmpipe or softpipe: the numbers measure CPU emulation
-  bool fp64 = false;          // double precision in shaders (core since GL 4.0: always true)
+  std::string renderer;   // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+  std::string vendor;     // GL_VENDOR
+  std::string version;    // GL_VERSION
+  std::string platform;   // "EGL device" (a GPU's driver) or "EGL surfaceless (Mesa)"
+  bool software = false;  // llvmpipe or softpipe: the numbers measure CPU emulation
+  bool fp64 = false;      // double precision in shaders (core since GL 4.0: always true)
   std::int64_t max_storage_block_bytes = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
 };
 

@@ -11,7 +11,8 @@ namespace boxgen::runtime::gl {
 // The picture of `spline`'s volume; throws as render_isosurface (bad size, iso or step) and
 // GlError.
 template <class T>
-RgbBuffer render_isosurface(const GlSpline<T>& spline, const Box& box, const RenderOptions& options);
+RgbBuffer render_isosurface(const GlSpline<T>& spline, const Box& box,
+                            const RenderOptions& options);
 
 // The volume in the GPU's precision (float unless double_precision) and rendered there.
 RgbBuffer render_isosurface(const LatticeVolume<double>& volume, const SplineFilter& f,

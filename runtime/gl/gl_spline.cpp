@@ -21,11 +21,10 @@ namespace boxgen::runtime::gl {
 
 namespace {
 
-constexpr int kLocalSize = 128;     // invocations per work group
-constexpr int kMaxGroups = 65535;   // the dispatch size every GL 4.3 device takes
-constexpr int kFetchFloor = -1;     // program(kind): the fetch-floor kernel
-constexpr int kMarch = 3;           //                the ray caster
-constexpr int kMarchStride = 11;    // reals per ray: t, value, gradient, Hessian
+constexpr int kLocalSize = 128;    // invocations per work group
+constexpr int kMaxGroups = 65535;  // the dispatch size every GL 4.3 device takes
+constexpr int kMarch = 3;          //                the ray caster
+constexpr int kMarchStride = 11;   // reals per ray: t, value, gradient, Hessian
 // Far outside the volume (lattice units), points are refused before the evaluator converts
 // floor(x) to an int (as emitted_spline.h's kFar); their error comes from the CPU path.
 constexpr double kFar = 64;
@@ -300,8 +299,9 @@ GlSpline<T>::GlSpline(const LatticeVolume<T>& volume, const SplineFilter& filter
   const std::regex size_line(glsl_.name + R"(_kStencilSize = (\d+);)");
   std::smatch m;
   if (!std::regex_search(glsl_.text, m, size_line))
-    throw GlError(fmt::format("the GLSL text of {} is not an emitted evaluator (no {}_kStencilSize)",
-                              glsl_.name, glsl_.name));
+    throw GlError(
+        fmt::format("the GLSL text of {} is not an emitted evaluator (no {}_kStencilSize)",
+                    glsl_.name, glsl_.name));
   stencil_size_ = std::stoi(m[1]);
   const DeviceInfo& info = device();
   const double bytes = static_cast<double>(volume.sample_count()) * sizeof(T);
@@ -313,12 +313,10 @@ GlSpline<T>::GlSpline(const LatticeVolume<T>& volume, const SplineFilter& filter
         volume.sample_count(), mib(bytes), info.renderer,
         mib(static_cast<double>(std::min<std::int64_t>(storage_limit(), INT_MAX)))));
   const int d = volume.period();
-  std::vector<int> residues(static_cast<std::size_t>(d) * d * d);
+  std::vector<int> residues;  // x fastest: the shader's r.x + d (r.y + d r.z)
   for (int z = 0; z < d; ++z)
     for (int y = 0; y < d; ++y)
-      for (int x = 0; x < d; ++x)
-        residues[static_cast<std::size_t>(x + d * (y + d * z))] =
-            volume.lattice().coset_of(x, y, z);
+      for (int x = 0; x < d; ++x) residues.push_back(volume.lattice().coset_of(x, y, z));
   samples_ = storage_buffer(0, 0, volume.samples().data(), volume.sample_count() * sizeof(T));
   lattice_table_ = storage_buffer(0, 1, residues.data(), residues.size() * sizeof(int));
   check_gl("the volume's upload");
@@ -335,13 +333,13 @@ GlSpline<T>::~GlSpline() {
 
 template <class T>
 unsigned GlSpline<T>::program(int kind) const {
-  unsigned& p = programs_[static_cast<std::size_t>(kind + 1)];
+  unsigned& p = programs_[kind == kFetchFloor ? 0 : static_cast<std::size_t>(kind) + 1];
   if (p == 0) {
     const std::string kernel =
         kind == kMarch ? march_kernel(glsl_.name) : batch_kernel(glsl_.name, kind);
-    p = compile_compute(prelude(*volume_, glsl_) + kernel,
-                        fmt::format("the GLSL evaluator {} ({})", glsl_.name,
-                                    sizeof(T) == 8 ? "double" : "float"));
+    p = compile_compute(
+        prelude(*volume_, glsl_) + kernel,
+        fmt::format("the GLSL evaluator {} ({})", glsl_.name, sizeof(T) == 8 ? "double" : "float"));
   }
   glUseProgram(p);
   const Sizes& n = volume_->sizes();
@@ -415,9 +413,9 @@ void GlSpline<T>::throw_point_error(std::span<const Vec3> points, std::size_t in
 template <class T>
 void GlSpline<T>::evaluate(std::span<const Vec3> points, std::span<T> values,
                            std::span<Vec3> gradients, std::span<Hessian> hessians) const {
-  if (values.size() != points.size() ||
-      (!gradients.empty() && gradients.size() != points.size()) ||
-      (!hessians.empty() && (hessians.size() != points.size() || gradients.size() != points.size())))
+  if (values.size() != points.size() || (!gradients.empty() && gradients.size() != points.size()) ||
+      (!hessians.empty() &&
+       (hessians.size() != points.size() || gradients.size() != points.size())))
     throw std::invalid_argument("evaluate: output sizes differ from the number of points");
   const int order = !hessians.empty() ? 2 : !gradients.empty() ? 1 : 0;
   const std::size_t stride = order == 2 ? 10 : order == 1 ? 4 : 1;
@@ -480,9 +478,10 @@ std::vector<MarchedRay> GlSpline<T>::march(const Vec3& eye, std::span<const Vec3
   uniform_vec3(p, "mid", mid, dbl);
   uniform_vec3(p, "origin", volume_->origin(), dbl);
   uniform_vec3(p, "spacing", volume_->axis_spacing(), dbl);
-  uniform_real(p, "size", std::sqrt(diagonal[0] * diagonal[0] + diagonal[1] * diagonal[1] +
-                                    diagonal[2] * diagonal[2]),
-               dbl);
+  uniform_real(
+      p, "size",
+      std::sqrt(diagonal[0] * diagonal[0] + diagonal[1] * diagonal[1] + diagonal[2] * diagonal[2]),
+      dbl);
   uniform_real(p, "step", o.step, dbl);
   uniform_real(p, "iso", o.iso, dbl);
   // The CPU caster's tolerance (1e-9 of the diagonal) where double resolves it; float stops at

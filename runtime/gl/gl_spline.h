@@ -64,8 +64,9 @@ class GlSpline {
                 std::span<Hessian> hessians = {}) const;
 
   // For timing (boxrecon bench): the points uploaded once, then the kernel of the given order
-  // (0 value, 1 + gradient, 2 + Hessian; -1: the fetch floor, the same number of samples read
-  // and summed per point with no arithmetic) run and waited for, the results left on the device.
+  // (0 value, 1 + gradient, 2 + Hessian; kFetchFloor: the same number of samples read and summed
+  // per point with no arithmetic) run and waited for, the results left on the device.
+  static constexpr int kFetchFloor = -1;
   void upload(std::span<const Vec3> points);
   void run(int order) const;
 

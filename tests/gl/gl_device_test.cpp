@@ -67,8 +67,8 @@ void expect_gl_equals_cpu(const std::string& name, int count, double tolerance) 
   const SplineFilter f = SplineFilter::parse(name);
   const LatticeVolume<double> reference = random_volume<double>(f, 14);
   LatticeVolume<T> volume(reference.lattice(), reference.sizes(), 1.0, {0, 0, 0});
-  std::transform(reference.samples().begin(), reference.samples().end(),
-                 volume.samples().begin(), [](double s) { return static_cast<T>(s); });
+  std::transform(reference.samples().begin(), reference.samples().end(), volume.samples().begin(),
+                 [](double s) { return static_cast<T>(s); });
   const std::vector<Vec3> points = points_in(default_box(volume, f), count);
   const std::size_t n = points.size();
   std::vector<double> values(n);
@@ -84,8 +84,8 @@ void expect_gl_equals_cpu(const std::string& name, int count, double tolerance) 
   gpu.evaluate(points, only_values);  // the value kernel: another program
   double value = 0, gradient = 0, hessian = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    value = std::max({value, std::abs(gl_values[i] - values[i]),
-                      std::abs(only_values[i] - values[i])});
+    value =
+        std::max({value, std::abs(gl_values[i] - values[i]), std::abs(only_values[i] - values[i])});
     for (int a = 0; a < 3; ++a)
       gradient = std::max(gradient, std::abs(gl_gradients[i][a] - gradients[i][a]));
     for (int a = 0; a < 6; ++a)
@@ -141,8 +141,7 @@ TEST_F(GlTest, ResampleFillsTheCpuGrid) {
   const CartesianVolume<float> cpu = resample(v, f, grid, all);
   const GlSpline<float> gpu(v, f, registry_glsl("m7", false));
   const CartesianVolume<float> gl = resample(
-      v, f, grid, all,
-      BatchEvaluate<float>([&gpu](std::span<const Vec3> p, std::span<float> out) {
+      v, f, grid, all, BatchEvaluate<float>([&gpu](std::span<const Vec3> p, std::span<float> out) {
         gpu.evaluate(p, out);
       }));
   ASSERT_EQ(gl.values.size(), cpu.values.size());
@@ -166,7 +165,8 @@ double agreement(const RgbBuffer& a, const RgbBuffer& b) {
 
 // The Marschner-Lobb volume of Fig. 8 (small), M7 after Q^II.
 LatticeVolume<double> ml_volume(const SplineFilter& f, int n) {
-  const LatticeGrid grid = cube_lattice_grid(f.lattice(), n, f.required_margin(PrefilterChoice::Q2));
+  const LatticeGrid grid =
+      cube_lattice_grid(f.lattice(), n, f.required_margin(PrefilterChoice::Q2));
   return prefilter(sample_lattice<double>(find_test_function("ml").value, grid),
                    f.prefilter(PrefilterChoice::Q2));
 }
@@ -221,8 +221,8 @@ TEST_F(GlTest, PointsOutsideTheVolumeGiveTheCpuPathsError) {
   const Reconstructor<float> cpu(v, f);
   const GlSpline<float> gpu(v, f, registry_glsl("m7", false));
   const Box inside = default_box(v, f);
-  for (const Vec3& bad : {Vec3{inside.min[0] - 3, 5, 5}, Vec3{1e30, 5, 5},
-                          Vec3{std::nan(""), 5, 5}}) {
+  for (const Vec3& bad :
+       {Vec3{inside.min[0] - 3, 5, 5}, Vec3{1e30, 5, 5}, Vec3{std::nan(""), 5, 5}}) {
     const std::vector<Vec3> points{{5, 5, 5}, {6, 6, 6}, bad, {7, 7, 7}};
     const std::string expected = cpu_error(cpu, points);
     ASSERT_NE(expected, "");
