@@ -70,6 +70,30 @@ REAL {5}_fetch(ivec3 j) {{
          glsl.text;
 }
 
+// The kernels' buffers (binding 2: the points or ray directions, then the results and a status per
+// invocation), their range of invocations, and the store of a value, gradient and Hessian (the
+// upper triangle xx xy xz yy yz zz) at results[at].
+std::string kernel_io(const char* input) {
+  return fmt::format(R"(
+layout(std430, binding = 2) readonly buffer Input {{ REAL {}[]; }};
+layout(std430, binding = 3) writeonly buffer Results {{ REAL results[]; }};
+layout(std430, binding = 4) writeonly buffer Status {{ int status[]; }};
+uniform int base;
+uniform int count;
+void boxgen_store(int at, REAL v, VEC3 g, MAT3 h) {{
+  results[at] = v;
+  for (int i = 0; i < 3; ++i) results[at + 1 + i] = g[i];
+  results[at + 4] = h[0][0];
+  results[at + 5] = h[1][0];
+  results[at + 6] = h[2][0];
+  results[at + 7] = h[1][1];
+  results[at + 8] = h[2][1];
+  results[at + 9] = h[2][2];
+}}
+)",
+                     input);
+}
+
 // The batch kernel of one order (0, 1, 2: value, + gradient, + Hessian; kFetchFloor: the same
 // number of samples read around the point and summed). Points in lattice coordinates.
 std::string batch_kernel(const std::string& name, int order) {
@@ -85,14 +109,8 @@ std::string batch_kernel(const std::string& name, int order) {
   } else if (order == 2) {
     body = fmt::format(R"(  VEC3 g;
   MAT3 h;
-  results[10 * p] = {}_value_gradient_hessian(x, g, h);
-  for (int i = 0; i < 3; ++i) results[10 * p + 1 + i] = g[i];
-  results[10 * p + 4] = h[0][0];
-  results[10 * p + 5] = h[1][0];
-  results[10 * p + 6] = h[2][0];
-  results[10 * p + 7] = h[1][1];
-  results[10 * p + 8] = h[2][1];
-  results[10 * p + 9] = h[2][2];
+  REAL v = {}_value_gradient_hessian(x, g, h);
+  boxgen_store(10 * p, v, g, h);
 )",
                        name);
   } else {  // the floor: a compact box of stored samples next to the point, all cosets
@@ -108,12 +126,7 @@ std::string batch_kernel(const std::string& name, int order) {
 )",
                        name);
   }
-  return fmt::format(R"(
-layout(std430, binding = 2) readonly buffer Points {{ REAL points[]; }};
-layout(std430, binding = 3) writeonly buffer Results {{ REAL results[]; }};
-layout(std430, binding = 4) writeonly buffer Status {{ int status[]; }};
-uniform int base;
-uniform int count;
+  return kernel_io("points") + fmt::format(R"(
 void main() {{
   int p = base + int(gl_GlobalInvocationID.x);
   if (p >= count) return;
@@ -121,19 +134,14 @@ void main() {{
 {}  status[p] = outside_volume ? 1 : 0;
 }}
 )",
-                     body);
+                                           body);
 }
 
 // The ray caster of render.h (RayCaster::cast) on the GPU, one invocation per ray: clip to the
 // box, march by the step, bisect the first crossing, evaluate there. Status bits: 1 hit, 2 the
 // ray enters the solid through a face of the box or the cut-away, 4 a fetch outside the volume.
 std::string march_kernel(const std::string& name) {
-  return fmt::format(R"(
-layout(std430, binding = 2) readonly buffer Directions {{ REAL directions[]; }};
-layout(std430, binding = 3) writeonly buffer Results {{ REAL results[]; }};
-layout(std430, binding = 4) writeonly buffer Status {{ int status[]; }};
-uniform int base;
-uniform int count;
+  return kernel_io("directions") + fmt::format(R"(
 uniform VEC3 eye, box_min, box_max, mid, origin, spacing;
 uniform REAL size, step, iso, eps;
 uniform int cutaway;
@@ -209,19 +217,13 @@ void main() {{
   if (flags != 0) {{
     VEC3 g;
     MAT3 h;
-    results[at + 1] = {0}_value_gradient_hessian((eye + d * t - origin) / spacing, g, h);
-    for (int i = 0; i < 3; ++i) results[at + 2 + i] = g[i];
-    results[at + 5] = h[0][0];
-    results[at + 6] = h[1][0];
-    results[at + 7] = h[2][0];
-    results[at + 8] = h[1][1];
-    results[at + 9] = h[2][1];
-    results[at + 10] = h[2][2];
+    REAL v = {0}_value_gradient_hessian((eye + d * t - origin) / spacing, g, h);
+    boxgen_store(at + 1, v, g, h);
   }}
   status[p] = flags | (outside_volume ? 4 : 0);
 }}
 )",
-                     name, kMarchStride);
+                                               name, kMarchStride);
 }
 
 // A storage buffer of `bytes` (at least 4) holding `data` (or nothing), bound at `binding`.
@@ -352,7 +354,7 @@ unsigned GlSpline<T>::program(int kind) const {
 // Runs the bound program over `count` invocations in dispatches of at most kMaxGroups groups and
 // waits for them.
 template <class T>
-void GlSpline<T>::dispatch(unsigned p, std::size_t count, int) const {
+void GlSpline<T>::dispatch(unsigned p, std::size_t count) const {
   glUniform1i(glGetUniformLocation(p, "count"), static_cast<GLint>(count));
   const std::size_t per = static_cast<std::size_t>(kMaxGroups) * kLocalSize;
   for (std::size_t base = 0; base < count; base += per) {
@@ -391,7 +393,7 @@ void GlSpline<T>::run(int order) const {
   const unsigned p = program(order);
   const unsigned buffers[] = {points_, results_, status_};
   for (unsigned b = 0; b < 3; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2 + b, buffers[b]);
-  dispatch(p, uploaded_, order);
+  dispatch(p, uploaded_);
 }
 
 template <class T>
@@ -488,7 +490,7 @@ std::vector<MarchedRay> GlSpline<T>::march(const Vec3& eye, std::span<const Vec3
   // 1e-6, about its resolution of t.
   uniform_real(p, "eps", dbl ? 1e-9 : 1e-6, dbl);
   glUniform1i(glGetUniformLocation(p, "cutaway"), o.cutaway ? 1 : 0);
-  dispatch(p, n, kMarch);
+  dispatch(p, n);
   std::vector<T> results(kMarchStride * n);
   std::vector<int> status(n);
   read_buffer(results_, results);

@@ -84,7 +84,7 @@ class GlSpline {
 
  private:
   unsigned program(int kind) const;
-  void dispatch(unsigned program, std::size_t count, int order) const;
+  void dispatch(unsigned program, std::size_t count) const;
   [[noreturn]] void throw_point_error(std::span<const Vec3> points, std::size_t index) const;
 
   const LatticeVolume<T>* volume_;
