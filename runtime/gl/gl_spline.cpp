@@ -368,7 +368,7 @@ void GlSpline<T>::dispatch(unsigned p, std::size_t count) const {
 }
 
 template <class T>
-void GlSpline<T>::upload(std::span<const Vec3> points) {
+void GlSpline<T>::upload(std::span<const Vec3> points) const {
   const std::size_t n = points.size();
   if (n > static_cast<std::size_t>(INT_MAX) / 10 ||
       static_cast<double>(n) * 10 * sizeof(T) > static_cast<double>(storage_limit()))
@@ -425,13 +425,12 @@ void GlSpline<T>::evaluate(std::span<const Vec3> points, std::span<T> values,
   const std::size_t chunk = std::max<std::size_t>(
       1, std::min<std::size_t>(std::size_t{1} << 22,
                                static_cast<std::size_t>(storage_limit()) / (10 * sizeof(T))));
-  auto* self = const_cast<GlSpline*>(this);  // the device buffers are scratch, not state
   std::vector<T> results;
   std::vector<int> status;
   for (std::size_t first = 0; first < points.size(); first += chunk) {
     const std::size_t n = std::min(chunk, points.size() - first);
     const std::span<const Vec3> part = points.subspan(first, n);
-    self->upload(part);
+    upload(part);
     run(order);
     results.resize(stride * n);
     status.resize(n);
@@ -464,10 +463,9 @@ std::vector<MarchedRay> GlSpline<T>::march(const Vec3& eye, std::span<const Vec3
   std::vector<T> packed(3 * n);
   for (std::size_t i = 0; i < n; ++i)
     for (int a = 0; a < 3; ++a) packed[3 * i + a] = static_cast<T>(directions[i][a]);
-  auto* self = const_cast<GlSpline*>(this);
-  self->points_ = storage_buffer(points_, 2, packed.data(), packed.size() * sizeof(T));
-  self->results_ = storage_buffer(results_, 3, nullptr, kMarchStride * n * sizeof(T));
-  self->status_ = storage_buffer(status_, 4, nullptr, n * sizeof(int));
+  points_ = storage_buffer(points_, 2, packed.data(), packed.size() * sizeof(T));
+  results_ = storage_buffer(results_, 3, nullptr, kMarchStride * n * sizeof(T));
+  status_ = storage_buffer(status_, 4, nullptr, n * sizeof(int));
   const unsigned p = program(kMarch);
   Vec3 mid, diagonal;
   for (int a = 0; a < 3; ++a) {

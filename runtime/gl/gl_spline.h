@@ -67,7 +67,7 @@ class GlSpline {
   // (0 value, 1 + gradient, 2 + Hessian; kFetchFloor: the same number of samples read and summed
   // per point with no arithmetic) run and waited for, the results left on the device.
   static constexpr int kFetchFloor = -1;
-  void upload(std::span<const Vec3> points);
+  void upload(std::span<const Vec3> points) const;
   void run(int order) const;
 
   // One ray per direction from `eye` (directions of unit length): the first crossing into the
@@ -92,6 +92,7 @@ class GlSpline {
   GlslEvaluator glsl_;
   int stencil_size_ = 0;
   unsigned samples_ = 0, lattice_table_ = 0;
+  // Scratch buffers of the batches and rays (const calls reuse them; one thread uses the device).
   mutable unsigned points_ = 0, results_ = 0, status_ = 0;
   mutable std::size_t uploaded_ = 0;
   mutable std::vector<unsigned> programs_;
