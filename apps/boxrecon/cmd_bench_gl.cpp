@@ -113,7 +113,7 @@ int run_gl_bench(const BenchOptions& o) {
     fmt::print("{}\n", result.dump());
     return 0;
   }
-  fmt::print("{}{}\n", boxgen::app::gl_device_line(), note);
+  fmt::print("{}\n", boxgen::app::gl_device_line());
   fmt::print("{}\n", result["volume"].get<std::string>());
   for (const auto& [name, r] : result["evaluations_per_second"].items())
     fmt::print("{:<4} GL {:.3g}/s random, {:.3g}/s rays; CPU {:.3g}/s random, {:.3g}/s rays{}\n",
