@@ -57,7 +57,10 @@ RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, const RenderO
   if (q != PrefilterChoice::None) volume = prefilter(volume, rf.prefilter(q));
   const Box box = args.volume.empty() ? cube : default_box(volume, rf);
   if (boxgen::app::parse_device(args.device) == boxgen::app::Device::Gl)
-    return gl::render_isosurface(volume, rf, box, o, args.precision == "double");
+    return gl::render_isosurface(
+        volume, rf, box, o,
+        boxgen::app::glsl_for(rf, args.filter, args.lattice, args.precision == "double"),
+        args.precision == "double");
   return render_isosurface(volume, rf, box, o);
 }
 
@@ -121,7 +124,6 @@ int run_render() {
     throw std::invalid_argument(
         "the CPU renderer works in double: --precision float needs "
         "--device gl");
-  if (on_gl) (void)gl::registry_glsl(rf.name(), args.precision == "double");
   if (!(args.step >= 0) || !std::isfinite(args.step))
     throw std::invalid_argument("--step must be >= 0");
   // An unwritable -o, or one that is the input volume, fails before the work.

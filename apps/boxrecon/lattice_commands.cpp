@@ -70,7 +70,6 @@ int run_eval(const std::string& filter, const std::string& lattice, const std::s
              bool hessian, const NrrdReadLimits& limits, Device device, bool verbose) {
   const SplineFilter f = filter_from(filter, lattice);
   const PrefilterChoice q = parse_prefilter(pre);
-  if (device == Device::Gl) (void)gl::registry_glsl(f.name(), sizeof(T) == 8);  // before reading
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
   const auto points = read_points_file(points_path);
   std::vector<T> values(points.size());
@@ -79,7 +78,7 @@ int run_eval(const std::string& filter, const std::string& lattice, const std::s
   const Reconstructor<T> spline(volume, f);
   if (device == Device::Gl) {
     if (verbose) std::cerr << gl_device_line() << '\n';
-    const gl::GlSpline<T> gpu(volume, f, gl::registry_glsl(f.name(), sizeof(T) == 8));
+    const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, lattice, sizeof(T) == 8));
     gpu.evaluate(points, values, gradients, hessians);
   } else {
     spline.evaluate(points, values, gradients, hessians);
@@ -157,7 +156,6 @@ int run_resample(const std::string& filter, const std::string& lattice, const st
                  const NrrdReadLimits& limits, Device device, bool verbose) {
   const SplineFilter f = filter_from(filter, lattice);
   const PrefilterChoice q = parse_prefilter(pre);
-  if (device == Device::Gl) (void)gl::registry_glsl(f.name(), sizeof(T) == 8);
   if (n < 2 || n > kMaxResampleN)
     throw std::invalid_argument(
         fmt::format("--n must be between 2 and {}, got {}", kMaxResampleN, n));
@@ -173,7 +171,7 @@ int run_resample(const std::string& filter, const std::string& lattice, const st
     return 0;
   }
   if (verbose) std::cerr << gl_device_line() << '\n';
-  const gl::GlSpline<T> gpu(volume, f, gl::registry_glsl(f.name(), sizeof(T) == 8));
+  const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, lattice, sizeof(T) == 8));
   write_cartesian_nrrd(
       output, resample(volume, f, grid, all,
                        BatchEvaluate<T>([&gpu](std::span<const Vec3> points, std::span<T> values) {

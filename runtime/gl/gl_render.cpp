@@ -46,13 +46,14 @@ LatticeVolume<float> float_volume(const LatticeVolume<double>& volume) {
 }
 
 RgbBuffer render_isosurface(const LatticeVolume<double>& volume, const SplineFilter& f,
-                            const Box& box, const RenderOptions& o, bool double_precision) {
+                            const Box& box, const RenderOptions& o, const GlslEvaluator& glsl,
+                            bool double_precision) {
   if (double_precision) {
-    const GlSpline<double> spline(volume, f, registry_glsl(f.name(), true));
+    const GlSpline<double> spline(volume, f, glsl);
     return render_isosurface(spline, box, o);
   }
   const LatticeVolume<float> single = float_volume(volume);
-  const GlSpline<float> spline(single, f, registry_glsl(f.name(), false));
+  const GlSpline<float> spline(single, f, glsl);
   return render_isosurface(spline, box, o);
 }
 

@@ -14,9 +14,11 @@ template <class T>
 RgbBuffer render_isosurface(const GlSpline<T>& spline, const Box& box,
                             const RenderOptions& options);
 
-// The volume in the GPU's precision (float unless double_precision) and rendered there.
+// The volume rendered with `glsl` (f's evaluator, emitted in double precision when
+// double_precision, else in float: the volume's samples are rounded to float first).
 RgbBuffer render_isosurface(const LatticeVolume<double>& volume, const SplineFilter& f,
-                            const Box& box, const RenderOptions& options, bool double_precision);
+                            const Box& box, const RenderOptions& options, const GlslEvaluator& glsl,
+                            bool double_precision);
 
 // A double volume as float (samples rounded as to_sample does).
 LatticeVolume<float> float_volume(const LatticeVolume<double>& volume);

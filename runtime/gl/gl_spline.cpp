@@ -281,8 +281,8 @@ GlslEvaluator registry_glsl(const std::string& name, bool double_precision) {
     names += fmt::format("{}{}", i ? ", " : "", r.name);
   }
   throw GlError(fmt::format(
-      "--device gl has the GLSL of the registry's filters ({}), not of {}: emit it with "
-      "`boxgen emit SPEC --name NAME --target glsl` and use the GL device's API (docs/gpu.md)",
+      "this build embeds the GLSL of the registry's filters ({}), not of {}: a SPEC's comes from "
+      "loader::load_glsl, a file of `boxgen emit --target glsl` from read_glsl",
       names, name));
 }
 

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -87,6 +89,36 @@ TEST_F(GlCliTest, ResampleAndRenderWriteTheirFiles) {
   char signature[8] = {};
   png.read(signature, 8);
   EXPECT_EQ(std::string(signature + 1, 3), "PNG");
+}
+
+// A filter from a SPEC no preset has (label slow: its first use derives and compiles, about 15 s):
+// its GLSL comes from the loader's cache, and eval on the GL device prints the CPU's numbers.
+TEST_F(GlCliTest, SlowSpecFilterEvaluatesOnTheGlDevice) {
+  const std::string spec = "1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 2,0,0; 0,2,0";
+  const std::string cache = file("cache");
+  ::setenv("BOXGEN_CACHE_DIR", cache.c_str(), 1);  // the child processes inherit it
+  const auto run = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args{"eval",         "--filter", spec,
+                                  "--lattice",    "bcc",      "--volume",
+                                  file("v.nrrd"), "--points", file("points.txt"),
+                                  "--gradient",   "--quiet"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return boxrecon(args, {}, std::chrono::seconds(600 * kSlowdown));
+  };
+  const ProcessResult cpu = run({"--precision", "float"});
+  const ProcessResult gl = run({"--device", "gl"});
+  ::unsetenv("BOXGEN_CACHE_DIR");
+  ASSERT_EQ(cpu.exit_code, 0) << cpu.err;
+  ASSERT_EQ(gl.exit_code, 0) << gl.err;
+  const std::vector<double> a = numbers(cpu.out), b = numbers(gl.out);
+  ASSERT_EQ(a.size(), 4u * 4u);
+  ASSERT_EQ(b.size(), a.size());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    EXPECT_NEAR(b[i], a[i], 1e-5 * std::max(1.0, std::abs(a[i]))) << i;
+  int glsl_files = 0;  // float and double, written with the shared object
+  for (const auto& entry : std::filesystem::directory_iterator(cache))
+    glsl_files += entry.path().extension() == ".glsl";
+  EXPECT_EQ(glsl_files, 2);
 }
 
 TEST_F(GlCliTest, ABadDeviceIsOneLine) {

@@ -182,11 +182,12 @@ TEST_F(GlTest, RenderAgreesWithTheCpuRenderer) {
     o.cutaway = true;
     o.shading = curvature ? Shading::Curvature : Shading::Normal;
     const RgbBuffer cpu = runtime::render_isosurface(v, m7, cube, o);
-    const RgbBuffer single = gl::render_isosurface(v, m7, cube, o, false);
+    const RgbBuffer single =
+        gl::render_isosurface(v, m7, cube, o, registry_glsl("m7", false), false);
     ASSERT_EQ(single.pixels.size(), cpu.pixels.size());
     EXPECT_GE(agreement(cpu, single), 0.98) << "curvature " << curvature;
     if (curvature) {  // double on the GPU: the CPU's arithmetic, the same picture
-      const RgbBuffer dbl = gl::render_isosurface(v, m7, cube, o, true);
+      const RgbBuffer dbl = gl::render_isosurface(v, m7, cube, o, registry_glsl("m7", true), true);
       EXPECT_GE(agreement(cpu, dbl), 0.999);
     }
   }
@@ -198,10 +199,11 @@ TEST_F(GlTest, RenderRefusesWhatTheCpuRendererRefuses) {
   const Box cube{{-1, -1, -1}, {1, 1, 1}};
   RenderOptions o;
   o.width = 0;
-  EXPECT_THROW(gl::render_isosurface(v, m7, cube, o, false), std::invalid_argument);
+  const GlslEvaluator glsl = registry_glsl("m7", false);
+  EXPECT_THROW(gl::render_isosurface(v, m7, cube, o, glsl, false), std::invalid_argument);
   o.width = 8;
   o.iso = std::nan("");
-  EXPECT_THROW(gl::render_isosurface(v, m7, cube, o, false), std::invalid_argument);
+  EXPECT_THROW(gl::render_isosurface(v, m7, cube, o, glsl, false), std::invalid_argument);
 }
 
 // The CPU path's message for a point it cannot evaluate, or "" when it can.
