@@ -14,6 +14,8 @@
 //   boxrecon compare --reference IN --volume LAT --filter F [--prefilter P] [--mask-above V] ...
 //   boxrecon slice (--volume V --filter F[,F2,...] | --reference IN) --axis x|y|z --at W ... -o
 //   s.png boxrecon bench [--quick] [--json] [--points K] [--repeats R] [--filter F]
+// eval, resample, render and bench take --device cpu|gl: gl runs them on the GL device
+// (runtime/gl, OpenGL compute through EGL; docs/gpu.md).
 // Every command: --threads N caps the batch paths' threads, like BOXGEN_THREADS. Every filter on
 // every lattice goes through the one runtime API (runtime/reconstruction.h,
 // apps/boxrecon/lattice_commands.h).
