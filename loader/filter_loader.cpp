@@ -7,6 +7,8 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 
 #include "boxgen/version.h"
 #include "generator/derivation.h"
@@ -221,6 +223,26 @@ std::shared_ptr<const rt::FilterSource> open_entry(const CacheEntry& entry,
   return std::shared_ptr<const rt::FilterSource>(create(name.c_str(), &rt::batch_threads));
 }
 
+// The entry's GLSL evaluators (float, double) for the GL device (runtime/gl), written beside the
+// shared object: NAME.glsl and NAME_double.glsl with NAME = spec_KEY.
+fs::path glsl_file(const CacheEntry& entry, bool double_precision) {
+  return entry.file(double_precision ? "_double.glsl" : ".glsl");
+}
+void write_glsl(const CacheEntry& entry, const gen::Derivation& derivation, const EntryInfo& info) {
+  for (const bool dbl : {false, true}) {
+    gen::EmissionRequest request;
+    request.name = "spec_" + entry.key;
+    request.command =
+        fmt::format("the run-time filter \"{}\" --lattice \"{}\"", info.spec, info.rows);
+    request.target = gen::EmissionTarget::Glsl;
+    request.double_precision = dbl;
+    const std::string text = gen::emit(derivation, request).at(0).text;
+    support::write_output_file(glsl_file(entry, dbl), [&](std::FILE* f) {
+      return std::fwrite(text.data(), 1, text.size(), f) == text.size();
+    });
+  }
+}
+
 void build_entry(const CacheEntry& entry, const gen::BoxSplineSpec& spec, const EntryInfo& info,
                  const Toolchain& toolchain, const CompileOptions& options) {
   Progress progress(options.progress);
@@ -247,6 +269,7 @@ void build_entry(const CacheEntry& entry, const gen::BoxSplineSpec& spec, const 
     support::PendingOutput so(entry.file(".so"));
     compile_shared_object(toolchain, entry.file(".cpp"), so.temporary(), entry.file(".log"), what);
     so.commit();
+    write_glsl(entry, derivation, info);
     EntryInfo written = info;
     written.so_size = fs::file_size(entry.file(".so"));
     written.so_hash = hash_file(entry.file(".so")).value_or("");
@@ -254,6 +277,41 @@ void build_entry(const CacheEntry& entry, const gen::BoxSplineSpec& spec, const 
   } catch (const support::OutputFileError& e) {
     throw LoadError(fmt::format("cannot write the compiled filter into the cache: {}", e.what()));
   }
+}
+
+// A SPEC (not a registry name) and its place in the cache: load_filter and load_glsl share it.
+struct Resolved {
+  gen::BoxSplineSpec spec;
+  EntryInfo info;
+  CacheEntry entry;
+  Toolchain toolchain;
+};
+
+Resolved resolve(const std::string& spec_or_name, const std::optional<std::string>& lattice,
+                 const CompileOptions& options) {
+  gen::BoxSplineSpec spec = [&] {
+    try {
+      return gen::parse_spec(spec_or_name, lattice.value_or(""));
+    } catch (const gen::InputError& e) {
+      throw LoadError(e.what());
+    }
+  }();
+  if (spec.dimension() != 3)
+    throw LoadError(fmt::format(
+        "filter \"{}\" is {}-D: volumes are 3-D (boxgen analyzes and emits {}-D splines)",
+        spec_or_name.substr(0, 60), spec.dimension(), spec.dimension()));
+
+  Toolchain toolchain = find_toolchain(options);
+  EntryInfo info;
+  info.spec = spec.directions_text();
+  info.lattice = spec.lattice.name();
+  info.rows = rows_text(spec.lattice);
+  const std::string identity = fmt::format("abi {}\n{}\n{}\n{}\n{}", kAbiVersion, kVersion,
+                                           info.spec, info.rows, toolchain.identity());
+  CacheEntry entry{resolve_cache_dir(options.cache_dir), hash_text(identity)};
+  info.stamp =
+      fmt::format("boxgen-filter abi {}; boxgen {}; key {}", kAbiVersion, kVersion, entry.key);
+  return {std::move(spec), std::move(info), std::move(entry), std::move(toolchain)};
 }
 
 }  // namespace
@@ -274,28 +332,11 @@ rt::SplineFilter load_filter(const std::string& spec_or_name, std::optional<std:
     throw LoadError(fmt::format("filter {} is for the {} lattice, but --lattice is {}",
                                 registry->name(), registry->lattice().name(), given.name()));
   }
-  gen::BoxSplineSpec spec = [&] {
-    try {
-      return gen::parse_spec(spec_or_name, lattice.value_or(""));
-    } catch (const gen::InputError& e) {
-      throw LoadError(e.what());
-    }
-  }();
-  if (spec.dimension() != 3)
-    throw LoadError(fmt::format(
-        "filter \"{}\" is {}-D: volumes are 3-D (boxgen analyzes and emits {}-D splines)",
-        spec_or_name.substr(0, 60), spec.dimension(), spec.dimension()));
-
-  const Toolchain toolchain = find_toolchain(options);
-  EntryInfo info;
-  info.spec = spec.directions_text();
-  info.lattice = spec.lattice.name();
-  info.rows = rows_text(spec.lattice);
-  const std::string identity = fmt::format("abi {}\n{}\n{}\n{}\n{}", kAbiVersion, kVersion,
-                                           info.spec, info.rows, toolchain.identity());
-  CacheEntry entry{resolve_cache_dir(options.cache_dir), hash_text(identity)};
-  info.stamp =
-      fmt::format("boxgen-filter abi {}; boxgen {}; key {}", kAbiVersion, kVersion, entry.key);
+  const Resolved r = resolve(spec_or_name, lattice, options);
+  const gen::BoxSplineSpec& spec = r.spec;
+  const EntryInfo& info = r.info;
+  const CacheEntry& entry = r.entry;
+  const Toolchain& toolchain = r.toolchain;
   std::error_code ec;
   fs::create_directories(entry.dir, ec);
   if (ec)
@@ -317,6 +358,33 @@ rt::SplineFilter load_filter(const std::string& spec_or_name, std::optional<std:
   if (auto source = open_entry(entry, info.stamp, name, why)) return rt::SplineFilter(source);
   throw LoadError(
       fmt::format("the compiled filter {} cannot be loaded: {}", entry.file(".so").string(), why));
+}
+
+EmittedGlsl load_glsl(const std::string& spec, std::optional<std::string> lattice,
+                      bool double_precision, const CompileOptions& options) {
+  if (lattice && lattice->empty()) lattice.reset();
+  const Resolved r = resolve(spec, lattice, options);
+  const fs::path file = glsl_file(r.entry, double_precision);
+  std::error_code ec;
+  if (!fs::exists(file, ec)) {  // an entry built before the GL device: derive it again
+    fs::create_directories(r.entry.dir, ec);
+    const EntryLock lock(r.entry);
+    gen::DerivationOptions d;
+    d.max_seconds = options.max_seconds;
+    d.max_bytes = options.max_bytes;
+    try {
+      write_glsl(r.entry, gen::derive(r.spec, d), r.info);
+    } catch (const gen::InputError& e) {
+      throw LoadError(e.what());
+    } catch (const support::OutputFileError& e) {
+      throw LoadError(fmt::format("cannot write the GLSL evaluator into the cache: {}", e.what()));
+    }
+  }
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in) throw LoadError(fmt::format("cannot read the GLSL evaluator {}", file.string()));
+  return {"spec_" + r.entry.key, text.str()};
 }
 
 std::vector<CachedFilter> cached_filters(const CompileOptions& options) {

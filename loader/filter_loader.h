@@ -45,6 +45,16 @@ runtime::SplineFilter load_filter(const std::string& spec_or_name,
                                   std::optional<std::string> lattice = std::nullopt,
                                   const CompileOptions& options = {});
 
+// The GLSL evaluator of a SPEC filter (`boxgen emit --target glsl`, float or double precision)
+// for the GL device (runtime/gl): its functions' prefix (spec_KEY) and text, from the cache
+// entry of load_filter, written there with the shared object (or derived again for an entry
+// that predates it). Throws LoadError as load_filter. Registry names are the GL device's own.
+struct EmittedGlsl {
+  std::string name, text;
+};
+EmittedGlsl load_glsl(const std::string& spec, std::optional<std::string> lattice,
+                      bool double_precision, const CompileOptions& options = {});
+
 // The cache directory the options name (not created).
 std::filesystem::path cache_directory(const CompileOptions& options = {});
 

@@ -244,18 +244,32 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
   bool entry_face = false;
   h.hit = first_crossing(origin, d, t0, t1, h.t, entry_face);
   if (!h.hit) return h;
-  h.point = add(origin, scale(d, h.t));
+  const Vec3 point = add(origin, scale(d, h.t));
   Vec3 gradient{};
-  h.value = spline_(h.point, &gradient, nullptr);
+  const double value = spline_(point, &gradient, nullptr);
+  return hit_at(origin, d, h.t, entry_face, value, gradient, [&](Vec3& g) {
+    Hessian hs{};
+    spline_(point, &g, &hs);
+    return hs;
+  });
+}
+
+RayHit RayCaster::hit_at(const Vec3& origin, const Vec3& d, double t, bool entry_face, double value,
+                         const Vec3& gradient, const std::function<Hessian(Vec3&)>& hessian) const {
+  RayHit h;
+  h.hit = true;
+  h.t = t;
+  h.point = add(origin, scale(d, h.t));
+  h.value = value;
   // The isosurface when the point just before the hit is still in the region, else a cut or box
   // face.
   h.on_cut = entry_face || !in_region(add(origin, scale(d, h.t - 2e-9 * size_)));
   if (!h.on_cut && dot(gradient, gradient) > 0) {
     h.normal = normalise(scale(gradient, -1));  // s grows into the solid
     if (curvature_) {
-      Hessian hs{};
-      spline_(h.point, &gradient, &hs);
-      principal_curvatures(gradient, hs, h.k1, h.k2);
+      Vec3 g = gradient;
+      const Hessian hs = hessian(g);
+      principal_curvatures(g, hs, h.k1, h.k2);
     }
   } else {
     h.on_cut = true;
@@ -271,6 +285,16 @@ namespace {
 // scale).
 RgbBuffer render_with(const SplineFunction& spline, double spacing, const Box& box,
                       const RenderOptions& o) {
+  const RayCaster caster(spline, box, o.iso, render_step(o, spacing), o.cutaway,
+                         o.shading == Shading::Curvature);
+  const Vec3 eye = camera_for(box, o.camera).eye;
+  return shade_pixels(o, box, spacing,
+                      [&](int, int, const Vec3& d) { return caster.cast(eye, d); });
+}
+
+}  // namespace
+
+double render_step(const RenderOptions& o, double spacing) {
   if (o.width < 1 || o.height < 1 || o.width > 8192 || o.height > 8192)
     throw std::invalid_argument(
         fmt::format("image size must be 1..8192 per side, got {} x {}", o.width, o.height));
@@ -278,8 +302,11 @@ RgbBuffer render_with(const SplineFunction& spline, double spacing, const Box& b
     throw std::invalid_argument(
         fmt::format("the cut faces' value range [{}, {}] must be finite and not empty", o.value_lo,
                     o.value_hi));
-  const double step = o.step > 0 ? o.step : 0.5 * spacing;
-  const RayCaster caster(spline, box, o.iso, step, o.cutaway, o.shading == Shading::Curvature);
+  return o.step > 0 ? o.step : 0.5 * spacing;
+}
+
+RgbBuffer shade_pixels(const RenderOptions& o, const Box& box, double spacing,
+                       const PixelHit& hit) {
   const double curvature_scale = 5 * spacing;
   const Camera cam = camera_for(box, o.camera);
   const Vec3 light =
@@ -295,7 +322,7 @@ RgbBuffer render_with(const SplineFunction& spline, double spacing, const Box& b
       // Background: a light vertical gradient.
       Vec3 colour{0.93 - 0.12 * (y / static_cast<double>(o.height)),
                   0.94 - 0.1 * (y / static_cast<double>(o.height)), 0.96};
-      const RayHit h = caster.cast(cam.eye, d);
+      const RayHit h = hit(x, y, d);
       if (h.hit) {
         Vec3 base = h.on_cut ? value_colour((h.value - o.value_lo) / (o.value_hi - o.value_lo))
                              : Vec3{0.82, 0.80, 0.76};
@@ -322,8 +349,6 @@ RgbBuffer render_with(const SplineFunction& spline, double spacing, const Box& b
   if (bar) std::fprintf(stderr, "\n");
   return image;
 }
-
-}  // namespace
 
 RgbBuffer render_isosurface(const LatticeVolume<double>& volume, const SplineFilter& f,
                             const Box& box, const RenderOptions& o) {

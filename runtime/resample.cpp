@@ -106,7 +106,7 @@ Vec3 grid_point(const CartesianGrid& grid, int i, int j, int k) noexcept {
 // an error naming its point.
 template <class T>
 void fill_by_slices(CartesianVolume<T>& out, const CartesianGrid& grid, const GridBlock& block,
-                    const Reconstructor<T>& spline) {
+                    const Reconstructor<T>& spline, const BatchEvaluate<T>& evaluate) {
   const Sizes& n = out.sizes;
   const std::size_t slice = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]);
   out.values.resize(slice * static_cast<std::size_t>(n[2]));
@@ -123,7 +123,10 @@ void fill_by_slices(CartesianVolume<T>& out, const CartesianGrid& grid, const Gr
               grid_point(grid, block.begin[0] + i, block.begin[1] + j, block.begin[2] + k));
     const std::span<T> values(out.values.data() + out.index(0, 0, k0), points.size());
     try {
-      spline.evaluate(points, values);
+      if (evaluate)
+        evaluate(points, values);
+      else
+        spline.evaluate(points, values);
     } catch (const std::out_of_range& e) {
       throw std::out_of_range(fmt::format("resampling grid slices z = {}..{}: {}",
                                           block.begin[2] + k0, block.begin[2] + k1 - 1, e.what()));
@@ -196,6 +199,13 @@ CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& 
 template <class T>
 CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& f,
                             const CartesianGrid& grid, const GridBlock& block) {
+  return resample(volume, f, grid, block, BatchEvaluate<T>{});
+}
+
+template <class T>
+CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& f,
+                            const CartesianGrid& grid, const GridBlock& block,
+                            const BatchEvaluate<T>& evaluate) {
   CartesianVolume<T> out = empty_grid_volume<T>(grid);
   for (int a = 0; a < 3; ++a)
     if (!(0 <= block.begin[a] && block.begin[a] < block.end[a] && block.end[a] <= grid.sizes[a]))
@@ -216,7 +226,7 @@ CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& 
           "resampling grid {} leaves the region where the {} stencil lies inside the volume, {}",
           describe(corners), f.name(),
           describe({volume.to_world(region.lo), volume.to_world(region.hi)})));
-  fill_by_slices(out, grid, block, Reconstructor<T>(volume, f));
+  fill_by_slices(out, grid, block, Reconstructor<T>(volume, f), evaluate);
   return out;
 }
 
@@ -346,6 +356,12 @@ template CartesianVolume<float> resample<float>(const LatticeVolume<float>&, con
                                                 const CartesianGrid&, const GridBlock&);
 template CartesianVolume<double> resample<double>(const LatticeVolume<double>&, const SplineFilter&,
                                                   const CartesianGrid&, const GridBlock&);
+template CartesianVolume<float> resample<float>(const LatticeVolume<float>&, const SplineFilter&,
+                                                const CartesianGrid&, const GridBlock&,
+                                                const BatchEvaluate<float>&);
+template CartesianVolume<double> resample<double>(const LatticeVolume<double>&, const SplineFilter&,
+                                                  const CartesianGrid&, const GridBlock&,
+                                                  const BatchEvaluate<double>&);
 template LatticeVolume<float> resample_to_lattice<float>(const LatticeVolume<float>&,
                                                          const SplineFilter&, const LatticeGrid&);
 template LatticeVolume<double> resample_to_lattice<double>(const LatticeVolume<double>&,

@@ -20,6 +20,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <span>
 
 #include "runtime/cartesian_volume.h"
 #include "runtime/lattice_volume.h"
@@ -85,6 +87,14 @@ struct GridBlock {
 template <class T>
 CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& f,
                             const CartesianGrid& grid, const GridBlock& block);
+// resample() with another evaluator of the same spline on many points (the GL device's,
+// runtime/gl): it fills values for points as Reconstructor::evaluate does, and throws as it.
+template <class T>
+using BatchEvaluate = std::function<void(std::span<const Vec3> points, std::span<T> values)>;
+template <class T>
+CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& f,
+                            const CartesianGrid& grid, const GridBlock& block,
+                            const BatchEvaluate<T>& evaluate);
 // Subsampling onto another lattice (boxrecon subsample: a Cartesian scan onto BCC, as in the
 // paper's Fig. 10). The grid of `lattice` at spacing h (sample (c, i, j, k) at
 // o + h (d i + off_c)) with as many coset cells per axis as fit in `box`, centred in it. Throws
@@ -118,6 +128,14 @@ extern template CartesianVolume<float> resample<float>(const LatticeVolume<float
 extern template CartesianVolume<double> resample<double>(const LatticeVolume<double>&,
                                                          const SplineFilter&, const CartesianGrid&,
                                                          const GridBlock&);
+extern template CartesianVolume<float> resample<float>(const LatticeVolume<float>&,
+                                                       const SplineFilter&, const CartesianGrid&,
+                                                       const GridBlock&,
+                                                       const BatchEvaluate<float>&);
+extern template CartesianVolume<double> resample<double>(const LatticeVolume<double>&,
+                                                         const SplineFilter&, const CartesianGrid&,
+                                                         const GridBlock&,
+                                                         const BatchEvaluate<double>&);
 extern template LatticeVolume<float> resample_to_lattice<float>(const LatticeVolume<float>&,
                                                                 const SplineFilter&,
                                                                 const LatticeGrid&);

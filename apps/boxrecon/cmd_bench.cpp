@@ -31,23 +31,12 @@
 
 namespace boxrecon {
 
-namespace {
-
-using namespace boxgen::runtime;
-
-constexpr const char* kFilters[] = {"m7", "m8", "m12"};
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown";
-}
+using boxgen::runtime::Vec3;
 
 // A volume of random samples with unit spacing at the origin: lattice = world coordinates.
 template <class T>
-LatticeVolume<T> random_volume(int n) {
+boxgen::runtime::LatticeVolume<T> random_volume(int n) {
+  using namespace boxgen::runtime;
   LatticeVolume<T> volume(CosetLattice::bcc(), {n, n, n}, 1.0, {0, 0, 0});
   std::mt19937_64 rng(n);
   for (auto& s : volume.samples()) s = static_cast<T>(static_cast<double>(rng() % 4096) / 4096.0);
@@ -55,7 +44,7 @@ LatticeVolume<T> random_volume(int n) {
 }
 
 // Points whose stencils of every filter lie inside: [6, 2N - 7]^3 in lattice coordinates.
-std::vector<Vec3> random_points(int n, long count) {
+std::vector<boxgen::runtime::Vec3> random_points(int n, long count) {
   std::mt19937_64 rng(42);
   std::uniform_real_distribution<double> u(6.0, 2.0 * n - 7.0);
   std::vector<Vec3> out(count);
@@ -64,7 +53,7 @@ std::vector<Vec3> random_points(int n, long count) {
 }
 
 // The same number of points along parallel rays through the inner box, step 0.5 lattice units.
-std::vector<Vec3> ray_points(int n, long count) {
+std::vector<boxgen::runtime::Vec3> ray_points(int n, long count) {
   std::mt19937_64 rng(7);
   const double lo = 6.0, hi = 2.0 * n - 7.0;
   std::uniform_real_distribution<double> u(lo, hi);
@@ -79,6 +68,23 @@ std::vector<Vec3> ray_points(int n, long count) {
     }
   }
   return out;
+}
+
+template boxgen::runtime::LatticeVolume<float> random_volume<float>(int);
+template boxgen::runtime::LatticeVolume<double> random_volume<double>(int);
+
+namespace {
+
+using namespace boxgen::runtime;
+
+constexpr const char* kFilters[] = {"m7", "m8", "m12"};
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown";
 }
 
 // The fetch floor of a filter: per point the corner floor(x + c) and its base index (as the

@@ -3,6 +3,9 @@
 #pragma once
 #include <algorithm>
 #include <chrono>
+#include <vector>
+
+#include "runtime/lattice_volume.h"
 
 namespace boxrecon {
 
@@ -14,6 +17,16 @@ struct BenchOptions {
 };
 
 int run_bench(const BenchOptions& options);
+// bench --device gl (cmd_bench_gl.cpp): the GL device beside the CPU path in the same run.
+int run_gl_bench(const BenchOptions& options);
+
+// The benchmark's data (cmd_bench.cpp): N^3 x 2 BCC samples, random in [0, 1) (unit spacing at the
+// origin: lattice = world coordinates); `count` random points whose stencils of M7, M8 and M12 lie
+// inside; as many points along parallel rays, half a lattice unit apart.
+template <class T>
+boxgen::runtime::LatticeVolume<T> random_volume(int n);
+std::vector<boxgen::runtime::Vec3> random_points(int n, long count);
+std::vector<boxgen::runtime::Vec3> ray_points(int n, long count);
 
 // The wall time of the fastest of `repeats` calls of run(), in seconds: every timing of
 // `boxrecon bench` (with or without --filter) is taken this way.

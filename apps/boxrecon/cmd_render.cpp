@@ -12,8 +12,10 @@
 #include <string>
 
 #include "analysis/png_image.h"
+#include "apps/boxrecon/device_choice.h"
 #include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/sample_command.h"
+#include "runtime/gl/gl_render.h"
 #include "runtime/nifti_io.h"
 #include "runtime/prefilter.h"
 #include "runtime/render.h"
@@ -29,7 +31,7 @@ using namespace boxgen::runtime;
 
 struct RenderArgs {
   std::string function, volume, lattice, filter = "m7", prefilter = "q2", shading = "normal",
-                                         output;
+                                         output, device = "cpu", precision;
   int n = 0;
   std::optional<double> iso;  // default: 0.5 for --function, the data's for --volume
   bool cutaway = false, closeup = false, quiet = false;
@@ -74,6 +76,11 @@ RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, RenderOptions
   if (!args.volume.empty()) choose_from_data(volume, o);
   if (q != PrefilterChoice::None) volume = prefilter(volume, rf.prefilter(q));
   const Box box = args.volume.empty() ? cube : default_box(volume, rf);
+  if (boxgen::app::parse_device(args.device) == boxgen::app::Device::Gl)
+    return gl::render_isosurface(
+        volume, rf, box, o,
+        boxgen::app::glsl_for(rf, args.filter, args.lattice, args.precision == "double"),
+        args.precision == "double");
   return render_isosurface(volume, rf, box, o);
 }
 
@@ -116,6 +123,9 @@ CLI::App* add_render_command(CLI::App& app) {
   r->add_option("--step", args.step,
                 "ray-marching step in world units (default: half the lattice spacing)");
   r->add_flag("--quiet", args.quiet, "no progress bar");
+  boxgen::app::add_device_option(r, args.device, nullptr);
+  r->add_option("--precision", args.precision,
+                "with --device gl: float (default) | double; the CPU renders in double");
   r->add_option("-o,--output", args.output, "PNG to write")->required();
   return r;
 }
@@ -137,6 +147,14 @@ int run_render() {
   if (args.width < 1 || args.height < 1 || args.width > 8192 || args.height > 8192)
     throw std::invalid_argument(
         fmt::format("--width and --height must be 1..8192, got {} x {}", args.width, args.height));
+  const bool on_gl = boxgen::app::parse_device(args.device) == boxgen::app::Device::Gl;
+  if (!args.precision.empty() && args.precision != "float" && args.precision != "double")
+    throw std::invalid_argument("--precision must be float or double, got '" +
+                                args.precision.substr(0, 40) + "'");
+  if (!on_gl && args.precision == "float")
+    throw std::invalid_argument(
+        "the CPU renderer works in double: --precision float needs "
+        "--device gl");
   if (!(args.step >= 0) || !std::isfinite(args.step))
     throw std::invalid_argument("--step must be >= 0");
   // An unwritable -o, or one that is the input volume, fails before the work.
@@ -159,8 +177,9 @@ int run_render() {
   analysis::write_png(args.output, png);
   if (!args.quiet)
     std::cerr << fmt::format(
-        "rendered {} x {} in {:.2f} s\n", image.width, image.height,
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        "rendered {} x {} in {:.2f} s{}\n", image.width, image.height,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+        on_gl ? " on the " + boxgen::app::gl_device_line() : "");
   return 0;
 }
 

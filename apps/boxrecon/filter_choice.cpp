@@ -14,6 +14,16 @@ bool quiet_flag = false;
 
 void set_quiet(bool quiet) { quiet_flag = quiet; }
 
+runtime::gl::GlslEvaluator glsl_for(const runtime::SplineFilter& f, const std::string& filter,
+                                    const std::string& lattice, bool double_precision) {
+  if (f.registry_index() >= 0) return runtime::gl::registry_glsl(f.name(), double_precision);
+  loader::CompileOptions options;
+  options.progress = !quiet_flag && isatty(STDERR_FILENO) != 0;
+  loader::EmittedGlsl glsl = loader::load_glsl(
+      filter, lattice.empty() ? std::nullopt : std::optional(lattice), double_precision, options);
+  return {std::move(glsl.name), std::move(glsl.text)};
+}
+
 runtime::SplineFilter filter_from(const std::string& filter, const std::string& lattice) {
   loader::CompileOptions options;
   options.progress = !quiet_flag && isatty(STDERR_FILENO) != 0;

@@ -14,10 +14,12 @@
 #include <utility>
 
 #include "apps/boxrecon/cmd_bench.h"
+#include "apps/boxrecon/device_choice.h"
 #include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/sample_command.h"
 #include "runtime/batch_threads.h"
+#include "runtime/gl/gl_spline.h"
 #include "runtime/nifti_io.h"
 #include "runtime/points_file.h"
 #include "runtime/prefilter.h"
@@ -65,7 +67,7 @@ void print_evaluations(std::span<const T> values, std::span<const Vec3> gradient
 template <class T>
 int run_eval(const std::string& filter, const std::string& lattice, const std::string& pre,
              const std::string& volume_path, const std::string& points_path, bool gradient,
-             bool hessian, const NrrdReadLimits& limits) {
+             bool hessian, const NrrdReadLimits& limits, Device device, bool verbose) {
   const SplineFilter f = filter_from(filter, lattice);
   const PrefilterChoice q = parse_prefilter(pre);
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
@@ -74,7 +76,13 @@ int run_eval(const std::string& filter, const std::string& lattice, const std::s
   std::vector<Vec3> gradients(gradient || hessian ? points.size() : 0);
   std::vector<Hessian> hessians(hessian ? points.size() : 0);
   const Reconstructor<T> spline(volume, f);
-  spline.evaluate(points, values, gradients, hessians);
+  if (device == Device::Gl) {
+    if (verbose) std::cerr << gl_device_line() << '\n';
+    const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, lattice, sizeof(T) == 8));
+    gpu.evaluate(points, values, gradients, hessians);
+  } else {
+    spline.evaluate(points, values, gradients, hessians);
+  }
   spline.require_finite(points, values, gradients, hessians);
   print_evaluations<T>(values, gradients, hessians, gradient, hessian);
   return 0;
@@ -145,7 +153,7 @@ template <class T>
 int run_resample(const std::string& filter, const std::string& lattice, const std::string& pre,
                  const std::string& volume_path, const std::string& output, int n,
                  const std::vector<double>& min, const std::vector<double>& max,
-                 const NrrdReadLimits& limits) {
+                 const NrrdReadLimits& limits, Device device, bool verbose) {
   const SplineFilter f = filter_from(filter, lattice);
   const PrefilterChoice q = parse_prefilter(pre);
   if (n < 2 || n > kMaxResampleN)
@@ -156,7 +164,19 @@ int run_resample(const std::string& filter, const std::string& lattice, const st
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
   const Box box = min.empty() ? default_box(volume, f)
                               : Box{{min[0], min[1], min[2]}, {max[0], max[1], max[2]}};
-  write_cartesian_nrrd(output, resample(volume, f, grid_over(box, {n, n, n})));
+  const CartesianGrid grid = grid_over(box, {n, n, n});
+  const GridBlock all{{0, 0, 0}, grid.sizes};
+  if (device == Device::Cpu) {
+    write_cartesian_nrrd(output, resample(volume, f, grid, all));
+    return 0;
+  }
+  if (verbose) std::cerr << gl_device_line() << '\n';
+  const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, lattice, sizeof(T) == 8));
+  write_cartesian_nrrd(
+      output, resample(volume, f, grid, all,
+                       BatchEvaluate<T>([&gpu](std::span<const Vec3> points, std::span<T> values) {
+                         gpu.evaluate(points, values);
+                       })));
   return 0;
 }
 
@@ -221,17 +241,17 @@ template void print_evaluations<double>(std::span<const double>, std::span<const
                                         std::span<const Hessian>, bool, bool);
 template int run_eval<float>(const std::string&, const std::string&, const std::string&,
                              const std::string&, const std::string&, bool, bool,
-                             const NrrdReadLimits&);
+                             const NrrdReadLimits&, Device, bool);
 template int run_eval<double>(const std::string&, const std::string&, const std::string&,
                               const std::string&, const std::string&, bool, bool,
-                              const NrrdReadLimits&);
+                              const NrrdReadLimits&, Device, bool);
 template int run_resample<float>(const std::string&, const std::string&, const std::string&,
                                  const std::string&, const std::string&, int,
                                  const std::vector<double>&, const std::vector<double>&,
-                                 const NrrdReadLimits&);
+                                 const NrrdReadLimits&, Device, bool);
 template int run_resample<double>(const std::string&, const std::string&, const std::string&,
                                   const std::string&, const std::string&, int,
                                   const std::vector<double>&, const std::vector<double>&,
-                                  const NrrdReadLimits&);
+                                  const NrrdReadLimits&, Device, bool);
 
 }  // namespace boxgen::app

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/boxrecon/device_choice.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/reconstruction.h"
 
@@ -30,11 +31,13 @@ void print_evaluations(std::span<const T> values, std::span<const runtime::Vec3>
 inline constexpr int kMaxResampleN = 512;
 
 // eval: the filter's spline (after prefilter `pre`) at the points of a file, printed; a value
-// that is not finite is an error (std::domain_error), and nothing is printed.
+// that is not finite is an error (std::domain_error), and nothing is printed. On Device::Gl the
+// points are evaluated by the GL device (verbose: its renderer on stderr).
 template <class T>
 int run_eval(const std::string& filter, const std::string& lattice, const std::string& pre,
              const std::string& volume_path, const std::string& points_path, bool gradient,
-             bool hessian, const runtime::NrrdReadLimits& limits);
+             bool hessian, const runtime::NrrdReadLimits& limits, Device device = Device::Cpu,
+             bool verbose = false);
 
 // The error report of `error` (text or JSON, the BCC command's keys).
 struct ErrorReport {
@@ -53,12 +56,13 @@ int run_error(const std::string& function, int n, const std::string& filter,
               bool gradient, bool json);
 
 // resample: n^3 grid points over the box (default_box when min and max are empty), written as a
-// Cartesian NRRD; nothing is written when any value is not finite.
+// Cartesian NRRD; nothing is written when any value is not finite. Device as for run_eval.
 template <class T>
 int run_resample(const std::string& filter, const std::string& lattice, const std::string& pre,
                  const std::string& volume_path, const std::string& output, int n,
                  const std::vector<double>& min, const std::vector<double>& max,
-                 const runtime::NrrdReadLimits& limits);
+                 const runtime::NrrdReadLimits& limits, Device device = Device::Cpu,
+                 bool verbose = false);
 
 // bench --filter NAME: seconds per point of the filter's value (and value + gradient) at random
 // points of a volume of random samples on its lattice, one thread and all threads.

@@ -14,6 +14,8 @@
 //   boxrecon compare --reference IN --volume LAT --filter F [--prefilter P] [--mask-above V] ...
 //   boxrecon slice (--volume V --filter F[,F2,...] | --reference IN) --axis x|y|z --at W ... -o
 //   s.png boxrecon bench [--quick] [--json] [--points K] [--repeats R] [--filter F]
+// eval, resample, render and bench take --device cpu|gl: gl runs them on the GL device
+// (runtime/gl, OpenGL compute through EGL; docs/gpu.md).
 // Every command: --threads N caps the batch paths' threads, like BOXGEN_THREADS. Every filter on
 // every lattice goes through the one runtime API (runtime/reconstruction.h,
 // apps/boxrecon/lattice_commands.h).
@@ -35,6 +37,7 @@
 #include "apps/boxrecon/cmd_error_table.h"
 #include "apps/boxrecon/cmd_render.h"
 #include "apps/boxrecon/cmd_volumes.h"
+#include "apps/boxrecon/device_choice.h"
 #include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/lattice_commands.h"
@@ -42,6 +45,7 @@
 #include "apps/common/exit_status.h"
 #include "boxgen/version.h"
 #include "runtime/batch_threads.h"
+#include "runtime/gl/gl_context.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/spline_filter.h"
 #include "support/output_file.h"
@@ -56,13 +60,14 @@ struct InputError : std::invalid_argument {
 };
 
 // Exit code for an exception: 1 when the input was at fault (a bad argument or file, a point or
-// box outside the volume), 3 for anything else (an internal error).
+// box outside the volume) or the GL device cannot do the work (no context, a shader the driver
+// refuses, a volume beyond its limits), 3 for anything else (an internal error).
 int exit_code_for(const std::exception& e) {
-  const bool bad_input = dynamic_cast<const std::invalid_argument*>(&e) ||
-                         dynamic_cast<const std::out_of_range*>(&e) ||
-                         dynamic_cast<const std::domain_error*>(&e) ||
-                         dynamic_cast<const NrrdError*>(&e) ||
-                         dynamic_cast<const boxgen::support::OutputFileError*>(&e);
+  const bool bad_input =
+      dynamic_cast<const std::invalid_argument*>(&e) ||
+      dynamic_cast<const std::out_of_range*>(&e) || dynamic_cast<const std::domain_error*>(&e) ||
+      dynamic_cast<const NrrdError*>(&e) || dynamic_cast<const boxgen::runtime::gl::GlError*>(&e) ||
+      dynamic_cast<const boxgen::support::OutputFileError*>(&e);
   return bad_input ? 1 : 3;
 }
 
@@ -129,7 +134,11 @@ int run(int argc, char** argv) {
   eval->add_flag("--gradient", gradient, "also print the three partial derivatives");
   bool hessian = false;
   eval->add_flag("--hessian", hessian, "then the second derivatives h_xx h_xy h_xz h_yy h_yz h_zz");
-  eval->add_option("--precision", precision, "float | double");
+  auto* eval_precision = eval->add_option(
+      "--precision", precision, "float | double (default double; float with --device gl)");
+  std::string device = "cpu";
+  bool verbose = false;
+  boxgen::app::add_device_option(eval, device, &verbose);
   eval->add_flag("--allow-nonfinite", allow_nonfinite,
                  "accept NaN and infinite samples in the volume (refused by default)");
   auto* error = app.add_subcommand(
@@ -176,7 +185,9 @@ int run(int argc, char** argv) {
       resample->add_option("--max", box_max, "X Y Z: upper corner of the box (world)")->expected(3);
   min_option->needs(max_option);
   max_option->needs(min_option);
-  resample->add_option("--precision", precision, "float | double");
+  auto* resample_precision = resample->add_option(
+      "--precision", precision, "float | double (default double; float with --device gl)");
+  boxgen::app::add_device_option(resample, device, &verbose);
   resample->add_flag("--allow-nonfinite", allow_nonfinite,
                      "accept NaN and infinite samples in the volume (refused by default)");
   auto* render = boxgen::recon::add_render_command(app);
@@ -201,6 +212,7 @@ int run(int argc, char** argv) {
       ->add_option("--repeats", bench_options.repeats,
                    "runs per measurement; the fastest counts (default 3)")
       ->check(CLI::Range(1, 100));
+  boxgen::app::add_device_option(bench, device, nullptr);
   for (auto* command : {sample, eval, error, resample, bench}) add_quiet(command);
   auto* filters_command = app.add_subcommand(
       "filters", "list the registry's filters and the SPEC filters compiled into the cache");
@@ -209,24 +221,34 @@ int run(int argc, char** argv) {
     if (threads > 0) set_batch_threads(threads);
     boxgen::app::set_quiet(quiet || boxgen::recon::render_quiet());
     if (filters_command->parsed()) return boxgen::app::run_filters();
+    if (bench->parsed() && !bench_filter.empty() &&
+        boxgen::app::parse_device(device) == boxgen::app::Device::Gl)
+      throw InputError("bench --filter runs on the CPU; --device gl measures m7, m8 and m12");
     if (bench->parsed() && !bench_filter.empty())
       return boxgen::app::run_filter_bench(boxgen::app::filter_from(bench_filter, lattice),
                                            bench_options.points, bench_options.repeats,
                                            bench_options.json);
+    if (bench->parsed() && boxgen::app::parse_device(device) == boxgen::app::Device::Gl)
+      return boxrecon::run_gl_bench(bench_options);
     if (bench->parsed()) return boxrecon::run_bench(bench_options);
     if (precision != "float" && precision != "double")
       throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) +
                        "'");
     if (sample->parsed())
       return boxgen::app::run_sample(function, n, h, lattice, sample_filter, precision, output);
+    const boxgen::app::Device on = boxgen::app::parse_device(device);
+    // The GL device computes in float unless --precision double is given.
+    if (on == boxgen::app::Device::Gl && eval_precision->count() == 0 &&
+        resample_precision->count() == 0)
+      precision = "float";
     NrrdReadLimits limits;
     limits.allow_non_finite = allow_nonfinite;
     if (eval->parsed())
       return precision == "float"
                  ? boxgen::app::run_eval<float>(filter, lattice, pre, volume, points_path, gradient,
-                                                hessian, limits)
+                                                hessian, limits, on, verbose)
                  : boxgen::app::run_eval<double>(filter, lattice, pre, volume, points_path,
-                                                 gradient, hessian, limits);
+                                                 gradient, hessian, limits, on, verbose);
     if (render->parsed()) return boxgen::recon::run_render();
     if (subsample->parsed()) return boxgen::recon::run_subsample();
     if (compare->parsed()) return boxgen::recon::run_compare();
@@ -242,11 +264,12 @@ int run(int argc, char** argv) {
       return boxgen::app::run_error(function, n, filter, lattice, pre, count,
                                     boxgen::app::parse_seed(seed), gradient, json);
     if (resample->parsed())
-      return precision == "float"
-                 ? boxgen::app::run_resample<float>(filter, lattice, pre, volume, output,
-                                                    resample_n, box_min, box_max, limits)
-                 : boxgen::app::run_resample<double>(filter, lattice, pre, volume, output,
-                                                     resample_n, box_min, box_max, limits);
+      return precision == "float" ? boxgen::app::run_resample<float>(filter, lattice, pre, volume,
+                                                                     output, resample_n, box_min,
+                                                                     box_max, limits, on, verbose)
+                                  : boxgen::app::run_resample<double>(filter, lattice, pre, volume,
+                                                                      output, resample_n, box_min,
+                                                                      box_max, limits, on, verbose);
   } catch (const std::exception& e) {
     if (boxgen::app::is_output_error(e)) return boxgen::app::report_output_error(e, "boxrecon");
     const int code = exit_code_for(e);

@@ -1,11 +1,8 @@
 // The GLSL target on the CPU: the emitted evaluator (boxgen emit --target glsl, float or double)
 // in an OpenGL 4.5 compute shader on Mesa's llvmpipe through EGL with no display, one invocation
-// per point calling the three entry points. Without EGL the run fails, naming the packages to
-// install.
-#define EGL_EGLEXT_PROTOTYPES
+// per point calling the three entry points, in the GL device's context (runtime/gl). Without
+// EGL the run fails, naming the packages to install.
 #define GL_GLEXT_PROTOTYPES
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
 #include <GL/glcorearb.h>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -13,40 +10,11 @@
 #include <fstream>
 #include <sstream>
 
+#include "runtime/gl/gl_context.h"
 #include "tests/gpu/gpu_test_support.h"
 
 namespace boxgen::generator::gpu_test {
 namespace {
-
-const char* const kInstall =
-    "no OpenGL 4.5 through EGL (surfaceless Mesa): install libegl1, libopengl0 and "
-    "libgl1-mesa-dri (scripts/install-deps.sh)";
-
-// One surfaceless EGL display and OpenGL 4.5 core context for the process; "" or why not.
-std::string make_context_current() {
-  static const std::string status = [] {
-    const EGLDisplay display =
-        eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    EGLint major = 0, minor = 0;
-    if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor))
-      return std::string(kInstall);
-    eglBindAPI(EGL_OPENGL_API);
-    const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
-                                 4,
-                                 EGL_CONTEXT_MINOR_VERSION,
-                                 5,
-                                 EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                 EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                 EGL_NONE};
-    const EGLContext context =
-        eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
-    if (context == EGL_NO_CONTEXT ||
-        !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
-      return std::string(kInstall);
-    return std::string();
-  }();
-  return status;
-}
 
 // The compute shader: one point per invocation, the emitted file between the application's
 // fetch (from a box of samples in an SSBO) and main.
@@ -114,41 +82,21 @@ std::string read_text(const std::string& path) {
 }
 
 GLuint compute_program(const std::string& source, const std::string& what) {
-  const std::string status = make_context_current();
-  if (!status.empty()) {
-    ADD_FAILURE() << status;
+  try {
+    return runtime::gl::compile_compute(source, what);
+  } catch (const runtime::gl::GlError& e) {  // no context, or the driver's log
+    ADD_FAILURE() << e.what();
     return 0;
   }
-  const char* text = source.c_str();
-  const GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
-  glShaderSource(sh, 1, &text, nullptr);
-  glCompileShader(sh);
-  GLint ok = 0;
-  glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    std::string log(20000, '\0');
-    glGetShaderInfoLog(sh, static_cast<GLsizei>(log.size()), nullptr, log.data());
-    glDeleteShader(sh);
-    ADD_FAILURE() << what << " does not compile: " << log.c_str();
-    return 0;
-  }
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, sh);
-  glLinkProgram(program);
-  glDeleteShader(sh);  // the program keeps it
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    glDeleteProgram(program);
-    ADD_FAILURE() << what << " does not link";
-    return 0;
-  }
-  return program;
 }
 
 template <class Real>
 void evaluate_glsl(const Filter& f, const ExactCase& c, Evaluations* e) {
-  const std::string status = make_context_current();
-  ASSERT_TRUE(status.empty()) << status;
+  try {
+    (void)runtime::gl::device();  // the GL device's context (runtime/gl/gl_context.h)
+  } catch (const runtime::gl::GlError& error) {
+    FAIL() << error.what();
+  }
   constexpr bool dbl = sizeof(Real) == 8;
   const int n = c.ref.dimension();
   const auto& points = c.points;

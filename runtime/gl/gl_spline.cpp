@@ -1,0 +1,516 @@
+#include "runtime/gl/gl_spline.h"
+
+#define GL_GLEXT_PROTOTYPES
+#include <GL/glcorearb.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+
+#include "runtime/gl/registry_glsl.h"
+
+namespace boxgen::runtime::gl {
+
+namespace {
+
+constexpr int kLocalSize = 128;    // invocations per work group
+constexpr int kMaxGroups = 65535;  // the dispatch size every GL 4.3 device takes
+constexpr int kMarch = 3;          //                the ray caster
+constexpr int kMarchStride = 11;   // reals per ray: t, value, gradient, Hessian
+// Far outside the volume (lattice units), points are refused before the evaluator converts
+// floor(x) to an int (as emitted_spline.h's kFar); their error comes from the CPU path.
+constexpr double kFar = 64;
+
+// The shader's opening: the precision, the volume's storage buffers and the evaluator's fetch
+// (lattice point -> coset and cell of d Z^3 -> the storage order of lattice_volume.h), then the
+// emitted text. A fetch outside the stored samples reads 0 and marks the invocation.
+template <class T>
+std::string prelude(const LatticeVolume<T>& volume, const GlslEvaluator& glsl) {
+  constexpr bool dbl = std::is_same_v<T, double>;
+  return fmt::format(R"(#version 430
+#define REAL {0}
+#define VEC3 {1}vec3
+#define MAT3 {1}mat3
+layout(local_size_x = {2}) in;
+layout(std430, binding = 0) readonly buffer Samples {{ REAL samples[]; }};
+layout(std430, binding = 1) readonly buffer Cosets {{ int coset_of_residue[]; }};
+uniform ivec3 sizes;
+const int kPeriod = {3};
+const int kCosets = {4};
+bool outside_volume = false;
+int boxgen_floor_div(int a, int b) {{ return a >= 0 ? a / b : -((b - 1 - a) / b); }}
+// The position of lattice point j in the samples, or -1 where it is not stored.
+int boxgen_sample_index(ivec3 j) {{
+  ivec3 q = ivec3(boxgen_floor_div(j.x, kPeriod), boxgen_floor_div(j.y, kPeriod),
+                  boxgen_floor_div(j.z, kPeriod));
+  ivec3 r = j - kPeriod * q;
+  int c = coset_of_residue[r.x + kPeriod * (r.y + kPeriod * r.z)];
+  if (c < 0 || any(lessThan(q, ivec3(0))) || any(greaterThanEqual(q, sizes))) return -1;
+  return c + kCosets * (q.x + sizes.x * (q.y + sizes.y * q.z));
+}}
+REAL {5}_fetch(ivec3 j) {{
+  int k = boxgen_sample_index(j);
+  if (k < 0) {{
+    outside_volume = true;
+    return REAL(0);
+  }}
+  return samples[k];
+}}
+)",
+                     dbl ? "double" : "float", dbl ? "d" : "", kLocalSize, volume.period(),
+                     volume.coset_count(), glsl.name) +
+         glsl.text;
+}
+
+// The kernels' buffers (binding 2: the points or ray directions, then the results and a status per
+// invocation), their range of invocations, and the store of a value, gradient and Hessian (the
+// upper triangle xx xy xz yy yz zz) at results[at].
+std::string kernel_io(const char* input) {
+  return fmt::format(R"(
+layout(std430, binding = 2) readonly buffer Input {{ REAL {}[]; }};
+layout(std430, binding = 3) writeonly buffer Results {{ REAL results[]; }};
+layout(std430, binding = 4) writeonly buffer Status {{ int status[]; }};
+uniform int base;
+uniform int count;
+void boxgen_store(int at, REAL v, VEC3 g, MAT3 h) {{
+  results[at] = v;
+  for (int i = 0; i < 3; ++i) results[at + 1 + i] = g[i];
+  results[at + 4] = h[0][0];
+  results[at + 5] = h[1][0];
+  results[at + 6] = h[2][0];
+  results[at + 7] = h[1][1];
+  results[at + 8] = h[2][1];
+  results[at + 9] = h[2][2];
+}}
+)",
+                     input);
+}
+
+// The batch kernel of one order (0, 1, 2: value, + gradient, + Hessian; kFetchFloor: the same
+// number of samples read around the point and summed). Points in lattice coordinates.
+std::string batch_kernel(const std::string& name, int order) {
+  std::string body;
+  if (order == 0) {
+    body = fmt::format("  results[p] = {}_value(x);\n", name);
+  } else if (order == 1) {
+    body = fmt::format(R"(  VEC3 g;
+  results[4 * p] = {}_value_gradient(x, g);
+  for (int i = 0; i < 3; ++i) results[4 * p + 1 + i] = g[i];
+)",
+                       name);
+  } else if (order == 2) {
+    body = fmt::format(R"(  VEC3 g;
+  MAT3 h;
+  REAL v = {}_value_gradient_hessian(x, g, h);
+  boxgen_store(10 * p, v, g, h);
+)",
+                       name);
+  } else {  // the floor: a compact box of stored samples next to the point, all cosets
+    body = fmt::format(R"(  ivec3 q = ivec3(floor(x / REAL(kPeriod)));
+  int side = int(ceil(pow(float({0}_kStencilSize) / float(kCosets), 1.0 / 3.0)));
+  REAL sum = REAL(0);
+  for (int s = 0; s < {0}_kStencilSize; ++s) {{
+    int b = s / kCosets;
+    ivec3 k = clamp(q + ivec3(b % side, (b / side) % side, b / (side * side)), ivec3(0), sizes - 1);
+    sum += samples[s % kCosets + kCosets * (k.x + sizes.x * (k.y + sizes.y * k.z))];
+  }}
+  results[p] = sum;
+)",
+                       name);
+  }
+  return kernel_io("points") + fmt::format(R"(
+void main() {{
+  int p = base + int(gl_GlobalInvocationID.x);
+  if (p >= count) return;
+  VEC3 x = VEC3(points[3 * p], points[3 * p + 1], points[3 * p + 2]);
+{}  status[p] = outside_volume ? 1 : 0;
+}}
+)",
+                                           body);
+}
+
+// The ray caster of render.h (RayCaster::cast) on the GPU, one invocation per ray: clip to the
+// box, march by the step, bisect the first crossing, evaluate there. Status bits: 1 hit, 2 the
+// ray enters the solid through a face of the box or the cut-away, 4 a fetch outside the volume.
+std::string march_kernel(const std::string& name) {
+  return kernel_io("directions") + fmt::format(R"(
+uniform VEC3 eye, box_min, box_max, mid, origin, spacing;
+uniform REAL size, step, iso, eps;
+uniform int cutaway;
+bool in_region(VEC3 p) {{
+  return cutaway == 0 || !(p.z > mid.z && (p.x > mid.x || p.y > mid.y));
+}}
+bool inside(VEC3 p) {{
+  return in_region(p) && {0}_value((p - origin) / spacing) >= iso;
+}}
+bool clip_to_box(VEC3 o, VEC3 d, out REAL t0, out REAL t1) {{
+  t0 = REAL(0);
+  t1 = REAL(1e30);
+  for (int i = 0; i < 3; ++i) {{
+    if (abs(d[i]) < REAL(1e-30)) {{
+      if (o[i] < box_min[i] || o[i] > box_max[i]) return false;
+      continue;
+    }}
+    REAL a = (box_min[i] - o[i]) / d[i], b = (box_max[i] - o[i]) / d[i];
+    t0 = max(t0, min(a, b));
+    t1 = min(t1, max(a, b));
+  }}
+  return t1 > t0;
+}}
+// One call of inside() and one of the evaluator in the whole kernel: the driver inlines every
+// call, and each copy of the evaluator costs compile time (llvmpipe: seconds).
+void main() {{
+  int p = base + int(gl_GlobalInvocationID.x);
+  if (p >= count) return;
+  VEC3 d = VEC3(directions[3 * p], directions[3 * p + 1], directions[3 * p + 2]);
+  REAL t0, t1;
+  int flags = 0;
+  REAL t = REAL(0);
+  if (clip_to_box(eye, d, t0, t1)) {{
+    t0 += eps * size;
+    t1 -= eps * size;
+    // phase 0: the entry point; 1: marching by the step (k steps); 2: bisecting [lo, hi].
+    int phase = 0, k = 0;
+    REAL probe = t0, prev = t0, lo = t0, hi = t0;
+    for (int guard = 0; guard < (1 << 18); ++guard) {{
+      bool solid = inside(eye + d * probe);
+      if (phase == 0 && solid) {{
+        flags = 3;
+        t = t0;
+        break;
+      }}
+      if (phase == 1 && solid) {{
+        lo = prev;
+        hi = probe;
+        phase = 2;
+      }} else if (phase == 2) {{
+        if (solid) hi = probe; else lo = probe;
+      }} else {{  // outside: one more step
+        if (phase == 1 && probe >= t1) break;
+        phase = 1;
+        prev = probe;
+        ++k;
+        probe = min(t0 + REAL(k) * step, t1);
+        continue;
+      }}
+      REAL m = REAL(0.5) * (lo + hi);
+      if (!(hi - lo > eps * size) || m <= lo || m >= hi) {{  // float: the bracket stops shrinking
+        t = hi;
+        // Through a cut face when the point just before is outside the region (as the CPU's
+        // hit_at tests, with a gap float resolves).
+        flags = in_region(eye + d * (t - REAL(2) * eps * size)) ? 1 : 3;
+        break;
+      }}
+      probe = m;
+    }}
+  }}
+  int at = {1} * p;
+  results[at] = t;
+  if (flags != 0) {{
+    VEC3 g;
+    MAT3 h;
+    REAL v = {0}_value_gradient_hessian((eye + d * t - origin) / spacing, g, h);
+    boxgen_store(at + 1, v, g, h);
+  }}
+  status[p] = flags | (outside_volume ? 4 : 0);
+}}
+)",
+                                               name, kMarchStride);
+}
+
+// A storage buffer of `bytes` (at least 4) holding `data` (or nothing), bound at `binding`.
+unsigned storage_buffer(unsigned id, unsigned binding, const void* data, std::size_t bytes) {
+  if (id == 0) glGenBuffers(1, &id);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, id);
+  glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 4)),
+               data, GL_DYNAMIC_COPY);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, id);
+  return id;
+}
+
+template <class V>
+void read_buffer(unsigned id, std::vector<V>& out) {
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, id);
+  glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(out.size() * sizeof(V)),
+                     out.data());
+}
+
+void uniform_real(unsigned program, const char* name, double v, bool dbl) {
+  const GLint at = glGetUniformLocation(program, name);
+  if (dbl)
+    glUniform1d(at, v);
+  else
+    glUniform1f(at, static_cast<float>(v));
+}
+void uniform_vec3(unsigned program, const char* name, const Vec3& v, bool dbl) {
+  const GLint at = glGetUniformLocation(program, name);
+  if (dbl)
+    glUniform3d(at, v[0], v[1], v[2]);
+  else
+    glUniform3f(at, static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
+}
+
+// Lattice-frame derivatives d (gradient, then the Hessian's upper triangle) in world units, as
+// emitted_spline.h's to_world_derivatives: divided by the spacing of each axis.
+template <class T>
+void to_world(const T* d, const Vec3& h, Vec3& gradient, Hessian* hessian) {
+  for (int a = 0; a < 3; ++a) gradient[a] = static_cast<double>(d[a]) / h[a];
+  if (!hessian) return;
+  constexpr int kRow[6] = {0, 0, 0, 1, 1, 2}, kColumn[6] = {0, 1, 2, 1, 2, 2};
+  for (int i = 0; i < 6; ++i)
+    (*hessian)[i] = static_cast<double>(d[3 + i]) / (h[kRow[i]] * h[kColumn[i]]);
+}
+
+std::string mib(double bytes) { return fmt::format("{:.1f} MiB", bytes / (1 << 20)); }
+
+}  // namespace
+
+GlslEvaluator registry_glsl(const std::string& name, bool double_precision) {
+  std::string names;
+  for (int i = 0; i < kRegistryGlslCount; ++i) {
+    const RegistryGlsl& r = kRegistryGlsl[i];
+    if (name == r.name) return {name, double_precision ? r.double_text : r.float_text};
+    names += fmt::format("{}{}", i ? ", " : "", r.name);
+  }
+  throw GlError(fmt::format(
+      "this build embeds the GLSL of the registry's filters ({}), not of {}: a SPEC's comes from "
+      "loader::load_glsl, a file of `boxgen emit --target glsl` from read_glsl",
+      names, name));
+}
+
+GlslEvaluator read_glsl(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw GlError(fmt::format("cannot read the GLSL evaluator {}", path));
+  std::stringstream s;
+  s << in.rdbuf();
+  return {std::filesystem::path(path).stem().string(), s.str()};
+}
+
+template <class T>
+GlSpline<T>::GlSpline(const LatticeVolume<T>& volume, const SplineFilter& filter,
+                      GlslEvaluator glsl)
+    : volume_(&volume), cpu_(volume, filter), glsl_(std::move(glsl)), programs_(5, 0) {
+  const std::regex size_line(glsl_.name + R"(_kStencilSize = (\d+);)");
+  std::smatch m;
+  if (!std::regex_search(glsl_.text, m, size_line))
+    throw GlError(
+        fmt::format("the GLSL text of {} is not an emitted evaluator (no {}_kStencilSize)",
+                    glsl_.name, glsl_.name));
+  stencil_size_ = std::stoi(m[1]);
+  const DeviceInfo& info = device();
+  const double bytes = static_cast<double>(volume.sample_count()) * sizeof(T);
+  if (volume.sample_count() > static_cast<std::size_t>(INT_MAX) ||
+      bytes > static_cast<double>(storage_limit()))
+    throw GlError(fmt::format(
+        "the volume ({} samples, {}) exceeds the largest storage buffer of {} ({}): use --device "
+        "cpu or a smaller volume",
+        volume.sample_count(), mib(bytes), info.renderer,
+        mib(static_cast<double>(std::min<std::int64_t>(storage_limit(), INT_MAX)))));
+  const int d = volume.period();
+  std::vector<int> residues;  // x fastest: the shader's r.x + d (r.y + d r.z)
+  for (int z = 0; z < d; ++z)
+    for (int y = 0; y < d; ++y)
+      for (int x = 0; x < d; ++x) residues.push_back(volume.lattice().coset_of(x, y, z));
+  samples_ = storage_buffer(0, 0, volume.samples().data(), volume.sample_count() * sizeof(T));
+  lattice_table_ = storage_buffer(0, 1, residues.data(), residues.size() * sizeof(int));
+  check_gl("the volume's upload");
+}
+
+template <class T>
+GlSpline<T>::~GlSpline() {
+  for (unsigned p : programs_)
+    if (p) glDeleteProgram(p);
+  const unsigned buffers[] = {samples_, lattice_table_, points_, results_, status_};
+  for (unsigned b : buffers)
+    if (b) glDeleteBuffers(1, &b);
+}
+
+template <class T>
+unsigned GlSpline<T>::program(int kind) const {
+  unsigned& p = programs_[kind == kFetchFloor ? 0 : static_cast<std::size_t>(kind) + 1];
+  if (p == 0) {
+    const std::string kernel =
+        kind == kMarch ? march_kernel(glsl_.name) : batch_kernel(glsl_.name, kind);
+    p = compile_compute(
+        prelude(*volume_, glsl_) + kernel,
+        fmt::format("the GLSL evaluator {} ({})", glsl_.name, sizeof(T) == 8 ? "double" : "float"));
+  }
+  glUseProgram(p);
+  const Sizes& n = volume_->sizes();
+  glUniform3i(glGetUniformLocation(p, "sizes"), n[0], n[1], n[2]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, samples_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, lattice_table_);
+  return p;
+}
+
+// Runs the bound program over `count` invocations in dispatches of at most kMaxGroups groups and
+// waits for them.
+template <class T>
+void GlSpline<T>::dispatch(unsigned p, std::size_t count) const {
+  glUniform1i(glGetUniformLocation(p, "count"), static_cast<GLint>(count));
+  const std::size_t per = static_cast<std::size_t>(kMaxGroups) * kLocalSize;
+  for (std::size_t base = 0; base < count; base += per) {
+    glUniform1i(glGetUniformLocation(p, "base"), static_cast<GLint>(base));
+    const std::size_t n = std::min(per, count - base);
+    glDispatchCompute(static_cast<GLuint>((n + kLocalSize - 1) / kLocalSize), 1, 1);
+  }
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+  glFinish();
+  check_gl("a compute dispatch");
+}
+
+template <class T>
+void GlSpline<T>::upload(std::span<const Vec3> points) const {
+  const std::size_t n = points.size();
+  if (n > static_cast<std::size_t>(INT_MAX) / 10 ||
+      static_cast<double>(n) * 10 * sizeof(T) > static_cast<double>(storage_limit()))
+    throw GlError(fmt::format("{} points do not fit the device's storage buffers", n));
+  std::vector<T> lattice(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 x = volume_->to_lattice(points[i]);
+    for (int a = 0; a < 3; ++a)  // far or non-finite points: the CPU path names their error
+      lattice[3 * i + a] = std::isfinite(x[a]) && std::abs(x[a]) < (1 << 24)
+                               ? static_cast<T>(x[a])
+                               : static_cast<T>(-2 * kFar);
+  }
+  points_ = storage_buffer(points_, 2, lattice.data(), lattice.size() * sizeof(T));
+  results_ = storage_buffer(results_, 3, nullptr, 10 * n * sizeof(T));
+  status_ = storage_buffer(status_, 4, nullptr, n * sizeof(int));
+  uploaded_ = n;
+  check_gl("the points' upload");
+}
+
+template <class T>
+void GlSpline<T>::run(int order) const {
+  const unsigned p = program(order);
+  const unsigned buffers[] = {points_, results_, status_};
+  for (unsigned b = 0; b < 3; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2 + b, buffers[b]);
+  dispatch(p, uploaded_);
+}
+
+template <class T>
+void GlSpline<T>::throw_point_error(std::span<const Vec3> points, std::size_t index) const {
+  try {
+    Vec3 g;
+    Hessian h;
+    (void)cpu_.value(points[index], &g, &h);
+  } catch (const std::exception& e) {  // as the CPU batch reports it (emitted_spline.h)
+    throw std::out_of_range(fmt::format("point {}: {}", index + 1, e.what()));
+  }
+  const Vec3& p = points[index];
+  throw std::out_of_range(fmt::format(
+      "point {}: world point ({}, {}, {}) needs a sample outside the volume (on the GPU's "
+      "rounding of its coordinates)",
+      index + 1, p[0], p[1], p[2]));
+}
+
+template <class T>
+void GlSpline<T>::evaluate(std::span<const Vec3> points, std::span<T> values,
+                           std::span<Vec3> gradients, std::span<Hessian> hessians) const {
+  if (values.size() != points.size() || (!gradients.empty() && gradients.size() != points.size()) ||
+      (!hessians.empty() &&
+       (hessians.size() != points.size() || gradients.size() != points.size())))
+    throw std::invalid_argument("evaluate: output sizes differ from the number of points");
+  const int order = !hessians.empty() ? 2 : !gradients.empty() ? 1 : 0;
+  const std::size_t stride = order == 2 ? 10 : order == 1 ? 4 : 1;
+  // Batches that fit the device's storage blocks (results: 10 reals per point at most).
+  const std::size_t chunk = std::max<std::size_t>(
+      1, std::min<std::size_t>(std::size_t{1} << 22,
+                               static_cast<std::size_t>(storage_limit()) / (10 * sizeof(T))));
+  std::vector<T> results;
+  std::vector<int> status;
+  for (std::size_t first = 0; first < points.size(); first += chunk) {
+    const std::size_t n = std::min(chunk, points.size() - first);
+    const std::span<const Vec3> part = points.subspan(first, n);
+    upload(part);
+    run(order);
+    results.resize(stride * n);
+    status.resize(n);
+    read_buffer(results_, results);
+    read_buffer(status_, status);
+    check_gl("reading the results");
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3 x = volume_->to_lattice(part[i]);
+      const bool far = std::any_of(x.begin(), x.end(), [](double c) {
+        return !std::isfinite(c) || std::abs(c) >= (1 << 24);
+      });
+      if (status[i] != 0 || far) throw_point_error(points, first + i);
+      const T* r = &results[stride * i];
+      values[first + i] = r[0];
+      if (order >= 1)
+        to_world(r + 1, volume_->axis_spacing(), gradients[first + i],
+                 order == 2 ? &hessians[first + i] : nullptr);
+    }
+  }
+}
+
+template <class T>
+std::vector<MarchedRay> GlSpline<T>::march(const Vec3& eye, std::span<const Vec3> directions,
+                                           const MarchOptions& o) const {
+  constexpr bool dbl = std::is_same_v<T, double>;
+  const std::size_t n = directions.size();
+  if (n > static_cast<std::size_t>(INT_MAX) / kMarchStride ||
+      static_cast<double>(n) * kMarchStride * sizeof(T) > static_cast<double>(storage_limit()))
+    throw GlError(fmt::format("{} rays do not fit the device's storage buffers", n));
+  std::vector<T> packed(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) packed[3 * i + a] = static_cast<T>(directions[i][a]);
+  points_ = storage_buffer(points_, 2, packed.data(), packed.size() * sizeof(T));
+  results_ = storage_buffer(results_, 3, nullptr, kMarchStride * n * sizeof(T));
+  status_ = storage_buffer(status_, 4, nullptr, n * sizeof(int));
+  const unsigned p = program(kMarch);
+  Vec3 mid, diagonal;
+  for (int a = 0; a < 3; ++a) {
+    mid[a] = 0.5 * (o.box.min[a] + o.box.max[a]);
+    diagonal[a] = o.box.max[a] - o.box.min[a];
+  }
+  uniform_vec3(p, "eye", eye, dbl);
+  uniform_vec3(p, "box_min", o.box.min, dbl);
+  uniform_vec3(p, "box_max", o.box.max, dbl);
+  uniform_vec3(p, "mid", mid, dbl);
+  uniform_vec3(p, "origin", volume_->origin(), dbl);
+  uniform_vec3(p, "spacing", volume_->axis_spacing(), dbl);
+  uniform_real(
+      p, "size",
+      std::sqrt(diagonal[0] * diagonal[0] + diagonal[1] * diagonal[1] + diagonal[2] * diagonal[2]),
+      dbl);
+  uniform_real(p, "step", o.step, dbl);
+  uniform_real(p, "iso", o.iso, dbl);
+  // The CPU caster's tolerance (1e-9 of the diagonal) where double resolves it; float stops at
+  // 1e-6, about its resolution of t.
+  uniform_real(p, "eps", dbl ? 1e-9 : 1e-6, dbl);
+  glUniform1i(glGetUniformLocation(p, "cutaway"), o.cutaway ? 1 : 0);
+  dispatch(p, n);
+  std::vector<T> results(kMarchStride * n);
+  std::vector<int> status(n);
+  read_buffer(results_, results);
+  read_buffer(status_, status);
+  check_gl("reading the rays");
+  std::vector<MarchedRay> rays(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (status[i] & 4)
+      throw std::out_of_range(
+          "a ray of the render reads samples outside the volume: choose a box inside it");
+    MarchedRay& r = rays[i];
+    const T* x = &results[kMarchStride * i];
+    r.hit = (status[i] & 1) != 0;
+    r.face = (status[i] & 2) != 0;
+    r.t = static_cast<double>(x[0]);
+    r.value = static_cast<double>(x[1]);
+    if (r.hit) to_world(x + 2, volume_->axis_spacing(), r.gradient, &r.hessian);
+  }
+  return rays;
+}
+
+template class GlSpline<float>;
+template class GlSpline<double>;
+
+}  // namespace boxgen::runtime::gl

@@ -1,0 +1,104 @@
+// The GL device (docs/gpu.md "The GL device", docs/design.md §16): a volume of any lattice in a
+// shader storage buffer (all cosets, the storage order of lattice_volume.h) and an emitted GLSL
+// evaluator (`boxgen emit --target glsl`) compiled at run time into compute shaders that evaluate
+// batches of points (one invocation per point) and march isosurface rays (one per pixel). Float or
+// double as the volume's T. The contract is Reconstructor's (reconstruction.h): the same values
+// within the precision's rounding, the same errors (a point whose stencil leaves the volume is
+// std::out_of_range naming it; the message comes from the CPU path, which re-evaluates only the
+// failing point). No GL type appears here.
+#pragma once
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "runtime/gl/gl_context.h"
+#include "runtime/reconstruction.h"
+#include "runtime/resample.h"
+
+namespace boxgen::runtime::gl {
+
+// An emitted GLSL evaluator: the prefix of its functions (NAME_value, ...) and its text.
+struct GlslEvaluator {
+  std::string name;
+  std::string text;
+};
+
+// The GLSL of a registry filter as this build emitted it (float, or double precision); GlError
+// for a name outside the registry (a SPEC filter: give its emitted .glsl).
+GlslEvaluator registry_glsl(const std::string& name, bool double_precision);
+// A user's emitted NAME.glsl: the name is the file's stem. GlError if it cannot be read.
+GlslEvaluator read_glsl(const std::string& path);
+
+// What the GPU's march found along one ray: RayCaster::hit_at (render.h) finishes it on the CPU.
+struct MarchedRay {
+  bool hit = false;
+  bool face = false;  // through a face of the box or of the cut-away, not the isosurface
+  double t = 0, value = 0;
+  Vec3 gradient{};    // world units
+  Hessian hessian{};  // world units
+};
+
+// The caster's parameters (render.h: RayCaster), for the GPU's march.
+struct MarchOptions {
+  Box box;
+  double iso = 0.5, step = 0;
+  bool cutaway = false;
+};
+
+template <class T>
+class GlSpline {
+ public:
+  // Compiles nothing yet (each kernel on first use) but uploads the volume. Throws GlError when
+  // there is no GL context or the volume exceeds the device's storage block (or 2^31 samples),
+  // std::invalid_argument when the volume is not on the filter's lattice. The volume must outlive
+  // this object.
+  GlSpline(const LatticeVolume<T>& volume, const SplineFilter& filter, GlslEvaluator glsl);
+  ~GlSpline();
+  GlSpline(const GlSpline&) = delete;
+  GlSpline& operator=(const GlSpline&) = delete;
+
+  // Reconstructor::evaluate on the GPU: gradients and hessians empty (not computed) or as long as
+  // points (hessians need gradients).
+  void evaluate(std::span<const Vec3> points, std::span<T> values, std::span<Vec3> gradients = {},
+                std::span<Hessian> hessians = {}) const;
+
+  // For timing (boxrecon bench): the points uploaded once, then the kernel of the given order
+  // (0 value, 1 + gradient, 2 + Hessian; kFetchFloor: the same number of samples read and summed
+  // per point with no arithmetic) run and waited for, the results left on the device.
+  static constexpr int kFetchFloor = -1;
+  void upload(std::span<const Vec3> points) const;
+  void run(int order) const;
+
+  // One ray per direction from `eye` (directions of unit length): the first crossing into the
+  // solid {s >= iso} (minus the cut-away) as RayCaster::cast marches it, with the spline's value,
+  // gradient and Hessian there.
+  std::vector<MarchedRay> march(const Vec3& eye, std::span<const Vec3> directions,
+                                const MarchOptions& options) const;
+
+  const LatticeVolume<T>& volume() const noexcept { return *volume_; }
+  const GlslEvaluator& evaluator() const noexcept { return glsl_; }
+
+  // The fetches per point of the fetch floor: the largest stencil of the evaluator.
+  int stencil_size() const noexcept { return stencil_size_; }
+
+ private:
+  unsigned program(int kind) const;
+  void dispatch(unsigned program, std::size_t count) const;
+  [[noreturn]] void throw_point_error(std::span<const Vec3> points, std::size_t index) const;
+
+  const LatticeVolume<T>* volume_;
+  Reconstructor<T> cpu_;  // the errors' messages, and the filter's lattice check
+  GlslEvaluator glsl_;
+  int stencil_size_ = 0;
+  unsigned samples_ = 0, lattice_table_ = 0;
+  // Scratch buffers of the batches and rays (const calls reuse them; one thread uses the device).
+  mutable unsigned points_ = 0, results_ = 0, status_ = 0;
+  mutable std::size_t uploaded_ = 0;
+  mutable std::vector<unsigned> programs_;
+};
+
+extern template class GlSpline<float>;
+extern template class GlSpline<double>;
+
+}  // namespace boxgen::runtime::gl
