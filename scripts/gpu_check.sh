@@ -1,20 +1,25 @@
 #!/usr/bin/env bash
-# The GL device's checks on a machine with a GPU (docs/gpu.md "The GL device"): the renderer EGL
-# gives, the gl-label tests on it, and `boxrecon bench --device gl --json` (the issue's targets:
-# M7 float evaluations per second and over the fetch floor, ms per 1024 x 1024 render). Builds
-# nothing: BUILD_DIR is a release build made elsewhere (its binaries and their shared libraries
-# carried over; the machine brings its own GL driver and EGL vendor files). Under 4 minutes.
+# The checks that need a GPU (docs/gpu.md): the renderer EGL gives, the gl-label tests and the
+# GLSL exactness tests (gpu_tests) on it, `boxrecon bench --device gl --json` (M7 float
+# evaluations per second and over the fetch floor, ms per 1024 x 1024 render) and, where nvcc
+# exists, the emitted CUDA headers built by nvcc and run on the device against their host build
+# (tests/gpu/cuda_device_check.cu). Builds nothing else: BUILD_DIR is a release build made
+# elsewhere (its binaries and their shared libraries carried over; the machine brings its own GL
+# driver and EGL vendor files). Under 6 minutes.
 #
 #   scripts/gpu_check.sh BUILD_DIR [OUT_DIR]
 #
-# OUT_DIR (default ./gpu_check) receives renderer.txt, gl_tests.txt and bench.json.
+# OUT_DIR (default ./gpu_check) receives renderer.txt, gl_tests.txt, gpu_tests.txt, bench.json
+# and cuda.txt.
 set -uo pipefail
 
 build=${1:?usage: scripts/gpu_check.sh BUILD_DIR [OUT_DIR]}
 out=${2:-gpu_check}
 boxrecon=$build/apps/boxrecon
 gl_tests=$build/tests/gl/gl_tests
-for exe in "$boxrecon" "$gl_tests"; do
+gpu_tests=$build/tests/gpu/gpu_tests
+source_dir=$(cd "$(dirname "$0")/.." && pwd)
+for exe in "$boxrecon" "$gl_tests" "$gpu_tests"; do
   [[ -x $exe ]] || { echo "gpu_check: $exe is missing: build the release preset first" >&2; exit 1; }
   if ldd "$exe" | grep -q "not found"; then
     echo "gpu_check: $exe lacks shared libraries:" >&2
@@ -44,6 +49,25 @@ BOXRECON_UNDER_TEST=$boxrecon timeout 90 "$gl_tests" --gtest_brief=1 --gtest_fil
 echo "== boxrecon bench --device gl --json (GL beside the CPU, same run)"
 timeout 120 "$boxrecon" bench --device gl --json | tee "$out/bench.json"
 [[ ${PIPESTATUS[0]} -eq 0 ]] || status=1
+
+echo "== gpu-label exactness (gpu_tests: GLSL float and double on this renderer, CUDA host build)"
+timeout 180 "$gpu_tests" --gtest_brief=1 2>&1 | tee "$out/gpu_tests.txt"
+[[ ${PIPESTATUS[0]} -eq 0 ]] || status=1
+
+if command -v nvcc > /dev/null; then
+  echo "== CUDA: the emitted headers built by nvcc, run on the device against their host build"
+  emitted=$build/tests/gpu/emitted
+  { nvcc --version | tail -1 &&
+    timeout 240 nvcc -std=c++17 -O3 -arch=native -I "$emitted" \
+      "$source_dir/tests/gpu/cuda_device_check.cu" -o "$scratch/cuda_device_check" &&
+    timeout 60 "$scratch/cuda_device_check" &&
+    timeout 60 nvcc -std=c++17 -O3 -arch=native -I "$emitted" -c \
+      "$source_dir/examples/gpu/m7_kernel.cu" -o "$scratch/m7_kernel.o" &&
+    echo "examples/gpu/m7_kernel.cu: built by nvcc"; } 2>&1 | tee "$out/cuda.txt"
+  [[ ${PIPESTATUS[0]} -eq 0 ]] || status=1
+else
+  echo "== CUDA: no nvcc here; the CUDA device check is not run" | tee "$out/cuda.txt"
+fi
 
 echo "gpu_check: $([[ $status -eq 0 ]] && echo passed || echo FAILED); results in $out/"
 exit $status
