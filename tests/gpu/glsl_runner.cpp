@@ -40,12 +40,16 @@ uniform int side;
                                 real, name, ivec, n);
   out += glsl;
   const int stride = 3 + 2 * n + n * n;
+  // x built whole: NVIDIA's compiler (580) fails to link a write to a dvec at a run-time index
+  // ("can't find __setVectorIndex function in stdlib").
+  std::string coordinates;
+  for (int i = 0; i < n; ++i)
+    coordinates += fmt::format("{}points[p * {} + {}]", i ? ", " : "", n, i);
   out += fmt::format(R"(
 void main() {{
   int p = int(gl_GlobalInvocationID.x);
   if (p >= count) return;
-  {0} x;
-  for (int i = 0; i < {1}; ++i) x[i] = points[p * {1} + i];
+  {0} x = {0}({5});
   {0} g1, g2;
   {2} h;
   int at = p * {3};
@@ -59,7 +63,7 @@ void main() {{
   }}
 }}
 )",
-                     vec, n, mat, stride, name);
+                     vec, n, mat, stride, name, coordinates);
   return out;
 }
 
