@@ -72,9 +72,8 @@ std::string glsl_evaluator(const Derivation& a, const std::string& banner, const
     }
     functions.push_back(text);
   }
-  std::vector<std::string> gradient, hessian, coordinates;
+  std::vector<std::string> gradient, hessian;
   for (int i = 0; i < n; ++i) gradient.push_back(fmt::format("d[{}]", i));
-  for (int i = 0; i < n; ++i) coordinates.push_back(fmt::format("x[{}]", i));
   for (int col = 0; col < n; ++col)
     for (int row = 0; row < n; ++row) {
       const int i = std::min(row, col), j = std::max(row, col);
@@ -117,7 +116,6 @@ std::string glsl_evaluator(const Derivation& a, const std::string& banner, const
   add("orbit_functions", join(functions, "\n"));
   add("orbit_dispatch", join(dispatch, "\n"));
   add("gradient_args", join(gradient));
-  add("coordinate_args", join(coordinates));
   add("hessian_args", join(hessian));
   return fmt::vformat(templates::evaluator_glsl, args);
 }

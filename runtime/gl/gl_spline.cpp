@@ -82,9 +82,7 @@ uniform int base;
 uniform int count;
 void boxgen_store(int at, REAL v, VEC3 g, MAT3 h) {{
   results[at] = v;
-  results[at + 1] = g.x;  // constant indices: NVIDIA's compiler (driver 580) reads a dvec at a
-  results[at + 2] = g.y;  // run-time index to float precision only (docs/gpu.md)
-  results[at + 3] = g.z;
+  for (int i = 0; i < 3; ++i) results[at + 1 + i] = g[i];
   results[at + 4] = h[0][0];
   results[at + 5] = h[1][0];
   results[at + 6] = h[2][0];
@@ -105,9 +103,7 @@ std::string batch_kernel(const std::string& name, int order) {
   } else if (order == 1) {
     body = fmt::format(R"(  VEC3 g;
   results[4 * p] = {}_value_gradient(x, g);
-  results[4 * p + 1] = g.x;
-  results[4 * p + 2] = g.y;
-  results[4 * p + 3] = g.z;
+  for (int i = 0; i < 3; ++i) results[4 * p + 1 + i] = g[i];
 )",
                        name);
   } else if (order == 2) {

@@ -40,18 +40,11 @@ uniform int side;
                                 real, name, ivec, n);
   out += glsl;
   const int stride = 3 + 2 * n + n * n;
-  // x built whole: NVIDIA's compiler (driver 580) fails to link a write to a dvec at a run-time
-  // index ("can't find __setVectorIndex function in stdlib").
-  std::string coordinates, stores;
+  // x built whole: NVIDIA's compiler (580) fails to link a write to a dvec at a run-time index
+  // ("can't find __setVectorIndex function in stdlib").
+  std::string coordinates;
   for (int i = 0; i < n; ++i)
     coordinates += fmt::format("{}points[p * {} + {}]", i ? ", " : "", n, i);
-  // The outputs by constant index too: it reads a dvec at a run-time index to float precision.
-  for (int i = 0; i < n; ++i) {
-    stores += fmt::format("  results[at + {}] = g1[{}];\n", 3 + i, i);
-    stores += fmt::format("  results[at + {}] = g2[{}];\n", 3 + n + i, i);
-    for (int j = 0; j < n; ++j)
-      stores += fmt::format("  results[at + {}] = h[{}][{}];\n", 3 + 2 * n + i * n + j, j, i);
-  }
   out += fmt::format(R"(
 void main() {{
   int p = int(gl_GlobalInvocationID.x);
@@ -63,9 +56,14 @@ void main() {{
   results[at] = {4}_value(x);
   results[at + 1] = {4}_value_gradient(x, g1);
   results[at + 2] = {4}_value_gradient_hessian(x, g2, h);
-{6}}}
+  for (int i = 0; i < {1}; ++i) {{
+    results[at + 3 + i] = g1[i];
+    results[at + 3 + {1} + i] = g2[i];
+    for (int j = 0; j < {1}; ++j) results[at + 3 + 2 * {1} + i * {1} + j] = h[j][i];
+  }}
+}}
 )",
-                     vec, n, mat, stride, name, coordinates, stores);
+                     vec, n, mat, stride, name, coordinates);
   return out;
 }
 
