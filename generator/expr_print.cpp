@@ -1,8 +1,5 @@
 #include "generator/expr_print.h"
 
-#include <cstdint>
-#include <cstring>
-
 #include <fmt/format.h>
 
 namespace boxgen::generator {
@@ -87,15 +84,7 @@ Syntax cpp_syntax() {
 
 Syntax glsl_syntax(bool double_precision) {
   if (double_precision)
-    return {"double ", [](const Rational& r) {
-              const double d = to_double(r);
-              if (static_cast<double>(static_cast<float>(d)) == d) return decimal(d, 17) + "LF";
-              // Its bits: NVIDIA's GLSL compiler (driver 580) rounds a double literal to float
-              // precision (docs/gpu.md), packDouble2x32 is exact everywhere.
-              std::uint64_t bits = 0;
-              std::memcpy(&bits, &d, sizeof d);
-              return fmt::format("packDouble2x32(uvec2({}u, {}u))", bits & 0xffffffffu, bits >> 32);
-            }};
+    return {"double ", [](const Rational& r) { return decimal(to_double(r), 17) + "LF"; }};
   return {"float ", [](const Rational& r) {
             return decimal(static_cast<double>(static_cast<float>(to_double(r))), 9);
           }};
