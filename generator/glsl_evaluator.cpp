@@ -117,6 +117,20 @@ std::string glsl_evaluator(const Derivation& a, const std::string& banner, const
   add("orbit_dispatch", join(dispatch, "\n"));
   add("gradient_args", join(gradient));
   add("hessian_args", join(hessian));
+  std::string select;
+  for (int i = 0; i + 1 < n; ++i) select += fmt::format("i == {0} ? x[{0}] : ", i);
+  select += fmt::format("x[{}]", n - 1);
+  // "if (k == 0) array[0] = value; else if ..." over the `size` entries of the array.
+  const auto set_chain = [](const char* array, int size) {
+    std::string chain;
+    for (int k = 0; k < size; ++k)
+      chain += fmt::format("{}  {}if (k == {}) {}[{}] = value;", k ? "\n" : "", k ? "else " : "", k,
+                           array, k);
+    return chain;
+  };
+  add("component_select", select);
+  add("set_chain", set_chain("d", derivatives));
+  add("set_coordinate_chain", set_chain("x", n));
   return fmt::vformat(templates::evaluator_glsl, args);
 }
 
