@@ -192,29 +192,28 @@ class EmittedSpline {
       throw std::out_of_range(fmt::format("point {}: {}", error.index + 1, error.what));
   }
 
-  // Points [first, last) in chunks of simd::kChunk: their world coordinates converted and located
-  // in one SIMD call, then each orbit present in the chunk evaluated in one SIMD call (simd_orbit;
-  // fcc6 has two orbits, so a chunk of random points takes two). A point takes the scalar path,
-  // point(), with its errors, when it is not finite or far outside, when its stencil box is not
-  // inside the volume, or when rounding put it on a knot plane (no cell in the table).
+  // Points [first, last) in chunks of simd::kChunk consecutive points: their world coordinates
+  // converted and located in one SIMD call, then each orbit present in the chunk evaluated in one
+  // SIMD call (simd_orbit; fcc6 has two orbits, so a chunk of random points takes two). A point
+  // takes the scalar path, point(), with its errors, when it is not finite or far outside, when
+  // its stencil box is not inside the volume, or when rounding put it on a knot plane (no cell in
+  // the table).
   template <int Order>
   void simd_block(std::ptrdiff_t first, std::ptrdiff_t last, std::span<const Vec3> points,
                   std::span<T> values, std::span<Vec3> gradients, std::span<Hessian> hessians,
                   FirstError& error) const {
-    constexpr std::ptrdiff_t kLanes = simd::kChunk;
+    constexpr int kLanes = simd::kChunk;
     constexpr bool kOneOrbit = std::size(Tr::kOrbitStencilSize) == 1;
     alignas(64) double world[3 * kLanes];
     alignas(64) T located[simd::locate_rows(3) * kLanes];
-    std::ptrdiff_t index[kLanes];
     const simd::Frame frame = simd_frame();
 
-    for (std::ptrdiff_t next = first; next < last;) {
-      int lanes = 0;
-      for (; next < last && lanes < kLanes; ++next, ++lanes) {
-        for (int a = 0; a < 3; ++a) world[a * kLanes + lanes] = points[next][a];
-        index[lanes] = next;
-      }
-      for (int lane = lanes; lane < kLanes; ++lane)  // a partial chunk: repeat lane 0
+    for (std::ptrdiff_t next = first; next < last; next += kLanes) {
+      // Lane i is point next + i; a partial chunk repeats lane 0 (the kernels compute every lane).
+      const int lanes = static_cast<int>(std::min<std::ptrdiff_t>(kLanes, last - next));
+      for (int lane = 0; lane < lanes; ++lane)
+        for (int a = 0; a < 3; ++a) world[a * kLanes + lane] = points[next + lane][a];
+      for (int lane = lanes; lane < kLanes; ++lane)
         for (int a = 0; a < 3; ++a) world[a * kLanes + lane] = world[a * kLanes];
       kernels_->locate(world, frame, located);
 
@@ -222,24 +221,28 @@ class EmittedSpline {
       // lanes the kernels cannot take on the scalar path now.
       const T* const orbits = located + 7 * kLanes;
       const T* const inside = located + 8 * kLanes;
-      int orbit = -1, deferred = 0;
+      int orbit = kOneOrbit ? 0 : -1, deferred = 0;
       int others[kLanes];
       Lanes chunk;
       for (int lane = 0; lane < lanes; ++lane) {
         if (inside[lane] == T(0)) {
-          scalar_point<Order>(index[lane], points, values, gradients, hessians, error);
+          scalar_point<Order>(next + lane, points, values, gradients, hessians, error);
           continue;
         }
-        const int o = static_cast<int>(orbits[lane]);
-        if (orbit < 0) orbit = o;
-        if (kOneOrbit || o == orbit)
+        if constexpr (kOneOrbit) {
           chunk.take(lane, located, stencils_);
-        else
-          others[deferred++] = lane;
+        } else {
+          const int o = static_cast<int>(orbits[lane]);
+          if (orbit < 0) orbit = o;
+          if (o == orbit)
+            chunk.take(lane, located, stencils_);
+          else
+            others[deferred++] = lane;
+        }
       }
-      if (orbit < 0) continue;
+      if (chunk.count == 0) continue;
       for (;;) {  // one SIMD call per orbit (fcc6 has two)
-        simd_orbit<Order>(orbit, chunk, lanes, located, index, values, gradients, hessians);
+        simd_orbit<Order>(orbit, chunk, lanes, located, next, values, gradients, hessians);
         if (kOneOrbit || deferred == 0) break;
         orbit = static_cast<int>(orbits[others[0]]);  // the next orbit, the rest kept deferred
         chunk = Lanes{};
@@ -260,7 +263,7 @@ class EmittedSpline {
     bool stays[simd::kChunk] = {};
     const T* bases[simd::kChunk];
     const Offset* tables[simd::kChunk];
-    int first = -1;
+    int count = 0;
     void take(int lane, const T* located, const Stencils& stencils) {
       constexpr int kLanes = simd::kChunk;
       const std::int64_t corner[3] = {static_cast<std::int64_t>(located[lane]),
@@ -270,15 +273,26 @@ class EmittedSpline {
       bases[lane] = stencils.samples() + f.base;
       tables[lane] = f.offsets;
       stays[lane] = true;
-      if (first < 0) first = lane;
+      ++count;
+    }
+    // The lanes not taken repeat a taken lane's stencil (the kernels compute every lane).
+    void fill() {
+      if (count == simd::kChunk) return;
+      int taken = 0;
+      while (!stays[taken]) ++taken;
+      for (int lane = 0; lane < simd::kChunk; ++lane)
+        if (!stays[lane]) {
+          bases[lane] = bases[taken];
+          tables[lane] = tables[taken];
+        }
     }
   };
 
-  // One orbit's lanes of a chunk: their stencils gathered into lanes, the orbit's polynomial
-  // evaluated in one SIMD call (runtime/simd_batch.h), the derivatives mapped back per lane. The
-  // lanes not taken repeat the first one's stencil.
+  // One orbit's lanes of a chunk (lane i is point next + i): their stencils gathered into lanes,
+  // the orbit's polynomial evaluated in one SIMD call (runtime/simd_batch.h), the derivatives
+  // mapped back per lane.
   template <int Order>
-  void simd_orbit(int orbit, Lanes& taken, int lanes, const T* located, const std::ptrdiff_t* index,
+  void simd_orbit(int orbit, Lanes& taken, int lanes, const T* located, std::ptrdiff_t next,
                   std::span<T> values, std::span<Vec3> gradients,
                   std::span<Hessian> hessians) const {
     namespace support = generated::support;
@@ -287,14 +301,10 @@ class EmittedSpline {
         1 + (Order == support::kValue ? 0 : 3) + (Order == support::kHessian ? 6 : 0);
     alignas(64) T v[kStencil * kLanes];
     alignas(64) T out[kOut * kLanes];
-    for (int lane = 0; lane < kLanes; ++lane)  // lanes of other orbits or never filled
-      if (!taken.stays[lane]) {
-        taken.bases[lane] = taken.bases[taken.first];
-        taken.tables[lane] = taken.tables[taken.first];
-      }
+    taken.fill();
     gather(Tr::kOrbitStencilSize[orbit], taken.bases, taken.tables, v);
     kernels_->orbit(orbit, Order, v, located + 4 * kLanes, out, simd::kChunk);
-    store<Order>(lanes, taken.stays, index, located + 3 * kLanes, out, values, gradients, hessians);
+    store<Order>(lanes, taken.stays, next, located + 3 * kLanes, out, values, gradients, hessians);
   }
 
   // Derivatives d (lattice units: gradient d[0..2], Hessian's upper triangle d[3..8]) in world
@@ -349,17 +359,16 @@ class EmittedSpline {
     }
   }
 
-  // The chunk's results of the lanes that stayed, derivatives mapped back from the reference
-  // frame of each lane's cell and scaled to world units.
+  // The chunk's results of the lanes that stayed (lane i is point next + i), derivatives mapped
+  // back from the reference frame of each lane's cell and scaled to world units.
   template <int Order>
-  void store(int lanes, const bool* stays, const std::ptrdiff_t* index, const T* cells,
-             const T* out, std::span<T> values, std::span<Vec3> gradients,
-             std::span<Hessian> hessians) const {
+  void store(int lanes, const bool* stays, std::ptrdiff_t next, const T* cells, const T* out,
+             std::span<T> values, std::span<Vec3> gradients, std::span<Hessian> hessians) const {
     namespace support = generated::support;
     constexpr int kLanes = simd::kChunk;
     for (int lane = 0; lane < lanes; ++lane) {
       if (!stays[lane]) continue;
-      const std::ptrdiff_t p = index[lane];
+      const std::ptrdiff_t p = next + lane;
       values[p] = out[lane];
       if constexpr (Order >= support::kGradient) {
         T d[3 + 6];

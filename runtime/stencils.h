@@ -33,7 +33,12 @@ class LatticeStencils {
   using Sample = T;
   using Index = std::int64_t;
 
-  explicit LatticeStencils(const LatticeVolume<T>& volume) : volume_(&volume) { tabulate(); }
+  explicit LatticeStencils(const LatticeVolume<T>& volume) : volume_(&volume) {
+    const std::int64_t d = volume.period();
+    if ((d & (d - 1)) == 0)
+      for (period_shift_ = 0; (std::int64_t{1} << period_shift_) != d;) ++period_shift_;
+    tabulate();
+  }
 
   const LatticeVolume<T>& volume() const { return *volume_; }
   // The samples' lattice coordinates lie in [0, d N_a - 1]: coset offsets lie in [0, d)^3.
@@ -55,8 +60,10 @@ class LatticeStencils {
     std::int64_t q[3];
     std::int64_t residue = 0;
     for (int a = 2; a >= 0; --a) {
-      const std::int64_t r = ((corner[a] % d) + d) % d;
-      q[a] = (corner[a] - r) / d;
+      // Every registry lattice has a period that is a power of two (Cartesian 1, BCC and FCC
+      // 2): a mask and a shift (which floors in C++20) instead of two divisions per axis.
+      const std::int64_t r = period_shift_ >= 0 ? corner[a] & (d - 1) : ((corner[a] % d) + d) % d;
+      q[a] = period_shift_ >= 0 ? corner[a] >> period_shift_ : (corner[a] - r) / d;
       residue = residue * d + r;
     }
     const std::int64_t base =
@@ -97,6 +104,7 @@ class LatticeStencils {
   }
 
   const LatticeVolume<T>* volume_;
+  int period_shift_ = -1;  // log2 of the period where it is a power of two, else -1
   std::vector<std::int64_t> table_;
 };
 

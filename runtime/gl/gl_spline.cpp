@@ -80,9 +80,16 @@ layout(std430, binding = 3) writeonly buffer Results {{ REAL results[]; }};
 layout(std430, binding = 4) writeonly buffer Status {{ int status[]; }};
 uniform int base;
 uniform int count;
-void boxgen_store(int at, REAL v, VEC3 g, MAT3 h) {{
+// Components by name, never by a run-time index: NVIDIA's compiler keeps only single precision
+// where a double vector is indexed at run time (docs/gpu.md).
+void boxgen_store_gradient(int at, REAL v, VEC3 g) {{
   results[at] = v;
-  for (int i = 0; i < 3; ++i) results[at + 1 + i] = g[i];
+  results[at + 1] = g.x;
+  results[at + 2] = g.y;
+  results[at + 3] = g.z;
+}}
+void boxgen_store(int at, REAL v, VEC3 g, MAT3 h) {{
+  boxgen_store_gradient(at, v, g);
   results[at + 4] = h[0][0];
   results[at + 5] = h[1][0];
   results[at + 6] = h[2][0];
@@ -102,8 +109,8 @@ std::string batch_kernel(const std::string& name, int order) {
     body = fmt::format("  results[p] = {}_value(x);\n", name);
   } else if (order == 1) {
     body = fmt::format(R"(  VEC3 g;
-  results[4 * p] = {}_value_gradient(x, g);
-  for (int i = 0; i < 3; ++i) results[4 * p + 1 + i] = g[i];
+  REAL v = {}_value_gradient(x, g);
+  boxgen_store_gradient(4 * p, v, g);
 )",
                        name);
   } else if (order == 2) {
@@ -151,19 +158,20 @@ bool in_region(VEC3 p) {{
 bool inside(VEC3 p) {{
   return in_region(p) && {0}_value((p - origin) / spacing) >= iso;
 }}
+// One axis of the slab test; axes by name, not by a run-time index (see boxgen_store_gradient).
+bool clip_axis(REAL o, REAL d, REAL lo, REAL hi, inout REAL t0, inout REAL t1) {{
+  if (abs(d) < REAL(1e-30)) return o >= lo && o <= hi;
+  REAL a = (lo - o) / d, b = (hi - o) / d;
+  t0 = max(t0, min(a, b));
+  t1 = min(t1, max(a, b));
+  return true;
+}}
 bool clip_to_box(VEC3 o, VEC3 d, out REAL t0, out REAL t1) {{
   t0 = REAL(0);
   t1 = REAL(1e30);
-  for (int i = 0; i < 3; ++i) {{
-    if (abs(d[i]) < REAL(1e-30)) {{
-      if (o[i] < box_min[i] || o[i] > box_max[i]) return false;
-      continue;
-    }}
-    REAL a = (box_min[i] - o[i]) / d[i], b = (box_max[i] - o[i]) / d[i];
-    t0 = max(t0, min(a, b));
-    t1 = min(t1, max(a, b));
-  }}
-  return t1 > t0;
+  return clip_axis(o.x, d.x, box_min.x, box_max.x, t0, t1) &&
+         clip_axis(o.y, d.y, box_min.y, box_max.y, t0, t1) &&
+         clip_axis(o.z, d.z, box_min.z, box_max.z, t0, t1) && t1 > t0;
 }}
 // One call of inside() and one of the evaluator in the whole kernel: the driver inlines every
 // call, and each copy of the evaluator costs compile time (llvmpipe: seconds).
