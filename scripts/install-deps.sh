@@ -4,6 +4,7 @@
 set -euo pipefail
 PACKAGES=(
   build-essential cmake pkg-config git
+  ninja-build                           # the presets' build tool: it starts a target's compiles before its libraries link
   libginac-dev libcln-dev               # exact rationals (CLN) in the generator; GiNaC prints `boxgen pieces`
   libfmt-dev                            # code templates and formatting
   nlohmann-json3-dev                    # --json output
