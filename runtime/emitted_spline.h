@@ -214,7 +214,7 @@ class EmittedSpline {
       for (int lane = 0; lane < lanes; ++lane)
         for (int a = 0; a < 3; ++a) world[a * kLanes + lane] = points[next + lane][a];
       for (int lane = lanes; lane < kLanes; ++lane)
-        for (int a = 0; a < 3; ++a) world[a * kLanes + lane] = world[a * kLanes];
+        for (int a = 0; a < 3; ++a) world[a * kLanes + lane] = points[next][a];
       kernels_->locate(world, frame, located);
 
       // The lanes of the chunk's first orbit gathered, the lanes of other orbits deferred, the
