@@ -5,6 +5,7 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -34,9 +35,8 @@ class LatticeStencils {
   using Index = std::int64_t;
 
   explicit LatticeStencils(const LatticeVolume<T>& volume) : volume_(&volume) {
-    const std::int64_t d = volume.period();
-    if ((d & (d - 1)) == 0)
-      for (period_shift_ = 0; (std::int64_t{1} << period_shift_) != d;) ++period_shift_;
+    const auto d = static_cast<std::uint64_t>(volume.period());
+    if (std::has_single_bit(d)) period_shift_ = std::countr_zero(d);
     tabulate();
   }
 
