@@ -15,6 +15,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "runtime/gl/glsl_tables.h"
 #include "runtime/gl/registry_glsl.h"
 
 namespace boxgen::runtime::gl {
@@ -28,12 +29,15 @@ constexpr int kMarchStride = 11;   // reals per ray: t, value, gradient, Hessian
 // Far outside the volume (lattice units), points are refused before the evaluator converts
 // floor(x) to an int (as emitted_spline.h's kFar); their error comes from the CPU path.
 constexpr double kFar = 64;
+constexpr int kTablesBinding =
+    5;  // TableStorage::buffer's block (0, 1 the volume; 2-4 the kernels)
 
 // The shader's opening: the precision, the volume's storage buffers and the evaluator's fetch
 // (lattice point -> coset and cell of d Z^3 -> the storage order of lattice_volume.h), then the
-// emitted text. A fetch outside the stored samples reads 0 and marks the invocation.
+// evaluator's text. A fetch outside the stored samples reads 0 and marks the invocation.
 template <class T>
-std::string prelude(const LatticeVolume<T>& volume, const GlslEvaluator& glsl) {
+std::string prelude(const LatticeVolume<T>& volume, const std::string& name,
+                    const std::string& evaluator) {
   constexpr bool dbl = std::is_same_v<T, double>;
   return fmt::format(R"(#version 430
 #define REAL {0}
@@ -66,8 +70,8 @@ REAL {5}_fetch(ivec3 j) {{
 }}
 )",
                      dbl ? "double" : "float", dbl ? "d" : "", kLocalSize, volume.period(),
-                     volume.coset_count(), glsl.name) +
-         glsl.text;
+                     volume.coset_count(), name) +
+         evaluator;
 }
 
 // The kernels' buffers (binding 2: the points or ray directions, then the results and a status per
@@ -304,7 +308,7 @@ GlslEvaluator read_glsl(const std::string& path) {
 
 template <class T>
 GlSpline<T>::GlSpline(const LatticeVolume<T>& volume, const SplineFilter& filter,
-                      GlslEvaluator glsl)
+                      GlslEvaluator glsl, TableStorage tables)
     : volume_(&volume), cpu_(volume, filter), glsl_(std::move(glsl)), programs_(5, 0) {
   const std::regex size_line(glsl_.name + R"(_kStencilSize = (\d+);)");
   std::smatch m;
@@ -329,6 +333,12 @@ GlSpline<T>::GlSpline(const LatticeVolume<T>& volume, const SplineFilter& filter
       for (int x = 0; x < d; ++x) residues.push_back(volume.lattice().coset_of(x, y, z));
   samples_ = storage_buffer(0, 0, volume.samples().data(), volume.sample_count() * sizeof(T));
   lattice_table_ = storage_buffer(0, 1, residues.data(), residues.size() * sizeof(int));
+  shader_text_ = glsl_.text;
+  if (tables == TableStorage::buffer) {
+    const BufferedTables b = tables_in_buffer(glsl_.text, glsl_.name, kTablesBinding);
+    shader_text_ = b.text;
+    tables_ = storage_buffer(0, kTablesBinding, b.block.data(), b.block.size() * sizeof(int));
+  }
   check_gl("the volume's upload");
 }
 
@@ -336,7 +346,7 @@ template <class T>
 GlSpline<T>::~GlSpline() {
   for (unsigned p : programs_)
     if (p) glDeleteProgram(p);
-  const unsigned buffers[] = {samples_, lattice_table_, points_, results_, status_};
+  const unsigned buffers[] = {samples_, lattice_table_, tables_, points_, results_, status_};
   for (unsigned b : buffers)
     if (b) glDeleteBuffers(1, &b);
 }
@@ -348,7 +358,7 @@ unsigned GlSpline<T>::program(int kind) const {
     const std::string kernel =
         kind == kMarch ? march_kernel(glsl_.name) : batch_kernel(glsl_.name, kind);
     p = compile_compute(
-        prelude(*volume_, glsl_) + kernel,
+        prelude(*volume_, glsl_.name, shader_text_) + kernel,
         fmt::format("the GLSL evaluator {} ({})", glsl_.name, sizeof(T) == 8 ? "double" : "float"));
   }
   glUseProgram(p);
@@ -356,6 +366,7 @@ unsigned GlSpline<T>::program(int kind) const {
   glUniform3i(glGetUniformLocation(p, "sizes"), n[0], n[1], n[2]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, samples_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, lattice_table_);
+  if (tables_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTablesBinding, tables_);
   return p;
 }
 

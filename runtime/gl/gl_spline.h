@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "runtime/gl/gl_context.h"
+#include "runtime/gl/glsl_tables.h"
 #include "runtime/reconstruction.h"
 #include "runtime/resample.h"
 
@@ -52,8 +53,9 @@ class GlSpline {
   // Compiles nothing yet (each kernel on first use) but uploads the volume. Throws GlError when
   // there is no GL context or the volume exceeds the device's storage block (or 2^31 samples),
   // std::invalid_argument when the volume is not on the filter's lattice. The volume must outlive
-  // this object.
-  GlSpline(const LatticeVolume<T>& volume, const SplineFilter& filter, GlslEvaluator glsl);
+  // this object. `tables`: where the evaluator's run-time-indexed tables live (glsl_tables.h).
+  GlSpline(const LatticeVolume<T>& volume, const SplineFilter& filter, GlslEvaluator glsl,
+           TableStorage tables = TableStorage::buffer);
   ~GlSpline();
   GlSpline(const GlSpline&) = delete;
   GlSpline& operator=(const GlSpline&) = delete;
@@ -90,8 +92,9 @@ class GlSpline {
   const LatticeVolume<T>* volume_;
   Reconstructor<T> cpu_;  // the errors' messages, and the filter's lattice check
   GlslEvaluator glsl_;
+  std::string shader_text_;  // glsl_.text, its tables moved as `tables` says
   int stencil_size_ = 0;
-  unsigned samples_ = 0, lattice_table_ = 0;
+  unsigned samples_ = 0, lattice_table_ = 0, tables_ = 0;
   // Scratch buffers of the batches and rays (const calls reuse them; one thread uses the device).
   mutable unsigned points_ = 0, results_ = 0, status_ = 0;
   mutable std::size_t uploaded_ = 0;

@@ -63,7 +63,8 @@ std::vector<Vec3> points_in(const Box& box, int count) {
 
 // GL in precision T against the CPU in double at `count` points of the default box.
 template <class T>
-void expect_gl_equals_cpu(const std::string& name, int count, double tolerance) {
+void expect_gl_equals_cpu(const std::string& name, int count, double tolerance,
+                          TableStorage tables = TableStorage::buffer) {
   const SplineFilter f = SplineFilter::parse(name);
   const LatticeVolume<double> reference = random_volume<double>(f, 14);
   LatticeVolume<T> volume(reference.lattice(), reference.sizes(), 1.0, {0, 0, 0});
@@ -78,7 +79,7 @@ void expect_gl_equals_cpu(const std::string& name, int count, double tolerance) 
   std::vector<T> gl_values(n);
   std::vector<Vec3> gl_gradients(n);
   std::vector<Hessian> gl_hessians(n);
-  const GlSpline<T> gpu(volume, f, registry_glsl(name, sizeof(T) == 8));
+  const GlSpline<T> gpu(volume, f, registry_glsl(name, sizeof(T) == 8), tables);
   gpu.evaluate(points, gl_values, gl_gradients, gl_hessians);
   std::vector<T> only_values(n);
   gpu.evaluate(points, only_values);  // the value kernel: another program
@@ -112,6 +113,13 @@ INSTANTIATE_TEST_SUITE_P(Registry, GlEveryFilter,
 
 TEST_F(GlTest, DoubleEvaluationEqualsTheCpu) {
   expect_gl_equals_cpu<double>("m7", BOXGEN_GL_POINTS, kDoubleTolerance);
+}
+
+// The emitted text's `const` tables, as they are (the device's default moves them to a buffer):
+// one orbit (m7) and two (fcc6, whose orbit tables move too).
+TEST_F(GlTest, ConstTablesEvaluateAsTheCpu) {
+  expect_gl_equals_cpu<float>("m7", BOXGEN_GL_POINTS, kFloatTolerance, TableStorage::constant);
+  expect_gl_equals_cpu<float>("fcc6", BOXGEN_GL_POINTS, kFloatTolerance, TableStorage::constant);
 }
 
 TEST_F(GlTest, AnisotropicCartesianVolumeScalesDerivatives) {
