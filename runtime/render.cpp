@@ -281,36 +281,15 @@ RayHit RayCaster::hit_at(const Vec3& origin, const Vec3& d, double t, bool entry
 
 namespace {
 
-// The image of the caster's isosurface; `spacing` is the volume's (the default step, curvature
-// scale).
-RgbBuffer render_with(const SplineFunction& spline, double spacing, const Box& box,
-                      const RenderOptions& o) {
-  const RayCaster caster(spline, box, o.iso, render_step(o, spacing), o.cutaway,
-                         o.shading == Shading::Curvature);
-  const Vec3 eye = camera_for(box, o.camera).eye;
-  return shade_pixels(o, box, spacing,
-                      [&](int, int, const Vec3& d) { return caster.cast(eye, d); });
-}
-
-}  // namespace
-
-double render_step(const RenderOptions& o, double spacing) {
-  if (o.width < 1 || o.height < 1 || o.width > 8192 || o.height > 8192)
-    throw std::invalid_argument(
-        fmt::format("image size must be 1..8192 per side, got {} x {}", o.width, o.height));
-  if (!(o.value_hi > o.value_lo) || !std::isfinite(o.value_lo) || !std::isfinite(o.value_hi))
-    throw std::invalid_argument(
-        fmt::format("the cut faces' value range [{}, {}] must be finite and not empty", o.value_lo,
-                    o.value_hi));
-  return o.step > 0 ? o.step : 0.5 * spacing;
-}
-
+// The picture from each pixel's hit: hit(x, y, direction) for the ray from the camera's eye
+// through pixel (x, y), shaded (normal or curvature colours, cut faces by value), rows in
+// parallel. runtime/gl's frame kernel transcribes it.
+using PixelHit = std::function<RayHit(int x, int y, const Vec3& direction)>;
 RgbBuffer shade_pixels(const RenderOptions& o, const Box& box, double spacing,
                        const PixelHit& hit) {
-  const double curvature_scale = 5 * spacing;
+  const double curvature_scale = shading_curvature_scale(spacing);
   const Camera cam = camera_for(box, o.camera);
-  const Vec3 light =
-      normalise(add(scale(cam.forward, -1), add(scale(cam.up, 0.6), scale(cam.right, -0.3))));
+  const Vec3 light = shading_light(cam);
   RgbBuffer image{o.width, o.height,
                   std::vector<std::uint8_t>(static_cast<std::size_t>(o.width) * o.height * 3)};
   std::atomic<int> rows_done{0};
@@ -349,6 +328,36 @@ RgbBuffer shade_pixels(const RenderOptions& o, const Box& box, double spacing,
   if (bar) std::fprintf(stderr, "\n");
   return image;
 }
+
+// The image of the caster's isosurface; `spacing` is the volume's (the default step, curvature
+// scale).
+RgbBuffer render_with(const SplineFunction& spline, double spacing, const Box& box,
+                      const RenderOptions& o) {
+  const RayCaster caster(spline, box, o.iso, render_step(o, spacing), o.cutaway,
+                         o.shading == Shading::Curvature);
+  const Vec3 eye = camera_for(box, o.camera).eye;
+  return shade_pixels(o, box, spacing,
+                      [&](int, int, const Vec3& d) { return caster.cast(eye, d); });
+}
+
+}  // namespace
+
+double render_step(const RenderOptions& o, double spacing) {
+  if (o.width < 1 || o.height < 1 || o.width > 8192 || o.height > 8192)
+    throw std::invalid_argument(
+        fmt::format("image size must be 1..8192 per side, got {} x {}", o.width, o.height));
+  if (!(o.value_hi > o.value_lo) || !std::isfinite(o.value_lo) || !std::isfinite(o.value_hi))
+    throw std::invalid_argument(
+        fmt::format("the cut faces' value range [{}, {}] must be finite and not empty", o.value_lo,
+                    o.value_hi));
+  return o.step > 0 ? o.step : 0.5 * spacing;
+}
+
+Vec3 shading_light(const Camera& cam) {
+  return normalise(add(scale(cam.forward, -1), add(scale(cam.up, 0.6), scale(cam.right, -0.3))));
+}
+
+double shading_curvature_scale(double spacing) { return 5 * spacing; }
 
 RgbBuffer render_isosurface(const LatticeVolume<double>& volume, const SplineFilter& f,
                             const Box& box, const RenderOptions& o) {

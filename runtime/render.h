@@ -103,16 +103,15 @@ class RayCaster {
   RayCaster(SplineFunction spline, const Box& box, double iso, double step, bool cutaway,
             bool curvature = false);
   RayHit cast(const Vec3& origin, const Vec3& direction) const;
+
+ private:
   // The hit at distance t along the ray (d of unit length) where the march found the solid's
   // boundary (entry_face: through a face of the box or the cut-away, as where the ray starts
   // inside the solid; the test of the point just before t finds the others), from the spline's
-  // value and gradient there;
-  // `hessian` gives the Hessian when curvature is wanted (and may set the gradient to its own
-  // path's). cast() ends with it, and so does the GL device's march (runtime/gl/gl_render.cpp).
+  // value and gradient there; `hessian` gives the Hessian when curvature is wanted (and may set
+  // the gradient to its own path's).
   RayHit hit_at(const Vec3& origin, const Vec3& d, double t, bool entry_face, double value,
                 const Vec3& gradient, const std::function<Hessian(Vec3&)>& hessian) const;
-
- private:
   bool in_region(const Vec3& p) const;
   bool inside(const Vec3& p) const;
   bool first_crossing(const Vec3& o, const Vec3& d, double t0, double t1, double& t,
@@ -130,12 +129,11 @@ class RayCaster {
 // std::invalid_argument for an image size outside 1..8192.
 double render_step(const RenderOptions& options, double spacing);
 
-// The picture from each pixel's hit: hit(x, y, direction) for the ray from the camera's eye
-// through pixel (x, y), shaded (normal or curvature colours, cut faces by value), rows in
-// parallel. The CPU renderer casts there; the GL device looks up its march's hits.
-using PixelHit = std::function<RayHit(int x, int y, const Vec3& direction)>;
-RgbBuffer shade_pixels(const RenderOptions& options, const Box& box, double spacing,
-                       const PixelHit& hit);
+// The shading's light (a unit vector, from the camera's frame) and the scale of the principal
+// curvatures in the curvature colours (from the volume's spacing): the CPU renderer's and the GL
+// device's.
+Vec3 shading_light(const Camera& camera);
+double shading_curvature_scale(double spacing);
 
 // Renders the isosurface s = iso of the spline reconstructed from `volume` with filter f (the
 // volume already prefiltered, as for Reconstructor) inside `box` (where the stencil fits, e.g.

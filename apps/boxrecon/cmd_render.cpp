@@ -58,7 +58,8 @@ void choose_from_data(const LatticeVolume<double>& volume, RenderOptions& o) {
 }
 
 // The image of the chosen filter's spline, on a volume of its own lattice.
-RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, RenderOptions o) {
+RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, RenderOptions o,
+                        gl::FrameTimes* times) {
   const Box cube{{-1, -1, -1}, {1, 1, 1}};
   (void)boxgen::app::lattice_for(rf, args.lattice);
   NrrdReadLimits on_lattice;
@@ -80,7 +81,7 @@ RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, RenderOptions
     return gl::render_isosurface(
         volume, rf, box, o,
         boxgen::app::glsl_for(rf, args.filter, args.lattice, args.precision == "double"),
-        args.precision == "double");
+        args.precision == "double", times);
   return render_isosurface(volume, rf, box, o);
 }
 
@@ -171,7 +172,8 @@ int run_render() {
   o.step = args.step;
   o.progress = !args.quiet;
   const auto start = std::chrono::steady_clock::now();
-  const RgbBuffer image = render_volume(rf, q, o);
+  gl::FrameTimes frame;
+  const RgbBuffer image = render_volume(rf, q, o, &frame);
   analysis::RgbImage png(image.width, image.height);
   png.pixels = image.pixels;
   analysis::write_png(args.output, png);
@@ -179,7 +181,9 @@ int run_render() {
     std::cerr << fmt::format(
         "rendered {} x {} in {:.2f} s{}\n", image.width, image.height,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-        on_gl ? " on the " + boxgen::app::gl_device_line() : "");
+        on_gl ? fmt::format(" (the frame: GPU dispatch {:.3f} s, CPU part {:.3f} s) on the {}",
+                            frame.gpu, frame.cpu, boxgen::app::gl_device_line())
+              : "");
   return 0;
 }
 

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <climits>
 #include <cmath>
 #include <filesystem>
@@ -24,13 +25,12 @@ namespace {
 
 constexpr int kLocalSize = 128;    // invocations per work group
 constexpr int kMaxGroups = 65535;  // the dispatch size every GL 4.3 device takes
-constexpr int kMarch = 3;          //                the ray caster
-constexpr int kMarchStride = 11;   // reals per ray: t, value, gradient, Hessian
+constexpr int kFrame = 3;          // the program of render() (0-2: the batch orders)
 // Far outside the volume (lattice units), points are refused before the evaluator converts
 // floor(x) to an int (as emitted_spline.h's kFar); their error comes from the CPU path.
 constexpr double kFar = 64;
-constexpr int kTablesBinding =
-    5;  // TableStorage::buffer's block (0, 1 the volume; 2-4 the kernels)
+// TableStorage::buffer's block (bindings 0, 1: the volume; 2-4: the kernels).
+constexpr int kTablesBinding = 5;
 
 // The shader's opening: the precision, the volume's storage buffers and the evaluator's fetch
 // (lattice point -> coset and cell of d Z^3 -> the storage order of lattice_volume.h), then the
@@ -148,21 +148,28 @@ void main() {{
                                            body);
 }
 
-// The ray caster of render.h (RayCaster::cast) on the GPU, one invocation per ray: clip to the
-// box, march by the step, bisect the first crossing, evaluate there. Status bits: 1 hit, 2 the
-// ray enters the solid through a face of the box or the cut-away, 4 a fetch outside the volume.
-std::string march_kernel(const std::string& name) {
-  return kernel_io("directions") + fmt::format(R"(
-uniform VEC3 eye, box_min, box_max, mid, origin, spacing;
-uniform REAL size, step, iso, eps;
-uniform int cutaway;
+// The renderer of render.h on the GPU, one invocation per pixel: the camera's ray through it
+// (Camera::ray), the caster's march (RayCaster::cast: clip to the box, march by the step, bisect
+// the first crossing), the hit finished (RayCaster::hit_at: normal, cut face, principal
+// curvatures) and shaded (shade_pixels). A transcription of render.cpp's code, kept equal to it
+// by the render agreement test (docs/design.md §16). Each pixel's word: its RGB bytes (red low),
+// and in the top byte the status: 4 for a fetch outside the volume.
+std::string frame_kernel(const std::string& name) {
+  return fmt::format(R"(
+layout(std430, binding = 3) writeonly buffer Pixels {{ uint pixels[]; }};
+uniform int base;
+uniform int count;
+uniform int width, height, cutaway, curvature;
+uniform VEC3 eye, forward, right, up, light, box_min, box_max, mid, origin, spacing;
+uniform REAL tan_half, size, step, iso, eps, value_lo, value_hi, curvature_scale;
 bool in_region(VEC3 p) {{
   return cutaway == 0 || !(p.z > mid.z && (p.x > mid.x || p.y > mid.y));
 }}
 bool inside(VEC3 p) {{
   return in_region(p) && {0}_value((p - origin) / spacing) >= iso;
 }}
-// One axis of the slab test; axes by name, not by a run-time index (see boxgen_store_gradient).
+// One axis of the slab test; axes by name, not by a run-time index: NVIDIA's compiler keeps only
+// single precision where a double vector is indexed at run time (docs/gpu.md).
 bool clip_axis(REAL o, REAL d, REAL lo, REAL hi, inout REAL t0, inout REAL t1) {{
   if (abs(d) < REAL(1e-30)) return o >= lo && o <= hi;
   REAL a = (lo - o) / d, b = (hi - o) / d;
@@ -177,12 +184,74 @@ bool clip_to_box(VEC3 o, VEC3 d, out REAL t0, out REAL t1) {{
          clip_axis(o.y, d.y, box_min.y, box_max.y, t0, t1) &&
          clip_axis(o.z, d.z, box_min.z, box_max.z, t0, t1) && t1 > t0;
 }}
+// RayCaster::face_normal: the cut or box face nearest to p, against d.
+REAL face_gap(REAL p, REAL m, REAL lo, REAL hi) {{
+  return min(abs(p - m), min(abs(p - lo), abs(p - hi)));
+}}
+VEC3 face_normal(VEC3 p, VEC3 d) {{
+  REAL gx = face_gap(p.x, mid.x, box_min.x, box_max.x);
+  REAL gy = face_gap(p.y, mid.y, box_min.y, box_max.y);
+  REAL gz = face_gap(p.z, mid.z, box_min.z, box_max.z);
+  if (gx <= gy && gx <= gz) return VEC3(d.x > REAL(0) ? -1 : 1, 0, 0);
+  if (gy <= gz) return VEC3(0, d.y > REAL(0) ? -1 : 1, 0);
+  return VEC3(0, 0, d.z > REAL(0) ? -1 : 1);
+}}
+// render.cpp's principal_curvatures: the eigenvalues of -P H P / |g| from its trace and
+// Frobenius norm (P the projection onto the tangent plane).
+void principal_curvatures(VEC3 g, MAT3 h, out REAL k1, out REAL k2) {{
+  REAL glen = length(g);
+  VEC3 n = -g / glen;
+  MAT3 p = MAT3(1) - outerProduct(n, n);
+  MAT3 c = -(p * h * p) / glen;
+  REAL trace = c[0][0] + c[1][1] + c[2][2];
+  REAL frob2 = dot(c[0], c[0]) + dot(c[1], c[1]) + dot(c[2], c[2]);
+  REAL root = sqrt(max(REAL(0), REAL(2) * frob2 - trace * trace));
+  k1 = REAL(0.5) * (trace + root);
+  k2 = REAL(0.5) * (trace - root);
+}}
+// render.cpp's value_colour and curvature_colour.
+VEC3 value_colour(REAL t) {{
+  const VEC3 stops[5] = VEC3[](VEC3(0.267, 0.005, 0.329), VEC3(0.230, 0.322, 0.546),
+                               VEC3(0.128, 0.567, 0.551), VEC3(0.369, 0.789, 0.383),
+                               VEC3(0.993, 0.906, 0.144));
+  t = clamp(isnan(t) || isinf(t) ? REAL(0) : t, REAL(0), REAL(1)) * REAL(4);
+  int i = min(3, int(t));
+  REAL f = t - REAL(i);
+  VEC3 a = stops[0], b = stops[1];
+  if (i == 1) {{ a = stops[1]; b = stops[2]; }}
+  if (i == 2) {{ a = stops[2]; b = stops[3]; }}
+  if (i == 3) {{ a = stops[3]; b = stops[4]; }}
+  return (REAL(1) - f) * a + f * b;
+}}
+VEC3 curvature_colour(REAL k1, REAL k2) {{
+  // GLSL's tanh is single precision only.
+  REAL u = REAL(tanh(float(k1 * curvature_scale))), v = REAL(tanh(float(k2 * curvature_scale)));
+  REAL mean = REAL(0.5) * (u + v), spread = clamp(REAL(0.5) * (u - v), REAL(0), REAL(1));
+  VEC3 c = VEC3(0.80, 0.80, 0.80);
+  VEC3 target = mean > REAL(0) ? VEC3(1.0, 0.55, 0.15) : VEC3(0.2, 0.4, 1.0);
+  c += abs(mean) * (target - c);
+  REAL w = spread * (REAL(1) - abs(mean));
+  return c + w * (VEC3(0.25, 0.8, 0.3) - c);
+}}
+REAL pow40(REAL x) {{  // x^40 by squaring (GLSL's pow is single precision only)
+  REAL x5 = x * x * x * x * x;
+  REAL x10 = x5 * x5;
+  REAL x20 = x10 * x10;
+  return x20 * x20;
+}}
+uint channel(REAL c) {{  // std::lround(255 * clamp(c, 0, 1))
+  return uint(floor(REAL(255) * clamp(c, REAL(0), REAL(1)) + REAL(0.5)));
+}}
 // One call of inside() and one of the evaluator in the whole kernel: the driver inlines every
 // call, and each copy of the evaluator costs compile time (llvmpipe: seconds).
 void main() {{
   int p = base + int(gl_GlobalInvocationID.x);
   if (p >= count) return;
-  VEC3 d = VEC3(directions[3 * p], directions[3 * p + 1], directions[3 * p + 2]);
+  int px = p % width, py = p / width;
+  REAL sx = (REAL(2) * (REAL(px) + REAL(0.5)) / REAL(width) - REAL(1)) * tan_half * REAL(width) /
+            REAL(height);
+  REAL sy = (REAL(1) - REAL(2) * (REAL(py) + REAL(0.5)) / REAL(height)) * tan_half;
+  VEC3 d = normalize(forward + right * sx + up * sy);
   REAL t0, t1;
   int flags = 0;
   REAL t = REAL(0);
@@ -224,18 +293,40 @@ void main() {{
       probe = m;
     }}
   }}
-  int at = {1} * p;
-  results[at] = t;
+  REAL ry = REAL(py) / REAL(height);
+  VEC3 colour = VEC3(REAL(0.93) - REAL(0.12) * ry, REAL(0.94) - REAL(0.1) * ry, 0.96);
   if (flags != 0) {{
+    VEC3 point = eye + d * t;
     VEC3 g;
     MAT3 h;
-    REAL v = {0}_value_gradient_hessian((eye + d * t - origin) / spacing, g, h);
-    boxgen_store(at + 1, v, g, h);
+    REAL value = {0}_value_gradient_hessian((point - origin) / spacing, g, h);
+    // Lattice-frame derivatives to world units (as to_world on the CPU).
+    g /= spacing;
+    h = matrixCompMult(h, outerProduct(VEC3(1) / spacing, VEC3(1) / spacing));
+    bool on_cut = (flags & 2) != 0;
+    VEC3 normal;
+    REAL k1 = REAL(0), k2 = REAL(0);
+    if (!on_cut && dot(g, g) > REAL(0)) {{
+      normal = normalize(-g);
+      if (curvature != 0) principal_curvatures(g, h, k1, k2);
+    }} else {{
+      on_cut = true;
+      normal = face_normal(point, d);
+    }}
+    if (dot(normal, d) > REAL(0)) normal = -normal;
+    VEC3 base_colour = on_cut ? value_colour((value - value_lo) / (value_hi - value_lo))
+                              : VEC3(0.82, 0.80, 0.76);
+    if (!on_cut && curvature != 0) base_colour = curvature_colour(k1, k2);
+    REAL diffuse = max(REAL(0), dot(normal, light));
+    VEC3 halfway = normalize(light - d);
+    REAL specular = on_cut ? REAL(0) : REAL(0.25) * pow40(max(REAL(0), dot(normal, halfway)));
+    colour = min(VEC3(1), base_colour * (REAL(0.28) + REAL(0.72) * diffuse) + specular);
   }}
-  status[p] = flags | (outside_volume ? 4 : 0);
+  pixels[p] = channel(colour.x) | (channel(colour.y) << 8) | (channel(colour.z) << 16) |
+              (outside_volume ? 4u << 24 : 0u);
 }}
 )",
-                                               name, kMarchStride);
+                     name);
 }
 
 // A storage buffer of `bytes` (at least 4) holding `data` (or nothing), bound at `binding`.
@@ -356,7 +447,7 @@ unsigned GlSpline<T>::program(int kind) const {
   unsigned& p = programs_[kind == kFetchFloor ? 0 : static_cast<std::size_t>(kind) + 1];
   if (p == 0) {
     const std::string kernel =
-        kind == kMarch ? march_kernel(glsl_.name) : batch_kernel(glsl_.name, kind);
+        kind == kFrame ? frame_kernel(glsl_.name) : batch_kernel(glsl_.name, kind);
     p = compile_compute(
         prelude(*volume_, glsl_.name, shader_text_) + kernel,
         fmt::format("the GLSL evaluator {} ({})", glsl_.name, sizeof(T) == 8 ? "double" : "float"));
@@ -472,61 +563,72 @@ void GlSpline<T>::evaluate(std::span<const Vec3> points, std::span<T> values,
 }
 
 template <class T>
-std::vector<MarchedRay> GlSpline<T>::march(const Vec3& eye, std::span<const Vec3> directions,
-                                           const MarchOptions& o) const {
+RgbBuffer GlSpline<T>::render(const FrameOptions& o, FrameTimes* times) const {
+  using Clock = std::chrono::steady_clock;
   constexpr bool dbl = std::is_same_v<T, double>;
-  const std::size_t n = directions.size();
-  if (n > static_cast<std::size_t>(INT_MAX) / kMarchStride ||
-      static_cast<double>(n) * kMarchStride * sizeof(T) > static_cast<double>(storage_limit()))
-    throw GlError(fmt::format("{} rays do not fit the device's storage buffers", n));
-  std::vector<T> packed(3 * n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int a = 0; a < 3; ++a) packed[3 * i + a] = static_cast<T>(directions[i][a]);
-  points_ = storage_buffer(points_, 2, packed.data(), packed.size() * sizeof(T));
-  results_ = storage_buffer(results_, 3, nullptr, kMarchStride * n * sizeof(T));
-  status_ = storage_buffer(status_, 4, nullptr, n * sizeof(int));
-  const unsigned p = program(kMarch);
+  const std::size_t n = static_cast<std::size_t>(o.width) * static_cast<std::size_t>(o.height);
+  if (o.width < 1 || o.height < 1 || n > static_cast<std::size_t>(INT_MAX) ||
+      static_cast<double>(n) * sizeof(unsigned) > static_cast<double>(storage_limit()))
+    throw GlError(fmt::format("a {} x {} picture does not fit the device's storage buffers",
+                              o.width, o.height));
+  const unsigned p = program(kFrame);  // compiled on first use: not part of the frame's time
+  const Clock::time_point start = Clock::now();
+  results_ = storage_buffer(results_, 3, nullptr, n * sizeof(unsigned));
   Vec3 mid, diagonal;
   for (int a = 0; a < 3; ++a) {
     mid[a] = 0.5 * (o.box.min[a] + o.box.max[a]);
     diagonal[a] = o.box.max[a] - o.box.min[a];
   }
-  uniform_vec3(p, "eye", eye, dbl);
-  uniform_vec3(p, "box_min", o.box.min, dbl);
-  uniform_vec3(p, "box_max", o.box.max, dbl);
-  uniform_vec3(p, "mid", mid, dbl);
-  uniform_vec3(p, "origin", volume_->origin(), dbl);
-  uniform_vec3(p, "spacing", volume_->axis_spacing(), dbl);
-  uniform_real(
-      p, "size",
-      std::sqrt(diagonal[0] * diagonal[0] + diagonal[1] * diagonal[1] + diagonal[2] * diagonal[2]),
-      dbl);
-  uniform_real(p, "step", o.step, dbl);
-  uniform_real(p, "iso", o.iso, dbl);
+  glUniform1i(glGetUniformLocation(p, "width"), o.width);
+  glUniform1i(glGetUniformLocation(p, "height"), o.height);
+  glUniform1i(glGetUniformLocation(p, "cutaway"), o.cutaway ? 1 : 0);
+  glUniform1i(glGetUniformLocation(p, "curvature"), o.curvature ? 1 : 0);
+  const std::pair<const char*, const Vec3*> vectors[] = {{"eye", &o.camera.eye},
+                                                         {"forward", &o.camera.forward},
+                                                         {"right", &o.camera.right},
+                                                         {"up", &o.camera.up},
+                                                         {"light", &o.light},
+                                                         {"box_min", &o.box.min},
+                                                         {"box_max", &o.box.max},
+                                                         {"mid", &mid},
+                                                         {"origin", &volume_->origin()},
+                                                         {"spacing", &volume_->axis_spacing()}};
+  for (const auto& [name, v] : vectors) uniform_vec3(p, name, *v, dbl);
   // The CPU caster's tolerance (1e-9 of the diagonal) where double resolves it; float stops at
   // 1e-6, about its resolution of t.
-  uniform_real(p, "eps", dbl ? 1e-9 : 1e-6, dbl);
-  glUniform1i(glGetUniformLocation(p, "cutaway"), o.cutaway ? 1 : 0);
+  const std::pair<const char*, double> reals[] = {
+      {"tan_half", o.camera.tan_half},
+      {"size", std::sqrt(diagonal[0] * diagonal[0] + diagonal[1] * diagonal[1] +
+                         diagonal[2] * diagonal[2])},
+      {"step", o.step},
+      {"iso", o.iso},
+      {"eps", dbl ? 1e-9 : 1e-6},
+      {"value_lo", o.value_lo},
+      {"value_hi", o.value_hi},
+      {"curvature_scale", o.curvature_scale}};
+  for (const auto& [name, v] : reals) uniform_real(p, name, v, dbl);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, results_);
+  const Clock::time_point dispatched = Clock::now();
   dispatch(p, n);
-  std::vector<T> results(kMarchStride * n);
-  std::vector<int> status(n);
-  read_buffer(results_, results);
-  read_buffer(status_, status);
-  check_gl("reading the rays");
-  std::vector<MarchedRay> rays(n);
+  const Clock::time_point done = Clock::now();
+  std::vector<unsigned> words(n);
+  read_buffer(results_, words);
+  check_gl("reading the picture");
+  RgbBuffer image{o.width, o.height, std::vector<std::uint8_t>(3 * n)};
   for (std::size_t i = 0; i < n; ++i) {
-    if (status[i] & 4)
+    if (words[i] >> 24 & 4)
       throw std::out_of_range(
           "a ray of the render reads samples outside the volume: choose a box inside it");
-    MarchedRay& r = rays[i];
-    const T* x = &results[kMarchStride * i];
-    r.hit = (status[i] & 1) != 0;
-    r.face = (status[i] & 2) != 0;
-    r.t = static_cast<double>(x[0]);
-    r.value = static_cast<double>(x[1]);
-    if (r.hit) to_world(x + 2, volume_->axis_spacing(), r.gradient, &r.hessian);
+    for (int c = 0; c < 3; ++c)
+      image.pixels[3 * i + static_cast<std::size_t>(c)] =
+          static_cast<std::uint8_t>(words[i] >> (8 * c) & 0xff);
   }
-  return rays;
+  if (times) {
+    const auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
+    times->gpu = seconds(done - dispatched);
+    times->cpu += seconds(dispatched - start) + seconds(Clock::now() - done);
+  }
+  return image;
 }
 
 template class GlSpline<float>;

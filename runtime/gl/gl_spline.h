@@ -1,7 +1,7 @@
 // The GL device (docs/gpu.md "The GL device", docs/design.md §16): a volume of any lattice in a
 // shader storage buffer (all cosets, the storage order of lattice_volume.h) and an emitted GLSL
 // evaluator (`boxgen emit --target glsl`) compiled at run time into compute shaders that evaluate
-// batches of points (one invocation per point) and march isosurface rays (one per pixel). Float or
+// batches of points (one invocation per point) and render isosurfaces (one per pixel). Float or
 // double as the volume's T. The contract is Reconstructor's (reconstruction.h): the same values
 // within the precision's rounding, the same errors (a point whose stencil leaves the volume is
 // std::out_of_range naming it; the message comes from the CPU path, which re-evaluates only the
@@ -15,6 +15,7 @@
 #include "runtime/gl/gl_context.h"
 #include "runtime/gl/glsl_tables.h"
 #include "runtime/reconstruction.h"
+#include "runtime/render.h"
 #include "runtime/resample.h"
 
 namespace boxgen::runtime::gl {
@@ -31,20 +32,24 @@ GlslEvaluator registry_glsl(const std::string& name, bool double_precision);
 // A user's emitted NAME.glsl: the name is the file's stem. GlError if it cannot be read.
 GlslEvaluator read_glsl(const std::string& path);
 
-// What the GPU's march found along one ray: RayCaster::hit_at (render.h) finishes it on the CPU.
-struct MarchedRay {
-  bool hit = false;
-  bool face = false;  // through a face of the box or of the cut-away, not the isosurface
-  double t = 0, value = 0;
-  Vec3 gradient{};    // world units
-  Hessian hessian{};  // world units
-};
-
-// The caster's parameters (render.h: RayCaster), for the GPU's march.
-struct MarchOptions {
+// A picture's parameters for the GPU's renderer: render.h's camera, the caster's march
+// (RayCaster) and shade_pixels' colours.
+struct FrameOptions {
+  Camera camera;
+  int width = 0, height = 0;
   Box box;
   double iso = 0.5, step = 0;
-  bool cutaway = false;
+  bool cutaway = false, curvature = false;
+  double value_lo = 0, value_hi = 1;  // RenderOptions' cut-face colour map
+  double curvature_scale = 0;         // shading_curvature_scale
+  Vec3 light{};                       // shading_light
+};
+
+// Where a frame's time goes (boxrecon bench, render), in seconds: the dispatch waited for, and the
+// rest on the CPU (the caller's set-up, the read back, the unpacking of the pixels; not the
+// compile of the kernel on its first use).
+struct FrameTimes {
+  double gpu = 0, cpu = 0;
 };
 
 template <class T>
@@ -72,11 +77,12 @@ class GlSpline {
   void upload(std::span<const Vec3> points) const;
   void run(int order) const;
 
-  // One ray per direction from `eye` (directions of unit length): the first crossing into the
-  // solid {s >= iso} (minus the cut-away) as RayCaster::cast marches it, with the spline's value,
-  // gradient and Hessian there.
-  std::vector<MarchedRay> march(const Vec3& eye, std::span<const Vec3> directions,
-                                const MarchOptions& options) const;
+  // The picture as render_isosurface (render.h) draws it, one invocation per pixel: the camera's
+  // ray marched to the first crossing into the solid {s >= iso} (minus the cut-away), the hit's
+  // normal and principal curvatures from the emitted gradient and Hessian, the colours of
+  // shade_pixels. std::out_of_range when a ray reads samples outside the volume.
+  // `times`, where given, receives the time of the dispatch (gpu) and adds the rest to cpu.
+  RgbBuffer render(const FrameOptions& options, FrameTimes* times = nullptr) const;
 
   const LatticeVolume<T>& volume() const noexcept { return *volume_; }
   const GlslEvaluator& evaluator() const noexcept { return glsl_; }
@@ -95,7 +101,8 @@ class GlSpline {
   std::string shader_text_;  // glsl_.text, its tables moved as `tables` says
   int stencil_size_ = 0;
   unsigned samples_ = 0, lattice_table_ = 0, tables_ = 0;
-  // Scratch buffers of the batches and rays (const calls reuse them; one thread uses the device).
+  // Scratch buffers of the batches and pictures (const calls reuse them; one thread uses the
+  // device).
   mutable unsigned points_ = 0, results_ = 0, status_ = 0;
   mutable std::size_t uploaded_ = 0;
   mutable std::vector<unsigned> programs_;
