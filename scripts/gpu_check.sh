@@ -5,7 +5,7 @@
 # exists, the emitted CUDA headers built by nvcc and run on the device against their host build
 # (tests/gpu/cuda_device_check.cu). Builds nothing else: BUILD_DIR is a release build made
 # elsewhere (its binaries and their shared libraries carried over; the machine brings its own GL
-# driver and EGL vendor files). Under 6 minutes.
+# driver and EGL vendor files). Under 8 minutes.
 #
 #   scripts/gpu_check.sh BUILD_DIR [OUT_DIR]
 #
@@ -47,7 +47,7 @@ BOXRECON_UNDER_TEST=$boxrecon timeout 90 "$gl_tests" --gtest_brief=1 --gtest_fil
 [[ ${PIPESTATUS[0]} -eq 0 ]] || status=1
 
 echo "== boxrecon bench --device gl --json (GL beside the CPU, same run)"
-timeout 120 "$boxrecon" bench --device gl --json | tee "$out/bench.json"
+timeout 200 "$boxrecon" bench --device gl --json | tee "$out/bench.json"
 [[ ${PIPESTATUS[0]} -eq 0 ]] || status=1
 
 echo "== gpu-label exactness (gpu_tests: GLSL float and double on this renderer, CUDA host build)"
