@@ -288,8 +288,8 @@ TEST_F(LoaderTest, SlowConcurrentFirstUsesBothSucceed) {
     EXPECT_EQ(name.find(".tmp-"), std::string::npos) << e.path();
     endings.insert(name.substr(std::min(name.size(), name.find_first_of("._"))));
   }
-  EXPECT_EQ(endings, (std::multiset<std::string>{".so", ".cpp", ".json", ".lock", ".glsl",
-                                                 "_double.glsl"}));
+  EXPECT_EQ(endings,
+            (std::multiset<std::string>{".so", ".cpp", ".json", ".lock", ".glsl", "_double.glsl"}));
 }
 
 }  // namespace
