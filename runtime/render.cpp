@@ -244,32 +244,18 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction) const {
   bool entry_face = false;
   h.hit = first_crossing(origin, d, t0, t1, h.t, entry_face);
   if (!h.hit) return h;
-  const Vec3 point = add(origin, scale(d, h.t));
-  Vec3 gradient{};
-  const double value = spline_(point, &gradient, nullptr);
-  return hit_at(origin, d, h.t, entry_face, value, gradient, [&](Vec3& g) {
-    Hessian hs{};
-    spline_(point, &g, &hs);
-    return hs;
-  });
-}
-
-RayHit RayCaster::hit_at(const Vec3& origin, const Vec3& d, double t, bool entry_face, double value,
-                         const Vec3& gradient, const std::function<Hessian(Vec3&)>& hessian) const {
-  RayHit h;
-  h.hit = true;
-  h.t = t;
   h.point = add(origin, scale(d, h.t));
-  h.value = value;
+  Vec3 gradient{};
+  h.value = spline_(h.point, &gradient, nullptr);
   // The isosurface when the point just before the hit is still in the region, else a cut or box
   // face.
   h.on_cut = entry_face || !in_region(add(origin, scale(d, h.t - 2e-9 * size_)));
   if (!h.on_cut && dot(gradient, gradient) > 0) {
     h.normal = normalise(scale(gradient, -1));  // s grows into the solid
     if (curvature_) {
-      Vec3 g = gradient;
-      const Hessian hs = hessian(g);
-      principal_curvatures(g, hs, h.k1, h.k2);
+      Hessian hs{};
+      spline_(h.point, &gradient, &hs);  // the gradient of the Hessian's path, with it
+      principal_curvatures(gradient, hs, h.k1, h.k2);
     }
   } else {
     h.on_cut = true;

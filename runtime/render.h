@@ -105,13 +105,6 @@ class RayCaster {
   RayHit cast(const Vec3& origin, const Vec3& direction) const;
 
  private:
-  // The hit at distance t along the ray (d of unit length) where the march found the solid's
-  // boundary (entry_face: through a face of the box or the cut-away, as where the ray starts
-  // inside the solid; the test of the point just before t finds the others), from the spline's
-  // value and gradient there; `hessian` gives the Hessian when curvature is wanted (and may set
-  // the gradient to its own path's).
-  RayHit hit_at(const Vec3& origin, const Vec3& d, double t, bool entry_face, double value,
-                const Vec3& gradient, const std::function<Hessian(Vec3&)>& hessian) const;
   bool in_region(const Vec3& p) const;
   bool inside(const Vec3& p) const;
   bool first_crossing(const Vec3& o, const Vec3& d, double t0, double t1, double& t,

@@ -149,9 +149,9 @@ void main() {{
 }
 
 // The renderer of render.h on the GPU, one invocation per pixel: the camera's ray through it
-// (Camera::ray), the caster's march (RayCaster::cast: clip to the box, march by the step, bisect
-// the first crossing), the hit finished (RayCaster::hit_at: normal, cut face, principal
-// curvatures) and shaded (shade_pixels). A transcription of render.cpp's code, kept equal to it
+// (Camera::ray), the caster's march and the hit's normal, cut face and principal curvatures
+// (RayCaster::cast: clip to the box, march by the step, bisect the first crossing), the colours
+// (render.cpp's shade_pixels). A transcription of render.cpp's code, kept equal to it
 // by the render agreement test (docs/design.md §16). Each pixel's word: its RGB bytes (red low),
 // and in the top byte the status: 4 for a fetch outside the volume.
 std::string frame_kernel(const std::string& name) {
@@ -286,7 +286,7 @@ void main() {{
       if (!(hi - lo > eps * size) || m <= lo || m >= hi) {{  // float: the bracket stops shrinking
         t = hi;
         // Through a cut face when the point just before is outside the region (as the CPU's
-        // hit_at tests, with a gap float resolves).
+        // cast tests, with a gap float resolves).
         flags = in_region(eye + d * (t - REAL(2) * eps * size)) ? 1 : 3;
         break;
       }}

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdlib>
+#include <utility>
 
 #include "runtime/gl/gl_context.h"
 
@@ -15,8 +16,6 @@ namespace {
 // The tables the emitted evaluator indexes by the point's cell (templates/evaluator.glsl.fmt).
 constexpr const char* kCellTables[] = {"kLookup",   "kCellCube", "kCellOrbit", "kCellKeys",
                                        "kCellPerm", "kCellSign", "kCellA"};
-// Indexed by the cell's orbit: at run time only where there are several orbits.
-constexpr const char* kOrbitTables[] = {"kOrbitStencilSize", "kReferenceStencil"};
 
 // One `const int NAME[SIZE] = int[](...);` declaration of the text: where it is and its entries.
 struct Table {
@@ -57,8 +56,12 @@ Table find_table(const std::string& text, const std::string& name) {
 BufferedTables tables_in_buffer(const std::string& text, const std::string& name, int binding) {
   std::vector<Table> tables;
   for (const char* t : kCellTables) tables.push_back(find_table(text, name + "_" + t));
-  if (find_table(text, name + "_kOrbitStencilSize").values.size() > 1)
-    for (const char* t : kOrbitTables) tables.push_back(find_table(text, name + "_" + t));
+  // The tables indexed by the cell's orbit: at run time only where there are several orbits.
+  Table orbit_sizes = find_table(text, name + "_kOrbitStencilSize");
+  if (orbit_sizes.values.size() > 1) {
+    tables.push_back(std::move(orbit_sizes));
+    tables.push_back(find_table(text, name + "_kReferenceStencil"));
+  }
   std::sort(tables.begin(), tables.end(),
             [](const Table& a, const Table& b) { return a.begin < b.begin; });
   // The block takes the place of the first table; the others' declarations go.
