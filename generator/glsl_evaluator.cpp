@@ -3,6 +3,9 @@
 #include <fmt/args.h>
 #include <fmt/format.h>
 
+#include <cstdint>
+#include <utility>
+
 #include "generator/code_text.h"
 #include "generator/embedded_templates.h"
 #include "generator/evaluator_tables.h"
@@ -28,6 +31,134 @@ std::string flat_rows(const Rows& rows) {
   return join(parts, ",\n    ");
 }
 
+// "+ a * name" terms of an integer combination, zeros left out; `first` without a leading "+".
+std::string combination(const std::vector<std::pair<std::int64_t, std::string>>& terms,
+                        bool first) {
+  std::string text;
+  for (const auto& [c, name] : terms) {
+    if (c == 0) continue;
+    const std::int64_t m = c < 0 ? -c : c;
+    const std::string factor = m == 1 ? name : fmt::format("{} * {}", m, name);
+    if (first)
+      text = c < 0 ? "-" + factor : factor;
+    else
+      text += fmt::format(" {} {}", c < 0 ? '-' : '+', factor);
+    first = false;
+  }
+  return text;
+}
+
+// The glue of templates/evaluator.glsl.fmt with its loops over coordinates, normals, stencil
+// points and derivatives unrolled, so that the shader indexes each private and `const` array by
+// constants only (docs/gpu.md, "Kernels"): the fields named in the template, as text.
+std::vector<std::pair<const char*, std::string>> unrolled_glue(
+    const Derivation& a, const std::string& name, const KnotPlaneKeys& keys,
+    const std::vector<std::int64_t>& hermite_rows, bool double_precision) {
+  const int n = a.spec.dimension();
+  const int derivatives = n + n * (n + 1) / 2;
+  const SplineStructure& s = a.structure;
+  const std::string real = double_precision ? "double" : "float";
+  const std::string ivec = fmt::format("ivec{}", n);
+  const auto axis = [](int i) { return std::string(1, "xyzw"[i]); };
+  const std::int64_t k = s.scale;
+  const auto reduced = [&](int j, int i) { return hermite_rows[j * n + i] / k; };
+  std::vector<std::pair<const char*, std::string>> out;
+  out.emplace_back("ivec", ivec);
+  out.emplace_back("times_scale", k == 1 ? "" : fmt::format(" * {}", k));
+  out.emplace_back("divide_by_scale", k == 1 ? "" : fmt::format("\n  s /= {}({});", real, k));
+  // The Hermite basis reduces rep to the cube of the period (as evaluator_tables.h's cube index).
+  std::vector<std::string> reduction;
+  for (int j = 0; j < n; ++j) {
+    const std::int64_t diagonal = reduced(j, j);
+    reduction.push_back(
+        diagonal == 1 ? fmt::format("  q = rep.{};", axis(j))
+                      : fmt::format("  q = {}_floor_div(rep.{}, {});", name, axis(j), diagonal));
+    for (int i = j; i < n; ++i)
+      if (const std::int64_t c = reduced(j, i); c != 0)
+        reduction.push_back(fmt::format("  rep.{} {}= {};", axis(i), c < 0 ? '+' : '-',
+                                        combination({{c < 0 ? -c : c, "q"}}, true)));
+  }
+  out.emplace_back("hermite_reduction", join(reduction, "\n"));
+  std::string cube;
+  for (int i = n - 1; i >= 0; --i)
+    cube = cube.empty()         ? "rep." + axis(i)
+           : reduced(i, i) == 1 ? fmt::format("{} + rep.{}", cube, axis(i))
+                                : fmt::format("({}) * {} + rep.{}", cube, reduced(i, i), axis(i));
+  out.emplace_back("cube_expression", cube);
+  const int normal_count = static_cast<int>(keys.planes.size());
+  std::vector<std::string> products, index_terms, violations;
+  for (int p = 0; p < normal_count; ++p) {
+    std::vector<std::pair<std::int64_t, std::string>> terms;
+    for (int i = 0; i < n; ++i) terms.emplace_back(keys.planes[p][i], "r." + axis(i));
+    const std::string product = combination(terms, true);
+    products.push_back(fmt::format("  key[{}] = {};", p, product.empty() ? real + "(0)" : product));
+    for (int m = 1; m < keys.widths[p]; ++m)
+      index_terms.push_back(
+          fmt::format("(key[{}] >= {}({}) ? {} : 0)", p, real, keys.mins[p] + m, keys.strides[p]));
+    violations.push_back(
+        fmt::format("{}_violation(key[{}], {}_kCellKeys[at + {}])", name, p, name, p));
+  }
+  products.push_back(fmt::format("  key[{}] = {}(0);", normal_count, real));
+  out.emplace_back("key_products", join(products, "\n"));
+  out.emplace_back("key_index",
+                   index_terms.empty() ? "0" : join(index_terms, " +\n              "));
+  out.emplace_back("violation_sum",
+                   violations.empty() ? real + "(0)" : join(violations, " +\n        "));
+  std::vector<std::string> map, reference_point, origin_terms, axes;
+  std::string identity;
+  for (int i = 0; i < n; ++i) identity += fmt::format("{}{}", i ? ", " : "", i);
+  for (int i = 0; i < n; ++i) {
+    map.push_back(fmt::format(
+        "  int perm{1} = {0}_kCellPerm[cell * {2} + {1}], sign{1} = {0}_kCellSign[cell * {2} + "
+        "{1}],\n      a{1} = {0}_kCellA[cell * {2} + {1}];\n"
+        "  {3} axis{1} = sign{1} * {3}(equal({3}(perm{1}), {3}({4})));",
+        name, i, n, ivec, identity));
+    origin_terms.push_back(fmt::format(" - a{0} * axis{0}", i));
+    reference_point.push_back(fmt::format("  xr[{0}] = {1}(a{0}) + dot({2}vec{3}(axis{0}), y);", i,
+                                          real, double_precision ? "d" : "", n));
+    axes.push_back(fmt::format("{}vec{}(axis{})", double_precision ? "d" : "", n, i));
+  }
+  out.emplace_back("cell_map", join(map, "\n"));
+  out.emplace_back("origin_terms", join(origin_terms, ""));
+  out.emplace_back("reference_point", join(reference_point, "\n"));
+  out.emplace_back("axes", join(axes));
+  // The stencil: one orbit's points are constants; with several, the orbit's row of the tables.
+  std::vector<std::string> fetches;
+  if (s.references.size() == 1) {
+    const auto& stencil = s.references[0].stencil;
+    for (int p = 0; p < s.stencil_max; ++p) {
+      std::vector<std::pair<std::int64_t, std::string>> terms;
+      for (int i = 0; i < n; ++i)
+        terms.emplace_back(p < static_cast<int>(stencil.size()) ? stencil[p][i] : 0,
+                           "axis" + std::to_string(i));
+      fetches.push_back(
+          fmt::format("  v[{}] = {}_fetch(origin{});", p, name, combination(terms, false)));
+    }
+  } else {
+    fetches.push_back(fmt::format("  int size = {0}_kOrbitStencilSize[orbit], row = orbit * {1};",
+                                  name, s.stencil_max));
+    for (int p = 0; p < s.stencil_max; ++p) {
+      std::string j = "origin";
+      for (int i = 0; i < n; ++i)
+        j +=
+            fmt::format(" + {}_kReferenceStencil[(row + {}) * {} + {}] * axis{}", name, p, n, i, i);
+      fetches.push_back(
+          fmt::format("  v[{0}] = {0} < size ? {1}_fetch({2}) : {3}(0);", p, name, j, real));
+    }
+  }
+  out.emplace_back("stencil_fetches", join(fetches, "\n"));
+  out.emplace_back("zeros", join(std::vector<std::string>(derivatives, real + "(0)")));
+  std::vector<std::string> gradient, hessian;
+  for (int i = 0; i < n; ++i) gradient.push_back(fmt::format("ref[{}]", i));
+  for (int col = 0; col < n; ++col)
+    for (int row = 0; row < n; ++row) {
+      const int i = std::min(row, col), j = std::max(row, col);
+      hessian.push_back(fmt::format("ref[{}]", n + i * n - i * (i - 1) / 2 + (j - i)));
+    }
+  out.emplace_back("reference_gradient", join(gradient));
+  out.emplace_back("reference_hessian", join(hessian));
+  return out;
+}
 }  // namespace
 
 std::string glsl_evaluator(const Derivation& a, const std::string& banner, const std::string& name,
@@ -72,13 +203,6 @@ std::string glsl_evaluator(const Derivation& a, const std::string& banner, const
     }
     functions.push_back(text);
   }
-  std::vector<std::string> gradient, hessian;
-  for (int i = 0; i < n; ++i) gradient.push_back(fmt::format("d[{}]", i));
-  for (int col = 0; col < n; ++col)
-    for (int row = 0; row < n; ++row) {
-      const int i = std::min(row, col), j = std::max(row, col);
-      hessian.push_back(fmt::format("d[{}]", n + i * n - i * (i - 1) / 2 + (j - i)));
-    }
   fmt::dynamic_format_arg_store<fmt::format_context> args;
   auto add = [&](const char* key, const auto& value) { args.push_back(fmt::arg(key, value)); };
   add("banner", banner);
@@ -115,22 +239,8 @@ std::string glsl_evaluator(const Derivation& a, const std::string& banner, const
   add("reference_stencil", flat_rows(reference_stencil));
   add("orbit_functions", join(functions, "\n"));
   add("orbit_dispatch", join(dispatch, "\n"));
-  add("gradient_args", join(gradient));
-  add("hessian_args", join(hessian));
-  std::string select;
-  for (int i = 0; i + 1 < n; ++i) select += fmt::format("i == {0} ? x[{0}] : ", i);
-  select += fmt::format("x[{}]", n - 1);
-  // "if (k == 0) array[0] = value; else if ..." over the `size` entries of the array.
-  const auto set_chain = [](const char* array, int size) {
-    std::string chain;
-    for (int k = 0; k < size; ++k)
-      chain += fmt::format("{}  {}if (k == {}) {}[{}] = value;", k ? "\n" : "", k ? "else " : "", k,
-                           array, k);
-    return chain;
-  };
-  add("component_select", select);
-  add("set_chain", set_chain("d", derivatives));
-  add("set_coordinate_chain", set_chain("x", n));
+  for (const auto& [key, value] : unrolled_glue(a, name, keys, hermite_rows, double_precision))
+    add(key, value);
   return fmt::vformat(templates::evaluator_glsl, args);
 }
 

@@ -22,6 +22,7 @@ PACKAGES=(
   clang-format-14 clang-tidy-14         # formatting and static analysis (scripts/lint.sh, in CI)
   libegl-dev libopengl-dev libgl-dev    # EGL and OpenGL 4.5 headers and loaders: boxrecon --device gl (runtime/gl)
   libgl1-mesa-dri                       #   and the GLSL tests (labels gl, gpu), on Mesa's llvmpipe without a GPU
+  glslang-tools                         # glslangValidator: the syntax tree of the GL kernels, checked for arrays indexed at run time (tests/gl)
   python3 python3-numpy                 # the Python module boxgen (python/), for Debian's /usr/bin/python3,
   pybind11-dev python3-pybind11         #   NumPy arrays in and out, bound with pybind11
   python3-dask python3-distributed      # boxgen.dask: chunked resampling on dask (local or a cluster)

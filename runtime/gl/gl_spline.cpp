@@ -25,7 +25,6 @@ namespace {
 
 constexpr int kLocalSize = 128;    // invocations per work group
 constexpr int kMaxGroups = 65535;  // the dispatch size every GL 4.3 device takes
-constexpr int kFrame = 3;          // the program of render() (0-2: the batch orders)
 // Far outside the volume (lattice units), points are refused before the evaluator converts
 // floor(x) to an int (as emitted_spline.h's kFar); their error comes from the CPU path.
 constexpr double kFar = 64;
@@ -443,15 +442,19 @@ GlSpline<T>::~GlSpline() {
 }
 
 template <class T>
+std::string GlSpline<T>::kernel_source(int kind) const {
+  if (kind != kFetchFloor && (kind < 0 || kind > kFrame))
+    throw std::invalid_argument(fmt::format("kernel_source: no kernel {}", kind));
+  return prelude(*volume_, glsl_.name, shader_text_) +
+         (kind == kFrame ? frame_kernel(glsl_.name) : batch_kernel(glsl_.name, kind));
+}
+
+template <class T>
 unsigned GlSpline<T>::program(int kind) const {
   unsigned& p = programs_[kind == kFetchFloor ? 0 : static_cast<std::size_t>(kind) + 1];
-  if (p == 0) {
-    const std::string kernel =
-        kind == kFrame ? frame_kernel(glsl_.name) : batch_kernel(glsl_.name, kind);
-    p = compile_compute(
-        prelude(*volume_, glsl_.name, shader_text_) + kernel,
-        fmt::format("the GLSL evaluator {} ({})", glsl_.name, sizeof(T) == 8 ? "double" : "float"));
-  }
+  if (p == 0)
+    p = compile_compute(kernel_source(kind), fmt::format("the GLSL evaluator {} ({})", glsl_.name,
+                                                         sizeof(T) == 8 ? "double" : "float"));
   glUseProgram(p);
   const Sizes& n = volume_->sizes();
   glUniform3i(glGetUniformLocation(p, "sizes"), n[0], n[1], n[2]);

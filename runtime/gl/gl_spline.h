@@ -84,6 +84,11 @@ class GlSpline {
   // `times`, where given, receives the time of the dispatch (gpu) and adds the rest to cpu.
   RgbBuffer render(const FrameOptions& options, FrameTimes* times = nullptr) const;
 
+  // The compute shader of a kernel as the device compiles it (kind: an order 0-2 of run,
+  // kFetchFloor, or kFrame for render), for inspection: tests/gl reads its syntax tree.
+  static constexpr int kFrame = 3;
+  std::string kernel_source(int kind) const;
+
   const LatticeVolume<T>& volume() const noexcept { return *volume_; }
   const GlslEvaluator& evaluator() const noexcept { return glsl_; }
 
