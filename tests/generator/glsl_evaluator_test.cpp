@@ -29,7 +29,7 @@ TEST(GlslEvaluator, EntryPointsInEachPrecisionAndDimension) {
   EXPECT_NE(f.find("float zp_value_gradient(vec2 x, out vec2 g)"), std::string::npos);
   EXPECT_NE(f.find("float zp_value_gradient_hessian(vec2 x, out vec2 g, out mat2 h)"),
             std::string::npos);
-  EXPECT_NE(f.find("zp_fetch(j)"), std::string::npos);
+  EXPECT_NE(f.find("zp_fetch(origin"), std::string::npos);  // the application's fetch
   for (const char* path : {"zp_orbit0_0(", "zp_orbit0_1(", "zp_orbit0_2("})
     EXPECT_NE(f.find(path), std::string::npos) << path;
   const Derivation& m7 = fixture::derivation_of("m7");
