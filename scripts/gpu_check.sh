@@ -9,8 +9,9 @@
 #
 #   scripts/gpu_check.sh BUILD_DIR [OUT_DIR]
 #
-# OUT_DIR (default ./gpu_check) receives renderer.txt, gl_tests.txt, gpu_tests.txt, bench.json
-# and cuda.txt.
+# OUT_DIR (default ./gpu_check) receives renderer.txt, gl_tests.txt, gpu_tests.txt, bench.json,
+# programs/ (bench's kernels as compiled: source, link log and binary; BOXGEN_GL_DUMP),
+# programs.txt (what each binary shows of its assembly) and cuda.txt.
 set -uo pipefail
 
 build=${1:?usage: scripts/gpu_check.sh BUILD_DIR [OUT_DIR]}
@@ -49,9 +50,16 @@ BOXRECON_UNDER_TEST=$boxrecon timeout 90 "$gl_tests" --gtest_brief=1 \
   --gtest_filter="-*Slow*:*KernelIndexing*" 2>&1 | tee "$out/gl_tests.txt"
 [[ ${PIPESTATUS[0]} -eq 0 ]] || status=1
 
-echo "== boxrecon bench --device gl --json (GL beside the CPU, same run)"
-timeout 200 "$boxrecon" bench --device gl --json | tee "$out/bench.json"
+echo "== boxrecon bench --device gl --json (GL beside the CPU, same run; its kernels to programs/)"
+BOXGEN_GL_DUMP=$out/programs timeout 200 "$boxrecon" bench --device gl --json | tee "$out/bench.json"
 [[ ${PIPESTATUS[0]} -eq 0 ]] || status=1
+# What the driver's compiler made of each kernel: its binary's printable lines that look like
+# assembly (NV_gpu_program5's "!!NV" header, local arrays "lmem"), if the binary holds any text.
+for bin in "$out"/programs/*.bin; do
+  [[ -e $bin ]] || continue
+  printf '%s: %s bytes, "!!NV" lines %s, "lmem" mentions %s\n' "$(basename "$bin")" \
+    "$(stat -c %s "$bin")" "$(grep -a -c '!!NV' "$bin")" "$(grep -a -o 'lmem' "$bin" | wc -l)"
+done | tee "$out/programs.txt"
 
 echo "== gpu-label exactness (gpu_tests: GLSL float and double on this renderer, CUDA host build)"
 timeout 180 "$gpu_tests" --gtest_brief=1 2>&1 | tee "$out/gpu_tests.txt"

@@ -7,9 +7,13 @@
 #include <GL/glcorearb.h>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <cstring>
 #include <string>
+
+#include "support/output_file.h"
 
 namespace boxgen::runtime::gl {
 
@@ -20,6 +24,39 @@ const char* const kInstall =
     "driver with EGL";
 
 std::int64_t storage_override = 0;
+
+// With BOXGEN_GL_DUMP set to a folder: the program's source, the driver's link log and the
+// program's binary (glGetProgramBinary, in the driver's own format) as DIR/LABEL.comp, .log and
+// .bin (written as support/output_file.h writes a set), LABEL made of `what`'s letters and
+// digits. For reading what a GPU's compiler made of a kernel (docs/gpu.md, "A kernel's
+// compile").
+void dump_program(GLuint program, const std::string& source, const std::string& what,
+                  const std::string& log) {
+  const char* folder = std::getenv("BOXGEN_GL_DUMP");
+  if (!folder || !*folder) return;
+  std::string label;
+  for (char c : what) {
+    const bool word = std::isalnum(static_cast<unsigned char>(c)) != 0;
+    if (word)
+      label += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    else if (!label.empty() && label.back() != '_')
+      label += '_';
+  }
+  while (!label.empty() && label.back() == '_') label.pop_back();
+  GLint length = 0;
+  glGetProgramiv(program, GL_PROGRAM_BINARY_LENGTH, &length);
+  std::string binary(static_cast<std::size_t>(std::max(length, 0)), '\0');
+  GLenum format = 0;
+  if (length > 0) glGetProgramBinary(program, length, &length, &format, binary.data());
+  binary.resize(static_cast<std::size_t>(std::max(length, 0)));
+  const support::NamedText files[] = {
+      {label + ".comp", source}, {label + ".log", log}, {label + ".bin", binary}};
+  try {
+    support::write_file_set(folder, files);
+  } catch (const support::OutputFileError& e) {
+    throw GlError(fmt::format("BOXGEN_GL_DUMP: {}", e.what()));
+  }
+}
 
 // A 4.3 core context on `display`, current with no surface; false (display terminated) if not.
 // No-config contexts (EGL_KHR_no_config_context) first, then a pbuffer-capable config.
@@ -166,6 +203,7 @@ unsigned compile_compute(const std::string& source, const std::string& what) {
   }
   const GLuint program = glCreateProgram();
   glAttachShader(program, shader);
+  glProgramParameteri(program, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
   glLinkProgram(program);
   glDeleteShader(shader);  // the program keeps it
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
@@ -175,6 +213,7 @@ unsigned compile_compute(const std::string& source, const std::string& what) {
     throw GlError(fmt::format("{} does not link on {}: {}", what, device().renderer, log));
   }
   check_gl("the shader's compile");
+  dump_program(program, source, what, log_of(program, false));
   return program;
 }
 

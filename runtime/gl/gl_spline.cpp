@@ -452,9 +452,13 @@ std::string GlSpline<T>::kernel_source(int kind) const {
 template <class T>
 unsigned GlSpline<T>::program(int kind) const {
   unsigned& p = programs_[kind == kFetchFloor ? 0 : static_cast<std::size_t>(kind) + 1];
-  if (p == 0)
-    p = compile_compute(kernel_source(kind), fmt::format("the GLSL evaluator {} ({})", glsl_.name,
-                                                         sizeof(T) == 8 ? "double" : "float"));
+  if (p == 0) {
+    constexpr const char* kKernels[] = {"fetch floor", "value", "gradient", "Hessian", "frame"};
+    p = compile_compute(kernel_source(kind),
+                        fmt::format("the GLSL evaluator {} ({}, {} kernel{})", glsl_.name,
+                                    sizeof(T) == 8 ? "double" : "float", kKernels[kind + 1],
+                                    tables_ ? "" : ", const tables"));
+  }
   glUseProgram(p);
   const Sizes& n = volume_->sizes();
   glUniform3i(glGetUniformLocation(p, "sizes"), n[0], n[1], n[2]);

@@ -3,6 +3,7 @@
 // volume; resample and render write their files; a bad --device is one line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -119,6 +120,30 @@ TEST_F(GlCliTest, SlowSpecFilterEvaluatesOnTheGlDevice) {
   for (const auto& entry : std::filesystem::directory_iterator(cache))
     glsl_files += entry.path().extension() == ".glsl";
   EXPECT_EQ(glsl_files, 2);
+}
+
+// BOXGEN_GL_DUMP=DIR: each compiled kernel's source, link log and program binary land in DIR
+// (docs/gpu.md, "A kernel's compile"); a DIR that is a file is one line and exit 1.
+TEST_F(GlCliTest, DumpWritesEachKernelsSourceLogAndBinary) {
+  const std::string dump = file("dump");
+  ::setenv("BOXGEN_GL_DUMP", dump.c_str(), 1);
+  const ProcessResult r = eval({"--device", "gl"});
+  std::ofstream(file("not_a_folder")) << "x";
+  ::setenv("BOXGEN_GL_DUMP", file("not_a_folder").c_str(), 1);
+  const ProcessResult bad = eval({"--device", "gl"});
+  ::unsetenv("BOXGEN_GL_DUMP");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string base = dump + "/the_glsl_evaluator_m7_float_hessian_kernel";
+  std::ifstream source(base + ".comp");
+  const std::string text{std::istreambuf_iterator<char>(source), std::istreambuf_iterator<char>()};
+  EXPECT_EQ(text.rfind("#version 430", 0), 0u);
+  EXPECT_NE(text.find("m7_value_gradient_hessian(x, g, h)"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(base + ".log"));
+  EXPECT_TRUE(std::filesystem::exists(base + ".bin"));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(bad.out, "");
+  EXPECT_NE(bad.err.find("BOXGEN_GL_DUMP"), std::string::npos) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
 }
 
 TEST_F(GlCliTest, ABadDeviceIsOneLine) {
