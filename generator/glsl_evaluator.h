@@ -1,7 +1,8 @@
 // The GLSL printer of an evaluator (docs/gpu.md): the tables of generator/evaluator_tables.h as
 // flat const arrays, every orbit's scheduled code as one function per path (GLSL has no
-// templates), and the fixed glue of templates/evaluator.glsl.fmt (locate, fetch, back to the
-// lattice frame) behind NAME_value, NAME_value_gradient and NAME_value_gradient_hessian.
+// templates), and the glue of templates/evaluator.glsl.fmt (locate, fetch, back to the lattice
+// frame; its loops unrolled here, docs/design.md §16) behind NAME_value, NAME_value_gradient and
+// NAME_value_gradient_hessian.
 #pragma once
 #include <string>
 #include <vector>
