@@ -4,6 +4,8 @@
 #   include/boxgen/runtime/*.h                    included as "runtime/x.h"
 #   include/boxgen/generated/*.hpp                boxgen::generated, included as "generated/x.hpp"
 #   lib/libboxgen_support.a                       boxgen::support (the runtime's output files)
+#   lib/libboxgen_gl.a                            boxgen::gl (the GL device: OpenGL compute, EGL)
+#   include/boxgen/runtime/gl/*.h                 included as "runtime/gl/x.h"
 #   include/boxgen/support/*.h, *.hpp             the evaluators' glue, included as "support/x.hpp"
 #   lib/cmake/boxgen/boxgenConfig.cmake ...       the package, with boxgen::boxgen (the generator,
 #                                                 to run at build time) and boxgen_emit()
@@ -15,7 +17,7 @@ set(BOXGEN_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/boxgen)
 
 set_target_properties(boxgen PROPERTIES EXPORT_NAME boxgen)
 set_target_properties(boxrecon PROPERTIES EXPORT_NAME boxrecon)
-install(TARGETS boxgen boxrecon boxgen_runtime boxgen_support boxgen_generated
+install(TARGETS boxgen boxrecon boxgen_runtime boxgen_support boxgen_generated boxgen_gl
         EXPORT boxgenTargets
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
@@ -23,6 +25,8 @@ install(TARGETS boxgen boxrecon boxgen_runtime boxgen_support boxgen_generated
 file(GLOB BOXGEN_RUNTIME_HEADERS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/runtime/*.h)
 file(GLOB BOXGEN_GENERATED_HEADERS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/generated/*.hpp)
 install(FILES ${BOXGEN_RUNTIME_HEADERS} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/boxgen/runtime)
+file(GLOB BOXGEN_GL_HEADERS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/runtime/gl/*.h)
+install(FILES ${BOXGEN_GL_HEADERS} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/boxgen/runtime/gl)
 install(FILES ${BOXGEN_GENERATED_HEADERS} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/boxgen/generated)
 file(GLOB BOXGEN_SUPPORT_HEADERS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/support/*.h ${PROJECT_SOURCE_DIR}/support/*.hpp)
 install(FILES ${BOXGEN_SUPPORT_HEADERS} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/boxgen/support)

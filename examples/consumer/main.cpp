@@ -12,6 +12,9 @@
 //      generated Q^I and reconstructed with LatticeReconstructor. Its approximation order is 3,
 //      so every quadratic comes back exactly up to rounding; an FCC filter on a BCC volume is
 //      refused.
+//  (d) the same filter on the GL device (boxgen::gl): the GLSL that boxgen_emit wrote for it,
+//      compiled into an OpenGL compute shader at run time (a GPU's driver, else Mesa's
+//      llvmpipe), gives the CPU's values within float rounding (2e-6 of the largest sample).
 // Every check prints one line; the first failure goes to stderr as one line, exit code 1.
 #include <algorithm>
 #include <cmath>
@@ -24,6 +27,9 @@
 #include "fcc_six.hpp"  // emitted by boxgen_emit() at build time
 #include "fcc_six_prefilters.hpp"
 #include "generated/m7.hpp"  // boxgen::generated
+#include "runtime/emitted_filter.h"
+#include "runtime/gl/gl_render.h"  // boxgen::gl
+#include "runtime/gl/gl_spline.h"
 #include "runtime/lattice_reconstruction.h"
 #include "runtime/reconstruction.h"  // boxgen::runtime
 #include "runtime/sampling.h"
@@ -149,11 +155,40 @@ void own_filter_through_the_runtime() {
   check("own FCC filter on a BCC volume is refused", refused ? 0 : 1, 0);
 }
 
+// (d) Our own filter on the GL device, from the GLSL file boxgen_emit wrote (FCC_SIX_GLSL).
+void own_filter_on_the_gl_device() {
+  namespace six = boxgen::generated::fcc_six;
+  const rt::SplineFilter filter = rt::emitted_filter<six::Traits>();
+  const auto quadratic = [](const rt::Vec3& p) {
+    return 2 * p[0] * p[0] - p[0] * p[1] + 3 * p[2] * p[2] - p[1] + 0.5;
+  };
+  const rt::LatticeVolume<double> volume = rt::prefilter(
+      rt::sample_lattice<double>(quadratic, rt::cube_lattice_grid(filter.lattice(), 9, 4)),
+      rt::prefilter_from(six::q1));
+  const rt::LatticeVolume<float> single = rt::gl::float_volume(volume);
+  const rt::gl::GlSpline<float> gpu(single, filter, rt::gl::read_glsl(FCC_SIX_GLSL));
+  std::vector<rt::Vec3> points;
+  for (int i = 0; i < 125; ++i)
+    points.push_back({-0.89 + 0.45 * (i % 5), -0.93 + 0.45 * (i / 5 % 5), -0.91 + 0.45 * (i / 25)});
+  std::vector<float> on_gpu(points.size());
+  std::vector<double> on_cpu(points.size());
+  gpu.evaluate(points, on_gpu);
+  rt::Reconstructor<double>(volume, filter).evaluate(points, on_cpu);
+  // Relative to the largest sample, as boxgen's own float tests (2e-6 of max|V|).
+  double error = 0, largest = 0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    error = std::max(error, std::abs(static_cast<double>(on_gpu[i]) - on_cpu[i]));
+  for (double s : volume.samples()) largest = std::max(largest, std::abs(s));
+  std::printf("GL device: %s\n", rt::gl::device().renderer.c_str());
+  check("own FCC filter's GLSL on the GL device, as the CPU (float)", error / largest, 2e-6);
+}
+
 int main() {
   try {
     bcc_reconstruction();
     own_box_spline();
     own_filter_through_the_runtime();
+    own_filter_on_the_gl_device();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "boxgen_consumer: %s\n", e.what());
     return 1;
