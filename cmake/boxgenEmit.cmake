@@ -1,4 +1,4 @@
-# boxgen_emit: turn a direction matrix of your own into C++ headers at build time.
+# boxgen_emit: turn a direction matrix of your own into C++ headers (and GLSL) at build time.
 #
 #   boxgen_emit(<target> NAME <name> SPEC <spec> [LATTICE <lattice>] [STRATEGY auto|horner|shifted|bernstein|separable|monomial]
 #               [OUTPUT_DIR <dir>] [HEADERS <variable>] [GLSL <variable>])
