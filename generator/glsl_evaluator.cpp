@@ -219,13 +219,9 @@ std::string glsl_evaluator(const Derivation& a, const std::string& banner, const
   const std::string prefix = double_precision ? "d" : "";
   const Syntax syntax = glsl_syntax(double_precision);
   const SplineStructure& s = a.structure;
-  KnotPlaneKeys keys = knot_plane_keys(a);
+  const KnotPlaneKeys keys = knot_plane_keys(a);
   const IntColumns hermite = hermite_basis(a);
   const CellTables t = cell_tables(a, keys, hermite);
-  std::vector<IntVec> normals = keys.planes;
-  normals.push_back(IntVec(n, 0));  // a zero row keeps the arrays non-empty
-  keys.mins.push_back(0);
-  keys.widths.push_back(1);
   std::vector<std::string> centre, functions, dispatch;
   for (const auto& c : s.centre) centre.push_back(syntax.literal(c));
   std::vector<std::int64_t> hermite_rows;  // row j holds column j of the basis, as in C++
@@ -265,12 +261,7 @@ std::string glsl_evaluator(const Derivation& a, const std::string& banner, const
   add("scale", s.scale);
   add("orbit_costs", join(cost_lines, "\n"));
   add("centre", join(centre));
-  add("hermite", flat(hermite_rows));
   add("normal_count", keys.planes.size());
-  add("normals", flat_rows(normals));
-  add("normal_min", flat(keys.mins));
-  add("normal_width", flat(keys.widths));
-  add("normal_stride", flat(keys.strides));
   add("cube_count", t.lookup.size());
   add("lookup_size", keys.size());
   add("lookup", flat_rows(t.lookup));
