@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,29 @@ namespace {
 
 using namespace boxgen::runtime;
 
+// Seconds of the same dispatch run before a GL timing on a GPU. NVIDIA's driver first runs a
+// quickly compiled program and swaps in the optimized one when its compile, in the background,
+// ends; and an idle GPU clocks down. With a cold shader cache the fastest of three runs right
+// after the compile measured M8 5x slower than after this warm-up (docs/performance.md).
+constexpr double kGpuWarmUpSeconds = 2.0;
+
+// Runs `run` untimed before a GL timing: for kGpuWarmUpSeconds on a GPU, once on a software
+// renderer (llvmpipe compiles before the first dispatch returns, and its clock is the CPU's).
+template <class F>
+void warm_up(F&& run) {
+  const double seconds = gl::device().software ? 0.0 : kGpuWarmUpSeconds;
+  const auto t0 = std::chrono::steady_clock::now();
+  do run();
+  while (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < seconds);
+}
+
+// The fastest of `repeats` GL runs after the warm-up.
+template <class F>
+double warm_fastest_seconds(int repeats, F&& run) {
+  warm_up(run);
+  return fastest_seconds(repeats, run);
+}
+
 // Evaluations per second of one filter: GL and CPU (all threads), random and ray points.
 nlohmann::json filter_rates(const std::string& name, const LatticeVolume<float>& volume,
                             const std::vector<Vec3>& points, const std::vector<Vec3>& rays,
@@ -37,21 +61,17 @@ nlohmann::json filter_rates(const std::string& name, const LatticeVolume<float>&
   gl::GlSpline<float> gpu(volume, f, gl::registry_glsl(name, false));
   nlohmann::json out;
   gpu.upload(points);
-  gpu.run(0);  // the compile and first dispatch are not timed
-  out["gl_random"] = rate(fastest_seconds(repeats, [&] { gpu.run(0); }));
-  if (floor_rate) {
-    gpu.run(gl::GlSpline<float>::kFetchFloor);
+  out["gl_random"] = rate(warm_fastest_seconds(repeats, [&] { gpu.run(0); }));
+  if (floor_rate)
     *floor_rate =
-        rate(fastest_seconds(repeats, [&] { gpu.run(gl::GlSpline<float>::kFetchFloor); }));
-  }
+        rate(warm_fastest_seconds(repeats, [&] { gpu.run(gl::GlSpline<float>::kFetchFloor); }));
   gpu.upload(rays);
-  out["gl_rays"] = rate(fastest_seconds(repeats, [&] { gpu.run(0); }));
+  out["gl_rays"] = rate(warm_fastest_seconds(repeats, [&] { gpu.run(0); }));
   {  // the same kernel with the emitted text's tables as they are (glsl_tables.h)
     gl::GlSpline<float> constant(volume, f, gl::registry_glsl(name, false),
                                  gl::TableStorage::constant);
     constant.upload(points);
-    constant.run(0);
-    out["gl_random_const_tables"] = rate(fastest_seconds(repeats, [&] { constant.run(0); }));
+    out["gl_random_const_tables"] = rate(warm_fastest_seconds(repeats, [&] { constant.run(0); }));
   }
   const Reconstructor<float> cpu(volume, f);
   std::vector<float> values(points.size());
@@ -78,7 +98,7 @@ nlohmann::json render_times(const std::vector<int>& sizes, int repeats) {
     RenderOptions o;
     o.width = o.height = size;
     o.shading = Shading::Curvature;
-    (void)gl::render_isosurface(gpu, cube, o);  // compiles the caster
+    warm_up([&] { (void)gl::render_isosurface(gpu, cube, o); });  // compiles the caster
     gl::FrameTimes split, fastest{1e300, 1e300};
     const double gl_s = fastest_seconds(repeats, [&] {
       (void)gl::render_isosurface(gpu, cube, o, &split);
