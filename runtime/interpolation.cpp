@@ -172,9 +172,10 @@ class FrequencySolver {
   void solve(Complex* x, std::ptrdiff_t stride) {
     if (k_ == 1) {
       const Complex hv = h_[0];
-      x[0] = mu_ == 0 ? x[0] / hv : std::conj(hv) * x[0] / (std::norm(hv) + mu_);
+      x[0] *= std::conj(hv) / (std::norm(hv) + mu_);
       return;
     }
+    if (k_ == 2) return solve2(x, stride);
     const auto n = static_cast<std::size_t>(k_);
     if (mu_ == 0) {
       a_ = h_;
@@ -195,12 +196,12 @@ class FrequencySolver {
     for (std::size_t col = 0; col < n; ++col) {
       std::size_t pivot = col;
       for (std::size_t r = col + 1; r < n; ++r)
-        if (std::abs(a_[r * n + col]) > std::abs(a_[pivot * n + col])) pivot = r;
+        if (std::norm(a_[r * n + col]) > std::norm(a_[pivot * n + col])) pivot = r;
       if (pivot != col) {
         for (std::size_t c = 0; c < n; ++c) std::swap(a_[col * n + c], a_[pivot * n + c]);
         std::swap(b_[col], b_[pivot]);
       }
-      const Complex inv = 1.0 / a_[col * n + col];
+      const Complex inv = reciprocal(a_[col * n + col]);
       for (std::size_t r = col + 1; r < n; ++r) {
         const Complex f = a_[r * n + col] * inv;
         if (f == Complex(0)) continue;
@@ -211,12 +212,37 @@ class FrequencySolver {
     for (std::size_t r = n; r-- > 0;) {
       Complex s = b_[r];
       for (std::size_t c = r + 1; c < n; ++c) s -= a_[r * n + c] * b_[c];
-      b_[r] = s / a_[r * n + r];
+      b_[r] = s * reciprocal(a_[r * n + r]);
     }
     for (std::size_t a = 0; a < n; ++a) x[static_cast<std::ptrdiff_t>(a) * stride] = b_[a];
   }
 
  private:
+  // 1 / z without the library's scaling for extreme exponents (the systems' entries are of
+  // order 1): a plain division costs a call of __divdc3 per frequency.
+  static Complex reciprocal(Complex z) { return std::conj(z) / std::norm(z); }
+
+  // K = 2 (BCC) by Cramer's rule: H c = V, or (H* H + mu I) c = H* V.
+  void solve2(Complex* x, std::ptrdiff_t stride) {
+    Complex a = h_[0], b = h_[1], c = h_[2], d = h_[3];
+    Complex v0 = x[0], v1 = x[stride];
+    if (mu_ != 0) {
+      const Complex a2 = std::norm(a) + std::norm(c) + mu_, b2 = std::conj(a) * b + std::conj(c) * d,
+                    d2 = std::norm(b) + std::norm(d) + mu_;
+      const Complex w0 = std::conj(a) * v0 + std::conj(c) * v1,
+                    w1 = std::conj(b) * v0 + std::conj(d) * v1;
+      a = a2;
+      b = b2;
+      c = std::conj(b2);
+      d = d2;
+      v0 = w0;
+      v1 = w1;
+    }
+    const Complex inv = reciprocal(a * d - b * c);
+    x[0] = (d * v0 - b * v1) * inv;
+    x[stride] = (a * v1 - c * v0) * inv;
+  }
+
   int k_;
   double mu_;
   std::vector<Complex> h_, a_, b_;
@@ -487,6 +513,53 @@ SymbolBounds symbol_bounds(const DiscreteFilter& values) {
   return b;
 }
 
+namespace {
+
+// s(k) = sum_o M(o) c(k - o) at every sample, read from the transform (sample index i at
+// transform index i + padding), against the samples: the residual's max and RMS relative to
+// max |V|.
+template <class T>
+void residual_at_samples(CosetTransform& x, const LatticeVolume<T>& samples,
+                         const DiscreteFilter& values, InterpolationReport& r) {
+  const CosetLattice& lattice = samples.lattice();
+  const int k_count = lattice.coset_count();
+  struct Read {
+    int coset;
+    std::array<int, 3> at;  // transform index minus the sample index
+    double weight;
+  };
+  std::vector<std::vector<Read>> reads(static_cast<std::size_t>(k_count));
+  for (int c = 0; c < k_count; ++c)
+    for (const auto& [o, w] : values) {
+      const TapStep step = tap_step(lattice, c, o);
+      Read read{step.coset, {}, w};
+      for (std::size_t a = 0; a < 3; ++a)
+        read.at[a] = r.padding + static_cast<int>(step.delta[a]);  // |delta| <= padding
+      reads[static_cast<std::size_t>(c)].push_back(read);
+    }
+  const Sizes& n = samples.sizes();
+  double largest = 0, worst = 0, sum2 = 0;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(batch_threads()) \
+    reduction(max : largest, worst) reduction(+ : sum2)
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i)
+        for (int c = 0; c < k_count; ++c) {
+          double s = 0;
+          for (const Read& read : reads[static_cast<std::size_t>(c)])
+            s += read.weight * x.real(read.coset, i + read.at[0], j + read.at[1], k + read.at[2]);
+          const double v = static_cast<double>(samples(c, i, j, k));
+          largest = std::max(largest, std::abs(v));
+          worst = std::max(worst, std::abs(s - v));
+          sum2 += (s - v) * (s - v);
+        }
+  const double count = static_cast<double>(samples.sample_count());
+  r.residual_max = largest > 0 ? worst / largest : 0;
+  r.residual_rms = largest > 0 ? std::sqrt(sum2 / count) / largest : 0;
+}
+
+}  // namespace
+
 int interpolation_margin(const SplineFilter& f, std::optional<double> lambda) {
   const DiscreteFilter values = lattice_values(f);
   const Regularisation r = regularisation(f, values, lambda);
@@ -518,7 +591,7 @@ LatticeVolume<T> interpolate(LatticeVolume<T> samples, const SplineFilter& f,
   // Padding: the inverse filter's decay, and at least the margins the result and the residual
   // keep beyond the samples.
   const int reconstruction = f.required_margin(PrefilterChoice::None);
-  const int residual_margin = prefilter_margin(values, lattice);
+  const int residual_margin = prefilter_margin(values, lattice);  // the reads of the residual
   const bool want_residual = options.residual || r.lambda > 0;
   r.margin = options.boundary == Boundary::Strict ? 0 : reconstruction;
   r.padding = std::max({decay_radius(system, mu, kPaddingDecay), r.margin, want_residual ? residual_margin : 0});
@@ -540,67 +613,49 @@ LatticeVolume<T> interpolate(LatticeVolume<T> samples, const SplineFilter& f,
   CosetTransform x(k_count, r.transform);
   {
     const std::span<const T> in = samples.samples();
+    const int first = r.padding, last = r.padding + n[0];  // transform indices of samples along x
 #pragma omp parallel for schedule(dynamic, 1) num_threads(batch_threads())
     for (int k = 0; k < r.transform[2]; ++k)
       for (int j = 0; j < r.transform[1]; ++j)
-        for (int c = 0; c < k_count; ++c)
-          for (int i = 0; i < r.transform[0]; ++i)
-            x.real(c, i, j, k) =
-                static_cast<double>(in[e.source(c, i + shift, j + shift, k + shift)]);
+        for (int c = 0; c < k_count; ++c) {
+          double* row = &x.real(c, 0, j, k);
+          for (int i = 0; i < first; ++i)
+            row[i] = static_cast<double>(in[e.source(c, i + shift, j + shift, k + shift)]);
+          // Along x inside the samples the extension reads one coset at steps of K.
+          const T* run = &in[e.source(c, first + shift, j + shift, k + shift)];
+          for (int i = first; i < last; ++i)
+            row[i] = static_cast<double>(run[static_cast<std::size_t>(k_count) *
+                                             static_cast<std::size_t>(i - first)]);
+          for (int i = last; i < r.transform[0]; ++i)
+            row[i] = static_cast<double>(in[e.source(c, i + shift, j + shift, k + shift)]);
+        }
   }
-  // The samples are not needed again unless for the residual: their memory goes back first.
-  const LatticeVolume<T> geometry(lattice, {1, 1, 1}, samples.axis_spacing(), samples.origin(),
-                                  std::vector<T>(static_cast<std::size_t>(lattice.coset_count())));
-  if (!want_residual) (void)std::move(samples).release();
   x.forward();
   solve_all(x, system, mu);
   x.backward();
-
-  // The coefficients of the samples and `cells` coset cells around them.
-  const auto crop = [&](int cells, auto tag) {
-    using U = decltype(tag);
-    Sizes sizes{};
-    Vec3 origin = geometry.origin();
-    for (int a = 0; a < 3; ++a) {
-      sizes[a] = n[a] + 2 * cells;
-      origin[a] -= geometry.period() * geometry.axis_spacing()[a] * cells;
-    }
-    LatticeVolume<U> out(lattice, sizes, geometry.axis_spacing(), origin,
-                         std::vector<U>(static_cast<std::size_t>(k_count) *
-                                        static_cast<std::size_t>(sizes[0]) *
-                                        static_cast<std::size_t>(sizes[1]) *
-                                        static_cast<std::size_t>(sizes[2])));
-    const int from = r.padding - cells;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(batch_threads())
-    for (int k = 0; k < sizes[2]; ++k)
-      for (int j = 0; j < sizes[1]; ++j)
-        for (int i = 0; i < sizes[0]; ++i)
-          for (int c = 0; c < k_count; ++c)
-            out(c, i, j, k) = to_sample<U>(x.real(c, i + from, j + from, k + from));
-    return out;
-  };
-  if (want_residual) {
-    // s(k) = sum_o M(o) c(k - o) at every sample (prefilter.h's convolution), against V.
-    const LatticeVolume<double> s = prefilter(crop(residual_margin, 0.0), values);
-    const PrefilterShrink shrink = prefilter_shrink(values, lattice);
-    double largest = 0, worst = 0, sum2 = 0;
-    for (const T v : samples.samples()) largest = std::max(largest, std::abs(static_cast<double>(v)));
-    for (int k = 0; k < n[2]; ++k)
-      for (int j = 0; j < n[1]; ++j)
-        for (int i = 0; i < n[0]; ++i)
-          for (int c = 0; c < k_count; ++c) {
-            const double e2 = s(c, i + residual_margin - shrink.lower[0],
-                                j + residual_margin - shrink.lower[1],
-                                k + residual_margin - shrink.lower[2]) -
-                              static_cast<double>(samples(c, i, j, k));
-            worst = std::max(worst, std::abs(e2));
-            sum2 += e2 * e2;
-          }
-    const double count = static_cast<double>(samples.sample_count());
-    r.residual_max = largest > 0 ? worst / largest : 0;
-    r.residual_rms = largest > 0 ? std::sqrt(sum2 / count) / largest : 0;
+  if (want_residual) residual_at_samples(x, samples, values, r);
+  // The coefficients of the samples and r.margin coset cells around them; the samples' memory
+  // goes back first.
+  Vec3 origin = samples.origin();
+  const Vec3 spacing = samples.axis_spacing();
+  (void)std::move(samples).release();
+  Sizes sizes{};
+  for (int a = 0; a < 3; ++a) {
+    sizes[a] = n[a] + 2 * r.margin;
+    origin[a] -= lattice.period() * spacing[a] * r.margin;
   }
-  LatticeVolume<T> out = crop(r.margin, T{});
+  LatticeVolume<T> out(lattice, sizes, spacing, origin,
+                       std::vector<T>(static_cast<std::size_t>(k_count) *
+                                      static_cast<std::size_t>(sizes[0]) *
+                                      static_cast<std::size_t>(sizes[1]) *
+                                      static_cast<std::size_t>(sizes[2])));
+  const int from = r.padding - r.margin;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(batch_threads())
+  for (int k = 0; k < sizes[2]; ++k)
+    for (int j = 0; j < sizes[1]; ++j)
+      for (int i = 0; i < sizes[0]; ++i)
+        for (int c = 0; c < k_count; ++c)
+          out(c, i, j, k) = to_sample<T>(x.real(c, i + from, j + from, k + from));
   if (report) *report = r;
   return out;
 }
