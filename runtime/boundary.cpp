@@ -18,15 +18,18 @@ Boundary parse_boundary(std::string_view text) {
   if (text == "strict") return Boundary::Strict;
   if (text == "mirror") return Boundary::Mirror;
   if (text == "clamp") return Boundary::Clamp;
-  throw std::invalid_argument(fmt::format("unknown boundary '{}': expected strict, mirror or clamp",
-                                          text.substr(0, 40)));
+  throw std::invalid_argument(
+      fmt::format("unknown boundary '{}': expected strict, mirror or clamp", text.substr(0, 40)));
 }
 
 const char* boundary_name(Boundary b) {
   switch (b) {
-    case Boundary::Strict: return "strict";
-    case Boundary::Mirror: return "mirror";
-    case Boundary::Clamp: return "clamp";
+    case Boundary::Strict:
+      return "strict";
+    case Boundary::Mirror:
+      return "mirror";
+    case Boundary::Clamp:
+      return "clamp";
   }
   return "?";
 }
@@ -38,7 +41,8 @@ namespace {
 std::int64_t upper_face(const CosetLattice& lattice, const Sizes& sizes, int a) {
   int top = 0;
   for (const Offset& o : lattice.offsets()) top = std::max(top, o[static_cast<std::size_t>(a)]);
-  return top + static_cast<std::int64_t>(lattice.period()) * (sizes[static_cast<std::size_t>(a)] - 1);
+  return top +
+         static_cast<std::int64_t>(lattice.period()) * (sizes[static_cast<std::size_t>(a)] - 1);
 }
 
 // x folded into [0, hi] by reflections about 0 and hi (period 2 hi).
@@ -64,8 +68,7 @@ bool mirror_keeps_lattice(const CosetLattice& lattice, const Sizes& sizes) {
 
 Extension::Extension(const CosetLattice& lattice, const Sizes& sizes, int cells, Boundary b)
     : lattice_(lattice), sizes_(sizes), cells_(cells), applied_(b) {
-  if (b == Boundary::Strict)
-    throw std::invalid_argument("the strict boundary extends no volume");
+  if (b == Boundary::Strict) throw std::invalid_argument("the strict boundary extends no volume");
   if (cells < 0 || cells > LatticeVolume<double>::kMaxSize / 4)
     throw std::invalid_argument(fmt::format("cannot grow a volume by {} cells", cells));
   if (b == Boundary::Mirror && !mirror_keeps_lattice(lattice, sizes)) applied_ = Boundary::Clamp;
@@ -97,7 +100,8 @@ std::size_t Extension::source(int c, int i, int j, int k) const noexcept {
   const auto k_count = static_cast<std::size_t>(lattice_.coset_count());
   const auto at = [&](int a, int index) {
     return fold_[static_cast<std::size_t>(a)]
-                [static_cast<std::size_t>(c) * static_cast<std::size_t>(grown_[static_cast<std::size_t>(a)]) +
+                [static_cast<std::size_t>(c) *
+                     static_cast<std::size_t>(grown_[static_cast<std::size_t>(a)]) +
                  static_cast<std::size_t>(index)];
   };
   const int x = at(0, i), y = at(1, j), z = at(2, k);

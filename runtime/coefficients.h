@@ -6,8 +6,8 @@
 //                  sampled box evaluates; strict: not extended (today's refusal near the faces)
 //   interp[:L]     interpolation (interpolation.h) with the same boundary
 //
-//   LatticeVolume<double> c = spline_coefficients(std::move(samples), f, PrefilterChoice::interp());
-//   const Reconstructor<double> spline(c, f);
+//   LatticeVolume<double> c = spline_coefficients(std::move(samples), f,
+//   PrefilterChoice::interp()); const Reconstructor<double> spline(c, f);
 #pragma once
 #include "runtime/boundary.h"
 #include "runtime/interpolation.h"
@@ -24,8 +24,7 @@ namespace boxgen::runtime {
 template <class T>
 LatticeVolume<T> spline_coefficients(LatticeVolume<T> samples, const SplineFilter& f,
                                      PrefilterChoice q, Boundary b = kDefaultBoundary,
-                                     InterpolationReport* report = nullptr,
-                                     bool residual = false);
+                                     InterpolationReport* report = nullptr, bool residual = false);
 
 extern template LatticeVolume<float> spline_coefficients<float>(LatticeVolume<float>,
                                                                 const SplineFilter&,

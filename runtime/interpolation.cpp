@@ -157,22 +157,29 @@ CosetSystem coset_system(const DiscreteFilter& values, const CosetLattice& latti
   system.kernels.assign(static_cast<std::size_t>(k_count * k_count), empty);
   for (const Tap& tap : taps)
     system.kernels[static_cast<std::size_t>(tap.a * k_count + tap.b)].at(tap.t[0], tap.t[1],
-                                                                          tap.t[2]) += tap.w;
+                                                                         tap.t[2]) += tap.w;
   return system;
 }
 
 // Solves the K x K system per frequency in place: x holds V(w) on entry, c(w) on exit.
-// mu = 0: H c = V (Gaussian elimination, partial pivoting); mu > 0: (H* H + mu I) c = H* V.
+// mu = 0: H c = V (Gaussian elimination, partial pivoting); mu > 0: (H* H + mu D* D) c = H* V,
+// D the regulariser's coset matrix.
 class FrequencySolver {
  public:
   FrequencySolver(int k, double mu)
-      : k_(k), mu_(mu), h_(static_cast<std::size_t>(k * k)), a_(h_.size()), b_(k) {}
+      : k_(k),
+        mu_(mu),
+        h_(static_cast<std::size_t>(k * k)),
+        d_(h_.size()),
+        a_(h_.size()),
+        b_(static_cast<std::size_t>(k)) {}
   Complex& h(int a, int b) { return h_[static_cast<std::size_t>(a * k_ + b)]; }
+  Complex& d(int a, int b) { return d_[static_cast<std::size_t>(a * k_ + b)]; }
   // x: K values (coset a at x[a * stride]).
   void solve(Complex* x, std::ptrdiff_t stride) {
     if (k_ == 1) {
       const Complex hv = h_[0];
-      x[0] *= std::conj(hv) / (std::norm(hv) + mu_);
+      x[0] *= std::conj(hv) / (std::norm(hv) + mu_ * std::norm(d_[0]));
       return;
     }
     if (k_ == 2) return solve2(x, stride);
@@ -187,9 +194,12 @@ class FrequencySolver {
           s += std::conj(h_[r * n + a]) * x[static_cast<std::ptrdiff_t>(r) * stride];
         b_[a] = s;
         for (std::size_t b = 0; b < n; ++b) {
-          Complex t = a == b ? Complex(mu_) : Complex(0);
-          for (std::size_t r = 0; r < n; ++r) t += std::conj(h_[r * n + a]) * h_[r * n + b];
-          a_[a * n + b] = t;
+          Complex t = 0, u = 0;
+          for (std::size_t r = 0; r < n; ++r) {
+            t += std::conj(h_[r * n + a]) * h_[r * n + b];
+            u += std::conj(d_[r * n + a]) * d_[r * n + b];
+          }
+          a_[a * n + b] = t + mu_ * u;
         }
       }
     }
@@ -227,8 +237,11 @@ class FrequencySolver {
     Complex a = h_[0], b = h_[1], c = h_[2], d = h_[3];
     Complex v0 = x[0], v1 = x[stride];
     if (mu_ != 0) {
-      const Complex a2 = std::norm(a) + std::norm(c) + mu_, b2 = std::conj(a) * b + std::conj(c) * d,
-                    d2 = std::norm(b) + std::norm(d) + mu_;
+      const Complex p = d_[0], q = d_[1], r = d_[2], t = d_[3];
+      const Complex a2 = std::norm(a) + std::norm(c) + mu_ * (std::norm(p) + std::norm(r)),
+                    b2 = std::conj(a) * b + std::conj(c) * d +
+                         mu_ * (std::conj(p) * q + std::conj(r) * t),
+                    d2 = std::norm(b) + std::norm(d) + mu_ * (std::norm(q) + std::norm(t));
       const Complex w0 = std::conj(a) * v0 + std::conj(c) * v1,
                     w1 = std::conj(b) * v0 + std::conj(d) * v1;
       a = a2;
@@ -245,7 +258,7 @@ class FrequencySolver {
 
   int k_;
   double mu_;
-  std::vector<Complex> h_, a_, b_;
+  std::vector<Complex> h_, d_, a_, b_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -283,16 +296,14 @@ class CosetTransform {
     auto* complex_data = reinterpret_cast<fftw_complex*>(data_.get());
     const int dist = static_cast<int>(per_coset_);
     forward_.reset(fftw_plan_many_dft_r2c(3, dims, k, data_.get(), real_embed, 1, dist,
-                                          complex_data, complex_embed, 1, dist / 2,
-                                          FFTW_ESTIMATE));
+                                          complex_data, complex_embed, 1, dist / 2, FFTW_ESTIMATE));
     backward_.reset(fftw_plan_many_dft_c2r(3, dims, k, complex_data, complex_embed, 1, dist / 2,
                                            data_.get(), real_embed, 1, dist, FFTW_ESTIMATE));
     if (!forward_ || !backward_) throw std::runtime_error("FFTW could not plan the transform");
   }
   // Real sample (c, i, j, k) before the forward and after the backward transform.
   double& real(int c, int i, int j, int k) noexcept {
-    return data_.get()[static_cast<std::size_t>(c) * per_coset_ +
-                       static_cast<std::size_t>(i) +
+    return data_.get()[static_cast<std::size_t>(c) * per_coset_ + static_cast<std::size_t>(i) +
                        static_cast<std::size_t>(row_) *
                            (static_cast<std::size_t>(j) +
                             static_cast<std::size_t>(n_[1]) * static_cast<std::size_t>(k))];
@@ -322,9 +333,18 @@ class CosetTransform {
   Plan forward_, backward_;
 };
 
+// What is solved per frequency: the filter's coset system H and, where regularised (mu > 0), the
+// regulariser's D.
+struct Problem {
+  CosetSystem h, d;
+  double mu = 0;
+};
+
 // Solves the coset system at every frequency of the transform (between forward and backward),
 // then scales by 1 / (n0 n1 n2) for FFTW's unnormalised backward transform.
-void solve_all(CosetTransform& x, const CosetSystem& system, double mu) {
+void solve_all(CosetTransform& x, const Problem& problem) {
+  const CosetSystem& system = problem.h;
+  const double mu = problem.mu;
   const Sizes& n = x.sizes();
   const std::array<int, 3> count{n[0] / 2 + 1, n[1], n[2]};
   const double scale = 1.0 / (static_cast<double>(n[0]) * n[1] * n[2]);
@@ -335,16 +355,24 @@ void solve_all(CosetTransform& x, const CosetSystem& system, double mu) {
   {
     try {
       FourierSums sums(system.kernels, {n[0], n[1], n[2]}, count);
+      std::optional<FourierSums> regulariser;
+      if (mu > 0)
+        regulariser.emplace(problem.d.kernels, std::array<int, 3>{n[0], n[1], n[2]}, count);
       FrequencySolver solver(k_count, mu);
 #pragma omp for schedule(dynamic, 1)
       for (int k2 = 0; k2 < n[2]; ++k2) {
         sums.set_k2(k2);
+        if (regulariser) regulariser->set_k2(k2);
         for (int k1 = 0; k1 < n[1]; ++k1) {
           sums.set_k1(k1);
+          if (regulariser) regulariser->set_k1(k1);
           for (int k0 = 0; k0 < count[0]; ++k0) {
             for (int a = 0; a < k_count; ++a)
-              for (int b = 0; b < k_count; ++b)
-                solver.h(a, b) = sums.at_k0(static_cast<std::size_t>(a * k_count + b), k0);
+              for (int b = 0; b < k_count; ++b) {
+                const auto p = static_cast<std::size_t>(a * k_count + b);
+                solver.h(a, b) = sums.at_k0(p, k0);
+                if (regulariser) solver.d(a, b) = regulariser->at_k0(p, k0);
+              }
             Complex* v = x.spectrum(0, k0, k1, k2);
             solver.solve(v, stride);
             for (int a = 0; a < k_count; ++a) v[a * stride] *= scale;
@@ -372,7 +400,8 @@ int smooth_size(int n) {
 // Coset cells beyond which the inverse filter (its response to a delta at coset 0, on a periodic
 // grid of 64 cells per axis) stays below `tolerance` times its largest value. At most 31 (the
 // grid's half).
-int decay_radius(const CosetSystem& system, double mu, double tolerance) {
+int decay_radius(const Problem& problem, double tolerance) {
+  const CosetSystem& system = problem.h;
   constexpr int kGrid = 64;
   CosetTransform x(system.k, {kGrid, kGrid, kGrid});
   for (int c = 0; c < system.k; ++c)
@@ -381,7 +410,7 @@ int decay_radius(const CosetSystem& system, double mu, double tolerance) {
         for (int i = 0; i < kGrid; ++i) x.real(c, i, j, k) = 0;
   x.real(0, 0, 0, 0) = 1;
   x.forward();
-  solve_all(x, system, mu);
+  solve_all(x, problem);
   x.backward();
   std::vector<double> largest_at(kGrid / 2 + 1, 0.0);  // by periodic Chebyshev distance
   double largest = 0;
@@ -389,10 +418,11 @@ int decay_radius(const CosetSystem& system, double mu, double tolerance) {
     for (int k = 0; k < kGrid; ++k)
       for (int j = 0; j < kGrid; ++j)
         for (int i = 0; i < kGrid; ++i) {
-          const int r = std::max({std::min(i, kGrid - i), std::min(j, kGrid - j),
-                                  std::min(k, kGrid - k)});
+          const int r =
+              std::max({std::min(i, kGrid - i), std::min(j, kGrid - j), std::min(k, kGrid - k)});
           const double v = std::abs(x.real(c, i, j, k));
-          largest_at[static_cast<std::size_t>(r)] = std::max(largest_at[static_cast<std::size_t>(r)], v);
+          largest_at[static_cast<std::size_t>(r)] =
+              std::max(largest_at[static_cast<std::size_t>(r)], v);
           largest = std::max(largest, v);
         }
   for (int r = kGrid / 2; r > 0; --r)
@@ -433,6 +463,71 @@ Regularisation regularisation(const SplineFilter& f, const DiscreteFilter& value
   return r;
 }
 
+// The discrete convolution of two tap tables.
+DiscreteFilter convolve(const DiscreteFilter& p, const DiscreteFilter& q) {
+  std::map<std::array<int, 3>, double> sum;
+  for (const auto& [o, w] : p)
+    for (const auto& [t, v] : q) sum[{o[0] + t[0], o[1] + t[1], o[2] + t[2]}] += w * v;
+  DiscreteFilter out;
+  for (const auto& [o, w] : sum)
+    if (w != 0) out.push_back({o, w});
+  return out;
+}
+
+// The regulariser D: the lattice Laplacian sum_t (2 delta_0 - delta_t - delta_-t) over the
+// shortest lattice vectors and the columns of G, a basis of L (so that its symbol 2 sum_t (1 - cos
+// w.t) vanishes exactly on the dual lattice 2 pi L*, where the filter's response must stay 1), to
+// the power m = ceil(k / 4): |D|^2 vanishes to order 4 m >= k there, so that regularisation keeps
+// the reproduction of polynomials of degree < k (k: the filter's approximation order, at least 4).
+DiscreteFilter regulariser_taps(const CosetLattice& lattice, int order) {
+  const int d = lattice.period();
+  std::vector<std::array<int, 3>> steps;
+  std::int64_t shortest = -1;
+  for (int z = -d; z <= d; ++z)
+    for (int y = -d; y <= d; ++y)
+      for (int x = -d; x <= d; ++x) {
+        if ((x == 0 && y == 0 && z == 0) || !lattice.contains(x, y, z)) continue;
+        const std::int64_t norm = std::int64_t{x} * x + std::int64_t{y} * y + std::int64_t{z} * z;
+        if (shortest < 0 || norm < shortest) {
+          shortest = norm;
+          steps.clear();
+        }
+        if (norm == shortest) steps.push_back({x, y, z});
+      }
+  const IntRows& g = lattice.rows();  // L = G Z^3: G's columns are a basis of L
+  for (std::size_t col = 0; col < 3; ++col)
+    for (const int sign : {1, -1}) {
+      const std::array<int, 3> t{static_cast<int>(sign * g[0][col]),
+                                 static_cast<int>(sign * g[1][col]),
+                                 static_cast<int>(sign * g[2][col])};
+      if (std::find(steps.begin(), steps.end(), t) == steps.end()) steps.push_back(t);
+    }
+  DiscreteFilter laplacian{{{0, 0, 0}, static_cast<double>(steps.size())}};
+  for (const auto& t : steps) laplacian.push_back({t, -1.0});  // each t and -t: 2 - 2 cos w.t
+  DiscreteFilter out = laplacian;
+  for (int m = 1; m < (std::max(order, 4) + 3) / 4; ++m) out = convolve(out, laplacian);
+  return out;
+}
+
+// The problem of f's interpolation with lambda (see Regularisation): mu = lambda max|A|^2 /
+// max|D|^2, so that lambda weighs the regulariser against the filter where D is largest.
+struct Setup {
+  Regularisation regular;
+  Problem problem;
+};
+Setup setup(const SplineFilter& f, const DiscreteFilter& values, std::optional<double> lambda) {
+  Setup s{regularisation(f, values, lambda), {}};
+  s.problem.h = coset_system(values, f.lattice());
+  if (s.regular.lambda > 0) {
+    const DiscreteFilter d = regulariser_taps(f.lattice(), f.approximation_order());
+    const SymbolBounds db = symbol_bounds(d);
+    s.problem.d = coset_system(d, f.lattice());
+    s.problem.mu =
+        s.regular.lambda * s.regular.symbol.max * s.regular.symbol.max / (db.max * db.max);
+  }
+  return s;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -461,7 +556,8 @@ DiscreteFilter lattice_values(const SplineFilter& f) {
           const Vec3 x{static_cast<double>(p[0]), static_cast<double>(p[1]),
                        static_cast<double>(p[2])};
           bool inside = true;
-          for (int a = 0; a < 3; ++a) inside = inside && x[a] >= region.min[a] && x[a] < region.max[a];
+          for (int a = 0; a < 3; ++a)
+            inside = inside && x[a] >= region.min[a] && x[a] < region.max[a];
           if (!inside) continue;
           points.push_back(x);
           at.push_back(p);
@@ -562,10 +658,8 @@ void residual_at_samples(CosetTransform& x, const LatticeVolume<T>& samples,
 
 int interpolation_margin(const SplineFilter& f, std::optional<double> lambda) {
   const DiscreteFilter values = lattice_values(f);
-  const Regularisation r = regularisation(f, values, lambda);
   return f.required_margin(PrefilterChoice::None) +
-         decay_radius(coset_system(values, f.lattice()), r.lambda * r.symbol.max * r.symbol.max,
-                      kMarginDecay);
+         decay_radius(setup(f, values, lambda).problem, kMarginDecay);
 }
 
 template <class T>
@@ -582,11 +676,9 @@ LatticeVolume<T> interpolate(LatticeVolume<T> samples, const SplineFilter& f,
           n[0], n[1], n[2]));
   const DiscreteFilter values = lattice_values(f);
   InterpolationReport r;
-  const Regularisation regular = regularisation(f, values, options.lambda);
-  r.symbol = regular.symbol;
-  r.lambda = regular.lambda;
-  const double mu = r.lambda * r.symbol.max * r.symbol.max;
-  const CosetSystem system = coset_system(values, lattice);
+  const Setup s = setup(f, values, options.lambda);
+  r.symbol = s.regular.symbol;
+  r.lambda = s.regular.lambda;
 
   // Padding: the inverse filter's decay, and at least the margins the result and the residual
   // keep beyond the samples.
@@ -594,7 +686,8 @@ LatticeVolume<T> interpolate(LatticeVolume<T> samples, const SplineFilter& f,
   const int residual_margin = prefilter_margin(values, lattice);  // the reads of the residual
   const bool want_residual = options.residual || r.lambda > 0;
   r.margin = options.boundary == Boundary::Strict ? 0 : reconstruction;
-  r.padding = std::max({decay_radius(system, mu, kPaddingDecay), r.margin, want_residual ? residual_margin : 0});
+  r.padding = std::max(
+      {decay_radius(s.problem, kPaddingDecay), r.margin, want_residual ? residual_margin : 0});
   int extra = 0;
   for (int a = 0; a < 3; ++a) {
     const std::int64_t want = std::int64_t{n[a]} + 2 * std::int64_t{r.padding};
@@ -624,14 +717,14 @@ LatticeVolume<T> interpolate(LatticeVolume<T> samples, const SplineFilter& f,
           // Along x inside the samples the extension reads one coset at steps of K.
           const T* run = &in[e.source(c, first + shift, j + shift, k + shift)];
           for (int i = first; i < last; ++i)
-            row[i] = static_cast<double>(run[static_cast<std::size_t>(k_count) *
-                                             static_cast<std::size_t>(i - first)]);
+            row[i] = static_cast<double>(
+                run[static_cast<std::size_t>(k_count) * static_cast<std::size_t>(i - first)]);
           for (int i = last; i < r.transform[0]; ++i)
             row[i] = static_cast<double>(in[e.source(c, i + shift, j + shift, k + shift)]);
         }
   }
   x.forward();
-  solve_all(x, system, mu);
+  solve_all(x, s.problem);
   x.backward();
   if (want_residual) residual_at_samples(x, samples, values, r);
   // The coefficients of the samples and r.margin coset cells around them; the samples' memory
@@ -644,11 +737,10 @@ LatticeVolume<T> interpolate(LatticeVolume<T> samples, const SplineFilter& f,
     sizes[a] = n[a] + 2 * r.margin;
     origin[a] -= lattice.period() * spacing[a] * r.margin;
   }
-  LatticeVolume<T> out(lattice, sizes, spacing, origin,
-                       std::vector<T>(static_cast<std::size_t>(k_count) *
-                                      static_cast<std::size_t>(sizes[0]) *
-                                      static_cast<std::size_t>(sizes[1]) *
-                                      static_cast<std::size_t>(sizes[2])));
+  LatticeVolume<T> out(
+      lattice, sizes, spacing, origin,
+      std::vector<T>(static_cast<std::size_t>(k_count) * static_cast<std::size_t>(sizes[0]) *
+                     static_cast<std::size_t>(sizes[1]) * static_cast<std::size_t>(sizes[2])));
   const int from = r.padding - r.margin;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(batch_threads())
   for (int k = 0; k < sizes[2]; ++k)
@@ -661,10 +753,8 @@ LatticeVolume<T> interpolate(LatticeVolume<T> samples, const SplineFilter& f,
 }
 
 template LatticeVolume<float> interpolate<float>(LatticeVolume<float>, const SplineFilter&,
-                                                 const InterpolationOptions&,
-                                                 InterpolationReport*);
-template LatticeVolume<double> interpolate<double>(LatticeVolume<double>,
-                                                   const SplineFilter&,
+                                                 const InterpolationOptions&, InterpolationReport*);
+template LatticeVolume<double> interpolate<double>(LatticeVolume<double>, const SplineFilter&,
                                                    const InterpolationOptions&,
                                                    InterpolationReport*);
 

@@ -42,7 +42,7 @@ SymbolBounds symbol_bounds(const DiscreteFilter& values);
 // Where min |A| < kVanishing max |A| the symbol is taken to vanish: interp then regularises with
 // lambda = kDefaultLambda unless told otherwise (and refuses lambda = 0).
 inline constexpr double kVanishing = 1e-6;
-inline constexpr double kDefaultLambda = 1e-4;
+inline constexpr double kDefaultLambda = 1e-3;
 
 struct InterpolationOptions {
   // Tikhonov weight relative to max |A|^2, in [0, 1]; none: 0 where the symbol does not vanish,
@@ -57,12 +57,12 @@ struct InterpolationOptions {
 };
 
 struct InterpolationReport {
-  double lambda = 0;     // the Tikhonov weight used, relative to max |A|^2 (0: exact)
-  SymbolBounds symbol;   // of the filter
-  int padding = 0;       // coset cells of extension per side before the transform (at least)
-  Sizes transform{};     // transform size per coset and axis
+  double lambda = 0;    // the Tikhonov weight used, relative to max |A|^2 (0: exact)
+  SymbolBounds symbol;  // of the filter
+  int padding = 0;      // coset cells of extension per side before the transform (at least)
+  Sizes transform{};    // transform size per coset and axis
   Boundary extension = Boundary::Mirror;  // how the transform's padding was filled
-  int margin = 0;        // coset cells of coefficients kept beyond the samples per side
+  int margin = 0;  // coset cells of coefficients kept beyond the samples per side
   // max |s(k) - V(k)| and the RMS of s(k) - V(k) over the samples, both relative to max |V(k)|;
   // NaN when not computed.
   double residual_max = std::numeric_limits<double>::quiet_NaN();
@@ -86,8 +86,7 @@ LatticeVolume<T> interpolate(LatticeVolume<T> samples, const SplineFilter& f,
                              const InterpolationOptions& options = {},
                              InterpolationReport* report = nullptr);
 
-extern template LatticeVolume<float> interpolate<float>(LatticeVolume<float>,
-                                                        const SplineFilter&,
+extern template LatticeVolume<float> interpolate<float>(LatticeVolume<float>, const SplineFilter&,
                                                         const InterpolationOptions&,
                                                         InterpolationReport*);
 extern template LatticeVolume<double> interpolate<double>(LatticeVolume<double>,

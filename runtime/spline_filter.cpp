@@ -21,10 +21,18 @@ namespace generated = boxgen::generated;
 std::string PrefilterChoice::text() const {
   std::string name;
   switch (kind_) {
-    case Kind::None: name = "none"; break;
-    case Kind::Q1: name = "q1"; break;
-    case Kind::Q2: name = "q2"; break;
-    case Kind::Interp: name = "interp"; break;
+    case Kind::None:
+      name = "none";
+      break;
+    case Kind::Q1:
+      name = "q1";
+      break;
+    case Kind::Q2:
+      name = "q2";
+      break;
+    case Kind::Interp:
+      name = "interp";
+      break;
   }
   if (parameter_) name += fmt::format(":{}", *parameter_);
   return name;
@@ -46,13 +54,14 @@ PrefilterChoice parse_prefilter(std::string_view text) {
     }
     if (number.empty() || used != number.size() || !std::isfinite(lambda) || lambda < 0 ||
         lambda > 1)
-      throw std::invalid_argument(fmt::format(
-          "prefilter '{}': the regularisation after interp: must be a number in [0, 1]",
-          text.substr(0, 40)));
+      throw std::invalid_argument(
+          fmt::format("prefilter '{}': the regularisation after interp: must be a number in [0, 1]",
+                      text.substr(0, 40)));
     return PrefilterChoice::interp(lambda);
   }
-  throw std::invalid_argument(fmt::format(
-      "unknown prefilter '{}': expected none, q1, q2, interp or interp:LAMBDA", text.substr(0, 40)));
+  throw std::invalid_argument(
+      fmt::format("unknown prefilter '{}': expected none, q1, q2, interp or interp:LAMBDA",
+                  text.substr(0, 40)));
 }
 
 SplineFilter SplineFilter::parse(std::string_view name) {

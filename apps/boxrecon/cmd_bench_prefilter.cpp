@@ -42,8 +42,8 @@ std::uint64_t peak_resident_bytes() {
 
 }  // namespace
 
-int run_prefilter_bench(const SplineFilter& f, const PrefilterSetting& setting, int n,
-                        int repeats, bool json) {
+int run_prefilter_bench(const SplineFilter& f, const PrefilterSetting& setting, int n, int repeats,
+                        bool json) {
   if (n < 2 || n > 1024)
     throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", n));
   const CosetLattice& lattice = f.lattice();
@@ -80,10 +80,10 @@ int run_prefilter_bench(const SplineFilter& f, const PrefilterSetting& setting, 
                      {"peak_over_volume_in_double", peak / volume_bytes},
                      {"coefficient_sizes", {out_sizes[0], out_sizes[1], out_sizes[2]}}};
     if (!setting.choice.is_fir())
-      j["interpolation"] = {{"lambda", report.lambda},
-                            {"padding", report.padding},
-                            {"transform", {report.transform[0], report.transform[1],
-                                           report.transform[2]}}};
+      j["interpolation"] = {
+          {"lambda", report.lambda},
+          {"padding", report.padding},
+          {"transform", {report.transform[0], report.transform[1], report.transform[2]}}};
     std::cout << j.dump(2) << '\n';
     return 0;
   }

@@ -32,8 +32,8 @@ using namespace boxgen::runtime;
 
 struct RenderArgs {
   app::PrefilterOptions prefilter{"q2"};
-  std::string function, volume, lattice, filter = "m7", shading = "normal",
-                                         output, device = "cpu", precision;
+  std::string function, volume, lattice, filter = "m7", shading = "normal", output, device = "cpu",
+                                         precision;
   int n = 0;
   std::optional<double> iso;  // default: 0.5 for --function, the data's for --volume
   bool cutaway = false, closeup = false, quiet = false;

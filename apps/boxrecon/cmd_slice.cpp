@@ -26,8 +26,7 @@ using namespace boxgen::runtime;
 
 struct SliceArgs {
   app::PrefilterOptions prefilter;
-  std::string volume, filters, reference, axis = "z", colormap = "grey",
-                               difference_to, output;
+  std::string volume, filters, reference, axis = "z", colormap = "grey", difference_to, output;
   std::optional<double> at;
   std::vector<int> size;
   std::vector<double> range;
@@ -65,8 +64,7 @@ void check_slice_args() {
     throw std::invalid_argument("give --volume FILE --filter F or --reference FILE");
   if (reconstruct && args.filters.empty()) throw std::invalid_argument("--volume needs --filter");
   if (!reconstruct &&
-      (!args.filters.empty() || args.prefilter.prefilter != "none" ||
-       !args.difference_to.empty()))
+      (!args.filters.empty() || args.prefilter.prefilter != "none" || !args.difference_to.empty()))
     throw std::invalid_argument(
         "--filter, --prefilter and --difference-to have no effect with --reference");
   if (args.axis != "x" && args.axis != "y" && args.axis != "z")

@@ -112,15 +112,15 @@ void print_error_report(const ErrorReport& r, double rms, double max, double gra
   } else {
     std::cout << fmt::format("rms {:.6e}  max {:.6e}", rms, max);
     if (r.gradient) std::cout << fmt::format("  gradient_rms {:.6e}", gradient_rms);
-    std::cout << fmt::format("  samples {} ({} x {} x {} x {}, margin {})", r.samples,
-                             r.samples / (static_cast<std::uint64_t>(r.sizes[0]) * r.sizes[1] *
-                                          r.sizes[2]),
-                             r.sizes[0], r.sizes[1], r.sizes[2], r.margin);
+    std::cout << fmt::format(
+        "  samples {} ({} x {} x {} x {}, margin {})", r.samples,
+        r.samples / (static_cast<std::uint64_t>(r.sizes[0]) * r.sizes[1] * r.sizes[2]), r.sizes[0],
+        r.sizes[1], r.sizes[2], r.margin);
     std::cout << '\n';
     if (r.interpolation)
-      std::cout << fmt::format("interp: lambda {:g}, residual at the samples max {:.3g}, rms {:.3g} (of max |sample|)\n",
-                               r.interpolation->lambda, r.interpolation->residual_max,
-                               r.interpolation->residual_rms);
+      std::cout << fmt::format(
+          "interp: lambda {:g}, residual at the samples max {:.3g}, rms {:.3g} (of max |sample|)\n",
+          r.interpolation->lambda, r.interpolation->residual_max, r.interpolation->residual_rms);
   }
 }
 

@@ -33,9 +33,9 @@ void print_evaluations(std::span<const T> values, std::span<const runtime::Vec3>
 // Largest --n of resample: 512^3 double values are 1 GiB.
 inline constexpr int kMaxResampleN = 512;
 
-// eval: the filter's spline (after the prefilter and boundary of `pre`) at the points of a file, printed; a value
-// that is not finite is an error (std::domain_error), and nothing is printed. On Device::Gl the
-// points are evaluated by the GL device (verbose: its renderer on stderr).
+// eval: the filter's spline (after the prefilter and boundary of `pre`) at the points of a file,
+// printed; a value that is not finite is an error (std::domain_error), and nothing is printed. On
+// Device::Gl the points are evaluated by the GL device (verbose: its renderer on stderr).
 template <class T>
 int run_eval(const std::string& filter, const std::string& lattice, const PrefilterOptions& pre,
              const std::string& volume_path, const std::string& points_path, bool gradient,

@@ -2,7 +2,8 @@
 // lattices with every filter of generated/registry.hpp (M7, M8, M12 on BCC, fcc6 on FCC,
 // tricubic and cart7 on the Cartesian lattice).
 //   boxrecon sample --function ml --n N [--h H] [--lattice L | --filter F] [--precision P] -o
-//   v.nrrd boxrecon eval --filter F [--prefilter none|q1|q2|interp[:L]] [--boundary B] --volume v.nrrd --points pts.txt|-
+//   v.nrrd boxrecon eval --filter F [--prefilter none|q1|q2|interp[:L]] [--boundary B] --volume
+//   v.nrrd --points pts.txt|-
 //                 [--gradient] [--hessian]
 //   boxrecon error --function ml --n N --filter F [--prefilter q2] [--points K] [--seed S]
 //                  [--gradient] [--json]
@@ -219,8 +220,9 @@ int run(int argc, char** argv) {
   boxgen::app::PrefilterOptions bench_prefilter{""};
   boxgen::app::add_prefilter_options(bench, bench_prefilter, "no default");
   int bench_n = 256;
-  bench->add_option("--n", bench_n,
-                    "with --prefilter: N^3 samples per coset of the filter's lattice (default 256)");
+  bench->add_option(
+      "--n", bench_n,
+      "with --prefilter: N^3 samples per coset of the filter's lattice (default 256)");
   for (auto* command : {sample, eval, error, resample, bench}) add_quiet(command);
   auto* filters_command = app.add_subcommand(
       "filters", "list the registry's filters and the SPEC filters compiled into the cache");

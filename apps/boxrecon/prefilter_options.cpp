@@ -29,8 +29,8 @@ PrefilterSetting parse_prefilter_options(const PrefilterOptions& options) {
 
 std::string interpolation_line(const SplineFilter& f, const InterpolationReport& r) {
   std::string line = fmt::format(
-      "interp: {} lambda {:g}", r.lambda > 0 ? f.name() + "'s symbol vanishes (regularised)," : f.name(),
-      r.lambda);
+      "interp: {} lambda {:g}",
+      r.lambda > 0 ? f.name() + "'s symbol vanishes (regularised)," : f.name(), r.lambda);
   if (std::isfinite(r.residual_max))
     line += fmt::format("; residual at the samples max {:.3g}, rms {:.3g} (of max |sample|)",
                         r.residual_max, r.residual_rms);
@@ -43,7 +43,8 @@ LatticeVolume<T> coefficients_for(LatticeVolume<T> samples, const SplineFilter& 
   InterpolationReport r;
   LatticeVolume<T> out =
       spline_coefficients(std::move(samples), f, setting.choice, setting.boundary, &r);
-  if (!setting.choice.is_fir() && r.lambda > 0 && !quiet()) std::cerr << interpolation_line(f, r) << '\n';
+  if (!setting.choice.is_fir() && r.lambda > 0 && !quiet())
+    std::cerr << interpolation_line(f, r) << '\n';
   if (report) *report = r;
   return out;
 }
@@ -51,8 +52,7 @@ LatticeVolume<T> coefficients_for(LatticeVolume<T> samples, const SplineFilter& 
 template LatticeVolume<float> coefficients_for<float>(LatticeVolume<float>, const SplineFilter&,
                                                       const PrefilterSetting&,
                                                       InterpolationReport*);
-template LatticeVolume<double> coefficients_for<double>(LatticeVolume<double>,
-                                                        const SplineFilter&,
+template LatticeVolume<double> coefficients_for<double>(LatticeVolume<double>, const SplineFilter&,
                                                         const PrefilterSetting&,
                                                         InterpolationReport*);
 

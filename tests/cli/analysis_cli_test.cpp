@@ -266,8 +266,8 @@ TEST_F(AnalysisCli, RenderRefusesAVolumeWithoutTheStencilMargin) {
     std::ofstream out(file("tiny.nrrd"), std::ios::binary);
     out << text;
   }
-  const ProcessResult r = boxrecon(
-      {"render", "--volume", file("tiny.nrrd"), "--prefilter", "none", "-o", file("r.png")});
+  const ProcessResult r = boxrecon({"render", "--volume", file("tiny.nrrd"), "--prefilter", "none",
+                                    "--boundary", "strict", "-o", file("r.png")});
   EXPECT_TRUE(r.exited) << describe({"render"}, r);
   EXPECT_EQ(r.exit_code, 1) << describe({"render"}, r);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
