@@ -1,6 +1,6 @@
 // Interpolation: the coefficients c of a filter's spline s(x) = sum_j c(j) M(x - j) (j in the
 // lattice L) that pass through every sample, s(k) = V(k), for any filter on any lattice
-// (docs/runtime.md, "Interpolation"; docs/design.md §16).
+// (docs/runtime.md, "Interpolation and boundaries"; docs/design.md §17).
 //
 // On L = union of K cosets off_a + d Z^3 the conditions are, per coset pair (a, b), convolutions
 // on d Z^3 with the kernels h_ab(t) = M(d t + off_a - off_b); a discrete Fourier transform over the
