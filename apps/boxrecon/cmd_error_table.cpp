@@ -144,7 +144,8 @@ int run_error_table(int points, std::uint64_t seed, bool json) {
     const int m = static_cast<int>(std::lround(std::cbrt(2.0) * n));  // the same number of samples
     rows.push_back(cartesian_row(n, m, false, at));
     rows.push_back(cartesian_row(n, m, true, at));
-    rows.push_back(lattice_row(n, m, SplineFilter::parse("tricubic"), PrefilterChoice::interp(), at));
+    rows.push_back(
+        lattice_row(n, m, SplineFilter::parse("tricubic"), PrefilterChoice::interp(), at));
   }
   if (json) {
     nlohmann::json out{
