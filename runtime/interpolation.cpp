@@ -29,6 +29,9 @@ namespace {
 using Complex = std::complex<double>;
 using support::floor_div;
 
+// An index or size computed in int (the kernels' boxes, K^2: small), as a std::size_t.
+std::size_t index_of(int i) { return static_cast<std::size_t>(i); }
+
 // ---------------------------------------------------------------------------------------------
 // Small dense kernels over a box of integer offsets, and their Fourier sums by axis.
 
@@ -82,8 +85,7 @@ class FourierSums {
       const std::vector<double>& v = (*kernels_)[p].values;
       for (int t01 = 0; t01 < w[0] * w[1]; ++t01) {
         Complex s = 0;
-        for (int t2 = 0; t2 < w[2]; ++t2)
-          s += v[static_cast<std::size_t>(t01 + w[0] * w[1] * t2)] * e[t2];
+        for (int t2 = 0; t2 < w[2]; ++t2) s += v[index_of(t01 + w[0] * w[1] * t2)] * e[t2];
         g2_[p * static_cast<std::size_t>(w[0] * w[1]) + static_cast<std::size_t>(t01)] = s;
       }
     }
@@ -152,12 +154,10 @@ CosetSystem coset_system(const DiscreteFilter& values, const CosetLattice& latti
   BoxKernel empty;
   empty.lo = lo;
   for (std::size_t x = 0; x < 3; ++x) empty.width[x] = hi[x] - lo[x] + 1;
-  empty.values.assign(static_cast<std::size_t>(empty.width[0] * empty.width[1] * empty.width[2]),
-                      0.0);
-  system.kernels.assign(static_cast<std::size_t>(k_count * k_count), empty);
+  empty.values.assign(index_of(empty.width[0] * empty.width[1] * empty.width[2]), 0.0);
+  system.kernels.assign(index_of(k_count * k_count), empty);
   for (const Tap& tap : taps)
-    system.kernels[static_cast<std::size_t>(tap.a * k_count + tap.b)].at(tap.t[0], tap.t[1],
-                                                                         tap.t[2]) += tap.w;
+    system.kernels[index_of(tap.a * k_count + tap.b)].at(tap.t[0], tap.t[1], tap.t[2]) += tap.w;
   return system;
 }
 
@@ -173,8 +173,8 @@ class FrequencySolver {
         d_(h_.size()),
         a_(h_.size()),
         b_(static_cast<std::size_t>(k)) {}
-  Complex& h(int a, int b) { return h_[static_cast<std::size_t>(a * k_ + b)]; }
-  Complex& d(int a, int b) { return d_[static_cast<std::size_t>(a * k_ + b)]; }
+  Complex& h(int a, int b) { return h_[index_of(a * k_ + b)]; }
+  Complex& d(int a, int b) { return d_[index_of(a * k_ + b)]; }
   // x: K values (coset a at x[a * stride]).
   void solve(Complex* x, std::ptrdiff_t stride) {
     if (k_ == 1) {
@@ -280,7 +280,7 @@ std::mutex& planner_mutex() {
 
 class CosetTransform {
  public:
-  CosetTransform(int k, const Sizes& n) : k_(k), n_(n), row_(2 * (n[0] / 2 + 1)) {
+  CosetTransform(int k, const Sizes& n) : n_(n), row_(2 * (n[0] / 2 + 1)) {
     per_coset_ = static_cast<std::size_t>(row_) * static_cast<std::size_t>(n[1]) *
                  static_cast<std::size_t>(n[2]);
     data_.reset(static_cast<double*>(
@@ -325,7 +325,6 @@ class CosetTransform {
   const Sizes& sizes() const noexcept { return n_; }
 
  private:
-  int k_;
   Sizes n_;
   int row_;
   std::size_t per_coset_ = 0;
@@ -369,7 +368,7 @@ void solve_all(CosetTransform& x, const Problem& problem) {
           for (int k0 = 0; k0 < count[0]; ++k0) {
             for (int a = 0; a < k_count; ++a)
               for (int b = 0; b < k_count; ++b) {
-                const auto p = static_cast<std::size_t>(a * k_count + b);
+                const auto p = index_of(a * k_count + b);
                 solver.h(a, b) = sums.at_k0(p, k0);
                 if (regulariser) solver.d(a, b) = regulariser->at_k0(p, k0);
               }
@@ -589,8 +588,7 @@ SymbolBounds symbol_bounds(const DiscreteFilter& values) {
     }
   kernel.lo = lo;
   for (std::size_t a = 0; a < 3; ++a) kernel.width[a] = hi[a] - lo[a] + 1;
-  kernel.values.assign(
-      static_cast<std::size_t>(kernel.width[0] * kernel.width[1] * kernel.width[2]), 0.0);
+  kernel.values.assign(index_of(kernel.width[0] * kernel.width[1] * kernel.width[2]), 0.0);
   for (const auto& [v, w] : values) kernel.at(v[0], v[1], v[2]) += w;
   const std::vector<BoxKernel> kernels{kernel};
   FourierSums sums(kernels, {kGrid, kGrid, kGrid}, {kGrid, kGrid, kGrid});
