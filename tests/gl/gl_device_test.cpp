@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "runtime/gl/gl_render.h"
 #include "runtime/coefficients.h"
+#include "runtime/gl/gl_render.h"
 #include "runtime/gl/gl_spline.h"
 #include "runtime/prefilter.h"
 #include "runtime/reconstruction.h"
