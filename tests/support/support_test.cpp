@@ -178,6 +178,44 @@ TEST_F(OutputFile, ASignalRemovesThePendingTemporaries) {
   }
 }
 
+// Issue 32, item 10: a signal between the two renames of a set left a new h.hpp beside the old
+// h_prefilters.hpp. The writer stops itself there (the test hook raises SIGSTOP), the signal is
+// sent, and the writer goes on: SIGINT, SIGTERM and SIGHUP are held until both renames are done;
+// SIGKILL cannot be held, and the next write of a set into the folder completes the first one.
+TEST_F(OutputFile, ASignalBetweenTheRenamesOfASetNeverSplitsIt) {
+  for (int signal : {SIGINT, SIGTERM, SIGHUP, SIGKILL}) {
+    write(dir_ / "h.hpp", "old");
+    write(dir_ / "h_prefilters.hpp", "old");
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      handle_signals();
+      set_between_renames_hook_for_tests([] { std::raise(SIGSTOP); });
+      const std::vector<NamedText> set = {{"h.hpp", "new"}, {"h_prefilters.hpp", "new"}};
+      write_file_set(dir_, set);
+      ::_exit(0);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, WUNTRACED), pid);
+    ASSERT_TRUE(WIFSTOPPED(status)) << "the writer did not reach its renames";
+    EXPECT_EQ(read(dir_ / "h.hpp"), "new");  // stopped between the two renames
+    EXPECT_EQ(read(dir_ / "h_prefilters.hpp"), "old");
+    ::kill(pid, signal);
+    ::kill(pid, SIGCONT);
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "signal " << signal;
+    EXPECT_EQ(WTERMSIG(status), signal);
+    if (signal == SIGKILL) {
+      EXPECT_EQ(read(dir_ / "h_prefilters.hpp"), "old");  // what no process can prevent
+      const std::vector<NamedText> other = {{"other.hpp", "x"}};
+      write_file_set(dir_, other);
+      fs::remove(dir_ / "other.hpp");
+    }
+    EXPECT_EQ(read(dir_ / "h.hpp"), "new") << "signal " << signal;
+    EXPECT_EQ(read(dir_ / "h_prefilters.hpp"), "new") << "signal " << signal;
+    EXPECT_EQ(names(), (std::set<std::string>{"h.hpp", "h_prefilters.hpp"})) << "signal " << signal;
+  }
+}
+
 TEST_F(OutputFile, ALaterWriteRemovesTheLeftoversOfAKilledWriter) {
   // A process that has ended (and been reaped): its pid names no process now.
   const pid_t gone = ::fork();
