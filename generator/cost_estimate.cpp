@@ -84,6 +84,14 @@ void refuse_if_too_many_cells(const BoxSplineSpec& spec) {
                     bound, kEnumerableCells * 50));
 }
 
+void refuse_up_front_if_too_costly(const BoxSplineSpec& spec, bool verify, bool full_checks,
+                                   double max_seconds, double max_bytes) {
+  const double bound =
+      knot_cell_bound(knot_planes(spec.directions, spec.dimension()), spec.dimension());
+  if (bound <= kEnumerableCells) return;
+  refuse_if_too_costly(estimate_cost(spec, verify, full_checks), max_seconds, max_bytes);
+}
+
 CostEstimate estimate_cost(const BoxSplineSpec& spec, bool verify, bool full_checks) {
   const int n = spec.dimension();
   const KnotPlanes planes = knot_planes(spec.directions, n);
