@@ -63,12 +63,9 @@ void refuse_up_front_if_too_costly(const BoxSplineSpec& spec, bool verify, bool 
                                    double max_seconds, double max_bytes);
 
 inline constexpr double kDefaultMaxSeconds = 600;
-// The memory this process may still take: MemAvailable of /proc/meminfo, in bytes (0 where it
-// cannot be read: then only an explicit limit applies).
-double available_memory_bytes();
 // Throws InputError, with the prediction and the limit in one line, if the predicted time
 // exceeds max_seconds (0: kDefaultMaxSeconds) or the predicted memory exceeds max_bytes (0: the
-// available memory).
+// memory this process may still take, support::available_memory_bytes).
 void refuse_if_too_costly(const CostEstimate& e, double max_seconds, double max_bytes = 0);
 
 }  // namespace boxgen::generator

@@ -8,6 +8,7 @@
 
 #include "generator/derivation.h"
 #include "generator/error.h"
+#include "support/available_memory.h"
 #include "tests/generator/derivation_fixture.h"
 
 namespace boxgen::generator {
@@ -68,8 +69,8 @@ TEST(CostEstimate, RefusesBeyondTheMemoryNamingBothNumbers) {
   }
   EXPECT_NO_THROW(refuse_if_too_costly(e, 100, 1e10));
   // Without a limit the machine's available memory is the limit.
-  ASSERT_GT(available_memory_bytes(), 0);
-  e.bytes = available_memory_bytes() * 2;
+  ASSERT_GT(support::available_memory_bytes(), 0);
+  e.bytes = support::available_memory_bytes() * 2;
   try {
     refuse_if_too_costly(e, 100);
     FAIL() << "not refused";
