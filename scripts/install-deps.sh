@@ -27,6 +27,7 @@ PACKAGES=(
   pybind11-dev python3-pybind11         #   NumPy arrays in and out, bound with pybind11
   python3-dask python3-distributed      # boxgen.dask: chunked resampling on dask (local or a cluster)
   python3-pytest                        # the Python tests (label python)
+  python3-nibabel                       # the tests read boxrecon's NIfTI output with nibabel, as its users do
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
