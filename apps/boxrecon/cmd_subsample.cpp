@@ -9,6 +9,7 @@
 
 #include "apps/boxrecon/cmd_volumes.h"
 #include "apps/boxrecon/output_volume.h"
+#include "apps/boxrecon/prefilter_options.h"
 #include "runtime/nifti_io.h"
 #include "runtime/prefilter.h"
 #include "runtime/resample.h"
@@ -21,7 +22,8 @@ namespace {
 using namespace boxgen::runtime;
 
 struct SubsampleArgs {
-  std::string volume, lattice, filter = "tricubic", prefilter = "q2", output, type;
+  std::string volume, lattice, filter = "tricubic", output, type;
+  app::PrefilterOptions prefilter{"q2"};
   std::optional<double> fraction, spacing, smooth;
 };
 SubsampleArgs args;
@@ -47,8 +49,7 @@ CLI::App* add_subsample_command(CLI::App& app) {
   s->add_option("--filter", args.filter,
                 "the filter that reconstructs the input (default tricubic; any registry filter "
                 "of the input's lattice)");
-  s->add_option("--prefilter", args.prefilter,
-                "none | q1 | q2: the input filter's prefilter (default q2)");
+  app::add_prefilter_options(s, args.prefilter, "the input filter's; default q2");
   s->add_option("--smooth", args.smooth,
                 "SIGMA: a Gaussian low-pass of this width (input samples) first, against aliasing");
   s->add_option("-o,--output", args.output,
@@ -69,7 +70,7 @@ int run_subsample() {
         fmt::format("--spacing must be finite and > 0, got {}", *args.spacing));
   const CosetLattice lattice = CosetLattice::parse(args.lattice);
   const SplineFilter filter = SplineFilter::parse(args.filter);
-  const PrefilterChoice q = parse_prefilter(args.prefilter);
+  const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   const std::optional<SampleType> type = app::parse_type_option(args.type);
   const std::filesystem::path input = args.volume;
   app::require_output_volume(args.output, {&input, 1}, lattice);
@@ -78,7 +79,7 @@ int run_subsample() {
   filter.check_lattice(volume.lattice());
   const std::uint64_t input_count = volume.sample_count();
   if (args.smooth) volume = gaussian_smooth(volume, *args.smooth);
-  if (q != PrefilterChoice::None) volume = prefilter(volume, filter.prefilter(q));
+  volume = app::coefficients_for(std::move(volume), filter, q);
   const Box box = default_box(volume, filter);
   const double h =
       args.spacing
@@ -94,7 +95,7 @@ int run_subsample() {
       kept, input_count, kept, input_count,
       static_cast<double>(kept) / static_cast<double>(input_count), lattice.name(), h,
       out.coset_count(), out.sizes()[0], out.sizes()[1], out.sizes()[2], out.origin()[0],
-      out.origin()[1], out.origin()[2], filter.name(), args.prefilter,
+      out.origin()[1], out.origin()[2], filter.name(), q.choice.text(),
       args.smooth ? fmt::format(" and a Gaussian of width {}", *args.smooth) : std::string());
   return 0;
 }
