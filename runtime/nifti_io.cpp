@@ -102,6 +102,13 @@ std::string unsupported_kind(const nifti_image& im) {
   return {};
 }
 
+// The file that holds the header: `path`, or for the .img of a .hdr/.img pair its .hdr (which
+// nifticlib finds the same way).
+fs::path header_file(const fs::path& path) {
+  std::unique_ptr<char, decltype(&std::free)> found(nifti_findhdrname(path.c_str()), &std::free);
+  return found ? fs::path(found.get()) : path;
+}
+
 int nifti_datatype(SampleType type) {
   switch (type) {
     case SampleType::Int8:
@@ -286,7 +293,7 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
   nifti_set_debug_level(0);  // nifticlib prints its errors on stderr; ours are one line
   // The header's bytes first: what nifticlib would repair silently is refused (nifti_header.h).
   std::string refusal;
-  const nifti_header::RawHeader raw = nifti_header::read_raw_header(path, refusal);
+  const nifti_header::RawHeader raw = nifti_header::read_raw_header(header_file(path), refusal);
   if (!refusal.empty()) fail(refusal);
   Image image(nifti_image_read(path.c_str(), 0));
   if (!image) fail("not a valid NIfTI-1 or NIfTI-2 file (bad header, or not NIfTI)");
