@@ -433,7 +433,7 @@ void bind_filter(py::module_& m) {
             py::dict out;
             for (const auto& [name, q] : {std::pair{"q1", rt::PrefilterChoice::Q1},
                                           std::pair{"q2", rt::PrefilterChoice::Q2}}) {
-              const rt::DiscreteFilter taps = f.filter.prefilter(q);
+              const rt::PrefilterTaps taps = f.filter.prefilter(q);
               py::array_t<long> offsets(
                   std::vector<py::ssize_t>{static_cast<py::ssize_t>(taps.size()), 3});
               py::array_t<double> weights(static_cast<py::ssize_t>(taps.size()));
