@@ -62,6 +62,22 @@ done
 "$boxgen" autocorr m7 --json > json/autocorr-m7.json
 "$boxgen" eval m7 --at "1/4 1/2 1/8" --json > json/eval-m7.json
 
+# Times measured by the commands are not output to compare.
+for f in json/*.json; do
+  /usr/bin/python3 -c '
+import json, sys
+def strip(x):
+    if isinstance(x, dict):
+        return {k: strip(v) for k, v in x.items() if not k.endswith("seconds")}
+    if isinstance(x, list):
+        return [strip(v) for v in x]
+    return x
+path = sys.argv[1]
+data = strip(json.load(open(path)))
+json.dump(data, open(path, "w"), indent=2, sort_keys=True)
+' "$f"
+done
+
 # The loader's cache entry of a SPEC filter (its C++ source and GLSL; the shared object embeds
 # paths and is not compared) and the values of the CPU and GL devices for it and for m7.
 if [ -x "$boxrecon" ]; then
@@ -77,6 +93,11 @@ if [ -x "$boxrecon" ]; then
     "$boxrecon" eval --filter m7 --volume values/m7.nrrd --points values/points.txt --gradient \
       --hessian --device $device > "values/m7-$device.txt"
   done
-  find cache-work \( -name '*.cpp' -o -name '*.glsl' \) -exec cp {} cache/ \;
+  # The entry's key hashes the runtime archive's time: the files get stable names and the key in
+  # their text (the functions' prefix spec_KEY, the stamp) becomes KEY.
+  for f in cache-work/*.cpp cache-work/*.glsl; do
+    key=$(basename "$f" | sed 's/[._].*//')
+    sed "s/$key/KEY/g" "$f" > "cache/$(basename "$f" | sed "s/$key/spec/")"
+  done
   rm -rf cache-work values/*.nrrd
 fi
