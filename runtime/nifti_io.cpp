@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "runtime/nifti_header.h"
 #include "runtime/nrrd_checks.h"
 
 namespace boxgen::runtime {
@@ -91,6 +92,10 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
 
   std::lock_guard lock(nifti_mutex());
   nifti_set_debug_level(0);  // nifticlib prints its errors on stderr; ours are one line
+  // The header's bytes first: what nifticlib would repair silently is refused (nifti_header.h).
+  std::string refusal;
+  const nifti_header::RawHeader raw = nifti_header::read_raw_header(path, refusal);
+  if (!refusal.empty()) fail(refusal);
   Image image(nifti_image_read(path.c_str(), 0));
   if (!image) fail("not a valid NIfTI-1 or NIfTI-2 file (bad header, or not NIfTI)");
   const nifti_image& im = *image;
@@ -119,30 +124,24 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
   if (count * static_cast<std::uint64_t>(im.nbyper) > limits.max_data_bytes)
     fail(fmt::format("its data of {} bytes exceeds the limit of {} bytes",
                      count * static_cast<std::uint64_t>(im.nbyper), limits.max_data_bytes));
-  if (!std::isfinite(im.scl_slope) || !std::isfinite(im.scl_inter))
-    fail("its scale slope or intercept is not finite");
 
-  // Geometry: a diagonal affine (off-diagonal terms below 1e-6 of the diagonal, the rounding of
-  // a quaternion), translation = world point of voxel (0, 0, 0).
+  // Geometry: a diagonal affine (nifti_header::oblique_entry), translation = world point of voxel
+  // (0, 0, 0). Without sform or qform the spacing is pixdim as the file holds it.
   Vec3 steps{}, origin{};
   if (im.sform_code <= 0 && im.qform_code <= 0) {
-    steps = {im.dx, im.dy, im.dz};
+    steps = {raw.pixdim[1], raw.pixdim[2], raw.pixdim[3]};
   } else {
     const char* which = nullptr;
     const nifti_dmat44& m = world_affine(im, which);
+    double rows[3][4];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c) rows[r][c] = m.m[r][c];
+    if (const std::string oblique = nifti_header::oblique_entry(rows, which); !oblique.empty())
+      fail(oblique);
     for (int a = 0; a < 3; ++a) {
       steps[a] = m.m[a][a];
       origin[a] = m.m[a][3];
     }
-    double scale = 0;
-    for (int a = 0; a < 3; ++a) scale = std::max(scale, std::fabs(steps[a]));
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        if (r != c && !(std::fabs(m.m[r][c]) <= 1e-6 * scale))
-          fail(
-              fmt::format("its {} is oblique or permutes the axes (entry ({}, {}) = {}); only "
-                          "axis-aligned voxels are supported: resample it first",
-                          which, r, c, m.m[r][c]));
   }
   for (int a = 0; a < 3; ++a)
     if (!std::isfinite(steps[a]) || steps[a] == 0 || !std::isfinite(origin[a]))
@@ -151,14 +150,19 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
                       "not finite)",
                       steps[a], a));
 
-  if (nifti_image_load(image.get()) != 0 || !im.data)
-    fail("its data is missing or cut short (a truncated or corrupt file)");
-  std::vector<T> samples(static_cast<std::size_t>(count));
+  // The data as the file holds it: nifticlib's loader would turn NaN and infinite floats into 0.
   const auto n = static_cast<std::size_t>(count);
+  std::vector<unsigned char> data(n * static_cast<std::size_t>(im.nbyper));
+  if (const std::string problem = nifti_header::read_data(im.iname, im.iname_offset, data.size(),
+                                                          raw.swapped, im.nbyper, data.data());
+      !problem.empty())
+    fail(problem);
+  image.reset();
+  std::vector<T> samples(n);
   (void)visit_sample_type(type, [&](auto tag) {
-    convert<T, decltype(tag)>(im.data, n, im.scl_slope, im.scl_inter, samples);
+    convert<T, decltype(tag)>(data.data(), n, raw.scl_slope, raw.scl_inter, samples);
   });
-  image.reset();  // the file's copy of the data is no longer needed
+  data = {};  // the file's copy of the data is no longer needed
   if (!limits.allow_non_finite)
     if (const std::string why = nrrd_checks::check_finite<T>(samples, 1, sizes); !why.empty())
       fail(why);
