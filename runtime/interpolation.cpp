@@ -479,6 +479,13 @@ Regularisation regularisation(const SplineFilter& f, const PrefilterTaps& values
   return r;
 }
 
+void require_few_cosets(const CosetLattice& lattice) {
+  if (lattice.coset_count() > kMaxInterpolationCosets)
+    throw std::invalid_argument(fmt::format(
+        "interpolation takes lattices of at most {} cosets of d Z^3; the {} lattice has {}",
+        kMaxInterpolationCosets, lattice.label(), lattice.coset_count()));
+}
+
 // The discrete convolution of two tap tables.
 PrefilterTaps convolve(const PrefilterTaps& p, const PrefilterTaps& q) {
   std::map<std::array<int, 3>, double> sum;
@@ -677,6 +684,7 @@ void residual_at_samples(CosetTransform& x, const LatticeVolume<T>& samples,
 }  // namespace
 
 int interpolation_margin(const SplineFilter& f, std::optional<double> lambda) {
+  require_few_cosets(f.lattice());
   const PrefilterTaps values = lattice_values(f);
   return f.required_margin(PrefilterChoice::None) +
          decay_radius(setup(f, values, lambda).problem, kMarginDecay);
@@ -688,6 +696,7 @@ LatticeVolume<T> interpolate(LatticeVolume<T> samples, const SplineFilter& f,
   f.check_lattice(samples.lattice());
   const CosetLattice lattice = samples.lattice();
   const Sizes n = samples.sizes();
+  require_few_cosets(lattice);
   for (int a = 0; a < 3; ++a)
     if (n[a] < 2)
       throw std::invalid_argument(fmt::format(
