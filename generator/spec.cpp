@@ -284,6 +284,17 @@ const std::vector<PresetInfo>& presets() {
   return list;
 }
 
+std::string one_line(std::string_view text) {
+  std::string out;
+  for (const char c : trim(text)) {
+    if (!is_blank(c))
+      out += c;
+    else if (!out.empty() && out.back() != ' ')
+      out += ' ';
+  }
+  return out;
+}
+
 std::string BoxSplineSpec::directions_text() const {
   std::string out;
   for (std::size_t k = 0; k < directions.size(); ++k) {

@@ -42,6 +42,11 @@ BoxSplineSpec parse_spec(std::string_view spec, std::string_view lattice_text = 
 // (Xi / k, G / k), whose spline it is, stretched by k (generator/common_scale.h).
 std::int64_t common_scale(const BoxSplineSpec& spec);
 
+// `text` on one line: each run of blanks (spaces, tabs, line breaks) one space, none at the ends.
+// A SPEC, lattice or shell list may be given over several lines; emitted files quote it so, as
+// the text of a comment line and of the command that reproduces them.
+std::string one_line(std::string_view text);
+
 // Parses bcc | fcc | cartesian | "<rows of G>" for the given dimension.
 Lattice parse_lattice(std::string_view text, int dimension);
 

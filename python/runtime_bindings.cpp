@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -26,6 +27,7 @@
 #include "runtime/batch_threads.h"
 #include "runtime/coefficients.h"
 #include "runtime/interpolation.h"
+#include "runtime/nrrd_checks.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/prefilter.h"
 #include "runtime/reconstruction.h"
@@ -58,15 +60,33 @@ std::string shape_text(const py::array& a) {
   return out + (a.ndim() == 1 ? ",)" : ")");
 }
 
+// `obj` as float64 in the layout `order` ("C" or "F"), by NumPy's own asarray: pybind11's
+// ensure() clears a failed conversion's error, so a copy that could not be allocated surfaced as
+// "ValueError: cannot create a pybind11::array_t from a nullptr"; NumPy raises MemoryError,
+// naming the size (issue 32, item 16).
+py::array numpy_float64(const py::handle& obj, const char* order) {
+  return py::module_::import("numpy").attr("asarray")(obj, py::arg("dtype") = "float64",
+                                                      py::arg("order") = order);
+}
+
 // `what` as a float64 array: real numbers only (TypeError for strings, objects, complex, bool).
 py::array_t<double> real_array(const py::handle& obj, const char* what) {
-  const py::array a = py::array::ensure(obj);
-  if (!a) throw py::type_error(fmt::format("{} must be a NumPy array of real numbers", what));
+  py::array a;
+  if (py::isinstance<py::array>(obj)) {
+    a = py::reinterpret_borrow<py::array>(obj);
+  } else {
+    try {
+      a = py::module_::import("numpy").attr("asarray")(obj);
+    } catch (const py::error_already_set& e) {
+      if (e.matches(PyExc_MemoryError)) throw;
+      throw py::type_error(fmt::format("{} must be a NumPy array of real numbers", what));
+    }
+  }
   const char kind = a.dtype().kind();
   if (kind != 'f' && kind != 'i' && kind != 'u')
     throw py::type_error(fmt::format("{} must hold real numbers, got dtype {}", what,
                                      py::str(a.dtype()).cast<std::string>()));
-  return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  return py::array_t<double, py::array::c_style>::ensure(numpy_float64(a, "C"));
 }
 
 // An (n, 3) array of finite world coordinates, C-contiguous float64 (copied only if needed).
@@ -169,7 +189,7 @@ std::vector<double> storage_of(const py::handle& samples, const rt::CosetLattice
         "samples of shape {} do not fit the {} lattice: give a ({}, N0, N1, N2) array, its "
         "first axis the {} coset(s)",
         shape_text(a), lattice.name(), k, k));
-  const auto fortran = py::array_t<double, py::array::f_style | py::array::forcecast>::ensure(a);
+  const auto fortran = py::array_t<double, py::array::f_style>::ensure(numpy_float64(a, "F"));
   return {fortran.data(), fortran.data() + fortran.size()};
 }
 
@@ -194,7 +214,7 @@ VolumePtr make_volume(const py::handle& samples, const std::string& lattice_text
                       const std::optional<std::vector<std::array<int, 3>>>& offsets) {
   const rt::CosetLattice lattice = lattice_of(lattice_text, offsets);
   std::vector<double> storage = storage_of(samples, lattice);
-  const py::array a = py::array::ensure(samples);
+  const py::array a = py::module_::import("numpy").attr("asarray")(samples);  // no copy of an array
   const rt::Sizes sizes{static_cast<int>(a.shape(1)), static_cast<int>(a.shape(2)),
                         static_cast<int>(a.shape(3))};
   return std::make_shared<Volume>(lattice, sizes, spacing, three(origin, "origin"),
@@ -389,8 +409,25 @@ void bind_volume(py::module_& m) {
         rt::NrrdReadLimits limits;
         limits.allow_non_finite = allow_nonfinite;
         if (lattice) limits.lattice = rt::CosetLattice::parse(*lattice);
-        py::gil_scoped_release release;
-        return std::make_shared<Volume>(rt::read_lattice_nrrd<double>(path, limits));
+        std::shared_ptr<Volume> v;
+        {
+          py::gil_scoped_release release;
+          v = std::make_shared<Volume>(rt::read_lattice_nrrd<double>(path, limits));
+        }
+        // The lattice asked for is what the caller gets, or an error (issue 32, item 20): the
+        // same points (the file's coset offsets may differ in order or representative).
+        const rt::CosetLattice& got = v->lattice();
+        const bool same_points =
+            !limits.lattice ||
+            (got.determinant() == limits.lattice->determinant() &&
+             std::all_of(got.offsets().begin(), got.offsets().end(), [&](const auto& o) {
+               return limits.lattice->contains(o[0], o[1], o[2]);
+             }));
+        if (!same_points)
+          throw py::value_error(fmt::format("'{}' holds a {} volume, not the {} lattice asked for",
+                                            rt::nrrd_checks::printable(path), got.label(),
+                                            limits.lattice->label()));
+        return v;
       },
       py::arg("path"), py::arg("allow_nonfinite") = false, py::arg("lattice") = py::none(),
       "A lattice NRRD file (docs/runtime.md#nrrd-layout) as a Volume of doubles; `lattice`: the "

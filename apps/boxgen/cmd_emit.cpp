@@ -1,4 +1,5 @@
 #include <fmt/core.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cctype>
@@ -10,6 +11,7 @@
 #include "apps/boxgen/progress.h"
 #include "generator/emitter.h"
 #include "generator/error.h"
+#include "generator/evaluator_name.h"
 #include "generator/prefilter.h"
 #include "support/output_file.h"
 
@@ -55,102 +57,8 @@ void print_report(const EmissionReport& r) {
   }
 }
 
-// --name becomes a namespace: a C++ identifier that is not a keyword (checked before deriving).
-void check_emit_name(const std::string& name) {
-  static const std::set<std::string> keywords = {"alignas",       "alignof",     "and",
-                                                 "and_eq",        "asm",         "auto",
-                                                 "bitand",        "bitor",       "bool",
-                                                 "break",         "case",        "catch",
-                                                 "char",          "char8_t",     "char16_t",
-                                                 "char32_t",      "class",       "compl",
-                                                 "concept",       "const",       "consteval",
-                                                 "constexpr",     "constinit",   "const_cast",
-                                                 "continue",      "co_await",    "co_return",
-                                                 "co_yield",      "decltype",    "default",
-                                                 "delete",        "do",          "double",
-                                                 "dynamic_cast",  "else",        "enum",
-                                                 "explicit",      "export",      "extern",
-                                                 "false",         "float",       "for",
-                                                 "friend",        "goto",        "if",
-                                                 "inline",        "int",         "long",
-                                                 "mutable",       "namespace",   "new",
-                                                 "noexcept",      "not",         "not_eq",
-                                                 "nullptr",       "operator",    "or",
-                                                 "or_eq",         "private",     "protected",
-                                                 "public",        "register",    "reinterpret_cast",
-                                                 "requires",      "return",      "short",
-                                                 "signed",        "sizeof",      "static",
-                                                 "static_assert", "static_cast", "struct",
-                                                 "switch",        "template",    "this",
-                                                 "thread_local",  "throw",       "true",
-                                                 "try",           "typedef",     "typeid",
-                                                 "typename",      "union",       "unsigned",
-                                                 "using",         "virtual",     "void",
-                                                 "volatile",      "wchar_t",     "while",
-                                                 "xor",           "xor_eq"};
-  const auto letter = [](char ch) {
-    return std::isalpha(static_cast<unsigned char>(ch)) || ch == '_';
-  };
-  const bool identifier =
-      !name.empty() && letter(name[0]) && std::all_of(name.begin(), name.end(), [&](char ch) {
-        return letter(ch) || std::isdigit(static_cast<unsigned char>(ch));
-      });
-  if (!identifier)
-    fail_input(
-        fmt::format("--name '{}' is not a C++ identifier: use letters, digits and '_', not "
-                    "starting with a digit",
-                    name));
-  if (keywords.count(name))
-    fail_input(fmt::format("--name '{}' is a C++ keyword: choose another name", name));
-  // Namespaces the emitted code refers to (boxgen::generated::NAME would shadow them) and the
-  // names of the files beside an evaluator.
-  static const std::set<std::string> taken = {"std",     "boxgen",   "generated",
-                                              "support", "detail",   "cuda",
-                                              "glsl",    "registry", "evaluator_support"};
-  if (taken.count(name))
-    fail_input(fmt::format(
-        "--name '{}' is taken: the emitted code or its folder uses that name; choose another",
-        name));
-  if (name.size() > 11 && name.ends_with("_prefilters"))
-    fail_input(fmt::format(
-        "--name '{}' ends in '_prefilters', the suffix of an evaluator's prefilter file", name));
-  // Macros of the standard headers an evaluator includes (<cmath>, <cstdint>, ...).
-  static const std::set<std::string> macros = {"NULL",
-                                               "EOF",
-                                               "errno",
-                                               "assert",
-                                               "offsetof",
-                                               "INFINITY",
-                                               "NAN",
-                                               "HUGE_VAL",
-                                               "HUGE_VALF",
-                                               "HUGE_VALL",
-                                               "math_errhandling",
-                                               "MATH_ERRNO",
-                                               "MATH_ERREXCEPT",
-                                               "SIZE_MAX",
-                                               "PTRDIFF_MIN",
-                                               "PTRDIFF_MAX",
-                                               "WCHAR_MIN",
-                                               "WCHAR_MAX",
-                                               "WINT_MIN",
-                                               "WINT_MAX",
-                                               "SIG_ATOMIC_MIN",
-                                               "SIG_ATOMIC_MAX",
-                                               "unix",
-                                               "linux"};
-  const bool macro_family = name.starts_with("INT") || name.starts_with("UINT") ||
-                            name.starts_with("FP_") || name.starts_with("M_") ||
-                            name.starts_with("__");
-  if (macros.count(name) ||
-      (macro_family && name.find_first_of("abcdefghijklmnopqrstuvwxyz") == std::string::npos))
-    fail_input(
-        fmt::format("--name '{}' is a macro of the C++ standard headers: choose another", name));
-  if (name.find("__") != std::string::npos ||
-      (name.size() > 1 && name[0] == '_' && std::isupper(name[1])))
-    fail_input(fmt::format(
-        "--name '{}' is reserved for the implementation in C++ ('__' or '_' and a capital)", name));
-}
+// --name becomes a namespace, file names and function prefixes: generator/evaluator_name.h.
+void check_emit_name(const std::string& name) { check_evaluator_name(name); }
 
 // The target and precision, checked before the derivation.
 std::pair<EmissionTarget, bool> parse_language(const EmitLanguage& l, bool registry) {
@@ -217,10 +125,10 @@ int run_emit(const Common& c, const std::string& name, const std::string& out,
         name,
         fmt::format(
             "boxgen emit {} {}--name {} --strategy {}{} --out .",
-            spec.name == "custom" ? "\"" + spec.text + "\"" : spec.name,
-            c.lattice.empty() ? "" : "--lattice \"" + c.lattice + "\" ", name, strategy,
+            spec.name == "custom" ? "\"" + one_line(spec.text) + "\"" : spec.name,
+            c.lattice.empty() ? "" : "--lattice \"" + one_line(c.lattice) + "\" ", name, strategy,
             target == EmissionTarget::Cpp
-                ? (shells.empty() ? "" : " --shells " + language.shells)
+                ? (shells.empty() ? "" : fmt::format(" --shells {}", fmt::join(shells, ",")))
                 : " --target " + language.target + (double_precision ? " --precision double" : "")),
         chosen,
         target,

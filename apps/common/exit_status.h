@@ -2,6 +2,7 @@
 // with exit code 2, and a failed write to stdout (full disk, closed pipe) turns success into
 // exit code 1, never a silent success with truncated output.
 #pragma once
+#include <poll.h>
 #include <CLI/CLI.hpp>
 
 #include <cerrno>
@@ -36,6 +37,13 @@ inline std::optional<int> parse_command_line(CLI::App& app, int argc, char** arg
   return std::nullopt;
 }
 
+// Whether standard output is a pipe or socket whose reader has gone. errno cannot say so at the
+// end: the write that met EPIPE may be long past (the stream then only remembers that it failed).
+inline bool output_reader_gone() {
+  pollfd out{1, POLLOUT, 0};
+  return ::poll(&out, 1, 0) == 1 && (out.revents & (POLLERR | POLLHUP)) != 0;
+}
+
 // Output goes through both iostreams and stdio (fmt): both are flushed and checked. A reader
 // that has gone (EPIPE: SIGPIPE is ignored, support::handle_signals) ends the program quietly
 // with status 1, as `yes | head` ends; any other failure (a full disk) is one line and status 1.
@@ -44,7 +52,7 @@ inline int finish(int code, const char* program) {
   std::cout.flush();
   const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
   if (failed && code == 0) {
-    if (errno != EPIPE)
+    if (errno != EPIPE && !output_reader_gone())
       std::cerr << program << ": error: could not write the output: "
                 << (errno != 0 ? std::strerror(errno) : "disk full or closed pipe?") << '\n';
     return 1;

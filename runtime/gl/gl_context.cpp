@@ -11,8 +11,11 @@
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <string>
+#include <system_error>
 
+#include "runtime/nrrd_checks.h"
 #include "support/output_file.h"
 
 namespace boxgen::runtime::gl {
@@ -34,6 +37,11 @@ void dump_program(GLuint program, const std::string& source, const std::string& 
                   const std::string& log) {
   const char* folder = std::getenv("BOXGEN_GL_DUMP");
   if (!folder || !*folder) return;
+  // An existing folder only: a mistyped path is an error, never a tree of folders made for it.
+  std::error_code error;
+  if (!std::filesystem::is_directory(folder, error))
+    throw GlError(fmt::format("BOXGEN_GL_DUMP: '{}' is not an existing folder",
+                              runtime::nrrd_checks::printable(folder)));
   std::string label;
   for (char c : what) {
     const bool word = std::isalnum(static_cast<unsigned char>(c)) != 0;
@@ -123,6 +131,9 @@ DeviceInfo open_device() {
   // machine with a GPU).
   const char* platform = std::getenv("BOXGEN_GL_PLATFORM");
   const bool surfaceless_only = platform && std::string(platform) == "surfaceless";
+  if (platform && *platform && !surfaceless_only)
+    throw GlError(fmt::format("BOXGEN_GL_PLATFORM must be 'surfaceless' or unset, got '{}'",
+                              runtime::nrrd_checks::printable(platform)));
   if (!surfaceless_only && make_device_current()) {
     info.platform = "EGL device";
   } else if (make_current(eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,

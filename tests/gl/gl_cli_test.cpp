@@ -11,6 +11,7 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli_support.h"
@@ -126,6 +127,7 @@ TEST_F(GlCliTest, SlowSpecFilterEvaluatesOnTheGlDevice) {
 // (docs/gpu.md, "A kernel's compile"); a DIR that is a file is one line and exit 1.
 TEST_F(GlCliTest, DumpWritesEachKernelsSourceLogAndBinary) {
   const std::string dump = file("dump");
+  std::filesystem::create_directory(dump);  // an existing folder (a missing one is refused)
   ::setenv("BOXGEN_GL_DUMP", dump.c_str(), 1);
   const ProcessResult r = eval({"--device", "gl"});
   std::ofstream(file("not_a_folder")) << "x";
@@ -144,6 +146,28 @@ TEST_F(GlCliTest, DumpWritesEachKernelsSourceLogAndBinary) {
   EXPECT_EQ(bad.out, "");
   EXPECT_NE(bad.err.find("BOXGEN_GL_DUMP"), std::string::npos) << bad.err;
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+}
+
+// Issue 32, item 20: BOXGEN_GL_DUMP naming a folder that does not exist created it with its
+// parents, and BOXGEN_GL_PLATFORM=bogus was ignored. Each is one line, exit 1, nothing made.
+TEST_F(GlCliTest, AMissingDumpFolderAndAnUnknownPlatformAreRefused) {
+  const std::string missing = file("no/such/folder");
+  ::setenv("BOXGEN_GL_DUMP", missing.c_str(), 1);
+  const ProcessResult dump = eval({"--device", "gl"});
+  ::unsetenv("BOXGEN_GL_DUMP");
+  ::setenv("BOXGEN_GL_PLATFORM", "bogus", 1);
+  const ProcessResult platform = eval({"--device", "gl"});
+  ::unsetenv("BOXGEN_GL_PLATFORM");
+  for (const auto& [r, mention] :
+       {std::pair{dump, std::string("is not an existing folder")},
+        std::pair{platform, std::string("BOXGEN_GL_PLATFORM must be 'surfaceless' or unset, got "
+                                        "'bogus'")}}) {
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_NE(r.err.find(mention), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(file("no")));
 }
 
 TEST_F(GlCliTest, ABadDeviceIsOneLine) {

@@ -1,5 +1,9 @@
 """Bad arguments raise ValueError or TypeError, with boxrecon's or boxgen's one-line message where
 the CLI has the same mistake; nothing crashes the interpreter."""
+import subprocess
+import sys
+import textwrap
+
 import numpy as np
 import pytest
 
@@ -141,3 +145,36 @@ def test_thread_counts_have_an_upper_bound(files, ml_volume):
                      bcc, "--points", pts)
     boxgen.set_threads(0)
     assert boxgen.Filter("m7").evaluate(ml_volume, [[0, 0, 0]]).shape == (1,)
+
+
+def test_memory_failures_are_memory_errors():
+    """Issue 32, item 16: points whose float64 copy cannot be allocated raised "ValueError: cannot
+    create a pybind11::array_t from a nullptr"; now NumPy's MemoryError, naming the size. Run in a
+    child under an address-space limit 1 GiB above what it has mapped."""
+    script = textwrap.dedent("""
+        import resource
+        import numpy as np
+        import boxgen
+        volume, m7 = boxgen.sample("ml", 6), boxgen.Filter("m7")
+        points = np.zeros((100_000_000, 3), dtype=np.float32)  # 1.2 GB; float64 needs 2.4 GB
+        with open("/proc/self/status") as status:
+            mapped = next(int(l.split()[1]) for l in status if l.startswith("VmSize:")) * 1024
+        resource.setrlimit(resource.RLIMIT_AS, (mapped + (1 << 30), mapped + (1 << 30)))
+        try:
+            m7.evaluate(volume, points)
+        except Exception as e:
+            print(type(e).__name__, e)
+        """)
+    p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.startswith("MemoryError"), p.stdout
+    assert "nullptr" not in p.stdout, p.stdout
+
+
+def test_read_volume_gives_the_lattice_asked_for(tmp_path):
+    """Issue 32, item 20: read_volume(path, lattice='fcc') on a BCC file returned a BCC volume."""
+    path = str(tmp_path / "bcc.nrrd")
+    boxgen.write_volume(path, boxgen.sample("ml", 6))
+    with pytest.raises(ValueError, match="holds a BCC volume, not the FCC lattice asked for"):
+        boxgen.read_volume(path, lattice="fcc")
+    assert boxgen.read_volume(path, lattice="bcc").lattice == "bcc"
