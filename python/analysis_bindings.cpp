@@ -132,7 +132,7 @@ void bind_analysis(py::module_& m) {
         cli::AnalyzeOptions o;
         o.checks = checks;
         return json_result([&] {
-          return generator::to_json(cli::analyze_derivation(common(spec, lattice), o, {}));
+          return cli::analyze_json(cli::analyze_derivation(common(spec, lattice), o, {}));
         });
       },
       py::arg("spec"), py::arg("lattice") = py::none(), py::arg("checks") = "default",

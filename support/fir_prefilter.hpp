@@ -189,8 +189,11 @@ std::optional<std::vector<T>> solve_fir_prefilter(const FirPrefilterProblem<T>& 
       basis[f][(*pivots)[i]] = T(0) - conditions[i][free[f]];
   }
 
-  // The normal equations H t = g of the least squares in t, term by term.
-  Matrix<T> h(free.size(), std::vector<T>(free.size() + 1, T(0)));
+  // The normal equations [H | g] of the least squares in t, term by term. (The row is grown by
+  // one rather than sized free.size() + 1, which GCC 12 takes for a possible overflow.)
+  std::vector<T> zero_row(free.size(), T(0));
+  zero_row.push_back(T(0));
+  Matrix<T> h(free.size(), zero_row);
   const auto add_term = [&](const Matrix<T>& op, const T& weight, const FirPoint* target) {
     // op (q0 + N t) - e, e the unit impulse at `target` (none: 0).
     std::vector<std::vector<T>> columns(free.size(), std::vector<T>(op.size(), T(0)));

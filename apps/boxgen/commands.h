@@ -46,6 +46,9 @@ int run_analyze(const Common& c, const AnalyzeOptions& options);
 // The derivation `analyze` runs (its JSON is to_json() of it), with `progress` (may be empty).
 Derivation analyze_derivation(const Common& c, const AnalyzeOptions& options,
                               const ProgressFn& progress);
+// What `analyze --json` prints of it (also boxgen.analyze() in Python): to_json(a) with the
+// interpolation symbol (apps/boxgen/analysis_symbol.h).
+nlohmann::json analyze_json(const Derivation& a);
 int run_eval(const Common& c, const std::vector<std::string>& points,
              const std::string& derivative);
 int run_bbform(const Common& c, const std::string& region);
