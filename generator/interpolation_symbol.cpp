@@ -41,8 +41,8 @@ Rational norm2(const RatVec& r) {
   return s;
 }
 
-// The representatives of r + 2 G^-T z nearest the origin, sorted: 2 G^-T Z^n is the dual
-// lattice in units of pi.
+// The representatives of r + 2 G^-T z nearest the origin, the lexicographically largest first:
+// 2 G^-T Z^n is the dual lattice in units of pi.
 std::vector<RatVec> nearest_representatives(const RatVec& r, const RatMatrix& dual_basis) {
   const int n = static_cast<int>(r.size());
   constexpr int kReach = 3;  // coefficients tried per dual basis vector
@@ -64,7 +64,7 @@ std::vector<RatVec> nearest_representatives(const RatVec& r, const RatMatrix& du
     if (i == n) break;
     ++z[i];
   }
-  std::sort(best.begin(), best.end());
+  std::sort(best.begin(), best.end(), [](const RatVec& a, const RatVec& b) { return b < a; });
   return best;
 }
 

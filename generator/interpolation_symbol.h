@@ -35,7 +35,8 @@ std::vector<LatticeSample> lattice_samples(const BoxSplineSpec& spec);
 std::optional<Rational> symbol_at(const std::vector<LatticeSample>& samples, const RatVec& r);
 
 // A frequency w = pi r modulo the dual lattice 2 pi G^-T Z^n, given by its representatives
-// nearest the origin (in the Brillouin zone; several where they tie on its boundary), sorted.
+// nearest the origin (in the Brillouin zone; several where they tie on its boundary), the
+// lexicographically largest first.
 struct FrequencyClass {
   std::vector<RatVec> representatives;  // r of each w = pi r
 };

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -112,9 +113,13 @@ std::string symbol_text(const Derivation& a) {
       centre = to_string(s.value);
   line("lattice samples M(k)", fmt::format("{} nonzero, M(0) = {}", r.samples.size(), centre));
   if (!r.exact.zeros.empty()) {
+    // A few classes; a zero set that is not a few points (cart7) has many.
+    constexpr std::size_t kShown = 3;
     std::string where;
-    for (std::size_t i = 0; i < r.exact.zeros.size(); ++i)
+    for (std::size_t i = 0; i < std::min(kShown, r.exact.zeros.size()); ++i)
       where += (i ? "; " : "") + class_text(r.exact.zeros[i]);
+    if (r.exact.zeros.size() > kShown)
+      where += fmt::format("; and {} more (--json lists them)", r.exact.zeros.size() - kShown);
     line("min |A| over all w", "0 (exact): A vanishes at w = " + where);
   } else if (r.exact_minimum) {
     line("min |A| over all w",
