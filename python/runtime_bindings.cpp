@@ -127,6 +127,19 @@ const Volume& prepared(const Volume& volume, const Filter& f, const Prefiltering
   return *storage;
 }
 
+// Taps as NumPy arrays: (offsets (m, 3), weights (m,)).
+py::tuple taps_arrays(const rt::DiscreteFilter& taps) {
+  py::array_t<long> offsets(std::vector<py::ssize_t>{static_cast<py::ssize_t>(taps.size()), 3});
+  py::array_t<double> weights(static_cast<py::ssize_t>(taps.size()));
+  for (std::size_t i = 0; i < taps.size(); ++i) {
+    for (int a = 0; a < 3; ++a)
+      offsets.mutable_at(static_cast<py::ssize_t>(i), a) =
+          taps[i].first[static_cast<std::size_t>(a)];
+    weights.mutable_at(static_cast<py::ssize_t>(i)) = taps[i].second;
+  }
+  return py::make_tuple(offsets, weights);
+}
+
 // A float64 array over a vector it takes over (no copy), Fortran order when `fortran`.
 py::array_t<double> adopt(std::vector<double>&& values, const std::vector<py::ssize_t>& shape,
                           bool fortran) {
@@ -450,17 +463,7 @@ void bind_filter(py::module_& m) {
             py::dict out;
             for (const auto& [name, q] : {std::pair{"q1", rt::PrefilterChoice::Q1},
                                           std::pair{"q2", rt::PrefilterChoice::Q2}}) {
-              const rt::DiscreteFilter taps = f.filter.prefilter(q);
-              py::array_t<long> offsets(
-                  std::vector<py::ssize_t>{static_cast<py::ssize_t>(taps.size()), 3});
-              py::array_t<double> weights(static_cast<py::ssize_t>(taps.size()));
-              for (std::size_t i = 0; i < taps.size(); ++i) {
-                for (int a = 0; a < 3; ++a)
-                  offsets.mutable_at(static_cast<py::ssize_t>(i), a) =
-                      taps[i].first[static_cast<std::size_t>(a)];
-                weights.mutable_at(static_cast<py::ssize_t>(i)) = taps[i].second;
-              }
-              out[name] = py::make_tuple(offsets, weights);
+              out[name] = taps_arrays(f.filter.prefilter(q));
             }
             return out;
           },
@@ -521,19 +524,7 @@ void bind_filter(py::module_& m) {
           "size per axis")
       .def(
           "lattice_values",
-          [](const Filter& f) {
-            const rt::DiscreteFilter values = rt::lattice_values(f.filter);
-            py::array_t<long> offsets(
-                std::vector<py::ssize_t>{static_cast<py::ssize_t>(values.size()), 3});
-            py::array_t<double> weights(static_cast<py::ssize_t>(values.size()));
-            for (std::size_t i = 0; i < values.size(); ++i) {
-              for (int a = 0; a < 3; ++a)
-                offsets.mutable_at(static_cast<py::ssize_t>(i), a) =
-                    values[i].first[static_cast<std::size_t>(a)];
-              weights.mutable_at(static_cast<py::ssize_t>(i)) = values[i].second;
-            }
-            return py::make_tuple(offsets, weights);
-          },
+          [](const Filter& f) { return taps_arrays(rt::lattice_values(f.filter)); },
           "(offsets (m, 3), values (m,)): the filter M at the lattice points where it is not "
           "zero, from its evaluator in double")
       .def("evaluable_region",
