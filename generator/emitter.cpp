@@ -4,11 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <limits>
-#include <sstream>
+#include <cctype>
 
 #include "generator/code_text.h"
 #include "generator/embedded_templates.h"
@@ -296,28 +292,6 @@ EmittedFile emit_registry(const std::vector<std::string>& names, const std::stri
                   fmt::arg("count", names.size()), fmt::arg("names", join(quoted)),
                   fmt::arg("lattices", join(lattices)), fmt::arg("entries", join(entries, "\n")),
                   fmt::arg("cases", join(cases, "\n")))};
-}
-
-void write_files(const std::vector<EmittedFile>& files, const std::string& directory) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(directory, ec);
-  if (ec || !fs::is_directory(directory))
-    fail_input("cannot create output directory '" + directory + "'");
-  for (const auto& f : files) {
-    const fs::path target = fs::path(directory) / f.filename;
-    const fs::path temporary = fs::path(directory) / ("." + f.filename + ".tmp");
-    {
-      std::ofstream out(temporary, std::ios::binary);
-      out << f.text;
-      if (!out) fail_input("cannot write '" + temporary.string() + "'");
-    }
-    fs::rename(temporary, target, ec);
-    if (ec) {
-      fs::remove(temporary, ec);
-      fail_input("cannot write '" + target.string() + "'");
-    }
-  }
 }
 
 }  // namespace boxgen::generator

@@ -56,7 +56,4 @@ std::vector<EmittedFile> emit(const Derivation& analysis, const EmissionRequest&
 // both prefilters in the same directory), in the order given; the last one is the switch's default.
 EmittedFile emit_registry(const std::vector<std::string>& names, const std::string& command);
 
-// Writes the files into `directory` (each through a temporary file and a rename).
-void write_files(const std::vector<EmittedFile>& files, const std::string& directory);
-
 }  // namespace boxgen::generator

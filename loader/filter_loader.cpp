@@ -96,7 +96,7 @@ std::string glue_source(const std::string& name, const std::vector<gen::EmittedF
   const auto table = [&](const char* q) {
     return prefilters.find(fmt::format("PrefilterTap {}[]", q)) != std::string::npos
                ? fmt::format("rt::prefilter_from(g::{})", q)
-               : std::string("rt::DiscreteFilter{}");
+               : std::string("rt::PrefilterTaps{}");
   };
   return fmt::format(
       R"(// A run-time filter of boxgen (loader/filter_loader.cpp): do not edit, it is rebuilt.
@@ -156,7 +156,7 @@ class Source final : public rt::FilterSource {{
   std::string name() const override {{ return name_; }}
   rt::CosetLattice lattice() const override {{ return filter_.lattice(); }}
   rt::StencilReach reach() const override {{ return filter_.reach(); }}
-  rt::DiscreteFilter prefilter(rt::PrefilterChoice q) const override {{ return filter_.prefilter(q); }}
+  rt::PrefilterTaps prefilter(rt::PrefilterChoice q) const override {{ return filter_.prefilter(q); }}
   int approximation_order() const override {{ return filter_.approximation_order(); }}
   std::shared_ptr<const rt::EvaluationPath<float>> path(const rt::LatticeVolume<float>& v) const override {{
     return std::make_shared<Path<float>>(filter_.path(v), threads_);

@@ -128,7 +128,7 @@ const Volume& prepared(const Volume& volume, const Filter& f, const Prefiltering
 }
 
 // Taps as NumPy arrays: (offsets (m, 3), weights (m,)).
-py::tuple taps_arrays(const rt::DiscreteFilter& taps) {
+py::tuple taps_arrays(const rt::PrefilterTaps& taps) {
   py::array_t<long> offsets(std::vector<py::ssize_t>{static_cast<py::ssize_t>(taps.size()), 3});
   py::array_t<double> weights(static_cast<py::ssize_t>(taps.size()));
   for (std::size_t i = 0; i < taps.size(); ++i) {

@@ -34,7 +34,7 @@ std::vector<support::FirPoint> shell_points(const CosetLattice& lattice, int las
 
 }  // namespace
 
-DiscreteFilter fir_interpolation_taps(const SplineFilter& f, int last_shell) {
+PrefilterTaps fir_interpolation_taps(const SplineFilter& f, int last_shell) {
   if (last_shell < 0 || last_shell > kMaxFirShell)
     throw std::invalid_argument(
         fmt::format("qfir:{}: the last shell must be 0 to {}", last_shell, kMaxFirShell));
@@ -49,7 +49,7 @@ DiscreteFilter fir_interpolation_taps(const SplineFilter& f, int last_shell) {
     throw std::invalid_argument(fmt::format(
         "qfir:{}: no prefilter of approximation order {} for filter {} lies on the shells 0 to {}",
         last_shell, problem.order, f.name(), last_shell));
-  DiscreteFilter out;
+  PrefilterTaps out;
   for (std::size_t i = 0; i < points.size(); ++i)
     out.push_back({{static_cast<int>(points[i][0]), static_cast<int>(points[i][1]),
                     static_cast<int>(points[i][2])},

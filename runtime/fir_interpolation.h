@@ -15,6 +15,6 @@ inline constexpr int kMaxFirShell = 8;
 
 // The taps of qfir:K. Throws std::invalid_argument (one line) for K outside 0..kMaxFirShell or
 // when no prefilter of the filter's approximation order lies on those shells.
-DiscreteFilter fir_interpolation_taps(const SplineFilter& f, int last_shell);
+PrefilterTaps fir_interpolation_taps(const SplineFilter& f, int last_shell);
 
 }  // namespace boxgen::runtime

@@ -147,7 +147,7 @@ void expect_fir_taps_exact(const rt::SplineFilter& f, const std::string& spec,
       exact[w.offset] = gen::to_double(w.weight);
       largest = std::max(largest, std::abs(gen::to_double(w.weight)));
     }
-    const rt::DiscreteFilter taps = f.prefilter(rt::PrefilterChoice::qfir(k));
+    const rt::PrefilterTaps taps = f.prefilter(rt::PrefilterChoice::qfir(k));
     ASSERT_EQ(taps.size(), exact.size()) << spec << " qfir:" << k;
     for (const auto& [o, w] : taps) {
       const std::vector<std::int64_t> at{o[0], o[1], o[2]};
