@@ -79,24 +79,15 @@ std::optional<rt::SplineFilter> registry_filter(const std::string& name) {
   return std::nullopt;
 }
 
-std::string strip_pragma_once(std::string text) {
-  const std::string pragma = "#pragma once\n";
-  if (const auto at = text.find(pragma); at != std::string::npos) text.erase(at, pragma.size());
-  return text;
-}
-
 // The shared object's one source: the emitted evaluator and prefilters, and the two exported
 // functions. boxgen_filter_stamp() says which loader, boxgen and entry it was built for;
 // boxgen_filter_create() returns the filter as a FilterSource of the runtime's engine, whose
 // batch paths follow the host's thread cap (the object has its own copy of the runtime's
 // functions, so the cap is asked from the host before each batch).
-std::string glue_source(const std::string& name, const std::vector<gen::EmittedFile>& files,
+std::string glue_source(const std::string& name, const gen::Emission& emission,
                         const std::string& stamp) {
-  const std::string& prefilters = files.at(1).text;
-  const auto table = [&](const char* q) {
-    return prefilters.find(fmt::format("PrefilterTap {}[]", q)) != std::string::npos
-               ? fmt::format("rt::prefilter_from(g::{})", q)
-               : std::string("rt::PrefilterTaps{}");
+  const auto table = [](const std::optional<gen::Prefilter>& q, const char* id) {
+    return q ? fmt::format("rt::prefilter_from(g::{})", id) : std::string("rt::PrefilterTaps{}");
   };
   return fmt::format(
       R"(// A run-time filter of boxgen (loader/filter_loader.cpp): do not edit, it is rebuilt.
@@ -179,9 +170,10 @@ extern "C" __attribute__((visibility("default"))) rt::FilterSource* boxgen_filte
   return new Source(name, threads);
 }}
 )",
-      fmt::arg("evaluator", strip_pragma_once(files.at(0).text)),
-      fmt::arg("prefilters", strip_pragma_once(prefilters)), fmt::arg("name", name),
-      fmt::arg("q1", table("q1")), fmt::arg("q2", table("q2")), fmt::arg("stamp", stamp));
+      fmt::arg("evaluator", emission.files.at(0).pasted),
+      fmt::arg("prefilters", emission.files.at(1).pasted), fmt::arg("name", name),
+      fmt::arg("q1", table(emission.q1, "q1")), fmt::arg("q2", table(emission.q2, "q2")),
+      fmt::arg("stamp", stamp));
 }
 
 using StampFn = const char* (*)();
@@ -270,7 +262,7 @@ void write_glsl(const CacheEntry& entry, const gen::Derivation& derivation, Entr
         fmt::format("the run-time filter \"{}\" --lattice \"{}\"", info.spec, info.rows);
     request.target = gen::EmissionTarget::Glsl;
     request.double_precision = dbl;
-    const std::string text = gen::emit(derivation, request).at(0).text;
+    const std::string text = gen::emit(derivation, request).files.at(0).text;
     write_entry_file(glsl_file(entry, dbl), text);
     (dbl ? info.glsl_double_hash : info.glsl_hash) = hash_text(text);
   }
@@ -292,8 +284,7 @@ void build_entry(const CacheEntry& entry, const gen::BoxSplineSpec& spec, const 
   request.name = name;
   request.command =
       fmt::format("the run-time filter \"{}\" --lattice \"{}\"", info.spec, info.rows);
-  const auto files = gen::emit(derivation, request);
-  const std::string source = glue_source(name, files, info.stamp);
+  const std::string source = glue_source(name, gen::emit(derivation, request), info.stamp);
   try {
     write_entry_file(entry.file(".cpp"), source);
     progress.stage(fmt::format("first use of filter {}: compiling with {} (cached in {})", what,
