@@ -621,6 +621,25 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, c
 
 }  // namespace
 
+std::optional<CosetLattice> read_nrrd_lattice(const fs::path& path) {
+  try {
+    const ReadFailure fail{"lattice volume", printable(path.string())};
+    std::uint64_t file_size = 0;
+    const File file = open_regular_file(path, fail, file_size);
+    if (!nrrd_checks::check_header_text(file.get(), file_size).empty()) return std::nullopt;
+    std::lock_guard lock(teem_mutex());
+    NrrdOwner nrrd(nrrdNew());
+    DataLayout layout;
+    VolumeHeader header{};
+    if (!teem_read(file.get(), nrrd.get(), true, layout).empty() ||
+        !file_lattice(nrrd.get(), header).empty())
+      return std::nullopt;
+    return header.lattice;
+  } catch (const NrrdError&) {
+    return std::nullopt;
+  }
+}
+
 template <class T>
 LatticeVolume<T> read_lattice_nrrd(const fs::path& path, const NrrdReadLimits& limits,
                                    SourceSamples* source) {
