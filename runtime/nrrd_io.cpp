@@ -594,6 +594,8 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, c
   const std::uint64_t sample_count = header.data_bytes / nrrdTypeSize[header.type];
   check(nrrd_checks::check_data_length(file.get(), layout.start, layout.encoding, file_size,
                                        header.data_bytes, sample_count));
+  // Before anything is allocated (a file cut short is the more precise refusal, above).
+  check(nrrd_checks::check_memory_for(header.data_bytes + sample_count * sizeof(T)));
 
   NrrdOwner nrrd(nrrdNew());
   check(teem_read(file.get(), nrrd.get(), false, layout));

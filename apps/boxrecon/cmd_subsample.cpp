@@ -9,6 +9,7 @@
 
 #include "apps/boxrecon/cmd_volumes.h"
 #include "apps/boxrecon/filter_choice.h"
+#include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/output_volume.h"
 #include "apps/boxrecon/prefilter_options.h"
 #include "runtime/nifti_io.h"
@@ -86,6 +87,11 @@ int run_subsample() {
       args.spacing
           ? *args.spacing
           : spacing_for_count(lattice, box, *args.fraction * static_cast<double>(input_count));
+  // Before anything is allocated: the output samples, and the points and values of a block.
+  app::check_memory(
+      lattice_grid_count(lattice, box, h), 2 * sizeof(float),
+      args.spacing ? fmt::format("--spacing {}", h) : fmt::format("--fraction {}", *args.fraction),
+      "samples");
   const LatticeGrid grid = lattice_grid_in(lattice, box, h);
   const LatticeVolume<float> out = resample_to_lattice(volume, filter, grid);
   app::write_output_volume(args.output, out, type);

@@ -110,7 +110,7 @@ int run(int argc, char** argv) {
   int threads = 0;
   app.add_option("--threads", threads,
                  "threads of the batch paths (default: BOXGEN_THREADS, else all cores)")
-      ->check(CLI::Range(1, 4096));
+      ->check(CLI::PositiveNumber);  // the upper bound is the machine's (max_batch_threads)
 
   auto* sample = app.add_subcommand(
       "sample", "sample a test function on N^3 x K lattice points over [-1,1]^3");
