@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <random>
@@ -239,9 +240,22 @@ CartesianGrid grid_with_spacing(const Box& box, const std::vector<double>& given
   return {n, h, box.min};
 }
 
-// resample() of the whole grid; on a terminal without --quiet, once the work has taken 2 s, its
-// progress on stderr. The grid is then done in slabs of z planes (GridBlock: each value bit for
-// bit the one the whole grid gets).
+// resample() of the whole grid; on a terminal without --quiet, once the work has taken 2 s
+// (BOXGEN_PROGRESS_AFTER), its progress on stderr. The grid is then done in slabs of z planes
+// (GridBlock: each value bit for bit the one the whole grid gets). BOXGEN_PROGRESS_AFTER: the
+// seconds before progress shows (default 2; 0 at once).
+double progress_after() {
+  const char* text = std::getenv("BOXGEN_PROGRESS_AFTER");
+  if (!text || !*text) return 2;
+  char* end = nullptr;
+  const double seconds = std::strtod(text, &end);
+  if (*end != '\0' || !(seconds >= 0) || !std::isfinite(seconds))
+    throw std::invalid_argument(
+        fmt::format("BOXGEN_PROGRESS_AFTER must be a number of seconds >= 0, got '{}'",
+                    nrrd_checks::printable(text, 40)));
+  return seconds;
+}
+
 template <class T>
 CartesianVolume<T> resample_grid(const LatticeVolume<T>& volume, const SplineFilter& f,
                                  const CartesianGrid& grid, const BatchEvaluate<T>& evaluate) {
@@ -249,6 +263,7 @@ CartesianVolume<T> resample_grid(const LatticeVolume<T>& volume, const SplineFil
     return resample(volume, f, grid, GridBlock{{0, 0, 0}, grid.sizes}, evaluate);
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
+  const std::chrono::duration<double> after(progress_after());
   const Sizes& n = grid.sizes;
   const std::size_t plane = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]);
   CartesianVolume<T> out{n, grid.spacing, grid.origin,
@@ -262,7 +277,7 @@ CartesianVolume<T> resample_grid(const LatticeVolume<T>& volume, const SplineFil
     std::copy(
         part.values.begin(), part.values.end(),
         out.values.begin() + static_cast<std::ptrdiff_t>(plane * static_cast<std::size_t>(z0)));
-    if (shown || Clock::now() - start > std::chrono::seconds(2)) {
+    if (shown || Clock::now() - start >= after) {
       shown = true;
       std::fprintf(stderr, "\rresampling %3d%%", 100 * z1 / n[2]);
     }
