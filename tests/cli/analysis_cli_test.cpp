@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 #include <sstream>
 
@@ -259,6 +260,35 @@ TEST_F(AnalysisCli, RenderWritesAPngOfTheRequestedSize) {
   EXPECT_EQ(be32(16), 40);  // IHDR width
   EXPECT_EQ(be32(20), 30);  // IHDR height
   EXPECT_EQ(listing(), (std::vector<std::string>{"r.png"}));
+}
+
+// render --min/--max: the default box given explicitly ([-1,1]^3 for --function) is the same
+// picture byte for byte; a smaller box another one; a box beyond the region the filter
+// reconstructs one line and no file.
+TEST_F(AnalysisCli, RenderTakesABox) {
+  const std::vector<std::string> base{"render",  "--function", "ml",       "--n", "13",
+                                      "--width", "24",         "--height", "20",  "--quiet"};
+  const auto render = [&](std::vector<std::string> extra, const std::string& name) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    args.insert(args.end(), {"-o", file(name)});
+    const ProcessResult r = boxrecon(args);
+    EXPECT_TRUE(r.exited && r.exit_code == 0) << describe(args, r);
+    std::ifstream in(file(name), std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string plain = render({}, "plain.png");
+  ASSERT_FALSE(plain.empty());
+  EXPECT_EQ(render({"--min", "-1", "-1", "-1", "--max", "1", "1", "1"}, "same.png"), plain);
+  EXPECT_NE(render({"--min", "-0.5", "-1", "-1", "--max", "1", "0.6", "1"}, "small.png"), plain);
+  std::vector<std::string> outside = base;
+  outside.insert(outside.end(),
+                 {"--min", "-3", "-1", "-1", "--max", "1", "1", "1", "-o", file("out.png")});
+  const ProcessResult r = boxrecon(outside);
+  EXPECT_TRUE(r.exited && r.exit_code == 1) << describe(outside, r);
+  EXPECT_NE(r.err.find("leaves the region the m7 filter reconstructs"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(file("out.png")));
 }
 
 TEST_F(AnalysisCli, ErrorTableJsonHasEveryRowAndKey) {
