@@ -23,7 +23,8 @@ runtime::gl::GlslEvaluator glsl_for(const runtime::SplineFilter& f, const std::s
   options.progress = !quiet_flag && isatty(STDERR_FILENO) != 0;
   loader::EmittedGlsl glsl = loader::load_glsl(
       filter, lattice.empty() ? std::nullopt : std::optional(lattice), double_precision, options);
-  return {std::move(glsl.name), std::move(glsl.text)};
+  return {std::move(glsl.name), std::move(glsl.text), std::move(glsl.buffered),
+          std::move(glsl.block)};
 }
 
 runtime::SplineFilter filter_from(const std::string& filter, const std::string& lattice) {
