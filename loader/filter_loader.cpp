@@ -16,6 +16,7 @@
 #include "generator/derivation.h"
 #include "generator/emitter.h"
 #include "generator/error.h"
+#include "generator/int_linalg.h"
 #include "generator/spec.h"
 #include "loader/filter_cache.h"
 #include "loader/filter_compiler.h"
@@ -316,6 +317,16 @@ void build_entry(const CacheEntry& entry, const gen::BoxSplineSpec& spec, const 
   }
 }
 
+// The directions as the cache key sees them: the centred box spline (what the loader derives,
+// emits and compiles) is the same for any order of the directions and either sign of each, so
+// each is taken with its first nonzero entry positive and the list is sorted. The same matrix
+// reordered or with a direction negated then loads the entry compiled first.
+std::string key_directions(gen::BoxSplineSpec spec) {
+  for (gen::IntVec& d : spec.directions) d = gen::sign_canonical(std::move(d));
+  std::sort(spec.directions.begin(), spec.directions.end());
+  return spec.directions_text();
+}
+
 // A SPEC (not a registry name) and its place in the cache: load_filter and load_glsl share it.
 struct Resolved {
   gen::BoxSplineSpec spec;
@@ -344,7 +355,7 @@ Resolved resolve(const std::string& spec_or_name, const std::optional<std::strin
   info.lattice = spec.lattice.name();
   info.rows = rows_text(spec.lattice);
   const std::string identity = fmt::format("abi {}\n{}\n{}\n{}\n{}", kAbiVersion, kVersion,
-                                           info.spec, info.rows, toolchain.identity());
+                                           key_directions(spec), info.rows, toolchain.identity());
   // The directory is made, and checked, before anything is read from it or written to it.
   CacheEntry entry{*checked_cache_dir(resolve_cache_dir(options.cache_dir), true),
                    hash_text(identity)};
@@ -396,6 +407,14 @@ void ensure_entry(const Resolved& r, const CompileOptions& options,
 
 fs::path cache_directory(const CompileOptions& options) {
   return resolve_cache_dir(options.cache_dir);
+}
+
+std::string cache_key_directions(const std::string& spec, const std::string& lattice) {
+  try {
+    return key_directions(gen::parse_spec(spec, lattice));
+  } catch (const gen::InputError& e) {
+    throw LoadError(e.what());
+  }
 }
 
 rt::SplineFilter load_filter(const std::string& spec_or_name, std::optional<std::string> lattice,

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "apps/boxrecon/cmd_volumes.h"
+#include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/lattice_commands.h"
 #include "apps/boxrecon/output_volume.h"
 #include "apps/boxrecon/prefilter_options.h"
@@ -27,7 +28,7 @@ namespace {
 using namespace boxgen::runtime;
 
 struct CompareArgs {
-  std::string reference, volume, filter, error_volume, type;
+  std::string reference, volume, filter, lattice, error_volume, type;
   app::PrefilterOptions prefilter;
   std::optional<double> mask_above;
   std::vector<double> min, max;
@@ -88,9 +89,14 @@ CLI::App* add_compare_command(CLI::App& app) {
   c->add_option("--reference", args.reference,
                 "the original Cartesian volume (NRRD, or NIfTI .nii/.nii.gz)")
       ->required();
-  c->add_option("--volume", args.volume, "the lattice volume to reconstruct (NRRD)")->required();
-  c->add_option("--filter", args.filter, "a filter of the registry: " + SplineFilter::names())
+  c->add_option("--volume", args.volume, "the lattice volume to reconstruct (NRRD or NIfTI)")
       ->required();
+  c->add_option(
+       "--filter", args.filter,
+       "a filter of the registry (" + SplineFilter::names() + ") or a SPEC, compiled on first use")
+      ->required();
+  c->add_option("--lattice", args.lattice,
+                "the lattice of a SPEC --filter (default: the volume's)");
   app::add_prefilter_options(c, args.prefilter);
   c->add_option("--mask-above", args.mask_above,
                 "V: also the errors over the points whose reference value exceeds V");
@@ -110,7 +116,7 @@ CLI::App* add_compare_command(CLI::App& app) {
 }
 
 int run_compare() {
-  const SplineFilter filter = SplineFilter::parse(args.filter);
+  const SplineFilter filter = app::filter_for_volume(args.filter, args.lattice, args.volume);
   const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   const std::filesystem::path inputs[2] = {args.reference, args.volume};
   const std::optional<SampleType> type = app::parse_type_option(args.type);

@@ -68,8 +68,8 @@ template <class T>
 int run_eval(const std::string& filter, const std::string& lattice, const PrefilterOptions& pre,
              const std::string& volume_path, const std::string& points_path, bool gradient,
              bool hessian, const NrrdReadLimits& limits, Device device, bool verbose) {
-  const SplineFilter f = filter_from(filter, lattice);
   const PrefilterSetting q = parse_prefilter_options(pre);
+  const SplineFilter f = filter_for_volume(filter, lattice, volume_path);
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
   const auto points = read_points_file(points_path);
   std::vector<T> values(points.size());
@@ -78,7 +78,7 @@ int run_eval(const std::string& filter, const std::string& lattice, const Prefil
   const Reconstructor<T> spline(volume, f);
   if (device == Device::Gl) {
     if (verbose) std::cerr << gl_device_line() << '\n';
-    const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, lattice, sizeof(T) == 8));
+    const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, sizeof(T) == 8));
     gpu.evaluate(points, values, gradients, hessians);
   } else {
     spline.evaluate(points, values, gradients, hessians);
@@ -184,15 +184,15 @@ int run_resample(const std::string& filter, const std::string& lattice, const Pr
                  const std::string& type_text, int n, const std::vector<double>& min,
                  const std::vector<double>& max, const NrrdReadLimits& limits, Device device,
                  bool verbose) {
-  const SplineFilter f = filter_from(filter, lattice);
   const PrefilterSetting q = parse_prefilter_options(pre);
   const std::optional<SampleType> type = parse_type_option(type_text);
   if (n < 2 || n > kMaxResampleN)
     throw std::invalid_argument(
         fmt::format("--n must be between 2 and {}, got {}", kMaxResampleN, n));
   const std::filesystem::path input = volume_path;
-  // Before the work, not after it; never the input.
+  // Before the work (a SPEC's first compile included), not after it; never the input.
   require_output_volume(output, {&input, 1}, CosetLattice::cartesian());
+  const SplineFilter f = filter_for_volume(filter, lattice, volume_path);
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
   const Box box = min.empty() ? default_box(volume, f)
                               : Box{{min[0], min[1], min[2]}, {max[0], max[1], max[2]}};
@@ -203,7 +203,7 @@ int run_resample(const std::string& filter, const std::string& lattice, const Pr
     return 0;
   }
   if (verbose) std::cerr << gl_device_line() << '\n';
-  const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, lattice, sizeof(T) == 8));
+  const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, sizeof(T) == 8));
   write_output_grid(
       output,
       resample(volume, f, grid, all,

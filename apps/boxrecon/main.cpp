@@ -93,7 +93,7 @@ int run(int argc, char** argv) {
       filter_choices() + ", or any SPEC of boxgen (on --lattice), compiled on first use";
   const std::string spec_lattice =
       "the lattice of a SPEC --filter: bcc | fcc | cartesian | \"a,b,c; d,e,f; g,h,i\" (rows of "
-      "G); default the preset's";
+      "G); default the volume's with --volume, else the preset's, else cartesian";
   bool quiet = false;
   const auto add_quiet = [&](CLI::App* command) {
     command->add_flag("--quiet", quiet, "no progress while a SPEC filter is compiled");
@@ -110,7 +110,7 @@ int run(int argc, char** argv) {
   int threads = 0;
   app.add_option("--threads", threads,
                  "threads of the batch paths (default: BOXGEN_THREADS, else all cores)")
-      ->check(CLI::Range(1, 4096));
+      ->check(CLI::PositiveNumber);  // the upper bound is the machine's (max_batch_threads)
 
   auto* sample = app.add_subcommand(
       "sample", "sample a test function on N^3 x K lattice points over [-1,1]^3");
@@ -234,7 +234,8 @@ int run(int argc, char** argv) {
   bench->add_option(
       "--n", bench_n,
       "with --prefilter: N^3 samples per coset of the filter's lattice (default 256)");
-  for (auto* command : {sample, eval, error, resample, bench}) add_quiet(command);
+  for (auto* command : {sample, eval, error, resample, bench, subsample, compare, slice})
+    add_quiet(command);
   auto* filters_command = app.add_subcommand(
       "filters", "list the registry's filters and the SPEC filters compiled into the cache");
   if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxrecon")) return *stop;
