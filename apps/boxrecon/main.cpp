@@ -105,8 +105,7 @@ int run(int argc, char** argv) {
   std::optional<double> h;
   std::string seed = "1";
   bool gradient = false, json = false, allow_nonfinite = false;
-  int resample_n = 64;
-  std::vector<double> box_min, box_max;
+  boxgen::app::OutputGridOptions grid_options;
   int threads = 0;
   app.add_option("--threads", threads,
                  "threads of the batch paths (default: BOXGEN_THREADS, else all cores)")
@@ -187,19 +186,38 @@ int run(int argc, char** argv) {
                    "output Cartesian grid: NRRD (.nrrd) or NIfTI-1 (.nii, .nii.gz)")
       ->required();
   boxgen::app::add_type_option(resample, output_type, "-o");
-  resample->add_option(
-      "--n", resample_n,
-      fmt::format("grid points per axis, 2..{} (default 64)", boxgen::app::kMaxResampleN));
+  auto* n_option = resample->add_option("--n", grid_options.n,
+                                        "N: a cube of N^3 grid points over the box (default 64)");
+  auto* size_option =
+      resample
+          ->add_option("--size", grid_options.size,
+                       "NX NY NZ: grid points per axis over the box, instead of --n")
+          ->expected(3);
+  auto* spacing_option =
+      resample
+          ->add_option("--spacing", grid_options.spacing,
+                       "H or HX HY HZ: grid spacing (world units), points from the box's lower "
+                       "corner as far as they fit, instead of --n")
+          ->expected(1, 3);
+  auto* like_option = resample->add_option(
+      "--like", grid_options.like,
+      "IMAGE: the grid of this Cartesian image (NRRD or NIfTI: its sizes, spacings and origin), "
+      "instead of --n and the box");
   auto* min_option = resample
-                         ->add_option("--min", box_min,
+                         ->add_option("--min", grid_options.min,
                                       "X Y Z: lower corner of the box (world); default (without "
                                       "--min/--max): the largest box "
                                       "in which the filter's stencil lies inside the volume")
                          ->expected(3);
   auto* max_option =
-      resample->add_option("--max", box_max, "X Y Z: upper corner of the box (world)")->expected(3);
+      resample->add_option("--max", grid_options.max, "X Y Z: upper corner of the box (world)")
+          ->expected(3);
   min_option->needs(max_option);
   max_option->needs(min_option);
+  n_option->excludes(size_option)->excludes(spacing_option)->excludes(like_option);
+  size_option->excludes(spacing_option)->excludes(like_option);
+  spacing_option->excludes(like_option);
+  like_option->excludes(min_option)->excludes(max_option);
   auto* resample_precision = resample->add_option(
       "--precision", precision, "float | double (default double; float with --device gl)");
   boxgen::app::add_device_option(resample, device, &verbose);
@@ -297,11 +315,10 @@ int run(int argc, char** argv) {
     if (resample->parsed())
       return precision == "float"
                  ? boxgen::app::run_resample<float>(filter, lattice, pre, volume, output,
-                                                    output_type, resample_n, box_min, box_max,
-                                                    limits, on, verbose)
+                                                    output_type, grid_options, limits, on, verbose)
                  : boxgen::app::run_resample<double>(filter, lattice, pre, volume, output,
-                                                     output_type, resample_n, box_min, box_max,
-                                                     limits, on, verbose);
+                                                     output_type, grid_options, limits, on,
+                                                     verbose);
   } catch (const std::exception& e) {
     if (boxgen::app::is_output_error(e)) return boxgen::app::report_output_error(e, "boxrecon");
     const int code = exit_code_for(e);
