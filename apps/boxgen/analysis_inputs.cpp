@@ -1,5 +1,7 @@
 #include "apps/boxgen/analysis_inputs.h"
 
+#include <cmath>
+
 #include "generator/error.h"
 #include "generator/prefilter.h"
 
@@ -22,14 +24,16 @@ std::vector<analysis::LatticeTap> taps_of(const Autocorrelation& a) {
 std::vector<analysis::LatticeTap> prefilter_taps_of(const BoxSplineSpec& spec,
                                                     const std::string& name) {
   if (name == "none") return {};
-  if (name != "q1" && name != "q2")
-    fail_input("unknown prefilter '" + name.substr(0, 40) + "': expected none, q1, q2 or min");
-  // q1 on the smallest shells with a prefilter of full order, q2 on the next larger.
-  const std::vector<int> shells = quasi_interpolation_shells(spec, name == "q1" ? 1 : 2);
+  // q1, q2 (the leading shells of full order and the next) or qfir:K; InputError otherwise.
   std::vector<analysis::LatticeTap> out;
-  for (const auto& w : derive_prefilter(spec, shells).weights)
+  for (const auto& w : named_prefilter(spec, name).weights)
     out.push_back({w.offset, to_double(w.weight)});
   return out;
+}
+
+double density_scale(const BoxSplineSpec& spec, bool equal) {
+  if (!equal) return 1.0;
+  return std::pow(static_cast<double>(spec.lattice.det_abs()), -1.0 / spec.dimension());
 }
 
 }  // namespace boxgen::cli
