@@ -24,6 +24,8 @@
 #include "generator/spec.h"
 #include "python/bindings.h"
 #include "runtime/batch_threads.h"
+#include "runtime/coefficients.h"
+#include "runtime/interpolation.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/prefilter.h"
 #include "runtime/reconstruction.h"
@@ -102,14 +104,40 @@ rt::PrefilterChoice prefilter_choice(const std::optional<std::string>& name) {
   return rt::parse_prefilter(name.value_or("none"));
 }
 
-// The volume the filter evaluates after prefilter q: the volume itself, or its prefiltered copy
-// in `storage`. The lattice is checked first (one line naming both lattices).
-const Volume& prepared(const Volume& volume, const Filter& f, rt::PrefilterChoice q,
-                       std::optional<Volume>& storage) {
+// prefilter= and boundary= of every function that takes them (as boxrecon's --prefilter and
+// --boundary; None: "none" and mirror).
+struct Prefiltering {
+  rt::PrefilterChoice q;
+  rt::Boundary b;
+};
+Prefiltering prefiltering(const std::optional<std::string>& prefilter,
+                          const std::optional<std::string>& boundary) {
+  return {prefilter_choice(prefilter),
+          boundary ? rt::parse_boundary(*boundary) : rt::kDefaultBoundary};
+}
+
+// The coefficients the filter evaluates after prefilter and boundary p (runtime/coefficients.h):
+// the volume itself (none, strict), or a new volume in `storage`. The lattice is checked first
+// (one line naming both lattices).
+const Volume& prepared(const Volume& volume, const Filter& f, const Prefiltering& p,
+                       std::optional<Volume>& storage, rt::InterpolationReport* report = nullptr) {
   f.filter.check_lattice(volume.lattice());
-  if (q == rt::PrefilterChoice::None) return volume;
-  storage.emplace(rt::prefilter(volume, f.filter.prefilter(q)));
+  if (p.q == rt::PrefilterChoice::None && p.b == rt::Boundary::Strict) return volume;
+  storage.emplace(rt::spline_coefficients(volume, f.filter, p.q, p.b, report, report != nullptr));
   return *storage;
+}
+
+// Taps as NumPy arrays: (offsets (m, 3), weights (m,)).
+py::tuple taps_arrays(const rt::DiscreteFilter& taps) {
+  py::array_t<long> offsets(std::vector<py::ssize_t>{static_cast<py::ssize_t>(taps.size()), 3});
+  py::array_t<double> weights(static_cast<py::ssize_t>(taps.size()));
+  for (std::size_t i = 0; i < taps.size(); ++i) {
+    for (int a = 0; a < 3; ++a)
+      offsets.mutable_at(static_cast<py::ssize_t>(i), a) =
+          taps[i].first[static_cast<std::size_t>(a)];
+    weights.mutable_at(static_cast<py::ssize_t>(i)) = taps[i].second;
+  }
+  return py::make_tuple(offsets, weights);
 }
 
 // A float64 array over a vector it takes over (no copy), Fortran order when `fortran`.
@@ -223,8 +251,9 @@ Filter make_filter(const std::string& spec_text, const std::optional<std::string
 }
 
 py::object evaluate(const Filter& f, const Volume& volume, const py::handle& points_obj,
-                    const std::optional<std::string>& prefilter, bool gradient, bool hessian) {
-  const rt::PrefilterChoice q = prefilter_choice(prefilter);
+                    const std::optional<std::string>& prefilter, bool gradient, bool hessian,
+                    const std::optional<std::string>& boundary) {
+  const Prefiltering q = prefiltering(prefilter, boundary);
   const py::array_t<double> points = points_array(points_obj);
   const auto n = static_cast<std::size_t>(points.shape(0));
   const auto count = static_cast<py::ssize_t>(n);
@@ -269,8 +298,9 @@ py::array_t<double> resample(const VolumePtr& volume, const Filter& f,
                              const std::optional<std::string>& prefilter, const py::handle& lo,
                              const py::handle& hi,
                              const std::variant<int, std::array<int, 3>>& shape,
-                             const std::optional<std::array<std::array<int, 3>, 2>>& block) {
-  const rt::PrefilterChoice q = prefilter_choice(prefilter);
+                             const std::optional<std::array<std::array<int, 3>, 2>>& block,
+                             const std::optional<std::string>& boundary) {
+  const Prefiltering q = prefiltering(prefilter, boundary);
   std::optional<Volume> storage;
   const Volume* v = nullptr;
   {
@@ -433,17 +463,7 @@ void bind_filter(py::module_& m) {
             py::dict out;
             for (const auto& [name, q] : {std::pair{"q1", rt::PrefilterChoice::Q1},
                                           std::pair{"q2", rt::PrefilterChoice::Q2}}) {
-              const rt::DiscreteFilter taps = f.filter.prefilter(q);
-              py::array_t<long> offsets(
-                  std::vector<py::ssize_t>{static_cast<py::ssize_t>(taps.size()), 3});
-              py::array_t<double> weights(static_cast<py::ssize_t>(taps.size()));
-              for (std::size_t i = 0; i < taps.size(); ++i) {
-                for (int a = 0; a < 3; ++a)
-                  offsets.mutable_at(static_cast<py::ssize_t>(i), a) =
-                      taps[i].first[static_cast<std::size_t>(a)];
-                weights.mutable_at(static_cast<py::ssize_t>(i)) = taps[i].second;
-              }
-              out[name] = py::make_tuple(offsets, weights);
+              out[name] = taps_arrays(f.filter.prefilter(q));
             }
             return out;
           },
@@ -456,20 +476,57 @@ void bind_filter(py::module_& m) {
           py::arg("prefilter") = py::none())
       .def("evaluate", &evaluate, py::arg("volume"), py::arg("points"),
            py::arg("prefilter") = py::none(), py::arg("gradient") = false,
-           py::arg("hessian") = false,
+           py::arg("hessian") = false, py::arg("boundary") = py::none(),
            "The spline at (n, 3) world points: values (n,), or (values, gradients (n, 3)[, "
-           "Hessians (n, 6) xx xy xz yy yz zz]); bit for bit `boxrecon eval`")
+           "Hessians (n, 6) xx xy xz yy yz zz]); bit for bit `boxrecon eval`. prefilter: none "
+           "(default) | q1 | q2 | interp | interp:LAMBDA; boundary: mirror (default) | clamp | "
+           "strict")
       .def(
           "prefilter_volume",
-          [](const Filter& f, const Volume& volume, const std::string& q) {
+          [](const Filter& f, const Volume& volume, const std::string& q,
+             const std::optional<std::string>& boundary) {
             std::optional<Volume> storage;
             py::gil_scoped_release release;
-            (void)prepared(volume, f, rt::parse_prefilter(q), storage);
-            if (!storage) return std::make_shared<Volume>(volume);  // "none": a copy
+            (void)prepared(volume, f, prefiltering(q, boundary), storage);
+            if (!storage) return std::make_shared<Volume>(volume);  // none, strict: a copy
             return std::make_shared<Volume>(std::move(*storage));
           },
-          py::arg("volume"), py::arg("prefilter"),
-          "The volume prefiltered with q1 or q2 (a new Volume)")
+          py::arg("volume"), py::arg("prefilter"), py::arg("boundary") = py::none(),
+          "The coefficients after prefilter (none | q1 | q2 | interp[:LAMBDA]) and boundary "
+          "(mirror (default) | clamp | strict): a new Volume, evaluated with prefilter none and "
+          "boundary strict")
+      .def(
+          "interpolation",
+          [](const Filter& f, const Volume& volume, const std::string& q,
+             const std::optional<std::string>& boundary) {
+            const Prefiltering p = prefiltering(q, boundary);
+            if (p.q.is_fir())
+              throw py::value_error(fmt::format("prefilter {} is not interp", p.q.text()));
+            rt::InterpolationReport r;
+            {
+              std::optional<Volume> storage;
+              py::gil_scoped_release release;
+              (void)prepared(volume, f, p, storage, &r);
+            }
+            py::dict d;
+            d["lambda"] = r.lambda;
+            d["residual_max"] = r.residual_max;
+            d["residual_rms"] = r.residual_rms;
+            d["symbol_min"] = r.symbol.min;
+            d["symbol_max"] = r.symbol.max;
+            d["padding"] = r.padding;
+            d["transform"] = r.transform;
+            return d;
+          },
+          py::arg("volume"), py::arg("prefilter") = "interp", py::arg("boundary") = py::none(),
+          "interp's report on this volume: lambda (0: exact), the residual at the samples (max "
+          "and RMS, of max |sample|), min and max |A| of the symbol, the padding and transform "
+          "size per axis")
+      .def(
+          "lattice_values",
+          [](const Filter& f) { return taps_arrays(rt::lattice_values(f.filter)); },
+          "(offsets (m, 3), values (m,)): the filter M at the lattice points where it is not "
+          "zero, from its evaluator in double")
       .def("evaluable_region",
            [](const Filter& f, const Volume& v) {
              return box_tuple(rt::evaluable_region(v, f.filter));
@@ -502,23 +559,26 @@ void bind_runtime(py::module_& m) {
       "resample",
       [](const VolumePtr& volume, const Filter& f, const std::optional<std::string>& prefilter,
          const py::object& lo, const py::object& hi,
-         const std::variant<int, std::array<int, 3>>& shape) {
-        return resample(volume, f, prefilter, lo, hi, shape, std::nullopt);
+         const std::variant<int, std::array<int, 3>>& shape,
+         const std::optional<std::string>& boundary) {
+        return resample(volume, f, prefilter, lo, hi, shape, std::nullopt, boundary);
       },
       py::arg("volume"), py::arg("filter"), py::arg("prefilter") = py::none(),
       py::arg("lo") = py::none(), py::arg("hi") = py::none(), py::arg("shape") = 64,
+      py::arg("boundary") = py::none(),
       "The spline on the grid lo + (i, j, k) (hi - lo) / (shape - 1): an array of that shape "
-      "(lo, hi default to filter.default_box of the prefiltered volume)");
+      "(lo, hi default to filter.default_box of the coefficients after prefilter and boundary)");
   m.def(
       "_resample_block",
       [](const VolumePtr& volume, const Filter& f, const std::optional<std::string>& prefilter,
          const py::object& lo, const py::object& hi,
          const std::variant<int, std::array<int, 3>>& shape,
-         const std::array<std::array<int, 3>, 2>& block) {
-        return resample(volume, f, prefilter, lo, hi, shape, block);
+         const std::array<std::array<int, 3>, 2>& block,
+         const std::optional<std::string>& boundary) {
+        return resample(volume, f, prefilter, lo, hi, shape, block, boundary);
       },
       py::arg("volume"), py::arg("filter"), py::arg("prefilter"), py::arg("lo"), py::arg("hi"),
-      py::arg("shape"), py::arg("block"),
+      py::arg("shape"), py::arg("block"), py::arg("boundary") = py::none(),
       "resample() at the grid points begin <= (i, j, k) < end of block = (begin, end) only");
   m.def(
       "filters",

@@ -20,23 +20,6 @@ namespace {
 
 constexpr int kMaxOffset = 1 << 20;
 
-// delta(c, o) and the coset c' that tap o reads for output coset c (see prefilter.h).
-struct TapStep {
-  int coset;
-  std::array<std::int64_t, 3> delta;
-};
-
-TapStep tap_step(const CosetLattice& lattice, int c, const std::array<int, 3>& o) {
-  const Offset& from = lattice.offsets()[static_cast<std::size_t>(c)];
-  const std::int64_t p[3] = {static_cast<std::int64_t>(from[0]) - o[0],
-                             static_cast<std::int64_t>(from[1]) - o[1],
-                             static_cast<std::int64_t>(from[2]) - o[2]};
-  TapStep step{lattice.coset_of(p[0], p[1], p[2]), {}};
-  const Offset& to = lattice.offsets()[static_cast<std::size_t>(step.coset)];
-  for (int a = 0; a < 3; ++a) step.delta[a] = floor_div(p[a] - to[a], lattice.period());  // exact
-  return step;
-}
-
 void validate_on(const DiscreteFilter& q, const CosetLattice& lattice) {
   if (q.empty()) throw std::invalid_argument("prefilter has no taps");
   for (const auto& [o, w] : q) {
@@ -56,6 +39,17 @@ void validate_on(const DiscreteFilter& q, const CosetLattice& lattice) {
 }
 
 }  // namespace
+
+TapStep tap_step(const CosetLattice& lattice, int c, const std::array<int, 3>& o) {
+  const Offset& from = lattice.offsets()[static_cast<std::size_t>(c)];
+  const std::int64_t p[3] = {static_cast<std::int64_t>(from[0]) - o[0],
+                             static_cast<std::int64_t>(from[1]) - o[1],
+                             static_cast<std::int64_t>(from[2]) - o[2]};
+  TapStep step{lattice.coset_of(p[0], p[1], p[2]), {}};
+  const Offset& to = lattice.offsets()[static_cast<std::size_t>(step.coset)];
+  for (int a = 0; a < 3; ++a) step.delta[a] = floor_div(p[a] - to[a], lattice.period());  // exact
+  return step;
+}
 
 int prefilter_margin(const DiscreteFilter& q, const CosetLattice& lattice) {
   const PrefilterShrink s = prefilter_shrink(q, lattice);

@@ -14,6 +14,7 @@
 // volume too small to keep any sample is an error.
 #pragma once
 #include <array>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -24,6 +25,15 @@ namespace boxgen::runtime {
 // Taps (lattice offset o, weight q(o)). Offsets must be lattice vectors; a repeated offset counts
 // with the sum of its weights.
 using DiscreteFilter = std::vector<std::pair<std::array<int, 3>, double>>;
+
+// Where tap o reads for output coset c: the lattice point off_c - o lies in coset `coset`, at
+// off_coset + d delta; the read of sample (c, i) is sample (coset, i + delta). Offsets must be
+// lattice vectors.
+struct TapStep {
+  int coset;
+  std::array<std::int64_t, 3> delta;
+};
+TapStep tap_step(const CosetLattice& lattice, int c, const std::array<int, 3>& o);
 
 // Coset cells the result loses on each side, per axis.
 struct PrefilterShrink {

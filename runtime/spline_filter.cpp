@@ -4,23 +4,64 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "generated/registry.hpp"
 #include "runtime/emitted_filter.h"
+#include "runtime/interpolation.h"
 
 namespace boxgen::runtime {
 
 namespace generated = boxgen::generated;
 
-PrefilterChoice parse_prefilter(std::string_view name) {
-  if (name == "none") return PrefilterChoice::None;
-  if (name == "q1") return PrefilterChoice::Q1;
-  if (name == "q2") return PrefilterChoice::Q2;
+std::string PrefilterChoice::text() const {
+  std::string name;
+  switch (kind_) {
+    case Kind::None:
+      name = "none";
+      break;
+    case Kind::Q1:
+      name = "q1";
+      break;
+    case Kind::Q2:
+      name = "q2";
+      break;
+    case Kind::Interp:
+      name = "interp";
+      break;
+  }
+  if (parameter_) name += fmt::format(":{}", *parameter_);
+  return name;
+}
+
+PrefilterChoice parse_prefilter(std::string_view text) {
+  if (text == "none") return PrefilterChoice::None;
+  if (text == "q1") return PrefilterChoice::Q1;
+  if (text == "q2") return PrefilterChoice::Q2;
+  if (text == "interp") return PrefilterChoice::interp();
+  if (text.starts_with("interp:")) {
+    const std::string number(text.substr(7, 40));
+    std::size_t used = 0;
+    double lambda = std::numeric_limits<double>::quiet_NaN();
+    try {
+      lambda = std::stod(number, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (number.empty() || used != number.size() || !std::isfinite(lambda) || lambda < 0 ||
+        lambda > 1)
+      throw std::invalid_argument(
+          fmt::format("prefilter '{}': the regularisation after interp: must be a number in [0, 1]",
+                      text.substr(0, 40)));
+    return PrefilterChoice::interp(lambda);
+  }
   throw std::invalid_argument(
-      fmt::format("unknown prefilter '{}': expected none, q1 or q2", name.substr(0, 40)));
+      fmt::format("unknown prefilter '{}': expected none, q1, q2, interp or interp:LAMBDA",
+                  text.substr(0, 40)));
 }
 
 SplineFilter SplineFilter::parse(std::string_view name) {
@@ -72,6 +113,9 @@ SplineFilter::SplineFilter(std::shared_ptr<const FilterSource> source, int regis
 
 DiscreteFilter SplineFilter::prefilter(PrefilterChoice q) const {
   if (q == PrefilterChoice::None) return {{{0, 0, 0}, 1.0}};
+  if (!q.is_fir())
+    throw std::invalid_argument(
+        fmt::format("prefilter {} of filter {} is not a table of taps", q.text(), name_));
   return source_->prefilter(q);
 }
 
@@ -87,6 +131,7 @@ int SplineFilter::required_margin(PrefilterChoice q) const {
     need = std::max({need, -r.lo[a] - r.centre[a], r.hi[a] + r.centre[a] - d});
   const int reconstruction = static_cast<int>(std::ceil(need / d + 0.5));
   if (q == PrefilterChoice::None) return reconstruction;
+  if (q.kind() == PrefilterChoice::Kind::Interp) return interpolation_margin(*this, q.parameter());
   return reconstruction + prefilter_margin(prefilter(q), lattice_);
 }
 

@@ -13,12 +13,9 @@
 
 #include "runtime/coset_lattice.h"
 #include "runtime/prefilter.h"
+#include "runtime/prefilter_choice.h"
 
 namespace boxgen::runtime {
-
-enum class PrefilterChoice { None, Q1, Q2 };
-// "none" | "q1" | "q2"; anything else: std::invalid_argument, one line.
-PrefilterChoice parse_prefilter(std::string_view name);
 
 // Offsets j_a - floor(x_a + centre_a) of every lattice point the evaluator of a filter may fetch,
 // per axis, and the centre shift c: published by the generator with each evaluator
@@ -45,7 +42,8 @@ class FilterSource {
   // The lattice the filter was derived on; a volume must hold the same points.
   virtual CosetLattice lattice() const = 0;
   virtual StencilReach reach() const = 0;
-  // The prefilter Q^I (q1) or Q^II (q2); std::invalid_argument (one line) when there is none.
+  // The FIR prefilter q (Q^I for q1, Q^II for q2); std::invalid_argument (one line) when there
+  // is none.
   virtual DiscreteFilter prefilter(PrefilterChoice q) const = 0;
   // k: q1 and q2 reproduce every polynomial of degree < k.
   virtual int approximation_order() const = 0;
@@ -77,11 +75,14 @@ class SplineFilter {
   int registry_index() const noexcept { return registry_index_; }
   const CosetLattice& lattice() const noexcept { return lattice_; }
   StencilReach reach() const { return source_->reach(); }
-  // Q^I or Q^II; none: the identity {(0,0,0), 1}.
+  // The taps of a FIR prefilter: Q^I or Q^II; none: the identity {(0,0,0), 1}. Any other choice
+  // (interp) is std::invalid_argument, one line.
   DiscreteFilter prefilter(PrefilterChoice q) const;
   int approximation_order() const { return source_->approximation_order(); }
   // Coset cells of margin beyond [-1,1]^3 that cube_lattice_grid needs for reconstruction with
-  // this filter after prefilter q (the one formula of the runtime: spline_filter.cpp).
+  // this filter after prefilter q under the strict boundary (the one formula of the runtime:
+  // spline_filter.cpp); for interp, the margin after which the faces' influence has decayed below
+  // 1e-6 of the data (interpolation_margin in interpolation.h).
   int required_margin(PrefilterChoice q) const;
   // Throws std::invalid_argument (one line) unless the volume holds the points of the filter's
   // lattice: "filter fcc6 is for the fcc lattice, but the volume is on the bcc lattice".

@@ -20,7 +20,7 @@ for fraction in 0.03 0.10 0.25; do
   for lattice in bcc cartesian; do
     volume="$work/$lattice-$fraction.nrrd"
     kept=$("$boxrecon" subsample --volume "$input" --lattice "$lattice" --fraction "$fraction" \
-             -o "$volume" | sed -E 's/^kept ([0-9]+) of ([0-9]+) samples: fraction [^=]*= ([0-9.]+).*/\1 (\3)/')
+             --boundary strict -o "$volume" | sed -E 's/^kept ([0-9]+) of ([0-9]+) samples: fraction [^=]*= ([0-9.]+).*/\1 (\3)/')
     if [ "$lattice" = bcc ]; then filters="m12 m8 m7"; else filters="tricubic cart7"; fi
     for filter in $filters; do
       "$boxrecon" compare --reference "$input" --volume "$volume" --filter "$filter" \

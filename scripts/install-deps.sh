@@ -18,6 +18,7 @@ PACKAGES=(
   libnifti2-dev                         # NIfTI-1/2 volumes (.nii, .nii.gz) read by the runtime (runtime/nifti_io.cpp)
   mricron-data                          # MRI templates (ch2better.nii.gz): the Fig. 10 replica and the NIfTI test on a shipped file
   libhwy-dev                            # SIMD batch path of the runtime (runtime/simd_batch.cpp)
+  libfftw3-dev                          # FFTW3: --prefilter interp's transforms (runtime/interpolation.cpp)
   clang libclang-rt-14-dev libomp-dev   # libFuzzer targets (label: fuzz); libomp: OpenMP under clang
   clang-format-14 clang-tidy-14         # formatting and static analysis (scripts/lint.sh, in CI)
   libegl-dev libopengl-dev libgl-dev    # EGL and OpenGL 4.5 headers and loaders: boxrecon --device gl (runtime/gl)
@@ -27,6 +28,8 @@ PACKAGES=(
   pybind11-dev python3-pybind11         #   NumPy arrays in and out, bound with pybind11
   python3-dask python3-distributed      # boxgen.dask: chunked resampling on dask (local or a cluster)
   python3-pytest                        # the Python tests (label python)
+  python3-scipy                         # scripts/compare_scipy.py and scripts/scipy_tricubic_values.py: boxgen beside scipy
+  python3-nibabel                       # scripts/fig10_scipy.py reads the MRI template for scipy
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

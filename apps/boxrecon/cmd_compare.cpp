@@ -14,6 +14,7 @@
 
 #include "apps/boxrecon/cmd_volumes.h"
 #include "apps/boxrecon/lattice_commands.h"
+#include "apps/boxrecon/prefilter_options.h"
 #include "runtime/nifti_io.h"
 #include "runtime/resample.h"
 #include "support/output_file.h"
@@ -25,7 +26,8 @@ namespace {
 using namespace boxgen::runtime;
 
 struct CompareArgs {
-  std::string reference, volume, filter, prefilter = "none", error_volume;
+  std::string reference, volume, filter, error_volume;
+  app::PrefilterOptions prefilter;
   std::optional<double> mask_above;
   std::vector<double> min, max;
   bool json = false;
@@ -88,7 +90,7 @@ CLI::App* add_compare_command(CLI::App& app) {
   c->add_option("--volume", args.volume, "the lattice volume to reconstruct (NRRD)")->required();
   c->add_option("--filter", args.filter, "a filter of the registry: " + SplineFilter::names())
       ->required();
-  c->add_option("--prefilter", args.prefilter, "none | q1 | q2 (default none)");
+  app::add_prefilter_options(c, args.prefilter);
   c->add_option("--mask-above", args.mask_above,
                 "V: also the errors over the points whose reference value exceeds V");
   auto* min = c->add_option("--min", args.min,
@@ -107,7 +109,7 @@ CLI::App* add_compare_command(CLI::App& app) {
 
 int run_compare() {
   const SplineFilter filter = SplineFilter::parse(args.filter);
-  const PrefilterChoice q = parse_prefilter(args.prefilter);
+  const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   const std::filesystem::path inputs[2] = {args.reference, args.volume};
   if (!args.error_volume.empty()) {
     if (is_nifti_path(args.error_volume))
@@ -190,7 +192,8 @@ int run_compare() {
     nlohmann::json j{{"reference", args.reference},
                      {"volume", args.volume},
                      {"filter", filter.name()},
-                     {"prefilter", args.prefilter},
+                     {"prefilter", q.choice.text()},
+                     {"boundary", boundary_name(q.boundary)},
                      {"peak", peak},
                      {"reference_points", ref.sample_count()},
                      {"box", {{"min", box.min}, {"max", box.max}}},
@@ -204,7 +207,7 @@ int run_compare() {
     std::cout << fmt::format(
         "{} ({}) against '{}' (peak = range {:.6g}, {} of {} grid points in [{:.6g}, {:.6g}] x "
         "[{:.6g}, {:.6g}] x [{:.6g}, {:.6g}])\n",
-        filter.name(), args.prefilter, args.reference, peak, all.count, ref.sample_count(),
+        filter.name(), q.choice.text(), args.reference, peak, all.count, ref.sample_count(),
         box.min[0], box.max[0], box.min[1], box.max[1], box.min[2], box.max[2]);
     std::cout << "region: " << stats_text(all, peak) << '\n';
     if (args.mask_above)

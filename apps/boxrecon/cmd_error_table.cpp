@@ -12,6 +12,7 @@
 
 #include "generated/tricubic.hpp"
 #include "generated/tricubic_prefilters.hpp"
+#include "runtime/coefficients.h"
 #include "runtime/prefilter.h"
 #include "runtime/reconstruction.h"
 #include "runtime/sampling.h"
@@ -45,25 +46,29 @@ struct Errors {
   }
 };
 
-Row bcc_row(int n, const SplineFilter& f, PrefilterChoice q, const char* qname,
-            const std::vector<Vec3>& points) {
-  LatticeVolume<double> volume = sample_lattice<double>(
-      marschner_lobb, cube_lattice_grid(f.lattice(), n, f.required_margin(q)));
-  if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
+// f on its lattice with `per_axis` samples per coset and axis over [-1,1]^3 (the row of density
+// n), after prefilter q (runtime/coefficients.h), with the margin q needs.
+Row lattice_row(int n, int per_axis, const SplineFilter& f, PrefilterChoice q,
+                const std::vector<Vec3>& points) {
+  const LatticeVolume<double> volume = spline_coefficients(
+      sample_lattice<double>(marschner_lobb,
+                             cube_lattice_grid(f.lattice(), per_axis, f.required_margin(q))),
+      f, q);
   std::vector<double> values(points.size());
   std::vector<Vec3> gradients(points.size());
   Reconstructor<double>(volume, f).evaluate(points, values, gradients);
   Errors e;
   for (std::size_t i = 0; i < points.size(); ++i) e.add(values[i], gradients[i], points[i]);
   const double k = static_cast<double>(points.size());
+  const int cosets = f.lattice().coset_count();
   return {n,
           f.name(),
-          qname,
+          q.text(),
           std::sqrt(e.sum2 / k),
           e.worst,
           std::sqrt(e.gsum2 / k),
-          2 * static_cast<std::uint64_t>(n) * n * n,
-          0};
+          static_cast<std::uint64_t>(cosets) * per_axis * per_axis * per_axis,
+          cosets == 1 ? per_axis : 0};
 }
 
 // The tricubic B-spline on the Cartesian grid of m^3 samples over [-1,1]^3 (spacing 2/(m-1)),
@@ -133,13 +138,14 @@ int run_error_table(int points, std::uint64_t seed, bool json) {
   std::vector<Row> rows;
   for (int n : kDensities) {
     for (const char* name : {"m7", "m8", "m12"})
-      for (auto [q, qname] :
-           {std::pair{PrefilterChoice::None, "none"}, std::pair{PrefilterChoice::Q1, "q1"},
-            std::pair{PrefilterChoice::Q2, "q2"}})
-        rows.push_back(bcc_row(n, SplineFilter::parse(name), q, qname, at));
+      for (const PrefilterChoice q : {PrefilterChoice::None, PrefilterChoice::Q1,
+                                      PrefilterChoice::Q2, PrefilterChoice::interp()})
+        rows.push_back(lattice_row(n, n, SplineFilter::parse(name), q, at));
     const int m = static_cast<int>(std::lround(std::cbrt(2.0) * n));  // the same number of samples
     rows.push_back(cartesian_row(n, m, false, at));
     rows.push_back(cartesian_row(n, m, true, at));
+    rows.push_back(
+        lattice_row(n, m, SplineFilter::parse("tricubic"), PrefilterChoice::interp(), at));
   }
   if (json) {
     nlohmann::json out{

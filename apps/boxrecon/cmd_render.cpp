@@ -14,6 +14,7 @@
 #include "analysis/png_image.h"
 #include "apps/boxrecon/device_choice.h"
 #include "apps/boxrecon/filter_choice.h"
+#include "apps/boxrecon/prefilter_options.h"
 #include "apps/boxrecon/sample_command.h"
 #include "runtime/gl/gl_render.h"
 #include "runtime/nifti_io.h"
@@ -30,8 +31,9 @@ namespace {
 using namespace boxgen::runtime;
 
 struct RenderArgs {
-  std::string function, volume, lattice, filter = "m7", prefilter = "q2", shading = "normal",
-                                         output, device = "cpu", precision;
+  app::PrefilterOptions prefilter{"q2"};
+  std::string function, volume, lattice, filter = "m7", shading = "normal", output, device = "cpu",
+                                         precision;
   int n = 0;
   std::optional<double> iso;  // default: 0.5 for --function, the data's for --volume
   bool cutaway = false, closeup = false, quiet = false;
@@ -58,14 +60,14 @@ void choose_from_data(const LatticeVolume<double>& volume, RenderOptions& o) {
 }
 
 // The image of the chosen filter's spline, on a volume of its own lattice.
-RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, RenderOptions o,
+RgbBuffer render_volume(const SplineFilter& rf, const app::PrefilterSetting& q, RenderOptions o,
                         gl::FrameTimes* times) {
   const Box cube{{-1, -1, -1}, {1, 1, 1}};
   (void)boxgen::app::lattice_for(rf, args.lattice);
   NrrdReadLimits on_lattice;
   on_lattice.lattice = rf.lattice();
   const auto sampled = [&] {
-    const LatticeGrid grid = cube_lattice_grid(rf.lattice(), args.n, rf.required_margin(q));
+    const LatticeGrid grid = cube_lattice_grid(rf.lattice(), args.n, rf.required_margin(q.choice));
     boxgen::app::check_memory(static_cast<std::uint64_t>(rf.lattice().coset_count()) *
                                   grid.sizes[0] * grid.sizes[1] * grid.sizes[2],
                               sizeof(double), fmt::format("--n {}", args.n), "samples");
@@ -75,7 +77,7 @@ RgbBuffer render_volume(const SplineFilter& rf, PrefilterChoice q, RenderOptions
       args.volume.empty() ? sampled() : read_volume_file<double>(args.volume, on_lattice);
   rf.check_lattice(volume.lattice());
   if (!args.volume.empty()) choose_from_data(volume, o);
-  if (q != PrefilterChoice::None) volume = prefilter(volume, rf.prefilter(q));
+  volume = app::coefficients_for(std::move(volume), rf, q);
   const Box box = args.volume.empty() ? cube : default_box(volume, rf);
   if (boxgen::app::parse_device(args.device) == boxgen::app::Device::Gl)
     return gl::render_isosurface(
@@ -104,7 +106,7 @@ CLI::App* add_render_command(CLI::App& app) {
   r->add_option("--filter", args.filter,
                 "a filter of the registry (default m7): " + SplineFilter::names() +
                     ", or any SPEC of boxgen (on --lattice), compiled on first use");
-  r->add_option("--prefilter", args.prefilter, "none | q1 | q2 (default q2, as in Fig. 8)");
+  app::add_prefilter_options(r, args.prefilter, "default q2, as in Fig. 8");
   r->add_option("--iso", args.iso,
                 "iso value (default: 0.5 for --function; for --volume the midpoint of the 1st "
                 "and 99th percentiles of its samples, printed)");
@@ -135,7 +137,7 @@ bool render_quiet() { return args.quiet; }
 
 int run_render() {
   const SplineFilter rf = app::filter_from(args.filter, args.lattice);
-  const PrefilterChoice q = parse_prefilter(args.prefilter);
+  const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   if (args.shading != "normal" && args.shading != "curvature")
     throw std::invalid_argument("--shading must be normal or curvature, got '" +
                                 args.shading.substr(0, 40) + "'");

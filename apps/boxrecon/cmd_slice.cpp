@@ -25,8 +25,8 @@ namespace {
 using namespace boxgen::runtime;
 
 struct SliceArgs {
-  std::string volume, filters, prefilter = "none", reference, axis = "z", colormap = "grey",
-                               difference_to, output;
+  app::PrefilterOptions prefilter;
+  std::string volume, filters, reference, axis = "z", colormap = "grey", difference_to, output;
   std::optional<double> at;
   std::vector<int> size;
   std::vector<double> range;
@@ -64,7 +64,7 @@ void check_slice_args() {
     throw std::invalid_argument("give --volume FILE --filter F or --reference FILE");
   if (reconstruct && args.filters.empty()) throw std::invalid_argument("--volume needs --filter");
   if (!reconstruct &&
-      (!args.filters.empty() || args.prefilter != "none" || !args.difference_to.empty()))
+      (!args.filters.empty() || args.prefilter.prefilter != "none" || !args.difference_to.empty()))
     throw std::invalid_argument(
         "--filter, --prefilter and --difference-to have no effect with --reference");
   if (args.axis != "x" && args.axis != "y" && args.axis != "z")
@@ -148,7 +148,7 @@ CLI::App* add_slice_command(CLI::App& app) {
   s->add_option("--volume", args.volume, "a lattice volume to reconstruct (NRRD or NIfTI)");
   s->add_option("--filter", args.filters,
                 "F or F1,F2,...: a registry filter; several give panels side by side");
-  s->add_option("--prefilter", args.prefilter, "none | q1 | q2 (default none)");
+  app::add_prefilter_options(s, args.prefilter);
   s->add_option("--reference", args.reference,
                 "a Cartesian volume: its slice (nearest voxel) instead of --volume");
   s->add_option("--axis", args.axis, "x | y | z: the slice's normal (default z)");
@@ -173,7 +173,7 @@ int run_slice() {
   const bool reconstruct = !args.volume.empty();
   const std::vector<std::string> names = split_filters(args.filters);
   if (reconstruct && names.empty()) throw std::invalid_argument("--filter names no filter");
-  const PrefilterChoice q = parse_prefilter(args.prefilter);
+  const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   std::vector<std::filesystem::path> inputs{args.volume, args.reference, args.difference_to};
   (void)support::check_output_file(args.output, inputs);
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "apps/boxrecon/cmd_volumes.h"
+#include "apps/boxrecon/prefilter_options.h"
 #include "runtime/nifti_io.h"
 #include "runtime/prefilter.h"
 #include "runtime/resample.h"
@@ -20,7 +21,8 @@ namespace {
 using namespace boxgen::runtime;
 
 struct SubsampleArgs {
-  std::string volume, lattice, filter = "tricubic", prefilter = "q2", output;
+  std::string volume, lattice, filter = "tricubic", output;
+  app::PrefilterOptions prefilter{"q2"};
   std::optional<double> fraction, spacing, smooth;
 };
 SubsampleArgs args;
@@ -46,8 +48,7 @@ CLI::App* add_subsample_command(CLI::App& app) {
   s->add_option("--filter", args.filter,
                 "the filter that reconstructs the input (default tricubic; any registry filter "
                 "of the input's lattice)");
-  s->add_option("--prefilter", args.prefilter,
-                "none | q1 | q2: the input filter's prefilter (default q2)");
+  app::add_prefilter_options(s, args.prefilter, "the input filter's; default q2");
   s->add_option("--smooth", args.smooth,
                 "SIGMA: a Gaussian low-pass of this width (input samples) first, against aliasing");
   s->add_option("-o,--output", args.output, "output NRRD file (the lattice volume)")->required();
@@ -68,7 +69,7 @@ int run_subsample() {
         "-o must name a NRRD file: lattice volumes are written as NRRD, not NIfTI");
   const CosetLattice lattice = CosetLattice::parse(args.lattice);
   const SplineFilter filter = SplineFilter::parse(args.filter);
-  const PrefilterChoice q = parse_prefilter(args.prefilter);
+  const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   const std::filesystem::path input = args.volume;
   (void)support::check_output_file(args.output, {&input, 1});
 
@@ -76,7 +77,7 @@ int run_subsample() {
   filter.check_lattice(volume.lattice());
   const std::uint64_t input_count = volume.sample_count();
   if (args.smooth) volume = gaussian_smooth(volume, *args.smooth);
-  if (q != PrefilterChoice::None) volume = prefilter(volume, filter.prefilter(q));
+  volume = app::coefficients_for(std::move(volume), filter, q);
   const Box box = default_box(volume, filter);
   const double h =
       args.spacing
@@ -92,7 +93,7 @@ int run_subsample() {
       kept, input_count, kept, input_count,
       static_cast<double>(kept) / static_cast<double>(input_count), lattice.name(), h,
       out.coset_count(), out.sizes()[0], out.sizes()[1], out.sizes()[2], out.origin()[0],
-      out.origin()[1], out.origin()[2], filter.name(), args.prefilter,
+      out.origin()[1], out.origin()[2], filter.name(), q.choice.text(),
       args.smooth ? fmt::format(" and a Gaussian of width {}", *args.smooth) : std::string());
   return 0;
 }

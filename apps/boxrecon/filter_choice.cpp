@@ -13,6 +13,7 @@ bool quiet_flag = false;
 }  // namespace
 
 void set_quiet(bool quiet) { quiet_flag = quiet; }
+bool quiet() { return quiet_flag; }
 
 runtime::gl::GlslEvaluator glsl_for(const runtime::SplineFilter& f, const std::string& filter,
                                     const std::string& lattice, bool double_precision) {

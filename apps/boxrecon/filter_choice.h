@@ -11,6 +11,7 @@ namespace boxgen::app {
 
 // Every command's --quiet: no progress of a filter's first use.
 void set_quiet(bool quiet);
+bool quiet();
 runtime::SplineFilter filter_from(const std::string& filter, const std::string& lattice = {});
 // The GLSL evaluator of filter_from(filter, lattice) = f for --device gl: the registry's, or a
 // SPEC's emitted into the loader's cache with its compile.

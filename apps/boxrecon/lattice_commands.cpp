@@ -33,19 +33,18 @@ namespace boxgen::app {
 using namespace boxgen::runtime;
 
 template <class T>
-LatticeVolume<T> read_for(const SplineFilter& f, PrefilterChoice q, const std::string& path,
-                          const NrrdReadLimits& limits) {
+LatticeVolume<T> read_for(const SplineFilter& f, const PrefilterSetting& setting,
+                          const std::string& path, const NrrdReadLimits& limits) {
   NrrdReadLimits on_lattice = limits;
   on_lattice.lattice = f.lattice();
   LatticeVolume<T> volume = read_volume_file<T>(path, on_lattice);
   f.check_lattice(volume.lattice());
-  if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
-  return volume;
+  return coefficients_for(std::move(volume), f, setting);
 }
 
-template LatticeVolume<float> read_for<float>(const SplineFilter&, PrefilterChoice,
+template LatticeVolume<float> read_for<float>(const SplineFilter&, const PrefilterSetting&,
                                               const std::string&, const NrrdReadLimits&);
-template LatticeVolume<double> read_for<double>(const SplineFilter&, PrefilterChoice,
+template LatticeVolume<double> read_for<double>(const SplineFilter&, const PrefilterSetting&,
                                                 const std::string&, const NrrdReadLimits&);
 
 template <class T>
@@ -65,11 +64,11 @@ void print_evaluations(std::span<const T> values, std::span<const Vec3> gradient
 }
 
 template <class T>
-int run_eval(const std::string& filter, const std::string& lattice, const std::string& pre,
+int run_eval(const std::string& filter, const std::string& lattice, const PrefilterOptions& pre,
              const std::string& volume_path, const std::string& points_path, bool gradient,
              bool hessian, const NrrdReadLimits& limits, Device device, bool verbose) {
   const SplineFilter f = filter_from(filter, lattice);
-  const PrefilterChoice q = parse_prefilter(pre);
+  const PrefilterSetting q = parse_prefilter_options(pre);
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
   const auto points = read_points_file(points_path);
   std::vector<T> values(points.size());
@@ -97,37 +96,66 @@ void print_error_report(const ErrorReport& r, double rms, double max, double gra
                      {"prefilter", r.prefilter},
                      {"points", r.points},
                      {"seed", r.seed},
+                     {"samples", r.samples},
+                     {"sample_sizes", {r.sizes[0], r.sizes[1], r.sizes[2]}},
+                     {"margin", r.margin},
                      {"rms", rms},
                      {"max", max}};
     if (r.gradient) j["gradient_rms"] = gradient_rms;
+    if (r.interpolation)
+      j["interpolation"] = {{"lambda", r.interpolation->lambda},
+                            {"residual_max", r.interpolation->residual_max},
+                            {"residual_rms", r.interpolation->residual_rms},
+                            {"symbol_min", r.interpolation->symbol.min},
+                            {"symbol_max", r.interpolation->symbol.max}};
     std::cout << j.dump(2) << '\n';
   } else {
     std::cout << fmt::format("rms {:.6e}  max {:.6e}", rms, max);
     if (r.gradient) std::cout << fmt::format("  gradient_rms {:.6e}", gradient_rms);
+    std::cout << fmt::format(
+        "  samples {} ({} x {} x {} x {}, margin {})", r.samples,
+        r.samples / (static_cast<std::uint64_t>(r.sizes[0]) * r.sizes[1] * r.sizes[2]), r.sizes[0],
+        r.sizes[1], r.sizes[2], r.margin);
     std::cout << '\n';
+    if (r.interpolation)
+      std::cout << fmt::format(
+          "interp: lambda {:g}, residual at the samples max {:.3g}, rms {:.3g} (of max |sample|)\n",
+          r.interpolation->lambda, r.interpolation->residual_max, r.interpolation->residual_rms);
   }
 }
 
 int run_error(const std::string& function, int n, const std::string& filter,
-              const std::string& lattice_text, const std::string& pre, int count,
+              const std::string& lattice_text, const PrefilterOptions& pre, int count,
               std::uint64_t seed, bool gradient, bool json) {
   const TestFunction& fn = find_test_function(function);
   const SplineFilter f = filter_from(filter, lattice_text);
   (void)lattice_for(f, lattice_text);
-  const PrefilterChoice q = parse_prefilter(pre);
+  const PrefilterSetting q = parse_prefilter_options(pre);
   if (count < 1 || count > 100000000)
     throw std::invalid_argument("--points must be between 1 and 100000000");
-  const ErrorReport report{function,          filter, pre, n, count, seed, gradient, json,
-                           f.lattice().name()};
+  ErrorReport report;
+  report.function = function;
+  report.filter = filter;
+  report.prefilter = q.choice.text();
+  report.n = n;
+  report.points = count;
+  report.seed = seed;
+  report.gradient = gradient;
+  report.json = json;
+  report.lattice = f.lattice().name();
   if (n < 2 || n > 1024)
     throw std::invalid_argument(fmt::format("--n must be between 2 and 1024, got {}", n));
   const CosetLattice& lattice = f.lattice();
-  const LatticeGrid grid = cube_lattice_grid(lattice, n, f.required_margin(q));
-  check_memory(static_cast<std::uint64_t>(lattice.coset_count()) * grid.sizes[0] * grid.sizes[1] *
-                   grid.sizes[2],
-               sizeof(double), fmt::format("--n {}", n), "samples");
-  LatticeVolume<double> volume = sample_lattice<double>(fn.value, grid);
-  if (q != PrefilterChoice::None) volume = prefilter(volume, f.prefilter(q));
+  report.margin = f.required_margin(q.choice);
+  const LatticeGrid grid = cube_lattice_grid(lattice, n, report.margin);
+  report.sizes = grid.sizes;
+  report.samples = static_cast<std::uint64_t>(lattice.coset_count()) * grid.sizes[0] *
+                   grid.sizes[1] * grid.sizes[2];
+  check_memory(report.samples, sizeof(double), fmt::format("--n {}", n), "samples");
+  InterpolationReport interpolation;
+  const LatticeVolume<double> volume = spline_coefficients(
+      sample_lattice<double>(fn.value, grid), f, q.choice, q.boundary, &interpolation, true);
+  if (!q.choice.is_fir()) report.interpolation = interpolation;
   std::mt19937_64 rng(report.seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<Vec3> points(count);
@@ -150,12 +178,12 @@ int run_error(const std::string& function, int n, const std::string& filter,
 }
 
 template <class T>
-int run_resample(const std::string& filter, const std::string& lattice, const std::string& pre,
+int run_resample(const std::string& filter, const std::string& lattice, const PrefilterOptions& pre,
                  const std::string& volume_path, const std::string& output, int n,
                  const std::vector<double>& min, const std::vector<double>& max,
                  const NrrdReadLimits& limits, Device device, bool verbose) {
   const SplineFilter f = filter_from(filter, lattice);
-  const PrefilterChoice q = parse_prefilter(pre);
+  const PrefilterSetting q = parse_prefilter_options(pre);
   if (n < 2 || n > kMaxResampleN)
     throw std::invalid_argument(
         fmt::format("--n must be between 2 and {}, got {}", kMaxResampleN, n));
@@ -239,17 +267,17 @@ template void print_evaluations<float>(std::span<const float>, std::span<const V
                                        std::span<const Hessian>, bool, bool);
 template void print_evaluations<double>(std::span<const double>, std::span<const Vec3>,
                                         std::span<const Hessian>, bool, bool);
-template int run_eval<float>(const std::string&, const std::string&, const std::string&,
+template int run_eval<float>(const std::string&, const std::string&, const PrefilterOptions&,
                              const std::string&, const std::string&, bool, bool,
                              const NrrdReadLimits&, Device, bool);
-template int run_eval<double>(const std::string&, const std::string&, const std::string&,
+template int run_eval<double>(const std::string&, const std::string&, const PrefilterOptions&,
                               const std::string&, const std::string&, bool, bool,
                               const NrrdReadLimits&, Device, bool);
-template int run_resample<float>(const std::string&, const std::string&, const std::string&,
+template int run_resample<float>(const std::string&, const std::string&, const PrefilterOptions&,
                                  const std::string&, const std::string&, int,
                                  const std::vector<double>&, const std::vector<double>&,
                                  const NrrdReadLimits&, Device, bool);
-template int run_resample<double>(const std::string&, const std::string&, const std::string&,
+template int run_resample<double>(const std::string&, const std::string&, const PrefilterOptions&,
                                   const std::string&, const std::string&, int,
                                   const std::vector<double>&, const std::vector<double>&,
                                   const NrrdReadLimits&, Device, bool);

@@ -4,21 +4,24 @@
 // (runtime/reconstruction.h). A volume of another lattice than the filter's is one line
 // (std::invalid_argument).
 #pragma once
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "apps/boxrecon/device_choice.h"
+#include "apps/boxrecon/prefilter_options.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/reconstruction.h"
 
 namespace boxgen::app {
 
-// The volume of a file (NRRD or NIfTI: runtime/nifti_io.h), on the filter's lattice and
-// prefiltered with q.
+// The coefficients of the volume of a file (NRRD or NIfTI: runtime/nifti_io.h), on the filter's
+// lattice, after the prefilter and boundary of `setting` (coefficients_for).
 template <class T>
-runtime::LatticeVolume<T> read_for(const runtime::SplineFilter& f, runtime::PrefilterChoice q,
+runtime::LatticeVolume<T> read_for(const runtime::SplineFilter& f, const PrefilterSetting& setting,
                                    const std::string& path, const runtime::NrrdReadLimits& limits);
 
 // eval's output: one line per point, the value and (when asked) the gradient and the Hessian's
@@ -30,11 +33,11 @@ void print_evaluations(std::span<const T> values, std::span<const runtime::Vec3>
 // Largest --n of resample: 512^3 double values are 1 GiB.
 inline constexpr int kMaxResampleN = 512;
 
-// eval: the filter's spline (after prefilter `pre`) at the points of a file, printed; a value
-// that is not finite is an error (std::domain_error), and nothing is printed. On Device::Gl the
-// points are evaluated by the GL device (verbose: its renderer on stderr).
+// eval: the filter's spline (after the prefilter and boundary of `pre`) at the points of a file,
+// printed; a value that is not finite is an error (std::domain_error), and nothing is printed. On
+// Device::Gl the points are evaluated by the GL device (verbose: its renderer on stderr).
 template <class T>
-int run_eval(const std::string& filter, const std::string& lattice, const std::string& pre,
+int run_eval(const std::string& filter, const std::string& lattice, const PrefilterOptions& pre,
              const std::string& volume_path, const std::string& points_path, bool gradient,
              bool hessian, const runtime::NrrdReadLimits& limits, Device device = Device::Cpu,
              bool verbose = false);
@@ -46,19 +49,26 @@ struct ErrorReport {
   std::uint64_t seed = 0;
   bool gradient = false, json = false;
   std::string lattice;  // the filter's lattice, where the samples were taken
+  // The samples taken: K cosets of sizes[0] x sizes[1] x sizes[2], `margin` coset cells beyond
+  // [-1,1]^3 on every side.
+  std::uint64_t samples = 0;
+  std::array<int, 3> sizes{};
+  int margin = 0;
+  std::optional<runtime::InterpolationReport> interpolation;
 };
 void print_error_report(const ErrorReport& r, double rms, double max, double gradient_rms);
 
-// `error` on the filter's lattice: N samples per coset and axis over [-1,1]^3 (cube_lattice_grid),
-// the RMS and max error at `count` random points.
+// `error` on the filter's lattice: N samples per coset and axis over [-1,1]^3 (cube_lattice_grid)
+// and the margin the prefilter needs (SplineFilter::required_margin), the RMS and max error at
+// `count` random points; it says how many samples it took.
 int run_error(const std::string& function, int n, const std::string& filter,
-              const std::string& lattice, const std::string& pre, int count, std::uint64_t seed,
-              bool gradient, bool json);
+              const std::string& lattice, const PrefilterOptions& pre, int count,
+              std::uint64_t seed, bool gradient, bool json);
 
 // resample: n^3 grid points over the box (default_box when min and max are empty), written as a
 // Cartesian NRRD; nothing is written when any value is not finite. Device as for run_eval.
 template <class T>
-int run_resample(const std::string& filter, const std::string& lattice, const std::string& pre,
+int run_resample(const std::string& filter, const std::string& lattice, const PrefilterOptions& pre,
                  const std::string& volume_path, const std::string& output, int n,
                  const std::vector<double>& min, const std::vector<double>& max,
                  const runtime::NrrdReadLimits& limits, Device device = Device::Cpu,

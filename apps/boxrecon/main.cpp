@@ -2,7 +2,8 @@
 // lattices with every filter of generated/registry.hpp (M7, M8, M12 on BCC, fcc6 on FCC,
 // tricubic and cart7 on the Cartesian lattice).
 //   boxrecon sample --function ml --n N [--h H] [--lattice L | --filter F] [--precision P] -o
-//   v.nrrd boxrecon eval --filter F [--prefilter none|q1|q2] --volume v.nrrd --points pts.txt|-
+//   v.nrrd boxrecon eval --filter F [--prefilter none|q1|q2|interp[:L]] [--boundary B] --volume
+//   v.nrrd --points pts.txt|-
 //                 [--gradient] [--hessian]
 //   boxrecon error --function ml --n N --filter F [--prefilter q2] [--points K] [--seed S]
 //                  [--gradient] [--json]
@@ -34,6 +35,7 @@
 #include <vector>
 
 #include "apps/boxrecon/cmd_bench.h"
+#include "apps/boxrecon/cmd_bench_prefilter.h"
 #include "apps/boxrecon/cmd_error_table.h"
 #include "apps/boxrecon/cmd_render.h"
 #include "apps/boxrecon/cmd_volumes.h"
@@ -41,6 +43,7 @@
 #include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/lattice_commands.h"
+#include "apps/boxrecon/prefilter_options.h"
 #include "apps/boxrecon/sample_command.h"
 #include "apps/common/exit_status.h"
 #include "boxgen/version.h"
@@ -94,8 +97,9 @@ int run(int argc, char** argv) {
   const auto add_quiet = [&](CLI::App* command) {
     command->add_flag("--quiet", quiet, "no progress while a SPEC filter is compiled");
   };
-  std::string function = "ml", lattice, sample_filter, output, filter = "m7", pre = "none", volume,
-              points_path, precision = "double";
+  std::string function = "ml", lattice, sample_filter, output, filter = "m7", volume, points_path,
+              precision = "double";
+  boxgen::app::PrefilterOptions pre;
   int n = 33, count = 100000;
   std::optional<double> h;
   std::string seed = "1";
@@ -124,7 +128,7 @@ int run(int argc, char** argv) {
   auto* eval = app.add_subcommand("eval", "evaluate the reconstruction at the points of a file");
   eval->add_option("--filter", filter, filters)->required();
   eval->add_option("--lattice", lattice, spec_lattice);
-  eval->add_option("--prefilter", pre, "none | q1 | q2");
+  boxgen::app::add_prefilter_options(eval, pre);
   eval->add_option("--volume", volume,
                    "volume on the filter's lattice (NRRD, or NIfTI .nii/.nii.gz: Cartesian)")
       ->required();
@@ -148,16 +152,16 @@ int run(int argc, char** argv) {
   auto* error_filter =
       error->add_option("--filter", filter, filters + " (required unless --table)");
   bool table = false;
-  auto* table_flag =
-      error->add_flag("--table", table,
-                      "ML errors for N in {17,25,33,41,57} x {m7,m8,m12} x {none,q1,q2} and the "
-                      "tricubic on Cartesian");
+  auto* table_flag = error->add_flag(
+      "--table", table,
+      "ML errors for N in {17,25,33,41,57} x {m7,m8,m12} x {none,q1,q2,interp} and the "
+      "tricubic on Cartesian");
   error
       ->add_option("--lattice", lattice,
                    "the lattice it samples on, and of a SPEC --filter: only the filter's own (bcc "
                    "| fcc | cartesian | rows of G), default the filter's")
       ->excludes(table_flag);
-  error->add_option("--prefilter", pre, "none | q1 | q2");
+  boxgen::app::add_prefilter_options(error, pre);
   error->add_option("--points", count, "number of random points");
   error->add_option("--seed", seed, "random seed, 0..2^64-1");
   error->add_flag("--gradient", gradient, "also the RMS error of the gradient");
@@ -166,7 +170,7 @@ int run(int argc, char** argv) {
       "resample", "resample the reconstruction onto a Cartesian grid (a plain 3-D NRRD)");
   resample->add_option("--filter", filter, filters)->required();
   resample->add_option("--lattice", lattice, spec_lattice);
-  resample->add_option("--prefilter", pre, "none | q1 | q2");
+  boxgen::app::add_prefilter_options(resample, pre);
   resample
       ->add_option("--volume", volume,
                    "volume on the filter's lattice (NRRD, or NIfTI .nii/.nii.gz: Cartesian)")
@@ -213,6 +217,12 @@ int run(int argc, char** argv) {
                    "runs per measurement; the fastest counts (default 3)")
       ->check(CLI::Range(1, 100));
   boxgen::app::add_device_option(bench, device, nullptr);
+  boxgen::app::PrefilterOptions bench_prefilter{""};
+  boxgen::app::add_prefilter_options(bench, bench_prefilter, "no default");
+  int bench_n = 256;
+  bench->add_option(
+      "--n", bench_n,
+      "with --prefilter: N^3 samples per coset of the filter's lattice (default 256)");
   for (auto* command : {sample, eval, error, resample, bench}) add_quiet(command);
   auto* filters_command = app.add_subcommand(
       "filters", "list the registry's filters and the SPEC filters compiled into the cache");
@@ -221,6 +231,14 @@ int run(int argc, char** argv) {
     if (threads > 0) set_batch_threads(threads);
     boxgen::app::set_quiet(quiet || boxgen::recon::render_quiet());
     if (filters_command->parsed()) return boxgen::app::run_filters();
+    if (bench->parsed() && !bench_prefilter.prefilter.empty()) {
+      if (boxgen::app::parse_device(device) == boxgen::app::Device::Gl)
+        throw InputError("bench --prefilter runs on the CPU (the GL device's prefilter does too)");
+      return boxgen::app::run_prefilter_bench(
+          boxgen::app::filter_from(bench_filter.empty() ? "m8" : bench_filter, lattice),
+          boxgen::app::parse_prefilter_options(bench_prefilter), bench_n,
+          bench->get_option("--repeats")->count() ? bench_options.repeats : 1, bench_options.json);
+    }
     if (bench->parsed() && !bench_filter.empty() &&
         boxgen::app::parse_device(device) == boxgen::app::Device::Gl)
       throw InputError("bench --filter runs on the CPU; --device gl measures m7, m8 and m12");

@@ -25,18 +25,22 @@ def _shape3(shape):
 
 
 def _block(volume, filter, lo, hi, shape, begin, end):
-    return _core._resample_block(volume, filter, None, lo, hi, shape, (begin, end))
+    # The volume holds the coefficients already: no prefilter, no extension.
+    return _core._resample_block(volume, filter, None, lo, hi, shape, (begin, end), "strict")
 
 
-def resample(volume, filter, prefilter=None, lo=None, hi=None, shape=64, chunks=64):
-    """boxgen.resample(volume, filter, prefilter, lo, hi, shape) as a dask.array of `chunks`.
+def resample(volume, filter, prefilter=None, lo=None, hi=None, shape=64, chunks=64,
+             boundary=None):
+    """boxgen.resample(volume, filter, prefilter, lo, hi, shape, boundary) as a dask.array of
+    `chunks`.
 
     chunks: anything dask.array accepts for this shape (an integer, a tuple, "auto", ...).
     The arguments are checked here, as boxgen.resample checks them, before any graph is built.
+    The prefilter (interp included, which needs the whole volume) and the boundary run once,
+    here; the blocks then evaluate the coefficients.
     """
     shape = _shape3(shape)
-    if prefilter is not None and prefilter != "none":
-        volume = filter.prefilter_volume(volume, prefilter)
+    volume = filter.prefilter_volume(volume, prefilter or "none", boundary)
     if (lo is None) != (hi is None):
         raise ValueError("give both lo and hi, or neither")
     if lo is None:
@@ -44,9 +48,9 @@ def resample(volume, filter, prefilter=None, lo=None, hi=None, shape=64, chunks=
     lo = tuple(float(x) for x in lo)
     hi = tuple(float(x) for x in hi)
     # The corners and the grid are checked once, by the block holding both corners.
-    _core._resample_block(volume, filter, None, lo, hi, shape, ((0, 0, 0), (1, 1, 1)))
+    _core._resample_block(volume, filter, None, lo, hi, shape, ((0, 0, 0), (1, 1, 1)), "strict")
     _core._resample_block(volume, filter, None, lo, hi, shape,
-                          (tuple(s - 1 for s in shape), shape))
+                          (tuple(s - 1 for s in shape), shape), "strict")
     chunks = da.core.normalize_chunks(chunks, shape, dtype=np.float64)
     token = tokenize(volume.samples, volume.lattice_rows, volume.coset_offsets, volume.spacing,
                      volume.origin, filter.name, filter.spec, filter.lattice_rows, lo, hi, shape,

@@ -199,13 +199,15 @@ TEST_F(AnalysisCli, ErrorTableJsonHasEveryRowAndKey) {
   const ProcessResult r = boxrecon({"error", "--table", "--points", "200", "--json"});
   ASSERT_TRUE(r.exited && r.exit_code == 0) << describe({"error", "--table"}, r);
   const auto j = nlohmann::json::parse(r.out);
-  // 5 densities x (3 filters x 3 prefilters + 2 tricubic rows).
-  ASSERT_EQ(j["rows"].size(), 55u);
+  // 5 densities x (3 filters x 4 prefilters + 3 tricubic rows).
+  ASSERT_EQ(j["rows"].size(), 75u);
+  int interp_rows = 0;
   for (const auto& row : j["rows"]) {
     for (const char* key : {"n", "filter", "prefilter", "rms", "max", "gradient_rms", "samples"})
       EXPECT_TRUE(row.contains(key)) << key << " in " << row.dump();
     const int n = row["n"].get<int>();
     EXPECT_LE(row["rms"].get<double>(), row["max"].get<double>());
+    interp_rows += row["prefilter"] == "interp";
     if (row["filter"] == "tricubic") {
       const int m = static_cast<int>(std::lround(std::cbrt(2.0) * n));
       EXPECT_EQ(row["cartesian_n"].get<int>(), m);
@@ -215,6 +217,7 @@ TEST_F(AnalysisCli, ErrorTableJsonHasEveryRowAndKey) {
       EXPECT_EQ(row["samples"].get<std::uint64_t>(), 2ull * n * n * n);
     }
   }
+  EXPECT_EQ(interp_rows, 5 * 4);
 }
 
 // eval --hessian: the cubic x^3 - 2xyz + 3y^2 - z + 1 (runtime/test_functions.h) is reproduced by
@@ -266,8 +269,8 @@ TEST_F(AnalysisCli, RenderRefusesAVolumeWithoutTheStencilMargin) {
     std::ofstream out(file("tiny.nrrd"), std::ios::binary);
     out << text;
   }
-  const ProcessResult r = boxrecon(
-      {"render", "--volume", file("tiny.nrrd"), "--prefilter", "none", "-o", file("r.png")});
+  const ProcessResult r = boxrecon({"render", "--volume", file("tiny.nrrd"), "--prefilter", "none",
+                                    "--boundary", "strict", "-o", file("r.png")});
   EXPECT_TRUE(r.exited) << describe({"render"}, r);
   EXPECT_EQ(r.exit_code, 1) << describe({"render"}, r);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

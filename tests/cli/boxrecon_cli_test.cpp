@@ -345,12 +345,47 @@ std::vector<BadInput> bad_inputs() {
       {"PointOutsideTheVolume", eval_with("vol.nrrd", "outside.txt"), 1, {"outside"}},
       // volumes too small for the stencil (a valid hand-written file: see
       // SmallHandWrittenVolumeWorks)
-      {"VolumeTooSmallForEval", eval_with("tiny.nrrd", "tinypoint.txt"), 1, {"outside"}},
-      {"VolumeTooSmallForResample", resample_with("tiny.nrrd"), 1, {"too small"}},
+      // under the strict boundary, samples beyond the volume are refused, never invented
+      {"VolumeTooSmallForEval",
+       [] {
+         auto args = eval_with("tiny.nrrd", "tinypoint.txt");
+         args.insert(args.end(), {"--boundary", "strict"});
+         return args;
+       }(),
+       1,
+       {"outside"}},
+      {"VolumeTooSmallForResample",
+       resample_with("tiny.nrrd", {"--boundary", "strict"}),
+       1,
+       {"too small"}},
       {"VolumeTooSmallForThePrefilter",
-       resample_with("tiny.nrrd", {"--prefilter", "q2"}),
+       resample_with("tiny.nrrd", {"--prefilter", "q2", "--boundary", "strict"}),
        1,
        {"too small", "no sample", "remain"}},
+      // interpolation: a volume of one sample per coset along an axis, lambda not in [0, 1] or
+      // not a number, lambda 0 where the symbol vanishes (m7), an unknown boundary
+      {"VolumeTooSmallForInterp",
+       resample_with("flat.nrrd", {"--prefilter", "interp"}),
+       1,
+       {"too small"}},
+      {"InterpLambdaNotFinite",
+       resample_with("vol.nrrd", {"--prefilter", "interp:inf"}),
+       1,
+       {"interp"}},
+      {"InterpLambdaNaN", resample_with("vol.nrrd", {"--prefilter", "interp:nan"}), 1, {"interp"}},
+      {"InterpLambdaNegative",
+       resample_with("vol.nrrd", {"--prefilter", "interp:-1"}),
+       1,
+       {"interp"}},
+      {"InterpLambdaNotANumber",
+       resample_with("vol.nrrd", {"--prefilter", "interp:1e-3x"}),
+       1,
+       {"interp"}},
+      {"ExactInterpWhereTheSymbolVanishes",
+       resample_with("vol.nrrd", {"--prefilter", "interp:0"}),
+       1,
+       {"vanishes"}},
+      {"UnknownBoundary", resample_with("vol.nrrd", {"--boundary", "wrap"}), 1, {"wrap"}},
       // resampling boxes
       {"BoxLeavesTheVolume",
        resample_with("vol.nrrd", {"--min", "-1", "-1", "-1", "--max", "1", "1", "9"}),
@@ -456,6 +491,7 @@ class BoxreconBadInput : public BoxreconCli, public ::testing::WithParamInterfac
                                             std::string("\x1f\x8b\x08\0\0\0\0\0\0\x03", 10) +
                                             std::string(64, '\xff'));
     write_bytes(file("tiny.nrrd"), hand_written_bcc(2, true));
+    write_bytes(file("flat.nrrd"), hand_written_bcc(1, true));
     write_bytes(file("good.txt"), "0 0 0\n0.5 -0.25 0.125\n");
     write_bytes(file("tinypoint.txt"), "1 1 1\n");
     write_bytes(file("nonnumeric.txt"), "0 0 0\n0 x 0\n");

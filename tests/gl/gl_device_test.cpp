@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "runtime/coefficients.h"
 #include "runtime/gl/gl_render.h"
 #include "runtime/gl/gl_spline.h"
 #include "runtime/prefilter.h"
@@ -139,6 +140,28 @@ TEST_F(GlTest, AnisotropicCartesianVolumeScalesDerivatives) {
     for (int a = 0; a < 3; ++a) EXPECT_NEAR(gg[i][a], cg[i][a], 1e-11);
     for (int a = 0; a < 6; ++a) EXPECT_NEAR(gh[i][a], ch[i][a], 1e-10);
   }
+}
+
+TEST_F(GlTest, InterpolationRunsBeforeTheUploadAndPassesThroughTheSamples) {
+  // The GL device evaluates interp's coefficients (made on the CPU, runtime/coefficients.h): at
+  // the samples, up to the faces (mirror boundary), it gives the samples back.
+  const SplineFilter f = SplineFilter::parse("m8");
+  LatticeVolume<double> v(f.lattice(), {6, 7, 5}, 0.25, {-1, 0, 2});
+  std::mt19937_64 rng(8);
+  for (double& s : v.samples()) s = std::uniform_real_distribution<double>(-1, 1)(rng);
+  const LatticeVolume<double> c = spline_coefficients(v, f, PrefilterChoice::interp());
+  std::vector<Vec3> points;
+  std::vector<double> expected;
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 7; ++j)
+      for (int i = 0; i < 6; ++i)
+        for (int q = 0; q < 2; ++q) {
+          points.push_back(v.sample_position(q, i, j, k));
+          expected.push_back(v(q, i, j, k));
+        }
+  std::vector<double> gpu(points.size());
+  GlSpline<double>(c, f, registry_glsl("m8", true)).evaluate(points, gpu);
+  for (std::size_t i = 0; i < points.size(); ++i) EXPECT_NEAR(gpu[i], expected[i], 1e-12) << i;
 }
 
 TEST_F(GlTest, ResampleFillsTheCpuGrid) {

@@ -37,6 +37,10 @@ def test_threaded_equals_resample(case):
     assert np.array_equal(got, expected)
     default = boxgen.dask.resample(v, f, None, shape=6, chunks=4).compute(scheduler="threads")
     assert np.array_equal(default, boxgen.resample(v, f, None, shape=6))
+    # interp runs once, on the whole volume, before the blocks.
+    interp = boxgen.dask.resample(v, f, "interp", LO, HI, SHAPE, CHUNKS, boundary="clamp")
+    assert np.array_equal(interp.compute(scheduler="threads"),
+                          boxgen.resample(v, f, "interp", LO, HI, SHAPE, boundary="clamp"))
 
 
 def test_distributed_equals_resample(case):

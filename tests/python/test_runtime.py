@@ -99,7 +99,10 @@ def eval_cli(tmp_path, volume, points, *args):
 
 @pytest.mark.parametrize("name,lattice,prefilter", [("m7", "bcc", "q2"), ("m12", "bcc", None),
                                                     ("fcc6", "fcc", "q1"),
-                                                    ("tricubic", "cartesian", "q2")])
+                                                    ("tricubic", "cartesian", "q2"),
+                                                    ("m8", "bcc", "interp"),
+                                                    ("m7", "bcc", "interp:0.01"),
+                                                    ("fcc6", "fcc", "interp")])
 def test_evaluate_is_boxrecon_eval_bit_for_bit(tmp_path, rng, name, lattice, prefilter):
     f = boxgen.Filter(name)
     v = boxgen.sample("ml", 7, lattice=lattice)
@@ -114,6 +117,32 @@ def test_evaluate_is_boxrecon_eval_bit_for_bit(tmp_path, rng, name, lattice, pre
     assert np.array_equal(f.evaluate(v, points, prefilter), values)
     vg = f.evaluate(v, points, prefilter, gradient=True)
     assert len(vg) == 2 and np.array_equal(vg[1], gradients)
+
+
+def test_interpolation_passes_through_the_samples_and_reports():
+    m8, m7 = boxgen.Filter("m8"), boxgen.Filter("m7")
+    v = boxgen.sample("ml", 9)
+    positions, samples = v.positions(), v.samples.reshape(-1, order="F")
+    assert np.allclose(m8.evaluate(v, positions, "interp"), samples, atol=1e-13, rtol=0)
+    report = m8.interpolation(v)
+    assert report["lambda"] == 0 and report["residual_max"] < 1e-13
+    assert report["symbol_min"] == pytest.approx(0.2, abs=1e-12)
+    # m7's symbol vanishes: regularised with lambda 1e-3, a residual it reports, as boxrecon does.
+    r7 = m7.interpolation(v)
+    assert r7["lambda"] == 1e-3 and 0 < r7["residual_max"] < 0.1
+    assert r7["symbol_min"] < 1e-6 * r7["symbol_max"]
+    offsets, values = boxgen.Filter("tricubic").lattice_values()
+    assert offsets.shape == (27, 3) and values.sum() == pytest.approx(1, abs=1e-15)
+    # The boundary: strict refuses a face sample's stencil, mirror (the default) evaluates it.
+    corner = v.positions()[:1]
+    m8.evaluate(v, corner, "interp")
+    with pytest.raises(ValueError):
+        m8.evaluate(v, corner, "interp", boundary="strict")
+    for bad in ("interp:nan", "interp:-1", "interp:x", "interp:0"):
+        with pytest.raises(ValueError):
+            m7.evaluate(v, corner, bad)
+    with pytest.raises(ValueError):
+        m8.evaluate(v, corner, boundary="wrap")
 
 
 def test_evaluate_reproduces_a_cubic():

@@ -58,7 +58,7 @@ TEST(Reconstruction, CubicsAreReproducedWithTheGeneratedPrefilters) {
   for (const SplineFilter& f :
        {SplineFilter::parse("m7"), SplineFilter::parse("m8"), SplineFilter::parse("m12")})
     for (PrefilterChoice q : {PrefilterChoice::Q1, PrefilterChoice::Q2})
-      EXPECT_LE(max_error(cubic, 9, f, q), 1e-11) << f.name() << " q" << static_cast<int>(q);
+      EXPECT_LE(max_error(cubic, 9, f, q), 1e-11) << f.name() << " " << q.text();
 }
 
 TEST(Reconstruction, WithoutAPrefilterCubicsAreNotReproduced) {

@@ -1,0 +1,61 @@
+// Which prefilter turns a volume's samples into the coefficients a filter's spline is evaluated
+// on, with its parameter where it takes one. Parsed from the text every command and the Python
+// module accept (parse_prefilter), printed back by text():
+//
+//   none          the samples themselves
+//   q1, q2        the generator's quasi-interpolation prefilters Q^I, Q^II (FIR taps)
+//   interp        interpolation: the spline passes through every sample (runtime/interpolation.h;
+//                 regularised where the filter's symbol vanishes)
+//   interp:L      the same with the Tikhonov weight L (relative to max |A|^2) given; 0 asks for
+//                 exact interpolation
+#pragma once
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace boxgen::runtime {
+
+class PrefilterChoice {
+ public:
+  enum class Kind { None, Q1, Q2, Interp };
+
+  // The choices without a parameter, as values: PrefilterChoice::Q1.
+  static const PrefilterChoice None, Q1, Q2;
+
+  constexpr PrefilterChoice() = default;
+  constexpr explicit PrefilterChoice(Kind kind, std::optional<double> parameter = std::nullopt)
+      : kind_(kind), parameter_(parameter) {}
+  // Interpolation; lambda: the Tikhonov weight relative to max |A|^2, or the filter's default.
+  static constexpr PrefilterChoice interp(std::optional<double> lambda = std::nullopt) {
+    return PrefilterChoice(Kind::Interp, lambda);
+  }
+
+  constexpr Kind kind() const noexcept { return kind_; }
+  // The parameter given after the colon, if any (interp: lambda).
+  constexpr std::optional<double> parameter() const noexcept { return parameter_; }
+  // Is it a table of FIR taps (SplineFilter::prefilter gives them)? none counts: one tap.
+  constexpr bool is_fir() const noexcept { return kind_ != Kind::Interp; }
+  // The text parse_prefilter reads back: "none", "q1", "interp", "interp:0.001".
+  std::string text() const;
+
+  friend constexpr bool operator==(const PrefilterChoice& a, const PrefilterChoice& b) noexcept {
+    return a.kind_ == b.kind_ && a.parameter_ == b.parameter_;
+  }
+
+ private:
+  Kind kind_ = Kind::None;
+  std::optional<double> parameter_;
+};
+
+inline constexpr PrefilterChoice PrefilterChoice::None{PrefilterChoice::Kind::None};
+inline constexpr PrefilterChoice PrefilterChoice::Q1{PrefilterChoice::Kind::Q1};
+inline constexpr PrefilterChoice PrefilterChoice::Q2{PrefilterChoice::Kind::Q2};
+
+// "none" | "q1" | "q2" | "interp" | "interp:L" (L finite, >= 0 and at most 1); anything else:
+// std::invalid_argument, one line.
+PrefilterChoice parse_prefilter(std::string_view text);
+
+// "none | q1 | q2 | interp[:L]": the choices, for help texts.
+inline constexpr const char* kPrefilterChoices = "none | q1 | q2 | interp[:LAMBDA]";
+
+}  // namespace boxgen::runtime
