@@ -1,10 +1,20 @@
 // The cache of compiled filters (docs/runtime.md "Filters from any SPEC"): where it is, the key
 // of an entry, an entry's files and the checks that decide whether it may be loaded.
 //
-// An entry is <key>.so (the filter), <key>.cpp (its source, for the curious) and <key>.json (what
-// it is, and the size and hash of the .so), each written through a temporary file and a rename;
-// the .json goes last, so an entry without it, or whose .so is not the one it describes, is
-// incomplete or corrupt and is rebuilt. <key>.lock serialises first uses of the same filter.
+// An entry is <key>.so (the filter), <key>.cpp (its source, for the curious), <key>.glsl and
+// <key>_double.glsl (its GLSL evaluators) and <key>.json (what it is, and the size and hash of the
+// .so and the hashes of the .glsl files), each written through a temporary file and a rename; the
+// .json goes last, so an entry without it, or whose files are not the ones it describes, is
+// incomplete or corrupt and is rebuilt. <key>.lock serialises first uses of the same filter;
+// <key>.log holds the compiler's messages of a failed compile.
+//
+// The cache holds code this process runs, so it is trusted only as far as nobody else can write
+// it (as ssh treats its keys): the directory must be the user's own and not writable by others,
+// every directory above it must be the user's or root's and not writable by others (unless
+// sticky), and every file of an entry must be a regular file of the user's that others cannot
+// write. A link is never followed inside the cache: files are read with O_NOFOLLOW and written
+// through the atomic writer's LinkPolicy::replace. An object is hashed and checked against the
+// .json before it is loaded, through the very descriptor it is loaded from.
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -17,26 +27,48 @@ namespace boxgen::loader {
 // when not empty).
 std::filesystem::path resolve_cache_dir(const std::filesystem::path& explicit_dir);
 
-// 64-bit FNV-1a, as 16 hex digits: the cache key of a text, and the hash of a file.
+// The cache directory `dir`, created (mode 0700) when `create` and it is missing, as a path
+// without links (its canonical form), after the checks above. Throws LoadError (one line, with
+// what to do) for a directory others could write; returns nothing when it is missing and not
+// created.
+std::optional<std::filesystem::path> checked_cache_dir(const std::filesystem::path& dir,
+                                                       bool create);
+
+// 64-bit FNV-1a, as 16 hex digits: the cache key of a text, and the hash of a file's bytes. It
+// detects corruption; tampering is kept out by the directory's checks (nobody else can write
+// the .json that holds the hashes).
 std::string hash_text(const std::string& text);
-std::optional<std::string> hash_file(const std::filesystem::path& path);
 
 struct EntryInfo {
-  std::string spec, lattice, rows, stamp, so_hash;
+  std::string spec, lattice, rows, stamp, so_hash, glsl_hash, glsl_double_hash;
   std::uintmax_t so_size = 0;
 };
 
 struct CacheEntry {
-  std::filesystem::path dir;
+  std::filesystem::path dir;  // as checked_cache_dir returns it
   std::string key;
   std::filesystem::path file(const char* extension) const { return dir / (key + extension); }
 };
 
+// Throws LoadError (one line) when a file of the entry exists but is not a regular file of this
+// user that others cannot write (a symbolic link, a directory, another user's file, mode 0666).
+void check_entry_files(const CacheEntry& entry);
+
+// The whole content of an entry's file, read without following a link, or nothing when it is
+// missing or fails the checks of check_entry_files.
+std::optional<std::string> read_entry_file(const std::filesystem::path& path);
+
+// An entry's file opened for reading without following a link and checked as above, or -1. The
+// caller owns the descriptor.
+int open_entry_file(const std::filesystem::path& path);
+// The FNV-1a hash and size of what a descriptor holds (read from its start), or nothing.
+std::optional<std::string> hash_descriptor(int fd, std::uintmax_t& size);
+
 // The entry's description, or nothing when it is missing or unreadable.
 std::optional<EntryInfo> read_entry(const CacheEntry& entry);
-// True when the .json describes the .so that is there: same size and hash.
-bool entry_intact(const CacheEntry& entry, const EntryInfo& info);
-// Writes the .json (atomically).
+// Writes a file of the entry (atomically, replacing a link instead of following it).
+void write_entry_file(const std::filesystem::path& path, const std::string& text);
+// Writes the .json (as write_entry_file).
 void write_entry(const CacheEntry& entry, const EntryInfo& info);
 
 // An exclusive lock on <key>.lock, held while the object lives.

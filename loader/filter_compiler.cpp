@@ -2,22 +2,30 @@
 
 #include <dlfcn.h>
 #include <fcntl.h>
-#include <spawn.h>
+#include <poll.h>
+#include <sys/prctl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <algorithm>
 #include <cerrno>  // program_invocation_name (glibc)
+#include <chrono>
+#include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <sstream>
 
 #include "boxgen/loader_config.h"
+#include "loader/filter_cache.h"
 #include "loader/filter_loader.h"
-
-extern char** environ;  // NOLINT(readability-redundant-declaration): POSIX, for posix_spawn
+#include "runtime/nrrd_checks.h"
+#include "support/output_file.h"
 
 namespace boxgen::loader {
 
@@ -40,21 +48,105 @@ fs::path on_path(const std::string& name) {
   return {};
 }
 
-std::string first_line_of(const std::string& command) {
-  std::string out;
-  if (std::FILE* p = ::popen(command.c_str(), "r")) {
-    char line[512];
-    if (std::fgets(line, sizeof line, p)) out = line;
-    ::pclose(p);
-  }
-  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-  return out;
-}
+// What a child process did: its exit status (as waitpid gives it), whether it was stopped at the
+// time limit, and the first bytes of its output.
+struct ProcessResult {
+  int status = 0;
+  bool timed_out = false;
+  std::string output;
+  std::size_t dropped = 0;  // bytes of output beyond the kept ones
+};
 
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
+// Runs `args` (args[0] an absolute path) with no shell, standard input /dev/null, standard output
+// (and standard error, when `with_errors`) into a pipe of which the first `keep` bytes are kept,
+// in a process group of its own that dies with it: killed with SIGKILL when `seconds` pass, when
+// `check` throws (rethrown once the group is gone) or when a signal stops this process
+// (support::ChildProcessGroup); PR_SET_PDEATHSIG kills the compiler's driver even when this
+// process is killed outright.
+ProcessResult run_limited(std::vector<std::string> args, double seconds, std::size_t keep,
+                          bool with_errors, const std::function<void()>& check) {
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  int out[2];
+  if (::pipe2(out, O_CLOEXEC) != 0)
+    throw LoadError(fmt::format("cannot run {}: {}", args[0], std::strerror(errno)));
+  const int null_fd = ::open("/dev/null", O_RDWR | O_CLOEXEC);
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid == 0) {  // the child: async-signal-safe calls only until exec
+    ::setpgid(0, 0);
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(127);
+    sigset_t none;
+    sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    ::signal(SIGPIPE, SIG_DFL);  // the parent ignores it (handle_signals); exec keeps ignored ones
+    ::dup2(null_fd, STDIN_FILENO);
+    ::dup2(out[1], STDOUT_FILENO);
+    ::dup2(with_errors ? out[1] : null_fd, STDERR_FILENO);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  const int fork_error = errno;
+  ::close(out[1]);
+  if (null_fd >= 0) ::close(null_fd);
+  if (pid < 0) {
+    ::close(out[0]);
+    throw LoadError(fmt::format("cannot run {}: {}", args[0], std::strerror(fork_error)));
+  }
+  ::setpgid(pid, pid);  // also here, so the group exists before anything is sent to it
+  const support::ChildProcessGroup registered(pid);
+  ProcessResult result;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  std::exception_ptr stopped;
+  bool open = true, exited = false, reaped = false;
+  while (open || !exited) {
+    if (!exited) {
+      int status = 0;
+      const pid_t done = ::waitpid(pid, &status, WNOHANG);
+      if (done == pid) exited = true, result.status = status;
+    }
+    if (exited && !reaped) {
+      ::kill(-pid, SIGKILL);  // a descendant left behind must not hold the pipe
+      reaped = true;
+    }
+    if (open) {
+      pollfd p{out[0], POLLIN, 0};
+      if (::poll(&p, 1, 100) > 0) {
+        char buffer[8192];
+        const ssize_t n = ::read(out[0], buffer, sizeof buffer);
+        if (n > 0) {
+          const auto got = static_cast<std::size_t>(n);
+          const std::size_t room = keep - std::min(keep, result.output.size());
+          result.output.append(buffer, std::min(room, got));
+          result.dropped += got - std::min(room, got);
+        } else if (n == 0 || errno != EINTR) {
+          open = false;
+        }
+      }
+    } else if (!exited) {
+      ::usleep(20000);
+    }
+    if (exited) continue;
+    if (std::chrono::steady_clock::now() > deadline) result.timed_out = true;
+    if (check && !stopped) try {
+        check();
+      } catch (...) {
+        stopped = std::current_exception();
+      }
+    if (result.timed_out || stopped) {
+      ::kill(-pid, SIGKILL);
+      int status = 0;
+      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      exited = reaped = true;
+      open = false;
+    }
+  }
+  ::close(out[0]);
+  if (stopped) std::rethrow_exception(stopped);
+  return result;
 }
 
 std::vector<std::string> words(const std::string& text) {
@@ -156,7 +248,14 @@ Toolchain find_toolchain(const CompileOptions& options) {
   Toolchain t;
   t.compiler = find_compiler(options);
   find_engine(t);
-  t.version = first_line_of(shell_quote(t.compiler) + " --version 2>/dev/null");
+  const double limit = std::min(30.0, compile_time_limit(options));
+  const ProcessResult version = run_limited({t.compiler, "--version"}, limit, 4096, false, {});
+  if (version.timed_out)
+    throw LoadError(fmt::format(
+        "the C++ compiler {} did not answer `--version` within {} s: point BOXGEN_CXX at a "
+        "working compiler",
+        t.compiler, limit));
+  t.version = version.output.substr(0, version.output.find_first_of("\r\n"));
   // The build's optimisation flags (as the registry's evaluators get), this machine's instruction
   // set (the object's SIMD kernels are compiled for it alone, not for every Highway target as the
   // runtime's are: a quarter of the compile), position independent, only the two entry points
@@ -172,8 +271,44 @@ Toolchain find_toolchain(const CompileOptions& options) {
   return t;
 }
 
+double compile_time_limit(const CompileOptions& options) {
+  if (options.compile_seconds > 0) return options.compile_seconds;
+  const char* env = std::getenv("BOXGEN_COMPILE_TIMEOUT");
+  if (!env || !*env) return 600;
+  char* end = nullptr;
+  const double seconds = std::strtod(env, &end);
+  if (*end != '\0' || !(seconds > 0) || !std::isfinite(seconds))
+    throw LoadError(
+        fmt::format("BOXGEN_COMPILE_TIMEOUT must be a positive number of seconds, not '{}'",
+                    runtime::nrrd_checks::printable(env, 40)));
+  return seconds;
+}
+
+namespace {
+
+// True when `path` is a regular file of ours that starts as an ELF object does; makes it 0644
+// (the linker's mode follows the umask, and the cache loads nothing others can write).
+bool wrote_object(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) return false;
+  struct stat info {};
+  char magic[4] = {};
+  const bool ok = ::fstat(fd, &info) == 0 && S_ISREG(info.st_mode) && info.st_uid == ::geteuid() &&
+                  ::pread(fd, magic, 4, 0) == 4 &&
+                  std::memcmp(magic,
+                              "\x7f"
+                              "ELF",
+                              4) == 0 &&
+                  ::fchmod(fd, 0644) == 0;
+  ::close(fd);
+  return ok;
+}
+
+}  // namespace
+
 void compile_shared_object(const Toolchain& t, const fs::path& source, const fs::path& output,
-                           const fs::path& log, const std::string& what) {
+                           const fs::path& log, const std::string& what, double seconds,
+                           const std::function<void()>& check) {
   std::vector<std::string> args{t.compiler};
   args.insert(args.end(), t.flags.begin(), t.flags.end());
   for (std::string a : {std::string("-x"), std::string("c++"), source.string(), std::string("-x"),
@@ -181,30 +316,33 @@ void compile_shared_object(const Toolchain& t, const fs::path& source, const fs:
                         std::string("-Wl,--exclude-libs,ALL"), t.archive.string()})
     args.push_back(std::move(a));
   args.insert(args.end(), t.libraries.begin(), t.libraries.end());
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  pid_t pid = -1;
-  const int spawned = ::posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0)
-    throw LoadError(
-        fmt::format("cannot run the C++ compiler {}: {}", t.compiler, std::strerror(spawned)));
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR)
-      throw LoadError(fmt::format("waiting for {}: {}", t.compiler, std::strerror(errno)));
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw LoadError(fmt::format("compiling filter {} failed (the compiler's messages: {})", what,
-                                log.string()));
+  const ProcessResult run = run_limited(args, seconds, kMaxLogBytes, true, check);
+  std::string failure;
+  if (run.timed_out)
+    failure = fmt::format(
+        "compiling filter {} was stopped after {} s (the limit: BOXGEN_COMPILE_TIMEOUT)", what,
+        seconds);
+  else if (!WIFEXITED(run.status) || WEXITSTATUS(run.status) != 0)
+    failure = fmt::format("compiling filter {} failed", what);
+  else if (!wrote_object(output))
+    failure = fmt::format("the C++ compiler {} exited 0 but wrote no shared object for filter {}",
+                          t.compiler, what);
   std::error_code ec;
-  fs::remove(log, ec);
+  if (failure.empty()) {
+    fs::remove(log, ec);  // a link there is removed, never followed
+    return;
+  }
+  std::string text = run.output;
+  if (run.dropped > 0)
+    text += fmt::format("\n[boxgen: {} more bytes of the compiler's messages were dropped]\n",
+                        run.dropped);
+  try {
+    write_entry_file(log, text);
+  } catch (const std::exception&) {
+    throw LoadError(failure + " (its messages could not be written)");
+  }
+  throw LoadError(fmt::format("{} (the compiler's messages: {})", failure,
+                              runtime::nrrd_checks::printable(log.string())));
 }
 
 }  // namespace boxgen::loader

@@ -1,7 +1,9 @@
 // The system's C++ compiler, and the runtime engine a filter's shared object is compiled against
 // (docs/runtime.md "Filters from any SPEC").
 #pragma once
+#include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,13 +26,26 @@ struct Toolchain {
 
 // The compiler (CompileOptions::compiler, else BOXGEN_CXX, else the one this build used, else
 // c++ or g++ on PATH) and the engine beside the library that holds this code. Throws LoadError
-// (one line) when there is no compiler, naming what to install, or no engine.
+// (one line) when there is no compiler, naming what to install, or no engine, or when the
+// compiler's `--version` does not answer within the time limit.
 Toolchain find_toolchain(const CompileOptions& options);
 
-// Compiles `source` (C++) into the shared object `output`. On failure throws LoadError naming
-// `what` and the log file, where the compiler's messages stay; on success the log is removed.
+// The limits of a compile: the seconds it may take (CompileOptions::compile_seconds, else
+// BOXGEN_COMPILE_TIMEOUT, else 600; `--version` gets at most 30 of them) and the bytes of the
+// compiler's messages that are kept in the log (the rest is counted and dropped).
+double compile_time_limit(const CompileOptions& options);
+inline constexpr std::size_t kMaxLogBytes = 64 * 1024;
+
+// Compiles `source` (C++) into the shared object `output` within `seconds`, the compiler in a
+// process group of its own that is killed when the time is up, when this process is stopped by
+// SIGINT, SIGTERM or SIGHUP (support::handle_signals) or when `check` throws (it is called every
+// 0.1 s; the compiler is killed before the exception goes on). On failure throws
+// LoadError naming `what` and the log `log`, written with the compiler's first kMaxLogBytes of
+// messages; on success the log is removed. An exit status of 0 with no ELF object written is a
+// failure too.
 void compile_shared_object(const Toolchain& toolchain, const std::filesystem::path& source,
                            const std::filesystem::path& output, const std::filesystem::path& log,
-                           const std::string& what);
+                           const std::string& what, double seconds,
+                           const std::function<void()>& check = {});
 
 }  // namespace boxgen::loader

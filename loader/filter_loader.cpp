@@ -3,6 +3,8 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <algorithm>
+
 #include <fmt/format.h>
 #include <atomic>
 #include <chrono>
@@ -18,6 +20,7 @@
 #include "loader/filter_cache.h"
 #include "loader/filter_compiler.h"
 #include "runtime/batch_threads.h"
+#include "runtime/nrrd_checks.h"
 #include "support/output_file.h"
 
 namespace boxgen::loader {
@@ -181,36 +184,71 @@ extern "C" __attribute__((visibility("default"))) rt::FilterSource* boxgen_filte
       fmt::arg("q1", table("q1")), fmt::arg("q2", table("q2")), fmt::arg("stamp", stamp));
 }
 
-// dlopen of the entry's object through a name of its own (a hard link removed again at once):
-// glibc hands back an object already loaded under the same name without looking at the file, so
-// an entry rebuilt in this process would otherwise still load as the old object. The same file
-// loaded twice is still recognised (glibc compares device and inode) and mapped once.
-void* load_library(const fs::path& so) {
-  static std::atomic<int> counter{0};
-  const fs::path link = so.parent_path() / fmt::format(".{}.load-{}-{}", so.filename().string(),
-                                                       ::getpid(), counter++);
-  std::error_code ec;
-  fs::create_hard_link(so, link, ec);
-  void* handle = ::dlopen((ec ? so : link).c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!ec) fs::remove(link, ec);
-  return handle;
-}
-
 using StampFn = const char* (*)();
 using CreateFn = rt::FilterSource* (*)(const char*, int (*)());
 
+// The entry's GLSL evaluators (float, double) for the GL device (runtime/gl), written beside the
+// shared object: NAME.glsl and NAME_double.glsl with NAME = spec_KEY.
+fs::path glsl_file(const CacheEntry& entry, bool double_precision) {
+  return entry.file(double_precision ? "_double.glsl" : ".glsl");
+}
+const std::string& glsl_hash(const EntryInfo& info, bool double_precision) {
+  return double_precision ? info.glsl_double_hash : info.glsl_hash;
+}
+
+// Why an entry whose object is intact is not complete: emitting its GLSL again repairs it.
+constexpr const char* kGlslChanged = "its GLSL evaluator is not the one written";
+
+// The entry's description when the entry is complete and this loader's: the .json parses, its
+// stamp is `stamp`, and both GLSL files hold what it records (the .so is checked as it is
+// loaded, through the descriptor it is loaded from).
+std::optional<EntryInfo> complete_entry(const CacheEntry& entry, const std::string& stamp,
+                                        std::string& why) {
+  auto info = read_entry(entry);
+  if (!info) return why = "no complete entry", std::nullopt;
+  if (info->stamp != stamp) return why = "built for another boxgen", std::nullopt;
+  for (const bool dbl : {false, true}) {
+    const auto text = read_entry_file(glsl_file(entry, dbl));
+    if (!text || hash_text(*text) != glsl_hash(*info, dbl)) return why = kGlslChanged, std::nullopt;
+  }
+  return info;
+}
+
+// The entry's description when its .json is this loader's and its .so is the one it describes.
+std::optional<EntryInfo> intact_object(const CacheEntry& entry, const std::string& stamp) {
+  auto info = read_entry(entry);
+  if (!info || info->stamp != stamp) return std::nullopt;
+  const int fd = open_entry_file(entry.file(".so"));
+  if (fd < 0) return std::nullopt;
+  std::uintmax_t size = 0;
+  const auto hash = hash_descriptor(fd, size);
+  ::close(fd);
+  if (!hash || *hash != info->so_hash || size != info->so_size) return std::nullopt;
+  return info;
+}
+
 // The entry's filter, or nothing (with the reason) when it is missing, incomplete, corrupt or
-// built for another loader, boxgen or key. The library stays loaded for the life of the process:
-// the paths it makes may outlive the filter.
+// built for another loader, boxgen or key. The object is opened without following a link,
+// hashed and compared with the .json through that descriptor, and loaded from the same
+// descriptor (/proc/self/fd/N), so what runs is what was checked. The descriptor stays open for
+// the life of the process, as the library stays loaded (the paths it makes may outlive the
+// filter): its name is then never reused for another object, which glibc would otherwise hand
+// back for the same name without reading the file.
 std::shared_ptr<const rt::FilterSource> open_entry(const CacheEntry& entry,
                                                    const std::string& stamp,
                                                    const std::string& name, std::string& why) {
-  const auto info = read_entry(entry);
-  if (!info) return why = "no complete entry", nullptr;
-  if (info->stamp != stamp) return why = "built for another boxgen", nullptr;
-  if (!entry_intact(entry, *info)) return why = "its shared object is not the one built", nullptr;
-  void* handle = load_library(entry.file(".so"));
+  const auto info = complete_entry(entry, stamp, why);
+  if (!info) return nullptr;
+  const int fd = open_entry_file(entry.file(".so"));
+  std::uintmax_t size = 0;
+  const auto hash = fd < 0 ? std::nullopt : hash_descriptor(fd, size);
+  if (!hash || size != info->so_size || *hash != info->so_hash) {
+    if (fd >= 0) ::close(fd);
+    return why = "its shared object is not the one built", nullptr;
+  }
+  void* handle = ::dlopen(fmt::format("/proc/self/fd/{}", fd).c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) {
+    ::close(fd);  // nothing was loaded under its name
     const char* error = ::dlerror();
     return why = error ? error : "dlopen failed", nullptr;
   }
@@ -223,12 +261,8 @@ std::shared_ptr<const rt::FilterSource> open_entry(const CacheEntry& entry,
   return std::shared_ptr<const rt::FilterSource>(create(name.c_str(), &rt::batch_threads));
 }
 
-// The entry's GLSL evaluators (float, double) for the GL device (runtime/gl), written beside the
-// shared object: NAME.glsl and NAME_double.glsl with NAME = spec_KEY.
-fs::path glsl_file(const CacheEntry& entry, bool double_precision) {
-  return entry.file(double_precision ? "_double.glsl" : ".glsl");
-}
-void write_glsl(const CacheEntry& entry, const gen::Derivation& derivation, const EntryInfo& info) {
+// Emits the GLSL evaluators into the entry and records their hashes in `info`.
+void write_glsl(const CacheEntry& entry, const gen::Derivation& derivation, EntryInfo& info) {
   for (const bool dbl : {false, true}) {
     gen::EmissionRequest request;
     request.name = "spec_" + entry.key;
@@ -237,14 +271,14 @@ void write_glsl(const CacheEntry& entry, const gen::Derivation& derivation, cons
     request.target = gen::EmissionTarget::Glsl;
     request.double_precision = dbl;
     const std::string text = gen::emit(derivation, request).at(0).text;
-    support::write_output_file(glsl_file(entry, dbl), [&](std::FILE* f) {
-      return std::fwrite(text.data(), 1, text.size(), f) == text.size();
-    });
+    write_entry_file(glsl_file(entry, dbl), text);
+    (dbl ? info.glsl_double_hash : info.glsl_hash) = hash_text(text);
   }
 }
 
 void build_entry(const CacheEntry& entry, const gen::BoxSplineSpec& spec, const EntryInfo& info,
                  const Toolchain& toolchain, const CompileOptions& options) {
+  const double compile_seconds = compile_time_limit(options);
   Progress progress(options.progress);
   const std::string what = fmt::format("\"{}\" on the {} lattice", info.spec, info.lattice);
   progress.stage(fmt::format("first use of filter {}: deriving", what));
@@ -261,18 +295,20 @@ void build_entry(const CacheEntry& entry, const gen::BoxSplineSpec& spec, const 
   const auto files = gen::emit(derivation, request);
   const std::string source = glue_source(name, files, info.stamp);
   try {
-    support::write_output_file(entry.file(".cpp"), [&](std::FILE* f) {
-      return std::fwrite(source.data(), 1, source.size(), f) == source.size();
-    });
+    write_entry_file(entry.file(".cpp"), source);
     progress.stage(fmt::format("first use of filter {}: compiling with {} (cached in {})", what,
                                toolchain.compiler, entry.dir.string()));
-    support::PendingOutput so(entry.file(".so"));
-    compile_shared_object(toolchain, entry.file(".cpp"), so.temporary(), entry.file(".log"), what);
-    so.commit();
-    write_glsl(entry, derivation, info);
+    support::PendingOutput so(entry.file(".so"), {}, support::LinkPolicy::replace);
+    compile_shared_object(toolchain, entry.file(".cpp"), so.temporary(), entry.file(".log"), what,
+                          compile_seconds, options.check_interrupt);
     EntryInfo written = info;
-    written.so_size = fs::file_size(entry.file(".so"));
-    written.so_hash = hash_file(entry.file(".so")).value_or("");
+    const int fd = open_entry_file(so.temporary());
+    const auto hash = fd < 0 ? std::nullopt : hash_descriptor(fd, written.so_size);
+    if (fd >= 0) ::close(fd);
+    if (!hash) so.abandon("the compiled object cannot be read back");
+    written.so_hash = *hash;
+    so.commit();
+    write_glsl(entry, derivation, written);
     write_entry(entry, written);
   } catch (const support::OutputFileError& e) {
     throw LoadError(fmt::format("cannot write the compiled filter into the cache: {}", e.what()));
@@ -308,10 +344,51 @@ Resolved resolve(const std::string& spec_or_name, const std::optional<std::strin
   info.rows = rows_text(spec.lattice);
   const std::string identity = fmt::format("abi {}\n{}\n{}\n{}\n{}", kAbiVersion, kVersion,
                                            info.spec, info.rows, toolchain.identity());
-  CacheEntry entry{resolve_cache_dir(options.cache_dir), hash_text(identity)};
+  // The directory is made, and checked, before anything is read from it or written to it.
+  CacheEntry entry{*checked_cache_dir(resolve_cache_dir(options.cache_dir), true),
+                   hash_text(identity)};
+  check_entry_files(entry);
   info.stamp =
       fmt::format("boxgen-filter abi {}; boxgen {}; key {}", kAbiVersion, kVersion, entry.key);
   return {std::move(spec), std::move(info), std::move(entry), std::move(toolchain)};
+}
+
+// A complete entry for the SPEC, built under the entry's lock unless one is there; its filter is
+// opened when `filter` is not null.
+void ensure_entry(const Resolved& r, const CompileOptions& options,
+                  std::shared_ptr<const rt::FilterSource>* filter) {
+  const std::string& name = r.info.spec;
+  std::string why;
+  const auto ready = [&] {
+    if (filter) return (*filter = open_entry(r.entry, r.info.stamp, name, why)) != nullptr;
+    return complete_entry(r.entry, r.info.stamp, why).has_value();
+  };
+  if (ready()) return;
+  {
+    // One process builds; another one wanting the same filter waits and then loads its result.
+    const EntryLock lock(r.entry);
+    if (ready()) return;
+    try {
+      auto kept = why == kGlslChanged ? intact_object(r.entry, r.info.stamp) : std::nullopt;
+      if (kept) {
+        // Only a GLSL file is not what the .json says: emitted again, without a compile.
+        gen::DerivationOptions d;
+        d.max_seconds = options.max_seconds;
+        d.max_bytes = options.max_bytes;
+        write_glsl(r.entry, gen::derive(r.spec, d), *kept);
+        write_entry(r.entry, *kept);
+      } else {
+        build_entry(r.entry, r.spec, r.info, r.toolchain, options);
+      }
+    } catch (const gen::InputError& e) {
+      throw LoadError(e.what());
+    } catch (const support::OutputFileError& e) {
+      throw LoadError(fmt::format("cannot write the compiled filter into the cache: {}", e.what()));
+    }
+  }
+  if (ready()) return;
+  throw LoadError(fmt::format("the compiled filter {} cannot be loaded: {}",
+                              runtime::nrrd_checks::printable(r.entry.file(".so").string()), why));
 }
 
 }  // namespace
@@ -333,69 +410,45 @@ rt::SplineFilter load_filter(const std::string& spec_or_name, std::optional<std:
                                 registry->name(), registry->lattice().name(), given.name()));
   }
   const Resolved r = resolve(spec_or_name, lattice, options);
-  const gen::BoxSplineSpec& spec = r.spec;
-  const EntryInfo& info = r.info;
-  const CacheEntry& entry = r.entry;
-  const Toolchain& toolchain = r.toolchain;
-  std::error_code ec;
-  fs::create_directories(entry.dir, ec);
-  if (ec)
-    throw LoadError(
-        fmt::format("cannot create the filter cache {}: {}", entry.dir.string(), ec.message()));
-  const std::string name = info.spec;
-  std::string why;
-  if (auto source = open_entry(entry, info.stamp, name, why)) return rt::SplineFilter(source);
-  {
-    // One process builds; another one wanting the same filter waits and then loads its result.
-    const EntryLock lock(entry);
-    if (auto source = open_entry(entry, info.stamp, name, why)) return rt::SplineFilter(source);
-    try {
-      build_entry(entry, spec, info, toolchain, options);
-    } catch (const gen::InputError& e) {
-      throw LoadError(e.what());
-    }
-  }
-  if (auto source = open_entry(entry, info.stamp, name, why)) return rt::SplineFilter(source);
-  throw LoadError(
-      fmt::format("the compiled filter {} cannot be loaded: {}", entry.file(".so").string(), why));
+  std::shared_ptr<const rt::FilterSource> source;
+  ensure_entry(r, options, &source);
+  return rt::SplineFilter(source);
 }
 
 EmittedGlsl load_glsl(const std::string& spec, std::optional<std::string> lattice,
                       bool double_precision, const CompileOptions& options) {
   if (lattice && lattice->empty()) lattice.reset();
   const Resolved r = resolve(spec, lattice, options);
+  ensure_entry(r, options, nullptr);
+  // Read once, and checked against the .json on what was read.
+  const auto info = read_entry(r.entry);
   const fs::path file = glsl_file(r.entry, double_precision);
-  std::error_code ec;
-  if (!fs::exists(file, ec)) {  // an entry built before the GL device: derive it again
-    fs::create_directories(r.entry.dir, ec);
-    const EntryLock lock(r.entry);
-    gen::DerivationOptions d;
-    d.max_seconds = options.max_seconds;
-    d.max_bytes = options.max_bytes;
-    try {
-      write_glsl(r.entry, gen::derive(r.spec, d), r.info);
-    } catch (const gen::InputError& e) {
-      throw LoadError(e.what());
-    } catch (const support::OutputFileError& e) {
-      throw LoadError(fmt::format("cannot write the GLSL evaluator into the cache: {}", e.what()));
-    }
-  }
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  if (!in) throw LoadError(fmt::format("cannot read the GLSL evaluator {}", file.string()));
-  return {"spec_" + r.entry.key, text.str()};
+  const auto text = read_entry_file(file);
+  if (!info || !text || hash_text(*text) != glsl_hash(*info, double_precision))
+    throw LoadError(fmt::format("the GLSL evaluator {} changed while it was read",
+                                runtime::nrrd_checks::printable(file.string())));
+  return {"spec_" + r.entry.key, *text};
 }
 
 std::vector<CachedFilter> cached_filters(const CompileOptions& options) {
   std::vector<CachedFilter> out;
+  const auto dir = checked_cache_dir(resolve_cache_dir(options.cache_dir), false);
+  if (!dir) return out;
+  // What the .json says is printed (boxrecon filters): only entries named as the loader names
+  // them, and only text a terminal shows as text.
+  const auto is_key = [](const std::string& k) {
+    return k.size() == 16 && k.find_first_not_of("0123456789abcdef") == std::string::npos;
+  };
+  const auto plain = [](const std::string& t) {
+    return std::all_of(t.begin(), t.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
+  };
   std::error_code ec;
-  const fs::path dir = resolve_cache_dir(options.cache_dir);
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    if (it->path().extension() != ".json") continue;
-    const CacheEntry entry{dir, it->path().stem().string()};
+  for (fs::directory_iterator it(*dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->path().extension() != ".json" || !is_key(it->path().stem().string())) continue;
+    const CacheEntry entry{*dir, it->path().stem().string()};
     const auto info = read_entry(entry);
-    if (!info || !fs::exists(entry.file(".so"), ec)) continue;
+    if (!info || open_entry_file(entry.file(".so")) < 0) continue;
+    if (!plain(info->spec) || !plain(info->lattice) || !plain(info->rows)) continue;
     out.push_back({info->spec, info->lattice, info->rows, entry.key, entry.file(".so")});
   }
   std::sort(out.begin(), out.end(), [](const CachedFilter& a, const CachedFilter& b) {

@@ -34,6 +34,12 @@ struct CompileOptions {
   // Seconds and bytes the derivation may take before it is refused (0: the generator's limits).
   double max_seconds = 0;
   double max_bytes = 0;
+  // Seconds a compile may take before it is stopped (0: BOXGEN_COMPILE_TIMEOUT, else 600).
+  double compile_seconds = 0;
+  // Called every 0.1 s while a compile runs; an exception it throws stops the compile (the
+  // compiler's process group is killed) and goes on to the caller. Python raises
+  // KeyboardInterrupt through it.
+  std::function<void()> check_interrupt;
 };
 
 // The filter of `spec_or_name` on `lattice` (bcc | fcc | cartesian | the rows of G, as boxgen

@@ -29,6 +29,15 @@ namespace {
 using Complex = std::complex<double>;
 using support::floor_div;
 
+// Complex products by the textbook formula. The library's (C99 Annex G) also checks each result
+// for NaN parts to recover infinities, a cost the per-frequency systems (finite numbers of order
+// 1) do not need: callgrind counts 455 million instructions in the solve of m7 on 2 x 40^3
+// samples with it, 309 million without. Found by ordinary lookup here and preferred to the
+// library's template.
+Complex operator*(const Complex& a, const Complex& b) {
+  return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
+}
+
 // An index or size computed in int (the kernels' boxes, K^2: small), as a std::size_t.
 std::size_t index_of(int i) { return static_cast<std::size_t>(i); }
 
@@ -189,7 +198,7 @@ class FrequencySolver {
   void solve(Complex* x, std::ptrdiff_t stride) {
     if (k_ == 1) {
       const Complex hv = h_[0];
-      x[0] *= std::conj(hv) / (std::norm(hv) + mu_ * std::norm(d_[0]));
+      x[0] = x[0] * (std::conj(hv) / (std::norm(hv) + mu_ * std::norm(d_[0])));
       return;
     }
     if (k_ == 2) return solve2(x, stride);
@@ -479,6 +488,13 @@ Regularisation regularisation(const SplineFilter& f, const DiscreteFilter& value
   return r;
 }
 
+void require_few_cosets(const CosetLattice& lattice) {
+  if (lattice.coset_count() > kMaxInterpolationCosets)
+    throw std::invalid_argument(fmt::format(
+        "interpolation takes lattices of at most {} cosets of d Z^3; the {} lattice has {}",
+        kMaxInterpolationCosets, lattice.label(), lattice.coset_count()));
+}
+
 // The discrete convolution of two tap tables.
 DiscreteFilter convolve(const DiscreteFilter& p, const DiscreteFilter& q) {
   std::map<std::array<int, 3>, double> sum;
@@ -615,7 +631,7 @@ SymbolBounds symbol_bounds(const DiscreteFilter& values) {
     for (int k1 = 0; k1 < kGrid; ++k1) {
       sums.set_k1(k1);
       for (int k0 = 0; k0 < kGrid; ++k0) {
-        const double m = std::abs(sums.at_k0(0, k0));
+        const double m = std::sqrt(std::norm(sums.at_k0(0, k0)));  // no hypot: values of order 1
         b.min = std::min(b.min, m);
         b.max = std::max(b.max, m);
       }
@@ -677,6 +693,7 @@ void residual_at_samples(CosetTransform& x, const LatticeVolume<T>& samples,
 }  // namespace
 
 int interpolation_margin(const SplineFilter& f, std::optional<double> lambda) {
+  require_few_cosets(f.lattice());
   const DiscreteFilter values = lattice_values(f);
   return f.required_margin(PrefilterChoice::None) +
          decay_radius(setup(f, values, lambda).problem, kMarginDecay);
@@ -688,6 +705,7 @@ LatticeVolume<T> interpolate(LatticeVolume<T> samples, const SplineFilter& f,
   f.check_lattice(samples.lattice());
   const CosetLattice lattice = samples.lattice();
   const Sizes n = samples.sizes();
+  require_few_cosets(lattice);
   for (int a = 0; a < 3; ++a)
     if (n[a] < 2)
       throw std::invalid_argument(fmt::format(

@@ -43,6 +43,9 @@ SymbolBounds symbol_bounds(const DiscreteFilter& values);
 // lambda = kDefaultLambda unless told otherwise (and refuses lambda = 0).
 inline constexpr double kVanishing = 1e-6;
 inline constexpr double kDefaultLambda = 1e-3;
+// Largest K (cosets of d Z^3) interpolation takes: each frequency solves a K x K system (BCC 2,
+// FCC 4; a custom lattice of period d up to d^3 / |det G|).
+inline constexpr int kMaxInterpolationCosets = 32;
 
 struct InterpolationOptions {
   // Tikhonov weight relative to max |A|^2, in [0, 1]; none: 0 where the symbol does not vanish,
@@ -70,10 +73,10 @@ struct InterpolationReport {
 };
 
 // The interpolating (or regularised) coefficients of f for `samples`. Throws
-// std::invalid_argument (one line) for a volume of another lattice, a volume with fewer than 2
-// samples per coset along an axis, lambda not finite or outside [0, 1], lambda = 0 where the
-// symbol vanishes, or a transform beyond LatticeVolume's limits; std::bad_alloc when memory runs
-// out. Computes in double whatever T is.
+// std::invalid_argument (one line) for a volume of another lattice, a lattice of more than
+// kMaxInterpolationCosets cosets, a volume with fewer than 2 samples per coset along an axis,
+// lambda not finite or outside [0, 1], lambda = 0 where the symbol vanishes, or a transform beyond
+// LatticeVolume's limits; std::bad_alloc when memory runs out. Computes in double whatever T is.
 // Coset cells of samples to take beyond a region of interest so that the faces' influence on the
 // interpolating coefficients has decayed below 1e-6 of the data there (with the reconstruction
 // margin of f): SplineFilter::required_margin(interp). The same arguments as interpolate.

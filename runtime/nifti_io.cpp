@@ -2,11 +2,17 @@
 
 #include <fmt/format.h>
 #include <nifti2_io.h>
+#include <unistd.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <span>
@@ -16,7 +22,9 @@
 #include <utility>
 #include <vector>
 
+#include "runtime/nifti_header.h"
 #include "runtime/nrrd_checks.h"
+#include "support/output_file.h"
 
 namespace boxgen::runtime {
 
@@ -67,13 +75,205 @@ void convert(const void* data, std::size_t count, double slope, double inter, st
                    [](S x) { return to_sample<T>(static_cast<double>(x)); });
 }
 
+// What a file holds that is not one scalar 3-D volume, named as its users know it: "" when it is
+// one. Checked before the dimensions, so that a CIFTI matrix or a vector field is not called a
+// time series.
+std::string unsupported_kind(const nifti_image& im) {
+  if (im.nifti_type == NIFTI_FTYPE_ANALYZE)
+    return "it is an Analyze 7.5 file (a .hdr/.img pair without the NIfTI magic), whose "
+           "orientation is undefined; convert it to NIfTI with the tool that made it";
+  bool cifti = im.intent_code >= 3000 && im.intent_code <= 3099;  // NIFTI_INTENT_CONNECTIVITY_*
+  for (int e = 0; e < im.num_ext && im.ext_list; ++e)
+    cifti = cifti || im.ext_list[e].ecode == NIFTI_ECODE_CIFTI;
+  if (cifti)
+    return "it is a CIFTI file (surface and grayordinate data), not a volume; only 3-D NIfTI "
+           "volumes are read";
+  if (im.datatype == DT_RGB24 || im.datatype == DT_RGBA32 ||
+      im.intent_code == NIFTI_INTENT_RGB_VECTOR || im.intent_code == NIFTI_INTENT_RGBA_VECTOR)
+    return "it holds RGB colours, not scalar samples; only scalar volumes are read";
+  const bool vector =
+      im.intent_code == NIFTI_INTENT_VECTOR || im.intent_code == NIFTI_INTENT_DISPVECT ||
+      im.intent_code == NIFTI_INTENT_SYMMATRIX || im.intent_code == NIFTI_INTENT_GENMATRIX;
+  if (vector || (im.dim[0] >= 5 && im.dim[5] > 1))
+    return fmt::format(
+        "it holds {} values per voxel (a vector, tensor or matrix image: dimension 5 of size {}); "
+        "only scalar volumes are read",
+        im.dim[0] >= 5 ? im.dim[5] : 1, im.dim[0] >= 5 ? im.dim[5] : 1);
+  return {};
+}
+
+// The file that holds the header: `path`, or for the .img of a .hdr/.img pair its .hdr (which
+// nifticlib finds the same way).
+fs::path header_file(const fs::path& path) {
+  std::unique_ptr<char, decltype(&std::free)> found(nifti_findhdrname(path.c_str()), &std::free);
+  return found ? fs::path(found.get()) : path;
+}
+
+int nifti_datatype(SampleType type) {
+  switch (type) {
+    case SampleType::Int8:
+      return DT_INT8;
+    case SampleType::UInt8:
+      return DT_UINT8;
+    case SampleType::Int16:
+      return DT_INT16;
+    case SampleType::UInt16:
+      return DT_UINT16;
+    case SampleType::Int32:
+      return DT_INT32;
+    case SampleType::UInt32:
+      return DT_UINT32;
+    case SampleType::Float32:
+      return DT_FLOAT32;
+    case SampleType::Float64:
+      break;
+  }
+  return DT_FLOAT64;
+}
+
+bool ends_with_gz(const fs::path& path) {
+  std::string name = path.filename().string();
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return name.ends_with(".gz");
+}
+
+// The NIfTI-1 header of a single-file image (magic "n+1", data at byte 352) of `sizes` voxels of
+// `type`, with the affine as sform and qform.
+nifti_1_header nifti1_header(const Sizes& sizes, const Affine& affine, SampleType type) {
+  const std::int64_t dims[8] = {3, sizes[0], sizes[1], sizes[2], 1, 1, 1, 1};
+  std::unique_ptr<nifti_1_header, decltype(&std::free)> made(
+      nifti_make_new_n1_header(dims, nifti_datatype(type)), &std::free);
+  if (!made) throw NrrdError("nifticlib could not make a NIfTI-1 header");
+  nifti_1_header h = *made;
+  nifti_dmat44 m{};
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) m.m[r][c] = affine.linear[r][c];
+    m.m[r][3] = affine.translation[r];
+  }
+  m.m[3][3] = 1;
+  double qb = 0, qc = 0, qd = 0, qx = 0, qy = 0, qz = 0, dx = 0, dy = 0, dz = 0, qfac = 0;
+  nifti_dmat44_to_quatern(m, &qb, &qc, &qd, &qx, &qy, &qz, &dx, &dy, &dz, &qfac);
+  h.qform_code = NIFTI_XFORM_ALIGNED_ANAT;
+  h.sform_code = NIFTI_XFORM_ALIGNED_ANAT;
+  h.quatern_b = static_cast<float>(qb);
+  h.quatern_c = static_cast<float>(qc);
+  h.quatern_d = static_cast<float>(qd);
+  h.qoffset_x = static_cast<float>(qx);
+  h.qoffset_y = static_cast<float>(qy);
+  h.qoffset_z = static_cast<float>(qz);
+  h.pixdim[0] = static_cast<float>(qfac);
+  h.pixdim[1] = static_cast<float>(dx);
+  h.pixdim[2] = static_cast<float>(dy);
+  h.pixdim[3] = static_cast<float>(dz);
+  float* rows[3] = {h.srow_x, h.srow_y, h.srow_z};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) rows[r][c] = static_cast<float>(m.m[r][c]);
+  h.scl_slope = 1;
+  h.scl_inter = 0;
+  h.xyzt_units = 0;
+  h.vox_offset = 352;
+  std::memcpy(h.magic, "n+1", 4);
+  return h;
+}
+
 }  // namespace
+
+void write_nifti(const fs::path& path, const Sizes& sizes, const Affine& affine,
+                 const EncodedSamples& samples) {
+  const auto count = static_cast<std::uint64_t>(sizes[0]) * static_cast<std::uint64_t>(sizes[1]) *
+                     static_cast<std::uint64_t>(sizes[2]);
+  if (count * sample_type_size(samples.type) != samples.bytes.size())
+    throw std::invalid_argument(fmt::format("a NIfTI grid of {} x {} x {} {} voxels holds {} bytes",
+                                            sizes[0], sizes[1], sizes[2],
+                                            sample_type_name(samples.type), samples.bytes.size()));
+  for (int a = 0; a < 3; ++a)
+    if (sizes[a] < 1 || sizes[a] > std::numeric_limits<std::int16_t>::max())
+      throw NrrdError(fmt::format(
+          "cannot write NIfTI-1 '{}': its size {} on axis {} is beyond NIfTI-1's 1..32767",
+          nrrd_checks::printable(path.string()), sizes[a], a));
+  const auto m = affine.linear;
+  const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                     m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                     m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  bool finite = std::isfinite(det) && det != 0;
+  for (int r = 0; r < 3; ++r) finite = finite && std::isfinite(affine.translation[r]);
+  if (!finite)
+    throw std::invalid_argument(
+        "a NIfTI grid's affine must be finite with independent axes (a non-zero determinant)");
+  nifti_1_header header{};
+  {
+    std::lock_guard lock(nifti_mutex());
+    nifti_set_debug_level(0);
+    header = nifti1_header(sizes, affine, samples.type);
+  }
+  const char extension[4] = {0, 0, 0, 0};  // no header extensions
+  const bool gz = ends_with_gz(path);
+  int error = 0;  // errno of the failed write
+  const auto fill = [&](std::FILE* file) {
+    errno = 0;
+    if (!gz) {
+      const bool ok = std::fwrite(&header, sizeof header, 1, file) == 1 &&
+                      std::fwrite(extension, sizeof extension, 1, file) == 1 &&
+                      (samples.bytes.empty() ||
+                       std::fwrite(samples.bytes.data(), samples.bytes.size(), 1, file) == 1);
+      error = ok ? 0 : errno;
+      return ok;
+    }
+    const int fd = ::dup(::fileno(file));
+    if (fd < 0) return error = errno, false;
+    gzFile z = gzdopen(fd, "wb1");  // the fast level, as nibabel's default
+    if (!z) {
+      ::close(fd);
+      return false;
+    }
+    bool ok = gzwrite(z, &header, sizeof header) == static_cast<int>(sizeof header) &&
+              gzwrite(z, extension, sizeof extension) == static_cast<int>(sizeof extension);
+    constexpr std::size_t kChunk = std::size_t{1} << 24;
+    for (std::size_t at = 0; ok && at < samples.bytes.size(); at += kChunk) {
+      const auto n = static_cast<unsigned>(std::min(kChunk, samples.bytes.size() - at));
+      ok = gzwrite(z, samples.bytes.data() + at, n) == static_cast<int>(n);
+    }
+    if (!ok) error = errno;
+    const bool closed = gzclose(z) == Z_OK;
+    if (!closed && error == 0) error = errno;
+    return ok && closed;
+  };
+  const auto why = [&] {
+    return fmt::format("writing failed: {}", error != 0 ? std::strerror(error) : "unknown error");
+  };
+  try {
+    support::write_output_file(path, fill, why);
+  } catch (const support::OutputFileError& e) {
+    throw NrrdError(e.what());
+  }
+}
 
 bool is_nifti_path(const fs::path& path) {
   std::string name = path.filename().string();
   std::transform(name.begin(), name.end(), name.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return name.ends_with(".nii") || name.ends_with(".nii.gz");
+  for (const char* extension : {".nii", ".hdr", ".img"})
+    if (name.ends_with(extension) || name.ends_with(std::string(extension) + ".gz")) return true;
+  return false;
+}
+
+void refuse_foreign_file(const fs::path& path) {
+  std::string name = path.filename().string();
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  char head[132] = {};
+  std::size_t got = 0;
+  if (std::FILE* file = fs::is_regular_file(path) ? std::fopen(path.c_str(), "rb") : nullptr) {
+    got = std::fread(head, 1, sizeof head, file);
+    std::fclose(file);
+  }
+  // DICOM Part 10: a 128-byte preamble, then "DICM"; older files have neither, but a .dcm name.
+  if ((got == sizeof head && std::memcmp(head + 128, "DICM", 4) == 0) || name.ends_with(".dcm"))
+    throw NrrdError(fmt::format(
+        "cannot read volume '{}': it is a DICOM file; convert the series to NIfTI with dcm2niix "
+        "(Debian package dcm2niix: dcm2niix -o OUTDIR DICOMDIR) and read the .nii.gz",
+        nrrd_checks::printable(path.string())));
 }
 
 template <class T>
@@ -91,9 +291,14 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
 
   std::lock_guard lock(nifti_mutex());
   nifti_set_debug_level(0);  // nifticlib prints its errors on stderr; ours are one line
+  // The header's bytes first: what nifticlib would repair silently is refused (nifti_header.h).
+  std::string refusal;
+  const nifti_header::RawHeader raw = nifti_header::read_raw_header(header_file(path), refusal);
+  if (!refusal.empty()) fail(refusal);
   Image image(nifti_image_read(path.c_str(), 0));
   if (!image) fail("not a valid NIfTI-1 or NIfTI-2 file (bad header, or not NIfTI)");
   const nifti_image& im = *image;
+  if (const std::string why = unsupported_kind(im); !why.empty()) fail(why);
   for (int a = 4; a <= 7; ++a)
     if (im.dim[0] >= a && im.dim[a] > 1)
       fail(
@@ -119,30 +324,24 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
   if (count * static_cast<std::uint64_t>(im.nbyper) > limits.max_data_bytes)
     fail(fmt::format("its data of {} bytes exceeds the limit of {} bytes",
                      count * static_cast<std::uint64_t>(im.nbyper), limits.max_data_bytes));
-  if (!std::isfinite(im.scl_slope) || !std::isfinite(im.scl_inter))
-    fail("its scale slope or intercept is not finite");
 
-  // Geometry: a diagonal affine (off-diagonal terms below 1e-6 of the diagonal, the rounding of
-  // a quaternion), translation = world point of voxel (0, 0, 0).
+  // Geometry: a diagonal affine (nifti_header::oblique_entry), translation = world point of voxel
+  // (0, 0, 0). Without sform or qform the spacing is pixdim as the file holds it.
   Vec3 steps{}, origin{};
   if (im.sform_code <= 0 && im.qform_code <= 0) {
-    steps = {im.dx, im.dy, im.dz};
+    steps = {raw.pixdim[1], raw.pixdim[2], raw.pixdim[3]};
   } else {
     const char* which = nullptr;
     const nifti_dmat44& m = world_affine(im, which);
+    double rows[3][4];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c) rows[r][c] = m.m[r][c];
+    if (const std::string oblique = nifti_header::oblique_entry(rows, which); !oblique.empty())
+      fail(oblique);
     for (int a = 0; a < 3; ++a) {
       steps[a] = m.m[a][a];
       origin[a] = m.m[a][3];
     }
-    double scale = 0;
-    for (int a = 0; a < 3; ++a) scale = std::max(scale, std::fabs(steps[a]));
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        if (r != c && !(std::fabs(m.m[r][c]) <= 1e-6 * scale))
-          fail(
-              fmt::format("its {} is oblique or permutes the axes (entry ({}, {}) = {}); only "
-                          "axis-aligned voxels are supported: resample it first",
-                          which, r, c, m.m[r][c]));
   }
   for (int a = 0; a < 3; ++a)
     if (!std::isfinite(steps[a]) || steps[a] == 0 || !std::isfinite(origin[a]))
@@ -151,14 +350,19 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
                       "not finite)",
                       steps[a], a));
 
-  if (nifti_image_load(image.get()) != 0 || !im.data)
-    fail("its data is missing or cut short (a truncated or corrupt file)");
-  std::vector<T> samples(static_cast<std::size_t>(count));
+  // The data as the file holds it: nifticlib's loader would turn NaN and infinite floats into 0.
   const auto n = static_cast<std::size_t>(count);
+  std::vector<unsigned char> data(n * static_cast<std::size_t>(im.nbyper));
+  if (const std::string problem = nifti_header::read_data(im.iname, im.iname_offset, data.size(),
+                                                          raw.swapped, im.nbyper, data.data());
+      !problem.empty())
+    fail(problem);
+  image.reset();
+  std::vector<T> samples(n);
   (void)visit_sample_type(type, [&](auto tag) {
-    convert<T, decltype(tag)>(im.data, n, im.scl_slope, im.scl_inter, samples);
+    convert<T, decltype(tag)>(data.data(), n, raw.scl_slope, raw.scl_inter, samples);
   });
-  image.reset();  // the file's copy of the data is no longer needed
+  data = {};  // the file's copy of the data is no longer needed
   if (!limits.allow_non_finite)
     if (const std::string why = nrrd_checks::check_finite<T>(samples, 1, sizes); !why.empty())
       fail(why);

@@ -1,5 +1,6 @@
-// NIfTI-1 and NIfTI-2 volumes (.nii, .nii.gz; the format of MRI and fMRI scanners and
-// templates) read through nifticlib (Debian libnifti2-dev), as Cartesian lattice volumes.
+// NIfTI-1 and NIfTI-2 volumes (.nii, .nii.gz and .hdr/.img pairs; the format of MRI and fMRI
+// scanners and templates) read through nifticlib (Debian libnifti2-dev) as Cartesian lattice
+// volumes, and Cartesian grids written as NIfTI-1 (write_nifti).
 //
 // Geometry: voxel (i, j, k) sits at the world point the sform gives (the qform when the sform
 // code is 0; pixdim scaling from the origin when both codes are 0), as stored: the world frame is
@@ -10,13 +11,17 @@
 //
 // Samples: int8, uint8, int16, uint16, int32, uint32, float32, float64, converted to T; a scale
 // slope other than 0 applies value = slope x + intercept (to every type, as the NIfTI standard
-// says). Only one 3-D volume: a time series (dim[4] > 1) is refused. Every failure is a NrrdError
-// (the one file error of the runtime) whose message is one line naming the file; nifticlib's own
-// messages are switched off.
+// says). Only one scalar 3-D volume: a time series (dim[4] > 1), a vector or matrix image
+// (dim[5] > 1 or a vector intent), RGB voxels, CIFTI files and Analyze 7.5 pairs (no NIfTI magic,
+// no defined orientation) are refused, each by its name. Every failure is a NrrdError (the one
+// file error of the runtime) whose message is one line naming the file; nifticlib's own messages
+// are switched off.
 #pragma once
 #include <filesystem>
 
+#include "runtime/affine.h"
 #include "runtime/nrrd_io.h"
+#include "runtime/sample_encoding.h"
 
 namespace boxgen::runtime {
 
@@ -27,16 +32,33 @@ template <class T>
 LatticeVolume<T> read_nifti(const std::filesystem::path& path, const NrrdReadLimits& limits = {},
                             SourceSamples* source = nullptr);
 
-// Whether `path` names a NIfTI file by its extension (.nii or .nii.gz, any case).
+// Whether `path` names a NIfTI file by its extension (.nii, .nii.gz, or one file of a .hdr/.img
+// pair, also gzipped; any case). nifticlib reads a pair from either name.
 bool is_nifti_path(const std::filesystem::path& path);
 
-// The one reader of volume files: NIfTI by extension (is_nifti_path), NRRD otherwise.
+// Throws NrrdError (one line, with what to do) when `path` is a file of a format neither reader
+// takes but users have: DICOM (by its "DICM" marker or a .dcm name). Returns otherwise.
+void refuse_foreign_file(const std::filesystem::path& path);
+
+// Writes a Cartesian grid as one NIfTI-1 file (.nii; gzip-compressed when the name ends in .gz):
+// `sizes` voxels, x fastest, of `samples` (their type is the file's datatype), voxel (i, j, k) at
+// the world point affine(i, j, k). The affine is the sform (exact) and the qform (its rotation,
+// voxel sizes and qfac: exact for every grid without shear), both with code 2 (aligned
+// anatomical: the world frame of the volume it came from); units unknown, as nibabel writes
+// them. Written through output_file.h (atomic; links followed, special files refused). Throws
+// NrrdError (one line).
+void write_nifti(const std::filesystem::path& path, const Sizes& sizes, const Affine& affine,
+                 const EncodedSamples& samples);
+
+// The one reader of volume files: NIfTI by extension (is_nifti_path), NRRD otherwise (after
+// refuse_foreign_file).
 template <class T>
 LatticeVolume<T> read_volume_file(const std::filesystem::path& path,
                                   const NrrdReadLimits& limits = {},
                                   SourceSamples* source = nullptr) {
-  return is_nifti_path(path) ? read_nifti<T>(path, limits, source)
-                             : read_lattice_nrrd<T>(path, limits, source);
+  if (is_nifti_path(path)) return read_nifti<T>(path, limits, source);
+  refuse_foreign_file(path);
+  return read_lattice_nrrd<T>(path, limits, source);
 }
 
 extern template LatticeVolume<float> read_nifti<float>(const std::filesystem::path&,

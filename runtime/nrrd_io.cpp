@@ -100,6 +100,28 @@ constexpr int teem_type() {
   return std::is_same_v<T, float> ? nrrdTypeFloat : nrrdTypeDouble;
 }
 
+int teem_type(SampleType type) {
+  switch (type) {
+    case SampleType::Int8:
+      return nrrdTypeChar;
+    case SampleType::UInt8:
+      return nrrdTypeUChar;
+    case SampleType::Int16:
+      return nrrdTypeShort;
+    case SampleType::UInt16:
+      return nrrdTypeUShort;
+    case SampleType::Int32:
+      return nrrdTypeInt;
+    case SampleType::UInt32:
+      return nrrdTypeUInt;
+    case SampleType::Float32:
+      return nrrdTypeFloat;
+    case SampleType::Float64:
+      break;
+  }
+  return nrrdTypeDouble;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Writing
 
@@ -147,10 +169,9 @@ void write_atomically(const fs::path& path, const Nrrd* nrrd) {
 
 // Wraps `data` (not copied, not freed) in a Nrrd with the given sizes, space directions and
 // origin in a 3-D right-handed space.
-template <class T>
-NrrdShell wrap(const T* data, unsigned dim, const std::size_t* sizes) {
+NrrdShell wrap(const void* data, int type, unsigned dim, const std::size_t* sizes) {
   NrrdShell nrrd(nrrdNew());
-  if (!nrrd || nrrdWrap_nva(nrrd.get(), const_cast<T*>(data), teem_type<T>(), dim, sizes) != 0 ||
+  if (!nrrd || nrrdWrap_nva(nrrd.get(), const_cast<void*>(data), type, dim, sizes) != 0 ||
       nrrdSpaceSet(nrrd.get(), nrrdSpace3DRightHanded) != 0)
     throw NrrdError("cannot describe the volume to Teem: " + teem_error());
   for (unsigned a = 0; a < dim; ++a)
@@ -286,15 +307,25 @@ std::string read_steps(const Nrrd* nrrd, unsigned first, int k, int d, const std
                        VolumeHeader& header) {
   const bool cartesian = k == 1 && d == 1;
   if (cartesian) {
+    // The domain axes start at `first`: a 4-D file with a coset axis of size 1 (the layout
+    // boxrecon once wrote for Cartesian volumes) has its directions on axes 1..3.
     for (int a = 0; a < 3; ++a) {
-      const double step = nrrd->axis[a].spaceDirection[a];
+      const double* direction = nrrd->axis[first + a].spaceDirection;
+      const double step = direction[a];
       bool aligned = std::isfinite(step) && step != 0;
       for (int b = 0; b < 3; ++b)
-        if (b != a && !(std::fabs(nrrd->axis[a].spaceDirection[b]) <= 1e-9 * std::fabs(step)))
-          aligned = false;
-      if (!aligned)
-        return "its space directions are not along the axes ((sx,0,0) (0,sy,0) (0,0,sz)): "
-               "oblique or permuted grids are not supported";
+        if (b != a && !(std::fabs(direction[b]) <= 1e-9 * std::fabs(step))) aligned = false;
+      if (!aligned) {
+        std::string found;
+        for (int c = 0; c < 3; ++c) {
+          const double* v = nrrd->axis[first + c].spaceDirection;
+          found += fmt::format("{}({:.9g},{:.9g},{:.9g})", c ? " " : "", v[0], v[1], v[2]);
+        }
+        return fmt::format(
+            "its space directions {} are not along the axes ((sx,0,0) (0,sy,0) (0,0,sz)): axis {} "
+            "is oblique or permuted",
+            found, first + a);
+      }
       header.steps[a] = step;
     }
   } else {
@@ -424,8 +455,13 @@ std::string teem_read(std::FILE* file, Nrrd* nrrd, bool header_only, DataLayout&
 
 }  // namespace
 
+namespace {
+
+// The lattice volume layout of nrrd_io.h for `volume`'s geometry, with the samples at `data` of
+// Teem type `type`.
 template <class T>
-void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume) {
+void write_lattice(const fs::path& path, const LatticeVolume<T>& volume, const void* data,
+                   int type) {
   std::lock_guard lock(teem_mutex());
   const Sizes& n = volume.sizes();
   const CosetLattice& lattice = volume.lattice();
@@ -436,7 +472,7 @@ void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume) {
   const std::size_t sizes[4] = {
       static_cast<std::size_t>(k == 1 ? n[0] : k), static_cast<std::size_t>(k == 1 ? n[1] : n[0]),
       static_cast<std::size_t>(k == 1 ? n[2] : n[1]), static_cast<std::size_t>(n[2])};
-  NrrdShell nrrd = wrap(volume.samples().data(), dim, sizes);
+  NrrdShell nrrd = wrap(data, type, dim, sizes);
   if (first == 1) nrrd->axis[0].kind = nrrdKindList;
   for (unsigned a = 0; a < 3; ++a) {
     nrrd->axis[first + a].kind = nrrdKindDomain;
@@ -453,6 +489,23 @@ void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume) {
     ok = nrrdKeyValueAdd(nrrd.get(), "coset_offsets", lattice.offsets_text().c_str()) == 0;
   if (!ok) throw NrrdError("cannot describe the volume to Teem: " + teem_error());
   write_atomically(path, nrrd.get());
+}
+
+}  // namespace
+
+template <class T>
+void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume) {
+  write_lattice(path, volume, volume.samples().data(), teem_type<T>());
+}
+
+template <class T>
+void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume,
+                        const EncodedSamples& samples) {
+  if (samples.bytes.size() != volume.sample_count() * sample_type_size(samples.type))
+    throw std::invalid_argument(fmt::format("{} samples of {} bytes for a volume of {} samples",
+                                            samples.bytes.size() / sample_type_size(samples.type),
+                                            sample_type_size(samples.type), volume.sample_count()));
+  write_lattice(path, volume, samples.bytes.data(), teem_type(samples.type));
 }
 
 template <class T>
@@ -477,7 +530,7 @@ void write_cartesian_nrrd(const fs::path& path, const CartesianVolume<T>& grid) 
   const std::size_t sizes[3] = {static_cast<std::size_t>(grid.sizes[0]),
                                 static_cast<std::size_t>(grid.sizes[1]),
                                 static_cast<std::size_t>(grid.sizes[2])};
-  NrrdShell nrrd = wrap(grid.values.data(), 3, sizes);
+  NrrdShell nrrd = wrap(grid.values.data(), teem_type<T>(), 3, sizes);
   for (int a = 0; a < 3; ++a) {
     nrrd->axis[a].kind = nrrdKindDomain;
     for (int b = 0; b < 3; ++b) nrrd->axis[a].spaceDirection[b] = a == b ? grid.spacing[a] : 0.0;
@@ -584,6 +637,10 @@ LatticeVolume<T> read_lattice_nrrd(const fs::path& path, const NrrdReadLimits& l
 
 template void write_lattice_nrrd<float>(const fs::path&, const LatticeVolume<float>&);
 template void write_lattice_nrrd<double>(const fs::path&, const LatticeVolume<double>&);
+template void write_lattice_nrrd<float>(const fs::path&, const LatticeVolume<float>&,
+                                        const EncodedSamples&);
+template void write_lattice_nrrd<double>(const fs::path&, const LatticeVolume<double>&,
+                                         const EncodedSamples&);
 template LatticeVolume<float> read_lattice_nrrd<float>(const fs::path&, const NrrdReadLimits&,
                                                        SourceSamples*);
 template LatticeVolume<double> read_lattice_nrrd<double>(const fs::path&, const NrrdReadLimits&,

@@ -50,6 +50,7 @@
 
 #include "runtime/cartesian_volume.h"
 #include "runtime/lattice_volume.h"
+#include "runtime/sample_encoding.h"
 #include "runtime/source_samples.h"
 
 namespace boxgen::runtime {
@@ -85,6 +86,11 @@ void require_output_directory(const std::filesystem::path& path);
 // NrrdError if the file cannot be written.
 template <class T>
 void write_lattice_nrrd(const std::filesystem::path& path, const LatticeVolume<T>& volume);
+// The same with `samples` (volume.sample_count() of them, encode_samples) stored in place of the
+// volume's own: another sample type (boxrecon's --type).
+template <class T>
+void write_lattice_nrrd(const std::filesystem::path& path, const LatticeVolume<T>& volume,
+                        const EncodedSamples& samples);
 
 // Reads a lattice volume (any lattice; a 3-D NRRD without a lattice key is a Cartesian volume).
 // Samples of any type in int8, uint8, int16, uint16, int32, uint32, float, double are converted
@@ -108,6 +114,11 @@ extern template void write_lattice_nrrd<float>(const std::filesystem::path&,
                                                const LatticeVolume<float>&);
 extern template void write_lattice_nrrd<double>(const std::filesystem::path&,
                                                 const LatticeVolume<double>&);
+extern template void write_lattice_nrrd<float>(const std::filesystem::path&,
+                                               const LatticeVolume<float>&, const EncodedSamples&);
+extern template void write_lattice_nrrd<double>(const std::filesystem::path&,
+                                                const LatticeVolume<double>&,
+                                                const EncodedSamples&);
 extern template LatticeVolume<float> read_lattice_nrrd<float>(const std::filesystem::path&,
                                                               const NrrdReadLimits&,
                                                               SourceSamples*);

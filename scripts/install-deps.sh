@@ -29,7 +29,7 @@ PACKAGES=(
   python3-dask python3-distributed      # boxgen.dask: chunked resampling on dask (local or a cluster)
   python3-pytest                        # the Python tests (label python)
   python3-scipy                         # scripts/compare_scipy.py and scripts/scipy_tricubic_values.py: boxgen beside scipy
-  python3-nibabel                       # scripts/fig10_scipy.py reads the MRI template for scipy
+  python3-nibabel                       # scripts/fig10_scipy.py reads the MRI template; the tests read boxrecon's NIfTI output
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

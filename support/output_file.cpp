@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -110,7 +111,15 @@ void unregister_temporary(int slot) {
   if (slot >= 0) g_slots[slot].state.store(kFree);
 }
 
+// The child process groups to kill on a signal (ChildProcessGroup), stored like the temporaries.
+std::array<std::atomic<int>, kSlots> g_children{};
+
 extern "C" void remove_temporaries_and_die(int signal) {
+  for (auto& child : g_children)
+    if (const int leader = child.load(); leader > 0) {
+      ::kill(-leader, SIGKILL);
+      ::waitpid(leader, nullptr, 0);  // its output files are closed once it is gone
+    }
   for (auto& slot : g_slots)
     if (slot.state.load() == kLive) ::unlink(slot.path.data());
   std::signal(signal, SIG_DFL);
@@ -170,11 +179,37 @@ fs::path check_output_file(const fs::path& path, std::span<const fs::path> input
   return target;
 }
 
-PendingOutput::PendingOutput(const fs::path& path, std::span<const fs::path> inputs)
-    : path_(path), target_(check_output_file(path, inputs)) {
+namespace {
+
+// The target of a write that replaces a link instead of following it: `path` itself, which must
+// be a regular file, a symbolic link or absent, in an existing directory.
+fs::path check_replaced_file(const fs::path& path) {
+  const std::string name = path.filename().string();
+  if (name.empty() || name == "." || name == "..") refuse(path, "not a file name");
+  struct stat info {};
+  if (::lstat(path.c_str(), &info) == 0) {
+    if (!S_ISREG(info.st_mode) && !S_ISLNK(info.st_mode))
+      refuse(path, fmt::format("it is {}; only regular files are written", kind_of(info.st_mode)));
+  } else if (errno != ENOENT) {
+    refuse(path, reason(errno));
+  } else {
+    std::error_code ec;
+    if (!fs::is_directory(directory_of(path), ec))
+      refuse(path, fmt::format("the directory '{}' does not exist", shown(directory_of(path))));
+  }
+  return path;
+}
+
+}  // namespace
+
+PendingOutput::PendingOutput(const fs::path& path, std::span<const fs::path> inputs,
+                             LinkPolicy links)
+    : path_(path),
+      target_(links == LinkPolicy::replace ? check_replaced_file(path)
+                                           : check_output_file(path, inputs)) {
   remove_stale_temporaries(target_);
   struct stat old {};
-  const bool replacing = ::stat(target_.c_str(), &old) == 0;
+  const bool replacing = links == LinkPolicy::write_through && ::stat(target_.c_str(), &old) == 0;
   static std::atomic<unsigned> counter{0};
   int fd = -1;
   for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
@@ -183,7 +218,8 @@ PendingOutput::PendingOutput(const fs::path& path, std::span<const fs::path> inp
     // Registered before it exists, so that a signal between the two cannot leave it behind (the
     // name holds our pid: no other live process creates it).
     slot_ = register_temporary(temporary_);
-    fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC,
+                links == LinkPolicy::replace ? 0644 : 0666);
     if (fd < 0) {
       const int error = errno;
       unregister_temporary(slot_);
@@ -211,8 +247,13 @@ PendingOutput::~PendingOutput() {
 
 std::FILE* PendingOutput::file() {
   if (!file_) {
-    file_ = std::fopen(temporary_.c_str(), "wb");
-    if (!file_) refuse(path_, reason(errno));
+    // Opened without following a link: the temporary is ours, created above.
+    const int fd = ::open(temporary_.c_str(), O_WRONLY | O_TRUNC | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0 || !(file_ = ::fdopen(fd, "wb"))) {
+      const int error = errno;
+      if (fd >= 0) ::close(fd);
+      refuse(path_, reason(error));
+    }
   }
   return file_;
 }
@@ -226,7 +267,7 @@ void PendingOutput::commit(const std::string& problem_found) {
   }
   if (problem.empty()) {
     // Written by us or by another program (gnuplot): make it durable before it replaces anything.
-    const int fd = ::open(temporary_.c_str(), O_RDONLY | O_CLOEXEC);
+    const int fd = ::open(temporary_.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
     if (fd < 0 || ::fsync(fd) != 0) problem = reason(errno);
     if (fd >= 0) ::close(fd);
   }
@@ -249,8 +290,8 @@ void PendingOutput::abandon(const std::string& problem) {
 }
 
 void write_output_file(const fs::path& path, const std::function<bool(std::FILE*)>& fill,
-                       const std::function<std::string()>& describe_failure) {
-  PendingOutput out(path);
+                       const std::function<std::string()>& describe_failure, LinkPolicy links) {
+  PendingOutput out(path, {}, links);
   std::FILE* file = out.file();
   std::string problem;
   if (!fill(file)) {
@@ -292,6 +333,20 @@ void write_file_set(const fs::path& directory, std::span<const NamedText> files)
     throw;
   }
   ::close(dir_fd);
+}
+
+ChildProcessGroup::ChildProcessGroup(int leader) {
+  for (int s = 0; s < kSlots; ++s) {
+    int expected = 0;
+    if (g_children[s].compare_exchange_strong(expected, leader)) {
+      slot_ = s;
+      return;
+    }
+  }
+}
+
+ChildProcessGroup::~ChildProcessGroup() {
+  if (slot_ >= 0) g_children[slot_].store(0);
 }
 
 void handle_signals() {

@@ -16,7 +16,8 @@
 //     complete before the first is renamed, and the renames hold a lock on the directory, so two
 //     programs writing the same set never mix their files;
 //   - on SIGINT, SIGTERM or SIGHUP (once handle_signals() has run) the temporaries are removed
-//     before the program dies of the signal. SIGKILL cannot be caught: its leftovers are
+//     (and the child process groups registered with ChildProcessGroup killed) before the program
+//     dies of the signal. SIGKILL cannot be caught: its leftovers are
 //     `.NAME.tmp-PID-N` files, and a later write of NAME removes those of processes that are
 //     gone.
 #pragma once
@@ -29,6 +30,12 @@
 #include <vector>
 
 namespace boxgen::support {
+
+// What a write does with a symbolic link at the target's name. `write_through` is what a user's
+// `-o PATH` expects (above). `replace` is for directories the program owns (the filter cache,
+// docs/runtime.md): the link itself is replaced by the new file and never followed, and the new
+// file is created with mode 0644 (less the umask) instead of the replaced file's mode.
+enum class LinkPolicy { write_through, replace };
 
 // An output that may not or could not be written. The message is one line naming the path.
 struct OutputFileError : std::runtime_error {
@@ -50,7 +57,8 @@ class PendingOutput {
   // Checks the target as check_output_file does and creates the (empty) temporary at once, so an
   // unwritable destination fails before any work. Throws OutputFileError.
   explicit PendingOutput(const std::filesystem::path& path,
-                         std::span<const std::filesystem::path> inputs = {});
+                         std::span<const std::filesystem::path> inputs = {},
+                         LinkPolicy links = LinkPolicy::write_through);
   ~PendingOutput();
   PendingOutput(const PendingOutput&) = delete;
   PendingOutput& operator=(const PendingOutput&) = delete;
@@ -79,7 +87,8 @@ class PendingOutput {
 // Throws OutputFileError (one line); the target is then left as it was and no temporary remains.
 void write_output_file(const std::filesystem::path& path,
                        const std::function<bool(std::FILE*)>& fill,
-                       const std::function<std::string()>& describe_failure = {});
+                       const std::function<std::string()>& describe_failure = {},
+                       LinkPolicy links = LinkPolicy::write_through);
 
 // One file of a set: its name inside the directory, and its bytes.
 struct NamedText {
@@ -92,6 +101,21 @@ struct NamedText {
 // an exclusive lock on the directory. Throws OutputFileError (one line); on failure no target
 // has changed and no temporary remains.
 void write_file_set(const std::filesystem::path& directory, std::span<const NamedText> files);
+
+// A child process group (its leader's pid) that the handlers of handle_signals() kill with
+// SIGKILL, and whose leader they reap, before they remove the temporaries: a compiler started by
+// the program must not outlive it and re-create a temporary (loader/filter_compiler.cpp).
+// Registered while the object lives.
+class ChildProcessGroup {
+ public:
+  explicit ChildProcessGroup(int leader);
+  ~ChildProcessGroup();
+  ChildProcessGroup(const ChildProcessGroup&) = delete;
+  ChildProcessGroup& operator=(const ChildProcessGroup&) = delete;
+
+ private:
+  int slot_ = -1;
+};
 
 // Installs handlers for SIGINT, SIGTERM and SIGHUP that remove every pending temporary and then
 // die of the signal as before, and ignores SIGPIPE, so that a write to a closed pipe fails with

@@ -14,6 +14,7 @@
 
 #include "apps/boxrecon/cmd_volumes.h"
 #include "apps/boxrecon/lattice_commands.h"
+#include "apps/boxrecon/output_volume.h"
 #include "apps/boxrecon/prefilter_options.h"
 #include "runtime/nifti_io.h"
 #include "runtime/resample.h"
@@ -26,7 +27,7 @@ namespace {
 using namespace boxgen::runtime;
 
 struct CompareArgs {
-  std::string reference, volume, filter, error_volume;
+  std::string reference, volume, filter, error_volume, type;
   app::PrefilterOptions prefilter;
   std::optional<double> mask_above;
   std::vector<double> min, max;
@@ -102,8 +103,9 @@ CLI::App* add_compare_command(CLI::App& app) {
   max->needs(min);
   c->add_flag("--json", args.json, "one JSON object");
   c->add_option("--error-volume", args.error_volume,
-                "NRRD on the reference's grid: reconstruction minus reference (0 outside the "
-                "region compared)");
+                "NRRD (.nrrd) or NIfTI (.nii, .nii.gz) on the reference's grid: reconstruction "
+                "minus reference (0 outside the region compared)");
+  app::add_type_option(c, args.type, "--error-volume");
   return c;
 }
 
@@ -111,11 +113,12 @@ int run_compare() {
   const SplineFilter filter = SplineFilter::parse(args.filter);
   const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   const std::filesystem::path inputs[2] = {args.reference, args.volume};
-  if (!args.error_volume.empty()) {
-    if (is_nifti_path(args.error_volume))
-      throw std::invalid_argument("--error-volume must name a NRRD file, not NIfTI");
-    (void)support::check_output_file(args.error_volume, inputs);
-  }
+  const std::optional<SampleType> type = app::parse_type_option(args.type);
+  if (type && args.error_volume.empty())
+    throw std::invalid_argument(
+        "--type sets the sample type of --error-volume, which is not given");
+  if (!args.error_volume.empty())
+    app::require_output_volume(args.error_volume, inputs, CosetLattice::cartesian());
   if (args.mask_above && !std::isfinite(*args.mask_above))
     throw std::invalid_argument("--mask-above must be finite");
   SourceSamples source;
@@ -187,7 +190,7 @@ int run_compare() {
   const double peak = source.max - source.min;
   if (!(peak > 0))
     throw std::invalid_argument("the reference is constant: PSNR (peak = its range) is undefined");
-  if (error_volume) write_lattice_nrrd(args.error_volume, *error_volume);
+  if (error_volume) app::write_output_volume(args.error_volume, *error_volume, type);
   if (args.json) {
     nlohmann::json j{{"reference", args.reference},
                      {"volume", args.volume},

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "apps/boxrecon/cmd_volumes.h"
+#include "apps/boxrecon/output_volume.h"
 #include "apps/boxrecon/prefilter_options.h"
 #include "runtime/nifti_io.h"
 #include "runtime/prefilter.h"
@@ -21,7 +22,7 @@ namespace {
 using namespace boxgen::runtime;
 
 struct SubsampleArgs {
-  std::string volume, lattice, filter = "tricubic", output;
+  std::string volume, lattice, filter = "tricubic", output, type;
   app::PrefilterOptions prefilter{"q2"};
   std::optional<double> fraction, spacing, smooth;
 };
@@ -51,7 +52,10 @@ CLI::App* add_subsample_command(CLI::App& app) {
   app::add_prefilter_options(s, args.prefilter, "the input filter's; default q2");
   s->add_option("--smooth", args.smooth,
                 "SIGMA: a Gaussian low-pass of this width (input samples) first, against aliasing");
-  s->add_option("-o,--output", args.output, "output NRRD file (the lattice volume)")->required();
+  s->add_option("-o,--output", args.output,
+                "the lattice volume: NRRD (.nrrd), or NIfTI-1 (.nii, .nii.gz) for a Cartesian one")
+      ->required();
+  app::add_type_option(s, args.type, "-o");
   return s;
 }
 
@@ -64,14 +68,12 @@ int run_subsample() {
   if (args.spacing && !(std::isfinite(*args.spacing) && *args.spacing > 0))
     throw std::invalid_argument(
         fmt::format("--spacing must be finite and > 0, got {}", *args.spacing));
-  if (is_nifti_path(args.output))
-    throw std::invalid_argument(
-        "-o must name a NRRD file: lattice volumes are written as NRRD, not NIfTI");
   const CosetLattice lattice = CosetLattice::parse(args.lattice);
   const SplineFilter filter = SplineFilter::parse(args.filter);
   const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
+  const std::optional<SampleType> type = app::parse_type_option(args.type);
   const std::filesystem::path input = args.volume;
-  (void)support::check_output_file(args.output, {&input, 1});
+  app::require_output_volume(args.output, {&input, 1}, lattice);
 
   LatticeVolume<float> volume = read_volume_file<float>(args.volume);
   filter.check_lattice(volume.lattice());
@@ -85,7 +87,7 @@ int run_subsample() {
           : spacing_for_count(lattice, box, *args.fraction * static_cast<double>(input_count));
   const LatticeGrid grid = lattice_grid_in(lattice, box, h);
   const LatticeVolume<float> out = resample_to_lattice(volume, filter, grid);
-  write_lattice_nrrd(args.output, out);
+  app::write_output_volume(args.output, out, type);
   const std::uint64_t kept = out.sample_count();
   std::cout << fmt::format(
       "kept {} of {} samples: fraction {}/{} = {:.6f}, {} lattice h = {:.9g}, {} x {} x {} x {} "

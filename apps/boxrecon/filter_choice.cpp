@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "loader/filter_loader.h"
+#include "runtime/nrrd_checks.h"
 
 namespace boxgen::app {
 
@@ -33,17 +34,20 @@ runtime::SplineFilter filter_from(const std::string& filter, const std::string& 
 }
 
 int run_filters() {
+  const auto cached = loader::cached_filters();  // first: a cache it refuses prints nothing
   fmt::print("registry filters (built in):\n");
   for (int i = 0; i < runtime::SplineFilter::count(); ++i) {
     const runtime::SplineFilter f = runtime::SplineFilter::at(i);
     fmt::print("  {:<10} {}\n", f.name(), f.lattice().name());
   }
-  const auto cached = loader::cached_filters();
-  fmt::print("compiled filters (cached in {}): {}\n", loader::cache_directory().string(),
+  // The directory's name is the user's own, but a terminal sees it as text all the same.
+  fmt::print("compiled filters (cached in {}): {}\n",
+             runtime::nrrd_checks::printable(loader::cache_directory().string()),
              cached.empty() ? "none" : std::to_string(cached.size()));
   for (const auto& c : cached)
     fmt::print("  \"{}\" --lattice {}  ({})\n", c.spec,
-               c.lattice == "custom" ? "\"" + c.rows + "\"" : c.lattice, c.library.string());
+               c.lattice == "custom" ? "\"" + c.rows + "\"" : c.lattice,
+               runtime::nrrd_checks::printable(c.library.string()));
   return 0;
 }
 

@@ -17,6 +17,7 @@
 #include "apps/boxrecon/device_choice.h"
 #include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/input_checks.h"
+#include "apps/boxrecon/output_volume.h"
 #include "apps/boxrecon/sample_command.h"
 #include "runtime/batch_threads.h"
 #include "runtime/gl/gl_spline.h"
@@ -179,32 +180,37 @@ int run_error(const std::string& function, int n, const std::string& filter,
 
 template <class T>
 int run_resample(const std::string& filter, const std::string& lattice, const PrefilterOptions& pre,
-                 const std::string& volume_path, const std::string& output, int n,
-                 const std::vector<double>& min, const std::vector<double>& max,
-                 const NrrdReadLimits& limits, Device device, bool verbose) {
+                 const std::string& volume_path, const std::string& output,
+                 const std::string& type_text, int n, const std::vector<double>& min,
+                 const std::vector<double>& max, const NrrdReadLimits& limits, Device device,
+                 bool verbose) {
   const SplineFilter f = filter_from(filter, lattice);
   const PrefilterSetting q = parse_prefilter_options(pre);
+  const std::optional<SampleType> type = parse_type_option(type_text);
   if (n < 2 || n > kMaxResampleN)
     throw std::invalid_argument(
         fmt::format("--n must be between 2 and {}, got {}", kMaxResampleN, n));
   const std::filesystem::path input = volume_path;
-  require_output_file(output, {&input, 1});  // before the work, not after it; never the input
+  // Before the work, not after it; never the input.
+  require_output_volume(output, {&input, 1}, CosetLattice::cartesian());
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
   const Box box = min.empty() ? default_box(volume, f)
                               : Box{{min[0], min[1], min[2]}, {max[0], max[1], max[2]}};
   const CartesianGrid grid = grid_over(box, {n, n, n});
   const GridBlock all{{0, 0, 0}, grid.sizes};
   if (device == Device::Cpu) {
-    write_cartesian_nrrd(output, resample(volume, f, grid, all));
+    write_output_grid(output, resample(volume, f, grid, all), type);
     return 0;
   }
   if (verbose) std::cerr << gl_device_line() << '\n';
   const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, lattice, sizeof(T) == 8));
-  write_cartesian_nrrd(
-      output, resample(volume, f, grid, all,
-                       BatchEvaluate<T>([&gpu](std::span<const Vec3> points, std::span<T> values) {
-                         gpu.evaluate(points, values);
-                       })));
+  write_output_grid(
+      output,
+      resample(volume, f, grid, all,
+               BatchEvaluate<T>([&gpu](std::span<const Vec3> points, std::span<T> values) {
+                 gpu.evaluate(points, values);
+               })),
+      type);
   return 0;
 }
 
@@ -274,11 +280,11 @@ template int run_eval<double>(const std::string&, const std::string&, const Pref
                               const std::string&, const std::string&, bool, bool,
                               const NrrdReadLimits&, Device, bool);
 template int run_resample<float>(const std::string&, const std::string&, const PrefilterOptions&,
-                                 const std::string&, const std::string&, int,
+                                 const std::string&, const std::string&, const std::string&, int,
                                  const std::vector<double>&, const std::vector<double>&,
                                  const NrrdReadLimits&, Device, bool);
 template int run_resample<double>(const std::string&, const std::string&, const PrefilterOptions&,
-                                  const std::string&, const std::string&, int,
+                                  const std::string&, const std::string&, const std::string&, int,
                                   const std::vector<double>&, const std::vector<double>&,
                                   const NrrdReadLimits&, Device, bool);
 

@@ -66,11 +66,12 @@ int run_error(const std::string& function, int n, const std::string& filter,
               std::uint64_t seed, bool gradient, bool json);
 
 // resample: n^3 grid points over the box (default_box when min and max are empty), written as a
-// Cartesian NRRD; nothing is written when any value is not finite. Device as for run_eval.
+// Cartesian NRRD or NIfTI by the output's name, samples of --type `type` (empty: the format's
+// default); nothing is written when any value is not finite. Device as for run_eval.
 template <class T>
 int run_resample(const std::string& filter, const std::string& lattice, const PrefilterOptions& pre,
-                 const std::string& volume_path, const std::string& output, int n,
-                 const std::vector<double>& min, const std::vector<double>& max,
+                 const std::string& volume_path, const std::string& output, const std::string& type,
+                 int n, const std::vector<double>& min, const std::vector<double>& max,
                  const runtime::NrrdReadLimits& limits, Device device = Device::Cpu,
                  bool verbose = false);
 

@@ -43,6 +43,7 @@
 #include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/lattice_commands.h"
+#include "apps/boxrecon/output_volume.h"
 #include "apps/boxrecon/prefilter_options.h"
 #include "apps/boxrecon/sample_command.h"
 #include "apps/common/exit_status.h"
@@ -124,7 +125,13 @@ int run(int argc, char** argv) {
                      "--lattice agrees: " +
                          filters);
   sample->add_option("--precision", precision, "float | double");
-  sample->add_option("-o,--output", output, "output NRRD file")->required();
+  sample
+      ->add_option("-o,--output", output,
+                   "output volume: NRRD (.nrrd), or NIfTI-1 (.nii, .nii.gz) on the Cartesian "
+                   "lattice")
+      ->required();
+  std::string output_type;
+  boxgen::app::add_type_option(sample, output_type, "-o");
   auto* eval = app.add_subcommand("eval", "evaluate the reconstruction at the points of a file");
   eval->add_option("--filter", filter, filters)->required();
   eval->add_option("--lattice", lattice, spec_lattice);
@@ -175,7 +182,11 @@ int run(int argc, char** argv) {
       ->add_option("--volume", volume,
                    "volume on the filter's lattice (NRRD, or NIfTI .nii/.nii.gz: Cartesian)")
       ->required();
-  resample->add_option("-o,--output", output, "output NRRD file (Cartesian grid)")->required();
+  resample
+      ->add_option("-o,--output", output,
+                   "output Cartesian grid: NRRD (.nrrd) or NIfTI-1 (.nii, .nii.gz)")
+      ->required();
+  boxgen::app::add_type_option(resample, output_type, "-o");
   resample->add_option(
       "--n", resample_n,
       fmt::format("grid points per axis, 2..{} (default 64)", boxgen::app::kMaxResampleN));
@@ -253,7 +264,8 @@ int run(int argc, char** argv) {
       throw InputError("--precision must be float or double, got '" + precision.substr(0, 40) +
                        "'");
     if (sample->parsed())
-      return boxgen::app::run_sample(function, n, h, lattice, sample_filter, precision, output);
+      return boxgen::app::run_sample(function, n, h, lattice, sample_filter, precision, output,
+                                     output_type);
     const boxgen::app::Device on = boxgen::app::parse_device(device);
     // The GL device computes in float unless --precision double is given.
     if (on == boxgen::app::Device::Gl && eval_precision->count() == 0 &&
@@ -282,12 +294,13 @@ int run(int argc, char** argv) {
       return boxgen::app::run_error(function, n, filter, lattice, pre, count,
                                     boxgen::app::parse_seed(seed), gradient, json);
     if (resample->parsed())
-      return precision == "float" ? boxgen::app::run_resample<float>(filter, lattice, pre, volume,
-                                                                     output, resample_n, box_min,
-                                                                     box_max, limits, on, verbose)
-                                  : boxgen::app::run_resample<double>(filter, lattice, pre, volume,
-                                                                      output, resample_n, box_min,
-                                                                      box_max, limits, on, verbose);
+      return precision == "float"
+                 ? boxgen::app::run_resample<float>(filter, lattice, pre, volume, output,
+                                                    output_type, resample_n, box_min, box_max,
+                                                    limits, on, verbose)
+                 : boxgen::app::run_resample<double>(filter, lattice, pre, volume, output,
+                                                     output_type, resample_n, box_min, box_max,
+                                                     limits, on, verbose);
   } catch (const std::exception& e) {
     if (boxgen::app::is_output_error(e)) return boxgen::app::report_output_error(e, "boxrecon");
     const int code = exit_code_for(e);

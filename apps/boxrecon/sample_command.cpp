@@ -8,6 +8,7 @@
 
 #include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/input_checks.h"
+#include "apps/boxrecon/output_volume.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
@@ -34,8 +35,8 @@ int sample_margin(const runtime::CosetLattice& lattice) {
 
 template <class T>
 void sample_and_write(const runtime::TestFunction& fn, const runtime::LatticeGrid& grid,
-                      const std::string& output) {
-  runtime::write_lattice_nrrd(output, runtime::sample_lattice<T>(fn.value, grid));
+                      const std::string& output, std::optional<runtime::SampleType> type) {
+  write_output_volume(output, runtime::sample_lattice<T>(fn.value, grid), type);
 }
 
 }  // namespace
@@ -75,15 +76,17 @@ runtime::LatticeGrid sample_grid(int n, const std::optional<double>& h,
 
 int run_sample(const std::string& function, int n, const std::optional<double>& h,
                const std::string& lattice_text, const std::string& filter,
-               const std::string& precision, const std::string& output) {
+               const std::string& precision, const std::string& output,
+               const std::string& type_text) {
   const runtime::TestFunction& fn = runtime::find_test_function(function);
+  const std::optional<runtime::SampleType> type = parse_type_option(type_text);
   const runtime::LatticeGrid grid = sample_grid(
       n, h, lattice_text, filter, precision == "float" ? sizeof(float) : sizeof(double));
-  runtime::require_output_directory(output);
+  require_output_volume(output, {}, grid.lattice);
   if (precision == "float")
-    sample_and_write<float>(fn, grid, output);
+    sample_and_write<float>(fn, grid, output, type);
   else
-    sample_and_write<double>(fn, grid, output);
+    sample_and_write<double>(fn, grid, output, type);
   return 0;
 }
 

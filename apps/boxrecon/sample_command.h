@@ -1,5 +1,5 @@
 // boxrecon sample: a test function sampled on any lattice (runtime/lattice_volume.h) over
-// [-1,1]^3, written as a lattice NRRD.
+// [-1,1]^3, written as a lattice NRRD (or NIfTI for a Cartesian one, by the output's name).
 #pragma once
 #include <cstddef>
 #include <optional>
@@ -29,6 +29,6 @@ runtime::LatticeGrid sample_grid(int n, const std::optional<double>& h, const st
 
 int run_sample(const std::string& function, int n, const std::optional<double>& h,
                const std::string& lattice, const std::string& filter, const std::string& precision,
-               const std::string& output);
+               const std::string& output, const std::string& type = {});
 
 }  // namespace boxgen::app

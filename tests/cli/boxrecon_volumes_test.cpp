@@ -4,6 +4,7 @@
 // line, a non-zero exit and no file. The volumes are small (seconds in all).
 #include <nifti2_io.h>
 #include <teem/nrrd.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <array>
@@ -341,6 +342,275 @@ TEST_F(BoxreconVolumes, BadInputIsOneLineAndWritesNothing) {
           "mask is empty", out);
   refused({"compare", "--reference", file("c.nrrd"), "--volume", file("c.nrrd"), "--filter", "m7"},
           "bcc", "");
+}
+
+// A NIfTI file read with nifticlib directly, as FSL, AFNI and ITK read it.
+struct NiftiFile {
+  int datatype = 0, sform_code = 0, qform_code = 0;
+  std::array<std::int64_t, 4> dim{};  // dim[0..3]
+  double sform[3][4]{}, qform[3][4]{};
+  std::vector<double> values;  // as stored (no scaling)
+};
+
+NiftiFile load_nifti(const std::string& path) {
+  NiftiFile f;
+  nifti_image* nim = nifti_image_read(path.c_str(), 1);
+  if (!nim) {
+    ADD_FAILURE() << "nifticlib cannot read " << path;
+    return f;
+  }
+  f.datatype = nim->datatype;
+  f.sform_code = nim->sform_code;
+  f.qform_code = nim->qform_code;
+  for (int a = 0; a < 4; ++a) f.dim[a] = nim->dim[a];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) {
+      f.sform[r][c] = nim->sto_xyz.m[r][c];
+      f.qform[r][c] = nim->qto_xyz.m[r][c];
+    }
+  const auto n = static_cast<std::size_t>(nim->nvox);
+  const auto copy = [&](auto tag) {
+    using S = decltype(tag);
+    const S* p = static_cast<const S*>(nim->data);
+    for (std::size_t i = 0; i < n; ++i) f.values.push_back(static_cast<double>(p[i]));
+  };
+  if (nim->datatype == DT_FLOAT32) copy(float{});
+  if (nim->datatype == DT_FLOAT64) copy(double{});
+  if (nim->datatype == DT_INT16) copy(std::int16_t{});
+  if (nim->datatype == DT_UINT8) copy(std::uint8_t{});
+  nifti_image_free(nim);
+  return f;
+}
+
+// resample -o x.nii writes NIfTI-1 (float32 by default): nifticlib reads the same grid as the NRRD
+// of the same command, the same values (both float), and the affine diag(spacing) + origin as
+// sform and qform, both with a non-zero code. .nii.gz is the same file compressed.
+TEST_F(BoxreconVolumes, ResampleWritesNiftiThatNifticlibReadsBack) {
+  ok({"sample", "--function", "ml", "--lattice", "bcc", "--n", "9", "-o", file("ml.nrrd")});
+  const std::vector<std::string> common{"resample", "--filter",      "m7",
+                                        "--volume", file("ml.nrrd"), "--n",
+                                        "7",        "--precision",   "float"};
+  const auto run = [&](const std::string& out, std::vector<std::string> more = {}) {
+    std::vector<std::string> a = common;
+    a.insert(a.end(), {"-o", out});
+    a.insert(a.end(), more.begin(), more.end());
+    ok(a);
+  };
+  run(file("g.nrrd"));
+  run(file("g.nii"));
+  run(file("g.nii.gz"));
+  const TeemVolume grid = load(file("g.nrrd"));
+  for (const char* name : {"g.nii", "g.nii.gz"}) {
+    SCOPED_TRACE(name);
+    const NiftiFile nii = load_nifti(file(name));
+    EXPECT_EQ(nii.datatype, DT_FLOAT32);
+    EXPECT_EQ(nii.dim[0], 3);
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(nii.dim[a + 1], 7);
+    EXPECT_GT(nii.sform_code, 0);
+    EXPECT_GT(nii.qform_code, 0);
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(nii.sform[r][c], r == c ? grid.step[r] : 0.0, 1e-6);
+        EXPECT_NEAR(nii.qform[r][c], r == c ? grid.step[r] : 0.0, 1e-6);
+      }
+      EXPECT_NEAR(nii.sform[r][3], grid.origin[r], 1e-6);
+      EXPECT_NEAR(nii.qform[r][3], grid.origin[r], 1e-6);
+    }
+    ASSERT_EQ(nii.values.size(), grid.samples.size());
+    for (std::size_t i = 0; i < grid.samples.size(); ++i)
+      ASSERT_EQ(nii.values[i], static_cast<double>(grid.samples[i])) << i;
+  }
+  // boxrecon reads its own NIfTI back as the NRRD: compare's numbers are the same from either, to
+  // the float32 rounding of NIfTI-1's affine (its srow entries are float: spacing and origin move
+  // by ~1e-8 relative, and with them the points the reconstruction is evaluated at).
+  const auto errors = [&](const std::string& volume) {
+    const nlohmann::json j =
+        nlohmann::json::parse(ok({"compare", "--reference", file("g.nrrd"), "--volume", volume,
+                                  "--filter", "tricubic", "--json"}));
+    return j["region"];
+  };
+  const nlohmann::json from_nrrd = errors(file("g.nrrd"));
+  EXPECT_GT(from_nrrd["points"].get<int>(), 0);
+  for (const char* name : {"g.nii.gz", "g.nii"}) {
+    const nlohmann::json from_nifti = errors(file(name));
+    EXPECT_EQ(from_nifti["points"], from_nrrd["points"]) << name;
+    for (const char* key : {"rms", "max", "mean_abs"})
+      EXPECT_NEAR(from_nifti[key].get<double>(), from_nrrd[key].get<double>(),
+                  1e-5 * from_nrrd[key].get<double>())
+          << name << " " << key;
+  }
+}
+
+// --type int16 rounds to the nearest integer and clamps beyond the range, saying how many on
+// stderr (one line); uint8 in NRRD too. (Ties to even are encode_samples' unit test.)
+TEST_F(BoxreconVolumes, TypeRoundsAndClampsAndSaysHowMany) {
+  // A ramp 20000 i + 0.25: the tricubic reproduces it, and most of it is beyond int16's 32767.
+  save_cartesian(file("big.nrrd"), 10,
+                 [](int i, int, int) { return static_cast<float>(i) * 20000.0f + 0.25f; });
+  const std::vector<std::string> resample{"resample", "--filter",       "tricubic",
+                                          "--volume", file("big.nrrd"), "--n",
+                                          "8",        "--precision",    "double"};
+  std::vector<std::string> a = resample;
+  a.insert(a.end(), {"-o", file("i.nii"), "--type", "int16"});
+  const ProcessResult clamp = boxrecon(a);
+  ASSERT_TRUE(clamp.exited && clamp.exit_code == 0) << clamp.err;
+  a = resample;
+  a.insert(a.end(), {"-o", file("d.nrrd")});
+  ok(a);
+  const TeemVolume d = load(file("d.nrrd"));  // the double grid, read as float
+  const NiftiFile i16 = load_nifti(file("i.nii"));
+  ASSERT_EQ(i16.datatype, DT_INT16);
+  ASSERT_EQ(i16.values.size(), d.samples.size());
+  std::size_t beyond = 0;
+  for (std::size_t i = 0; i < d.samples.size(); ++i) {
+    const double v = std::nearbyint(static_cast<double>(d.samples[i]));
+    const double expected = std::clamp(v, -32768.0, 32767.0);
+    beyond += v != expected ? 1 : 0;
+    ASSERT_EQ(i16.values[i], expected) << i;
+  }
+  ASSERT_GT(beyond, 0u);
+  EXPECT_NE(clamp.err.find(std::to_string(beyond) + " values were beyond the int16 range"),
+            std::string::npos)
+      << clamp.err;
+  EXPECT_EQ(std::count(clamp.err.begin(), clamp.err.end(), '\n'), 1) << clamp.err;
+  // NRRD with --type: Teem reads uint8 samples.
+  a = resample;
+  a.insert(a.end(), {"-o", file("u8.nrrd"), "--type", "uint8"});
+  EXPECT_EQ(boxrecon(a).exit_code, 0);
+  Nrrd* nrrd = nrrdNew();
+  ASSERT_EQ(nrrdLoad(nrrd, file("u8.nrrd").c_str(), nullptr), 0);
+  EXPECT_EQ(nrrd->type, nrrdTypeUChar);
+  nrrdNuke(nrrd);
+}
+
+// Every output name says its format; the wrong one is refused before any work, in one line.
+TEST_F(BoxreconVolumes, OutputNamesNoWriterKnowsAreRefused) {
+  ok({"sample", "--function", "cubic", "--lattice", "cartesian", "--n", "9", "-o", file("c.nrrd")});
+  ok({"sample", "--function", "cubic", "--lattice", "bcc", "--n", "9", "-o", file("b.nrrd")});
+  const auto resample = [&](const std::string& out, std::vector<std::string> more = {}) {
+    std::vector<std::string> a{"resample", "--filter", "tricubic", "--volume", file("c.nrrd"),
+                               "--n",      "4",        "-o",       out};
+    a.insert(a.end(), more.begin(), more.end());
+    return a;
+  };
+  refused(resample(file("out.vol")), "no writer knows its extension", file("out.vol"));
+  refused(resample(file("out")), ".nrrd, .nii or .nii.gz", file("out"));
+  refused(resample(file("out.nhdr")), "detached", file("out.nhdr"));
+  refused(resample(file("out.hdr")), ".hdr/.img", file("out.hdr"));
+  refused(resample(file("out.nii"), {"--type", "int64"}), "--type", file("out.nii"));
+  // A BCC volume cannot be NIfTI: subsample and sample refuse the name up front.
+  refused({"subsample", "--volume", file("c.nrrd"), "--lattice", "bcc", "--fraction", "0.5", "-o",
+           file("b.nii")},
+          "NIfTI", file("b.nii"));
+  refused({"sample", "--function", "cubic", "--lattice", "fcc", "--n", "5", "-o", file("f.nii.gz")},
+          "cartesian grids only", file("f.nii.gz"));
+  refused({"compare", "--reference", file("c.nrrd"), "--volume", file("b.nrrd"), "--filter", "m7",
+           "--type", "int16"},
+          "--error-volume", "");
+  refused({"compare", "--reference", file("c.nrrd"), "--volume", file("b.nrrd"), "--filter", "m7",
+           "--error-volume", file("e.img")},
+          ".hdr/.img", file("e.img"));
+  // A Cartesian subsample and sample are NIfTI where asked.
+  ok({"subsample", "--volume", file("c.nrrd"), "--lattice", "cartesian", "--fraction", "0.5", "-o",
+      file("s.nii.gz")});
+  EXPECT_EQ(load_nifti(file("s.nii.gz")).datatype, DT_FLOAT32);
+  ok({"sample", "--function", "cubic", "--lattice", "cartesian", "--n", "5", "-o", file("c.nii")});
+  EXPECT_EQ(load_nifti(file("c.nii")).dim[0], 3);
+}
+
+// A NIfTI image of `dims` (dim[0] first) and `datatype`, all zeros, spacing 1, through nifticlib;
+// `nifti_type` NIFTI_FTYPE_NIFTI1_2 writes a .hdr/.img pair, NIFTI_FTYPE_ANALYZE an Analyze one.
+void save_nifti_image(const std::string& path, std::vector<std::int64_t> dims, int datatype,
+                      int nifti_type, int intent = 0) {
+  std::int64_t d[8] = {0, 1, 1, 1, 1, 1, 1, 1};
+  for (std::size_t a = 0; a < dims.size(); ++a) d[a] = dims[a];
+  nifti_image* nim = nifti_make_new_nim(d, datatype, 1);
+  ASSERT_NE(nim, nullptr);
+  nim->nifti_type = nifti_type;
+  nim->intent_code = intent;
+  nim->qform_code = nifti_type == NIFTI_FTYPE_ANALYZE ? 0 : 1;
+  nim->qto_xyz = nifti_quatern_to_dmat44(0, 0, 0, 0, 0, 0, 1, 1, 1, 1);
+  ASSERT_EQ(nifti_set_filenames(nim, path.c_str(), 0, 1), 0);
+  nifti_image_write(nim);
+  nifti_image_free(nim);
+}
+
+// NIfTI .hdr/.img pairs read (from either name); Analyze 7.5, DICOM, CIFTI, vector and RGB
+// images are refused by name, in one line.
+TEST_F(BoxreconVolumes, FormatsAreReadOrNamedWhenRefused) {
+  ok({"sample", "--function", "cubic", "--lattice", "bcc", "--n", "9", "-o", file("b.nrrd")});
+  const auto compare = [&](const std::string& reference) {
+    return std::vector<std::string>{"compare",      "--reference", reference, "--volume",
+                                    file("b.nrrd"), "--filter",    "m7"};
+  };
+  save_nifti_image(file("pair.hdr"), {3, 12, 12, 12}, DT_INT16, NIFTI_FTYPE_NIFTI1_2);
+  ASSERT_TRUE(fs::exists(file("pair.img")));
+  const ProcessResult pair = boxrecon(compare(file("pair.hdr")));
+  // Both readable: the compare fails only for having no grid point in the filter's region or
+  // succeeds; either way the file was read (no "cannot read").
+  EXPECT_EQ(pair.err.find("cannot read"), std::string::npos) << pair.err;
+  EXPECT_EQ(boxrecon(compare(file("pair.img"))).err.find("cannot read"), std::string::npos);
+  save_nifti_image(file("analyze.hdr"), {3, 12, 12, 12}, DT_INT16, NIFTI_FTYPE_ANALYZE);
+  refused(compare(file("analyze.hdr")), "Analyze 7.5", "");
+  save_nifti_image(file("rgb.nii"), {3, 4, 4, 4}, DT_RGB24, NIFTI_FTYPE_NIFTI1_1);
+  refused(compare(file("rgb.nii")), "RGB", "");
+  save_nifti_image(file("vector.nii.gz"), {5, 4, 4, 4, 1, 3}, DT_FLOAT32, NIFTI_FTYPE_NIFTI1_1,
+                   NIFTI_INTENT_VECTOR);
+  refused(compare(file("vector.nii.gz")), "3 values per voxel", "");
+  save_nifti_image(file("field.nii"), {5, 4, 4, 4, 1, 3}, DT_FLOAT32, NIFTI_FTYPE_NIFTI1_1);
+  refused(compare(file("field.nii")), "3 values per voxel", "");
+  // CIFTI-2: NIfTI-2 with a connectivity intent (3006: dense scalars), a 1 x 1 x 1 x 1 x 2 x 5
+  // matrix.
+  save_nifti_image(file("scalars.dscalar.nii"), {6, 1, 1, 1, 1, 2, 5}, DT_FLOAT32,
+                   NIFTI_FTYPE_NIFTI2_1, 3006);
+  refused(compare(file("scalars.dscalar.nii")), "CIFTI", "");
+  std::string dicom(128, '\0');
+  dicom += "DICM";
+  dicom += std::string(64, 'x');
+  std::ofstream(file("IM0001"), std::ios::binary) << dicom;
+  refused(compare(file("IM0001")), "dcm2niix", "");
+  std::ofstream(file("scan.dcm"), std::ios::binary) << "old ACR-NEMA bytes";
+  refused(compare(file("scan.dcm")), "DICOM", "");
+}
+
+// The layout boxrecon once wrote for Cartesian volumes reads again: a 4-D NRRD with a coset axis
+// of size 1 (sizes 1 n n n, space directions none (h,0,0) (0,h,0) (0,0,h), lattice:=cartesian),
+// and its values are those of the same samples as a plain 3-D NRRD. A truly oblique NRRD is
+// refused with the directions it has.
+TEST_F(BoxreconVolumes, FourDimensionalCartesianNrrdOfEarlierVersionsReads) {
+  std::vector<float> values;
+  for (int k = 0; k < 8; ++k)
+    for (int j = 0; j < 8; ++j)
+      for (int i = 0; i < 8; ++i) values.push_back(static_cast<float>(i + 2 * j + 3 * k));
+  const auto save = [&](const std::string& path, bool four, double shear) {
+    Nrrd* nrrd = nrrdNew();
+    const std::size_t sizes4[4] = {1, 8, 8, 8}, sizes3[3] = {8, 8, 8};
+    ASSERT_EQ(
+        nrrdWrap_nva(nrrd, values.data(), nrrdTypeFloat, four ? 4 : 3, four ? sizes4 : sizes3), 0);
+    ASSERT_EQ(nrrdSpaceSet(nrrd, nrrdSpace3DRightHanded), 0);
+    const unsigned first = four ? 1 : 0;
+    if (four)
+      for (int b = 0; b < 3; ++b) nrrd->axis[0].spaceDirection[b] = AIR_NAN;
+    for (unsigned a = 0; a < 3; ++a)
+      for (unsigned b = 0; b < 3; ++b)
+        nrrd->axis[first + a].spaceDirection[b] = a == b ? 0.5 : (a == 0 && b == 1 ? shear : 0.0);
+    double origin[3] = {1, 2, 3};
+    ASSERT_EQ(nrrdSpaceOriginSet(nrrd, origin), 0);
+    ASSERT_EQ(nrrdKeyValueAdd(nrrd, "lattice", "cartesian"), 0);
+    ASSERT_EQ(nrrdSave(path.c_str(), nrrd, nullptr), 0);
+    nrrdNix(nrrd);
+  };
+  save(file("old.nrrd"), true, 0);
+  save(file("new.nrrd"), false, 0);
+  const nlohmann::json j = nlohmann::json::parse(
+      ok({"compare", "--reference", file("new.nrrd"), "--volume", file("old.nrrd"), "--filter",
+          "tricubic", "--prefilter", "q1", "--boundary", "strict", "--json"}));
+  EXPECT_GT(j["region"]["points"].get<int>(), 0);
+  EXPECT_LT(j["region"]["max"].get<double>(), 1e-4);  // a linear ramp: reproduced
+  save(file("oblique.nrrd"), false, 0.25);
+  refused({"compare", "--reference", file("oblique.nrrd"), "--volume", file("old.nrrd"), "--filter",
+           "tricubic"},
+          "(0.5,0.25,0)", "");
 }
 
 }  // namespace

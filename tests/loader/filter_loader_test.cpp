@@ -12,6 +12,7 @@
 #include <fstream>
 #include <random>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include "../support/scratch_directory.h"
@@ -66,6 +67,22 @@ void replace_with_prefix(const fs::path& target, const fs::path& source, std::ui
   const fs::path temporary = target.string() + ".new";
   std::ofstream(temporary, std::ios::binary)
       .write(data.data(), static_cast<std::streamsize>(bytes));
+  fs::rename(temporary, target);
+}
+
+// The cache's hash of a file's bytes.
+std::string hash_of(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return hash_text(text.str());
+}
+
+// Replaces `target` by a new file holding the first `bytes` bytes of `text` (renamed into place).
+void replace_with_prefix(const fs::path& target, const std::string& text, std::size_t bytes) {
+  const fs::path temporary = target.string() + ".new";
+  std::ofstream(temporary, std::ios::binary)
+      .write(text.data(), static_cast<std::streamsize>(bytes));
   fs::rename(temporary, target);
 }
 
@@ -206,6 +223,26 @@ TEST_F(LoaderTest, BccSpecIsExactReproducesAndIsCached) {
   ASSERT_EQ(cached_filters(options()).size(), 1U);
   EXPECT_EQ(cached_filters(options())[0].spec, kBccSpec);
   EXPECT_EQ(cached_filters(options())[0].lattice, "bcc");
+
+  // The GLSL evaluators are checked against the .json as the object is: one edited constant, or
+  // another evaluator with its prefix renamed, is emitted again (without a compile), never used.
+  const EmittedGlsl glsl = load_glsl(kBccSpec, "bcc", false, options());
+  const fs::path glsl_path = fs::path(so).replace_extension(".glsl");
+  ASSERT_EQ(hash_of(glsl_path), hash_text(glsl.text));
+  const std::string other = load_glsl(kBccSpec, "bcc", true, options()).text;
+  const std::size_t digit = glsl.text.find_first_of("123456789", glsl.text.find("const"));
+  ASSERT_NE(digit, std::string::npos);
+  std::string edited = glsl.text;
+  edited[digit] = edited[digit] == '9' ? '8' : static_cast<char>(edited[digit] + 1);
+  std::string renamed = other;
+  for (std::size_t at = 0; (at = renamed.find(glsl.name, at)) != std::string::npos; ++at)
+    renamed.insert(at + glsl.name.size(), "x");
+  for (const std::string& planted : {edited, renamed}) {
+    replace_with_prefix(glsl_path, planted, planted.size());
+    EXPECT_EQ(load_glsl(kBccSpec, "bcc", false, options()).text, glsl.text);
+    EXPECT_EQ(hash_of(glsl_path), hash_text(glsl.text));
+  }
+  EXPECT_EQ(fs::last_write_time(so), time);  // not compiled again
 }
 
 // A truncated object (a crash mid-copy, a full disk) is never loaded: it is rebuilt.
@@ -255,11 +292,11 @@ TEST_F(LoaderTest, SlowStaleStampIsRebuilt) {
   const CacheEntry entry{dir_, fcc_so.stem().string()};
   EntryInfo info = read_entry(entry).value();
   info.so_size = fs::file_size(fcc_so);
-  info.so_hash = hash_file(fcc_so).value();
+  info.so_hash = hash_of(fcc_so);
   write_entry(entry, info);
   const rt::SplineFilter f = load_filter(kFccSpec, "fcc", options());
   EXPECT_EQ(f.lattice(), rt::CosetLattice::fcc());
-  EXPECT_NE(hash_file(fcc_so).value(), hash_file(bcc_so).value());
+  EXPECT_NE(hash_of(fcc_so), hash_of(bcc_so));
   expect_exact_on_delta(f, kFccSpec, "fcc");
 }
 

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -86,6 +88,32 @@ TEST(Interpolation, EveryWellPosedRegistryFilterPassesThroughEverySample) {
     }
   }
   EXPECT_EQ(well_posed, 3);  // m8, fcc6, tricubic
+}
+
+// A filter on a lattice of 4096 cosets of 64 Z^3 (points (a, b, 64 c)); nothing evaluates it.
+class ManyCosetsFilter final : public FilterSource {
+ public:
+  std::string name() const override { return "many-cosets"; }
+  CosetLattice lattice() const override {
+    return CosetLattice::from_rows({{{1, 0, 0}, {0, 1, 0}, {0, 0, 64}}});
+  }
+  StencilReach reach() const override { return {}; }
+  DiscreteFilter prefilter(PrefilterChoice) const override { throw std::logic_error("none"); }
+  int approximation_order() const override { return 1; }
+  std::shared_ptr<const EvaluationPath<float>> path(const LatticeVolume<float>&) const override {
+    throw std::logic_error("not evaluated");
+  }
+  std::shared_ptr<const EvaluationPath<double>> path(const LatticeVolume<double>&) const override {
+    throw std::logic_error("not evaluated");
+  }
+};
+
+TEST(Interpolation, RefusesLatticesOfManyCosets) {
+  const SplineFilter f(std::make_shared<ManyCosetsFilter>());
+  ASSERT_EQ(f.lattice().coset_count(), 4096);
+  const LatticeVolume<double> v(f.lattice(), {2, 2, 2}, 1.0, {0, 0, 0});
+  EXPECT_THROW((void)interpolate(v, f), std::invalid_argument);
+  EXPECT_THROW((void)f.required_margin(PrefilterChoice::interp()), std::invalid_argument);
 }
 
 TEST(Interpolation, FloatVolumesAreSolvedInDouble) {
@@ -167,13 +195,16 @@ double polynomial(const Vec3& x, int degree) {
   return sum;
 }
 
-TEST(Interpolation, ReproducesPolynomialsUpToTheFilterOrder) {
+// One test per registry filter (each transforms a volume of about a million samples).
+class InterpolationOfPolynomials : public ::testing::TestWithParam<int> {};
+
+TEST_P(InterpolationOfPolynomials, ReproducesThemUpToTheFilterOrder) {
   // Degree k - 1 for approximation order k, on [-1,1]^3 sampled with a wide margin so that the
   // faces (a mirror image is no polynomial) have no influence inside; the regularised filters too
   // (their regulariser vanishes to order k on the dual lattice). The error is relative to the
   // largest sample, of the margin's far corners.
-  for (int i = 0; i < SplineFilter::count(); ++i) {
-    const SplineFilter f = SplineFilter::at(i);
+  {
+    const SplineFilter f = SplineFilter::at(GetParam());
     const int degree = f.approximation_order() - 1;
     ASSERT_GE(degree, 2) << f.name();
     const ScalarFunction p = [degree](const Vec3& x) { return polynomial(x, degree); };
@@ -202,6 +233,9 @@ TEST(Interpolation, ReproducesPolynomialsUpToTheFilterOrder) {
         << f.name();
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(EveryRegistryFilter, InterpolationOfPolynomials,
+                         ::testing::Range(0, SplineFilter::count()));
 
 TEST(Interpolation, TricubicEqualsScipysCubicSplineInterpolation) {
   // scripts/scipy_tricubic_values.py wrote scipy's values (map_coordinates, order=3,

@@ -6,6 +6,8 @@
 #include "runtime/prefilter.h"
 #include "runtime/reconstruction.h"
 #include "runtime/resample.h"
+#include "runtime/sample_encoding.h"
+#include "runtime/volume_output.h"
 #include "tests/support/scratch_directory.h"
 
 #include <gtest/gtest.h>
@@ -19,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -379,6 +382,92 @@ TEST_F(VolumeFiles, ShippedTemplateHasItsSformGeometry) {
   EXPECT_GE(source.min, 0);
   EXPECT_LE(source.max, 255);
   EXPECT_GT(source.max, source.min);
+}
+
+// encode_samples: integers round to nearest with ties to even (as NumPy's rint) and clamp beyond
+// the type's range, counting; float32 keeps what float holds.
+TEST_F(VolumeFiles, EncodedSamplesRoundTiesToEvenAndClampCounting) {
+  const std::vector<double> values = {-0.5, 0.5, 1.5, 2.5, -1.5, 127.4, 127.6, -129, 1e9};
+  const EncodedSamples i8 = encode_samples<double>(values, SampleType::Int8);
+  ASSERT_EQ(i8.bytes.size(), values.size());
+  std::vector<std::int8_t> got(values.size());
+  std::memcpy(got.data(), i8.bytes.data(), got.size());
+  EXPECT_EQ(got, (std::vector<std::int8_t>{0, 0, 2, 2, -2, 127, 127, -128, 127}));
+  EXPECT_EQ(i8.clamped, 3u);  // 127.6, -129, 1e9
+  const EncodedSamples f =
+      encode_samples<double>(std::vector<double>{0.1, 1e300}, SampleType::Float32);
+  float fl[2];
+  std::memcpy(fl, f.bytes.data(), sizeof fl);
+  EXPECT_EQ(fl[0], 0.1f);
+  EXPECT_TRUE(std::isinf(fl[1]));
+  EXPECT_EQ(f.clamped, 1u);
+  EXPECT_EQ(parse_sample_type("float"), SampleType::Float32);
+  EXPECT_EQ(parse_sample_type("uint16"), SampleType::UInt16);
+  EXPECT_THROW(parse_sample_type("int64"), std::invalid_argument);
+}
+
+// write_volume_file by the name: NIfTI-1 written here reads back through read_nifti with the
+// grid, spacing, origin and values (float32 by default, any --type), compressed or not; NRRD
+// with another type reads back through the NRRD reader.
+TEST_F(VolumeFiles, WrittenNiftiAndTypedNrrdReadBack) {
+  std::vector<double> values(5 * 4 * 3);
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = static_cast<double>(i) - 7.25;
+  const LatticeVolume<double> v(CosetLattice::cartesian(), {5, 4, 3}, Vec3{0.9, 0.9, 3.0},
+                                {-4, 5, 6.5}, std::vector<double>(values));
+  struct Case {
+    const char* name;
+    std::optional<SampleType> type;
+    const char* source_type;
+  };
+  for (const Case& c :
+       {Case{"a.nii", std::nullopt, "float"}, Case{"a.nii.gz", std::nullopt, "float"},
+        Case{"d.nii", SampleType::Float64, "double"}, Case{"i.nii.gz", SampleType::Int16, "int16"},
+        Case{"u.nrrd", SampleType::Int32, "int32"}, Case{"f.NRRD", std::nullopt, "double"}}) {
+    SCOPED_TRACE(c.name);
+    const VolumeWrite w = write_volume_file(file(c.name), v, c.type);
+    EXPECT_EQ(w.clamped, 0u);
+    SourceSamples source;
+    const LatticeVolume<double> back = read_volume_file<double>(file(c.name), {}, &source);
+    EXPECT_EQ(source.type, c.source_type);
+    EXPECT_EQ(back.sizes(), v.sizes());
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_NEAR(back.axis_spacing()[a], v.axis_spacing()[a], 1e-6);
+      EXPECT_NEAR(back.origin()[a], v.origin()[a], 1e-6);
+    }
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const double expected = !c.type || !is_integer_type(*c.type)
+                                  ? (std::string(c.source_type) == "float"
+                                         ? static_cast<double>(static_cast<float>(values[i]))
+                                         : values[i])
+                                  : std::nearbyint(values[i]);
+      ASSERT_EQ(back.samples()[i], expected) << i;
+    }
+  }
+  // The sform and qform are both written, with a code, and both say the same affine.
+  nifti_image* nim = nifti_image_read(file("a.nii").c_str(), 0);
+  ASSERT_NE(nim, nullptr);
+  EXPECT_EQ(nim->sform_code, NIFTI_XFORM_ALIGNED_ANAT);
+  EXPECT_EQ(nim->qform_code, NIFTI_XFORM_ALIGNED_ANAT);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) EXPECT_NEAR(nim->qto_xyz.m[r][c], nim->sto_xyz.m[r][c], 1e-6);
+  EXPECT_EQ(nim->datatype, DT_FLOAT32);
+  nifti_image_free(nim);
+}
+
+TEST_F(VolumeFiles, OutputNamesChooseTheFormatOrAreRefused) {
+  EXPECT_EQ(output_format("a/b.nrrd"), VolumeFormat::Nrrd);
+  EXPECT_EQ(output_format("B.NII.GZ"), VolumeFormat::Nifti);
+  EXPECT_EQ(output_format("c.nii"), VolumeFormat::Nifti);
+  for (const char* bad : {"x.vol", "x", "x.nhdr", "x.hdr", "x.img", "x.dcm", "x.nii.bz2"})
+    EXPECT_THROW(output_format(bad), NrrdError) << bad;
+  const LatticeVolume<float> bcc(CosetLattice::bcc(), {2, 2, 2}, 1.0, {0, 0, 0});
+  try {
+    (void)write_volume_file(file("b.nii"), bcc);
+    ADD_FAILURE() << "a BCC volume was written as NIfTI";
+  } catch (const NrrdError& e) {
+    EXPECT_NE(std::string(e.what()).find("Cartesian grids only"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(file("b.nii")));
 }
 
 }  // namespace

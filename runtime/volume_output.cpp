@@ -1,0 +1,122 @@
+#include "runtime/volume_output.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "runtime/nifti_io.h"
+#include "runtime/nrrd_checks.h"
+#include "runtime/nrrd_io.h"
+
+namespace boxgen::runtime {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lower_name(const fs::path& path) {
+  std::string name = path.filename().string();
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return name;
+}
+
+template <class T>
+constexpr SampleType own_type() {
+  return std::is_same_v<T, float> ? SampleType::Float32 : SampleType::Float64;
+}
+
+}  // namespace
+
+VolumeFormat output_format(const fs::path& path) {
+  const std::string name = lower_name(path);
+  if (name.ends_with(".nrrd")) return VolumeFormat::Nrrd;
+  if (name.ends_with(".nii") || name.ends_with(".nii.gz")) return VolumeFormat::Nifti;
+  const std::string shown = nrrd_checks::printable(path.string());
+  std::string why = "no writer knows its extension";
+  if (name.ends_with(".nhdr"))
+    why = "a detached NRRD header (.nhdr) is not written; name it .nrrd (data in the file)";
+  else if (name.ends_with(".hdr") || name.ends_with(".img") || name.ends_with(".hdr.gz") ||
+           name.ends_with(".img.gz"))
+    why = "Analyze and NIfTI .hdr/.img pairs are not written; name it .nii or .nii.gz";
+  else if (name.ends_with(".dcm"))
+    why = "DICOM is not written";
+  throw NrrdError(fmt::format(
+      "cannot write volume '{}': {} (volumes are written as .nrrd, .nii or .nii.gz)", shown, why));
+}
+
+VolumeFormat require_volume_output(const fs::path& path, std::span<const fs::path> inputs,
+                                   int cosets, const char* lattice_name) {
+  require_output_file(path, inputs);
+  const VolumeFormat format = output_format(path);
+  if (format == VolumeFormat::Nifti && cosets != 1)
+    throw NrrdError(fmt::format(
+        "cannot write volume '{}': a {} volume ({} cosets) cannot be NIfTI, which holds "
+        "Cartesian grids only; name it .nrrd",
+        nrrd_checks::printable(path.string()), lattice_name, cosets));
+  return format;
+}
+
+template <class T>
+VolumeWrite write_volume_file(const fs::path& path, const LatticeVolume<T>& volume,
+                              std::optional<SampleType> type) {
+  const CosetLattice& lattice = volume.lattice();
+  const VolumeFormat format =
+      require_volume_output(path, {}, volume.coset_count(), lattice.name().c_str());
+  if (format == VolumeFormat::Nrrd && (!type || *type == own_type<T>())) {
+    write_lattice_nrrd(path, volume);
+    return {own_type<T>(), 0};
+  }
+  const EncodedSamples samples = encode_samples<T>(
+      volume.samples(),
+      type.value_or(format == VolumeFormat::Nifti ? SampleType::Float32 : own_type<T>()));
+  if (format == VolumeFormat::Nrrd) {
+    write_lattice_nrrd(path, volume, samples);
+    return {samples.type, samples.clamped};
+  }
+  // One coset: sample (i, j, k) at o + h (d (i, j, k) + offset).
+  const double d = lattice.period();
+  const Offset& offset = lattice.offsets().front();
+  Vec3 step{}, origin{};
+  for (int a = 0; a < 3; ++a) {
+    step[a] = d * volume.axis_spacing()[a];
+    origin[a] = volume.origin()[a] + volume.axis_spacing()[a] * static_cast<double>(offset[a]);
+  }
+  write_nifti(path, volume.sizes(), Affine::diagonal(step, origin), samples);
+  return {samples.type, samples.clamped};
+}
+
+template <class T>
+VolumeWrite write_grid_file(const fs::path& path, const CartesianVolume<T>& grid,
+                            std::optional<SampleType> type) {
+  const VolumeFormat format = require_volume_output(path, {}, 1, "cartesian");
+  if (format == VolumeFormat::Nrrd && (!type || *type == own_type<T>())) {
+    write_cartesian_nrrd(path, grid);
+    return {own_type<T>(), 0};
+  }
+  if (format == VolumeFormat::Nrrd) {
+    std::vector<T> copy = grid.values;
+    const LatticeVolume<T> volume(CosetLattice::cartesian(), grid.sizes, grid.spacing, grid.origin,
+                                  std::move(copy));
+    return write_volume_file(path, volume, type);
+  }
+  const EncodedSamples samples = encode_samples<T>(grid.values, type.value_or(SampleType::Float32));
+  write_nifti(path, grid.sizes, Affine::diagonal(grid.spacing, grid.origin), samples);
+  return {samples.type, samples.clamped};
+}
+
+template VolumeWrite write_volume_file<float>(const fs::path&, const LatticeVolume<float>&,
+                                              std::optional<SampleType>);
+template VolumeWrite write_volume_file<double>(const fs::path&, const LatticeVolume<double>&,
+                                               std::optional<SampleType>);
+template VolumeWrite write_grid_file<float>(const fs::path&, const CartesianVolume<float>&,
+                                            std::optional<SampleType>);
+template VolumeWrite write_grid_file<double>(const fs::path&, const CartesianVolume<double>&,
+                                             std::optional<SampleType>);
+
+}  // namespace boxgen::runtime

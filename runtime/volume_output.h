@@ -1,0 +1,64 @@
+// The one writer of volume files: the format is the output's name, NRRD (.nrrd) or NIfTI-1
+// (.nii, .nii.gz), and nothing is written under a name no writer knows. A lattice volume of more
+// than one coset (BCC, FCC, custom) is NRRD only: NIfTI holds Cartesian grids.
+//
+// The sample type is the caller's choice (boxrecon's --type, sample_encoding.h); by default NRRD
+// stores the volume's own float or double and NIfTI float32 (what nibabel, FSL and ITK expect of
+// a resampled image). Every write is atomic (output_file.h).
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+
+#include "runtime/cartesian_volume.h"
+#include "runtime/lattice_volume.h"
+#include "runtime/sample_encoding.h"
+
+namespace boxgen::runtime {
+
+enum class VolumeFormat { Nrrd, Nifti };
+
+// What a write stored: the sample type, and how many values were beyond its range and clamped.
+struct VolumeWrite {
+  SampleType type = SampleType::Float32;
+  std::uint64_t clamped = 0;
+};
+
+// The format a name asks for: .nrrd is NRRD, .nii and .nii.gz NIfTI-1 (any case). Any other
+// name is NrrdError (one line naming the extensions known); .nhdr (a detached header), Analyze's
+// .hdr/.img and DICOM are named as such.
+VolumeFormat output_format(const std::filesystem::path& path);
+
+// Before any work: `path` may be written and is none of `inputs` (require_output_file), its
+// format is known (output_format), and a NIfTI name is not given a volume of more than one coset
+// (`cosets`, the lattice's K). Throws NrrdError (one line).
+VolumeFormat require_volume_output(const std::filesystem::path& path,
+                                   std::span<const std::filesystem::path> inputs, int cosets,
+                                   const char* lattice_name);
+
+// Writes `volume` in the format of its name with samples of `type` (default: NRRD the volume's T,
+// NIfTI float32). Returns the type written and how many values were clamped to its range. Throws
+// NrrdError (one line) for a name or lattice require_volume_output refuses, or a failed write.
+template <class T>
+VolumeWrite write_volume_file(const std::filesystem::path& path, const LatticeVolume<T>& volume,
+                              std::optional<SampleType> type = std::nullopt);
+// The same for a Cartesian grid.
+template <class T>
+VolumeWrite write_grid_file(const std::filesystem::path& path, const CartesianVolume<T>& grid,
+                            std::optional<SampleType> type = std::nullopt);
+
+extern template VolumeWrite write_volume_file<float>(const std::filesystem::path&,
+                                                     const LatticeVolume<float>&,
+                                                     std::optional<SampleType>);
+extern template VolumeWrite write_volume_file<double>(const std::filesystem::path&,
+                                                      const LatticeVolume<double>&,
+                                                      std::optional<SampleType>);
+extern template VolumeWrite write_grid_file<float>(const std::filesystem::path&,
+                                                   const CartesianVolume<float>&,
+                                                   std::optional<SampleType>);
+extern template VolumeWrite write_grid_file<double>(const std::filesystem::path&,
+                                                    const CartesianVolume<double>&,
+                                                    std::optional<SampleType>);
+
+}  // namespace boxgen::runtime
