@@ -292,12 +292,22 @@ class EmittedSpline {
     alignas(64) double padded[3 * kLanes];
     alignas(64) T out[simd::kChunkRows * kLanes];
     const simd::Frame frame = simd_frame();
+    const LinearLayout& l = linear_layout_;
     const simd::LinearVolume<T> volume{stencils_.samples(),
                                        linear_rows_.data(),
-                                       {linear_stride_[0], linear_stride_[1], linear_stride_[2]}};
+                                       {l.stride[0], l.stride[1], l.stride[2]},
+                                       l.coset_shift};
     for (std::ptrdiff_t next = first; next < last; next += kLanes) {
       const int lanes = static_cast<int>(std::min<std::ptrdiff_t>(kLanes, last - next));
       kernels_->chunk(Order, chunk_points(points, next, lanes, padded), frame, volume, out);
+      // The common case, every lane evaluated and values only: one copy, no test per lane.
+      const T* ok = out + simd::kChunkOkRow * kLanes;
+      bool every_lane = true;
+      for (int lane = 0; lane < kLanes; ++lane) every_lane &= ok[lane] != T(0);
+      if (Order == generated::support::kValue && every_lane) {
+        std::copy_n(out, lanes, values.begin() + next);
+        continue;
+      }
       bool stays[kLanes];
       for (int lane = 0; lane < lanes; ++lane) {
         stays[lane] = out[simd::kChunkOkRow * kLanes + lane] != T(0);
@@ -327,18 +337,13 @@ class EmittedSpline {
     std::vector<Index> rows;
     for (int parity = 0; parity < 2; ++parity)
       for (int c = 0; c < Tr::kCellCount; ++c) {
-        const auto& cell = Tr::kCells[c];
         const auto& first = Tr::kOffsets[c][0];
         const std::int64_t coset = (parity + first[0]) & 1;
         rows.push_back(static_cast<Index>(first[0] * stride[0] + first[1] * stride[1] +
                                           first[2] * stride[2] - coset * layout->coset_shift));
-        for (int i = 0; i < 3; ++i)
-          rows.push_back(static_cast<Index>(cell.sign[i] * stride[cell.perm[i]]));
-        rows.push_back(static_cast<Index>(layout->coset_shift * (2 * coset - 1)));
       }
-    static_assert(simd::kLinearFields == 5, "first, three axis strides, coset flip");
     linear_rows_ = std::move(rows);
-    for (int a = 0; a < 3; ++a) linear_stride_[a] = stride[a];
+    linear_layout_ = *layout;
   }
 
   // The lanes of one orbit in a chunk, with where each one's stencil lies.
@@ -466,7 +471,7 @@ class EmittedSpline {
   Stencils stencils_;
   const simd::Kernels* kernels_;  // the SIMD kernels of the filter, or null (the scalar path)
   std::vector<simd::GatherIndex<T>> linear_rows_;  // empty: no chunk_block (prepare_chunks)
-  std::int64_t linear_stride_[3] = {};
+  LinearLayout linear_layout_{};
 };
 
 // An EmittedSpline behind a virtual interface, for Reconstructor, which chooses the filter at run

@@ -66,18 +66,16 @@ using GatherIndex = std::conditional_t<sizeof(T) == 4, std::int32_t, std::int64_
 
 // A volume whose storage is linear up to the coset parity (stencils.h, LinearLayout), as
 // evaluate_chunk reads it: lattice point j lies at samples[j . stride - (j_0 & 1) coset_shift].
-// Row p * kCellCount + c of `rows` (corner parity p = corner_0 & 1, cell c) holds kLinearFields
-// indices: the cell's first stencil sample relative to corner . stride; the storage strides of the
-// reference frame's axes, sign_i stride[perm_i] (i < 3), which turn a step of stencil_steps.h into
-// an index change; and the index change of a step that flips the coset. Every index fits
-// GatherIndex<T> (the caller checks).
+// rows[p * kCellCount + c] (corner parity p = corner_0 & 1, cell c): the index of the cell's
+// first stencil sample relative to corner . stride. Every index fits GatherIndex<T> (the caller
+// checks).
 template <class T>
 struct LinearVolume {
   const T* samples;
   const GatherIndex<T>* rows;
   std::int64_t stride[3];
+  std::int64_t coset_shift;
 };
-inline constexpr int kLinearFields = 5;
 
 // Rows of evaluate_chunk's output (kChunk values each): the value, the derivatives in the reference
 // frame of each lane's cell (as orbit_chunk's, up to 3 + 6), the lane's cell, and 1 where the lane

@@ -31,6 +31,17 @@ namespace support = boxgen::generated::support;
 // Buffers are rows of kChunk values: row r starts at r * kRow.
 constexpr std::ptrdiff_t kRow = kChunk;
 
+// The stage profile of docs/performance.md: compiled with -DBOXGEN_PROFILE_STAGES, the stages of
+// evaluate_lanes (lattice_lanes, locate_pack, lane_stencil, gather_orbit, orbit_polynomial) stay
+// out of line, so that callgrind counts each apart. Only for that measurement (it is slower).
+#ifndef BOXGEN_STAGE
+#ifdef BOXGEN_PROFILE_STAGES
+#define BOXGEN_STAGE [[gnu::noinline, gnu::flatten]]
+#else
+#define BOXGEN_STAGE
+#endif
+#endif
+
 // The number type the generated polynomial code is instantiated with: one point per lane. It has
 // exactly what that code uses: T(constant), +, -, * and unary minus.
 template <class T>
@@ -50,6 +61,39 @@ struct Pack {
   HWY_ATTR friend Pack operator*(Pack a, Pack b) { return Pack(hn::Mul(a.v, b.v)); }
   HWY_ATTR Pack operator-() const { return Pack(hn::Neg(v)); }
 };
+
+// Integers held exactly in T (|v| < 2^51 in double) to the signed integers of T's width and back.
+// In double by the bits of v + 1.5 * 2^52, two instructions: AVX2 has no conversion between double
+// and int64, which Highway emulates in about twenty. In float by the vector unit's own.
+inline constexpr double kExactIntegerBias = 6755399441055744.0;  // 1.5 * 2^52
+template <class D>
+HWY_ATTR hn::Vec<hn::RebindToSigned<D>> to_index(D d, hn::Vec<D> v) {
+  const hn::RebindToSigned<D> di;
+  if constexpr (sizeof(hn::TFromD<D>) == 4) {
+    return hn::ConvertTo(di, v);
+  } else {
+    const auto bias = hn::Set(d, kExactIntegerBias);
+    return hn::Sub(hn::BitCast(di, hn::Add(v, bias)), hn::BitCast(di, bias));
+  }
+}
+template <class D>
+HWY_ATTR hn::Vec<D> from_index(D d, hn::Vec<hn::RebindToSigned<D>> i) {
+  if constexpr (sizeof(hn::TFromD<D>) == 4) {
+    return hn::ConvertTo(d, i);
+  } else {
+    const auto bias = hn::Set(d, kExactIntegerBias);
+    const hn::RebindToSigned<D> di;
+    return hn::Sub(hn::BitCast(d, hn::Add(i, hn::BitCast(di, bias))), bias);
+  }
+}
+
+// v >> bits for v >= 0, shifting in zeros (AVX2 has no arithmetic shift of int64).
+template <class V>
+HWY_ATTR V shift_right_zeros(V v, int bits) {
+  const hn::DFromV<V> di;
+  const hn::RebindToUnsigned<decltype(di)> du;
+  return hn::BitCast(di, hn::ShiftRightSame(hn::BitCast(du, v), bits));
+}
 
 // flatten: the generated code is a template defined outside this target's region; inlining all of
 // it here compiles it for this target's instruction set.
@@ -77,37 +121,70 @@ template <class Tr, int Order, class T>
   }
 }
 
-// The tables locate() reads per lane, as numbers of type T (small integers: exact), so that a
-// gather fetches them: the cell of (cube, knot key), and per cell its orbit and its map onto the
-// orbit's reference region.
+// The tables locate() reads per lane, so that a gather fetches them: the cell of (cube, knot
+// key), as numbers of type T (small integers: exact), and per cell its orbit and its map onto the
+// orbit's reference region x_ref_i = sign_i x_perm_i + ... + a_i, packed into one integer of
+// GatherIndex<T> (kMapBits per axis: perm, sign > 0, a + kMapBias), so that one gather fetches
+// a lane's whole map; bit kFirstParityBit holds the parity of the cell's first stencil offset
+// along x (evaluate_lanes: whether the first sample changes the corner's coset).
+inline constexpr int kMapBits = 10, kMapBias = 64, kFirstParityBit = 30;
+
+// Not constexpr: reaching it while the tables are built at compile time stops the build.
+void map_beyond_packed_range();
+
 template <class Tr, class T>
 struct LocateTables {
   T lookup[Tr::kCubeCount * Tr::kLookupSize];
   T orbit[Tr::kCellCount];
-  T perm[Tr::kDimension][Tr::kCellCount];
-  T sign[Tr::kDimension][Tr::kCellCount];
-  T a[Tr::kDimension][Tr::kCellCount];
+  GatherIndex<T> map[Tr::kCellCount];
 };
 
 template <class Tr, class T>
 constexpr LocateTables<Tr, T> locate_tables() {
+  static_assert(Tr::kDimension * kMapBits <= kFirstParityBit, "three axes");
   LocateTables<Tr, T> t{};
   for (int c = 0; c < Tr::kCubeCount; ++c)
     for (int k = 0; k < Tr::kLookupSize; ++k)
       t.lookup[c * Tr::kLookupSize + k] = static_cast<T>(Tr::kLookup[c][k]);
   for (int c = 0; c < Tr::kCellCount; ++c) {
-    t.orbit[c] = static_cast<T>(Tr::kCells[c].orbit);
+    const auto& cell = Tr::kCells[c];
+    t.orbit[c] = static_cast<T>(cell.orbit);
+    GatherIndex<T> word = (Tr::kOffsets[c][0][0] & 1) << kFirstParityBit;
     for (int i = 0; i < Tr::kDimension; ++i) {
-      t.perm[i][c] = static_cast<T>(Tr::kCells[c].perm[i]);
-      t.sign[i][c] = static_cast<T>(Tr::kCells[c].sign[i]);
-      t.a[i][c] = static_cast<T>(Tr::kCells[c].a[i]);
+      // a translation within the reference cube: |a| is 0 or 1 for every filter (kScale 1)
+      if (cell.a[i] < -kMapBias || cell.a[i] >= kMapBias) map_beyond_packed_range();
+      const int field = cell.perm[i] | (cell.sign[i] > 0 ? 4 : 0) | ((cell.a[i] + kMapBias) << 3);
+      word |= static_cast<GatherIndex<T>>(field) << (kMapBits * i);
     }
+    t.map[c] = word;
   }
   return t;
 }
 
 template <class Tr, class T>
 inline constexpr LocateTables<Tr, T> kLocateTables = locate_tables<Tr, T>();
+
+// The packed map of each lane's cell (LocateTables::map), axis i's field of it, and the parts of
+// that field.
+template <class Tr, class T, class V>
+HWY_ATTR V map_word(V cell) {
+  return hn::GatherIndex(hn::DFromV<V>(), kLocateTables<Tr, T>.map, cell);
+}
+template <class V>
+HWY_ATTR V map_field(V word, int i) {
+  const hn::DFromV<V> di;
+  return hn::And(shift_right_zeros(word, kMapBits * i),
+                 hn::Set(di, static_cast<hn::TFromD<decltype(di)>>((1 << kMapBits) - 1)));
+}
+template <class V>
+HWY_ATTR V field_perm(V field) {
+  return hn::And(field, hn::Set(hn::DFromV<V>(), 3));
+}
+template <class V>
+HWY_ATTR auto field_positive(V field) {
+  const hn::DFromV<V> di;
+  return hn::Ne(hn::And(field, hn::Set(di, 4)), hn::Zero(di));
+}
 
 // The arithmetic of support::locate_in() on one point per lane (support/evaluator_support.hpp
 // lists what it must provide): integers are carried as T (exact, as the caller keeps |x| below
@@ -132,21 +209,22 @@ struct PackArith {
     return Whole(hn::IfThenElseZero(hn::Ge(s.v, hn::Set(D(), c)), hn::Set(D(), T(1))));
   }
   // Any valid index for the lanes without a cell: their gathers are not used.
-  HWY_ATTR static auto index(Whole cell) {
-    return hn::ConvertTo(hn::RebindToSigned<D>(), hn::Max(cell.v, hn::Zero(D())));
-  }
+  HWY_ATTR static auto index(Whole cell) { return to_index(D(), hn::Max(cell.v, hn::Zero(D()))); }
   template <class Tr>
   HWY_ATTR static Whole cell_of(Whole cube, Whole key, const Real* /*r*/) {
     const Whole entry = cube * constant(Tr::kLookupSize) + key;
-    return Whole(hn::GatherIndex(D(), kLocateTables<Tr, T>.lookup,
-                                 hn::ConvertTo(hn::RebindToSigned<D>(), entry.v)));
+    return Whole(hn::GatherIndex(D(), kLocateTables<Tr, T>.lookup, to_index(D(), entry.v)));
   }
   template <class Tr>
   HWY_ATTR static support::CellMap<Whole, Real> cell_map(Whole cell, int i) {
-    const auto at = index(cell);
-    const auto& t = kLocateTables<Tr, T>;
-    return {Whole(hn::GatherIndex(D(), t.perm[i], at)), Real(hn::GatherIndex(D(), t.sign[i], at)),
-            Real(hn::GatherIndex(D(), t.a[i], at))};
+    const D d;
+    const hn::RebindToSigned<D> di;
+    const auto field = map_field(map_word<Tr, T>(index(cell)), i);
+    const auto a = hn::Sub(shift_right_zeros(field, 3), hn::Set(di, kMapBias));
+    return {Whole(from_index(d, field_perm(field))),
+            Real(hn::IfThenElse(hn::RebindMask(d, field_positive(field)), hn::Set(d, T(1)),
+                                hn::Set(d, T(-1)))),
+            Real(from_index(d, a))};
   }
   template <int N>
   HWY_ATTR static Pack<T> pick(Whole p, const Pack<T>* xs) {
@@ -162,7 +240,7 @@ struct PackArith {
 // world coordinates, point after point. Lanes that are not near get x = 0, so that nothing below
 // converts a huge or non-finite number to an integer.
 template <class T>
-HWY_ATTR void lattice_lanes(const double* points, const Frame& frame, T* x, T* near) {
+BOXGEN_STAGE HWY_ATTR void lattice_lanes(const double* points, const Frame& frame, T* x, T* near) {
   const hn::ScalableTag<double> dd;
   const hn::Rebind<T, decltype(dd)> dt;
   const auto to_t = [&](hn::Vec<decltype(dd)> v) HWY_ATTR {
@@ -202,7 +280,8 @@ struct LocatedPack {
 // operations in the same order, so the same cells and the same reference coordinates, bit for
 // bit), and the stencil box check of the runtime.
 template <class Tr, class T>
-HWY_ATTR LocatedPack<Tr, T> locate_pack(const T* x, const T* near, int at, const Frame& frame) {
+BOXGEN_STAGE HWY_ATTR LocatedPack<Tr, T> locate_pack(const T* x, const T* near, int at,
+                                                     const Frame& frame) {
   constexpr int n = Tr::kDimension;
   using A = PackArith<T>;
   using P = Pack<T>;
@@ -269,6 +348,72 @@ HWY_ATTR V add_times(V index, V s) {
   return index;
 }
 
+// Where each lane's stencil lies in a linear volume: its first sample's index, the index changes
+// of a unit step along each reference axis (sign_i stride[perm_i], from the cell's map), and of a
+// step that changes the coset; and the lane's cell, as an index.
+template <class V>
+struct LaneStencil {
+  V first, axis[3], flip, cell;
+};
+
+template <class Tr, class T>
+BOXGEN_STAGE HWY_ATTR auto lane_stencil(const LocatedPack<Tr, T>& l,
+                                        const LinearVolume<T>& volume) {
+  constexpr int n = Tr::kDimension;
+  using A = PackArith<T>;
+  const typename A::D d;
+  const hn::RebindToSigned<decltype(d)> di;
+  using V = hn::Vec<decltype(di)>;
+  using I = hn::TFromD<decltype(di)>;
+  LaneStencil<V> st;
+  st.cell = A::index(l.cell);
+  // The first sample: volume.rows by the corner's parity and the cell.
+  const V one = hn::Set(di, I{1});
+  const V parity = hn::And(to_index(d, l.corner[0].v), one);
+  const V row =
+      hn::Add(st.cell, hn::IfThenElseZero(hn::Eq(parity, one), hn::Set(di, I{Tr::kCellCount})));
+  // corner . stride: exact in T's integer lanes for float (the caller keeps every index in
+  // int32), in double arithmetic (exact below 2^53) for double.
+  V base;
+  if constexpr (sizeof(T) == 4) {
+    base = hn::Zero(di);
+    for (int i = 0; i < n; ++i)
+      base = hn::Add(
+          base, hn::Mul(to_index(d, l.corner[i].v), hn::Set(di, static_cast<I>(volume.stride[i]))));
+  } else {
+    auto sum = hn::Zero(d);
+    for (int i = 0; i < n; ++i)
+      sum = hn::Add(sum, hn::Mul(l.corner[i].v, hn::Set(d, static_cast<T>(volume.stride[i]))));
+    base = to_index(d, sum);
+  }
+  st.first = hn::Add(base, hn::GatherIndex(di, volume.rows, row));
+  // The storage strides of the reference axes from the cell's map (one gather per lane, not one
+  // per axis: fewer cycles on AVX-512, a few more instructions; docs/performance.md).
+  const V word = map_word<Tr, T>(st.cell);
+  for (int i = 0; i < n; ++i) {
+    const V field = map_field(word, i);
+    const V perm = field_perm(field);
+    const V stride = hn::IfThenElse(
+        hn::Eq(perm, hn::Zero(di)), hn::Set(di, static_cast<I>(volume.stride[0])),
+        hn::IfThenElse(hn::Eq(perm, one), hn::Set(di, static_cast<I>(volume.stride[1])),
+                       hn::Set(di, static_cast<I>(volume.stride[2]))));
+    st.axis[i] = hn::IfThenElse(field_positive(field), stride, hn::Neg(stride));
+  }
+  // An odd step moves to the other coset: out of the odd one (+coset_shift: sample j sits at
+  // j . stride - (j_x & 1) coset_shift) or into it (-coset_shift).
+  const V first_odd = hn::Xor(parity, hn::And(shift_right_zeros(word, kFirstParityBit), one));
+  const V shift = hn::Set(di, static_cast<I>(volume.coset_shift));
+  st.flip = hn::IfThenElse(hn::Eq(first_odd, one), shift, hn::Neg(shift));
+  return st;
+}
+
+// The orbit polynomial of orbit O on one point per lane (a function of its own only for the stage
+// profile).
+template <class Tr, int Order, int O, class T>
+BOXGEN_STAGE HWY_ATTR Pack<T> orbit_polynomial(const Pack<T>* pv, const Pack<T>* ref, Pack<T>* pd) {
+  return Tr::template orbit<Order>(O, pv, ref, pd);
+}
+
 // The storage index of sample K of orbit O: the first sample's, plus the step of stencil_steps.h
 // through the lane's axis strides, plus the coset flip where the step is odd.
 template <class Tr, int O, int K, class V>
@@ -283,8 +428,8 @@ HWY_ATTR V sample_index(V first, const V* axis, V flip) {
 
 // The stencil of orbit O gathered: pv[k] for k below the orbit's stencil size.
 template <class Tr, int O, class T, class V, int... K>
-HWY_ATTR void gather_orbit(const T* samples, V first, const V* axis, V flip, Pack<T>* pv,
-                           std::integer_sequence<int, K...> /*samples*/) {
+BOXGEN_STAGE HWY_ATTR void gather_orbit(const T* samples, V first, const V* axis, V flip,
+                                        Pack<T>* pv, std::integer_sequence<int, K...> /*samples*/) {
   const typename Pack<T>::D d;
   ((pv[K] = Pack<T>(hn::GatherIndex(d, samples, sample_index<Tr, O, K>(first, axis, flip)))), ...);
 }
@@ -293,7 +438,7 @@ HWY_ATTR void gather_orbit(const T* samples, V first, const V* axis, V flip, Pac
 // and their results are not used) take the orbit's polynomial.
 template <class Tr, int Order, int O, class T, class V, class M>
 HWY_ATTR void evaluate_orbit(const LinearVolume<T>& volume, const LocatedPack<Tr, T>& l, M lanes,
-                             V first, const V* axis, V flip, Pack<T>& value, Pack<T>* derivatives) {
+                             const LaneStencil<V>& st, Pack<T>& value, Pack<T>* derivatives) {
   constexpr int n = Tr::kDimension;
   constexpr int kDerivatives =
       Order == support::kValue ? 0
@@ -302,15 +447,15 @@ HWY_ATTR void evaluate_orbit(const LinearVolume<T>& volume, const LocatedPack<Tr
   const hn::DFromV<V> di;
   const auto m = hn::RebindMask(di, lanes);
   V axis_in[n];
-  for (int i = 0; i < n; ++i) axis_in[i] = hn::IfThenElseZero(m, axis[i]);
+  for (int i = 0; i < n; ++i) axis_in[i] = hn::IfThenElseZero(m, st.axis[i]);
   Pack<T> pv[Tr::kStencilSize];
-  gather_orbit<Tr, O>(volume.samples, hn::IfThenElseZero(m, first), axis_in,
-                      hn::IfThenElseZero(m, flip), pv, std::make_integer_sequence<int, size>{});
+  gather_orbit<Tr, O>(volume.samples, hn::IfThenElseZero(m, st.first), axis_in,
+                      hn::IfThenElseZero(m, st.flip), pv, std::make_integer_sequence<int, size>{});
   for (int k = size; k < Tr::kStencilSize; ++k) pv[k] = Pack<T>(0.0);
   Pack<T>
       pd[kDerivatives + 1];  // the orbit function fills d[0, kDerivatives); zeroed for the compiler
   for (Pack<T>& e : pd) e = Pack<T>(0.0);
-  const Pack<T> v = Tr::template orbit<Order>(O, pv, l.ref, pd);
+  const Pack<T> v = orbit_polynomial<Tr, Order, O>(pv, l.ref, pd);
   value = Pack<T>(hn::IfThenElse(lanes, v.v, value.v));
   for (int j = 0; j < kDerivatives; ++j)
     derivatives[j] = Pack<T>(hn::IfThenElse(lanes, pd[j].v, derivatives[j].v));
@@ -337,46 +482,19 @@ template <class Tr, int Order, class T, int... O>
   const int width = static_cast<int>(hn::Lanes(d));
   for (int at = 0; at < kChunk; at += width) {
     const LocatedPack<Tr, T> l = locate_pack<Tr>(x, near, at, frame);
-    // The lane's row of volume.rows: its corner's parity and its cell.
-    const V cell = A::index(l.cell);
-    using I = hn::TFromD<decltype(di)>;
-    const V parity = hn::And(hn::ConvertTo(di, l.corner[0].v), hn::Set(di, I{1}));
-    const V row = hn::Add(cell, hn::IfThenElseZero(hn::Eq(parity, hn::Set(di, I{1})),
-                                                   hn::Set(di, I{Tr::kCellCount})));
-    const V field = hn::Add(hn::ShiftLeft<2>(row), row);  // row * kLinearFields
-    static_assert(kLinearFields == 5, "field = 4 row + row");
-    const auto read = [&](int f) HWY_ATTR {
-      return hn::GatherIndex(di, volume.rows, hn::Add(field, hn::Set(di, static_cast<I>(f))));
-    };
-    // corner . stride: exact in T's integer lanes for float (the caller keeps every index in
-    // int32), in double arithmetic (exact below 2^53) for double.
-    V base;
-    if constexpr (sizeof(T) == 4) {
-      base = hn::Zero(di);
-      for (int i = 0; i < n; ++i)
-        base = hn::Add(base, hn::Mul(hn::ConvertTo(di, l.corner[i].v),
-                                     hn::Set(di, static_cast<std::int32_t>(volume.stride[i]))));
-    } else {
-      auto sum = hn::Zero(d);
-      for (int i = 0; i < n; ++i)
-        sum = hn::Add(sum, hn::Mul(l.corner[i].v, hn::Set(d, static_cast<T>(volume.stride[i]))));
-      base = hn::ConvertTo(di, sum);
-    }
-    const V first = hn::Add(base, read(0));
-    const V axis[3] = {read(1), read(2), read(3)};
-    const V flip = read(4);
+    const LaneStencil<V> st = lane_stencil<Tr>(l, volume);
     P value(0.0);
     P derivatives[kDerivatives + 1];
     for (P& e : derivatives) e = P(0.0);
     if constexpr (sizeof...(O) == 1) {
-      evaluate_orbit<Tr, Order, 0>(volume, l, l.ok, first, axis, flip, value, derivatives);
+      evaluate_orbit<Tr, Order, 0>(volume, l, l.ok, st, value, derivatives);
     } else {
-      const P orbit(hn::GatherIndex(d, kLocateTables<Tr, T>.orbit, cell));
+      const P orbit(hn::GatherIndex(d, kLocateTables<Tr, T>.orbit, st.cell));
       (
           [&]() HWY_ATTR {
             const auto lanes = hn::And(l.ok, hn::Eq(orbit.v, hn::Set(d, static_cast<T>(O))));
             if (!hn::AllFalse(d, lanes))
-              evaluate_orbit<Tr, Order, O>(volume, l, lanes, first, axis, flip, value, derivatives);
+              evaluate_orbit<Tr, Order, O>(volume, l, lanes, st, value, derivatives);
           }(),
           ...);
     }
