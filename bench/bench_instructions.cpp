@@ -9,10 +9,11 @@
 // fetched and summed. Divide the collected count by `points`. With `double` the volume, the
 // evaluation and the floor are in double (toggle '*Reconstructor<double>::evaluate*'). With `time`
 // it also prints the thread CPU time per point (best of 10 runs):
-// `build/bench/bench_instructions m7 200000 time`. BOXGEN_SIMD=0 measures the scalar batch path.
-// (valgrind emulates no AVX-512: under it the SIMD path dispatches to AVX2.) Any other registry
-// filter (fcc6, tricubic, cart7) runs through the same Reconstructor<T>::evaluate on a volume of
-// its own lattice with about as many samples (2 x 32^3), no floor:
+// `build/bench/bench_instructions m7 200000 time`. `side=96` takes a 96^3 x 2 volume instead
+// (larger than the caches: `--cache-sim=yes` counts the misses). BOXGEN_SIMD=0 measures the scalar
+// batch path. (valgrind emulates no AVX-512: under it the SIMD path dispatches to AVX2.) Any other
+// registry filter (fcc6, tricubic, cart7) runs through the same Reconstructor<T>::evaluate on a
+// volume of its own lattice with about as many samples (2 x 32^3), no floor:
 //   valgrind --tool=callgrind --toggle-collect='*Reconstructor<float>::evaluate*'
 //            build/bench/bench_instructions tricubic 20000
 #include <algorithm>
@@ -72,13 +73,14 @@ double best_thread_ns(int runs, F&& run) {
   return best;
 }
 
-// Any registry filter on a volume of its own lattice with about 2 x 32^3 samples (M7, M8, M12:
-// 32^3 x 2 on BCC), or the fetch floor of a BCC filter.
+// Any registry filter on a volume of its own lattice with about 2 x side^3 samples (M7, M8, M12:
+// side^3 x 2 on BCC), or the fetch floor of a BCC filter.
 template <class T>
-double filter_ns(const SplineFilter& f, std::vector<T>& values, long count, bool floor, int runs) {
+double filter_ns(const SplineFilter& f, std::vector<T>& values, long count, bool floor, int runs,
+                 int side) {
   const CosetLattice lattice = f.lattice();
   const int n =
-      static_cast<int>(std::lround(std::cbrt(2.0 * 32 * 32 * 32 / lattice.coset_count())));
+      static_cast<int>(std::lround(std::cbrt(2.0 * side * side * side / lattice.coset_count())));
   LatticeVolume<T> volume(lattice, {n, n, n}, 1.0, {0, 0, 0});
   std::mt19937_64 rng(1);
   for (auto& s : volume.samples()) s = static_cast<T>(rng() % 1000) / T(1000);
@@ -100,12 +102,15 @@ double filter_ns(const SplineFilter& f, std::vector<T>& values, long count, bool
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: bench_instructions FILTER POINTS [floor] [time] [double]\n");
+    std::fprintf(stderr,
+                 "usage: bench_instructions FILTER POINTS [floor] [time] [double] [side=N]\n");
     return 2;
   }
   const long count = std::atol(argv[2]);
   bool floor = false, timed = false, in_double = false;
+  int side = 32;
   for (int a = 3; a < argc; ++a) {
+    if (std::string(argv[a]).rfind("side=", 0) == 0) side = std::atoi(argv[a] + 5);
     floor = floor || std::string(argv[a]) == "floor";
     timed = timed || std::string(argv[a]) == "time";
     in_double = in_double || std::string(argv[a]) == "double";
@@ -120,7 +125,7 @@ int main(int argc, char** argv) {
   std::size_t size = 0;
   const auto measure = [&](auto zero) {
     std::vector<decltype(zero)> values;
-    best = filter_ns(filter, values, count, floor, timed ? 10 : 1);
+    best = filter_ns(filter, values, count, floor, timed ? 10 : 1, side);
     for (auto v : values) sum += static_cast<double>(v);
     size = values.size();
   };
@@ -128,8 +133,8 @@ int main(int argc, char** argv) {
     measure(0.0);
   else
     measure(0.0F);
-  std::printf("%s%s%s: %ld points, checksum %.6g", argv[1], in_double ? " double" : "",
-              floor ? " floor" : "", count, sum);
+  std::printf("%s%s%s: %ld points, side %d, checksum %.6g", argv[1], in_double ? " double" : "",
+              floor ? " floor" : "", count, side, sum);
   if (timed)
     std::printf(", %.2f ns per point (thread CPU time, best of 10)",
                 best / static_cast<double>(size));
