@@ -15,7 +15,8 @@ void derive_and_emit(benchmark::State& state, const char* preset, double target_
     const boxgen::generator::Derivation a =
         boxgen::generator::derive(boxgen::generator::parse_spec(preset));
     for (const auto& f :
-         boxgen::generator::emit(a, {preset, "bench", boxgen::generator::EmissionStrategy::Auto}))
+         boxgen::generator::emit(a, {preset, "bench", boxgen::generator::EmissionStrategy::Auto})
+             .files)
       bytes += f.text.size();
     benchmark::DoNotOptimize(bytes);
   }

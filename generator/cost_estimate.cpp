@@ -14,6 +14,7 @@
 #include "generator/error.h"
 #include "generator/knot_normals.h"
 #include "generator/piecewise_form.h"
+#include "support/available_memory.h"
 
 namespace boxgen::generator {
 
@@ -82,6 +83,14 @@ void refuse_if_too_many_cells(const BoxSplineSpec& spec) {
                     "fewer directions "
                     "or smaller entries",
                     bound, kEnumerableCells * 50));
+}
+
+void refuse_up_front_if_too_costly(const BoxSplineSpec& spec, bool verify, bool full_checks,
+                                   double max_seconds, double max_bytes) {
+  const double bound =
+      knot_cell_bound(knot_planes(spec.directions, spec.dimension()), spec.dimension());
+  if (bound <= kEnumerableCells) return;
+  refuse_if_too_costly(estimate_cost(spec, verify, full_checks), max_seconds, max_bytes);
 }
 
 CostEstimate estimate_cost(const BoxSplineSpec& spec, bool verify, bool full_checks) {
@@ -200,17 +209,6 @@ CostEstimate estimate_cost(const BoxSplineSpec& given, std::size_t knot_cells,
   return e;
 }
 
-double available_memory_bytes() {
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key, unit;
-  double kib = 0;
-  while (meminfo >> key >> kib) {
-    std::getline(meminfo, unit);
-    if (key == "MemAvailable:") return kib * 1024.0;
-  }
-  return 0;
-}
-
 void refuse_if_too_costly(const CostEstimate& e, double max_seconds, double max_bytes) {
   const double limit = max_seconds > 0 ? max_seconds : kDefaultMaxSeconds;
   const std::string cells =
@@ -221,13 +219,13 @@ void refuse_if_too_costly(const CostEstimate& e, double max_seconds, double max_
         "of {:.3g} s; raise it with --max-seconds, or use fewer directions",
         e.seconds, e.bytes / 1e6, cells, limit));
   const bool given = max_bytes > 0;
-  const double memory = given ? max_bytes : available_memory_bytes();
+  const double memory = given ? max_bytes : support::available_memory_bytes();
   if (memory > 0 && e.bytes > memory)
     fail_input(fmt::format(
         "too costly to derive exactly: predicted {:.3g} MB of memory ({}), beyond the {:.3g} MB "
         "{}; {}use fewer directions",
         e.bytes / 1e6, cells, memory / 1e6,
-        given ? "of --max-memory" : "available on this machine (MemAvailable)",
+        given ? "of --max-memory" : "this process may still take (MemAvailable, ulimit -v, cgroup)",
         given ? "raise --max-memory, or " : ""));
 }
 

@@ -54,13 +54,18 @@ CostEstimate estimate_cost(const BoxSplineSpec& spec, std::size_t knot_cells,
 // what can be enumerated (a guard against hangs; the estimate proper needs the count).
 void refuse_if_too_many_cells(const BoxSplineSpec& spec);
 
+// Throws InputError, as refuse_if_too_costly, when the knot cells are too many to be counted
+// exactly (their general-position bound beyond what estimate_cost enumerates) and the prediction
+// on that bound (what `--estimate` prints) is beyond the limits: before anything is enumerated,
+// which for such a SPEC alone takes minutes and gigabytes. Does nothing otherwise (the exact
+// count, made by the derivation itself, decides then).
+void refuse_up_front_if_too_costly(const BoxSplineSpec& spec, bool verify, bool full_checks,
+                                   double max_seconds, double max_bytes);
+
 inline constexpr double kDefaultMaxSeconds = 600;
-// The memory this process may still take: MemAvailable of /proc/meminfo, in bytes (0 where it
-// cannot be read: then only an explicit limit applies).
-double available_memory_bytes();
 // Throws InputError, with the prediction and the limit in one line, if the predicted time
 // exceeds max_seconds (0: kDefaultMaxSeconds) or the predicted memory exceeds max_bytes (0: the
-// available memory).
+// memory this process may still take, support::available_memory_bytes).
 void refuse_if_too_costly(const CostEstimate& e, double max_seconds, double max_bytes = 0);
 
 }  // namespace boxgen::generator

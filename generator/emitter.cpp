@@ -4,11 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <limits>
-#include <sstream>
+#include <cctype>
 
 #include "generator/code_text.h"
 #include "generator/embedded_templates.h"
@@ -136,6 +132,18 @@ Args cpp_table_args(const Derivation& a, const EmissionRequest& req, const Orbit
                                   p->temporaries));
     cost_table.push_back("{" + join(paths) + "}");
   }
+  // Per cell its row of Traits::kCells ({cube, orbit, {keys}, {perm}, {sign}, {a}}) and its
+  // stencil offsets, padded with zero points to the largest stencil.
+  std::vector<std::string> cells, offsets;
+  for (std::size_t c = 0; c < t.cube.size(); ++c) {
+    cells.push_back(fmt::format("{{{}, {}, {}, {}, {}, {}}}", t.cube[c], t.orbit[c],
+                                brace_list(t.keys[c]), brace_list(t.perm[c]), brace_list(t.sign[c]),
+                                brace_list(t.a[c])));
+    std::vector<std::string> points;
+    for (const IntVec& d : t.offset[c]) points.push_back(brace_list(d));
+    points.resize(static_cast<std::size_t>(s.stencil_max), brace_list(IntVec(n, 0)));
+    offsets.push_back("{" + join(points) + "}");
+  }
   std::vector<std::string> centre, hermite_rows;
   for (const auto& c : s.centre) centre.push_back(literal(c));
   for (const auto& col : hermite) hermite_rows.push_back(brace_list(col));
@@ -167,15 +175,16 @@ Args cpp_table_args(const Derivation& a, const EmissionRequest& req, const Orbit
   add(args, "normal_stride", ints(keys.strides));
   add(args, "lookup_size", keys.size());
   add(args, "lookup", join(lookup_rows, ",\n      "));
-  add(args, "cell_count", t.cells.size());
-  add(args, "cells", join(t.cells, ",\n      "));
+  add(args, "cell_count", cells.size());
+  add(args, "cells", join(cells, ",\n      "));
   add(args, "orbit_count", s.references.size());
   add(args, "orbit_stencil_sizes", join(orbit_sizes));
-  add(args, "offsets", join(t.offsets, ",\n      "));
+  add(args, "offsets", join(offsets, ",\n      "));
   return args;
 }
 
-std::string evaluator(const Derivation& a, const EmissionRequest& req, const OrbitCodes& code) {
+// NAME.hpp's fields but its include guard.
+Args evaluator_args(const Derivation& a, const EmissionRequest& req, const OrbitCodes& code) {
   Args args = cpp_table_args(a, req, code);
   std::vector<std::string> dispatch, functions;
   for (size_t o = 0; o < code.orbits.size(); ++o) {
@@ -184,7 +193,7 @@ std::string evaluator(const Derivation& a, const EmissionRequest& req, const Orb
   }
   add(args, "orbit_functions", join(functions, "\n"));
   add(args, "orbit_dispatch", join(dispatch, "\n"));
-  return fmt::vformat(templates::evaluator_hpp, args);
+  return args;
 }
 
 // NAME.cuh: the same tables and orbit code, callable from host and device code.
@@ -212,8 +221,15 @@ std::string cuda_evaluator(const Derivation& a, const EmissionRequest& req,
   return fmt::vformat(templates::evaluator_cuh, args);
 }
 
-std::string prefilters(const Derivation& a, const EmissionRequest& req) {
+// NAME_prefilters.hpp's text of q1 and q2 on the request's shells (or why there is none), and
+// the prefilters as data.
+struct Prefilters {
   std::string filters;
+  std::optional<Prefilter> q1, q2;
+};
+
+Prefilters prefilters(const Derivation& a, const EmissionRequest& req) {
+  Prefilters out;
   for (const int which : {1, 2}) {
     const std::string id = "q" + std::to_string(which);
     std::vector<int> shells = req.shells;
@@ -225,49 +241,77 @@ std::string prefilters(const Derivation& a, const EmissionRequest& req) {
       for (const auto& w : q.weights)
         rows.push_back(fmt::format("    {{{}, {}}},  // {}", brace_list(w.offset),
                                    literal(w.weight), to_string(w.weight)));
-      filters += fmt::format(
+      out.filters += fmt::format(
           "// Shells {}: {} parametrisation.\ninline constexpr PrefilterTap {}[] = {{\n{}\n}};\n\n",
           brace_list(shells), q.parametrisation, id, join(rows, "\n"));
+      (which == 1 ? out.q1 : out.q2) = q;
     } catch (const InputError& e) {
-      filters += fmt::format("// No prefilter {} of order {}{}: {}\n\n", id,
-                             a.properties.approximation_order,
-                             shells.empty() ? "" : " on shells " + brace_list(shells), e.what());
+      out.filters += fmt::format(
+          "// No prefilter {} of order {}{}: {}\n\n", id, a.properties.approximation_order,
+          shells.empty() ? "" : " on shells " + brace_list(shells), e.what());
     }
   }
-  return fmt::format(fmt::runtime(templates::prefilters_hpp), fmt::arg("banner", banner(a, req)),
-                     fmt::arg("name", req.name),
-                     fmt::arg("order", a.properties.approximation_order),
-                     fmt::arg("dimension", a.spec.dimension()), fmt::arg("filters", filters));
+  return out;
+}
+
+Args prefilter_args(const Derivation& a, const EmissionRequest& req, const Prefilters& q) {
+  Args args;
+  add(args, "banner", banner(a, req));
+  add(args, "name", req.name);
+  add(args, "order", a.properties.approximation_order);
+  add(args, "dimension", a.spec.dimension());
+  add(args, "filters", q.filters);
+  return args;
+}
+
+// A C++ header of the template and its fields (but the include guard, which `fields()` leaves
+// out): the file, and its text to paste into a translation unit.
+template <class Fields>
+EmittedFile header(std::string filename, std::string_view tmpl, const Fields& fields) {
+  Args pasted = fields(), file = fields();
+  add(pasted, "include_guard", "");
+  add(file, "include_guard", "#pragma once\n");
+  return {std::move(filename), fmt::vformat(tmpl, file), fmt::vformat(tmpl, pasted)};
 }
 
 }  // namespace
 
-std::vector<EmittedFile> emit(const Derivation& analysis, const EmissionRequest& request,
-                              EmissionReport* report) {
+Emission emit(const Derivation& analysis, const EmissionRequest& request) {
   if (!is_identifier(request.name))
     fail_input(
         "--name must be a C++ identifier (letters, digits, '_', not starting with a digit), got '" +
         request.name.substr(0, 40) + "'");
   const OrbitCodes code = orbit_codes(analysis, request.strategy);
-  if (report) {
-    *report = {code.strategy, {}, code.value, code.gradient, code.hessian};
-    for (const auto& o : code.orbits)
-      report->orbits.push_back(
-          {strategy_name(o.strategy), o.value, o.gradient, o.hessian, o.form, o.considered});
-  }
+  Emission out;
+  out.report = {code.strategy, {}, code.value, code.gradient, code.hessian};
+  for (const auto& o : code.orbits)
+    out.report.orbits.push_back(
+        {strategy_name(o.strategy), o.value, o.gradient, o.hessian, o.form, o.considered});
+  out.stencil_size = analysis.structure.stencil_max;
+  const CellTables t = cell_tables(analysis, knot_plane_keys(analysis), hermite_basis(analysis));
+  out.reach_lo = t.reach_lo;
+  out.reach_hi = t.reach_hi;
   switch (request.target) {
     case EmissionTarget::Glsl:
-      return {
+      out.files = {
           {request.name + ".glsl",
            generator::glsl_evaluator(analysis, banner(analysis, request), request.name, code.orbits,
                                      orbit_cost_lines(code), request.double_precision)}};
+      return out;
     case EmissionTarget::Cuda:
-      return {{request.name + ".cuh", cuda_evaluator(analysis, request, code)}};
+      out.files = {{request.name + ".cuh", cuda_evaluator(analysis, request, code)}};
+      return out;
     case EmissionTarget::Cpp:
       break;
   }
-  return {{request.name + ".hpp", evaluator(analysis, request, code)},
-          {request.name + "_prefilters.hpp", prefilters(analysis, request)}};
+  Prefilters q = prefilters(analysis, request);
+  out.files = {header(request.name + ".hpp", templates::evaluator_hpp,
+                      [&] { return evaluator_args(analysis, request, code); }),
+               header(request.name + "_prefilters.hpp", templates::prefilters_hpp,
+                      [&] { return prefilter_args(analysis, request, q); })};
+  out.q1 = std::move(q.q1);
+  out.q2 = std::move(q.q2);
+  return out;
 }
 
 EmittedFile emit_registry(const std::vector<std::string>& names, const std::string& command) {
@@ -296,28 +340,6 @@ EmittedFile emit_registry(const std::vector<std::string>& names, const std::stri
                   fmt::arg("count", names.size()), fmt::arg("names", join(quoted)),
                   fmt::arg("lattices", join(lattices)), fmt::arg("entries", join(entries, "\n")),
                   fmt::arg("cases", join(cases, "\n")))};
-}
-
-void write_files(const std::vector<EmittedFile>& files, const std::string& directory) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(directory, ec);
-  if (ec || !fs::is_directory(directory))
-    fail_input("cannot create output directory '" + directory + "'");
-  for (const auto& f : files) {
-    const fs::path target = fs::path(directory) / f.filename;
-    const fs::path temporary = fs::path(directory) / ("." + f.filename + ".tmp");
-    {
-      std::ofstream out(temporary, std::ios::binary);
-      out << f.text;
-      if (!out) fail_input("cannot write '" + temporary.string() + "'");
-    }
-    fs::rename(temporary, target, ec);
-    if (ec) {
-      fs::remove(temporary, ec);
-      fail_input("cannot write '" + target.string() + "'");
-    }
-  }
 }
 
 }  // namespace boxgen::generator

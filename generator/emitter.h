@@ -1,11 +1,14 @@
 // Emission (docs/design.md §11): the generator's tables and polynomial code, filled into the
 // fmt templates of templates/ to make a self-contained C++ evaluator header for one spline.
 #pragma once
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "boxgen/version.h"
 #include "generator/derivation.h"
 #include "generator/polynomial_code.h"
+#include "generator/prefilter.h"
 
 namespace boxgen::generator {
 
@@ -14,6 +17,9 @@ inline constexpr const char* kGeneratorVersion = kVersionBanner;  // boxgen/vers
 struct EmittedFile {
   std::string filename;
   std::string text;
+  // C++ headers of an evaluator: the same text without its include guard, for a translation unit
+  // that holds the header in its own text (the loader's shared object); empty otherwise.
+  std::string pasted = {};
 };
 
 // The language of the evaluator: C++ (<name>.hpp and <name>_prefilters.hpp), GLSL 4.30
@@ -45,18 +51,25 @@ struct EmissionReport {
   OperationCount value, gradient, hessian;  // the costliest orbit's
 };
 
-// C++: <name>.hpp (evaluator) and <name>_prefilters.hpp (q1 and q2 on the request's shells,
-// where they exist); GLSL: <name>.glsl; CUDA: <name>.cuh. Throws InputError for a name that is
-// not a C++ identifier.
-// With `report`, also fills it.
-std::vector<EmittedFile> emit(const Derivation& analysis, const EmissionRequest& request,
-                              EmissionReport* report = nullptr);
+// What an emission is, as data beside its text: consumers (the loader, the CLI, the tests) read
+// these and never search or parse the text (issue 34).
+struct Emission {
+  // C++: <name>.hpp (evaluator) and <name>_prefilters.hpp; GLSL: <name>.glsl; CUDA: <name>.cuh.
+  std::vector<EmittedFile> files;
+  EmissionReport report;
+  int stencil_size = 0;       // the largest stencil, kStencilSize of every target
+  IntVec reach_lo, reach_hi;  // kStencilReachLo/Hi: offsets j - floor(x + c) over every cell
+  // C++: the quasi-interpolation prefilters q1 and q2 that <name>_prefilters.hpp holds (on the
+  // request's shells); none where no prefilter of full order exists there (the header says why).
+  std::optional<Prefilter> q1, q2;
+};
+
+// The evaluator of `analysis` for the request's target. Throws InputError for a name that is not
+// a C++ identifier.
+Emission emit(const Derivation& analysis, const EmissionRequest& request);
 
 // registry.hpp: boxgen::generated::with_filter over the named filters (each with its evaluator and
 // both prefilters in the same directory), in the order given; the last one is the switch's default.
 EmittedFile emit_registry(const std::vector<std::string>& names, const std::string& command);
-
-// Writes the files into `directory` (each through a temporary file and a rename).
-void write_files(const std::vector<EmittedFile>& files, const std::string& directory);
 
 }  // namespace boxgen::generator

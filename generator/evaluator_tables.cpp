@@ -1,16 +1,10 @@
 #include "generator/evaluator_tables.h"
 
-#include <fmt/format.h>
-
 #include <limits>
 
-#include "generator/code_text.h"
 #include "generator/error.h"
 
 namespace boxgen::generator {
-
-using code::brace_list;
-using code::join;
 
 // Knot planes other than the axes and the combined key of floor(nu . r), r in [0,1)^n, that
 // indexes the lookup table: key = sum_k (floor(nu_k . r) - min_k) stride_k.
@@ -97,7 +91,6 @@ CellTables cell_tables(const Derivation& a, const KnotPlaneKeys& keys, const Int
     IntVec gp = g.apply(fc.placement), av(n);
     for (int i = 0; i < n; ++i) av[i] = gp[i] + region.to_reference.l[i];
     // Stencil point k of the orbit sits at j[perm_i] = sign_i (s_i - a_i) + t[perm_i].
-    std::vector<std::string> points;
     t.perm.emplace_back(g.perm.begin(), g.perm.end());
     t.sign.emplace_back(g.sign.begin(), g.sign.end());
     t.a.push_back(av);
@@ -110,15 +103,8 @@ CellTables cell_tables(const Derivation& a, const KnotPlaneKeys& keys, const Int
         t.reach_lo[axis] = std::min(t.reach_lo[axis], d[axis]);
         t.reach_hi[axis] = std::max(t.reach_hi[axis], d[axis]);
       }
-      points.push_back(brace_list(d));
       t.offset.back().push_back(d);
     }
-    for (size_t m = points.size(); m < static_cast<size_t>(s.stencil_max); ++m)
-      points.push_back(brace_list(IntVec(n, 0)));
-    t.offsets.push_back("{" + join(points) + "}");
-    t.cells.push_back(fmt::format("{{{}, {}, {}, {}, {}, {}}}", cube, region.orbit,
-                                  brace_list(local_keys), brace_list(g.perm), brace_list(g.sign),
-                                  brace_list(av)));
   }
   return t;
 }

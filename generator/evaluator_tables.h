@@ -2,7 +2,6 @@
 // planes that key the cell lookup, the lattice's Hermite basis, and per fundamental cell its
 // cube, orbit, keys, the signed permutation onto its orbit's reference region and its stencil.
 #pragma once
-#include <string>
 #include <vector>
 
 #include "generator/derivation.h"
@@ -18,12 +17,11 @@ struct KnotPlaneKeys {
 };
 
 // Per fundamental cell: its place in the lookup table, its row of the cell table and its stencil
-// offsets from the corner floor(x + c) (as C++ initialisers and as numbers); with the stencil
-// reach over all cells.
+// offsets from the corner floor(x + c); with the stencil reach over all cells. Numbers only: each
+// target's printer formats them.
 struct CellTables {
   std::vector<std::vector<int>> lookup;  // [cube][key] -> cell or -1
-  std::vector<std::string> cells, offsets;
-  IntVec reach_lo, reach_hi;  // offsets j - floor(x + c) per axis, over every cell
+  IntVec reach_lo, reach_hi;             // offsets j - floor(x + c) per axis, over every cell
   std::vector<int> cube, orbit;
   std::vector<std::vector<int>> keys;        // per cell: floor keys (and a trailing 0)
   std::vector<std::vector<int>> perm, sign;  // x_ref_i = sign_i (x - t)_perm_i + a_i

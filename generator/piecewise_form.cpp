@@ -88,6 +88,8 @@ PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod metho
   const auto start = std::chrono::steady_clock::now();
   const int n = spec.dimension();
   refuse_if_too_many_cells(spec);
+  refuse_up_front_if_too_costly(spec, budget.with_checks, budget.full_checks, budget.max_seconds,
+                                budget.max_bytes);
   Zonotope support(spec.directions, n);
   if (progress) progress("knot-plane cells", 0, 0);
   PiecewiseForm form(

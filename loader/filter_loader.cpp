@@ -16,6 +16,7 @@
 #include "generator/derivation.h"
 #include "generator/emitter.h"
 #include "generator/error.h"
+#include "generator/int_linalg.h"
 #include "generator/spec.h"
 #include "loader/filter_cache.h"
 #include "loader/filter_compiler.h"
@@ -79,24 +80,15 @@ std::optional<rt::SplineFilter> registry_filter(const std::string& name) {
   return std::nullopt;
 }
 
-std::string strip_pragma_once(std::string text) {
-  const std::string pragma = "#pragma once\n";
-  if (const auto at = text.find(pragma); at != std::string::npos) text.erase(at, pragma.size());
-  return text;
-}
-
 // The shared object's one source: the emitted evaluator and prefilters, and the two exported
 // functions. boxgen_filter_stamp() says which loader, boxgen and entry it was built for;
 // boxgen_filter_create() returns the filter as a FilterSource of the runtime's engine, whose
 // batch paths follow the host's thread cap (the object has its own copy of the runtime's
 // functions, so the cap is asked from the host before each batch).
-std::string glue_source(const std::string& name, const std::vector<gen::EmittedFile>& files,
+std::string glue_source(const std::string& name, const gen::Emission& emission,
                         const std::string& stamp) {
-  const std::string& prefilters = files.at(1).text;
-  const auto table = [&](const char* q) {
-    return prefilters.find(fmt::format("PrefilterTap {}[]", q)) != std::string::npos
-               ? fmt::format("rt::prefilter_from(g::{})", q)
-               : std::string("rt::DiscreteFilter{}");
+  const auto table = [](const std::optional<gen::Prefilter>& q, const char* id) {
+    return q ? fmt::format("rt::prefilter_from(g::{})", id) : std::string("rt::PrefilterTaps{}");
   };
   return fmt::format(
       R"(// A run-time filter of boxgen (loader/filter_loader.cpp): do not edit, it is rebuilt.
@@ -156,7 +148,7 @@ class Source final : public rt::FilterSource {{
   std::string name() const override {{ return name_; }}
   rt::CosetLattice lattice() const override {{ return filter_.lattice(); }}
   rt::StencilReach reach() const override {{ return filter_.reach(); }}
-  rt::DiscreteFilter prefilter(rt::PrefilterChoice q) const override {{ return filter_.prefilter(q); }}
+  rt::PrefilterTaps prefilter(rt::PrefilterChoice q) const override {{ return filter_.prefilter(q); }}
   int approximation_order() const override {{ return filter_.approximation_order(); }}
   std::shared_ptr<const rt::EvaluationPath<float>> path(const rt::LatticeVolume<float>& v) const override {{
     return std::make_shared<Path<float>>(filter_.path(v), threads_);
@@ -179,9 +171,10 @@ extern "C" __attribute__((visibility("default"))) rt::FilterSource* boxgen_filte
   return new Source(name, threads);
 }}
 )",
-      fmt::arg("evaluator", strip_pragma_once(files.at(0).text)),
-      fmt::arg("prefilters", strip_pragma_once(prefilters)), fmt::arg("name", name),
-      fmt::arg("q1", table("q1")), fmt::arg("q2", table("q2")), fmt::arg("stamp", stamp));
+      fmt::arg("evaluator", emission.files.at(0).pasted),
+      fmt::arg("prefilters", emission.files.at(1).pasted), fmt::arg("name", name),
+      fmt::arg("q1", table(emission.q1, "q1")), fmt::arg("q2", table(emission.q2, "q2")),
+      fmt::arg("stamp", stamp));
 }
 
 using StampFn = const char* (*)();
@@ -270,7 +263,7 @@ void write_glsl(const CacheEntry& entry, const gen::Derivation& derivation, Entr
         fmt::format("the run-time filter \"{}\" --lattice \"{}\"", info.spec, info.rows);
     request.target = gen::EmissionTarget::Glsl;
     request.double_precision = dbl;
-    const std::string text = gen::emit(derivation, request).at(0).text;
+    const std::string text = gen::emit(derivation, request).files.at(0).text;
     write_entry_file(glsl_file(entry, dbl), text);
     (dbl ? info.glsl_double_hash : info.glsl_hash) = hash_text(text);
   }
@@ -292,8 +285,7 @@ void build_entry(const CacheEntry& entry, const gen::BoxSplineSpec& spec, const 
   request.name = name;
   request.command =
       fmt::format("the run-time filter \"{}\" --lattice \"{}\"", info.spec, info.rows);
-  const auto files = gen::emit(derivation, request);
-  const std::string source = glue_source(name, files, info.stamp);
+  const std::string source = glue_source(name, gen::emit(derivation, request), info.stamp);
   try {
     write_entry_file(entry.file(".cpp"), source);
     progress.stage(fmt::format("first use of filter {}: compiling with {} (cached in {})", what,
@@ -313,6 +305,16 @@ void build_entry(const CacheEntry& entry, const gen::BoxSplineSpec& spec, const 
   } catch (const support::OutputFileError& e) {
     throw LoadError(fmt::format("cannot write the compiled filter into the cache: {}", e.what()));
   }
+}
+
+// The directions as the cache key sees them: the centred box spline (what the loader derives,
+// emits and compiles) is the same for any order of the directions and either sign of each, so
+// each is taken with its first nonzero entry positive and the list is sorted. The same matrix
+// reordered or with a direction negated then loads the entry compiled first.
+std::string key_directions(gen::BoxSplineSpec spec) {
+  for (gen::IntVec& d : spec.directions) d = gen::sign_canonical(std::move(d));
+  std::sort(spec.directions.begin(), spec.directions.end());
+  return spec.directions_text();
 }
 
 // A SPEC (not a registry name) and its place in the cache: load_filter and load_glsl share it.
@@ -343,7 +345,7 @@ Resolved resolve(const std::string& spec_or_name, const std::optional<std::strin
   info.lattice = spec.lattice.name();
   info.rows = rows_text(spec.lattice);
   const std::string identity = fmt::format("abi {}\n{}\n{}\n{}\n{}", kAbiVersion, kVersion,
-                                           info.spec, info.rows, toolchain.identity());
+                                           key_directions(spec), info.rows, toolchain.identity());
   // The directory is made, and checked, before anything is read from it or written to it.
   CacheEntry entry{*checked_cache_dir(resolve_cache_dir(options.cache_dir), true),
                    hash_text(identity)};
@@ -395,6 +397,14 @@ void ensure_entry(const Resolved& r, const CompileOptions& options,
 
 fs::path cache_directory(const CompileOptions& options) {
   return resolve_cache_dir(options.cache_dir);
+}
+
+std::string cache_key_directions(const std::string& spec, const std::string& lattice) {
+  try {
+    return key_directions(gen::parse_spec(spec, lattice));
+  } catch (const gen::InputError& e) {
+    throw LoadError(e.what());
+  }
 }
 
 rt::SplineFilter load_filter(const std::string& spec_or_name, std::optional<std::string> lattice,

@@ -61,6 +61,11 @@ struct EmittedGlsl {
 EmittedGlsl load_glsl(const std::string& spec, std::optional<std::string> lattice,
                       bool double_precision, const CompileOptions& options = {});
 
+// The directions of a SPEC as its cache key hashes them: each with its first nonzero entry
+// positive, sorted. The centred spline is the same for any order and sign of its directions, so
+// every such spelling loads one entry. Throws LoadError for a SPEC boxgen refuses.
+std::string cache_key_directions(const std::string& spec, const std::string& lattice = {});
+
 // The cache directory the options name (not created).
 std::filesystem::path cache_directory(const CompileOptions& options = {});
 

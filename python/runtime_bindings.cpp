@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -26,12 +27,16 @@
 #include "runtime/batch_threads.h"
 #include "runtime/coefficients.h"
 #include "runtime/interpolation.h"
+#include "runtime/nifti_io.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/prefilter.h"
 #include "runtime/reconstruction.h"
 #include "runtime/resample.h"
+#include "runtime/sample_encoding.h"
 #include "runtime/sampling.h"
+#include "runtime/source_samples.h"
 #include "runtime/test_functions.h"
+#include "runtime/volume_output.h"
 
 namespace py = pybind11;
 namespace rt = boxgen::runtime;
@@ -128,7 +133,7 @@ const Volume& prepared(const Volume& volume, const Filter& f, const Prefiltering
 }
 
 // Taps as NumPy arrays: (offsets (m, 3), weights (m,)).
-py::tuple taps_arrays(const rt::DiscreteFilter& taps) {
+py::tuple taps_arrays(const rt::PrefilterTaps& taps) {
   py::array_t<long> offsets(std::vector<py::ssize_t>{static_cast<py::ssize_t>(taps.size()), 3});
   py::array_t<double> weights(static_cast<py::ssize_t>(taps.size()));
   for (std::size_t i = 0; i < taps.size(); ++i) {
@@ -189,16 +194,94 @@ std::vector<std::array<int, 3>> offsets_of(const rt::CosetLattice& lattice) {
   return out;
 }
 
-VolumePtr make_volume(const py::handle& samples, const std::string& lattice_text, double spacing,
-                      const py::handle& origin,
-                      const std::optional<std::vector<std::array<int, 3>>>& offsets) {
+// spacing=: one number h, or three (an anisotropic Cartesian volume, as scanners write).
+rt::Vec3 spacing_of(const py::handle& spacing) {
+  const py::array_t<double> a = real_array(spacing, "spacing");
+  if (a.ndim() == 0) {
+    const double h = *a.data();
+    return {h, h, h};
+  }
+  return three(spacing, "spacing");
+}
+
+// affine=: the 4x4 (or 3x4) map from lattice coordinates to world, as nibabel's img.affine. Its
+// linear part must be diagonal (the runtime's volumes are axis-aligned; an oblique one is
+// refused as the readers refuse oblique files); a negative step reverses that axis of the
+// Cartesian samples (as the NIfTI reader does), keeping every value's world position.
+void from_affine(const py::handle& affine, const rt::CosetLattice& lattice, const rt::Sizes& sizes,
+                 std::vector<double>& storage, rt::Vec3& steps, rt::Vec3& origin) {
+  const py::array_t<double> a = real_array(affine, "affine");
+  if (a.ndim() != 2 || (a.shape(0) != 4 && a.shape(0) != 3) || a.shape(1) != 4)
+    throw py::value_error(
+        fmt::format("affine must be a 4 x 4 (or 3 x 4) matrix, got shape {}", shape_text(a)));
+  if (a.shape(0) == 4 && (a.at(3, 0) != 0 || a.at(3, 1) != 0 || a.at(3, 2) != 0 || a.at(3, 3) != 1))
+    throw py::value_error("affine's last row must be (0, 0, 0, 1)");
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) {
+      if (!std::isfinite(a.at(r, c)))
+        throw py::value_error(fmt::format("affine[{}, {}] is not finite", r, c));
+      if (c < 3 && c != r && a.at(r, c) != 0)
+        throw py::value_error(fmt::format(
+            "affine[{}, {}] = {}: the affine is oblique (or permutes the axes), but volumes are "
+            "axis-aligned; resample it onto an axis-aligned grid first (scipy.ndimage."
+            "affine_transform, nibabel.processing.resample_from_to)",
+            r, c, a.at(r, c)));
+    }
+  for (int r = 0; r < 3; ++r) {
+    steps[static_cast<std::size_t>(r)] = a.at(r, r);
+    origin[static_cast<std::size_t>(r)] = a.at(r, 3);
+  }
+  const bool reversed = steps[0] < 0 || steps[1] < 0 || steps[2] < 0;
+  if (reversed && lattice.coset_count() != 1)
+    throw py::value_error(fmt::format(
+        "affine has a negative step: only a Cartesian volume's axes can be reversed, not a {} "
+        "lattice's",
+        lattice.name()));
+  if (reversed) rt::orient_axes_positive(std::span<double>(storage), sizes, steps, origin);
+}
+
+VolumePtr make_volume(const py::handle& samples, const std::string& lattice_text,
+                      const py::handle& spacing, const py::handle& origin,
+                      const std::optional<std::vector<std::array<int, 3>>>& offsets,
+                      const py::handle& affine) {
   const rt::CosetLattice lattice = lattice_of(lattice_text, offsets);
   std::vector<double> storage = storage_of(samples, lattice);
   const py::array a = py::array::ensure(samples);
   const rt::Sizes sizes{static_cast<int>(a.shape(1)), static_cast<int>(a.shape(2)),
                         static_cast<int>(a.shape(3))};
-  return std::make_shared<Volume>(lattice, sizes, spacing, three(origin, "origin"),
-                                  std::move(storage));
+  rt::Vec3 steps{}, corner{};
+  if (affine.is_none()) {
+    steps = spacing_of(spacing);
+    corner = three(origin, "origin");
+  } else {
+    if (!spacing.is_none() || !origin.is_none())
+      throw py::value_error("give affine= or spacing= and origin=, not both");
+    from_affine(affine, lattice, sizes, storage, steps, corner);
+  }
+  return std::make_shared<Volume>(lattice, sizes, steps, corner, std::move(storage));
+}
+
+py::tuple spacings_of(const Volume& v) {
+  const rt::Vec3& h = v.axis_spacing();
+  return py::make_tuple(h[0], h[1], h[2]);
+}
+
+// The map from lattice coordinates to world: diag(spacings) and the origin (for a Cartesian
+// volume the voxel-to-world affine of nibabel and NIfTI's sform).
+py::array_t<double> affine_of(const Volume& v) {
+  py::array_t<double> out({4, 4});
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out.mutable_at(r, c) = r == c ? 1.0 : 0.0;
+  for (int a = 0; a < 3; ++a) {
+    out.mutable_at(a, a) = v.axis_spacing()[static_cast<std::size_t>(a)];
+    out.mutable_at(a, 3) = v.origin()[static_cast<std::size_t>(a)];
+  }
+  return out;
+}
+
+bool isotropic(const Volume& v) {
+  const rt::Vec3& h = v.axis_spacing();
+  return h[0] == h[1] && h[1] == h[2];
 }
 
 // The world position of every sample, (K N0 N1 N2, 3) in storage order (the positions
@@ -331,10 +414,21 @@ void bind_volume(py::module_& m) {
   py::class_<Volume, VolumePtr>(m, "Volume",
                                 "Samples on a lattice (docs/python.md): `samples` is a (K, N0, "
                                 "N1, N2) view of the storage, sample (c, i, j, k) at origin + "
-                                "spacing * (d (i, j, k) + offset_c).")
-      .def(py::init(&make_volume), py::arg("samples"), py::arg("lattice") = "bcc",
-           py::arg("spacing") = 1.0, py::arg("origin") = std::array<double, 3>{0, 0, 0},
-           py::arg("coset_offsets") = py::none())
+                                "spacing * (d (i, j, k) + offset_c); spacing one number or three "
+                                "(Cartesian), or an axis-aligned `affine` instead.")
+      .def(py::init([](const py::handle& samples, const std::string& lattice,
+                       const py::handle& spacing, const py::handle& origin,
+                       const std::optional<std::vector<std::array<int, 3>>>& offsets,
+                       const py::handle& affine) {
+             if (affine.is_none())
+               return make_volume(samples, lattice, spacing.is_none() ? py::float_(1.0) : spacing,
+                                  origin.is_none() ? py::make_tuple(0, 0, 0) : origin, offsets,
+                                  affine);
+             return make_volume(samples, lattice, spacing, origin, offsets, affine);
+           }),
+           py::arg("samples"), py::arg("lattice") = "bcc", py::arg("spacing") = py::none(),
+           py::arg("origin") = py::none(), py::arg("coset_offsets") = py::none(),
+           py::arg("affine") = py::none())
       .def_property_readonly(
           "samples",
           [](const py::object& self) {
@@ -353,7 +447,20 @@ void bind_volume(py::module_& m) {
       .def_property_readonly("coset_offsets",
                              [](const Volume& v) { return offsets_of(v.lattice()); })
       .def_property_readonly("period", &Volume::period)
-      .def_property_readonly("spacing", &Volume::spacing)
+      .def_property_readonly(
+          "spacing",
+          [](const Volume& v) {
+            if (!isotropic(v))
+              throw py::value_error(
+                  fmt::format("the volume is anisotropic (spacings {}, {}, {}): it has no "
+                              "one spacing; use spacings",
+                              v.axis_spacing()[0], v.axis_spacing()[1], v.axis_spacing()[2]));
+            return v.spacing();
+          })
+      .def_property_readonly("spacings", &spacings_of, "The spacing along x, y and z")
+      .def_property_readonly("affine", &affine_of,
+                             "4 x 4: lattice coordinates to world (diag(spacings), origin); for "
+                             "a Cartesian volume the voxel-to-world affine, as nibabel's")
       .def_property_readonly("origin",
                              [](const Volume& v) {
                                const rt::Vec3& o = v.origin();
@@ -364,23 +471,26 @@ void bind_volume(py::module_& m) {
            "World positions of the samples, (K N0 N1 N2, 3) in storage order (coset fastest)")
       .def("__repr__",
            [](const Volume& v) {
+             const rt::Vec3& h = v.axis_spacing();
+             const std::string spacing =
+                 isotropic(v) ? fmt::format("spacing {}", h[0])
+                              : fmt::format("spacings ({}, {}, {})", h[0], h[1], h[2]);
              return fmt::format(
-                 "boxgen.Volume({} lattice, {} x {} x {} x {} samples, spacing {}, "
-                 "origin ({}, {}, {}))",
+                 "boxgen.Volume({} lattice, {} x {} x {} x {} samples, {}, origin ({}, {}, {}))",
                  v.lattice().name(), v.coset_count(), v.sizes()[0], v.sizes()[1], v.sizes()[2],
-                 v.spacing(), v.origin()[0], v.origin()[1], v.origin()[2]);
+                 spacing, v.origin()[0], v.origin()[1], v.origin()[2]);
            })
       .def(py::pickle(
           [](const py::object& self) {
             const auto& v = self.cast<const Volume&>();
             const std::string lattice =
                 v.lattice().name() == "custom" ? v.lattice().rows_text() : v.lattice().name();
-            return py::make_tuple(self.attr("samples").attr("copy")(), lattice, v.spacing(),
+            return py::make_tuple(self.attr("samples").attr("copy")(), lattice, spacings_of(v),
                                   self.attr("origin"), offsets_of(v.lattice()));
           },
           [](const py::tuple& t) {
-            return make_volume(t[0], t[1].cast<std::string>(), t[2].cast<double>(), t[3],
-                               t[4].cast<std::vector<std::array<int, 3>>>());
+            return make_volume(t[0], t[1].cast<std::string>(), t[2], t[3],
+                               t[4].cast<std::vector<std::array<int, 3>>>(), py::none());
           }));
 
   m.def(
@@ -390,19 +500,36 @@ void bind_volume(py::module_& m) {
         limits.allow_non_finite = allow_nonfinite;
         if (lattice) limits.lattice = rt::CosetLattice::parse(*lattice);
         py::gil_scoped_release release;
-        return std::make_shared<Volume>(rt::read_lattice_nrrd<double>(path, limits));
+        return std::make_shared<Volume>(rt::read_volume_file<double>(path, limits));
       },
       py::arg("path"), py::arg("allow_nonfinite") = false, py::arg("lattice") = py::none(),
-      "A lattice NRRD file (docs/runtime.md#nrrd-layout) as a Volume of doubles; `lattice`: the "
-      "one the caller needs (a file that does not say its lattice is then refused in its terms)");
+      "A volume file as a Volume of doubles: a lattice NRRD (docs/runtime.md#nrrd-layout) or a "
+      "NIfTI-1/2 image (.nii, .nii.gz, a .hdr/.img pair), with every check of boxrecon's readers; "
+      "`lattice`: the one the caller needs (a NRRD that does not say its lattice is then refused "
+      "in its terms)");
   m.def(
       "write_volume",
-      [](const std::string& path, const Volume& v) {
-        py::gil_scoped_release release;
-        rt::write_lattice_nrrd(path, v);
+      [](const std::string& path, const Volume& v, const std::optional<std::string>& type) {
+        const std::optional<rt::SampleType> t =
+            type ? std::optional(rt::parse_sample_type(*type)) : std::nullopt;
+        rt::VolumeWrite written;
+        {
+          py::gil_scoped_release release;
+          written = rt::write_volume_file(path, v, t);
+        }
+        if (written.clamped > 0 &&
+            PyErr_WarnEx(PyExc_RuntimeWarning,
+                         fmt::format("{} value(s) beyond the range of {} were clamped to it",
+                                     written.clamped, rt::sample_type_name(written.type))
+                             .c_str(),
+                         1) < 0)
+          throw py::error_already_set();  // warnings as errors
       },
-      py::arg("path"), py::arg("volume"),
-      "Writes the volume as a lattice NRRD, atomically (the old file stays if the write fails)");
+      py::arg("path"), py::arg("volume"), py::arg("type") = py::none(),
+      "Writes the volume in the format of its name, atomically: NRRD (.nrrd, any lattice) or "
+      "NIfTI-1 (.nii, .nii.gz, Cartesian only); `type`: the sample type (int8 ... float64; "
+      "default the NRRD's float64, NIfTI's float32); integers rounded, values beyond the range "
+      "clamped (a RuntimeWarning says how many)");
   m.def(
       "sample",
       [](const py::object& function, int n, const std::optional<std::string>& lattice,

@@ -52,8 +52,8 @@ StencilReach published_reach() {
 
 // An emitted prefilter table (q1 or q2 of a *_prefilters.hpp) as taps for prefilter().
 template <class Tap, std::size_t N>
-DiscreteFilter prefilter_from(const Tap (&table)[N]) {
-  DiscreteFilter out;
+PrefilterTaps prefilter_from(const Tap (&table)[N]) {
+  PrefilterTaps out;
   for (const auto& t : table) out.push_back({{t.offset[0], t.offset[1], t.offset[2]}, t.weight});
   return out;
 }
@@ -66,7 +66,7 @@ template <class Tr>
 class EmittedFilter final : public FilterSource {
  public:
   // kernels: SIMD kernels compiled with the filter (simd_batch.h), for one outside the registry.
-  EmittedFilter(DiscreteFilter q1, DiscreteFilter q2, int approximation_order, int registry_index,
+  EmittedFilter(PrefilterTaps q1, PrefilterTaps q2, int approximation_order, int registry_index,
                 const simd::Kernels* kernels = nullptr)
       : q1_(std::move(q1)),
         q2_(std::move(q2)),
@@ -78,8 +78,8 @@ class EmittedFilter final : public FilterSource {
   std::string name() const override { return Tr::kName; }
   CosetLattice lattice() const override { return lattice_; }
   StencilReach reach() const override { return published_reach<Tr>(); }
-  DiscreteFilter prefilter(PrefilterChoice q) const override {
-    const DiscreteFilter& taps = q == PrefilterChoice::Q1 ? q1_ : q2_;
+  PrefilterTaps prefilter(PrefilterChoice q) const override {
+    const PrefilterTaps& taps = q == PrefilterChoice::Q1 ? q1_ : q2_;
     if (taps.empty())
       throw std::invalid_argument(fmt::format(
           "filter {} was given no prefilter {} (pass the tables of its _prefilters.hpp)", Tr::kName,
@@ -114,7 +114,7 @@ class EmittedFilter final : public FilterSource {
         LatticeStencils<Tr, T>(volume), registry_index_, kernels_);
   }
 
-  DiscreteFilter q1_, q2_;
+  PrefilterTaps q1_, q2_;
   int order_;
   int registry_index_;
   const simd::Kernels* kernels_;
@@ -125,8 +125,7 @@ class EmittedFilter final : public FilterSource {
 // or with the tables of its _prefilters.hpp (q1, q2, kApproximationOrder).
 template <class Tr>
 SplineFilter emitted_filter() {
-  return SplineFilter(
-      std::make_shared<EmittedFilter<Tr>>(DiscreteFilter{}, DiscreteFilter{}, 0, -1));
+  return SplineFilter(std::make_shared<EmittedFilter<Tr>>(PrefilterTaps{}, PrefilterTaps{}, 0, -1));
 }
 template <class Tr, class Tap, std::size_t N1, std::size_t N2>
 SplineFilter emitted_filter(const Tap (&q1)[N1], const Tap (&q2)[N2], int approximation_order) {

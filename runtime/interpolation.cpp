@@ -137,7 +137,7 @@ struct CosetSystem {
   std::vector<std::size_t> pair;   // pair[a * K + b]: the kernel of h_ab (h_aa are all M(d t))
 };
 
-CosetSystem coset_system(const DiscreteFilter& values, const CosetLattice& lattice) {
+CosetSystem coset_system(const PrefilterTaps& values, const CosetLattice& lattice) {
   const int k_count = lattice.coset_count();
   const int d = lattice.period();
   struct Tap {
@@ -467,7 +467,7 @@ struct Regularisation {
   double lambda = 0;
 };
 
-Regularisation regularisation(const SplineFilter& f, const DiscreteFilter& values,
+Regularisation regularisation(const SplineFilter& f, const PrefilterTaps& values,
                               std::optional<double> lambda) {
   Regularisation r{symbol_bounds(values), 0};
   const bool vanishes = r.symbol.min < kVanishing * r.symbol.max;
@@ -496,11 +496,11 @@ void require_few_cosets(const CosetLattice& lattice) {
 }
 
 // The discrete convolution of two tap tables.
-DiscreteFilter convolve(const DiscreteFilter& p, const DiscreteFilter& q) {
+PrefilterTaps convolve(const PrefilterTaps& p, const PrefilterTaps& q) {
   std::map<std::array<int, 3>, double> sum;
   for (const auto& [o, w] : p)
     for (const auto& [t, v] : q) sum[{o[0] + t[0], o[1] + t[1], o[2] + t[2]}] += w * v;
-  DiscreteFilter out;
+  PrefilterTaps out;
   for (const auto& [o, w] : sum)
     if (w != 0) out.push_back({o, w});
   return out;
@@ -511,7 +511,7 @@ DiscreteFilter convolve(const DiscreteFilter& p, const DiscreteFilter& q) {
 // w.t) vanishes exactly on the dual lattice 2 pi L*, where the filter's response must stay 1), to
 // the power m = ceil(k / 4): |D|^2 vanishes to order 4 m >= k there, so that regularisation keeps
 // the reproduction of polynomials of degree < k (k: the filter's approximation order, at least 4).
-DiscreteFilter regulariser_taps(const CosetLattice& lattice, int order) {
+PrefilterTaps regulariser_taps(const CosetLattice& lattice, int order) {
   const int d = lattice.period();
   std::vector<std::array<int, 3>> steps;
   std::int64_t shortest = -1;
@@ -534,9 +534,9 @@ DiscreteFilter regulariser_taps(const CosetLattice& lattice, int order) {
                                  static_cast<int>(sign * g[2][col])};
       if (std::find(steps.begin(), steps.end(), t) == steps.end()) steps.push_back(t);
     }
-  DiscreteFilter laplacian{{{0, 0, 0}, static_cast<double>(steps.size())}};
+  PrefilterTaps laplacian{{{0, 0, 0}, static_cast<double>(steps.size())}};
   for (const auto& t : steps) laplacian.push_back({t, -1.0});  // each t and -t: 2 - 2 cos w.t
-  DiscreteFilter out = laplacian;
+  PrefilterTaps out = laplacian;
   for (int m = 1; m < (std::max(order, 4) + 3) / 4; ++m) out = convolve(out, laplacian);
   return out;
 }
@@ -547,11 +547,11 @@ struct Setup {
   Regularisation regular;
   Problem problem;
 };
-Setup setup(const SplineFilter& f, const DiscreteFilter& values, std::optional<double> lambda) {
+Setup setup(const SplineFilter& f, const PrefilterTaps& values, std::optional<double> lambda) {
   Setup s{regularisation(f, values, lambda), {}};
   s.problem.h = coset_system(values, f.lattice());
   if (s.regular.lambda > 0) {
-    const DiscreteFilter d = regulariser_taps(f.lattice(), f.approximation_order());
+    const PrefilterTaps d = regulariser_taps(f.lattice(), f.approximation_order());
     const SymbolBounds db = symbol_bounds(d);
     s.problem.d = coset_system(d, f.lattice());
     s.problem.mu =
@@ -564,7 +564,7 @@ Setup setup(const SplineFilter& f, const DiscreteFilter& values, std::optional<d
 
 // ---------------------------------------------------------------------------------------------
 
-DiscreteFilter lattice_values(const SplineFilter& f) {
+PrefilterTaps lattice_values(const SplineFilter& f) {
   const CosetLattice& lattice = f.lattice();
   const StencilReach r = f.reach();
   const int d = lattice.period();
@@ -598,7 +598,7 @@ DiscreteFilter lattice_values(const SplineFilter& f) {
   Reconstructor<double>(delta, f).evaluate(points, values);
   double largest = 0;
   for (double v : values) largest = std::max(largest, std::abs(v));
-  DiscreteFilter out;
+  PrefilterTaps out;
   for (std::size_t p = 0; p < values.size(); ++p)
     if (std::abs(values[p]) > 1e-13 * largest)
       out.push_back({{static_cast<int>(at[p][0] - j0[0]), static_cast<int>(at[p][1] - j0[1]),
@@ -609,7 +609,7 @@ DiscreteFilter lattice_values(const SplineFilter& f) {
   return out;
 }
 
-SymbolBounds symbol_bounds(const DiscreteFilter& values) {
+SymbolBounds symbol_bounds(const PrefilterTaps& values) {
   constexpr int kGrid = 64;
   // The values as one kernel on their box of Z^3 (zero off the lattice): A on the grid.
   BoxKernel kernel;
@@ -647,7 +647,7 @@ namespace {
 // max |V|.
 template <class T>
 void residual_at_samples(CosetTransform& x, const LatticeVolume<T>& samples,
-                         const DiscreteFilter& values, InterpolationReport& r) {
+                         const PrefilterTaps& values, InterpolationReport& r) {
   const CosetLattice& lattice = samples.lattice();
   const int k_count = lattice.coset_count();
   // Each tap of coset c reads a fixed step in the transform's storage from the sample (0, i, j, k)
@@ -694,7 +694,7 @@ void residual_at_samples(CosetTransform& x, const LatticeVolume<T>& samples,
 
 int interpolation_margin(const SplineFilter& f, std::optional<double> lambda) {
   require_few_cosets(f.lattice());
-  const DiscreteFilter values = lattice_values(f);
+  const PrefilterTaps values = lattice_values(f);
   return f.required_margin(PrefilterChoice::None) +
          decay_radius(setup(f, values, lambda).problem, kMarginDecay);
 }
@@ -712,7 +712,7 @@ LatticeVolume<T> interpolate(LatticeVolume<T> samples, const SplineFilter& f,
           "volume of {} x {} x {} samples per coset is too small for interpolation (it needs at "
           "least 2 per axis)",
           n[0], n[1], n[2]));
-  const DiscreteFilter values = lattice_values(f);
+  const PrefilterTaps values = lattice_values(f);
   InterpolationReport r;
   const Setup s = setup(f, values, options.lambda);
   r.symbol = s.regular.symbol;

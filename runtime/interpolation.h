@@ -30,14 +30,14 @@ namespace boxgen::runtime {
 // The filter's values M(k) at the lattice points k where they are not zero (|M(k)| > 1e-13
 // max |M|), as taps: prefilter(c, lattice_values(f)) is the spline of coefficients c at the
 // samples. From the evaluator of f in double (about 1e-16 relative).
-DiscreteFilter lattice_values(const SplineFilter& f);
+PrefilterTaps lattice_values(const SplineFilter& f);
 
 // The smallest and largest |A(w)| over the grid w = 2 pi (i, j, k) / 64 (lattice coordinates:
 // A has period 2 pi along each axis), which holds the zeros of the registry's filters.
 struct SymbolBounds {
   double min = 0, max = 0;
 };
-SymbolBounds symbol_bounds(const DiscreteFilter& values);
+SymbolBounds symbol_bounds(const PrefilterTaps& values);
 
 // Where min |A| < kVanishing max |A| the symbol is taken to vanish: interp then regularises with
 // lambda = kDefaultLambda unless told otherwise (and refuses lambda = 0).

@@ -324,6 +324,11 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
   if (count * static_cast<std::uint64_t>(im.nbyper) > limits.max_data_bytes)
     fail(fmt::format("its data of {} bytes exceeds the limit of {} bytes",
                      count * static_cast<std::uint64_t>(im.nbyper), limits.max_data_bytes));
+  // Before anything is allocated: the file's data and the samples made from it.
+  if (const std::string why = nrrd_checks::check_memory_for(
+          count * (static_cast<std::uint64_t>(im.nbyper) + sizeof(T)));
+      !why.empty())
+    fail(why);
 
   // Geometry: a diagonal affine (nifti_header::oblique_entry), translation = world point of voxel
   // (0, 0, 0). Without sform or qform the spacing is pixdim as the file holds it.

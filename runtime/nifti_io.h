@@ -18,6 +18,7 @@
 // are switched off.
 #pragma once
 #include <filesystem>
+#include <optional>
 
 #include "runtime/affine.h"
 #include "runtime/nrrd_io.h"
@@ -59,6 +60,13 @@ LatticeVolume<T> read_volume_file(const std::filesystem::path& path,
   if (is_nifti_path(path)) return read_nifti<T>(path, limits, source);
   refuse_foreign_file(path);
   return read_lattice_nrrd<T>(path, limits, source);
+}
+
+// The lattice of a volume file without reading its samples: Cartesian for NIfTI, the declared
+// one for NRRD (read_nrrd_lattice); nothing when the file cannot be read (reading it says why).
+inline std::optional<CosetLattice> read_volume_lattice(const std::filesystem::path& path) {
+  if (is_nifti_path(path)) return CosetLattice::cartesian();
+  return read_nrrd_lattice(path);
 }
 
 extern template LatticeVolume<float> read_nifti<float>(const std::filesystem::path&,

@@ -14,6 +14,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "support/available_memory.h"
+
 namespace boxgen::runtime::nrrd_checks {
 
 std::string printable(std::string_view text, std::size_t limit) {
@@ -22,6 +24,16 @@ std::string printable(std::string_view text, std::size_t limit) {
     out += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
   if (text.size() > limit) out += "...";
   return out;
+}
+
+std::string check_memory_for(std::uint64_t bytes) {
+  const double available = support::available_memory_bytes();
+  if (available <= 0 || static_cast<double>(bytes) <= available) return {};
+  constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+  return fmt::format(
+      "reading it needs {:.2f} GiB (its data and the samples made from it), more than the {:.2f} "
+      "GiB this process may still take (MemAvailable, ulimit -v, cgroup memory.max)",
+      static_cast<double>(bytes) / kGiB, available / kGiB);
 }
 
 namespace {

@@ -20,6 +20,11 @@ namespace boxgen::runtime::nrrd_checks {
 // most `limit` characters are kept.
 std::string printable(std::string_view text, std::size_t limit = 200);
 
+// Why a read that allocates `bytes` (the file's data and the samples made from it) cannot be
+// done: more than the memory this process may still take (support/available_memory.h). Empty
+// when it fits (or when the available memory cannot be read).
+std::string check_memory_for(std::uint64_t bytes);
+
 // Largest header the reader looks at.
 inline constexpr std::size_t kMaxHeaderBytes = std::size_t{1} << 20;
 

@@ -594,6 +594,8 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, c
   const std::uint64_t sample_count = header.data_bytes / nrrdTypeSize[header.type];
   check(nrrd_checks::check_data_length(file.get(), layout.start, layout.encoding, file_size,
                                        header.data_bytes, sample_count));
+  // Before anything is allocated (a file cut short is the more precise refusal, above).
+  check(nrrd_checks::check_memory_for(header.data_bytes + sample_count * sizeof(T)));
 
   NrrdOwner nrrd(nrrdNew());
   check(teem_read(file.get(), nrrd.get(), false, layout));
@@ -620,6 +622,25 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, c
 }
 
 }  // namespace
+
+std::optional<CosetLattice> read_nrrd_lattice(const fs::path& path) {
+  try {
+    const ReadFailure fail{"lattice volume", printable(path.string())};
+    std::uint64_t file_size = 0;
+    const File file = open_regular_file(path, fail, file_size);
+    if (!nrrd_checks::check_header_text(file.get(), file_size).empty()) return std::nullopt;
+    std::lock_guard lock(teem_mutex());
+    NrrdOwner nrrd(nrrdNew());
+    DataLayout layout;
+    VolumeHeader header{};
+    if (!teem_read(file.get(), nrrd.get(), true, layout).empty() ||
+        !file_lattice(nrrd.get(), header).empty())
+      return std::nullopt;
+    return header.lattice;
+  } catch (const NrrdError&) {
+    return std::nullopt;
+  }
+}
 
 template <class T>
 LatticeVolume<T> read_lattice_nrrd(const fs::path& path, const NrrdReadLimits& limits,

@@ -104,6 +104,10 @@ LatticeVolume<T> read_lattice_nrrd(const std::filesystem::path& path,
                                    const NrrdReadLimits& limits = {},
                                    SourceSamples* source = nullptr);
 
+// The lattice a NRRD file declares (its header only: the lattice keys, a plain 3-D NRRD being
+// Cartesian), or nothing when the header cannot be read; read_lattice_nrrd then says why.
+std::optional<CosetLattice> read_nrrd_lattice(const std::filesystem::path& path);
+
 // Throws std::invalid_argument for an inconsistent grid (sizes < 1, values.size() different
 // from N0 N1 N2, spacing not finite and > 0, origin not finite) and NrrdError if the file
 // cannot be written.

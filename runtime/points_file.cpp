@@ -6,11 +6,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+
+#include "support/available_memory.h"
 
 namespace boxgen::runtime {
 
@@ -119,18 +122,30 @@ class PointsParser {
     }
     if (found == 0) return;  // a blank or comment line
     if (found < 3) fail(number, fmt::format("expected three numbers 'x y z', found {}", found));
-    if (points_.size() == kMaxPoints)
-      fail(number, fmt::format("more than {} points; split the file", kMaxPoints));
+    if (points_.size() == limit_)
+      fail(number, limit_ == kMaxPoints
+                       ? fmt::format("more than {} points; split the file", kMaxPoints)
+                       : fmt::format("more than {} points, the most whose {} bytes each fit in the "
+                                     "memory this process may still take; split the file",
+                                     limit_, kBytesPerPoint));
     points_.push_back(p);
   }
 
   std::string name_;
+  std::size_t limit_ = max_points();
   std::string pending_;
   std::vector<Vec3> points_;
   std::size_t number_ = 0;
 };
 
 }  // namespace
+
+std::size_t max_points() {
+  const double available = support::available_memory_bytes();
+  if (available <= 0) return kMaxPoints;
+  return static_cast<std::size_t>(
+      std::min(static_cast<double>(kMaxPoints), available / static_cast<double>(kBytesPerPoint)));
+}
 
 std::vector<Vec3> parse_points(std::string_view text, std::string_view name) {
   PointsParser parser(name);

@@ -4,7 +4,7 @@
 // leading '+' on a number, Windows line ends (CRLF) and a UTF-8 byte order mark at the start.
 // Numbers are C's decimal or hexadecimal floating-point forms and must be finite. The path "-"
 // reads standard input; a directory, a missing file or an unreadable one is an error. Lines are
-// read as they arrive: a line longer than kMaxPointsLineBytes or more than kMaxPoints points is
+// read as they arrive: a line longer than kMaxPointsLineBytes or more than max_points() points is
 // an error (so /dev/zero or an endless stream is refused, not read until memory runs out).
 #pragma once
 #include <cstddef>
@@ -19,6 +19,12 @@ namespace boxgen::runtime {
 inline constexpr std::size_t kMaxPointsLineBytes = 4096;
 // 10^8 points: 2.4 GB as coordinates, before any value is computed.
 inline constexpr std::size_t kMaxPoints = 100'000'000;
+// The bytes a point may take while it is read and evaluated: its coordinates three times over
+// (a growing vector's old and new storage) and its results (value, gradient, Hessian).
+inline constexpr std::size_t kBytesPerPoint = 128;
+// The most points a file may hold here: kMaxPoints, or fewer when the memory this process may
+// still take (support/available_memory.h) holds fewer of kBytesPerPoint.
+std::size_t max_points();
 
 // The points of `text`; `name` (the file name) starts each error message. Throws
 // std::invalid_argument "name:line: ..." (one line) for a line that is not three finite numbers.

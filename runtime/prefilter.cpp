@@ -20,7 +20,7 @@ namespace {
 
 constexpr int kMaxOffset = 1 << 20;
 
-void validate_on(const DiscreteFilter& q, const CosetLattice& lattice) {
+void validate_on(const PrefilterTaps& q, const CosetLattice& lattice) {
   if (q.empty()) throw std::invalid_argument("prefilter has no taps");
   for (const auto& [o, w] : q) {
     for (int x : o)
@@ -51,14 +51,14 @@ TapStep tap_step(const CosetLattice& lattice, int c, const std::array<int, 3>& o
   return step;
 }
 
-int prefilter_margin(const DiscreteFilter& q, const CosetLattice& lattice) {
+int prefilter_margin(const PrefilterTaps& q, const CosetLattice& lattice) {
   const PrefilterShrink s = prefilter_shrink(q, lattice);
   int margin = 0;
   for (int a = 0; a < 3; ++a) margin = std::max({margin, s.lower[a], s.upper[a]});
   return margin;
 }
 
-PrefilterShrink prefilter_shrink(const DiscreteFilter& q, const CosetLattice& lattice) {
+PrefilterShrink prefilter_shrink(const PrefilterTaps& q, const CosetLattice& lattice) {
   validate_on(q, lattice);
   std::array<std::int64_t, 3> lowest{0, 0, 0}, highest{0, 0, 0};
   for (int c = 0; c < lattice.coset_count(); ++c)
@@ -78,7 +78,7 @@ PrefilterShrink prefilter_shrink(const DiscreteFilter& q, const CosetLattice& la
 }
 
 template <class T>
-LatticeVolume<T> prefilter(const LatticeVolume<T>& volume, const DiscreteFilter& q) {
+LatticeVolume<T> prefilter(const LatticeVolume<T>& volume, const PrefilterTaps& q) {
   const CosetLattice& lattice = volume.lattice();
   const PrefilterShrink shrink = prefilter_shrink(q, lattice);
   const Sizes& n = volume.sizes();
@@ -188,8 +188,8 @@ LatticeVolume<T> gaussian_smooth(const LatticeVolume<T>& volume, double sigma) {
 
 template LatticeVolume<float> gaussian_smooth<float>(const LatticeVolume<float>&, double);
 template LatticeVolume<double> gaussian_smooth<double>(const LatticeVolume<double>&, double);
-template LatticeVolume<float> prefilter<float>(const LatticeVolume<float>&, const DiscreteFilter&);
+template LatticeVolume<float> prefilter<float>(const LatticeVolume<float>&, const PrefilterTaps&);
 template LatticeVolume<double> prefilter<double>(const LatticeVolume<double>&,
-                                                 const DiscreteFilter&);
+                                                 const PrefilterTaps&);
 
 }  // namespace boxgen::runtime

@@ -24,7 +24,7 @@ namespace boxgen::runtime {
 
 // Taps (lattice offset o, weight q(o)). Offsets must be lattice vectors; a repeated offset counts
 // with the sum of its weights.
-using DiscreteFilter = std::vector<std::pair<std::array<int, 3>, double>>;
+using PrefilterTaps = std::vector<std::pair<std::array<int, 3>, double>>;
 
 // Where tap o reads for output coset c: the lattice point off_c - o lies in coset `coset`, at
 // off_coset + d delta; the read of sample (c, i) is sample (coset, i + delta). Offsets must be
@@ -43,15 +43,15 @@ struct PrefilterShrink {
 
 // Throws std::invalid_argument (one line) for an empty filter, an offset that is not a vector of
 // the lattice or beyond +-2^20, or a weight that is not finite.
-PrefilterShrink prefilter_shrink(const DiscreteFilter& q, const CosetLattice& lattice);
+PrefilterShrink prefilter_shrink(const PrefilterTaps& q, const CosetLattice& lattice);
 // The largest entry of prefilter_shrink: the margin a caller must add for q (1 for the taps of
 // Q^I and Q^II on BCC, which lie within max-norm 2).
-int prefilter_margin(const DiscreteFilter& q, const CosetLattice& lattice);
+int prefilter_margin(const PrefilterTaps& q, const CosetLattice& lattice);
 
 // V * q under the border policy above, accumulated in double. Throws std::invalid_argument (one
 // line) for a bad filter or when no sample would remain.
 template <class T>
-LatticeVolume<T> prefilter(const LatticeVolume<T>& volume, const DiscreteFilter& q);
+LatticeVolume<T> prefilter(const LatticeVolume<T>& volume, const PrefilterTaps& q);
 
 // A Gaussian low-pass of a Cartesian volume against aliasing before subsampling: standard
 // deviation sigma samples along each axis (anisotropic volumes: sigma of each axis's own spacing),
@@ -64,8 +64,8 @@ LatticeVolume<T> gaussian_smooth(const LatticeVolume<T>& volume, double sigma);
 extern template LatticeVolume<float> gaussian_smooth<float>(const LatticeVolume<float>&, double);
 extern template LatticeVolume<double> gaussian_smooth<double>(const LatticeVolume<double>&, double);
 extern template LatticeVolume<float> prefilter<float>(const LatticeVolume<float>&,
-                                                      const DiscreteFilter&);
+                                                      const PrefilterTaps&);
 extern template LatticeVolume<double> prefilter<double>(const LatticeVolume<double>&,
-                                                        const DiscreteFilter&);
+                                                        const PrefilterTaps&);
 
 }  // namespace boxgen::runtime

@@ -14,9 +14,7 @@
 //
 // Border policy: nothing outside the stored samples is invented. A non-finite coordinate is
 // std::invalid_argument; a point whose stencil leaves the volume is std::out_of_range (one line
-// naming the point). The code written for the BCC-only runtime (BccVolume, Filter,
-// RegistryReconstructor, LatticeReconstructor) still compiles through runtime/compat.h, included
-// below.
+// naming the point).
 #pragma once
 #include <memory>
 #include <span>
@@ -64,5 +62,3 @@ extern template class Reconstructor<float>;
 extern template class Reconstructor<double>;
 
 }  // namespace boxgen::runtime
-
-#include "runtime/compat.h"  // IWYU pragma: export

@@ -1,4 +1,4 @@
-// The SIMD batch path of the runtime (Reconstructor and RegistryReconstructor evaluate through
+// The SIMD batch path of the runtime (Reconstructor evaluates through
 // runtime/emitted_spline.h): the generated orbit polynomial of a filter
 // (generated/registry.hpp) evaluated for many points at once, one point per SIMD lane. The
 // polynomial code is the generated one, instantiated with a vector type instead of T (it uses

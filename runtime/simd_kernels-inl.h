@@ -235,7 +235,7 @@ struct PackArith {
   }
 };
 
-// World to lattice coordinates in double, as BccVolume::to_lattice, rounded to T as the scalar
+// World to lattice coordinates in double, as LatticeVolume::to_lattice, rounded to T as the scalar
 // path rounds them; x[i * kRow + lane] and near[lane] (1 or 0). points[3 * lane + i]: the chunk's
 // world coordinates, point after point. Lanes that are not near get x = 0, so that nothing below
 // converts a huge or non-finite number to an integer.

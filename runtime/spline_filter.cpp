@@ -102,8 +102,6 @@ std::string SplineFilter::names() {
 SplineFilter::SplineFilter(std::shared_ptr<const FilterSource> source)
     : SplineFilter(std::move(source), -1) {}
 
-SplineFilter::SplineFilter(Filter f) : SplineFilter(at(static_cast<int>(f))) {}
-
 SplineFilter::SplineFilter(std::shared_ptr<const FilterSource> source, int registry_index)
     : source_(source ? std::move(source)
                      : throw std::invalid_argument("a SplineFilter needs a filter source")),
@@ -111,7 +109,7 @@ SplineFilter::SplineFilter(std::shared_ptr<const FilterSource> source, int regis
       lattice_(source_->lattice()),
       registry_index_(registry_index) {}
 
-DiscreteFilter SplineFilter::prefilter(PrefilterChoice q) const {
+PrefilterTaps SplineFilter::prefilter(PrefilterChoice q) const {
   if (q == PrefilterChoice::None) return {{{0, 0, 0}, 1.0}};
   if (!q.is_fir())
     throw std::invalid_argument(

@@ -25,10 +25,6 @@ struct StencilReach {
   Vec3 centre{};
 };
 
-// The registry's BCC filters by position (the first three entries). Kept for code written
-// against the BCC-only runtime; a Filter converts to the SplineFilter of that entry.
-enum class Filter { M7, M8, M12 };
-
 template <class T>
 class EvaluationPath;
 
@@ -44,7 +40,7 @@ class FilterSource {
   virtual StencilReach reach() const = 0;
   // The FIR prefilter q (Q^I for q1, Q^II for q2); std::invalid_argument (one line) when there
   // is none.
-  virtual DiscreteFilter prefilter(PrefilterChoice q) const = 0;
+  virtual PrefilterTaps prefilter(PrefilterChoice q) const = 0;
   // k: q1 and q2 reproduce every polynomial of degree < k.
   virtual int approximation_order() const = 0;
   // Evaluation on `volume` (already checked to be on the filter's lattice); the path may keep a
@@ -66,9 +62,6 @@ class SplineFilter {
   static std::string names();
 
   explicit SplineFilter(std::shared_ptr<const FilterSource> source);
-  // The registry entry of an old Filter value (implicit, so that code written against the
-  // BCC-only runtime keeps compiling).
-  SplineFilter(Filter f);  // NOLINT(google-explicit-constructor)
 
   const std::string& name() const noexcept { return name_; }
   // The position in generated/registry.hpp (whose filters have SIMD kernels), or -1.
@@ -77,7 +70,7 @@ class SplineFilter {
   StencilReach reach() const { return source_->reach(); }
   // The taps of a FIR prefilter: Q^I or Q^II; none: the identity {(0,0,0), 1}. Any other choice
   // (interp) is std::invalid_argument, one line.
-  DiscreteFilter prefilter(PrefilterChoice q) const;
+  PrefilterTaps prefilter(PrefilterChoice q) const;
   int approximation_order() const { return source_->approximation_order(); }
   // Coset cells of margin beyond [-1,1]^3 that cube_lattice_grid needs for reconstruction with
   // this filter after prefilter q under the strict boundary (the one formula of the runtime:

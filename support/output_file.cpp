@@ -114,7 +114,16 @@ void unregister_temporary(int slot) {
 // The child process groups to kill on a signal (ChildProcessGroup), stored like the temporaries.
 std::array<std::atomic<int>, kSlots> g_children{};
 
+// Renames of a set in progress (write_file_set), and a signal that arrived during them: the
+// handler records it and returns, and the last renamer raises it again once its renames are done.
+std::atomic<int> g_renaming{0};
+std::atomic<int> g_deferred_signal{0};
+
 extern "C" void remove_temporaries_and_die(int signal) {
+  if (g_renaming.load() > 0) {
+    g_deferred_signal.store(signal);
+    if (g_renaming.load() > 0) return;  // else the renamer may have looked already: die now
+  }
   for (auto& child : g_children)
     if (const int leader = child.load(); leader > 0) {
       ::kill(-leader, SIGKILL);
@@ -258,7 +267,7 @@ std::FILE* PendingOutput::file() {
   return file_;
 }
 
-void PendingOutput::commit(const std::string& problem_found) {
+void PendingOutput::prepare(const std::string& problem_found) {
   std::string problem = problem_found;
   if (file_) {
     if (problem.empty() && (std::fflush(file_) != 0 || std::ferror(file_))) problem = reason(errno);
@@ -271,9 +280,13 @@ void PendingOutput::commit(const std::string& problem_found) {
     if (fd < 0 || ::fsync(fd) != 0) problem = reason(errno);
     if (fd >= 0) ::close(fd);
   }
-  if (problem.empty() && std::rename(temporary_.c_str(), target_.c_str()) != 0)
-    problem = reason(errno);
   if (!problem.empty()) abandon(problem);
+  prepared_ = true;
+}
+
+void PendingOutput::commit(const std::string& problem_found) {
+  if (!prepared_ || !problem_found.empty()) prepare(problem_found);
+  if (std::rename(temporary_.c_str(), target_.c_str()) != 0) abandon(reason(errno));
   committed_ = true;
   unregister_temporary(slot_);
   slot_ = -1;
@@ -302,13 +315,85 @@ void write_output_file(const fs::path& path, const std::function<bool(std::FILE*
   out.commit(problem);
 }
 
+namespace {
+
+void (*g_between_renames)() = nullptr;
+
+// The directory's lock (flock), released when the object goes.
+class DirectoryLock {
+ public:
+  explicit DirectoryLock(const fs::path& directory)
+      : fd_(::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
+    if (fd_ < 0 || ::flock(fd_, LOCK_EX) != 0) {
+      const int error = errno;
+      if (fd_ >= 0) ::close(fd_);
+      refuse(directory, reason(error));
+    }
+  }
+  ~DirectoryLock() { ::close(fd_); }
+  DirectoryLock(const DirectoryLock&) = delete;
+  DirectoryLock& operator=(const DirectoryLock&) = delete;
+
+ private:
+  int fd_;
+};
+
+constexpr std::string_view kJournalPrefix = ".boxgen-set-";
+
+// The pid in a journal's name `.boxgen-set-PID-N`, or 0.
+long journal_pid(const std::string& name) {
+  if (name.rfind(kJournalPrefix, 0) != 0) return 0;
+  try {
+    return std::stol(name.substr(kJournalPrefix.size()));
+  } catch (const std::exception&) {
+    return 0;
+  }
+}
+
+// Completes the renames of every journal in `directory` whose writer is gone (a SIGKILL between
+// two renames of a set), then removes the journal. Called under the directory's lock.
+void finish_interrupted_sets(const fs::path& directory) {
+  std::error_code ec;
+  for (fs::directory_iterator it(directory, ec), end; !ec && it != end; it.increment(ec)) {
+    const long pid = journal_pid(it->path().filename().string());
+    if (pid <= 0 || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+    std::string text;
+    {
+      const int fd = ::open(it->path().c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+      if (fd < 0) continue;
+      char buffer[4096];
+      for (ssize_t n; (n = ::read(fd, buffer, sizeof buffer)) > 0;)
+        text.append(buffer, static_cast<std::size_t>(n));
+      ::close(fd);
+    }
+    // Pairs temporary '\0' target '\0'; a temporary already renamed is gone.
+    for (std::size_t at = 0; at < text.size();) {
+      const std::size_t a = text.find('\0', at), b = text.find('\0', a + 1);
+      if (a == std::string::npos || b == std::string::npos) break;
+      const std::string temporary = text.substr(at, a - at), target = text.substr(a + 1, b - a - 1);
+      struct stat info {};
+      if (::lstat(temporary.c_str(), &info) == 0 && S_ISREG(info.st_mode))
+        (void)std::rename(temporary.c_str(), target.c_str());
+      at = b + 1;
+    }
+    ::unlink(it->path().c_str());
+  }
+}
+
+}  // namespace
+
+void set_between_renames_hook_for_tests(void (*hook)()) { g_between_renames = hook; }
+
 void write_file_set(const fs::path& directory, std::span<const NamedText> files) {
   std::error_code ec;
   fs::create_directories(directory, ec);
   if (ec || !fs::is_directory(directory, ec))
     throw OutputFileError("cannot create the output directory '" + shown(directory) + "'");
   for (const NamedText& f : files) (void)check_output_file(directory / f.filename);
-  // Every file complete in its temporary before any target changes.
+  // Under one lock, so that two writers of the same set never interleave.
+  const DirectoryLock lock(directory);
+  finish_interrupted_sets(directory);
+  // Every file complete and durable in its temporary before any target changes.
   std::vector<std::unique_ptr<PendingOutput>> pending;
   for (const NamedText& f : files) {
     pending.push_back(std::make_unique<PendingOutput>(directory / f.filename));
@@ -319,20 +404,34 @@ void write_file_set(const fs::path& directory, std::span<const NamedText> files)
       refuse(directory / f.filename, reason(error));  // pending's destructors remove them all
     }
   }
-  // The renames under one lock, so that two writers of the same set never interleave.
-  const int dir_fd = ::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir_fd < 0 || ::flock(dir_fd, LOCK_EX) != 0) {
-    const int error = errno;
-    if (dir_fd >= 0) ::close(dir_fd);
-    refuse(directory, reason(error));
-  }
+  for (auto& p : pending) p->prepare();
+  // The journal of the renames, for a SIGKILL between two of them.
+  static std::atomic<unsigned> counter{0};
+  std::string journal_text;
+  for (auto& p : pending)
+    journal_text +=
+        fs::absolute(p->temporary()).string() + '\0' + fs::absolute(p->target()).string() + '\0';
+  PendingOutput journal(
+      directory / fmt::format("{}{}-{}", kJournalPrefix, static_cast<long>(::getpid()), counter++));
+  if (std::fwrite(journal_text.data(), 1, journal_text.size(), journal.file()) !=
+      journal_text.size())
+    journal.abandon(reason(errno));
+  journal.commit();
+  // The renames, with SIGINT, SIGTERM and SIGHUP held until the last one is done.
+  g_renaming.fetch_add(1);
+  std::string problem;
   try {
-    for (auto& p : pending) p->commit();
-  } catch (...) {
-    ::close(dir_fd);  // releases the lock
-    throw;
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+      if (i == 1 && g_between_renames) g_between_renames();
+      pending[i]->commit();
+    }
+  } catch (const OutputFileError& e) {
+    problem = e.what();
   }
-  ::close(dir_fd);
+  ::unlink(journal.path().c_str());
+  if (g_renaming.fetch_sub(1) == 1)
+    if (const int signal = g_deferred_signal.exchange(0); signal != 0) std::raise(signal);
+  if (!problem.empty()) throw OutputFileError(problem);
 }
 
 ChildProcessGroup::ChildProcessGroup(int leader) {

@@ -72,6 +72,10 @@ class PendingOutput {
   // temporary when any step fails; `problem`, when not empty, is such a failure found by the
   // caller (the writer's own error).
   void commit(const std::string& problem = {});
+  // The first half of commit(): flushes, closes and syncs the temporary (throws as commit does).
+  // commit() after it only renames, so a set's renames follow each other closely.
+  void prepare(const std::string& problem = {});
+  const std::filesystem::path& target() const noexcept { return target_; }
   // Removes the temporary and throws OutputFileError naming `problem`: the write failed.
   [[noreturn]] void abandon(const std::string& problem);
 
@@ -79,7 +83,7 @@ class PendingOutput {
   std::filesystem::path path_, target_, temporary_;
   std::FILE* file_ = nullptr;
   int slot_ = -1;  // in the signal handler's list
-  bool committed_ = false;
+  bool committed_ = false, prepared_ = false;
 };
 
 // Writes the file through `fill`, which returns false on failure, and renames it into place as
@@ -97,10 +101,20 @@ struct NamedText {
 };
 
 // Writes every file of `files` into `directory` (created if missing), all or nothing: each is
-// checked, then written to its temporary, and only when all are complete are they renamed, under
-// an exclusive lock on the directory. Throws OutputFileError (one line); on failure no target
-// has changed and no temporary remains.
+// checked, then written to its temporary and synced, and only when all are complete are they
+// renamed, under an exclusive lock on the directory. Throws OutputFileError (one line); on failure
+// no target has changed and no temporary remains.
+//
+// Signals: SIGINT, SIGTERM and SIGHUP that arrive while the renames run are held until the last
+// rename is done (then the program dies of them as usual), so they never leave part of a set
+// renamed. SIGKILL cannot be held: before the renames a journal `.boxgen-set-PID-N` (the pairs
+// temporary, target) is written and synced, and removed after them; the next write_file_set into
+// the directory first completes the renames of every journal whose process is gone.
 void write_file_set(const std::filesystem::path& directory, std::span<const NamedText> files);
+
+// For tests: a function write_file_set calls between its first and second rename (nothing when
+// null), so a test can stop the writer there (raise(SIGSTOP)) and send it a signal.
+void set_between_renames_hook_for_tests(void (*hook)());
 
 // A child process group (its leader's pid) that the handlers of handle_signals() kill with
 // SIGKILL, and whose leader they reap, before they remove the temporaries: a compiler started by

@@ -226,7 +226,9 @@ int run_emit(const Common& c, const std::string& name, const std::string& out,
         target,
         double_precision,
         shells};
-    files = emit(a, request, &r);
+    Emission emission = emit(a, request);
+    files = std::move(emission.files);
+    r = std::move(emission.report);
   } else if (report) {
     fail_usage("--report needs an evaluator to report on (a SPEC and --name)");
   }

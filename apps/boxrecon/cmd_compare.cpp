@@ -13,10 +13,12 @@
 #include <vector>
 
 #include "apps/boxrecon/cmd_volumes.h"
+#include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/lattice_commands.h"
 #include "apps/boxrecon/output_volume.h"
 #include "apps/boxrecon/prefilter_options.h"
 #include "runtime/nifti_io.h"
+#include "runtime/nrrd_checks.h"
 #include "runtime/resample.h"
 #include "support/output_file.h"
 
@@ -27,7 +29,7 @@ namespace {
 using namespace boxgen::runtime;
 
 struct CompareArgs {
-  std::string reference, volume, filter, error_volume, type;
+  std::string reference, volume, filter, lattice, error_volume, type, mask;
   app::PrefilterOptions prefilter;
   std::optional<double> mask_above;
   std::vector<double> min, max;
@@ -78,6 +80,34 @@ std::string stats_text(const ErrorSums& e, double peak) {
                      e.rms(), e.max, e.mean_abs(), 20 * std::log10(peak / e.rms()));
 }
 
+// The mask of --mask: a Cartesian volume on the reference's grid (the same sizes, and spacings
+// and origin equal up to NIfTI's float32 affine), read as every volume is (axes positive).
+LatticeVolume<float> read_mask(const LatticeVolume<float>& ref) {
+  const LatticeVolume<float> mask = read_volume_file<float>(args.mask);
+  const std::string name = nrrd_checks::printable(args.mask, 80);
+  if (mask.coset_count() != 1 || mask.period() != 1)
+    throw std::invalid_argument(fmt::format("--mask '{}' must be a Cartesian volume, not a {} one",
+                                            name, mask.lattice().label()));
+  bool same = mask.sizes() == ref.sizes();
+  for (int a = 0; a < 3 && same; ++a) {
+    const double h = ref.axis_spacing()[a];
+    same = std::abs(mask.axis_spacing()[a] - h) <= 1e-6 * h &&
+           std::abs(mask.origin()[a] - ref.origin()[a]) <= 1e-4 * h;
+  }
+  if (!same)
+    throw std::invalid_argument(fmt::format(
+        "--mask '{}' is not on the reference's grid: {} x {} x {} voxels of {:.6g} x {:.6g} x "
+        "{:.6g} from ({:.6g}, {:.6g}, {:.6g}), the reference {} x {} x {} of {:.6g} x {:.6g} x "
+        "{:.6g} from ({:.6g}, {:.6g}, {:.6g}); resample it onto the reference first (boxrecon "
+        "resample --like)",
+        name, mask.sizes()[0], mask.sizes()[1], mask.sizes()[2], mask.axis_spacing()[0],
+        mask.axis_spacing()[1], mask.axis_spacing()[2], mask.origin()[0], mask.origin()[1],
+        mask.origin()[2], ref.sizes()[0], ref.sizes()[1], ref.sizes()[2], ref.axis_spacing()[0],
+        ref.axis_spacing()[1], ref.axis_spacing()[2], ref.origin()[0], ref.origin()[1],
+        ref.origin()[2]));
+  return mask;
+}
+
 }  // namespace
 
 CLI::App* add_compare_command(CLI::App& app) {
@@ -88,12 +118,21 @@ CLI::App* add_compare_command(CLI::App& app) {
   c->add_option("--reference", args.reference,
                 "the original Cartesian volume (NRRD, or NIfTI .nii/.nii.gz)")
       ->required();
-  c->add_option("--volume", args.volume, "the lattice volume to reconstruct (NRRD)")->required();
-  c->add_option("--filter", args.filter, "a filter of the registry: " + SplineFilter::names())
+  c->add_option("--volume", args.volume, "the lattice volume to reconstruct (NRRD or NIfTI)")
       ->required();
+  c->add_option(
+       "--filter", args.filter,
+       "a filter of the registry (" + SplineFilter::names() + ") or a SPEC, compiled on first use")
+      ->required();
+  c->add_option("--lattice", args.lattice,
+                "the lattice of a SPEC --filter (default: the volume's)");
   app::add_prefilter_options(c, args.prefilter);
-  c->add_option("--mask-above", args.mask_above,
-                "V: also the errors over the points whose reference value exceeds V");
+  auto* above = c->add_option("--mask-above", args.mask_above,
+                              "V: also the errors over the points whose reference value exceeds V");
+  c->add_option("--mask", args.mask,
+                "FILE: also the errors over the voxels where this mask is not 0 (a Cartesian "
+                "volume on the reference's grid, NRRD or NIfTI, e.g. a brain mask)")
+      ->excludes(above);
   auto* min = c->add_option("--min", args.min,
                             "X Y Z: compare only in the box from here to --max (world), which "
                             "must lie in the region the filter reconstructs (default: that region)")
@@ -110,7 +149,7 @@ CLI::App* add_compare_command(CLI::App& app) {
 }
 
 int run_compare() {
-  const SplineFilter filter = SplineFilter::parse(args.filter);
+  const SplineFilter filter = app::filter_for_volume(args.filter, args.lattice, args.volume);
   const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   const std::filesystem::path inputs[2] = {args.reference, args.volume};
   const std::optional<SampleType> type = app::parse_type_option(args.type);
@@ -126,6 +165,8 @@ int run_compare() {
   if (ref.coset_count() != 1 || ref.period() != 1)
     throw std::invalid_argument(
         fmt::format("--reference must be a Cartesian volume, not a {} one", ref.lattice().label()));
+  std::optional<LatticeVolume<float>> mask;
+  if (!args.mask.empty()) mask.emplace(read_mask(ref));
   const LatticeVolume<float> volume = app::read_for<float>(filter, q, args.volume, {});
   const Box region = default_box(volume, filter);
   Box box = region;
@@ -163,7 +204,9 @@ int run_compare() {
       const float reference = ref.samples()[where[p]];
       const double error = static_cast<double>(values[p]) - static_cast<double>(reference);
       all.add(error);
-      if (args.mask_above && reference > *args.mask_above) masked.add(error);
+      if ((args.mask_above && reference > *args.mask_above) ||
+          (mask && mask->samples()[where[p]] != 0))
+        masked.add(error);
       if (error_volume) error_volume->samples()[where[p]] = static_cast<float>(error);
     }
     points.clear();
@@ -182,6 +225,10 @@ int run_compare() {
     throw std::invalid_argument(fmt::format(
         "no reference grid point lies in the region the {} filter reconstructs from '{}'",
         filter.name(), args.volume));
+  if (mask && masked.count == 0)
+    throw std::invalid_argument(
+        fmt::format("the mask is empty: no compared voxel of --mask '{}' is other than 0",
+                    nrrd_checks::printable(args.mask, 80)));
   if (args.mask_above && masked.count == 0)
     throw std::invalid_argument(fmt::format(
         "the mask is empty: no compared reference value exceeds {} (the reference's range is "
@@ -205,6 +252,10 @@ int run_compare() {
       j["mask_above"] = *args.mask_above;
       j["mask"] = stats_json(masked, peak);
     }
+    if (mask) {
+      j["mask_file"] = args.mask;
+      j["mask"] = stats_json(masked, peak);
+    }
     std::cout << j.dump(2) << '\n';
   } else {
     std::cout << fmt::format(
@@ -215,6 +266,7 @@ int run_compare() {
     std::cout << "region: " << stats_text(all, peak) << '\n';
     if (args.mask_above)
       std::cout << fmt::format("mask > {}: ", *args.mask_above) << stats_text(masked, peak) << '\n';
+    if (mask) std::cout << "mask: " << stats_text(masked, peak) << '\n';
   }
   return 0;
 }

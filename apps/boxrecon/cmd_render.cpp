@@ -80,10 +80,9 @@ RgbBuffer render_volume(const SplineFilter& rf, const app::PrefilterSetting& q, 
   volume = app::coefficients_for(std::move(volume), rf, q);
   const Box box = args.volume.empty() ? cube : default_box(volume, rf);
   if (boxgen::app::parse_device(args.device) == boxgen::app::Device::Gl)
-    return gl::render_isosurface(
-        volume, rf, box, o,
-        boxgen::app::glsl_for(rf, args.filter, args.lattice, args.precision == "double"),
-        args.precision == "double", times);
+    return gl::render_isosurface(volume, rf, box, o,
+                                 boxgen::app::glsl_for(rf, args.filter, args.precision == "double"),
+                                 args.precision == "double", times);
   return render_isosurface(volume, rf, box, o);
 }
 
@@ -100,9 +99,10 @@ CLI::App* add_render_command(CLI::App& app) {
                             "a volume on the filter's lattice (NRRD, or NIfTI .nii/.nii.gz: "
                             "Cartesian) instead of --function");
   fn->excludes(vol);
-  r->add_option("--lattice", args.lattice,
-                "the lattice of a SPEC --filter and of --function's samples: only the filter's own "
-                "(bcc | fcc | cartesian | rows of G), default the filter's");
+  r->add_option(
+      "--lattice", args.lattice,
+      "the lattice of a SPEC --filter and of --function's samples: only the filter's own "
+      "(bcc | fcc | cartesian | rows of G), default the volume's with --volume, else the filter's");
   r->add_option("--filter", args.filter,
                 "a filter of the registry (default m7): " + SplineFilter::names() +
                     ", or any SPEC of boxgen (on --lattice), compiled on first use");
@@ -136,7 +136,9 @@ CLI::App* add_render_command(CLI::App& app) {
 bool render_quiet() { return args.quiet; }
 
 int run_render() {
-  const SplineFilter rf = app::filter_from(args.filter, args.lattice);
+  const SplineFilter rf = args.volume.empty()
+                              ? app::filter_from(args.filter, args.lattice)
+                              : app::filter_for_volume(args.filter, args.lattice, args.volume);
   const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   if (args.shading != "normal" && args.shading != "curvature")
     throw std::invalid_argument("--shading must be normal or curvature, got '" +

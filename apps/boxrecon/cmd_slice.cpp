@@ -2,19 +2,21 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <iostream>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "analysis/png_image.h"
 #include "apps/boxrecon/cmd_volumes.h"
+#include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/lattice_commands.h"
 #include "runtime/nifti_io.h"
+#include "runtime/nrrd_checks.h"
 #include "runtime/resample.h"
 #include "support/output_file.h"
 
@@ -26,7 +28,8 @@ using namespace boxgen::runtime;
 
 struct SliceArgs {
   app::PrefilterOptions prefilter;
-  std::string volume, filters, reference, axis = "z", colormap = "grey", difference_to, output;
+  std::string volume, lattice, reference, axis = "z", colormap = "grey", difference_to, output;
+  std::vector<std::string> filters;
   std::optional<double> at;
   std::vector<int> size;
   std::vector<double> range;
@@ -49,24 +52,23 @@ std::optional<float> nearest_voxel(const LatticeVolume<float>& v, const Vec3& p)
   return v(0, index[0], index[1], index[2]);
 }
 
-std::vector<std::string> split_filters(const std::string& text) {
-  std::vector<std::string> names;
-  std::stringstream parts(text);
-  for (std::string name; std::getline(parts, name, ',');)
-    if (!name.empty()) names.push_back(name);
-  return names;
-}
-
 // Every argument check that needs no file, before any work.
 void check_slice_args() {
   const bool reconstruct = !args.volume.empty();
   if (reconstruct == !args.reference.empty())
     throw std::invalid_argument("give --volume FILE --filter F or --reference FILE");
   if (reconstruct && args.filters.empty()) throw std::invalid_argument("--volume needs --filter");
-  if (!reconstruct &&
-      (!args.filters.empty() || args.prefilter.prefilter != "none" || !args.difference_to.empty()))
+  for (const std::string& f : args.filters)  // the comma list of earlier versions: "m7,m8"
+    if (!f.empty() && f.find(',') != std::string::npos && f.find(';') == std::string::npos &&
+        std::isalpha(static_cast<unsigned char>(f.front())) != 0)
+      throw std::invalid_argument(fmt::format(
+          "--filter '{}' is not one filter: repeat --filter for panels side by side (--filter m7 "
+          "--filter m8)",
+          nrrd_checks::printable(f, 40)));
+  if (!reconstruct && (!args.filters.empty() || !args.lattice.empty() ||
+                       args.prefilter.prefilter != "none" || !args.difference_to.empty()))
     throw std::invalid_argument(
-        "--filter, --prefilter and --difference-to have no effect with --reference");
+        "--filter, --lattice, --prefilter and --difference-to have no effect with --reference");
   if (args.axis != "x" && args.axis != "y" && args.axis != "z")
     throw std::invalid_argument("--axis must be x, y or z, got '" + args.axis.substr(0, 20) + "'");
   if (args.colormap != "grey" && args.colormap != "viridis")
@@ -147,7 +149,12 @@ CLI::App* add_slice_command(CLI::App& app) {
       "a PNG of an axis-aligned slice of a reconstruction, a reference or their difference");
   s->add_option("--volume", args.volume, "a lattice volume to reconstruct (NRRD or NIfTI)");
   s->add_option("--filter", args.filters,
-                "F or F1,F2,...: a registry filter; several give panels side by side");
+                "F: a registry filter or a SPEC (on --lattice, default the volume's); repeat for "
+                "panels side by side (--filter m12 --filter m7)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  s->add_option("--lattice", args.lattice,
+                "the lattice of a SPEC --filter (default: the volume's)");
   app::add_prefilter_options(s, args.prefilter);
   s->add_option("--reference", args.reference,
                 "a Cartesian volume: its slice (nearest voxel) instead of --volume");
@@ -171,8 +178,7 @@ CLI::App* add_slice_command(CLI::App& app) {
 int run_slice() {
   check_slice_args();
   const bool reconstruct = !args.volume.empty();
-  const std::vector<std::string> names = split_filters(args.filters);
-  if (reconstruct && names.empty()) throw std::invalid_argument("--filter names no filter");
+  const std::vector<std::string>& names = args.filters;
   const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   std::vector<std::filesystem::path> inputs{args.volume, args.reference, args.difference_to};
   (void)support::check_output_file(args.output, inputs);
@@ -189,7 +195,7 @@ int run_slice() {
     box.max[a] = HUGE_VAL;
   }
   for (const std::string& name : names) {
-    filters.push_back(SplineFilter::parse(name));
+    filters.push_back(app::filter_for_volume(name, args.lattice, args.volume));
     volumes.push_back(app::read_for<float>(filters.back(), q, args.volume, {}));
     const Box b = default_box(volumes.back(), filters.back());
     for (int a = 0; a < 3; ++a) {  // panels side by side share the box all of them reconstruct

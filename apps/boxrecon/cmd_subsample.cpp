@@ -8,6 +8,8 @@
 #include <string>
 
 #include "apps/boxrecon/cmd_volumes.h"
+#include "apps/boxrecon/filter_choice.h"
+#include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/output_volume.h"
 #include "apps/boxrecon/prefilter_options.h"
 #include "runtime/nifti_io.h"
@@ -47,8 +49,8 @@ CLI::App* add_subsample_command(CLI::App& app) {
                                 "(c,i,j,k) at o + h (2i+c, 2j+c, 2k+c))");
   fraction->excludes(spacing);
   s->add_option("--filter", args.filter,
-                "the filter that reconstructs the input (default tricubic; any registry filter "
-                "of the input's lattice)");
+                "the filter that reconstructs the input (default tricubic; a registry filter of "
+                "the input's lattice, or a SPEC, on the input's lattice)");
   app::add_prefilter_options(s, args.prefilter, "the input filter's; default q2");
   s->add_option("--smooth", args.smooth,
                 "SIGMA: a Gaussian low-pass of this width (input samples) first, against aliasing");
@@ -69,7 +71,7 @@ int run_subsample() {
     throw std::invalid_argument(
         fmt::format("--spacing must be finite and > 0, got {}", *args.spacing));
   const CosetLattice lattice = CosetLattice::parse(args.lattice);
-  const SplineFilter filter = SplineFilter::parse(args.filter);
+  const SplineFilter filter = app::filter_for_volume(args.filter, "", args.volume);
   const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   const std::optional<SampleType> type = app::parse_type_option(args.type);
   const std::filesystem::path input = args.volume;
@@ -85,6 +87,11 @@ int run_subsample() {
       args.spacing
           ? *args.spacing
           : spacing_for_count(lattice, box, *args.fraction * static_cast<double>(input_count));
+  // Before anything is allocated: the output samples, and the points and values of a block.
+  app::check_memory(
+      lattice_grid_count(lattice, box, h), 2 * sizeof(float),
+      args.spacing ? fmt::format("--spacing {}", h) : fmt::format("--fraction {}", *args.fraction),
+      "samples");
   const LatticeGrid grid = lattice_grid_in(lattice, box, h);
   const LatticeVolume<float> out = resample_to_lattice(volume, filter, grid);
   app::write_output_volume(args.output, out, type);

@@ -4,25 +4,35 @@
 
 #include <fmt/format.h>
 
+#include <optional>
+#include <stdexcept>
+
 #include "loader/filter_loader.h"
+#include "runtime/nifti_io.h"
 #include "runtime/nrrd_checks.h"
 
 namespace boxgen::app {
 
 namespace {
 bool quiet_flag = false;
+
+// A lattice as --lattice spells it: its name, or the rows of G of a custom one.
+std::string lattice_text(const runtime::CosetLattice& lattice) {
+  return lattice.name() == "custom" ? lattice.rows_text() : lattice.name();
+}
 }  // namespace
 
 void set_quiet(bool quiet) { quiet_flag = quiet; }
 bool quiet() { return quiet_flag; }
 
 runtime::gl::GlslEvaluator glsl_for(const runtime::SplineFilter& f, const std::string& filter,
-                                    const std::string& lattice, bool double_precision) {
+                                    bool double_precision) {
   if (f.registry_index() >= 0) return runtime::gl::registry_glsl(f.name(), double_precision);
   loader::CompileOptions options;
   options.progress = !quiet_flag && isatty(STDERR_FILENO) != 0;
-  loader::EmittedGlsl glsl = loader::load_glsl(
-      filter, lattice.empty() ? std::nullopt : std::optional(lattice), double_precision, options);
+  // The SPEC on the lattice f was compiled for (--lattice, or the volume's: filter_for_volume).
+  loader::EmittedGlsl glsl =
+      loader::load_glsl(filter, lattice_text(f.lattice()), double_precision, options);
   return {std::move(glsl.name), std::move(glsl.text)};
 }
 
@@ -31,6 +41,23 @@ runtime::SplineFilter filter_from(const std::string& filter, const std::string& 
   options.progress = !quiet_flag && isatty(STDERR_FILENO) != 0;
   return loader::load_filter(filter, lattice.empty() ? std::nullopt : std::optional(lattice),
                              options);
+}
+
+runtime::SplineFilter filter_for_volume(const std::string& filter, const std::string& lattice,
+                                        const std::string& volume_path) {
+  const std::optional<runtime::CosetLattice> of_file = runtime::read_volume_lattice(volume_path);
+  if (!of_file) return filter_from(filter, lattice);  // reading the volume will say why
+  if (!lattice.empty()) {
+    const runtime::CosetLattice given = runtime::CosetLattice::parse(lattice);
+    if (!runtime::same_points(given, *of_file))
+      throw std::invalid_argument(
+          fmt::format("--lattice is {}, but the volume '{}' is on the {} lattice", given.name(),
+                      runtime::nrrd_checks::printable(volume_path, 80), of_file->name()));
+    return filter_from(filter, lattice);
+  }
+  const bool direction_list = filter.find_first_of(",;") != std::string::npos;
+  if (!direction_list) return filter_from(filter);
+  return filter_from(filter, lattice_text(*of_file));
 }
 
 int run_filters() {

@@ -13,10 +13,17 @@ namespace boxgen::app {
 void set_quiet(bool quiet);
 bool quiet();
 runtime::SplineFilter filter_from(const std::string& filter, const std::string& lattice = {});
-// The GLSL evaluator of filter_from(filter, lattice) = f for --device gl: the registry's, or a
-// SPEC's emitted into the loader's cache with its compile.
+// The filter of --filter for the volume in `volume_path`: a SPEC direction list without --lattice
+// is on the volume's lattice (read from its header, before anything is compiled), and a --lattice
+// the volume is not on is refused up front (std::invalid_argument, one line). Presets and
+// registry names keep their own lattice (the volume is checked against it when read).
+runtime::SplineFilter filter_for_volume(const std::string& filter, const std::string& lattice,
+                                        const std::string& volume_path);
+// The GLSL evaluator of f = filter_from(filter, ...) or filter_for_volume(filter, ...) for
+// --device gl: the registry's, or the SPEC's on f's lattice, emitted into the loader's cache with
+// its compile.
 runtime::gl::GlslEvaluator glsl_for(const runtime::SplineFilter& f, const std::string& filter,
-                                    const std::string& lattice, bool double_precision);
+                                    bool double_precision);
 
 // `boxrecon filters`: the registry's filters, then the cached ones.
 int run_filters();

@@ -4,10 +4,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+
+#include "support/available_memory.h"
 
 namespace boxgen::app {
 
@@ -34,9 +37,12 @@ std::uint64_t parse_seed(const std::string& text) {
 
 std::uint64_t volume_memory_budget() {
   const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page_size <= 0)
-    return std::numeric_limits<std::uint64_t>::max();  // unknown: let the allocation decide
-  return static_cast<std::uint64_t>(pages) / 2 * static_cast<std::uint64_t>(page_size);
+  double budget = pages > 0 && page_size > 0
+                      ? static_cast<double>(pages) / 2 * static_cast<double>(page_size)
+                      : 1.8e19;  // unknown: the memory available decides
+  if (const double available = support::available_memory_bytes(); available > 0)
+    budget = std::min(budget, available);
+  return static_cast<std::uint64_t>(budget);
 }
 
 void check_memory(std::uint64_t items, std::uint64_t bytes_per_item, const std::string& what,
@@ -46,7 +52,7 @@ void check_memory(std::uint64_t items, std::uint64_t bytes_per_item, const std::
     constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
     throw std::invalid_argument(fmt::format(
         "{} needs {:.1f} GiB for its {} {}, more than the {:.1f} GiB allowed (half of this "
-        "machine's memory); ask for fewer",
+        "machine's memory, or less: what this process may still take); ask for fewer",
         what, static_cast<double>(items) * static_cast<double>(bytes_per_item) / kGiB, items, unit,
         static_cast<double>(budget) / kGiB));
   }

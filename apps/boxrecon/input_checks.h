@@ -17,12 +17,14 @@ std::uint64_t parse_seed(const std::string& text);
 // The one memory pre-check of every command: `items` (samples, points, pixels) of
 // `bytes_per_item` bytes each must fit in volume_memory_budget(), half of the machine's physical
 // memory (the other half leaves room for the prefiltered copy that eval, error, resample and
-// render make); else std::invalid_argument naming the size needed, the budget and `what` (the
-// option that asked, e.g. "--n 1024" or "--points 1000000").
+// render make), or what this process may still take when that is less (an address-space or
+// cgroup limit, support/available_memory.h); else std::invalid_argument naming the size needed, the
+// budget and `what` (the option that asked, e.g. "--n 1024" or "--points 1000000").
 void check_memory(std::uint64_t items, std::uint64_t bytes_per_item, const std::string& what,
                   const std::string& unit);
 
-// Half of the physical memory (the budget check_memory allows), in bytes.
+// The budget check_memory allows, in bytes: half of the physical memory, or the memory this
+// process may still take when that is less.
 std::uint64_t volume_memory_budget();
 
 }  // namespace boxgen::app

@@ -22,11 +22,14 @@
 #include "runtime/batch_threads.h"
 #include "runtime/gl/gl_spline.h"
 #include "runtime/nifti_io.h"
+#include "runtime/nrrd_checks.h"
 #include "runtime/points_file.h"
 #include "runtime/prefilter.h"
 #include "runtime/resample.h"
+#include "runtime/sample_encoding.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
+#include "runtime/volume_output.h"
 #include "support/output_file.h"
 
 namespace boxgen::app {
@@ -68,8 +71,8 @@ template <class T>
 int run_eval(const std::string& filter, const std::string& lattice, const PrefilterOptions& pre,
              const std::string& volume_path, const std::string& points_path, bool gradient,
              bool hessian, const NrrdReadLimits& limits, Device device, bool verbose) {
-  const SplineFilter f = filter_from(filter, lattice);
   const PrefilterSetting q = parse_prefilter_options(pre);
+  const SplineFilter f = filter_for_volume(filter, lattice, volume_path);
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
   const auto points = read_points_file(points_path);
   std::vector<T> values(points.size());
@@ -78,7 +81,7 @@ int run_eval(const std::string& filter, const std::string& lattice, const Prefil
   const Reconstructor<T> spline(volume, f);
   if (device == Device::Gl) {
     if (verbose) std::cerr << gl_device_line() << '\n';
-    const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, lattice, sizeof(T) == 8));
+    const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, sizeof(T) == 8));
     gpu.evaluate(points, values, gradients, hessians);
   } else {
     spline.evaluate(points, values, gradients, hessians);
@@ -178,32 +181,101 @@ int run_error(const std::string& function, int n, const std::string& filter,
   return 0;
 }
 
+namespace {
+
+// The grid of --like: that Cartesian image's sizes, spacings and origin (its samples are read
+// only for the geometry; non-finite ones do not matter).
+CartesianGrid grid_like(const std::string& path) {
+  NrrdReadLimits limits;
+  limits.allow_non_finite = true;
+  const LatticeVolume<float> image = read_volume_file<float>(path, limits);
+  if (image.coset_count() != 1)
+    throw std::invalid_argument(fmt::format(
+        "--like '{}' is a {} volume: its grid must be Cartesian (an image such as the output)",
+        nrrd_checks::printable(path, 80), image.lattice().name()));
+  return {image.sizes(), image.axis_spacing(), image.origin()};
+}
+
+// --spacing H (or HX HY HZ) over the box: as many points as fit from box.min on, spacing h.
+CartesianGrid grid_with_spacing(const Box& box, const std::vector<double>& given) {
+  const Vec3 h =
+      given.size() == 1 ? Vec3{given[0], given[0], given[0]} : Vec3{given[0], given[1], given[2]};
+  Sizes n{};
+  for (int a = 0; a < 3; ++a) {
+    if (!(std::isfinite(h[a]) && h[a] > 0))
+      throw std::invalid_argument(fmt::format("--spacing must be finite and > 0, got {}", h[a]));
+    // A relative 1e-9 keeps an extent that is a whole number of steps, up to rounding, whole.
+    const double steps = std::floor((box.max[a] - box.min[a]) / h[a] * (1 + 1e-9));
+    if (!(steps >= 1))
+      throw std::invalid_argument(
+          fmt::format("--spacing {} is wider than the box on axis {} ({} to {}): no two points fit",
+                      h[a], "xyz"[a], box.min[a], box.max[a]));
+    if (steps >= kMaxGridSize)
+      throw std::invalid_argument(
+          fmt::format("--spacing {} gives {} points on axis {}, more than {}", h[a], steps + 1,
+                      "xyz"[a], kMaxGridSize));
+    n[a] = static_cast<int>(steps) + 1;
+  }
+  return {n, h, box.min};
+}
+
+}  // namespace
+
 template <class T>
 int run_resample(const std::string& filter, const std::string& lattice, const PrefilterOptions& pre,
                  const std::string& volume_path, const std::string& output,
-                 const std::string& type_text, int n, const std::vector<double>& min,
-                 const std::vector<double>& max, const NrrdReadLimits& limits, Device device,
-                 bool verbose) {
-  const SplineFilter f = filter_from(filter, lattice);
+                 const std::string& type_text, const OutputGridOptions& options,
+                 const NrrdReadLimits& limits, Device device, bool verbose) {
   const PrefilterSetting q = parse_prefilter_options(pre);
   const std::optional<SampleType> type = parse_type_option(type_text);
-  if (n < 2 || n > kMaxResampleN)
+  if (options.n < 2 || options.n > kMaxGridSize)
     throw std::invalid_argument(
-        fmt::format("--n must be between 2 and {}, got {}", kMaxResampleN, n));
+        fmt::format("--n must be between 2 and {}, got {}", kMaxGridSize, options.n));
+  for (const int s : options.size)
+    if (s < 2 || s > kMaxGridSize)
+      throw std::invalid_argument(
+          fmt::format("--size must be between 2 and {} on each axis, got {}", kMaxGridSize, s));
+  if (!options.spacing.empty() && options.spacing.size() != 1 && options.spacing.size() != 3)
+    throw std::invalid_argument(
+        fmt::format("--spacing takes one value or three, got {}", options.spacing.size()));
   const std::filesystem::path input = volume_path;
-  // Before the work, not after it; never the input.
+  // Before the work (a SPEC's first compile included), not after it; never the input.
   require_output_volume(output, {&input, 1}, CosetLattice::cartesian());
+  const VolumeFormat format = output_format(output);
+  const SplineFilter f = filter_for_volume(filter, lattice, volume_path);
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
-  const Box box = min.empty() ? default_box(volume, f)
-                              : Box{{min[0], min[1], min[2]}, {max[0], max[1], max[2]}};
-  const CartesianGrid grid = grid_over(box, {n, n, n});
+  CartesianGrid grid;
+  if (!options.like.empty()) {
+    grid = grid_like(options.like);
+  } else {
+    const Box box = options.min.empty() ? default_box(volume, f)
+                                        : Box{{options.min[0], options.min[1], options.min[2]},
+                                              {options.max[0], options.max[1], options.max[2]}};
+    if (!options.spacing.empty())
+      grid = grid_with_spacing(box, options.spacing);
+    else if (!options.size.empty())
+      grid = grid_over(box, {options.size[0], options.size[1], options.size[2]});
+    else
+      grid = grid_over(box, {options.n, options.n, options.n});
+  }
+  // The values in T, and their copy in the file's type while it is written.
+  const SampleType stored =
+      type ? *type
+           : (format == VolumeFormat::Nifti
+                  ? SampleType::Float32
+                  : (sizeof(T) == 8 ? SampleType::Float64 : SampleType::Float32));
+  const Sizes& n = grid.sizes;
+  check_memory(static_cast<std::uint64_t>(n[0]) * static_cast<std::uint64_t>(n[1]) *
+                   static_cast<std::uint64_t>(n[2]),
+               sizeof(T) + sample_type_size(stored),
+               fmt::format("the output grid of {} x {} x {} points", n[0], n[1], n[2]), "values");
   const GridBlock all{{0, 0, 0}, grid.sizes};
   if (device == Device::Cpu) {
     write_output_grid(output, resample(volume, f, grid, all), type);
     return 0;
   }
   if (verbose) std::cerr << gl_device_line() << '\n';
-  const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, lattice, sizeof(T) == 8));
+  const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, sizeof(T) == 8));
   write_output_grid(
       output,
       resample(volume, f, grid, all,
@@ -280,12 +352,10 @@ template int run_eval<double>(const std::string&, const std::string&, const Pref
                               const std::string&, const std::string&, bool, bool,
                               const NrrdReadLimits&, Device, bool);
 template int run_resample<float>(const std::string&, const std::string&, const PrefilterOptions&,
-                                 const std::string&, const std::string&, const std::string&, int,
-                                 const std::vector<double>&, const std::vector<double>&,
-                                 const NrrdReadLimits&, Device, bool);
+                                 const std::string&, const std::string&, const std::string&,
+                                 const OutputGridOptions&, const NrrdReadLimits&, Device, bool);
 template int run_resample<double>(const std::string&, const std::string&, const PrefilterOptions&,
-                                  const std::string&, const std::string&, const std::string&, int,
-                                  const std::vector<double>&, const std::vector<double>&,
-                                  const NrrdReadLimits&, Device, bool);
+                                  const std::string&, const std::string&, const std::string&,
+                                  const OutputGridOptions&, const NrrdReadLimits&, Device, bool);
 
 }  // namespace boxgen::app

@@ -30,8 +30,16 @@ template <class T>
 void print_evaluations(std::span<const T> values, std::span<const runtime::Vec3> gradients,
                        std::span<const runtime::Hessian> hessians, bool gradient, bool hessian);
 
-// Largest --n of resample: 512^3 double values are 1 GiB.
-inline constexpr int kMaxResampleN = 512;
+// resample's output grid (issue 33): --n N (a cube, default 64), --size NX NY NZ, or --spacing H
+// (one, or three) over the box --min/--max (default: default_box); or --like IMAGE, the grid of
+// that Cartesian image (its sizes, spacings and origin). CLI11 keeps them exclusive.
+struct OutputGridOptions {
+  int n = 64;
+  std::vector<int> size;
+  std::vector<double> spacing;
+  std::string like;
+  std::vector<double> min, max;
+};
 
 // eval: the filter's spline (after the prefilter and boundary of `pre`) at the points of a file,
 // printed; a value that is not finite is an error (std::domain_error), and nothing is printed. On
@@ -65,15 +73,16 @@ int run_error(const std::string& function, int n, const std::string& filter,
               const std::string& lattice, const PrefilterOptions& pre, int count,
               std::uint64_t seed, bool gradient, bool json);
 
-// resample: n^3 grid points over the box (default_box when min and max are empty), written as a
-// Cartesian NRRD or NIfTI by the output's name, samples of --type `type` (empty: the format's
-// default); nothing is written when any value is not finite. Device as for run_eval.
+// resample: the grid of `grid` (OutputGridOptions), written as a Cartesian NRRD or NIfTI by the
+// output's name, samples of --type `type` (empty: the format's default); nothing is written when
+// any value is not finite. A grid whose values do not fit in memory (check_memory: the values in
+// T and their encoded copy) is refused, with the numbers, before any evaluation. Device as for
+// run_eval.
 template <class T>
 int run_resample(const std::string& filter, const std::string& lattice, const PrefilterOptions& pre,
                  const std::string& volume_path, const std::string& output, const std::string& type,
-                 int n, const std::vector<double>& min, const std::vector<double>& max,
-                 const runtime::NrrdReadLimits& limits, Device device = Device::Cpu,
-                 bool verbose = false);
+                 const OutputGridOptions& grid, const runtime::NrrdReadLimits& limits,
+                 Device device = Device::Cpu, bool verbose = false);
 
 // bench --filter NAME: seconds per point of the filter's value (and value + gradient) at random
 // points of a volume of random samples on its lattice, one thread and all threads.

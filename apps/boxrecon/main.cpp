@@ -93,7 +93,7 @@ int run(int argc, char** argv) {
       filter_choices() + ", or any SPEC of boxgen (on --lattice), compiled on first use";
   const std::string spec_lattice =
       "the lattice of a SPEC --filter: bcc | fcc | cartesian | \"a,b,c; d,e,f; g,h,i\" (rows of "
-      "G); default the preset's";
+      "G); default the volume's with --volume, else the preset's, else cartesian";
   bool quiet = false;
   const auto add_quiet = [&](CLI::App* command) {
     command->add_flag("--quiet", quiet, "no progress while a SPEC filter is compiled");
@@ -105,12 +105,11 @@ int run(int argc, char** argv) {
   std::optional<double> h;
   std::string seed = "1";
   bool gradient = false, json = false, allow_nonfinite = false;
-  int resample_n = 64;
-  std::vector<double> box_min, box_max;
+  boxgen::app::OutputGridOptions grid_options;
   int threads = 0;
   app.add_option("--threads", threads,
                  "threads of the batch paths (default: BOXGEN_THREADS, else all cores)")
-      ->check(CLI::Range(1, 4096));
+      ->check(CLI::PositiveNumber);  // the upper bound is the machine's (max_batch_threads)
 
   auto* sample = app.add_subcommand(
       "sample", "sample a test function on N^3 x K lattice points over [-1,1]^3");
@@ -187,19 +186,38 @@ int run(int argc, char** argv) {
                    "output Cartesian grid: NRRD (.nrrd) or NIfTI-1 (.nii, .nii.gz)")
       ->required();
   boxgen::app::add_type_option(resample, output_type, "-o");
-  resample->add_option(
-      "--n", resample_n,
-      fmt::format("grid points per axis, 2..{} (default 64)", boxgen::app::kMaxResampleN));
+  auto* n_option = resample->add_option("--n", grid_options.n,
+                                        "N: a cube of N^3 grid points over the box (default 64)");
+  auto* size_option =
+      resample
+          ->add_option("--size", grid_options.size,
+                       "NX NY NZ: grid points per axis over the box, instead of --n")
+          ->expected(3);
+  auto* spacing_option =
+      resample
+          ->add_option("--spacing", grid_options.spacing,
+                       "H or HX HY HZ: grid spacing (world units), points from the box's lower "
+                       "corner as far as they fit, instead of --n")
+          ->expected(1, 3);
+  auto* like_option = resample->add_option(
+      "--like", grid_options.like,
+      "IMAGE: the grid of this Cartesian image (NRRD or NIfTI: its sizes, spacings and origin), "
+      "instead of --n and the box");
   auto* min_option = resample
-                         ->add_option("--min", box_min,
+                         ->add_option("--min", grid_options.min,
                                       "X Y Z: lower corner of the box (world); default (without "
                                       "--min/--max): the largest box "
                                       "in which the filter's stencil lies inside the volume")
                          ->expected(3);
   auto* max_option =
-      resample->add_option("--max", box_max, "X Y Z: upper corner of the box (world)")->expected(3);
+      resample->add_option("--max", grid_options.max, "X Y Z: upper corner of the box (world)")
+          ->expected(3);
   min_option->needs(max_option);
   max_option->needs(min_option);
+  n_option->excludes(size_option)->excludes(spacing_option)->excludes(like_option);
+  size_option->excludes(spacing_option)->excludes(like_option);
+  spacing_option->excludes(like_option);
+  like_option->excludes(min_option)->excludes(max_option);
   auto* resample_precision = resample->add_option(
       "--precision", precision, "float | double (default double; float with --device gl)");
   boxgen::app::add_device_option(resample, device, &verbose);
@@ -234,7 +252,8 @@ int run(int argc, char** argv) {
   bench->add_option(
       "--n", bench_n,
       "with --prefilter: N^3 samples per coset of the filter's lattice (default 256)");
-  for (auto* command : {sample, eval, error, resample, bench}) add_quiet(command);
+  for (auto* command : {sample, eval, error, resample, bench, subsample, compare, slice})
+    add_quiet(command);
   auto* filters_command = app.add_subcommand(
       "filters", "list the registry's filters and the SPEC filters compiled into the cache");
   if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxrecon")) return *stop;
@@ -296,11 +315,10 @@ int run(int argc, char** argv) {
     if (resample->parsed())
       return precision == "float"
                  ? boxgen::app::run_resample<float>(filter, lattice, pre, volume, output,
-                                                    output_type, resample_n, box_min, box_max,
-                                                    limits, on, verbose)
+                                                    output_type, grid_options, limits, on, verbose)
                  : boxgen::app::run_resample<double>(filter, lattice, pre, volume, output,
-                                                     output_type, resample_n, box_min, box_max,
-                                                     limits, on, verbose);
+                                                     output_type, grid_options, limits, on,
+                                                     verbose);
   } catch (const std::exception& e) {
     if (boxgen::app::is_output_error(e)) return boxgen::app::report_output_error(e, "boxrecon");
     const int code = exit_code_for(e);

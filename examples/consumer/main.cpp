@@ -9,7 +9,7 @@
 //      approximation order is 4 >= 2).
 //  (c) a 3-D box spline of our own matrix (six directions on the FCC lattice), emitted at build
 //      time, through the runtime: sampled on FCC (LatticeVolume), prefiltered with its own
-//      generated Q^I and reconstructed with LatticeReconstructor. Its approximation order is 3,
+//      generated Q^I and reconstructed with Reconstructor. Its approximation order is 3,
 //      so every quadratic comes back exactly up to rounding; an FCC filter on a BCC volume is
 //      refused.
 //  (d) the same filter on the GL device (boxgen::gl): the GLSL that boxgen_emit wrote for it,
@@ -30,7 +30,6 @@
 #include "runtime/emitted_filter.h"
 #include "runtime/gl/gl_render.h"  // boxgen::gl
 #include "runtime/gl/gl_spline.h"
-#include "runtime/lattice_reconstruction.h"
 #include "runtime/reconstruction.h"  // boxgen::runtime
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
@@ -56,12 +55,12 @@ void check(const char* what, double error, double tolerance) {
 
 // (a) A cubic on BCC, reconstructed with M7 after the prefilter Q^I.
 void bcc_reconstruction() {
-  const rt::Filter filter = rt::Filter::M7;
+  const rt::SplineFilter filter = rt::SplineFilter::parse("m7");
   const rt::PrefilterChoice q = rt::PrefilterChoice::Q1;
   const int n = 9;  // 9^3 x 2 samples over [-1,1]^3, plus the margin M7 and Q^I need
-  const rt::BccVolume<double> samples =
-      rt::sample_cube<double>(rt::cubic, n, rt::required_margin(filter, q));
-  const rt::BccVolume<double> volume = rt::prefilter(samples, rt::prefilter_taps(filter, q));
+  const rt::LatticeVolume<double> samples = rt::sample_lattice<double>(
+      rt::cubic, rt::cube_lattice_grid(filter.lattice(), n, filter.required_margin(q)));
+  const rt::LatticeVolume<double> volume = rt::prefilter(samples, filter.prefilter(q));
   const rt::Reconstructor<double> m7(volume, filter);
 
   double value_error = 0, direct_error = 0;
@@ -135,7 +134,7 @@ void own_filter_through_the_runtime() {
   rt::LatticeVolume<double> volume =
       rt::sample_lattice<double>(quadratic, rt::cube_lattice_grid(lattice, 9, 4));
   volume = rt::prefilter(volume, rt::prefilter_from(six::q1));
-  const rt::LatticeReconstructor<six::Traits, double> spline(volume);
+  const rt::Reconstructor<double> spline(volume, rt::emitted_filter<six::Traits>());
   double error = 0;
   for (int i = 0; i < 5; ++i)
     for (int j = 0; j < 5; ++j)
@@ -148,7 +147,7 @@ void own_filter_through_the_runtime() {
       rt::sample_lattice<double>(quadratic, rt::cube_lattice_grid(rt::CosetLattice::bcc(), 5, 4));
   bool refused = false;
   try {
-    const rt::LatticeReconstructor<six::Traits, double> wrong(bcc);
+    const rt::Reconstructor<double> wrong(bcc, rt::emitted_filter<six::Traits>());
   } catch (const std::invalid_argument&) {
     refused = true;
   }

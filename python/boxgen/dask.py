@@ -52,7 +52,7 @@ def resample(volume, filter, prefilter=None, lo=None, hi=None, shape=64, chunks=
     _core._resample_block(volume, filter, None, lo, hi, shape,
                           (tuple(s - 1 for s in shape), shape), "strict")
     chunks = da.core.normalize_chunks(chunks, shape, dtype=np.float64)
-    token = tokenize(volume.samples, volume.lattice_rows, volume.coset_offsets, volume.spacing,
+    token = tokenize(volume.samples, volume.lattice_rows, volume.coset_offsets, volume.spacings,
                      volume.origin, filter.name, filter.spec, filter.lattice_rows, lo, hi, shape,
                      chunks)
     name = "boxgen-resample-" + token

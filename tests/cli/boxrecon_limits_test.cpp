@@ -4,12 +4,15 @@
 #include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <znzlib.h>
 
 #include <algorithm>
 #include <cctype>
 #include <csignal>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -82,6 +85,77 @@ TEST_F(BoxreconLimits, SizesBeyondMemoryAreRefusedNamingTheSizeNeeded) {
           {"--n 1024", "GiB"});
   // 10^9 random and ray points of 24 bytes and a value each: 52 GiB.
   refused({"bench", "--points", "1000000000"}, {"--points 1000000000", "GiB"});
+}
+
+// Issue 32, item 13: under a 4 GiB address-space limit (ulimit -v), requests that fit the
+// machine's memory but not the process's ended in std::bad_alloc (exit 3). Each limit now comes
+// from the memory the process may still take, checked before allocating: one line, exit 1.
+class BoxreconMemoryLimit : public BoxreconLimits {
+ protected:
+  // boxrecon `args` run by sh under `ulimit -v 4 GiB`, after `before |` when given.
+  void refused_under_limit(const std::vector<std::string>& args,
+                           const std::vector<std::string>& mentions,
+                           const std::string& before = "") {
+    const char* other = std::getenv("BOXRECON_UNDER_TEST");
+    std::vector<std::string> sh{"-c", "ulimit -v 4194304 && " + before + " \"$0\" \"$@\"",
+                                other ? other : BOXRECON_EXE};
+    sh.insert(sh.end(), args.begin(), args.end());
+    const ProcessResult r = run_process("/bin/sh", sh, std::chrono::seconds(120 * kSlowdown));
+    const std::string what = describe(sh, r);
+    ASSERT_FALSE(r.timed_out) << what;
+    EXPECT_TRUE(r.exited && r.exit_code == 1) << what;
+    EXPECT_EQ(r.out, "") << what;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what;
+    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << what;
+    for (const std::string& m : mentions)
+      EXPECT_NE(r.err.find(m), std::string::npos) << "expected '" << m << "'\n" << what;
+  }
+};
+
+TEST_F(BoxreconMemoryLimit, SubsampleBeyondTheProcesssMemoryIsRefused) {
+  const ProcessResult made = boxrecon(
+      {"sample", "--function", "ml", "--n", "20", "--lattice", "cartesian", "-o", file("in.nrrd")});
+  ASSERT_TRUE(made.exited && made.exit_code == 0) << describe({"sample"}, made);
+  refused_under_limit({"subsample", "--volume", file("in.nrrd"), "--lattice", "bcc", "--spacing",
+                       "1e-3", "-o", file("out.nrrd")},
+                      {"--spacing 0.001 needs", "what this process may still take"});
+  EXPECT_FALSE(std::filesystem::exists(file("out.nrrd")));
+}
+
+// A .nii.gz of a few kilobytes that declares 1500^3 uint8 voxels (3.4 GB, and a float copy).
+TEST_F(BoxreconMemoryLimit, NiftiDeclaringMoreThanTheProcesssMemoryIsRefused) {
+  std::string header(352, '\0');
+  const auto put16 = [&](std::size_t at, std::int16_t v) { std::memcpy(&header[at], &v, 2); };
+  const auto putf = [&](std::size_t at, float v) { std::memcpy(&header[at], &v, 4); };
+  const std::int32_t size = 348;
+  std::memcpy(&header[0], &size, 4);
+  put16(40, 3);
+  for (int a = 0; a < 3; ++a) put16(42 + 2 * a, 1500);
+  for (int a = 3; a < 7; ++a) put16(42 + 2 * a, 1);
+  put16(70, 2);  // DT_UINT8
+  put16(72, 8);
+  for (int a = 0; a < 4; ++a) putf(76 + 4 * a, 1);
+  putf(108, 352);
+  std::memcpy(&header[344], "n+1", 4);
+  const std::string path = file("big.nii.gz");
+  znzFile out = znzopen(path.c_str(), "wb", 1);
+  ASSERT_FALSE(znz_isnull(out));
+  const std::string zeros(1 << 20, '\0');
+  znzwrite(header.data(), 1, header.size(), out);
+  for (int i = 0; i < 4; ++i) znzwrite(zeros.data(), 1, zeros.size(), out);
+  znzclose(out);
+  refused_under_limit({"subsample", "--volume", path, "--lattice", "bcc", "--fraction", "0.03",
+                       "-o", file("out.nrrd")},
+                      {"big.nii.gz", "this process may still take"});
+  EXPECT_FALSE(std::filesystem::exists(file("out.nrrd")));
+}
+
+TEST_F(BoxreconMemoryLimit, EndlessPointsAreRefusedWithinTheProcesssMemory) {
+  const ProcessResult made = boxrecon(
+      {"sample", "--function", "cubic", "--n", "6", "--filter", "m7", "-o", file("v.nrrd")});
+  ASSERT_TRUE(made.exited && made.exit_code == 0) << describe({"sample"}, made);
+  refused_under_limit({"eval", "--filter", "m7", "--volume", file("v.nrrd"), "--points", "-"},
+                      {"points, the most whose 128 bytes each fit in the memory"}, "yes '0 0 0' |");
 }
 
 // A full disk while a file is written: one line in the project's words with the system's reason,

@@ -200,8 +200,9 @@ TEST_F(BoxreconVolumes, SlicePngsHaveTheirSizeAndValues) {
       EXPECT_EQ(r.at(x, y), (std::array<int, 3>{grey, grey, grey})) << x << " " << y;
     }
   save_cartesian(file("ten.nrrd"), 12, [](int, int, int) { return 10.0f; });
-  ok({"slice", "--volume", file("ten.nrrd"), "--filter", "tricubic,cart7,tricubic", "--axis", "y",
-      "--at", "5.5", "--size", "8", "6", "--range", "0", "20", "-o", file("t.png")});
+  ok({"slice",    "--volume", file("ten.nrrd"), "--filter", "tricubic", "--filter", "cart7",
+      "--filter", "tricubic", "--axis",         "y",        "--at",     "5.5",      "--size",
+      "8",        "6",        "--range",        "0",        "20",       "-o",       file("t.png")});
   const Png t = read_png(file("t.png"));
   ASSERT_EQ(t.width, 3 * 8 + 2 * 4);
   ASSERT_EQ(t.height, 6);

@@ -44,7 +44,7 @@ std::map<std::array<int, 3>, double> exact_values(const std::string& spec_text,
 }
 
 void expect_exact(const rt::SplineFilter& f, const std::string& spec, const std::string& lattice) {
-  const rt::DiscreteFilter values = rt::lattice_values(f);
+  const rt::PrefilterTaps values = rt::lattice_values(f);
   int reach = 0;
   for (const auto& [k, w] : values)
     for (int a : k) reach = std::max(reach, std::abs(a) + 1);  // one layer of zeros around

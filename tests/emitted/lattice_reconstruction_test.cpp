@@ -1,4 +1,4 @@
-// The runtime with any emitted filter on its own lattice (runtime/lattice_reconstruction.h):
+// The runtime with any emitted filter on its own lattice (runtime/emitted_filter.h):
 // M7, M8, M12 on BCC (generated/), fcc6 on FCC and tricubic and cart7 on the Cartesian lattice
 // (emitted at build time by tests/emitted/CMakeLists.txt, as a user's boxgen_emit() would).
 //

@@ -6,7 +6,9 @@
 
 #include <vector>
 
+#include "generator/derivation.h"
 #include "generator/error.h"
+#include "support/available_memory.h"
 #include "tests/generator/derivation_fixture.h"
 
 namespace boxgen::generator {
@@ -67,8 +69,8 @@ TEST(CostEstimate, RefusesBeyondTheMemoryNamingBothNumbers) {
   }
   EXPECT_NO_THROW(refuse_if_too_costly(e, 100, 1e10));
   // Without a limit the machine's available memory is the limit.
-  ASSERT_GT(available_memory_bytes(), 0);
-  e.bytes = available_memory_bytes() * 2;
+  ASSERT_GT(support::available_memory_bytes(), 0);
+  e.bytes = support::available_memory_bytes() * 2;
   try {
     refuse_if_too_costly(e, 100);
     FAIL() << "not refused";
@@ -91,6 +93,24 @@ TEST(CostEstimate, RefusalNamesThePredictionAndTheLimit) {
     EXPECT_NE(what.find("--max-seconds"), std::string::npos) << what;
   }
   EXPECT_NO_THROW(refuse_if_too_costly(e, 2000));
+}
+
+// Issue 32, item 12: thirteen directions whose knot cells number up to 1.05e7 (the general-position
+// bound) were enumerated for 126 s and 5.5 GB before the cost check said "too costly", and under a
+// 4 GB limit ended in std::bad_alloc. The refusal now comes first, on the prediction `--estimate`
+// prints: its message says "at most", which only the bound (never the enumerated count) gives.
+TEST(CostEstimate, DerivationBeyondTheBoundIsRefusedBeforeEnumerating) {
+  const BoxSplineSpec spec = parse_spec(
+      "1,0,0;0,1,0;0,0,1;1,1,1;1,1,-1;1,-1,1;-1,1,1;1,1,0;1,0,1;0,1,1;1,-1,0;1,0,-1;0,1,-1",
+      "cartesian");
+  try {
+    (void)derive(spec);
+    FAIL() << "derived";
+  } catch (const InputError& err) {
+    const std::string what = err.what();
+    EXPECT_NE(what.find("too costly to derive exactly"), std::string::npos) << what;
+    EXPECT_NE(what.find(" knot cells at most"), std::string::npos) << what;
+  }
 }
 
 }  // namespace

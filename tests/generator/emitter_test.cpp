@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "generator/error.h"
+#include "generator/prefilter.h"
 #include "tests/generator/derivation_fixture.h"
 
 namespace boxgen::generator {
@@ -13,7 +14,8 @@ namespace {
 
 TEST(Emitter, TwoHeadersWithProvenance) {
   const auto files = emit(fixture::derivation_of("zp"),
-                          {"zp_test", "boxgen emit zp --name zp_test", EmissionStrategy::Horner});
+                          {"zp_test", "boxgen emit zp --name zp_test", EmissionStrategy::Horner})
+                         .files;
   ASSERT_EQ(files.size(), 2u);
   EXPECT_EQ(files[0].filename, "zp_test.hpp");
   EXPECT_EQ(files[1].filename, "zp_test_prefilters.hpp");
@@ -23,6 +25,40 @@ TEST(Emitter, TwoHeadersWithProvenance) {
     EXPECT_NE(f.text.find("namespace boxgen::generated::zp_test"), std::string::npos);
   }
   EXPECT_NE(files[0].text.find("boxgen emit zp --name zp_test"), std::string::npos);
+}
+
+// The data beside the text (issue 34): the prefilters the header holds, and the headers' text to
+// paste into one translation unit (the loader's), which is the file's but its include guard.
+TEST(Emitter, ReturnsWhatItEmitsAsData) {
+  const Derivation& zp = fixture::derivation_of("zp");
+  EmissionRequest request{"zp_data", "", EmissionStrategy::Horner};
+  const Emission both = emit(zp, request);
+  ASSERT_TRUE(both.q1 && both.q2);
+  EXPECT_EQ(both.q1->shells,
+            derive_prefilter(zp.spec, quasi_interpolation_shells(zp.spec, 1)).shells);
+  EXPECT_EQ(both.q2->weights.size(),
+            derive_prefilter(zp.spec, quasi_interpolation_shells(zp.spec, 2)).weights.size());
+  EXPECT_EQ(both.stencil_size, zp.structure.stencil_max);
+  EXPECT_EQ(both.reach_lo.size(), 2u);
+  EXPECT_EQ(both.report.orbits.size(), zp.structure.references.size());
+  for (const EmittedFile& f : both.files) {
+    std::string expected = f.text;
+    const std::string guard = "#pragma once\n";
+    ASSERT_NE(expected.find(guard), std::string::npos) << f.filename;
+    expected.erase(expected.find(guard), guard.size());
+    EXPECT_EQ(f.pasted, expected) << f.filename;
+  }
+  // On shell 0 alone zp has no q1 of full order (the header says why), but a q2 on shells 0, 1.
+  request.shells = {0};
+  const Emission q2_only = emit(zp, request);
+  EXPECT_FALSE(q2_only.q1);
+  ASSERT_TRUE(q2_only.q2);
+  EXPECT_EQ(q2_only.q2->shells, (std::vector<int>{0, 1}));
+  request.target = EmissionTarget::Glsl;
+  const Emission glsl = emit(zp, request);
+  ASSERT_EQ(glsl.files.size(), 1u);
+  EXPECT_TRUE(glsl.files[0].pasted.empty());
+  EXPECT_FALSE(glsl.q1 || glsl.q2);
 }
 
 TEST(Emitter, NamesMustBeIdentifiers) {

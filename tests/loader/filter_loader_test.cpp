@@ -36,6 +36,8 @@ namespace gen = boxgen::generator;
 
 // Six of M7's seven directions (no preset): a cubic on BCC.
 constexpr const char* kBccSpec = "1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 2,0,0; 0,2,0";
+// The same directions in another order, four of them negated: the same centred spline.
+constexpr const char* kBccReordered = "0,-2,0; -1,-1,1; 2,0,0; 1,-1,1; -1,-1,-1; 1,-1,-1";
 // Five of fcc6's six directions on FCC.
 constexpr const char* kFccSpec = "1,1,0; 1,-1,0; 1,0,1; 1,0,-1; 0,1,1";
 // A lattice that is none of the three (rows of G, |det G| = 3), and four of its points.
@@ -154,6 +156,24 @@ void expect_reproduction(const rt::SplineFilter& f, const std::string& spec,
   }
 }
 
+// The cache key's directions: one text for every order and sign of the same directions (the
+// centred spline is the same), another for a different matrix. Written out by hand: each
+// direction with its first nonzero entry positive, sorted as integer vectors.
+TEST(CacheKeyDirections, InvariantUnderOrderAndSignOnly) {
+  const std::string canonical = "0,2,0; 1,-1,-1; 1,-1,1; 1,1,-1; 1,1,1; 2,0,0";
+  EXPECT_EQ(cache_key_directions(kBccSpec, "bcc"), canonical);
+  EXPECT_EQ(cache_key_directions(kBccReordered, "bcc"), canonical);
+  EXPECT_EQ(cache_key_directions("0,2,0; 2,0,0; 1,1,1; -1,-1,1; -1,1,-1; 1,-1,-1", "bcc"),
+            canonical);
+  // Not the same spline: (1,1,1) twice instead of (1,1,1) and (-1,-1,1); (0,0,2) for (0,2,0).
+  EXPECT_NE(cache_key_directions("1,1,1; 1,-1,-1; -1,1,-1; 1,1,1; 2,0,0; 0,2,0", "bcc"), canonical);
+  EXPECT_NE(cache_key_directions("1,1,1; 1,-1,-1; -1,1,-1; -1,-1,1; 2,0,0; 0,0,2", "bcc"),
+            canonical);
+  // A repeated direction stays repeated; its sign does not matter either.
+  EXPECT_EQ(cache_key_directions("1,0,0; -1,0,0; 0,1,0; 0,0,-1"), "0,0,1; 0,1,0; 1,0,0; 1,0,0");
+  EXPECT_THROW((void)cache_key_directions("1,0; 0,x"), LoadError);
+}
+
 TEST_F(LoaderTest, RegistryNamesAreTheRegistrysFilters) {
   const rt::SplineFilter m7 = load_filter("m7", std::nullopt, options());
   EXPECT_EQ(m7, rt::SplineFilter::parse("m7"));
@@ -220,6 +240,12 @@ TEST_F(LoaderTest, BccSpecIsExactReproducesAndIsCached) {
   EXPECT_EQ(fs::last_write_time(so), time);
   EXPECT_EQ(fs::file_size(so), size);
   expect_exact_on_delta(again, kBccSpec, "bcc");
+  // Reordered and with directions negated (issue 33): the same entry, loaded without a compile,
+  // named as given, and exact against the recurrence of the directions as given.
+  const rt::SplineFilter reordered = load_filter(kBccReordered, "bcc", options());
+  EXPECT_EQ(fs::last_write_time(so), time);
+  EXPECT_EQ(reordered.name(), kBccReordered);
+  expect_exact_on_delta(reordered, kBccReordered, "bcc");
   ASSERT_EQ(cached_filters(options()).size(), 1U);
   EXPECT_EQ(cached_filters(options())[0].spec, kBccSpec);
   EXPECT_EQ(cached_filters(options())[0].lattice, "bcc");

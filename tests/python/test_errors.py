@@ -127,3 +127,17 @@ def test_wrong_arguments_elsewhere(files):
         boxgen.sample(lambda p: p, 3)
     with pytest.raises(TypeError):
         boxgen.sample(42, 3)
+
+
+def test_thread_counts_have_an_upper_bound(files, ml_volume):
+    """Issue 32, item 11: set_threads(66000) then an evaluation crashed the interpreter, and 33000
+    ended it in libgomp's "Thread creation failed"; boxrecon --threads says the same line."""
+    d, bcc, pts = files
+    for n in (33000, 66000):
+        with pytest.raises(ValueError) as e:
+            boxgen.set_threads(n)
+        assert "threads are more than this process can use: at most" in str(e.value)
+        same_message(e, "boxrecon", "--threads", str(n), "eval", "--filter", "m7", "--volume",
+                     bcc, "--points", pts)
+    boxgen.set_threads(0)
+    assert boxgen.Filter("m7").evaluate(ml_volume, [[0, 0, 0]]).shape == (1,)

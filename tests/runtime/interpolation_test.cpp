@@ -98,7 +98,7 @@ class ManyCosetsFilter final : public FilterSource {
     return CosetLattice::from_rows({{{1, 0, 0}, {0, 1, 0}, {0, 0, 64}}});
   }
   StencilReach reach() const override { return {}; }
-  DiscreteFilter prefilter(PrefilterChoice) const override { throw std::logic_error("none"); }
+  PrefilterTaps prefilter(PrefilterChoice) const override { throw std::logic_error("none"); }
   int approximation_order() const override { return 1; }
   std::shared_ptr<const EvaluationPath<float>> path(const LatticeVolume<float>&) const override {
     throw std::logic_error("not evaluated");
@@ -144,7 +144,7 @@ TEST(Interpolation, SymbolsOfM7M12AndCart7VanishTheOthersDoNot) {
 
 TEST(Interpolation, TheCubicBSplineValuesAtTheLatticePoints) {
   // Tricubic: M(k) = b(k0) b(k1) b(k2) with b(0) = 2/3, b(+-1) = 1/6: 27 values.
-  const DiscreteFilter values = lattice_values(SplineFilter::parse("tricubic"));
+  const PrefilterTaps values = lattice_values(SplineFilter::parse("tricubic"));
   ASSERT_EQ(values.size(), 27u);
   for (const auto& [k, w] : values) {
     double expected = 1;

@@ -275,7 +275,7 @@ TEST(LatticeSampling, EverySampleIsTheFunctionAtItsLatticePoint) {
 // each sample is the taps' sum in double, in the taps' order, of the input read through value().
 TEST(LatticePrefilter, OnBccItIsTheBccPrefilterBitForBit) {
   const LatticeVolume<double> b = test::sample_bcc_cube<double>(smooth, 6, 2);
-  const DiscreteFilter q = {{{0, 0, 0}, 2.0},
+  const PrefilterTaps q = {{{0, 0, 0}, 2.0},
                             {{1, 1, 1}, -0.125},
                             {{-1, 1, -1}, -0.125},
                             {{2, 0, 0}, 0.0625},
@@ -301,7 +301,7 @@ TEST(LatticePrefilter, IsTheConvolutionOnEveryLattice) {
     const LatticeVolume<double> v =
         sample_lattice<double>(smooth, cube_lattice_grid(lattice, 6, 2));
     // Taps: the origin and lattice points near it, with weights of no special form.
-    DiscreteFilter q;
+    PrefilterTaps q;
     double w = 0.5;
     for (int x = -2; x <= 2; ++x)
       for (int y = -2; y <= 2; ++y)
@@ -331,7 +331,7 @@ TEST(LatticePrefilter, IsTheConvolutionOnEveryLattice) {
     // The result is the largest such volume: one more sample on any side would need data outside.
     const PrefilterShrink s = prefilter_shrink(q, lattice);
     for (int a = 0; a < 3; ++a) EXPECT_EQ(out.sizes()[a], v.sizes()[a] - s.lower[a] - s.upper[a]);
-    DiscreteFilter off_lattice = q;
+    PrefilterTaps off_lattice = q;
     off_lattice.push_back({{1, 0, 0}, 1.0});
     if (!lattice.contains(1, 0, 0)) {
       EXPECT_THROW((void)prefilter(v, off_lattice), std::invalid_argument);

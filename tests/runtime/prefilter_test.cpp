@@ -29,7 +29,7 @@ LatticeVolume<T> lattice_volume(Sizes sizes, double h = 1, Vec3 origin = {0, 0, 
 }
 
 // q = 2 at 0, 1/2 at (1,1,1), -1/4 at (-1,-1,1), 1 at (2,0,0).
-const DiscreteFilter kFilter = {
+const PrefilterTaps kFilter = {
     {{0, 0, 0}, 2.0}, {{1, 1, 1}, 0.5}, {{-1, -1, 1}, -0.25}, {{2, 0, 0}, 1.0}};
 
 TEST(BccPrefilter, ShrinkFollowsTheOffsets) {
@@ -41,7 +41,7 @@ TEST(BccPrefilter, ShrinkFollowsTheOffsets) {
   EXPECT_EQ(prefilter_margin(kFilter, CosetLattice::bcc()), 1);
   EXPECT_EQ(prefilter_margin({{{0, 0, 0}, 1.0}}, CosetLattice::bcc()), 0);
   // Taps on the shells S1 and S2 (max-norm 2), the support of Q^I and Q^II: one cell.
-  DiscreteFilter shells{{{0, 0, 0}, 1.0}};
+  PrefilterTaps shells{{{0, 0, 0}, 1.0}};
   for (int sx : {-1, 1})
     for (int sy : {-1, 1})
       for (int sz : {-1, 1}) shells.push_back({{sx, sy, sz}, 0.1});
@@ -89,7 +89,7 @@ TEST(BccPrefilter, AgreesWithTheDefinitionForRandomFilters) {
   std::uniform_real_distribution<double> weight(-1, 1);
   const auto v = lattice_volume<double>({8, 9, 10});  // taps reach 5 units: 3 cells per side
   for (int trial = 0; trial < 20; ++trial) {
-    DiscreteFilter q;
+    PrefilterTaps q;
     const int taps = 1 + trial % 6;
     for (int t = 0; t < taps; ++t) {
       const int p = parity(random);
@@ -117,7 +117,7 @@ TEST(BccPrefilter, AgreesWithTheDefinitionForRandomFilters) {
 // The shrink is tight: one more coset cell at either end would need a sample that is not there.
 TEST(BccPrefilter, ShrinkIsNoLargerThanNeeded) {
   const LatticeVolume<double> v(CosetLattice::bcc(), {6, 6, 6}, 1, {0, 0, 0});
-  const DiscreteFilter q = {
+  const PrefilterTaps q = {
       {{0, 0, 0}, 1.0}, {{1, 1, 1}, 1.0}, {{-2, 0, 0}, 1.0}, {{0, 2, 0}, 1.0}};
   const PrefilterShrink s = prefilter_shrink(q, CosetLattice::bcc());
   for (int a = 0; a < 3; ++a) {
@@ -155,7 +155,7 @@ TEST(BccPrefilter, FloatAgreesWithDouble) {
 
 TEST(BccPrefilter, BadFiltersAndSmallVolumesAreErrors) {
   const auto v = lattice_volume<double>({3, 3, 3});
-  const DiscreteFilter bad[] = {
+  const PrefilterTaps bad[] = {
       {},                                          // no taps
       {{{1, 0, 0}, 1.0}},                          // not a BCC lattice vector
       {{{0, 0, 0}, std::nan("")}},                 // weight not finite

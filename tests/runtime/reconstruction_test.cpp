@@ -4,6 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <omp.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <random>
@@ -252,10 +258,53 @@ TEST(Reconstruction, ThreadCapFromEnvironmentAndProgram) {
   EXPECT_GE(batch_threads(), 1);
 }
 
+// Issue 32, item 11: set_threads(66000) crashed and 33000 ended the process in libgomp's "Thread
+// creation failed". The cap is 4 per processor, and less under an address-space limit; within it
+// a batch runs; beyond it the request is refused in one line.
+TEST(Reconstruction, ThreadCountsHaveAnUpperBound) {
+  const int most = max_batch_threads();
+  EXPECT_EQ(most, 4 * omp_get_num_procs());  // no RLIMIT_AS in the test run
+  for (const int n : {most + 1, 33000, 66000}) {
+    try {
+      set_batch_threads(n);
+      ADD_FAILURE() << n << " threads were accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("at most " + std::to_string(most)), std::string::npos)
+          << e.what();
+    }
+  }
+  ASSERT_EQ(setenv("BOXGEN_THREADS", std::to_string(most + 1).c_str(), 1), 0);
+  EXPECT_THROW(batch_threads(), std::invalid_argument);
+  ASSERT_EQ(unsetenv("BOXGEN_THREADS"), 0);
+  // The most allowed do run.
+  const LatticeVolume<float> volume =
+      test::sample_bcc_cube<float>(find_test_function("ml").value, 6, 2);
+  const Reconstructor<float> r(volume, SplineFilter::parse("m7"));
+  const auto points = random_points(2000, 4);
+  std::vector<float> many(points.size()), one(points.size());
+  set_batch_threads(most);
+  r.evaluate(points, many);
+  set_batch_threads(1);
+  r.evaluate(points, one);
+  set_batch_threads(0);
+  EXPECT_EQ(many, one);
+  // Under a 1 GiB address-space limit and 8 MiB stacks at most 64 threads fit in half of it.
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const rlimit space{1L << 30, 1L << 30}, stack{8L << 20, 8L << 20};
+    ::setrlimit(RLIMIT_AS, &space);
+    ::setrlimit(RLIMIT_STACK, &stack);
+    ::_exit(max_batch_threads() == std::min(64, 4 * omp_get_num_procs()) ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+}
+
 TEST(Reconstruction, ParsesNamesAndRejectsOthers) {
-  EXPECT_EQ(parse_filter("m8"), SplineFilter::parse("m8"));
+  EXPECT_EQ(SplineFilter::parse("m8").name(), "m8");
   EXPECT_EQ(parse_prefilter("q2"), PrefilterChoice::Q2);
-  EXPECT_THROW(parse_filter("m9"), std::invalid_argument);
+  EXPECT_THROW(SplineFilter::parse("m9"), std::invalid_argument);
   EXPECT_THROW(parse_prefilter("q3"), std::invalid_argument);
   // Generated prefilter taps sum to one (a quasi-interpolant preserves constants).
   for (const SplineFilter& f :

@@ -1,4 +1,4 @@
-// The SIMD batch path of Reconstructor::evaluate and RegistryReconstructor::evaluate
+// The SIMD batch path of Reconstructor::evaluate
 // (runtime/simd_batch.h, runtime/emitted_spline.h) against the scalar path (value() with and
 // without derivatives, and evaluate() with BOXGEN_SIMD=0): for every filter of
 // generated/registry.hpp on BCC volumes and on volumes of its own lattice, float and double, the

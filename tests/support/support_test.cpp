@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "support/available_memory.h"
 #include "support/integer_math.h"
 #include "support/output_file.h"
 #include "support/union_find.h"
@@ -36,6 +37,30 @@ TEST(IntegerMath, FloorDivIsTheMathematicalFloorForEverySignCombination) {
     }
   static_assert(floor_div(-1, 2) == -1 && floor_div(7, -2) == -4 && floor_div(-8, 4) == -2);
   EXPECT_EQ(floor_div(-(std::int64_t{1} << 40) - 1, 1 << 20), -(std::int64_t{1} << 20) - 1);
+}
+
+// Issue 32, item 13: the memory a process may still take is bounded by its address-space limit
+// (ulimit -v), not only by the machine's MemAvailable. A child sets RLIMIT_AS 256 MiB above what
+// it has mapped; what it may still take must come out at most 256 MiB (and not 0).
+TEST(AvailableMemory, AnAddressSpaceLimitBoundsIt) {
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    double mapped = -1;
+    while (std::getline(status, line))
+      if (line.rfind("VmSize:", 0) == 0) mapped = std::stod(line.substr(7)) * 1024;
+    constexpr double kRoom = 256.0 * 1024 * 1024;
+    const rlimit limit{static_cast<rlim_t>(mapped + kRoom), static_cast<rlim_t>(mapped + kRoom)};
+    if (mapped < 0 || ::setrlimit(RLIMIT_AS, &limit) != 0) ::_exit(2);
+    const double available = boxgen::support::available_memory_bytes();
+    ::_exit(available > 0 && available <= kRoom ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: not bounded by RLIMIT_AS; 2: the test's set-up failed";
 }
 
 TEST(UnionFind, MergesExactlyTheUnitedSets) {
@@ -175,6 +200,44 @@ TEST_F(OutputFile, ASignalRemovesThePendingTemporaries) {
     ASSERT_TRUE(WIFSIGNALED(status)) << "signal " << signal;
     EXPECT_EQ(WTERMSIG(status), signal);
     EXPECT_TRUE(names().empty()) << "signal " << signal << " left " << *names().begin();
+  }
+}
+
+// Issue 32, item 10: a signal between the two renames of a set left a new h.hpp beside the old
+// h_prefilters.hpp. The writer stops itself there (the test hook raises SIGSTOP), the signal is
+// sent, and the writer goes on: SIGINT, SIGTERM and SIGHUP are held until both renames are done;
+// SIGKILL cannot be held, and the next write of a set into the folder completes the first one.
+TEST_F(OutputFile, ASignalBetweenTheRenamesOfASetNeverSplitsIt) {
+  for (int signal : {SIGINT, SIGTERM, SIGHUP, SIGKILL}) {
+    write(dir_ / "h.hpp", "old");
+    write(dir_ / "h_prefilters.hpp", "old");
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      handle_signals();
+      set_between_renames_hook_for_tests([] { std::raise(SIGSTOP); });
+      const std::vector<NamedText> set = {{"h.hpp", "new"}, {"h_prefilters.hpp", "new"}};
+      write_file_set(dir_, set);
+      ::_exit(0);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, WUNTRACED), pid);
+    ASSERT_TRUE(WIFSTOPPED(status)) << "the writer did not reach its renames";
+    EXPECT_EQ(read(dir_ / "h.hpp"), "new");  // stopped between the two renames
+    EXPECT_EQ(read(dir_ / "h_prefilters.hpp"), "old");
+    ::kill(pid, signal);
+    ::kill(pid, SIGCONT);
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "signal " << signal;
+    EXPECT_EQ(WTERMSIG(status), signal);
+    if (signal == SIGKILL) {
+      EXPECT_EQ(read(dir_ / "h_prefilters.hpp"), "old");  // what no process can prevent
+      const std::vector<NamedText> other = {{"other.hpp", "x"}};
+      write_file_set(dir_, other);
+      fs::remove(dir_ / "other.hpp");
+    }
+    EXPECT_EQ(read(dir_ / "h.hpp"), "new") << "signal " << signal;
+    EXPECT_EQ(read(dir_ / "h_prefilters.hpp"), "new") << "signal " << signal;
+    EXPECT_EQ(names(), (std::set<std::string>{"h.hpp", "h_prefilters.hpp"})) << "signal " << signal;
   }
 }
 
