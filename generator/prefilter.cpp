@@ -10,6 +10,16 @@
 #include "generator/error.h"
 #include "generator/rational_linear_systems.h"
 #include "generator/symmetry.h"
+#include "support/fir_prefilter.hpp"
+
+// The FIR solver's arithmetic on exact rationals: pivots by magnitude, zero is zero.
+template <>
+struct boxgen::support::FirArithmetic<boxgen::generator::Rational> {
+  using Rational = boxgen::generator::Rational;
+  static Rational magnitude(const Rational& x) { return cln::abs(x); }
+  static bool negligible(const Rational& x, const Rational& /*scale*/) { return cln::zerop(x); }
+  static Rational from_int(std::int64_t v) { return boxgen::generator::rational_from(v); }
+};
 
 namespace boxgen::generator {
 
@@ -405,6 +415,53 @@ std::vector<int> quasi_interpolation_shells(const BoxSplineSpec& spec, int which
   fail_input("no prefilter q" + std::to_string(which) + " of approximation order " +
              std::to_string(order) + " for " + spec.name + ": none exists on the shells 0 to " +
              std::to_string(kMaxPrefilterShell));
+}
+
+Prefilter derive_fir_prefilter(const BoxSplineSpec& spec, int last_shell,
+                               const std::vector<LatticeSample>& samples) {
+  if (last_shell < 0 || last_shell > kMaxPrefilterShell)
+    fail_input("qfir:" + std::to_string(last_shell) + ": the last shell must be 0 to " +
+               std::to_string(kMaxPrefilterShell));
+  const int n = spec.dimension();
+  const int order = approximation_order(spec.directions, n);
+  std::vector<int> shells(static_cast<std::size_t>(last_shell) + 1);
+  for (int s = 0; s <= last_shell; ++s) shells[static_cast<std::size_t>(s)] = s;
+  const auto all_shells = spec.lattice.shells(kMaxPrefilterShell + 1);
+  const auto points = points_of(all_shells, shells);
+  const Parametrisation par = weight_per_orbit(points, symmetry_group(spec));
+
+  support::FirPrefilterProblem<Rational> problem;
+  problem.order = order;
+  for (const auto& s : samples) problem.samples.push_back({s.point, s.value});
+  problem.groups = par.groups;
+  const auto weights = support::solve_fir_prefilter(problem);
+  if (!weights) {
+    const int least = quasi_interpolation_shells(spec, 1).back();
+    fail_input("qfir:" + std::to_string(last_shell) + ": no prefilter of approximation order " +
+               std::to_string(order) + " for " + spec.name + " lies on shells 0 to " +
+               std::to_string(last_shell) + " (the least is qfir:" + std::to_string(least) + ")");
+  }
+  Prefilter q{order, shells, "fir", "", {}};
+  for (size_t i = 0; i < points.size(); ++i)
+    q.weights.push_back({points[i].offset, (*weights)[par.parameter_of_point[i]]});
+  return q;
+}
+
+Prefilter named_prefilter(const BoxSplineSpec& spec, std::string_view name) {
+  if (name == "q1" || name == "q2") {
+    const int which = name == "q1" ? 1 : 2;
+    return derive_prefilter(spec, quasi_interpolation_shells(spec, which));
+  }
+  if (name.starts_with("qfir:")) {
+    const std::string_view k = name.substr(5);
+    const bool digit = k.size() == 1 && std::isdigit(static_cast<unsigned char>(k.front()));
+    if (!digit || k.front() - '0' > kMaxPrefilterShell)
+      fail_input("prefilter '" + std::string(name.substr(0, 40)) +
+                 "': K in qfir:K must be a shell index 0 to " + std::to_string(kMaxPrefilterShell));
+    return derive_fir_prefilter(spec, k.front() - '0', lattice_samples(spec));
+  }
+  fail_input("unknown prefilter '" + std::string(name.substr(0, 40)) + "': expected " +
+             kPrefilterNames);
 }
 
 }  // namespace boxgen::generator

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "generator/interpolation_symbol.h"
 #include "generator/spec.h"
 
 namespace boxgen::generator {
@@ -28,7 +29,8 @@ struct Prefilter {
   //   "common":    one weight at the origin, one shared by every point of the nonzero shells
   //                (the paper's Q^I and Q^II);
   //   "per_shell": one weight per shell;
-  //   "per_orbit": one weight per orbit of the symmetry group within each shell.
+  //   "per_orbit": one weight per orbit of the symmetry group within each shell;
+  //   "fir":       qfir (derive_fir_prefilter), one weight per orbit, by least squares.
   std::string parametrisation;
   std::string note;  // empty, or which free parameters were set to zero when q is not unique
   std::vector<PrefilterWeight> weights;  // every point of the shells, by shell then offset
@@ -49,5 +51,21 @@ Prefilter derive_prefilter(const BoxSplineSpec& spec, const std::vector<int>& sh
 // Throws InputError (one line, naming no option) when no k <= kMaxPrefilterShell (k + 1 for q2)
 // has one.
 std::vector<int> quasi_interpolation_shells(const BoxSplineSpec& spec, int which);
+
+// qfir:K, the FIR interpolation prefilter on the shells 0..last_shell (docs/design.md §18,
+// support/fir_prefilter.hpp): of the prefilters there that keep the approximation order, the one
+// whose spline comes closest to the samples (least squares of the residual at the samples of a
+// unit impulse), exactly. `samples`: lattice_samples(spec). One weight per orbit of the symmetry
+// group (the minimiser is unique, hence symmetric). Throws InputError (one line) for a shell out
+// of range or when no prefilter of full order exists on those shells, naming the least K that has
+// one.
+Prefilter derive_fir_prefilter(const BoxSplineSpec& spec, int last_shell,
+                               const std::vector<LatticeSample>& samples);
+
+// A prefilter by the name the programs take: q1, q2 (quasi_interpolation_shells with
+// derive_prefilter) or qfir:K. Throws InputError (one line) for another name.
+Prefilter named_prefilter(const BoxSplineSpec& spec, std::string_view name);
+// "q1, q2 or qfir:K": the names named_prefilter takes, for messages and help texts.
+inline constexpr const char* kPrefilterNames = "q1, q2 or qfir:K";
 
 }  // namespace boxgen::generator

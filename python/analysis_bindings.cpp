@@ -132,7 +132,7 @@ void bind_analysis(py::module_& m) {
         cli::AnalyzeOptions o;
         o.checks = checks;
         return json_result([&] {
-          return generator::to_json(cli::analyze_derivation(common(spec, lattice), o, {}));
+          return cli::analyze_json(cli::analyze_derivation(common(spec, lattice), o, {}));
         });
       },
       py::arg("spec"), py::arg("lattice") = py::none(), py::arg("checks") = "default",
@@ -151,14 +151,19 @@ void bind_analysis(py::module_& m) {
       "reference | all | an index), as a dict.");
   m.def(
       "prefilter",
-      [](const std::string& spec, const std::variant<std::string, std::vector<int>>& shells,
-         const std::optional<std::string>& lattice) {
-        const std::string text = shells_text(shells);
-        return json_result([&] { return cli::prefilter_json(common(spec, lattice), text); });
+      [](const std::string& spec,
+         const std::optional<std::variant<std::string, std::vector<int>>>& shells,
+         const std::optional<std::string>& lattice, const std::optional<std::string>& prefilter) {
+        const std::string text = shells ? shells_text(*shells) : "";
+        const std::string name = prefilter.value_or("");
+        if (text.empty() == name.empty())
+          throw py::value_error("prefilter: give either shells or prefilter");
+        return json_result([&] { return cli::prefilter_json(common(spec, lattice), text, name); });
       },
-      py::arg("spec"), py::arg("shells"), py::arg("lattice") = py::none(),
+      py::arg("spec"), py::arg("shells") = py::none(), py::arg("lattice") = py::none(),
+      py::arg("prefilter") = py::none(),
       "The exact prefilter of `boxgen prefilter SPEC --shells 0,1 --json` (shells: \"0,1\" or "
-      "[0, 1]), as a dict.");
+      "[0, 1]) or of `--prefilter NAME` (q1, q2, qfir:K), as a dict.");
   m.def(
       "metrics",
       [](const Specs& specs, const std::optional<std::string>& lattice,

@@ -4,6 +4,7 @@
 //
 //   none          the samples themselves
 //   q1, q2        the generator's quasi-interpolation prefilters Q^I, Q^II (FIR taps)
+//   qfir:K        the FIR interpolation prefilter on the lattice shells 0..K (fir_interpolation.h)
 //   interp        interpolation: the spline passes through every sample (runtime/interpolation.h;
 //                 regularised where the filter's symbol vanishes)
 //   interp:L      the same with the Tikhonov weight L (relative to max |A|^2) given; 0 asks for
@@ -17,7 +18,7 @@ namespace boxgen::runtime {
 
 class PrefilterChoice {
  public:
-  enum class Kind { None, Q1, Q2, Interp };
+  enum class Kind { None, Q1, Q2, QFir, Interp };
 
   // The choices without a parameter, as values: PrefilterChoice::Q1.
   static const PrefilterChoice None, Q1, Q2;
@@ -30,8 +31,15 @@ class PrefilterChoice {
     return PrefilterChoice(Kind::Interp, lambda);
   }
 
+  // qfir:K, the FIR interpolation prefilter on the shells 0..K.
+  static constexpr PrefilterChoice qfir(int last_shell) {
+    return PrefilterChoice(Kind::QFir, last_shell);
+  }
+
   constexpr Kind kind() const noexcept { return kind_; }
-  // The parameter given after the colon, if any (interp: lambda).
+  // qfir:K: K.
+  constexpr int fir_shells() const noexcept { return static_cast<int>(parameter_.value_or(0)); }
+  // The parameter given after the colon, if any (interp: lambda; qfir: K).
   constexpr std::optional<double> parameter() const noexcept { return parameter_; }
   // Is it a table of FIR taps (SplineFilter::prefilter gives them)? none counts: one tap.
   constexpr bool is_fir() const noexcept { return kind_ != Kind::Interp; }
@@ -51,11 +59,11 @@ inline constexpr PrefilterChoice PrefilterChoice::None{PrefilterChoice::Kind::No
 inline constexpr PrefilterChoice PrefilterChoice::Q1{PrefilterChoice::Kind::Q1};
 inline constexpr PrefilterChoice PrefilterChoice::Q2{PrefilterChoice::Kind::Q2};
 
-// "none" | "q1" | "q2" | "interp" | "interp:L" (L finite, >= 0 and at most 1); anything else:
-// std::invalid_argument, one line.
+// "none" | "q1" | "q2" | "qfir:K" (K = 0..8) | "interp" | "interp:L" (L finite, >= 0 and at most
+// 1); anything else: std::invalid_argument, one line.
 PrefilterChoice parse_prefilter(std::string_view text);
 
-// "none | q1 | q2 | interp[:L]": the choices, for help texts.
-inline constexpr const char* kPrefilterChoices = "none | q1 | q2 | interp[:LAMBDA]";
+// "none | q1 | q2 | qfir:K | interp[:L]": the choices, for help texts.
+inline constexpr const char* kPrefilterChoices = "none | q1 | q2 | qfir:K | interp[:LAMBDA]";
 
 }  // namespace boxgen::runtime

@@ -12,6 +12,7 @@
 
 #include "generated/registry.hpp"
 #include "runtime/emitted_filter.h"
+#include "runtime/fir_interpolation.h"
 #include "runtime/interpolation.h"
 
 namespace boxgen::runtime {
@@ -30,6 +31,9 @@ std::string PrefilterChoice::text() const {
     case Kind::Q2:
       name = "q2";
       break;
+    case Kind::QFir:
+      name = "qfir";
+      break;
     case Kind::Interp:
       name = "interp";
       break;
@@ -43,6 +47,14 @@ PrefilterChoice parse_prefilter(std::string_view text) {
   if (text == "q1") return PrefilterChoice::Q1;
   if (text == "q2") return PrefilterChoice::Q2;
   if (text == "interp") return PrefilterChoice::interp();
+  if (text.starts_with("qfir:")) {
+    const std::string_view k = text.substr(5);
+    if (k.size() != 1 || k.front() < '0' || k.front() > '0' + kMaxFirShell)
+      throw std::invalid_argument(fmt::format(
+          "prefilter '{}': K in qfir:K must be a shell index 0 to {}", text.substr(0, 40),
+          kMaxFirShell));
+    return PrefilterChoice::qfir(k.front() - '0');
+  }
   if (text.starts_with("interp:")) {
     const std::string number(text.substr(7, 40));
     std::size_t used = 0;
@@ -60,7 +72,7 @@ PrefilterChoice parse_prefilter(std::string_view text) {
     return PrefilterChoice::interp(lambda);
   }
   throw std::invalid_argument(
-      fmt::format("unknown prefilter '{}': expected none, q1, q2, interp or interp:LAMBDA",
+      fmt::format("unknown prefilter '{}': expected none, q1, q2, qfir:K, interp or interp:LAMBDA",
                   text.substr(0, 40)));
 }
 
@@ -114,6 +126,7 @@ PrefilterTaps SplineFilter::prefilter(PrefilterChoice q) const {
   if (!q.is_fir())
     throw std::invalid_argument(
         fmt::format("prefilter {} of filter {} is not a table of taps", q.text(), name_));
+  if (q.kind() == PrefilterChoice::Kind::QFir) return fir_interpolation_taps(*this, q.fir_shells());
   return source_->prefilter(q);
 }
 

@@ -68,8 +68,8 @@ class SplineFilter {
   int registry_index() const noexcept { return registry_index_; }
   const CosetLattice& lattice() const noexcept { return lattice_; }
   StencilReach reach() const { return source_->reach(); }
-  // The taps of a FIR prefilter: Q^I or Q^II; none: the identity {(0,0,0), 1}. Any other choice
-  // (interp) is std::invalid_argument, one line.
+  // The taps of a FIR prefilter: Q^I or Q^II, qfir:K (fir_interpolation.h); none: the identity
+  // {(0,0,0), 1}. Any other choice (interp) is std::invalid_argument, one line.
   PrefilterTaps prefilter(PrefilterChoice q) const;
   int approximation_order() const { return source_->approximation_order(); }
   // Coset cells of margin beyond [-1,1]^3 that cube_lattice_grid needs for reconstruction with

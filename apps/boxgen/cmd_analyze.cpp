@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "apps/boxgen/analysis_symbol.h"
 #include "apps/boxgen/commands.h"
 #include "apps/boxgen/progress.h"
 #include "generator/cost_estimate.h"
@@ -59,10 +60,16 @@ int run_analyze(const Common& c, const AnalyzeOptions& o) {
   const Derivation a = analyze_derivation(c, o, progress.callback());
   progress.finish();
   if (c.json)
-    print_json(to_json(a));
+    print_json(analyze_json(a));
   else
-    std::cout << to_table(a);
+    std::cout << to_table(a) << symbol_text(a);
   return 0;
+}
+
+nlohmann::json analyze_json(const Derivation& a) {
+  nlohmann::json j = to_json(a);
+  j["interpolation_symbol"] = symbol_json(a);
+  return j;
 }
 
 }  // namespace boxgen::cli

@@ -69,23 +69,34 @@ nlohmann::json prefilter_json(const Prefilter& q) {
           {"weights", w}};
 }
 
-}  // namespace
-
-nlohmann::json prefilter_json(const Common& c, const std::string& shells_text) {
-  const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
-  return prefilter_json(derive_prefilter(spec, parse_shells(shells_text)));
+// The prefilter on --shells, or the one --prefilter names; exactly one of them is given.
+Prefilter chosen_prefilter(const BoxSplineSpec& spec, const std::string& shells_text,
+                           const std::string& name) {
+  if (shells_text.empty() == name.empty()) fail_usage("give either --shells or --prefilter");
+  return name.empty() ? derive_prefilter(spec, parse_shells(shells_text))
+                      : named_prefilter(spec, name);
 }
 
-int run_prefilter(const Common& c, const std::string& shells_text) {
+}  // namespace
+
+nlohmann::json prefilter_json(const Common& c, const std::string& shells_text,
+                              const std::string& name) {
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
-  const std::vector<int> shells = parse_shells(shells_text);
-  const Prefilter q = derive_prefilter(spec, shells);
+  return prefilter_json(chosen_prefilter(spec, shells_text, name));
+}
+
+int run_prefilter(const Common& c, const std::string& shells_text, const std::string& name) {
+  const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
+  const Prefilter q = chosen_prefilter(spec, shells_text, name);
   if (c.json) {
     print_json(prefilter_json(q));
     return 0;
   }
-  fmt::print("prefilter of approximation order {} for {} on shells {}\n", q.order, spec.name,
-             shells_text);
+  std::string shells;
+  for (size_t i = 0; i < q.shells.size(); ++i)
+    shells += (i ? "," : "") + std::to_string(q.shells[i]);
+  fmt::print("{}prefilter of approximation order {} for {} on shells {}\n",
+             name.empty() ? "" : name + ": ", q.order, spec.name, shells);
   fmt::print("  Q(z) = {}\n", formula(q, spec.lattice));
   if (!q.note.empty()) fmt::print("  note: {}\n", q.note);
   for (const auto& x : q.weights)

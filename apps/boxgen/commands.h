@@ -46,12 +46,17 @@ int run_analyze(const Common& c, const AnalyzeOptions& options);
 // The derivation `analyze` runs (its JSON is to_json() of it), with `progress` (may be empty).
 Derivation analyze_derivation(const Common& c, const AnalyzeOptions& options,
                               const ProgressFn& progress);
+// What `analyze --json` prints of it (also boxgen.analyze() in Python): to_json(a) with the
+// interpolation symbol (apps/boxgen/analysis_symbol.h).
+nlohmann::json analyze_json(const Derivation& a);
 int run_eval(const Common& c, const std::vector<std::string>& points,
              const std::string& derivative);
 int run_bbform(const Common& c, const std::string& region);
-int run_prefilter(const Common& c, const std::string& shells);
+// The prefilter on `shells` ("0,1,2"), or the one `name` names (q1, q2, qfir:K); exactly one of
+// them is not empty.
+int run_prefilter(const Common& c, const std::string& shells, const std::string& name);
 // What `prefilter --json` prints (also boxgen.prefilter() in Python).
-nlohmann::json prefilter_json(const Common& c, const std::string& shells);
+nlohmann::json prefilter_json(const Common& c, const std::string& shells, const std::string& name);
 int run_autocorr(const Common& c, const std::string& method);
 int run_table1(bool json);
 // --target cpp|glsl|cuda and --precision float|double (glsl only).

@@ -90,7 +90,11 @@ int run(int argc, char** argv) {
   auto* prefilter =
       app.add_subcommand("prefilter", "exact quasi-interpolation prefilter on lattice shells");
   add_common(prefilter, c);
-  prefilter->add_option("--shells", shells, "shells of the lattice, e.g. 0,1 or 0,1,2")->required();
+  std::string prefilter_name;
+  prefilter->add_option("--shells", shells, "shells of the lattice, e.g. 0,1 or 0,1,2");
+  prefilter->add_option("--prefilter", prefilter_name,
+                        "q1, q2 or qfir:K (the FIR interpolation prefilter on shells 0..K); "
+                        "instead of --shells");
   auto* autocorr =
       app.add_subcommand("autocorr", "lattice samples of the doubled box spline (autocorrelation)");
   add_common(autocorr, c);
@@ -205,7 +209,7 @@ int run(int argc, char** argv) {
     }
     if (eval->parsed()) return boxgen::cli::run_eval(c, points, derivative);
     if (bbform->parsed()) return boxgen::cli::run_bbform(c, region);
-    if (prefilter->parsed()) return boxgen::cli::run_prefilter(c, shells);
+    if (prefilter->parsed()) return boxgen::cli::run_prefilter(c, shells, prefilter_name);
     if (autocorr->parsed()) return boxgen::cli::run_autocorr(c, method);
     if (table1->parsed()) return boxgen::cli::run_table1(c.json);
     if (metrics->parsed()) return boxgen::cli::run_metrics(ao);

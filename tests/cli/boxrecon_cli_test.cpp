@@ -386,6 +386,9 @@ std::vector<BadInput> bad_inputs() {
        1,
        {"vanishes"}},
       {"UnknownBoundary", resample_with("vol.nrrd", {"--boundary", "wrap"}), 1, {"wrap"}},
+      // qfir:K: K not a shell index 0..8, or too few shells for the order
+      {"FirShellOutOfRange", resample_with("vol.nrrd", {"--prefilter", "qfir:9"}), 1, {"qfir"}},
+      {"FirTooFewShells", resample_with("vol.nrrd", {"--prefilter", "qfir:0"}), 1, {"qfir:0"}},
       // resampling boxes
       {"BoxLeavesTheVolume",
        resample_with("vol.nrrd", {"--min", "-1", "-1", "-1", "--max", "1", "1", "9"}),

@@ -71,6 +71,13 @@ std::vector<BadInput> bad_inputs() {
       {"ShellIndexNegative", {"prefilter", "m7", "--shells", "0,-1"}, {"-1"}},
       {"ShellIndexNotANumber", {"prefilter", "m7", "--shells", "0,x"}, {"x"}},
       {"ShellListedTwice", {"prefilter", "m7", "--shells", "0,1,1"}, {"twice", "1"}},
+      {"ShellsAndANamedPrefilter",
+       {"prefilter", "m7", "--shells", "0,1", "--prefilter", "q1"},
+       {"--shells"}},
+      {"UnknownNamedPrefilter", {"prefilter", "m7", "--prefilter", "q3"}, {"q3"}},
+      {"FirTooFewShells", {"prefilter", "m7", "--prefilter", "qfir:0"}, {"qfir:1"}},
+      {"FirShellOutOfRange", {"prefilter", "m7", "--prefilter", "qfir:9"}, {"qfir:9"}},
+      {"FirShellNotANumber", {"prefilter", "m7", "--prefilter", "qfir:x"}, {"qfir:x"}},
       // --derivative
       {"DerivativeNotANumber", {"eval", "m7", "--at", "0 0 0", "--derivative", "1 x 0"}, {"x"}},
       {"DerivativeWrongCount",

@@ -55,6 +55,25 @@ TEST(PrefilterReproduction, CubicsAreReproducedWithQ1AndQ2) {
   }
 }
 
+TEST(PrefilterReproduction, CubicsAreReproducedWithTheFirInterpolationPrefilter) {
+  // qfir:K keeps the approximation order (docs/design.md §18): the same identity, for K = 1..3.
+  for (const char* preset : {"m7", "m8", "m12"}) {
+    const Derivation& a = derivation_of(preset);
+    const auto& ref = a.structure.references.at(0);
+    const auto samples = lattice_samples(a.form);
+    for (int k = 1; k <= 3; ++k) {
+      const Prefilter q = derive_fir_prefilter(a.spec, k, samples);
+      for (const auto& e : monomial_exponents(3, 3)) {
+        if (e[0] + e[1] + e[2] > 3) break;
+        Poly f(3, 3);
+        f.set_coefficient(e, 1);
+        EXPECT_EQ(reconstruct(ref, q, e), f)
+            << preset << " qfir:" << k << " monomial " << e[0] << e[1] << e[2];
+      }
+    }
+  }
+}
+
 TEST(PrefilterReproduction, WithoutAPrefilterQuadraticsAreNotReproduced) {
   for (const char* preset : {"m7", "m8", "m12"}) {
     const auto& ref = derivation_of(preset).structure.references.at(0);

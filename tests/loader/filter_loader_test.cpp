@@ -5,11 +5,13 @@
 // compiling, a corrupt or stale entry is rebuilt, concurrent first uses both succeed, no compiler
 // is one line. Each compile takes seconds: the tests named Slow* (label slow) hold the FCC and
 // custom-lattice cases, the truncated object and the stale stamp rebuilt, and the concurrent first
-// uses; the fast suite compiles one BCC filter once.
+// uses; the fast suite compiles one BCC filter once. qfir:K (docs/design.md §18) is checked
+// against the generator's exact weights and for reproduction on the registry and these SPECs.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <random>
 #include <set>
 #include <sstream>
@@ -17,6 +19,8 @@
 
 #include "../support/scratch_directory.h"
 #include "generator/approximation_order.h"
+#include "generator/interpolation_symbol.h"
+#include "generator/prefilter.h"
 #include "generator/rational.h"
 #include "generator/recurrence.h"
 #include "generator/spec.h"
@@ -130,8 +134,34 @@ void expect_exact_on_delta(const rt::SplineFilter& f, const std::string& spec,
   EXPECT_GT(checked, 30);
 }
 
-// q1 reproduces every polynomial of degree < the filter's order: a product of linear factors of
-// that degree, sampled over [-1,1]^3, prefiltered with q1 and evaluated at random points there.
+// qfir:K (docs/design.md §18) as the runtime solves it, in double from the evaluator's lattice
+// values, against the generator's exact weights from the pieces: the least K that has one and the
+// next two.
+void expect_fir_taps_exact(const rt::SplineFilter& f, const std::string& spec,
+                           const std::string& lattice) {
+  const gen::BoxSplineSpec s = gen::parse_spec(spec, lattice);
+  const auto samples = gen::lattice_samples(s);
+  const int least = gen::quasi_interpolation_shells(s, 1).back();
+  for (int k = least; k <= least + 2; ++k) {
+    std::map<std::vector<std::int64_t>, double> exact;
+    double largest = 0;
+    for (const auto& w : gen::derive_fir_prefilter(s, k, samples).weights) {
+      exact[w.offset] = gen::to_double(w.weight);
+      largest = std::max(largest, std::abs(gen::to_double(w.weight)));
+    }
+    const rt::PrefilterTaps taps = f.prefilter(rt::PrefilterChoice::qfir(k));
+    ASSERT_EQ(taps.size(), exact.size()) << spec << " qfir:" << k;
+    for (const auto& [o, w] : taps) {
+      const std::vector<std::int64_t> at{o[0], o[1], o[2]};
+      ASSERT_TRUE(exact.count(at)) << spec << " qfir:" << k;
+      EXPECT_NEAR(w, exact.at(at), 1e-12 * largest) << spec << " qfir:" << k;
+    }
+  }
+}
+
+// q1 and qfir:K (the least K and the next) reproduce every polynomial of degree < the filter's
+// order: a product of linear factors of that degree, sampled over [-1,1]^3, prefiltered and
+// evaluated at random points there.
 void expect_reproduction(const rt::SplineFilter& f, const std::string& spec,
                          const std::string& lattice) {
   const gen::BoxSplineSpec s = gen::parse_spec(spec, lattice);
@@ -143,16 +173,28 @@ void expect_reproduction(const rt::SplineFilter& f, const std::string& spec,
     for (int k = 0; k < order - 1; ++k) y *= 0.3 + p[k % 3] - 0.5 * p[(k + 1) % 3];
     return y;
   };
-  const rt::PrefilterChoice q = rt::PrefilterChoice::Q1;
-  rt::LatticeVolume<double> v =
-      rt::sample_lattice<double>(poly, rt::cube_lattice_grid(f.lattice(), 9, f.required_margin(q)));
-  v = rt::prefilter(v, f.prefilter(q));
-  const rt::Reconstructor<double> r(v, f);
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (int t = 0; t < 200; ++t) {
-    const rt::Vec3 p{u(rng), u(rng), u(rng)};
-    EXPECT_NEAR(r.value(p), poly(p), 1e-10) << spec << " at " << p[0] << " " << p[1] << " " << p[2];
+  const int least = gen::quasi_interpolation_shells(s, 1).back();
+  for (const rt::PrefilterChoice q : {rt::PrefilterChoice::Q1, rt::PrefilterChoice::qfir(least),
+                                      rt::PrefilterChoice::qfir(least + 1)}) {
+    rt::LatticeVolume<double> v = rt::sample_lattice<double>(
+        poly, rt::cube_lattice_grid(f.lattice(), 9, f.required_margin(q)));
+    v = rt::prefilter(v, f.prefilter(q));
+    const rt::Reconstructor<double> r(v, f);
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (int t = 0; t < 200; ++t) {
+      const rt::Vec3 p{u(rng), u(rng), u(rng)};
+      EXPECT_NEAR(r.value(p), poly(p), 1e-10)
+          << spec << " " << q.text() << " at " << p[0] << " " << p[1] << " " << p[2];
+    }
+  }
+}
+
+TEST(FirPrefilter, EveryRegistryFiltersTapsAreTheGeneratorsExactWeights) {
+  for (int i = 0; i < rt::SplineFilter::count(); ++i) {
+    const rt::SplineFilter f = rt::SplineFilter::at(i);  // registry names are presets
+    expect_fir_taps_exact(f, f.name(), "");
+    expect_reproduction(f, f.name(), "");
   }
 }
 
@@ -229,6 +271,7 @@ TEST_F(LoaderTest, BccSpecIsExactReproducesAndIsCached) {
   EXPECT_EQ(f.registry_index(), -1);
   expect_exact_on_delta(f, kBccSpec, "bcc");
   expect_reproduction(f, kBccSpec, "bcc");
+  expect_fir_taps_exact(f, kBccSpec, "bcc");
 
   const fs::path so = only(".so");
   ASSERT_FALSE(so.empty());
@@ -289,6 +332,7 @@ TEST_F(LoaderTest, SlowFccSpecIsExactAndReproduces) {
   EXPECT_EQ(f.lattice(), rt::CosetLattice::fcc());
   expect_exact_on_delta(f, kFccSpec, "fcc");
   expect_reproduction(f, kFccSpec, "fcc");
+  expect_fir_taps_exact(f, kFccSpec, "fcc");
 }
 
 TEST_F(LoaderTest, SlowCustomLatticeSpecIsExactAndReproduces) {
