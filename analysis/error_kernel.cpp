@@ -27,6 +27,16 @@ ErrorKernel::ErrorKernel(BoxSplineSpectrum psi, double det_g,
     throw std::invalid_argument("the error kernel needs the autocorrelation samples");
 }
 
+ErrorKernel ErrorKernel::interpolation(BoxSplineSpectrum psi, double det_g,
+                                       std::vector<LatticeTap> autocorrelation,
+                                       std::vector<LatticeTap> lattice_samples) {
+  if (lattice_samples.empty())
+    throw std::invalid_argument("the interpolation error kernel needs the lattice samples");
+  ErrorKernel e(std::move(psi), det_g, std::move(autocorrelation), std::move(lattice_samples));
+  e.inverse_ = true;
+  return e;
+}
+
 long double ErrorKernel::aliasing_sum(const Vec& w) const {
   long double a = 0;
   for (const auto& t : autocorrelation_)
@@ -49,6 +59,11 @@ long double ErrorKernel::operator()(const Vec& w) const {
       const long double ph = phase(w, t.point);
       qr += t.value * std::cos(ph);
       qi -= t.value * std::sin(ph);
+    }
+    if (inverse_) {  // Q = 1 / S = conj(S) / |S|^2
+      const long double s2 = qr * qr + qi * qi;
+      qr /= s2;
+      qi = -qi / s2;
     }
   }
   const long double dr = qr - p / a;

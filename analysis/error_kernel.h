@@ -3,8 +3,10 @@
 //   A(w) = sum_{k in 2 pi G^-T Z^n} psi_hat(w + k)^2 = |det G| sum_{j in L} a(j) e^{-i w.j},
 //   Q(w) = sum_j q(j) e^{-i w.j},
 // where a(j) are the generator's exact autocorrelation samples and q the prefilter taps (both
-// converted to double by the caller). Evaluated in long double: E falls like |w|^8 with an
-// order-4 prefilter and is formed by cancellation near 0.
+// converted to double by the caller). Interpolation (`interp`) has Q = 1 / S with the
+// interpolation symbol S(w) = sum_k M(k) e^{-i w.k} of the lattice samples M(k) (§18): given
+// those samples instead of taps, the kernel uses that Q. Evaluated in long double: E falls like
+// |w|^8 with an order-4 prefilter and is formed by cancellation near 0.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -24,6 +26,11 @@ class ErrorKernel {
   // `prefilter` empty: no prefilter (Q = 1, the samples used as coefficients).
   ErrorKernel(BoxSplineSpectrum psi, double det_g, std::vector<LatticeTap> autocorrelation,
               std::vector<LatticeTap> prefilter);
+  // Interpolation: Q = 1 / S, S from the lattice samples M(k) (which must be non-empty; the
+  // caller checks that S has no zero).
+  static ErrorKernel interpolation(BoxSplineSpectrum psi, double det_g,
+                                   std::vector<LatticeTap> autocorrelation,
+                                   std::vector<LatticeTap> lattice_samples);
   long double operator()(const Vec& w) const;    // E(w)
   long double minimum(const Vec& w) const;       // E_min(w)
   long double aliasing_sum(const Vec& w) const;  // A(w) from the autocorrelation samples
@@ -32,6 +39,7 @@ class ErrorKernel {
   BoxSplineSpectrum psi_;
   double det_g_;
   std::vector<LatticeTap> autocorrelation_, prefilter_;
+  bool inverse_ = false;  // prefilter_ holds M(k): Q = 1 / S
 };
 
 // A(w) as the truncated sum over the dual lattice points with |k| <= radius (for tests: an

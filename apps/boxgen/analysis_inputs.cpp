@@ -22,12 +22,9 @@ std::vector<analysis::LatticeTap> taps_of(const Autocorrelation& a) {
 std::vector<analysis::LatticeTap> prefilter_taps_of(const BoxSplineSpec& spec,
                                                     const std::string& name) {
   if (name == "none") return {};
-  if (name != "q1" && name != "q2")
-    fail_input("unknown prefilter '" + name.substr(0, 40) + "': expected none, q1, q2 or min");
-  // q1 on the smallest shells with a prefilter of full order, q2 on the next larger.
-  const std::vector<int> shells = quasi_interpolation_shells(spec, name == "q1" ? 1 : 2);
+  // q1, q2 (the leading shells of full order and the next) or qfir:K; InputError otherwise.
   std::vector<analysis::LatticeTap> out;
-  for (const auto& w : derive_prefilter(spec, shells).weights)
+  for (const auto& w : named_prefilter(spec, name).weights)
     out.push_back({w.offset, to_double(w.weight)});
   return out;
 }

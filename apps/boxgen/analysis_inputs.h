@@ -19,8 +19,8 @@ using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace): t
 analysis::BoxSplineSpectrum spectrum_of(const BoxSplineSpec& spec);
 analysis::DualLattice dual_of(const BoxSplineSpec& spec);
 std::vector<analysis::LatticeTap> taps_of(const Autocorrelation& a);
-// "none" -> empty; "q1" -> shells 0,1; "q2" -> shells 0,1,2. Throws InputError otherwise
-// ("min" is handled by the caller).
+// "none" -> empty; q1, q2 or qfir:K -> its taps (generator/prefilter.h). Throws InputError
+// otherwise ("min" and "interp" are handled by the caller).
 std::vector<analysis::LatticeTap> prefilter_taps_of(const BoxSplineSpec& spec,
                                                     const std::string& name);
 

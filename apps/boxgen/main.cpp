@@ -172,7 +172,8 @@ int run(int argc, char** argv) {
   auto* kernel = app.add_subcommand(
       "kernel", "Blu-Unser frequency error kernel E(w * direction) (the paper's Fig. 13)");
   add_specs(kernel);
-  kernel->add_option("--prefilter", ao.prefilter, "none | q1 | q2 | min (E_min), default q2");
+  kernel->add_option("--prefilter", ao.prefilter,
+                     "none | q1 | q2 | qfir:K | interp | min (E_min), default q2");
   kernel->add_option("--direction", ao.direction,
                      "direction d of w * d (default 1,1,1, or 1,1 in 2-D)");
   kernel->add_option("--w", ao.w, "abscissae w (comma or space separated)")->delimiter(',');

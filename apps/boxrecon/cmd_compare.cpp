@@ -169,21 +169,8 @@ int run_compare() {
   if (!args.mask.empty()) mask.emplace(read_mask(ref));
   const LatticeVolume<float> volume = app::read_for<float>(filter, q, args.volume, {});
   const Box region = default_box(volume, filter);
-  Box box = region;
-  if (!args.min.empty()) {
-    for (int a = 0; a < 3; ++a) {
-      box.min[a] = args.min[static_cast<std::size_t>(a)];
-      box.max[a] = args.max[static_cast<std::size_t>(a)];
-      if (!(std::isfinite(box.min[a]) && std::isfinite(box.max[a]) && box.min[a] <= box.max[a]))
-        throw std::invalid_argument("--min and --max must be finite with min <= max");
-      if (box.min[a] < region.min[a] || box.max[a] > region.max[a])
-        throw std::out_of_range(fmt::format(
-            "the box --min --max leaves the region the {} filter reconstructs, [{:.9g}, {:.9g}] x "
-            "[{:.9g}, {:.9g}] x [{:.9g}, {:.9g}]",
-            filter.name(), region.min[0], region.max[0], region.min[1], region.max[1],
-            region.min[2], region.max[2]));
-    }
-  }
+  const Box box =
+      args.min.empty() ? region : app::box_from_options(args.min, args.max, region, filter.name());
   IndexRange range[3];
   for (int a = 0; a < 3; ++a) range[a] = indices_inside(ref, box, a);
   const Reconstructor<float> spline(volume, filter);

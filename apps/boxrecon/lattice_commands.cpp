@@ -181,6 +181,24 @@ int run_error(const std::string& function, int n, const std::string& filter,
   return 0;
 }
 
+Box box_from_options(const std::vector<double>& min, const std::vector<double>& max,
+                     const Box& region, const std::string& filter_name) {
+  Box box = region;
+  for (int a = 0; a < 3; ++a) {
+    box.min[a] = min[static_cast<std::size_t>(a)];
+    box.max[a] = max[static_cast<std::size_t>(a)];
+    if (!(std::isfinite(box.min[a]) && std::isfinite(box.max[a]) && box.min[a] <= box.max[a]))
+      throw std::invalid_argument("--min and --max must be finite with min <= max");
+    if (box.min[a] < region.min[a] || box.max[a] > region.max[a])
+      throw std::out_of_range(fmt::format(
+          "the box --min --max leaves the region the {} filter reconstructs, [{:.9g}, {:.9g}] x "
+          "[{:.9g}, {:.9g}] x [{:.9g}, {:.9g}]",
+          filter_name, region.min[0], region.max[0], region.min[1], region.max[1], region.min[2],
+          region.max[2]));
+  }
+  return box;
+}
+
 namespace {
 
 // The grid of --like: that Cartesian image's sizes, spacings and origin (its samples are read

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "analysis/error_kernel.h"
+#include "generator/interpolation_symbol.h"
 #include "tests/analysis/inputs.h"
 
 namespace boxgen::analysis {
@@ -92,6 +93,41 @@ TEST(ErrorKernel, PapersOrderingsHoldOnTheBandOfFig13) {
         EXPECT_LT(e12.minimum(along(d, w)), e8.minimum(along(d, w))) << w;
         EXPECT_LT(e8.minimum(along(d, w)), e7.minimum(along(d, w))) << w;
       }
+    }
+  }
+}
+
+ErrorKernel interpolation_kernel_of(const BoxSplineSpec& spec) {
+  std::vector<LatticeTap> samples;
+  for (const auto& s : lattice_samples(spec)) samples.push_back({s.point, to_double(s.value)});
+  return ErrorKernel::interpolation(BoxSplineSpectrum(spec.directions),
+                                    static_cast<double>(spec.lattice.det_abs()),
+                                    test::autocorrelation_taps(spec), std::move(samples));
+}
+
+// Interpolation's Q = 1 / S: for the tricubic B-spline S(w) = prod_i (2 + cos w_i) / 3 by hand
+// (its values 2/3 at 0 and 1/6 at +-1 per axis), so E = E_min + A (1/S - psi_hat/A)^2.
+TEST(ErrorKernel, InterpolationUsesTheInverseSymbol) {
+  const BoxSplineSpec spec = parse_spec("tricubic");
+  const ErrorKernel e = interpolation_kernel_of(spec);
+  const BoxSplineSpectrum psi(spec.directions);
+  for (const Vec& w : {Vec{0.3, 0.1, -0.2}, Vec{1.0, 1.0, 1.0}, Vec{2.5, 0.0, 0.4}}) {
+    const long double s = (2 + std::cos(w[0])) * (2 + std::cos(w[1])) * (2 + std::cos(w[2])) / 27;
+    const long double a = e.aliasing_sum(w), p = psi.precise(w);
+    const long double expected = e.minimum(w) + a * (1 / s - p / a) * (1 / s - p / a);
+    EXPECT_NEAR(static_cast<double>(e(w)), static_cast<double>(expected), 1e-13)
+        << w[0] << "," << w[1] << "," << w[2];
+  }
+}
+
+// Interpolation keeps the order 4 of M8 and the tricubic (|w|^8), and lies above E_min.
+TEST(ErrorKernel, InterpolationFallsLikeW8AndNeverBelowTheMinimum) {
+  for (const char* preset : {"m8", "tricubic"}) {
+    const ErrorKernel e = interpolation_kernel_of(parse_spec(preset));
+    EXPECT_NEAR(slope(e, 0.08), 8.0, 0.1) << preset;  // at 0.02 E is below long double's floor
+    for (double w = 0.05; w < kPi; w += 0.05) {
+      const Vec p{w, 0.7 * w, -0.3 * w};
+      EXPECT_GE(e(p), e.minimum(p) - 1e-15L) << preset << " " << w;
     }
   }
 }

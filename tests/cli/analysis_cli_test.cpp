@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 #include <sstream>
 
@@ -72,6 +73,27 @@ TEST_F(AnalysisCli, KernelJsonVanishesAtZeroAndGrows) {
                               "--steps", "10", "--json"});
   EXPECT_EQ(r["w"].size(), 10u);
   EXPECT_DOUBLE_EQ(r["w"][9].get<double>(), 1.0);
+}
+
+// The new prefilters: interp and qfir:K lie above E_min and vanish at 0; on M8 qfir:3 is between
+// no prefilter and interp at w = 1 along (1,1,1) (as measured: 2.8e-3 and 1.1e-2 vs 0.18).
+TEST_F(AnalysisCli, KernelTakesInterpAndQfir) {
+  const std::vector<std::string> w{"--w", "0,0.5,1", "--json"};
+  auto run = [&](const char* filter, const char* prefilter) {
+    std::vector<std::string> args{"kernel", filter, "--prefilter", prefilter};
+    args.insert(args.end(), w.begin(), w.end());
+    return boxgen_json(args);
+  };
+  const auto lo = run("m8", "min"), interp = run("m8", "interp"), fir = run("m8", "qfir:3"),
+             none = run("m8", "none");
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_GE(interp["E"][i].get<double>(), lo["E"][i].get<double>() - 1e-15);
+    EXPECT_GE(fir["E"][i].get<double>(), lo["E"][i].get<double>() - 1e-15);
+  }
+  EXPECT_NEAR(interp["E"][0].get<double>(), 0, 1e-14);
+  EXPECT_NEAR(fir["E"][0].get<double>(), 0, 1e-14);
+  EXPECT_LT(fir["E"][2].get<double>(), none["E"][2].get<double>());
+  EXPECT_LT(interp["E"][2].get<double>(), none["E"][2].get<double>());
 }
 
 TEST_F(AnalysisCli, SpectrumLineJsonAndTheNyquistInterval) {
@@ -195,19 +217,49 @@ TEST_F(AnalysisCli, RenderWritesAPngOfTheRequestedSize) {
   EXPECT_EQ(listing(), (std::vector<std::string>{"r.png"}));
 }
 
+// render --min/--max: the default box given explicitly ([-1,1]^3 for --function) is the same
+// picture byte for byte; a smaller box another one; a box beyond the region the filter
+// reconstructs one line and no file.
+TEST_F(AnalysisCli, RenderTakesABox) {
+  const std::vector<std::string> base{"render",  "--function", "ml",       "--n", "13",
+                                      "--width", "24",         "--height", "20",  "--quiet"};
+  const auto render = [&](std::vector<std::string> extra, const std::string& name) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    args.insert(args.end(), {"-o", file(name)});
+    const ProcessResult r = boxrecon(args);
+    EXPECT_TRUE(r.exited && r.exit_code == 0) << describe(args, r);
+    std::ifstream in(file(name), std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string plain = render({}, "plain.png");
+  ASSERT_FALSE(plain.empty());
+  EXPECT_EQ(render({"--min", "-1", "-1", "-1", "--max", "1", "1", "1"}, "same.png"), plain);
+  EXPECT_NE(render({"--min", "-0.5", "-1", "-1", "--max", "1", "0.6", "1"}, "small.png"), plain);
+  std::vector<std::string> outside = base;
+  outside.insert(outside.end(),
+                 {"--min", "-3", "-1", "-1", "--max", "1", "1", "1", "-o", file("out.png")});
+  const ProcessResult r = boxrecon(outside);
+  EXPECT_TRUE(r.exited && r.exit_code == 1) << describe(outside, r);
+  EXPECT_NE(r.err.find("leaves the region the m7 filter reconstructs"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(file("out.png")));
+}
+
 TEST_F(AnalysisCli, ErrorTableJsonHasEveryRowAndKey) {
   const ProcessResult r = boxrecon({"error", "--table", "--points", "200", "--json"});
   ASSERT_TRUE(r.exited && r.exit_code == 0) << describe({"error", "--table"}, r);
   const auto j = nlohmann::json::parse(r.out);
-  // 5 densities x (3 filters x 4 prefilters + 3 tricubic rows).
-  ASSERT_EQ(j["rows"].size(), 75u);
-  int interp_rows = 0;
+  // 5 densities x (3 filters x 5 prefilters (none q1 q2 qfir:3 interp) + 3 tricubic rows).
+  ASSERT_EQ(j["rows"].size(), 90u);
+  int interp_rows = 0, qfir_rows = 0;
   for (const auto& row : j["rows"]) {
     for (const char* key : {"n", "filter", "prefilter", "rms", "max", "gradient_rms", "samples"})
       EXPECT_TRUE(row.contains(key)) << key << " in " << row.dump();
     const int n = row["n"].get<int>();
     EXPECT_LE(row["rms"].get<double>(), row["max"].get<double>());
     interp_rows += row["prefilter"] == "interp";
+    qfir_rows += row["prefilter"] == "qfir:3";
     if (row["filter"] == "tricubic") {
       const int m = static_cast<int>(std::lround(std::cbrt(2.0) * n));
       EXPECT_EQ(row["cartesian_n"].get<int>(), m);
@@ -218,6 +270,7 @@ TEST_F(AnalysisCli, ErrorTableJsonHasEveryRowAndKey) {
     }
   }
   EXPECT_EQ(interp_rows, 5 * 4);
+  EXPECT_EQ(qfir_rows, 5 * 3);
 }
 
 // eval --hessian: the cubic x^3 - 2xyz + 3y^2 - z + 1 (runtime/test_functions.h) is reproduced by
@@ -313,6 +366,12 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadAnalysisInput{
             "UnknownPrefilter", {"kernel", "m7", "--prefilter", "q3", "--w", "1"}, 1, "prefilter"},
+        BadAnalysisInput{"InterpWhereTheSymbolVanishes",
+                         {"kernel", "m7", "--prefilter", "interp", "--w", "1"},
+                         1,
+                         "vanishes"},
+        BadAnalysisInput{
+            "QfirOutOfRange", {"kernel", "m7", "--prefilter", "qfir:9", "--w", "1"}, 1, "qfir"},
         BadAnalysisInput{
             "ZeroDirection", {"kernel", "m7", "--direction", "0,0,0", "--w", "1"}, 1, "zero"},
         BadAnalysisInput{

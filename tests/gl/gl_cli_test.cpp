@@ -92,6 +92,24 @@ TEST_F(GlCliTest, ResampleAndRenderWriteTheirFiles) {
   EXPECT_EQ(std::string(signature + 1, 3), "PNG");
 }
 
+// The 3% BCC MRI volume of Fig. 10 rendered on defaults (M7, float, 512 x 512): float rays at the
+// default box's faces reached samples outside the volume and the render failed with "choose a
+// box inside it" while the CPU's succeeded (issue 33). The MRI template comes with Debian's
+// mricron-data (scripts/install-deps.sh).
+TEST_F(GlCliTest, RenderOfTheBccMriVolumeWorksOnDefaults) {
+  const std::string mri = "/usr/share/mricron/templates/ch2better.nii.gz";
+  if (!std::filesystem::exists(mri)) GTEST_SKIP() << "no " << mri << " (mricron-data)";
+  const ProcessResult subsample = boxrecon({"subsample", "--volume", mri, "--lattice", "bcc",
+                                            "--fraction", "0.03", "-o", file("bcc3.nrrd")},
+                                           {}, std::chrono::seconds(300 * kSlowdown));
+  ASSERT_EQ(subsample.exit_code, 0) << subsample.err;
+  const ProcessResult render = boxrecon({"render", "--volume", file("bcc3.nrrd"), "--filter", "m7",
+                                         "--device", "gl", "--quiet", "-o", file("mri.png")},
+                                        {}, std::chrono::seconds(600 * kSlowdown));
+  EXPECT_EQ(render.exit_code, 0) << render.err;
+  EXPECT_TRUE(std::filesystem::exists(file("mri.png")));
+}
+
 // A filter from a SPEC no preset has (label slow: its first use derives and compiles, about 15 s):
 // its GLSL comes from the loader's cache, and eval on the GL device prints the CPU's numbers.
 TEST_F(GlCliTest, SlowSpecFilterEvaluatesOnTheGlDevice) {
