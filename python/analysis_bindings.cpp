@@ -167,11 +167,13 @@ void bind_analysis(py::module_& m) {
   m.def(
       "metrics",
       [](const Specs& specs, const std::optional<std::string>& lattice,
-         const std::optional<std::vector<std::string>>& labels) {
-        const cli::FrequencyOptions o = spec_options(specs, lattice, labels);
+         const std::optional<std::vector<std::string>>& labels, bool equal_density) {
+        cli::FrequencyOptions o = spec_options(specs, lattice, labels);
+        o.equal_density = equal_density;
         return json_result([&] { return cli::metrics_json(o); });
       },
       py::arg("specs"), py::arg("lattice") = py::none(), py::arg("labels") = py::none(),
+      py::arg("equal_density") = false,
       "`boxgen metrics SPEC... --json`: smoothing and postaliasing per SPEC (each SPEC or "
       "SPEC@LATTICE), a dict keyed by SPEC or by its label.");
   m.def(
@@ -180,8 +182,9 @@ void bind_analysis(py::module_& m) {
          const std::string& prefilter, const std::optional<std::string>& direction,
          const std::optional<std::vector<double>>& w, std::optional<double> w_from,
          std::optional<double> w_to, int steps,
-         const std::optional<std::vector<std::string>>& labels) {
+         const std::optional<std::vector<std::string>>& labels, bool equal_density) {
         cli::FrequencyOptions o = frequency_options(specs, lattice, labels, w, w_from, w_to, steps);
+        o.equal_density = equal_density;
         o.prefilter = prefilter;
         o.direction = direction.value_or("");
         return with_arrays(json_result([&] { return cli::kernel_json(o); }), {"w", "E"});
@@ -189,6 +192,7 @@ void bind_analysis(py::module_& m) {
       py::arg("specs"), py::arg("lattice") = py::none(), py::arg("prefilter") = "q2",
       py::arg("direction") = py::none(), py::arg("w") = py::none(), py::arg("w_from") = py::none(),
       py::arg("w_to") = py::none(), py::arg("steps") = 0, py::arg("labels") = py::none(),
+      py::arg("equal_density") = false,
       "`boxgen kernel SPEC... --json`: the error kernel E(w d) at w (or w_from..w_to in steps "
       "points); {'w', 'E'} as NumPy arrays, keyed by SPEC (or label) when there are several.");
   m.def(
@@ -196,14 +200,15 @@ void bind_analysis(py::module_& m) {
       [](const Specs& specs, const std::string& line, const std::optional<std::string>& lattice,
          const std::optional<std::vector<double>>& w, std::optional<double> w_from,
          std::optional<double> w_to, int steps,
-         const std::optional<std::vector<std::string>>& labels) {
+         const std::optional<std::vector<std::string>>& labels, bool equal_density) {
         cli::FrequencyOptions o = frequency_options(specs, lattice, labels, w, w_from, w_to, steps);
+        o.equal_density = equal_density;
         o.line = line;
         return with_arrays(json_result([&] { return cli::spectrum_json(o); }), {"w", "magnitude"});
       },
       py::arg("specs"), py::arg("line"), py::arg("lattice") = py::none(), py::arg("w") = py::none(),
       py::arg("w_from") = py::none(), py::arg("w_to") = py::none(), py::arg("steps") = 0,
-      py::arg("labels") = py::none(),
+      py::arg("labels") = py::none(), py::arg("equal_density") = false,
       "`boxgen spectrum SPEC... --line a,b,c --json`: |psi_hat(w d)| and the Nyquist interval of "
       "each SPEC's lattice; {'w', 'magnitude'} as NumPy arrays, keyed by SPEC (or label) when "
       "there are several.");

@@ -1,5 +1,7 @@
 #include "apps/boxgen/analysis_inputs.h"
 
+#include <cmath>
+
 #include "generator/error.h"
 #include "generator/prefilter.h"
 
@@ -27,6 +29,11 @@ std::vector<analysis::LatticeTap> prefilter_taps_of(const BoxSplineSpec& spec,
   for (const auto& w : named_prefilter(spec, name).weights)
     out.push_back({w.offset, to_double(w.weight)});
   return out;
+}
+
+double density_scale(const BoxSplineSpec& spec, bool equal) {
+  if (!equal) return 1.0;
+  return std::pow(static_cast<double>(spec.lattice.det_abs()), -1.0 / spec.dimension());
 }
 
 }  // namespace boxgen::cli

@@ -17,6 +17,10 @@ using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace): t
                                       // end
 
 analysis::BoxSplineSpectrum spectrum_of(const BoxSplineSpec& spec);
+// --equal-density: the factor a = |det G|^(-1/n) by which the SPEC's frequencies are scaled so
+// that lattices compare at one sample per unit volume (the lattice a G, the filter M(x / a),
+// whose transform at w is psi_hat(a w)); 1 when `equal` is false.
+double density_scale(const BoxSplineSpec& spec, bool equal);
 analysis::DualLattice dual_of(const BoxSplineSpec& spec);
 std::vector<analysis::LatticeTap> taps_of(const Autocorrelation& a);
 // "none" -> empty; q1, q2 or qfir:K -> its taps (generator/prefilter.h). Throws InputError

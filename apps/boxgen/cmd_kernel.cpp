@@ -104,6 +104,8 @@ KernelCurves kernel_curves(const FrequencyOptions& o, bool plot) {
     const auto taps =
         about_spec(named.text, [&] { return taps_of(autocorrelation_refinement(spec)); });
     const double det = static_cast<double>(spec.lattice.det_abs());
+    const double a = density_scale(spec, o.equal_density);
+    const analysis::Vec da{a * d[0], a * d[1], a * d[2]};
     Curves c{named.key, {}};
     const std::vector<std::string> names = plot
                                                ? std::vector<std::string>{"none", "q1", "q2", "min"}
@@ -121,11 +123,11 @@ KernelCurves kernel_curves(const FrequencyOptions& o, bool plot) {
       }
       if (name == "interp") {
         const analysis::ErrorKernel e = interpolation_kernel(named, taps);
-        c.e[name] = kernel_values(e, d, w, false);
+        c.e[name] = kernel_values(e, da, w, false);
         continue;
       }
       const analysis::ErrorKernel e(spectrum_of(spec), det, taps, prefilter);
-      c.e[name] = kernel_values(e, d, w, name == "min");
+      c.e[name] = kernel_values(e, da, w, name == "min");
     }
     all.push_back(std::move(c));
   }

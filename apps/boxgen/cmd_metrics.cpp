@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <optional>
 
@@ -45,6 +46,18 @@ std::vector<MetricsRow> metrics_rows(const FrequencyOptions& o) {
     r.a0 =
         about_spec(r.s.text, [&] { return autocorrelation_refinement(r.s.spec).integral_squared; });
     r.m = analysis::filter_metrics(spectrum_of(r.s.spec), dual_of(r.s.spec), to_double(r.a0));
+    if (o.equal_density) {
+      // S and P are ratios of integrals over frequencies, unchanged when the lattice and the
+      // filter are scaled together; the volumes and integrals are those at unit density.
+      const double volume = std::pow(density_scale(r.s.spec, true), -r.s.spec.dimension());
+      r.m.nyquist_volume *= volume;
+      r.m.inside *= volume;
+      r.m.total *= volume;
+      for (auto& s : r.m.steps) {
+        s.iterated *= volume;
+        s.simplex_fan *= volume;
+      }
+    }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   return rows;

@@ -55,15 +55,17 @@ struct LineCurves {
 LineCurves line_curves(const FrequencyOptions& o, const std::vector<NamedSpec>& specs, int n) {
   const analysis::Vec d = parse_direction(o.line, n, "--line");
   std::vector<double> t;
-  for (const auto& s : specs) t.push_back(nyquist_extent(dual_of(s.spec).cell(), d));
+  for (const auto& s : specs)
+    t.push_back(nyquist_extent(dual_of(s.spec).cell(), d) / density_scale(s.spec, o.equal_density));
   const std::vector<double> w =
       abscissae(o, false, 0, 4 * *std::max_element(t.begin(), t.end()), 801, false);
   if (!o.plot.empty()) (void)support::check_output_file(o.plot);  // before the work
   std::vector<std::vector<double>> magnitude;
   for (const auto& s : specs) {
     const auto psi = spectrum_of(s.spec);
+    const double a = density_scale(s.spec, o.equal_density);
     std::vector<double> m;
-    for (double x : w) m.push_back(std::abs(psi({x * d[0], x * d[1], x * d[2]})));
+    for (double x : w) m.push_back(std::abs(psi({a * x * d[0], a * x * d[1], a * x * d[2]})));
     magnitude.push_back(std::move(m));
   }
   return {w, std::move(t), std::move(magnitude)};
@@ -195,7 +197,7 @@ PlaneWindow plane_window(const FrequencyOptions& o,
 // discs.
 template <class Psi>
 analysis::ImagePanel magnitude_panel(const Psi& psi, const analysis::DualLattice& dual,
-                                     const PlaneFrame& f, const PlaneWindow& win) {
+                                     const PlaneFrame& f, const PlaneWindow& win, double scale) {
   analysis::ImagePanel panel;
   panel.columns = panel.rows = win.size;
   panel.x_lo = panel.y_lo = win.lo;
@@ -209,17 +211,20 @@ analysis::ImagePanel magnitude_panel(const Psi& psi, const analysis::DualLattice
   for (int py = 0; py < win.size; ++py)  // bottom row first
     for (int px = 0; px < win.size; ++px) {
       const double a = win.lo + (px + 0.5) * pixel, b = win.lo + (py + 0.5) * pixel;
-      const analysis::Vec w{a * f.u[0] + b * f.v[0], a * f.u[1] + b * f.v[1],
-                            a * f.u[2] + b * f.v[2]};
+      // The SPEC's own frequency (scale: --equal-density's a; distances to the dual lattice
+      // measured in the plane's units).
+      const analysis::Vec w{scale * (a * f.u[0] + b * f.v[0]), scale * (a * f.u[1] + b * f.v[1]),
+                            scale * (a * f.u[2] + b * f.v[2])};
       double g = 0;
       dual.nearest(w, &g);
-      panel.values.push_back(g >= 1.2 * pixel ? std::log10(std::max(std::abs(psi(w)), 1e-300))
-                                              : std::numeric_limits<double>::quiet_NaN());
+      panel.values.push_back(g / scale >= 1.2 * pixel
+                                 ? std::log10(std::max(std::abs(psi(w)), 1e-300))
+                                 : std::numeric_limits<double>::quiet_NaN());
     }
   const double reach = std::max(std::abs(win.lo), std::abs(win.hi)) * std::sqrt(2.0) + pixel;
-  for (const auto& k : dual.points_within(reach))
-    if (std::abs(dot(k, f.normal)) < 1e-9 * (1 + reach))
-      panel.dots.push_back({dot(k, f.u), dot(k, f.v)});
+  for (const auto& k : dual.points_within(reach * scale))
+    if (std::abs(dot(k, f.normal)) < 1e-9 * (1 + reach * scale))
+      panel.dots.push_back({dot(k, f.u) / scale, dot(k, f.v) / scale});
   return panel;
 }
 
@@ -237,7 +242,8 @@ int run_plane(const FrequencyOptions& o, const std::vector<NamedSpec>& specs, in
   (void)support::check_output_file(o.plot);  // before the work
   std::vector<analysis::ImagePanel> panels;
   for (std::size_t i = 0; i < specs.size(); ++i) {
-    panels.push_back(magnitude_panel(spectrum_of(specs[i].spec), duals[i], frame, win));
+    panels.push_back(magnitude_panel(spectrum_of(specs[i].spec), duals[i], frame, win,
+                                     density_scale(specs[i].spec, o.equal_density)));
     panels.back().title = fmt::format("{} ({})", specs[i].key, specs[i].spec.lattice.name());
   }
   analysis::image_png(o.plot, panels);  // count * (size + 200) by size + 100 pixels

@@ -83,6 +83,9 @@ struct FrequencyOptions {
   std::string plot;         // kernel --plot, spectrum -o
   std::string plane, line;  // spectrum
   int size = 400;           // spectrum plane: image side in pixels (16..4096)
+  // metrics, kernel, spectrum: each SPEC's frequencies scaled to its lattice at unit sample
+  // density (density_scale, analysis_inputs.h).
+  bool equal_density = false;
 };
 int run_metrics(const FrequencyOptions& o);
 int run_kernel(const FrequencyOptions& o);

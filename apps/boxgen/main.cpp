@@ -161,6 +161,11 @@ int run(int argc, char** argv) {
                     "order (default: the SPEC as given)");
     cmd->add_flag("--json", ao.json, "machine-readable output");
   };
+  auto add_density = [&](CLI::App* cmd) {
+    cmd->add_flag("--equal-density", ao.equal_density,
+                  "scale each SPEC's frequencies to its lattice at one sample per unit volume "
+                  "(compares lattices at equal sample density)");
+  };
   auto add_range = [&](CLI::App* cmd) {
     cmd->add_option("--from", ao.from, "first abscissa");
     cmd->add_option("--to", ao.to, "last abscissa");
@@ -169,9 +174,11 @@ int run(int argc, char** argv) {
   auto* metrics = app.add_subcommand(
       "metrics", "Marschner-Lobb smoothing and postaliasing (the paper's Table 3)");
   add_specs(metrics);
+  add_density(metrics);
   auto* kernel = app.add_subcommand(
       "kernel", "Blu-Unser frequency error kernel E(w * direction) (the paper's Fig. 13)");
   add_specs(kernel);
+  add_density(kernel);
   kernel->add_option("--prefilter", ao.prefilter,
                      "none | q1 | q2 | qfir:K | interp | min (E_min), default q2");
   kernel->add_option("--direction", ao.direction,
@@ -183,6 +190,7 @@ int run(int argc, char** argv) {
   auto* spectrum = app.add_subcommand(
       "spectrum", "|psi_hat| on a plane or along a line (the paper's Figs. 11-12)");
   add_specs(spectrum);
+  add_density(spectrum);
   spectrum->add_option("--plane", ao.plane, "normal a,b,c of a plane through 0 (image)");
   spectrum->add_option("--line", ao.line, "direction a,b,c of a line through 0 (plot)");
   spectrum->add_option("--w", ao.w, "line: abscissae w (comma or space separated)")->delimiter(',');

@@ -1,5 +1,7 @@
 #include "apps/boxrecon/lattice_commands.h"
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -7,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <random>
@@ -237,6 +240,52 @@ CartesianGrid grid_with_spacing(const Box& box, const std::vector<double>& given
   return {n, h, box.min};
 }
 
+// resample() of the whole grid; on a terminal without --quiet, once the work has taken 2 s
+// (BOXGEN_PROGRESS_AFTER), its progress on stderr. The grid is then done in slabs of z planes
+// (GridBlock: each value bit for bit the one the whole grid gets). BOXGEN_PROGRESS_AFTER: the
+// seconds before progress shows (default 2; 0 at once).
+double progress_after() {
+  const char* text = std::getenv("BOXGEN_PROGRESS_AFTER");
+  if (!text || !*text) return 2;
+  char* end = nullptr;
+  const double seconds = std::strtod(text, &end);
+  if (*end != '\0' || !(seconds >= 0) || !std::isfinite(seconds))
+    throw std::invalid_argument(
+        fmt::format("BOXGEN_PROGRESS_AFTER must be a number of seconds >= 0, got '{}'",
+                    nrrd_checks::printable(text, 40)));
+  return seconds;
+}
+
+template <class T>
+CartesianVolume<T> resample_grid(const LatticeVolume<T>& volume, const SplineFilter& f,
+                                 const CartesianGrid& grid, const BatchEvaluate<T>& evaluate) {
+  if (quiet() || ::isatty(STDERR_FILENO) == 0)
+    return resample(volume, f, grid, GridBlock{{0, 0, 0}, grid.sizes}, evaluate);
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  const std::chrono::duration<double> after(progress_after());
+  const Sizes& n = grid.sizes;
+  const std::size_t plane = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]);
+  CartesianVolume<T> out{n, grid.spacing, grid.origin,
+                         std::vector<T>(plane * static_cast<std::size_t>(n[2]))};
+  const int slabs = std::min(n[2], 100);
+  bool shown = false;
+  for (int s = 0; s < slabs; ++s) {
+    const int z0 = n[2] * s / slabs, z1 = n[2] * (s + 1) / slabs;
+    const CartesianVolume<T> part =
+        resample(volume, f, grid, GridBlock{{0, 0, z0}, {n[0], n[1], z1}}, evaluate);
+    std::copy(
+        part.values.begin(), part.values.end(),
+        out.values.begin() + static_cast<std::ptrdiff_t>(plane * static_cast<std::size_t>(z0)));
+    if (shown || Clock::now() - start >= after) {
+      shown = true;
+      std::fprintf(stderr, "\rresampling %3d%%", 100 * z1 / n[2]);
+    }
+  }
+  if (shown) std::fprintf(stderr, "\n");
+  return out;
+}
+
 }  // namespace
 
 template <class T>
@@ -287,19 +336,18 @@ int run_resample(const std::string& filter, const std::string& lattice, const Pr
                    static_cast<std::uint64_t>(n[2]),
                sizeof(T) + sample_type_size(stored),
                fmt::format("the output grid of {} x {} x {} points", n[0], n[1], n[2]), "values");
-  const GridBlock all{{0, 0, 0}, grid.sizes};
   if (device == Device::Cpu) {
-    write_output_grid(output, resample(volume, f, grid, all), type);
+    write_output_grid(output, resample_grid(volume, f, grid, BatchEvaluate<T>{}), type);
     return 0;
   }
   if (verbose) std::cerr << gl_device_line() << '\n';
   const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, sizeof(T) == 8));
   write_output_grid(
       output,
-      resample(volume, f, grid, all,
-               BatchEvaluate<T>([&gpu](std::span<const Vec3> points, std::span<T> values) {
-                 gpu.evaluate(points, values);
-               })),
+      resample_grid(volume, f, grid,
+                    BatchEvaluate<T>([&gpu](std::span<const Vec3> points, std::span<T> values) {
+                      gpu.evaluate(points, values);
+                    })),
       type);
   return 0;
 }

@@ -96,6 +96,51 @@ TEST_F(AnalysisCli, KernelTakesInterpAndQfir) {
   EXPECT_LT(interp["E"][2].get<double>(), none["E"][2].get<double>());
 }
 
+// --equal-density: the tricubic B-spline on Z^3 and the same spline scaled by 2 (directions 2 e_i
+// on the lattice 2 Z^3, 1/8 the density) are one filter at unit density, so their kernels,
+// spectra and metrics agree; without the flag they differ (the scaled one at w is the first at
+// 2 w).
+TEST_F(AnalysisCli, EqualDensityComparesAFilterWithItselfOnAScaledLattice) {
+  const std::string one =
+      "1,0,0; 0,1,0; 0,0,1; 1,0,0; 0,1,0; 0,0,1; 1,0,0; 0,1,0; 0,0,1; 1,0,0; "
+      "0,1,0; 0,0,1@cartesian";
+  const std::string two =
+      "2,0,0; 0,2,0; 0,0,2; 2,0,0; 0,2,0; 0,0,2; 2,0,0; 0,2,0; 0,0,2; 2,0,0; "
+      "0,2,0; 0,0,2@2,0,0; 0,2,0; 0,0,2";
+  const std::vector<std::string> labels{"--label", "a", "--label", "b"};
+  auto run = [&](std::vector<std::string> args, bool equal) {
+    args.insert(args.begin() + 1, {one, two});
+    args.insert(args.end(), labels.begin(), labels.end());
+    args.push_back("--json");
+    if (equal) args.push_back("--equal-density");
+    return boxgen_json(args);
+  };
+  for (const char* prefilter : {"q1", "min"}) {
+    const auto k = run({"kernel", "--prefilter", prefilter, "--w", "0.25,0.5,1,2"}, true);
+    const auto plain = run({"kernel", "--prefilter", prefilter, "--w", "0.5,1,2"}, false);
+    for (int i = 0; i < 4; ++i)
+      EXPECT_NEAR(k["a"]["E"][i].get<double>(), k["b"]["E"][i].get<double>(),
+                  1e-12 * (1 + k["a"]["E"][i].get<double>()))
+          << prefilter << " " << i;
+    // Without the flag the scaled spline at w is the first at 2 w.
+    for (int i = 0; i < 2; ++i)
+      EXPECT_NEAR(plain["b"]["E"][i].get<double>(), plain["a"]["E"][i + 1].get<double>(),
+                  1e-12 * (1 + plain["a"]["E"][i + 1].get<double>()))
+          << prefilter;
+    EXPECT_GT(plain["b"]["E"][1].get<double>(), 10 * plain["a"]["E"][1].get<double>());
+  }
+  const auto s = run({"spectrum", "--line", "1,1,0", "--w", "0.5,1,2"}, true);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(s["a"]["magnitude"][i].get<double>(), s["b"]["magnitude"][i].get<double>(), 1e-14);
+  EXPECT_NEAR(s["b"]["nyquist_interval"][1].get<double>(), std::numbers::pi, 1e-12);
+  const auto m = run({"metrics"}, true);
+  for (const char* key : {"smoothing", "postaliasing", "nyquist_volume", "integral_total"})
+    EXPECT_NEAR(m["a"][key].get<double>(), m["b"][key].get<double>(),
+                1e-12 * m["a"][key].get<double>())
+        << key;
+  EXPECT_NEAR(m["b"]["nyquist_volume"].get<double>(), std::pow(2 * std::numbers::pi, 3), 1e-9);
+}
+
 TEST_F(AnalysisCli, SpectrumLineJsonAndTheNyquistInterval) {
   const auto j = boxgen_json(
       {"spectrum", "m7", "--line", "1,0,0", "--from", "0", "--to", "6", "--steps", "7", "--json"});

@@ -88,6 +88,17 @@ def test_kernel_equals_cli_with_arrays():
     assert isinstance(many["m8"]["E"], np.ndarray) and many["m8"]["E"].shape == (5,)
 
 
+def test_equal_density_equals_cli():
+    py = boxgen.kernel(["m8", "fcc6@fcc"], prefilter="q1", w=[0.5, 1], equal_density=True)
+    assert plain(py) == cli_json("kernel", "m8", "fcc6@fcc", "--prefilter", "q1", "--w", "0.5,1",
+                                 "--equal-density")
+    line = boxgen.spectrum(["m8", "fcc6@fcc"], line="1,1,1", w=[1], equal_density=True)
+    assert plain(line) == cli_json("spectrum", "m8", "fcc6@fcc", "--line", "1,1,1", "--w", "1",
+                                   "--equal-density")
+    m = boxgen.metrics(["m8"], equal_density=True)
+    assert plain(m) == cli_json("metrics", "m8", "--equal-density")
+
+
 def test_spectrum_equals_cli_with_arrays():
     py = boxgen.spectrum(["m7", "m8"], line="1,1,1", steps=9, w_from=0, w_to=4)
     cli = cli_json("spectrum", "m7", "m8", "--line", "1,1,1", "--steps", "9", "--from", "0",
