@@ -4,7 +4,9 @@
 //     holds the cost-chosen `auto` forms; the monomial and Horner ones are emitted at build time),
 //     data from an in-memory hash (no volume, no bounds checks), value / gradient / Hessian paths;
 //   batch/<filter>/<precision>/N: Reconstructor<T>::evaluate on one thread at random points of an
-//     N^3 x 2 volume (the paper's Table 2 sizes), items = points.
+//     N^3 x 2 volume (the paper's Table 2 sizes, and 96), items = points;
+//   threads/<filter>/float/N:96/threads: the same with 400,000 points per call on 1 and 2 threads
+//     (wall clock: the batch API's own OpenMP threads).
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -89,23 +91,24 @@ BOXGEN_SCALAR_BENCHMARK(m12_horner);
 BOXGEN_SCALAR_BENCHMARK(m12_monomial);
 
 template <class T>
-void batch(benchmark::State& state, const char* filter) {
+void batch(benchmark::State& state, const char* filter, int threads = 1, int count = 100000) {
   using namespace boxgen::runtime;
   const int n = static_cast<int>(state.range(0));
   LatticeVolume<T> volume(CosetLattice::bcc(), {n, n, n}, 1.0, {0, 0, 0});
   std::mt19937_64 rng(n);
   for (auto& s : volume.samples()) s = static_cast<T>(static_cast<double>(rng() % 4096) / 4096.0);
   std::uniform_real_distribution<double> u(6.0, 2.0 * n - 7.0);
-  std::vector<Vec3> pts(100000);
+  std::vector<Vec3> pts(static_cast<std::size_t>(count));
   for (auto& p : pts) p = {u(rng), u(rng), u(rng)};
   std::vector<T> values(pts.size());
-  set_batch_threads(1);
+  set_batch_threads(threads);
   const Reconstructor<T> r(volume, SplineFilter::parse(filter));
   for (auto _ : state) {
     r.evaluate(pts, values);
     benchmark::DoNotOptimize(values.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(pts.size()));
+  set_batch_threads(0);
 }
 
 void batch_float(benchmark::State& state, const char* f) { batch<float>(state, f); }
@@ -119,6 +122,7 @@ void batch_double(benchmark::State& state, const char* f) { batch<double>(state,
       ->Arg(32)                               \
       ->Arg(45)                               \
       ->Arg(77)                               \
+      ->Arg(96)                               \
       ->Arg(117)                              \
       ->Unit(benchmark::kMillisecond)
 
@@ -128,6 +132,23 @@ BOXGEN_BATCH_BENCHMARK(M12, "m12", float);
 BOXGEN_BATCH_BENCHMARK(M7, "m7", double);
 BOXGEN_BATCH_BENCHMARK(M8, "m8", double);
 BOXGEN_BATCH_BENCHMARK(M12, "m12", double);
+
+void threads_float(benchmark::State& state, const char* f) {
+  batch<float>(state, f, static_cast<int>(state.range(1)), 400000);
+}
+
+#define BOXGEN_THREADS_BENCHMARK(F, name)           \
+  BENCHMARK_CAPTURE(threads_float, F##_float, name) \
+      ->Name("threads/" #F "/float")                \
+      ->ArgNames({"N", "threads"})                  \
+      ->Args({96, 1})                               \
+      ->Args({96, 2})                               \
+      ->UseRealTime()                               \
+      ->Unit(benchmark::kMillisecond)
+
+BOXGEN_THREADS_BENCHMARK(M7, "m7");
+BOXGEN_THREADS_BENCHMARK(M8, "m8");
+BOXGEN_THREADS_BENCHMARK(M12, "m12");
 
 }  // namespace
 

@@ -6,12 +6,14 @@
 // evaluates `points` random points of a 32^3 x 2 float volume through
 // Reconstructor<float>::evaluate (BOXGEN_THREADS=1 is set here), or runs the filter's fetch floor:
 // per point the corner and its base index, then the filter's own stencil shape (cell 0's offsets)
-// fetched and summed. Divide the collected count by `points`. With `time` it also prints the
-// thread CPU time per point (best of 10 runs): `build/bench/bench_instructions m7 200000 time`.
-// BOXGEN_SIMD=0 measures the scalar batch path. (valgrind emulates no AVX-512: under it the
-// SIMD path dispatches to AVX2.) Any other registry filter (fcc6, tricubic, cart7) runs through the
-// same Reconstructor<float>::evaluate on a volume of its own lattice with about as many samples
-// (2 x 32^3), no floor:
+// fetched and summed. Divide the collected count by `points`. With `double` the volume, the
+// evaluation and the floor are in double (toggle '*Reconstructor<double>::evaluate*'). With `time`
+// it also prints the thread CPU time per point (best of 10 runs):
+// `build/bench/bench_instructions m7 200000 time`. `side=96` takes a 96^3 x 2 volume instead
+// (larger than the caches: `--cache-sim=yes` counts the misses). BOXGEN_SIMD=0 measures the scalar
+// batch path. (valgrind emulates no AVX-512: under it the SIMD path dispatches to AVX2.) Any other
+// registry filter (fcc6, tricubic, cart7) runs through the same Reconstructor<T>::evaluate on a
+// volume of its own lattice with about as many samples (2 x 32^3), no floor:
 //   valgrind --tool=callgrind --toggle-collect='*Reconstructor<float>::evaluate*'
 //            build/bench/bench_instructions tricubic 20000
 #include <algorithm>
@@ -30,10 +32,9 @@
 
 using namespace boxgen::runtime;
 
-template <class Tr>
-__attribute__((noinline)) void fetch_floor(const LatticeVolume<float>& volume,
-                                           const std::vector<Vec3>& points,
-                                           std::vector<float>& out) {
+template <class Tr, class T>
+__attribute__((noinline)) void fetch_floor(const LatticeVolume<T>& volume,
+                                           const std::vector<Vec3>& points, std::vector<T>& out) {
   const std::int64_t n0 = volume.sizes()[0], n1 = volume.sizes()[1];
   std::int32_t offsets[Tr::kStencilSize];
   for (int k = 0; k < Tr::kStencilSize; ++k) {
@@ -41,15 +42,15 @@ __attribute__((noinline)) void fetch_floor(const LatticeVolume<float>& volume,
     offsets[k] =
         static_cast<std::int32_t>(d[0] + n0 * d[1] + n0 * n1 * d[2] - (d[0] & 1) * (n0 + n0 * n1));
   }
-  const float* samples = volume.samples().data();
+  const T* samples = volume.samples().data();
   for (std::size_t i = 0; i < points.size(); ++i) {
     std::int64_t corner[3];
     for (int a = 0; a < 3; ++a)
-      corner[a] = static_cast<std::int64_t>(std::floor(static_cast<float>(points[i][a]) +
-                                                       static_cast<float>(Tr::kCentre[a]))) &
+      corner[a] = static_cast<std::int64_t>(
+                      std::floor(static_cast<T>(points[i][a]) + static_cast<T>(Tr::kCentre[a]))) &
                   ~std::int64_t{1};  // an even corner keeps every offset on the lattice
-    const float* base = samples + (corner[0] + n0 * corner[1] + n0 * n1 * corner[2]);
-    float sum = 0;
+    const T* base = samples + (corner[0] + n0 * corner[1] + n0 * n1 * corner[2]);
+    T sum = 0;
     for (int k = 0; k < Tr::kStencilSize; ++k) sum += base[offsets[k]];
     out[i] = sum;
   }
@@ -72,26 +73,27 @@ double best_thread_ns(int runs, F&& run) {
   return best;
 }
 
-// Any registry filter on a volume of its own lattice with about 2 x 32^3 samples (M7, M8, M12:
-// 32^3 x 2 on BCC), or the fetch floor of a BCC filter.
-double filter_ns(const SplineFilter& f, std::vector<float>& values, long count, bool floor,
-                 int runs) {
+// Any registry filter on a volume of its own lattice with about 2 x side^3 samples (M7, M8, M12:
+// side^3 x 2 on BCC), or the fetch floor of a BCC filter.
+template <class T>
+double filter_ns(const SplineFilter& f, std::vector<T>& values, long count, bool floor, int runs,
+                 int side) {
   const CosetLattice lattice = f.lattice();
   const int n =
-      static_cast<int>(std::lround(std::cbrt(2.0 * 32 * 32 * 32 / lattice.coset_count())));
-  LatticeVolume<float> volume(lattice, {n, n, n}, 1.0, {0, 0, 0});
+      static_cast<int>(std::lround(std::cbrt(2.0 * side * side * side / lattice.coset_count())));
+  LatticeVolume<T> volume(lattice, {n, n, n}, 1.0, {0, 0, 0});
   std::mt19937_64 rng(1);
-  for (auto& s : volume.samples()) s = static_cast<float>(rng() % 1000) / 1000.f;
+  for (auto& s : volume.samples()) s = static_cast<T>(rng() % 1000) / T(1000);
   const double extent = static_cast<double>(lattice.period()) * n;
   std::uniform_real_distribution<double> u(6.0, extent - 7.0);
   std::vector<Vec3> points(count > 0 ? count : 1);
   for (auto& p : points) p = {u(rng), u(rng), u(rng)};
   values.resize(points.size());
-  const Reconstructor<float> reconstructor(volume, f);
+  const Reconstructor<T> reconstructor(volume, f);
   return best_thread_ns(runs, [&] {
     if (floor)
       boxgen::generated::with_filter(f.registry_index(), [&](auto entry) {
-        fetch_floor<typename decltype(entry)::Traits>(volume, points, values);
+        fetch_floor<typename decltype(entry)::Traits, T>(volume, points, values);
       });
     else
       reconstructor.evaluate(points, values);
@@ -100,14 +102,18 @@ double filter_ns(const SplineFilter& f, std::vector<float>& values, long count, 
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: bench_instructions FILTER POINTS [floor] [time]\n");
+    std::fprintf(stderr,
+                 "usage: bench_instructions FILTER POINTS [floor] [time] [double] [side=N]\n");
     return 2;
   }
   const long count = std::atol(argv[2]);
-  bool floor = false, timed = false;
+  bool floor = false, timed = false, in_double = false;
+  int side = 32;
   for (int a = 3; a < argc; ++a) {
+    if (std::string(argv[a]).rfind("side=", 0) == 0) side = std::atoi(argv[a] + 5);
     floor = floor || std::string(argv[a]) == "floor";
     timed = timed || std::string(argv[a]) == "time";
+    in_double = in_double || std::string(argv[a]) == "double";
   }
   set_batch_threads(1);
   const SplineFilter filter = SplineFilter::parse(argv[1]);
@@ -115,14 +121,23 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_instructions: the floor is measured for m7, m8 and m12\n");
     return 2;
   }
-  std::vector<float> values;
-  const double best = filter_ns(filter, values, count, floor, timed ? 10 : 1);
-  double sum = 0;
-  for (float v : values) sum += v;
-  std::printf("%s%s: %ld points, checksum %.6g", argv[1], floor ? " floor" : "", count, sum);
+  double best = 0, sum = 0;
+  std::size_t size = 0;
+  const auto measure = [&](auto zero) {
+    std::vector<decltype(zero)> values;
+    best = filter_ns(filter, values, count, floor, timed ? 10 : 1, side);
+    for (auto v : values) sum += static_cast<double>(v);
+    size = values.size();
+  };
+  if (in_double)
+    measure(0.0);
+  else
+    measure(0.0F);
+  std::printf("%s%s%s: %ld points, side %d, checksum %.6g", argv[1], in_double ? " double" : "",
+              floor ? " floor" : "", count, side, sum);
   if (timed)
     std::printf(", %.2f ns per point (thread CPU time, best of 10)",
-                best / static_cast<double>(values.size()));
+                best / static_cast<double>(size));
   std::printf("\n");
   return 0;
 }

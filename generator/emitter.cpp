@@ -290,12 +290,15 @@ Emission emit(const Derivation& analysis, const EmissionRequest& request) {
   out.reach_lo = t.reach_lo;
   out.reach_hi = t.reach_hi;
   switch (request.target) {
-    case EmissionTarget::Glsl:
-      out.files = {
-          {request.name + ".glsl",
-           generator::glsl_evaluator(analysis, banner(analysis, request), request.name, code.orbits,
-                                     orbit_cost_lines(code), request.double_precision)}};
+    case EmissionTarget::Glsl: {
+      GlslText glsl =
+          generator::glsl_evaluator(analysis, banner(analysis, request), request.name, code.orbits,
+                                    orbit_cost_lines(code), request.double_precision);
+      out.files = {{request.name + ".glsl", std::move(glsl.text)}};
+      out.glsl_buffered = std::move(glsl.buffered);
+      out.glsl_block = std::move(glsl.block);
       return out;
+    }
     case EmissionTarget::Cuda:
       out.files = {{request.name + ".cuh", cuda_evaluator(analysis, request, code)}};
       return out;

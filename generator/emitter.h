@@ -62,6 +62,10 @@ struct Emission {
   // C++: the quasi-interpolation prefilters q1 and q2 that <name>_prefilters.hpp holds (on the
   // request's shells); none where no prefilter of full order exists there (the header says why).
   std::optional<Prefilter> q1, q2;
+  // GLSL: the evaluator with its run-time-indexed tables in a storage block, and the block's
+  // contents (generator/glsl_evaluator.h); the file is the variant whose tables are `const`.
+  std::string glsl_buffered;
+  std::vector<int> glsl_block;
 };
 
 // The evaluator of `analysis` for the request's target. Throws InputError for a name that is not

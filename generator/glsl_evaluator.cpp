@@ -31,6 +31,54 @@ std::string flat_rows(const Rows& rows) {
   return join(parts, ",\n    ");
 }
 
+// A template's fields, as text.
+using Fields = std::vector<std::pair<const char*, std::string>>;
+
+template <class Rows>
+std::vector<int> flat_ints(const Rows& rows) {
+  std::vector<int> out;
+  for (const auto& row : rows)
+    for (const auto& v : row) out.push_back(static_cast<int>(v));
+  return out;
+}
+
+// One int table of the evaluator: its template field, name, size as the text declares it, and
+// entries (as the text lists them: one row per line where it has rows).
+struct IntTable {
+  const char* field;
+  std::string name, size;
+  std::string text;
+  std::vector<int> values;
+  bool run_time_indexed;
+};
+
+// The tables' declarations: in `text`, each a `const` array; in `buffered`, the run-time-indexed
+// ones members of one read-only storage block at the place of the first (the others' lines left
+// empty), whose contents are `block` (std430: int arrays, tightly packed, in order).
+void add_tables(const std::string& name, const std::vector<IntTable>& tables, Fields& constant,
+                Fields& buffered, std::vector<int>& block) {
+  std::string members;
+  for (const IntTable& t : tables)
+    if (t.run_time_indexed) members += fmt::format("  int {}[{}];\n", t.name, t.values.size());
+  bool first = true;
+  for (const IntTable& t : tables) {
+    const std::string declaration =
+        fmt::format("const int {}[{}] = int[]({});", t.name, t.size, t.text);
+    constant.emplace_back(t.field, declaration);
+    if (!t.run_time_indexed) {
+      buffered.emplace_back(t.field, declaration);
+      continue;
+    }
+    buffered.emplace_back(
+        t.field, first ? fmt::format("layout(std430, binding = BOXGEN_TABLES_BINDING) readonly "
+                                     "buffer {}_Tables {{\n{}}};",
+                                     name, members)
+                       : std::string());
+    block.insert(block.end(), t.values.begin(), t.values.end());
+    first = false;
+  }
+}
+
 // "+ a * name" terms of an integer combination, zeros left out; `first` without a leading "+".
 std::string combination(const std::vector<std::pair<std::int64_t, std::string>>& terms,
                         bool first) {
@@ -50,8 +98,7 @@ std::string combination(const std::vector<std::pair<std::int64_t, std::string>>&
 
 // The glue of templates/evaluator.glsl.fmt with its loops over coordinates, normals, stencil
 // points and derivatives unrolled, so that the shader indexes each private and `const` array by
-// constants only (docs/gpu.md, "No array indexed at run time"): the template's fields, as text.
-using Fields = std::vector<std::pair<const char*, std::string>>;
+// constants only (docs/gpu.md, "No array indexed at run time").
 
 struct Glue {
   const Derivation& a;
@@ -210,9 +257,9 @@ Fields unrolled_glue(const Derivation& a, const std::string& name, const KnotPla
 
 }  // namespace
 
-std::string glsl_evaluator(const Derivation& a, const std::string& banner, const std::string& name,
-                           const std::vector<OrbitCode>& orbits,
-                           const std::vector<std::string>& cost_lines, bool double_precision) {
+GlslText glsl_evaluator(const Derivation& a, const std::string& banner, const std::string& name,
+                        const std::vector<OrbitCode>& orbits,
+                        const std::vector<std::string>& cost_lines, bool double_precision) {
   const int n = a.spec.dimension();
   const int derivatives = n + n * (n + 1) / 2;
   const std::string real = double_precision ? "double" : "float";
@@ -248,8 +295,10 @@ std::string glsl_evaluator(const Derivation& a, const std::string& banner, const
     }
     functions.push_back(text);
   }
-  fmt::dynamic_format_arg_store<fmt::format_context> args;
-  auto add = [&](const char* key, const auto& value) { args.push_back(fmt::arg(key, value)); };
+  Fields fields;
+  auto add = [&](const char* key, const auto& value) {
+    fields.emplace_back(key, fmt::format("{}", value));
+  };
   add("banner", banner);
   add("name", name);
   add("real", real);
@@ -262,26 +311,50 @@ std::string glsl_evaluator(const Derivation& a, const std::string& banner, const
   add("orbit_costs", join(cost_lines, "\n"));
   add("centre", join(centre));
   add("normal_count", keys.planes.size());
-  add("cube_count", t.lookup.size());
   add("lookup_size", keys.size());
-  add("lookup", flat_rows(t.lookup));
   add("cell_count", t.cube.size());
-  add("cell_cube", flat(t.cube));
-  add("cell_orbit", flat(t.orbit));
-  add("cell_keys", flat_rows(t.keys));
-  add("cell_perm", flat_rows(t.perm));
-  add("cell_sign", flat_rows(t.sign));
-  add("cell_a", flat_rows(t.a));
   add("orbit_count", orbits.size());
   // One orbit: a constant, so that the compiler folds the reference stencil into the code.
   add("orbit_of_cell", orbits.size() == 1 ? std::string("0") : name + "_kCellOrbit[cell]");
-  add("orbit_stencil_sizes", flat(sizes));
-  add("reference_stencil", flat_rows(reference_stencil));
   add("orbit_functions", join(functions, "\n"));
   add("orbit_dispatch", join(dispatch, "\n"));
   for (const auto& [key, value] : unrolled_glue(a, name, keys, hermite_rows, double_precision))
     add(key, value);
-  return fmt::vformat(templates::evaluator_glsl, args);
+  // The tables indexed by the point's cell, and with several orbits by its orbit.
+  const std::size_t cells = t.cube.size();
+  const bool orbit_indexed = orbits.size() > 1;
+  const std::vector<IntTable> tables{
+      {"table_lookup", name + "_kLookup", fmt::format("{} * {}", t.lookup.size(), keys.size()),
+       flat_rows(t.lookup), flat_ints(t.lookup), true},
+      {"table_cell_cube", name + "_kCellCube", std::to_string(cells), flat(t.cube), t.cube, true},
+      {"table_cell_orbit", name + "_kCellOrbit", std::to_string(cells), flat(t.orbit), t.orbit,
+       true},
+      {"table_cell_keys", name + "_kCellKeys",
+       fmt::format("{} * ({} + 1)", cells, keys.planes.size()), flat_rows(t.keys),
+       flat_ints(t.keys), true},
+      {"table_cell_perm", name + "_kCellPerm", fmt::format("{} * {}", cells, n), flat_rows(t.perm),
+       flat_ints(t.perm), true},
+      {"table_cell_sign", name + "_kCellSign", fmt::format("{} * {}", cells, n), flat_rows(t.sign),
+       flat_ints(t.sign), true},
+      {"table_cell_a", name + "_kCellA", fmt::format("{} * {}", cells, n), flat_rows(t.a),
+       flat_ints(t.a), true},
+      {"table_orbit_stencil_size", name + "_kOrbitStencilSize", std::to_string(orbits.size()),
+       flat(sizes), sizes, orbit_indexed},
+      {"table_reference_stencil", name + "_kReferenceStencil",
+       fmt::format("{} * {} * {}", orbits.size(), s.stencil_max, n), flat_rows(reference_stencil),
+       flat_ints(reference_stencil), orbit_indexed}};
+  Fields constant, buffered;
+  GlslText out;
+  add_tables(name, tables, constant, buffered, out.block);
+  const auto print = [&](const Fields& table_fields) {
+    fmt::dynamic_format_arg_store<fmt::format_context> args;
+    for (const Fields* f : {static_cast<const Fields*>(&fields), &table_fields})
+      for (const auto& [key, value] : *f) args.push_back(fmt::arg(key, value));
+    return fmt::vformat(templates::evaluator_glsl, args);
+  };
+  out.text = print(constant);
+  out.buffered = print(buffered);
+  return out;
 }
 
 }  // namespace boxgen::generator

@@ -12,10 +12,20 @@
 
 namespace boxgen::generator {
 
-// The text of NAME.glsl; `banner` opens it, `cost_lines` are the "//" lines of the C++ header's
-// counts. float, vecN, matN, or with `double_precision` double, dvecN, dmatN.
-std::string glsl_evaluator(const Derivation& a, const std::string& banner, const std::string& name,
-                           const std::vector<OrbitCode>& orbits,
-                           const std::vector<std::string>& cost_lines, bool double_precision);
+// NAME.glsl, whose tables are `const` arrays so that it stands alone; and the same evaluator with
+// the tables indexed at run time (by the point's cell, and with several orbits by its orbit) in
+// one read-only storage block NAME_Tables at binding BOXGEN_TABLES_BINDING (a macro the shader
+// defines before the text), for a device that uploads `block` once (docs/gpu.md, "Tables on the
+// device"). The block's members keep the tables' names, so the rest of the text is the same.
+struct GlslText {
+  std::string text, buffered;
+  std::vector<int> block;  // std430: the int arrays tightly packed, in the order declared
+};
+
+// `banner` opens the text, `cost_lines` are the "//" lines of the C++ header's counts. float,
+// vecN, matN, or with `double_precision` double, dvecN, dmatN.
+GlslText glsl_evaluator(const Derivation& a, const std::string& banner, const std::string& name,
+                        const std::vector<OrbitCode>& orbits,
+                        const std::vector<std::string>& cost_lines, bool double_precision);
 
 }  // namespace boxgen::generator

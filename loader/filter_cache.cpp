@@ -76,8 +76,9 @@ std::string entry_file_problem(const struct stat& info) {
   return why.empty() ? why : "is " + why;
 }
 
-constexpr const char* kEntryFiles[] = {".so",          ".json", ".cpp", ".glsl",
-                                       "_double.glsl", ".log",  ".lock"};
+constexpr const char* kEntryFiles[] = {
+    ".so",  ".json", ".cpp", ".glsl", "_double.glsl", "_buffered.glsl", "_buffered_double.glsl",
+    ".log", ".lock"};
 
 }  // namespace
 
@@ -194,6 +195,9 @@ std::optional<EntryInfo> read_entry(const CacheEntry& entry) {
     info.so_size = j.at("so_size").get<std::uintmax_t>();
     info.glsl_hash = j.at("glsl_hash").get<std::string>();
     info.glsl_double_hash = j.at("glsl_double_hash").get<std::string>();
+    info.glsl_buffered_hash = j.at("glsl_buffered_hash").get<std::string>();
+    info.glsl_buffered_double_hash = j.at("glsl_buffered_double_hash").get<std::string>();
+    info.glsl_block = j.at("glsl_block").get<std::vector<int>>();
     return info;
   } catch (const std::exception&) {  // truncated, edited or older: the entry is rebuilt
     return std::nullopt;
@@ -208,11 +212,17 @@ void write_entry_file(const fs::path& path, const std::string& text) {
 }
 
 void write_entry(const CacheEntry& entry, const EntryInfo& info) {
-  const nlohmann::json j{
-      {"spec", info.spec},           {"lattice", info.lattice},
-      {"rows", info.rows},           {"stamp", info.stamp},
-      {"so_hash", info.so_hash},     {"so_size", info.so_size},
-      {"glsl_hash", info.glsl_hash}, {"glsl_double_hash", info.glsl_double_hash}};
+  const nlohmann::json j{{"spec", info.spec},
+                         {"lattice", info.lattice},
+                         {"rows", info.rows},
+                         {"stamp", info.stamp},
+                         {"so_hash", info.so_hash},
+                         {"so_size", info.so_size},
+                         {"glsl_hash", info.glsl_hash},
+                         {"glsl_double_hash", info.glsl_double_hash},
+                         {"glsl_buffered_hash", info.glsl_buffered_hash},
+                         {"glsl_buffered_double_hash", info.glsl_buffered_double_hash},
+                         {"glsl_block", info.glsl_block}};
   write_entry_file(entry.file(".json"), j.dump(2) + "\n");
 }
 

@@ -2,11 +2,12 @@
 // of an entry, an entry's files and the checks that decide whether it may be loaded.
 //
 // An entry is <key>.so (the filter), <key>.cpp (its source, for the curious), <key>.glsl and
-// <key>_double.glsl (its GLSL evaluators) and <key>.json (what it is, and the size and hash of the
-// .so and the hashes of the .glsl files), each written through a temporary file and a rename; the
-// .json goes last, so an entry without it, or whose files are not the ones it describes, is
-// incomplete or corrupt and is rebuilt. <key>.lock serialises first uses of the same filter;
-// <key>.log holds the compiler's messages of a failed compile.
+// <key>_double.glsl (its GLSL evaluators), <key>_buffered.glsl and <key>_buffered_double.glsl (the
+// same with their tables in a storage block) and <key>.json (what it is, the size and hash of the
+// .so, the hashes of the .glsl files and the storage block's contents), each written through a
+// temporary file and a rename; the .json goes last, so an entry without it, or whose files are not
+// the ones it describes, is incomplete or corrupt and is rebuilt. <key>.lock serialises first uses
+// of the same filter; <key>.log holds the compiler's messages of a failed compile.
 //
 // The cache holds code this process runs, so it is trusted only as far as nobody else can write
 // it (as ssh treats its keys): the directory must be the user's own and not writable by others,
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace boxgen::loader {
 
@@ -41,6 +43,10 @@ std::string hash_text(const std::string& text);
 
 struct EntryInfo {
   std::string spec, lattice, rows, stamp, so_hash, glsl_hash, glsl_double_hash;
+  // The GLSL evaluators with their run-time-indexed tables in a storage block, and the block's
+  // contents (generator/glsl_evaluator.h): the GL device's data beside the text.
+  std::string glsl_buffered_hash, glsl_buffered_double_hash;
+  std::vector<int> glsl_block;
   std::uintmax_t so_size = 0;
 };
 

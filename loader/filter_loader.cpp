@@ -180,13 +180,17 @@ extern "C" __attribute__((visibility("default"))) rt::FilterSource* boxgen_filte
 using StampFn = const char* (*)();
 using CreateFn = rt::FilterSource* (*)(const char*, int (*)());
 
-// The entry's GLSL evaluators (float, double) for the GL device (runtime/gl), written beside the
-// shared object: NAME.glsl and NAME_double.glsl with NAME = spec_KEY.
-fs::path glsl_file(const CacheEntry& entry, bool double_precision) {
-  return entry.file(double_precision ? "_double.glsl" : ".glsl");
+// The entry's GLSL evaluators (float, double; tables `const` or in a storage block) for the GL
+// device (runtime/gl), written beside the shared object: NAME.glsl, NAME_double.glsl,
+// NAME_buffered.glsl and NAME_buffered_double.glsl with NAME = spec_KEY.
+fs::path glsl_file(const CacheEntry& entry, bool double_precision, bool buffered) {
+  return entry.file(buffered ? (double_precision ? "_buffered_double.glsl" : "_buffered.glsl")
+                             : (double_precision ? "_double.glsl" : ".glsl"));
 }
-const std::string& glsl_hash(const EntryInfo& info, bool double_precision) {
-  return double_precision ? info.glsl_double_hash : info.glsl_hash;
+std::string EntryInfo::*glsl_hash(bool double_precision, bool buffered) {
+  return buffered ? (double_precision ? &EntryInfo::glsl_buffered_double_hash
+                                      : &EntryInfo::glsl_buffered_hash)
+                  : (double_precision ? &EntryInfo::glsl_double_hash : &EntryInfo::glsl_hash);
 }
 
 // Why an entry whose object is intact is not complete: emitting its GLSL again repairs it.
@@ -200,10 +204,12 @@ std::optional<EntryInfo> complete_entry(const CacheEntry& entry, const std::stri
   auto info = read_entry(entry);
   if (!info) return why = "no complete entry", std::nullopt;
   if (info->stamp != stamp) return why = "built for another boxgen", std::nullopt;
-  for (const bool dbl : {false, true}) {
-    const auto text = read_entry_file(glsl_file(entry, dbl));
-    if (!text || hash_text(*text) != glsl_hash(*info, dbl)) return why = kGlslChanged, std::nullopt;
-  }
+  for (const bool dbl : {false, true})
+    for (const bool buffered : {false, true}) {
+      const auto text = read_entry_file(glsl_file(entry, dbl, buffered));
+      if (!text || hash_text(*text) != (*info).*glsl_hash(dbl, buffered))
+        return why = kGlslChanged, std::nullopt;
+    }
   return info;
 }
 
@@ -263,9 +269,13 @@ void write_glsl(const CacheEntry& entry, const gen::Derivation& derivation, Entr
         fmt::format("the run-time filter \"{}\" --lattice \"{}\"", info.spec, info.rows);
     request.target = gen::EmissionTarget::Glsl;
     request.double_precision = dbl;
-    const std::string text = gen::emit(derivation, request).files.at(0).text;
-    write_entry_file(glsl_file(entry, dbl), text);
-    (dbl ? info.glsl_double_hash : info.glsl_hash) = hash_text(text);
+    const gen::Emission glsl = gen::emit(derivation, request);
+    for (const bool buffered : {false, true}) {
+      const std::string& text = buffered ? glsl.glsl_buffered : glsl.files.at(0).text;
+      write_entry_file(glsl_file(entry, dbl, buffered), text);
+      info.*glsl_hash(dbl, buffered) = hash_text(text);
+    }
+    info.glsl_block = glsl.glsl_block;  // the same numbers in both precisions
   }
 }
 
@@ -432,12 +442,17 @@ EmittedGlsl load_glsl(const std::string& spec, std::optional<std::string> lattic
   ensure_entry(r, options, nullptr);
   // Read once, and checked against the .json on what was read.
   const auto info = read_entry(r.entry);
-  const fs::path file = glsl_file(r.entry, double_precision);
-  const auto text = read_entry_file(file);
-  if (!info || !text || hash_text(*text) != glsl_hash(*info, double_precision))
-    throw LoadError(fmt::format("the GLSL evaluator {} changed while it was read",
-                                runtime::nrrd_checks::printable(file.string())));
-  return {"spec_" + r.entry.key, *text};
+  EmittedGlsl out{"spec_" + r.entry.key, {}, {}, {}};
+  for (const bool buffered : {false, true}) {
+    const fs::path file = glsl_file(r.entry, double_precision, buffered);
+    const auto text = read_entry_file(file);
+    if (!info || !text || hash_text(*text) != (*info).*glsl_hash(double_precision, buffered))
+      throw LoadError(fmt::format("the GLSL evaluator {} changed while it was read",
+                                  runtime::nrrd_checks::printable(file.string())));
+    (buffered ? out.buffered : out.text) = *text;
+  }
+  out.block = info->glsl_block;
+  return out;
 }
 
 std::vector<CachedFilter> cached_filters(const CompileOptions& options) {

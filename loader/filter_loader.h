@@ -52,11 +52,14 @@ runtime::SplineFilter load_filter(const std::string& spec_or_name,
                                   const CompileOptions& options = {});
 
 // The GLSL evaluator of a SPEC filter (`boxgen emit --target glsl`, float or double precision)
-// for the GL device (runtime/gl): its functions' prefix (spec_KEY) and text, from the cache
-// entry of load_filter, written there with the shared object (or derived again for an entry
-// that predates it). Throws LoadError as load_filter. Registry names are the GL device's own.
+// for the GL device (runtime/gl): its functions' prefix (spec_KEY) and text, and the generator's
+// data beside it (the evaluator with its run-time-indexed tables in a storage block, and the
+// block's contents: runtime/gl/glsl_tables.h), from the cache entry of load_filter, written
+// there with the shared object (or derived again for an entry that predates it). Throws
+// LoadError as load_filter. Registry names are the GL device's own.
 struct EmittedGlsl {
-  std::string name, text;
+  std::string name, text, buffered;
+  std::vector<int> block;
 };
 EmittedGlsl load_glsl(const std::string& spec, std::optional<std::string> lattice,
                       bool double_precision, const CompileOptions& options = {});

@@ -11,6 +11,7 @@
 //   double last(int a) const;      // lattice coordinates of stored samples lie in [0, last]
 //   bool contains_box(lo, hi) const;  // does the volume hold every lattice point of the box?
 //   bool has_offsets() const;      // false: every fetch goes through sample()
+//   std::optional<LinearLayout> linear() const;  // the storage's layout where it is linear
 //   const T* samples() const;
 //   Fetch<Index> fetch(const std::int64_t* corner, int cell) const;  // the stencil of a cell
 //   T sample(const LatticePoint& j, bool inside) const;  // checked unless inside
@@ -26,14 +27,19 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <exception>
+#include <limits>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "runtime/batch_threads.h"
 #include "runtime/simd_batch.h"
+#include "runtime/stencil_steps.h"
 #include "runtime/stencils.h"
 #include "support/evaluator_support.hpp"
 
@@ -54,7 +60,9 @@ class EmittedSpline {
   explicit EmittedSpline(Stencils stencils, int registry_index = -1,
                          const simd::Kernels* kernels = nullptr)
       : stencils_(std::move(stencils)),
-        kernels_(kernels ? kernels : simd::registry_kernels(registry_index)) {}
+        kernels_(kernels ? kernels : simd::registry_kernels(registry_index)) {
+    prepare_chunks();
+  }
 
   // One point; gradient and hessian may be null (not computed).
   T at(const Vec3& world, Vec3* gradient, Hessian* hessian) const {
@@ -176,13 +184,19 @@ class EmittedSpline {
     const int threads = batch_threads();
     FirstError error{count, {}};
     if (simd_serves()) {
-      // Blocks of consecutive points, each packed into SIMD chunks (simd_block).
+      // Blocks of consecutive points, each packed into SIMD chunks (chunk_block on linear
+      // volumes, else simd_block).
       constexpr std::ptrdiff_t kBlock = 1024;
       const std::ptrdiff_t blocks = (count + kBlock - 1) / kBlock;
+      const bool chunks = !linear_rows_.empty();
 #pragma omp parallel for schedule(static) num_threads(threads) if (count > 256)
-      for (std::ptrdiff_t b = 0; b < blocks; ++b)
-        simd_block<Order>(b * kBlock, std::min(count, (b + 1) * kBlock), points, values, gradients,
-                          hessians, error);
+      for (std::ptrdiff_t b = 0; b < blocks; ++b) {
+        const std::ptrdiff_t first = b * kBlock, last = std::min(count, (b + 1) * kBlock);
+        if (chunks)
+          chunk_block<Order>(first, last, points, values, gradients, hessians, error);
+        else
+          simd_block<Order>(first, last, points, values, gradients, hessians, error);
+      }
     } else {
 #pragma omp parallel for schedule(static) num_threads(threads) if (count > 256)
       for (std::ptrdiff_t i = 0; i < count; ++i)
@@ -204,18 +218,13 @@ class EmittedSpline {
                   FirstError& error) const {
     constexpr int kLanes = simd::kChunk;
     constexpr bool kOneOrbit = std::size(Tr::kOrbitStencilSize) == 1;
-    alignas(64) double world[3 * kLanes];
+    alignas(64) double padded[3 * kLanes];
     alignas(64) T located[simd::locate_rows(3) * kLanes];
     const simd::Frame frame = simd_frame();
 
     for (std::ptrdiff_t next = first; next < last; next += kLanes) {
-      // Lane i is point next + i; a partial chunk repeats lane 0 (the kernels compute every lane).
       const int lanes = static_cast<int>(std::min<std::ptrdiff_t>(kLanes, last - next));
-      for (int lane = 0; lane < lanes; ++lane)
-        for (int a = 0; a < 3; ++a) world[a * kLanes + lane] = points[next + lane][a];
-      for (int lane = lanes; lane < kLanes; ++lane)
-        for (int a = 0; a < 3; ++a) world[a * kLanes + lane] = points[next][a];
-      kernels_->locate(world, frame, located);
+      kernels_->locate(chunk_points(points, next, lanes, padded), frame, located);
 
       // The lanes of the chunk's first orbit gathered, the lanes of other orbits deferred, the
       // lanes the kernels cannot take on the scalar path now.
@@ -256,6 +265,85 @@ class EmittedSpline {
         deferred = kept;
       }
     }
+  }
+
+  // Lane i of the chunk at `next` is point next + i: the points' coordinates, point after point,
+  // where they lie, or copied into `padded` for a partial chunk, which repeats its first point
+  // (the kernels compute every lane).
+  static const double* chunk_points(std::span<const Vec3> points, std::ptrdiff_t next, int lanes,
+                                    double* padded) {
+    static_assert(sizeof(Vec3) == 3 * sizeof(double), "points are consecutive coordinates");
+    if (lanes == simd::kChunk) return points[static_cast<std::size_t>(next)].data();
+    for (int lane = 0; lane < simd::kChunk; ++lane)
+      for (int a = 0; a < 3; ++a)
+        padded[3 * lane + a] =
+            points[static_cast<std::size_t>(next + (lane < lanes ? lane : 0))][a];
+    return padded;
+  }
+
+  // On a linear volume (prepare_chunks): points [first, last) in chunks of simd::kChunk, each
+  // located, gathered and evaluated in one SIMD call (simd::evaluate_chunk); the lanes it cannot
+  // take (see simd_block) on the scalar path.
+  template <int Order>
+  void chunk_block(std::ptrdiff_t first, std::ptrdiff_t last, std::span<const Vec3> points,
+                   std::span<T> values, std::span<Vec3> gradients, std::span<Hessian> hessians,
+                   FirstError& error) const {
+    constexpr int kLanes = simd::kChunk;
+    alignas(64) double padded[3 * kLanes];
+    alignas(64) T out[simd::kChunkRows * kLanes];
+    const simd::Frame frame = simd_frame();
+    const LinearLayout& l = linear_layout_;
+    const simd::LinearVolume<T> volume{stencils_.samples(),
+                                       linear_rows_.data(),
+                                       {l.stride[0], l.stride[1], l.stride[2]},
+                                       l.coset_shift};
+    for (std::ptrdiff_t next = first; next < last; next += kLanes) {
+      const int lanes = static_cast<int>(std::min<std::ptrdiff_t>(kLanes, last - next));
+      kernels_->chunk(Order, chunk_points(points, next, lanes, padded), frame, volume, out);
+      // The common case, every lane evaluated and values only: one copy, no test per lane.
+      const T* ok = out + simd::kChunkOkRow * kLanes;
+      bool every_lane = true;
+      for (int lane = 0; lane < kLanes; ++lane) every_lane &= ok[lane] != T(0);
+      if (Order == generated::support::kValue && every_lane) {
+        std::copy_n(out, lanes, values.begin() + next);
+        continue;
+      }
+      bool stays[kLanes];
+      for (int lane = 0; lane < lanes; ++lane) {
+        stays[lane] = out[simd::kChunkOkRow * kLanes + lane] != T(0);
+        if (!stays[lane])
+          scalar_point<Order>(next + lane, points, values, gradients, hessians, error);
+      }
+      store<Order>(lanes, stays, next, out + simd::kChunkCellRow * kLanes, out, values, gradients,
+                   hessians);
+    }
+  }
+
+  // The rows of simd::LinearVolume for this volume, where the storage is linear, the filter has
+  // chunk kernels and every index fits the gathers' index type; else none (simd_block serves).
+  void prepare_chunks() {
+    using Index = simd::GatherIndex<T>;
+    if (!kernels_ || !kernels_->has_chunk() || !stencils_.has_offsets()) return;
+    const std::optional<LinearLayout> layout = stencils_.linear();
+    if (!layout) return;
+    constexpr auto& steps = kStencilSteps<Tr>;
+    if (!steps.consistent || (layout->coset_shift != 0 && !steps.same_parity)) return;
+    const std::int64_t* stride = layout->stride;
+    const double reach = 16.0 * static_cast<double>(std::abs(stride[0]) + std::abs(stride[1]) +
+                                                    std::abs(stride[2]) + layout->coset_shift);
+    if (static_cast<double>(stencils_.volume().samples().size()) + reach >=
+        static_cast<double>(std::numeric_limits<Index>::max()))
+      return;
+    std::vector<Index> rows;
+    for (int parity = 0; parity < 2; ++parity)
+      for (int c = 0; c < Tr::kCellCount; ++c) {
+        const auto& first = Tr::kOffsets[c][0];
+        const std::int64_t coset = (parity + first[0]) & 1;
+        rows.push_back(static_cast<Index>(first[0] * stride[0] + first[1] * stride[1] +
+                                          first[2] * stride[2] - coset * layout->coset_shift));
+      }
+    linear_rows_ = std::move(rows);
+    linear_layout_ = *layout;
   }
 
   // The lanes of one orbit in a chunk, with where each one's stencil lies.
@@ -382,6 +470,8 @@ class EmittedSpline {
 
   Stencils stencils_;
   const simd::Kernels* kernels_;  // the SIMD kernels of the filter, or null (the scalar path)
+  std::vector<simd::GatherIndex<T>> linear_rows_;  // empty: no chunk_block (prepare_chunks)
+  LinearLayout linear_layout_{};
 };
 
 // An EmittedSpline behind a virtual interface, for Reconstructor, which chooses the filter at run

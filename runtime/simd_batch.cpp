@@ -23,6 +23,7 @@
 
 #include "generated/registry.hpp"
 #include "runtime/simd_kernels-inl.h"
+#include "runtime/stencil_steps.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace boxgen::runtime::simd::HWY_NAMESPACE {
@@ -30,17 +31,17 @@ namespace hn = hwy::HWY_NAMESPACE;
 namespace support = boxgen::generated::support;
 
 template <class T>
-void LocateChunk(int filter, const double* world, const Frame& frame, T* out) {
+void LocateChunk(int filter, const double* points, const Frame& frame, T* out) {
   generated::with_filter(filter, [&](auto entry) {
-    locate_lanes<typename decltype(entry)::Traits>(world, frame, out);
+    locate_lanes<typename decltype(entry)::Traits>(points, frame, out);
   });
 }
 
-void LocateChunkFloat(int filter, const double* world, const Frame& frame, float* out) {
-  LocateChunk(filter, world, frame, out);
+void LocateChunkFloat(int filter, const double* points, const Frame& frame, float* out) {
+  LocateChunk(filter, points, frame, out);
 }
-void LocateChunkDouble(int filter, const double* world, const Frame& frame, double* out) {
-  LocateChunk(filter, world, frame, out);
+void LocateChunkDouble(int filter, const double* points, const Frame& frame, double* out) {
+  LocateChunk(filter, points, frame, out);
 }
 
 template <class T>
@@ -61,6 +62,23 @@ void OrbitChunkDouble(int filter, int orbit, int order, const double* v, const d
                       double* out, int lanes) {
   OrbitChunk(filter, orbit, order, v, x, out, lanes);
 }
+template <class T>
+void EvaluateChunk(int filter, int order, const double* points, const Frame& frame,
+                   const LinearVolume<T>& volume, T* out) {
+  generated::with_filter(filter, [&](auto entry) {
+    using Tr = typename decltype(entry)::Traits;
+    if constexpr (kStencilSteps<Tr>.consistent) chunk_for<Tr>(order, points, frame, volume, out);
+  });
+}
+
+void EvaluateChunkFloat(int filter, int order, const double* points, const Frame& frame,
+                        const LinearVolume<float>& volume, float* out) {
+  EvaluateChunk(filter, order, points, frame, volume, out);
+}
+void EvaluateChunkDouble(int filter, int order, const double* points, const Frame& frame,
+                         const LinearVolume<double>& volume, double* out) {
+  EvaluateChunk(filter, order, points, frame, volume, out);
+}
 const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
 bool IsVector() { return HWY_TARGET != HWY_EMU128 && HWY_TARGET != HWY_SCALAR; }
 
@@ -76,12 +94,31 @@ HWY_EXPORT(TargetName);
 HWY_EXPORT(IsVector);
 HWY_EXPORT(LocateChunkFloat);
 HWY_EXPORT(LocateChunkDouble);
+HWY_EXPORT(EvaluateChunkFloat);
+HWY_EXPORT(EvaluateChunkDouble);
 
-void locate_chunk(int filter, const double* world, const Frame& frame, float* out) {
-  HWY_DYNAMIC_DISPATCH(LocateChunkFloat)(filter, world, frame, out);
+void locate_chunk(int filter, const double* points, const Frame& frame, float* out) {
+  HWY_DYNAMIC_DISPATCH(LocateChunkFloat)(filter, points, frame, out);
 }
-void locate_chunk(int filter, const double* world, const Frame& frame, double* out) {
-  HWY_DYNAMIC_DISPATCH(LocateChunkDouble)(filter, world, frame, out);
+void locate_chunk(int filter, const double* points, const Frame& frame, double* out) {
+  HWY_DYNAMIC_DISPATCH(LocateChunkDouble)(filter, points, frame, out);
+}
+
+void evaluate_chunk(int filter, int order, const double* points, const Frame& frame,
+                    const LinearVolume<float>& volume, float* out) {
+  HWY_DYNAMIC_DISPATCH(EvaluateChunkFloat)(filter, order, points, frame, volume, out);
+}
+void evaluate_chunk(int filter, int order, const double* points, const Frame& frame,
+                    const LinearVolume<double>& volume, double* out) {
+  HWY_DYNAMIC_DISPATCH(EvaluateChunkDouble)(filter, order, points, frame, volume, out);
+}
+
+bool has_evaluate_chunk(int filter) {
+  bool has = false;
+  generated::with_filter(filter, [&](auto entry) {
+    has = kStencilSteps<typename decltype(entry)::Traits>.consistent;
+  });
+  return has;
 }
 
 const char* target_name() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
@@ -106,17 +143,24 @@ namespace {
 
 // The registry's kernels as simd::Kernels: registry filter I through the dispatch above.
 template <int I, class T>
-void registry_locate(const double* world, const Frame& frame, T* out) {
-  locate_chunk(I, world, frame, out);
+void registry_locate(const double* points, const Frame& frame, T* out) {
+  locate_chunk(I, points, frame, out);
 }
 template <int I, class T>
 void registry_orbit(int orbit, int order, const T* v, const T* x, T* out, int lanes) {
   orbit_chunk(I, orbit, order, v, x, out, lanes);
 }
+template <int I, class T>
+void registry_chunk(int order, const double* points, const Frame& frame,
+                    const LinearVolume<T>& volume, T* out) {
+  evaluate_chunk(I, order, points, frame, volume, out);
+}
 template <std::size_t... I>
 std::array<Kernels, sizeof...(I)> registry_table(std::index_sequence<I...> /*filters*/) {
   return {Kernels{&registry_locate<I, float>, &registry_locate<I, double>,
-                  &registry_orbit<I, float>, &registry_orbit<I, double>}...};
+                  &registry_orbit<I, float>, &registry_orbit<I, double>,
+                  has_evaluate_chunk(I) ? &registry_chunk<I, float> : nullptr,
+                  has_evaluate_chunk(I) ? &registry_chunk<I, double> : nullptr}...};
 }
 
 }  // namespace

@@ -9,11 +9,21 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "runtime/lattice_volume.h"
 
 namespace boxgen::runtime {
+
+// Where a volume keeps lattice point j when its storage is linear up to the coset parity: at
+// j . stride - (j_0 & 1) coset_shift. BCC volumes with the cosets (0,0,0) (1,1,1) are (coset_shift
+// N0 + N0 N1), and so are Cartesian ones (coset_shift 0); the SIMD path then computes every
+// stencil index in vector lanes and gathers with the vector unit (simd_batch.h, LinearVolume).
+struct LinearLayout {
+  std::int64_t stride[3];
+  std::int64_t coset_shift;
+};
 
 // A point's stencil in storage: sample k is samples()[base + offsets[k]].
 template <class Offset>
@@ -52,6 +62,15 @@ class LatticeStencils {
     return volume_->contains_box(lo, hi);
   }
   bool has_offsets() const { return !table_.empty(); }
+  // A Cartesian volume's storage is linear: j . (1, N0, N0 N1).
+  std::optional<LinearLayout> linear() const {
+    if (volume_->period() != 1) return std::nullopt;
+    const std::int64_t origin = volume_->storage_offset({0, 0, 0});
+    if (origin != 0) return std::nullopt;
+    return LinearLayout{{volume_->storage_offset({1, 0, 0}), volume_->storage_offset({0, 1, 0}),
+                         volume_->storage_offset({0, 0, 1})},
+                        0};
+  }
   const T* samples() const { return volume_->samples().data(); }
   Fetch<Index> fetch(const std::int64_t* corner, int cell) const {
     // corner = d q + r, 0 <= r < d per axis: the block q's first sample, plus the table's
@@ -157,6 +176,9 @@ class BccStencils {
     return true;
   }
   bool has_offsets() const { return true; }
+  std::optional<LinearLayout> linear() const {
+    return LinearLayout{{stride_[0], stride_[1], stride_[2]}, stride_[1] + stride_[2]};
+  }
   const T* samples() const { return volume_->samples().data(); }
   Fetch<O> fetch(const std::int64_t* corner, int cell) const {
     return {corner[0] * stride_[0] + corner[1] * stride_[1] + corner[2] * stride_[2],

@@ -33,7 +33,8 @@ runtime::gl::GlslEvaluator glsl_for(const runtime::SplineFilter& f, const std::s
   // The SPEC on the lattice f was compiled for (--lattice, or the volume's: filter_for_volume).
   loader::EmittedGlsl glsl =
       loader::load_glsl(filter, lattice_text(f.lattice()), double_precision, options);
-  return {std::move(glsl.name), std::move(glsl.text)};
+  return {std::move(glsl.name), std::move(glsl.text), std::move(glsl.buffered),
+          std::move(glsl.block)};
 }
 
 runtime::SplineFilter filter_from(const std::string& filter, const std::string& lattice) {

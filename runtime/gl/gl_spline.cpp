@@ -10,7 +10,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
@@ -39,6 +38,7 @@ std::string prelude(const LatticeVolume<T>& volume, const std::string& name,
                     const std::string& evaluator) {
   constexpr bool dbl = std::is_same_v<T, double>;
   return fmt::format(R"(#version 430
+#define BOXGEN_TABLES_BINDING {6}
 #define REAL {0}
 #define VEC3 {1}vec3
 #define MAT3 {1}mat3
@@ -69,7 +69,7 @@ REAL {5}_fetch(ivec3 j) {{
 }}
 )",
                      dbl ? "double" : "float", dbl ? "d" : "", kLocalSize, volume.period(),
-                     volume.coset_count(), name) +
+                     volume.coset_count(), name, kTablesBinding) +
          evaluator;
 }
 
@@ -379,7 +379,10 @@ GlslEvaluator registry_glsl(const std::string& name, bool double_precision) {
   std::string names;
   for (int i = 0; i < kRegistryGlslCount; ++i) {
     const RegistryGlsl& r = kRegistryGlsl[i];
-    if (name == r.name) return {name, double_precision ? r.double_text : r.float_text};
+    if (name == r.name)
+      return {name, double_precision ? r.double_text : r.float_text,
+              double_precision ? r.double_buffered : r.float_buffered,
+              std::vector<int>(r.block, r.block + r.block_size)};
     names += fmt::format("{}{}", i ? ", " : "", r.name);
   }
   throw GlError(fmt::format(
@@ -400,13 +403,6 @@ template <class T>
 GlSpline<T>::GlSpline(const LatticeVolume<T>& volume, const SplineFilter& filter,
                       GlslEvaluator glsl, TableStorage tables)
     : volume_(&volume), cpu_(volume, filter), glsl_(std::move(glsl)), programs_(5, 0) {
-  const std::regex size_line(glsl_.name + R"(_kStencilSize = (\d+);)");
-  std::smatch m;
-  if (!std::regex_search(glsl_.text, m, size_line))
-    throw GlError(
-        fmt::format("the GLSL text of {} is not an emitted evaluator (no {}_kStencilSize)",
-                    glsl_.name, glsl_.name));
-  stencil_size_ = std::stoi(m[1]);
   const DeviceInfo& info = device();
   const double bytes = static_cast<double>(volume.sample_count()) * sizeof(T);
   if (volume.sample_count() > static_cast<std::size_t>(INT_MAX) ||
@@ -424,10 +420,10 @@ GlSpline<T>::GlSpline(const LatticeVolume<T>& volume, const SplineFilter& filter
   samples_ = storage_buffer(0, 0, volume.samples().data(), volume.sample_count() * sizeof(T));
   lattice_table_ = storage_buffer(0, 1, residues.data(), residues.size() * sizeof(int));
   shader_text_ = glsl_.text;
-  if (tables == TableStorage::buffer) {
-    const BufferedTables b = tables_in_buffer(glsl_.text, glsl_.name, kTablesBinding);
-    shader_text_ = b.text;
-    tables_ = storage_buffer(0, kTablesBinding, b.block.data(), b.block.size() * sizeof(int));
+  if (tables == TableStorage::buffer && !glsl_.buffered.empty()) {
+    shader_text_ = glsl_.buffered;
+    tables_ =
+        storage_buffer(0, kTablesBinding, glsl_.block.data(), glsl_.block.size() * sizeof(int));
   }
   check_gl("the volume's upload");
 }

@@ -20,16 +20,22 @@
 
 namespace boxgen::runtime::gl {
 
-// An emitted GLSL evaluator: the prefix of its functions (NAME_value, ...) and its text.
+// An emitted GLSL evaluator: the prefix of its functions (NAME_value, ...) and its text (NAME.glsl,
+// tables `const`); and, as data from the generator's emission beside the text, the same
+// evaluator with its run-time-indexed tables in the storage block NAME_Tables and the block's
+// contents (glsl_tables.h). Those two are empty for a text read from a file.
 struct GlslEvaluator {
   std::string name;
   std::string text;
+  std::string buffered = {};
+  std::vector<int> block = {};
 };
 
-// The GLSL of a registry filter as this build emitted it (float, or double precision); GlError
-// for a name outside the registry (a SPEC filter: give its emitted .glsl).
+// The GLSL of a registry filter as this build emitted it (float, or double precision), with its
+// tables as data; GlError for a name outside the registry (a SPEC filter: loader::load_glsl).
 GlslEvaluator registry_glsl(const std::string& name, bool double_precision);
-// A user's emitted NAME.glsl: the name is the file's stem. GlError if it cannot be read.
+// A user's emitted NAME.glsl: the name is the file's stem; text only, so the device uses its
+// tables as the file declares them (`const`). GlError if it cannot be read.
 GlslEvaluator read_glsl(const std::string& path);
 
 // A picture's parameters for the GPU's renderer: render.h's camera, the caster's march
@@ -58,7 +64,8 @@ class GlSpline {
   // Compiles nothing yet (each kernel on first use) but uploads the volume. Throws GlError when
   // there is no GL context or the volume exceeds the device's storage block (or 2^31 samples),
   // std::invalid_argument when the volume is not on the filter's lattice. The volume must outlive
-  // this object. `tables`: where the evaluator's run-time-indexed tables live (glsl_tables.h).
+  // this object. `tables`: where the evaluator's run-time-indexed tables live (glsl_tables.h);
+  // `buffer` needs the evaluator's block (not in a text read from a file: then `const`).
   GlSpline(const LatticeVolume<T>& volume, const SplineFilter& filter, GlslEvaluator glsl,
            TableStorage tables = TableStorage::buffer);
   ~GlSpline();
@@ -92,9 +99,6 @@ class GlSpline {
   const LatticeVolume<T>& volume() const noexcept { return *volume_; }
   const GlslEvaluator& evaluator() const noexcept { return glsl_; }
 
-  // The fetches per point of the fetch floor: the largest stencil of the evaluator.
-  int stencil_size() const noexcept { return stencil_size_; }
-
  private:
   unsigned program(int kind) const;
   void dispatch(unsigned program, std::size_t count) const;
@@ -104,7 +108,6 @@ class GlSpline {
   Reconstructor<T> cpu_;  // the errors' messages, and the filter's lattice check
   GlslEvaluator glsl_;
   std::string shader_text_;  // glsl_.text, its tables moved as `tables` says
-  int stencil_size_ = 0;
   unsigned samples_ = 0, lattice_table_ = 0, tables_ = 0;
   // Scratch buffers of the batches and pictures (const calls reuse them; one thread uses the
   // device).

@@ -1,13 +1,21 @@
-// The GLSL evaluators of the registry's filters as this build emitted them (float and double):
-// registry_glsl.cpp is written at build time by EmbedGlsl.cmake from `boxgen emit --target glsl`.
+// The GLSL evaluators of the registry's filters as this build emitted them (float and double),
+// with what the GL device needs beside the text as data: registry_glsl.cpp is written at build
+// time by boxgen_embed_glsl (generator/tools/embed_glsl.cpp) from the generator's Emission.
 #pragma once
 
 namespace boxgen::runtime::gl {
 
 struct RegistryGlsl {
   const char* name;
-  const char* float_text;
+  int stencil_size;
+  const char* float_text;  // NAME.glsl: its tables `const` arrays
   const char* double_text;
+  // The same with the run-time-indexed tables in a storage block (generator/glsl_evaluator.h),
+  // and the block's contents (the same in both precisions).
+  const char* float_buffered;
+  const char* double_buffered;
+  const int* block;
+  int block_size;
 };
 
 extern const RegistryGlsl kRegistryGlsl[];

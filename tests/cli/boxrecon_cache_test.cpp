@@ -53,10 +53,17 @@ class BoxreconCache : public BoxreconScratchTest {
   }
   // An entry as the loader writes it, with `spec` in its .json.
   void entry(const fs::path& cache, const std::string& key, const std::string& spec) {
-    const nlohmann::json j{
-        {"spec", spec},     {"lattice", "bcc"},       {"rows", "2,0,0; 0,2,0; 1,1,1"},
-        {"stamp", "s"},     {"so_hash", "0"},         {"so_size", 0},
-        {"glsl_hash", "0"}, {"glsl_double_hash", "0"}};
+    const nlohmann::json j{{"spec", spec},
+                           {"lattice", "bcc"},
+                           {"rows", "2,0,0; 0,2,0; 1,1,1"},
+                           {"stamp", "s"},
+                           {"so_hash", "0"},
+                           {"so_size", 0},
+                           {"glsl_hash", "0"},
+                           {"glsl_double_hash", "0"},
+                           {"glsl_buffered_hash", "0"},
+                           {"glsl_buffered_double_hash", "0"},
+                           {"glsl_block", nlohmann::json::array()}};
     write_text(cache / (key + ".json"), j.dump(2));
     write_text(cache / (key + ".so"), "");
   }

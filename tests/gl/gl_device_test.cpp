@@ -98,6 +98,22 @@ void expect_gl_equals_cpu(const std::string& name, int count, double tolerance,
   EXPECT_LE(hessian, 4 * tolerance) << name;
 }
 
+// A text read from a file (read_glsl) carries no tables as data: the device compiles its `const`
+// tables as they are, and evaluates as with the generator's block.
+TEST_F(GlTest, ATextReadFromAFileKeepsItsConstTables) {
+  const SplineFilter f = SplineFilter::parse("fcc6");
+  const LatticeVolume<float> v = random_volume<float>(f, 12);
+  const GlSpline<float> from_file(v, f, {"fcc6", registry_glsl("fcc6", false).text});
+  const GlSpline<float> with_data(v, f, registry_glsl("fcc6", false));
+  EXPECT_NE(from_file.kernel_source(0).find("const int fcc6_kLookup["), std::string::npos);
+  EXPECT_EQ(with_data.kernel_source(0).find("const int fcc6_kLookup["), std::string::npos);
+  const std::vector<Vec3> points = points_in(default_box(v, f), 200);
+  std::vector<float> a(points.size()), b(points.size());
+  from_file.evaluate(points, a);
+  with_data.evaluate(points, b);
+  for (std::size_t i = 0; i < points.size(); ++i) EXPECT_NEAR(a[i], b[i], kFloatTolerance) << i;
+}
+
 class GlEveryFilter : public GlTest, public ::testing::WithParamInterface<const char*> {};
 
 #ifndef BOXGEN_GL_POINTS
@@ -272,10 +288,15 @@ TEST_F(GlTest, PointsOutsideTheVolumeGiveTheCpuPathsError) {
 TEST_F(GlTest, ABadShaderGivesTheDriversLog) {
   const SplineFilter f = SplineFilter::parse("m7");
   const LatticeVolume<float> v = random_volume<float>(f, 10);
-  EXPECT_THROW(GlSpline<float>(v, f, {"m7", "not an evaluator"}), GlError);
-  // An emitted file broken by hand: the compile fails, and the message carries the driver's log.
-  GlslEvaluator broken = registry_glsl("m7", false);
-  broken.text += "\nfloat m7_broken() { return undeclared_name; }\n";
+  {  // not an evaluator at all: its compile fails on first use
+    const GlSpline<float> bad(v, f, {"m7", "not an evaluator"});
+    std::vector<float> one(1);
+    EXPECT_THROW(bad.evaluate(std::vector<Vec3>{{5, 5, 5}}, one), GlError);
+  }
+  // An emitted file broken by hand (read as read_glsl reads it, text only): the compile fails,
+  // and the message carries the driver's log.
+  const GlslEvaluator broken{
+      "m7", registry_glsl("m7", false).text + "\nfloat m7_broken() { return undeclared_name; }\n"};
   const GlSpline<float> gpu(v, f, broken);
   std::vector<float> values(1);
   try {

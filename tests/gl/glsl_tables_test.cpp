@@ -1,8 +1,8 @@
-// runtime/gl/glsl_tables.h: the run-time-indexed tables moved from the emitted GLSL's `const`
-// arrays into a storage block hold what the C++ header of the same filter holds (generated/, the
-// generator's other output), in the block's order; nothing else of the text changes; a text that
-// is not an emitted evaluator is refused. The GL device's evaluation with either storage is
-// checked against the CPU in gl_device_test.cpp.
+// runtime/gl/glsl_tables.h: the generator's data beside a registry filter's GLSL (its evaluator
+// with the run-time-indexed tables in a storage block, and the block's contents) holds what the
+// C++ header of the same filter holds (generated/, the generator's other output), in the block's
+// order, and the `const` text holds none of it twice. The GL device's evaluation with either
+// storage is checked against the CPU in gl_device_test.cpp.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -44,41 +44,32 @@ std::vector<int> cell_tables() {
 }
 
 TEST(GlslTables, OneOrbitFilterMovesTheCellTables) {
-  const GlslEvaluator glsl = registry_glsl("m7", false);
-  const BufferedTables b = tables_in_buffer(glsl.text, "m7", 5);
-  EXPECT_EQ(b.block, cell_tables<generated::m7::Traits>());
-  EXPECT_EQ(b.text.find("const int m7_kLookup["), std::string::npos);
-  EXPECT_EQ(b.text.find("const int m7_kCellA["), std::string::npos);
-  EXPECT_NE(b.text.find("layout(std430, binding = 5) readonly buffer m7_Tables {\n  int "
-                        "m7_kLookup[256];"),
-            std::string::npos);
-  // One orbit: its reference stencil is indexed by constants and stays a `const` array.
-  EXPECT_NE(b.text.find("const int m7_kReferenceStencil["), std::string::npos);
-  EXPECT_NE(b.text.find("m7_kLookup[cube * m7_kLookupSize + index]"), std::string::npos);
+  for (const bool dbl : {false, true}) {
+    const GlslEvaluator glsl = registry_glsl("m7", dbl);
+    EXPECT_EQ(glsl.block, cell_tables<generated::m7::Traits>());
+    EXPECT_NE(glsl.text.find("const int m7_kLookup["), std::string::npos);
+    EXPECT_EQ(glsl.buffered.find("const int m7_kLookup["), std::string::npos);
+    EXPECT_EQ(glsl.buffered.find("const int m7_kCellA["), std::string::npos);
+    EXPECT_NE(glsl.buffered.find("layout(std430, binding = BOXGEN_TABLES_BINDING) readonly buffer "
+                                 "m7_Tables {\n  int m7_kLookup[256];"),
+              std::string::npos);
+    // One orbit: its reference stencil is indexed by constants and stays a `const` array.
+    EXPECT_NE(glsl.buffered.find("const int m7_kReferenceStencil["), std::string::npos);
+    EXPECT_NE(glsl.buffered.find("m7_kLookup[cube * m7_kLookupSize + index]"), std::string::npos);
+  }
 }
 
 TEST(GlslTables, SeveralOrbitsMoveTheOrbitTablesToo) {
   using Traits = generated::fcc6::Traits;
-  const BufferedTables b = tables_in_buffer(registry_glsl("fcc6", true).text, "fcc6", 7);
+  const GlslEvaluator glsl = registry_glsl("fcc6", true);
   const std::vector<int> cells = cell_tables<Traits>();
-  ASSERT_EQ(b.block.size(), cells.size() + Traits::kOrbitCount +
-                                Traits::kOrbitCount * Traits::kStencilSize * Traits::kDimension);
-  EXPECT_EQ(std::vector<int>(b.block.begin(), b.block.begin() + cells.size()), cells);
-  EXPECT_EQ(b.block[cells.size()], Traits::kOrbitStencilSize[0]);
-  EXPECT_EQ(b.text.find("const int fcc6_kReferenceStencil["), std::string::npos);
-  EXPECT_NE(b.text.find("binding = 7"), std::string::npos);
-}
-
-TEST(GlslTables, ATextWithoutTheTablesIsRefused) {
-  const GlslEvaluator glsl = registry_glsl("m7", false);
-  EXPECT_THROW((void)tables_in_buffer(glsl.text, "m8", 5), GlError);
-  std::string broken = glsl.text;
-  broken.replace(broken.find("const int m7_kCellSign"), 10, "// int");
-  EXPECT_THROW((void)tables_in_buffer(broken, "m7", 5), GlError);
-  broken = glsl.text;
-  const std::size_t at = broken.find("int[](", broken.find("const int m7_kCellPerm"));
-  broken.insert(at + 6, "x");
-  EXPECT_THROW((void)tables_in_buffer(broken, "m7", 5), GlError);
+  ASSERT_EQ(glsl.block.size(), cells.size() + Traits::kOrbitCount +
+                                   Traits::kOrbitCount * Traits::kStencilSize * Traits::kDimension);
+  EXPECT_EQ(std::vector<int>(glsl.block.begin(), glsl.block.begin() + cells.size()), cells);
+  for (int o = 0; o < Traits::kOrbitCount; ++o)
+    EXPECT_EQ(glsl.block[cells.size() + o], Traits::kOrbitStencilSize[o]);
+  EXPECT_EQ(glsl.buffered.find("const int fcc6_kReferenceStencil["), std::string::npos);
+  EXPECT_NE(glsl.buffered.find("  int fcc6_kReferenceStencil["), std::string::npos);
 }
 
 }  // namespace

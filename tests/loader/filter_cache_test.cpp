@@ -163,6 +163,8 @@ TEST_F(FilterCacheTest, PlantedObjectInASharedCacheNeverRuns) {
     write_text(entry.file(".so"), object, so_mode);
     write_text(entry.file(".glsl"), "// float\n");
     write_text(entry.file("_double.glsl"), "// double\n");
+    write_text(entry.file("_buffered.glsl"), "// float, buffered\n");
+    write_text(entry.file("_buffered_double.glsl"), "// double, buffered\n");
     EntryInfo info;
     info.spec = kSpec;
     info.lattice = "bcc";
@@ -172,6 +174,8 @@ TEST_F(FilterCacheTest, PlantedObjectInASharedCacheNeverRuns) {
     info.so_hash = hash_text(object);
     info.glsl_hash = hash_text("// float\n");
     info.glsl_double_hash = hash_text("// double\n");
+    info.glsl_buffered_hash = hash_text("// float, buffered\n");
+    info.glsl_buffered_double_hash = hash_text("// double, buffered\n");
     write_entry(entry, info);
   };
   const fs::path shared = dir_ / "shared";
@@ -202,7 +206,8 @@ TEST_F(FilterCacheTest, LinksInTheCacheAreNeverFollowed) {
   const std::string cxx = compiler("cxx", "echo oops; exit 1");
   const std::string key = key_for(cxx);
   const fs::path victim = dir_ / "victim";
-  for (const char* ending : {".log", ".cpp", ".so", ".json", ".glsl", "_double.glsl", ".lock"}) {
+  for (const char* ending : {".log", ".cpp", ".so", ".json", ".glsl", "_double.glsl",
+                             "_buffered.glsl", "_buffered_double.glsl", ".lock"}) {
     const fs::path cache = dir_ / ("cache" + std::string(ending));
     fs::create_directory(cache);
     write_text(victim, "precious\n");

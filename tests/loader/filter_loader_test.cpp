@@ -396,7 +396,8 @@ TEST_F(LoaderTest, SlowConcurrentFirstUsesBothSucceed) {
     endings.insert(name.substr(std::min(name.size(), name.find_first_of("._"))));
   }
   EXPECT_EQ(endings,
-            (std::multiset<std::string>{".so", ".cpp", ".json", ".lock", ".glsl", "_double.glsl"}));
+            (std::multiset<std::string>{".so", ".cpp", ".json", ".lock", ".glsl", "_double.glsl",
+                                        "_buffered.glsl", "_buffered_double.glsl"}));
 }
 
 }  // namespace

@@ -6,7 +6,10 @@
 // same generated operations in the same order, without fused multiply-adds), at random points,
 // at points on and near knot planes, near the volume's faces (where some lanes of a chunk fall
 // back to the scalar path), and for counts that leave a partial chunk. Errors are the scalar
-// path's, for the first failing point.
+// path's, for the first failing point. BCC volumes with the usual cosets and Cartesian volumes
+// take the chunk kernels (evaluate_chunk: vector gathers from a linear layout); BCC volumes with
+// the cosets swapped and FCC volumes take the table path (locate_chunk, per-lane tables,
+// orbit_chunk), so both are compared with the scalar path.
 #include "runtime/simd_batch.h"
 
 #include <gtest/gtest.h>
@@ -25,6 +28,8 @@
 #include "runtime/lattice_volume.h"
 #include "runtime/reconstruction.h"
 #include "runtime/resample.h"
+#include "runtime/stencil_steps.h"
+#include "support/evaluator_support.hpp"
 #include "tests/support/bcc_volumes.h"
 
 namespace boxgen::runtime {
@@ -260,6 +265,51 @@ TEST(SimdBatch, ReportsTheFirstBadPointAsTheScalarPathDoes) {
       EXPECT_EQ(e.what(), expected) << "BOXGEN_SIMD=" << simd_switch;
     }
   }
+}
+
+// Every registry filter's stencils are its orbit's steps mapped by each cell's signed permutation
+// (stencil_steps.h), so every one has chunk kernels; on BCC the steps keep the cosets' parity.
+TEST(SimdBatch, EveryRegistryFilterHasChunkKernels) {
+  for (int i = 0; i < generated::kFilterCount; ++i) {
+    SCOPED_TRACE(generated::kFilterNames[i]);
+    EXPECT_TRUE(simd::has_evaluate_chunk(i));
+    ASSERT_NE(simd::registry_kernels(i), nullptr);
+    EXPECT_TRUE(simd::registry_kernels(i)->has_chunk());
+    generated::with_filter(i, [&](auto entry) {
+      using Tr = typename decltype(entry)::Traits;
+      EXPECT_TRUE(kStencilSteps<Tr>.consistent);
+      if (std::string_view(Tr::kLattice) == "bcc") {
+        EXPECT_TRUE(kStencilSteps<Tr>.same_parity);
+      }
+      // Sample 0 is the origin of the steps.
+      for (int o = 0; o < StencilSteps<Tr>::kOrbits; ++o)
+        for (int a = 0; a < 3; ++a) EXPECT_EQ(kStencilSteps<Tr>.step[o][0][a], 0);
+    });
+  }
+}
+
+// Two cells of one orbit whose stencils are not images of each other under their maps: the steps
+// are not consistent (such tables take the table path).
+struct SkewedTraits {
+  static constexpr int kDimension = 3, kStencilSize = 2, kCellCount = 2;
+  static constexpr int kOrbitStencilSize[1] = {2};
+  static constexpr generated::support::Cell<3, 0> kCells[2] = {
+      {0, 0, {0}, {0, 1, 2}, {1, 1, 1}, {0, 0, 0}}, {0, 0, {0}, {1, 0, 2}, {1, 1, 1}, {0, 0, 0}}};
+  // Cell 1 swaps x and y, so its second sample would have to be (0, 1, 0), not (1, 0, 0).
+  static constexpr std::int16_t kOffsets[2][2][3] = {{{0, 0, 0}, {1, 0, 0}},
+                                                     {{0, 0, 0}, {1, 0, 0}}};
+};
+struct SwappedTraits : SkewedTraits {
+  static constexpr std::int16_t kOffsets[2][2][3] = {{{0, 0, 0}, {1, 1, 1}},
+                                                     {{0, 0, 0}, {1, 1, 1}}};
+};
+
+TEST(SimdBatch, StencilStepsDetectTablesWithoutTheSymmetry) {
+  static_assert(!kStencilSteps<SkewedTraits>.consistent);
+  static_assert(!kStencilSteps<SkewedTraits>.same_parity);  // a step (1, 0, 0) changes the coset
+  static_assert(kStencilSteps<SwappedTraits>.consistent);
+  static_assert(kStencilSteps<SwappedTraits>.same_parity);
+  EXPECT_EQ(kStencilSteps<SwappedTraits>.step[0][1][1], 1);
 }
 
 }  // namespace
