@@ -339,6 +339,18 @@ VolumePtr sample_callable(const py::function& f, const rt::LatticeGrid& grid) {
   return volume;
 }
 
+// Work released from the GIL runs in blocks of about this many points; between blocks the GIL
+// is taken back for Python's signal handlers, so Ctrl-C interrupts a long call within a block's
+// time (issue 32, item 19).
+constexpr std::size_t kPointsBetweenSignalChecks = std::size_t{1} << 16;
+
+// Called with the GIL released: runs Python's pending signal handlers; true when one raised
+// (KeyboardInterrupt), whose error stays set for the caller to throw once it holds the GIL.
+bool signal_pending() {
+  const py::gil_scoped_acquire acquire;
+  return PyErr_CheckSignals() != 0;
+}
+
 // A registry filter, or any SPEC through the loader (compiled and cached on first use, exactly
 // as boxrecon --filter SPEC --lattice L gets it), with the generator's properties of its SPEC.
 Filter make_filter(const std::string& spec_text, const std::optional<std::string>& lattice) {
@@ -374,9 +386,17 @@ py::object evaluate(const Filter& f, const Volume& volume, const py::handle& poi
     py::gil_scoped_release release;
     std::optional<Volume> storage;
     const rt::Reconstructor<double> spline(prepared(volume, f, q, storage), f.filter);
-    spline.evaluate(p, v, g, h);
-    spline.require_finite(p, v, g, h);
+    // In blocks, so that Ctrl-C is seen between them (issue 32, item 19).
+    for (std::size_t first = 0; first < n; first += kPointsBetweenSignalChecks) {
+      const std::size_t m = std::min(kPointsBetweenSignalChecks, n - first);
+      const auto gs = derivatives ? g.subspan(first, m) : g;
+      const auto hs = hessian ? h.subspan(first, m) : h;
+      spline.evaluate(p.subspan(first, m), v.subspan(first, m), gs, hs);
+      spline.require_finite(p.subspan(first, m), v.subspan(first, m), gs, hs);
+      if (first + m < n && signal_pending()) break;
+    }
   }
+  if (PyErr_Occurred() != nullptr) throw py::error_already_set();
   if (hessian) return py::make_tuple(values, gradients, hessians);
   if (gradient) return py::make_tuple(values, gradients);
   return values;
@@ -416,8 +436,27 @@ py::array_t<double> resample(const VolumePtr& volume, const Filter& f,
   rt::CartesianVolume<double> out;
   {
     py::gil_scoped_release release;
-    out = rt::resample(*v, f.filter, grid, b);
+    // By slabs of z (contiguous in the output, x fastest), so that Ctrl-C is seen between
+    // them (issue 32, item 19); each value is the whole block's, bit for bit (GridBlock).
+    const int plane = std::max(1, (b.end[0] - b.begin[0]) * (b.end[1] - b.begin[1]));
+    const int slab = std::max(1, static_cast<int>(kPointsBetweenSignalChecks) / plane);
+    if (b.end[2] <= b.begin[2]) out = rt::resample(*v, f.filter, grid, b);  // its refusal
+    for (int z = b.begin[2]; z < b.end[2]; z += slab) {
+      const rt::GridBlock part{{b.begin[0], b.begin[1], z},
+                               {b.end[0], b.end[1], std::min(b.end[2], z + slab)}};
+      rt::CartesianVolume<double> piece = rt::resample(*v, f.filter, grid, part);
+      if (z == b.begin[2]) {
+        out = std::move(piece);
+        out.sizes[2] = b.end[2] - b.begin[2];
+        out.values.reserve(static_cast<std::size_t>(plane) *
+                           static_cast<std::size_t>(out.sizes[2]));
+      } else {
+        out.values.insert(out.values.end(), piece.values.begin(), piece.values.end());
+      }
+      if (part.end[2] < b.end[2] && signal_pending()) break;
+    }
   }
+  if (PyErr_Occurred() != nullptr) throw py::error_already_set();
   return grid_array(std::move(out));
 }
 

@@ -178,3 +178,45 @@ def test_read_volume_gives_the_lattice_asked_for(tmp_path):
     with pytest.raises(ValueError, match="holds a BCC volume, not the FCC lattice asked for"):
         boxgen.read_volume(path, lattice="fcc")
     assert boxgen.read_volume(path, lattice="bcc").lattice == "bcc"
+
+
+@pytest.mark.parametrize("call", ["evaluate", "resample"])
+def test_ctrl_c_interrupts_a_long_call(call):
+    """Issue 32, item 19: SIGINT during a long evaluation raised KeyboardInterrupt only when the
+    work had ended. The child times the call uninterrupted (T), then sends itself SIGINT 0.3 s into
+    the same call: KeyboardInterrupt must come well before T (before the fix it came after T)."""
+    script = textwrap.dedent("""
+        import os, signal, threading, time
+        import numpy as np
+        import boxgen
+        boxgen.set_threads(1)
+        volume, m12 = boxgen.sample("ml", 24), boxgen.Filter("m12")
+        rng = np.random.default_rng(1)
+        def work(size, points):
+            if "CALL" == "evaluate":
+                m12.evaluate(volume, points, hessian=True)
+            else:
+                boxgen.resample(volume, m12, shape=round(size ** (1 / 3)))
+        def timed(size, points):
+            start = time.monotonic()
+            work(size, points)
+            return time.monotonic() - start
+        # A call of about 3 s on this machine (at most 12 million points, 1.3 GB).
+        size = min(12_000_000, int(1_000_000 * 3 / max(timed(10**6, rng.uniform(-.5, .5, (10**6, 3))), 1e-3)))
+        points = rng.uniform(-0.5, 0.5, (size, 3))  # made before the calls: only the call is timed
+        full = timed(size, points)
+        threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+        start = time.monotonic()
+        try:
+            work(size, points)
+            print("finished", full)
+        except KeyboardInterrupt:
+            print("interrupted", full, time.monotonic() - start)
+        """).replace("CALL", call)
+    p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stderr
+    words = p.stdout.split()
+    assert words[0] == "interrupted", p.stdout
+    full, interrupted_after = float(words[1]), float(words[2])
+    assert full > 1.0, f"the call is too short to tell ({full:.2f} s): {p.stdout}"
+    assert interrupted_after < 0.3 + full / 3, p.stdout
