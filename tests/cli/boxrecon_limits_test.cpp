@@ -92,6 +92,10 @@ TEST_F(BoxreconLimits, SizesBeyondMemoryAreRefusedNamingTheSizeNeeded) {
 // from the memory the process may still take, checked before allocating: one line, exit 1.
 class BoxreconMemoryLimit : public BoxreconLimits {
  protected:
+  void SetUp() override {
+    if (kAddressSanitizer) GTEST_SKIP() << "an AddressSanitizer build cannot start under ulimit -v";
+    BoxreconLimits::SetUp();
+  }
   // boxrecon `args` run by sh under `ulimit -v 4 GiB`, after `before |` when given.
   void refused_under_limit(const std::vector<std::string>& args,
                            const std::vector<std::string>& mentions,

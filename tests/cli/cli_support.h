@@ -51,6 +51,9 @@ inline constexpr int kSlowdown = 1;
 #else
 inline constexpr int kSlowdown = 1;
 #endif
+// AddressSanitizer reserves terabytes of shadow address space at start-up, so its programs cannot
+// run under an address-space limit (ulimit -v) at all.
+inline constexpr bool kAddressSanitizer = kSlowdown > 1;
 
 // A release build derives M7 with its checks in about 4 s and runs table1 in about 7 s on the
 // 2-core development machine: 120 s leaves room for a loaded machine and still catches a hang.
