@@ -142,6 +142,7 @@ std::optional<std::vector<std::size_t>> reduce(Matrix<T>& rows, std::size_t unkn
 // The weight of each group; nullopt when no weights on these groups satisfy the moment
 // conditions (too few lattice points for the order).
 template <class T>
+// NOLINTNEXTLINE(readability-function-cognitive-complexity): one elimination, kept whole to read
 std::optional<std::vector<T>> solve_fir_prefilter(const FirPrefilterProblem<T>& problem) {
   using A = FirArithmetic<T>;
   using fir_detail::Matrix;

@@ -83,7 +83,7 @@ std::string stats_text(const ErrorSums& e, double peak) {
 // The mask of --mask: a Cartesian volume on the reference's grid (the same sizes, and spacings
 // and origin equal up to NIfTI's float32 affine), read as every volume is (axes positive).
 LatticeVolume<float> read_mask(const LatticeVolume<float>& ref) {
-  const LatticeVolume<float> mask = read_volume_file<float>(args.mask);
+  LatticeVolume<float> mask = read_volume_file<float>(args.mask);
   const std::string name = nrrd_checks::printable(args.mask, 80);
   if (mask.coset_count() != 1 || mask.period() != 1)
     throw std::invalid_argument(fmt::format("--mask '{}' must be a Cartesian volume, not a {} one",
