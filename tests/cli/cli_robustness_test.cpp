@@ -19,6 +19,16 @@ namespace {
 // Brief: never "a silently wrong answer". With stdout on a full disk the answer is lost, yet boxgen
 // exits 0 with nothing on stderr, so `boxgen analyze m7 --json > out.json && use out.json` goes on
 // with an empty file. Expected: a non-zero exit and one line on stderr.
+// The child's stderr read to its end (the pipe then closed), and its exit status.
+std::string drain_and_wait(int err_fd, pid_t pid, int& status) {
+  std::string text;
+  char buffer[256];
+  for (ssize_t n; (n = ::read(err_fd, buffer, sizeof buffer)) > 0;) text.append(buffer, n);
+  ::close(err_fd);
+  ::waitpid(pid, &status, 0);
+  return text;
+}
+
 TEST(CliRobustness, AFailedWriteToStdoutIsAnError) {
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"presets", "--json"},
@@ -54,12 +64,8 @@ TEST(CliRobustness, AClosedPipeEndsQuietlyWithStatusOne) {
   ::close(ends[0]);  // nobody reads: the child's first write fails
   ::close(ends[1]);
   ::close(err[1]);
-  std::string stderr_text;
-  char buffer[256];
-  for (ssize_t n; (n = ::read(err[0], buffer, sizeof buffer)) > 0;) stderr_text.append(buffer, n);
-  ::close(err[0]);
   int status = 0;
-  ::waitpid(pid, &status, 0);
+  const std::string stderr_text = drain_and_wait(err[0], pid, status);
   ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
   EXPECT_EQ(WEXITSTATUS(status), 1);
   EXPECT_EQ(stderr_text, "");
@@ -99,12 +105,8 @@ TEST(CliRobustness, AReaderGoneMidwayEndsQuietlyWithStatusOne) {
   char first = 0;
   EXPECT_EQ(::read(ends[0], &first, 1), 1);  // head -c1
   ::close(ends[0]);
-  std::string stderr_text;
-  char buffer[256];
-  for (ssize_t n; (n = ::read(err[0], buffer, sizeof buffer)) > 0;) stderr_text.append(buffer, n);
-  ::close(err[0]);
   int status = 0;
-  ::waitpid(pid, &status, 0);
+  const std::string stderr_text = drain_and_wait(err[0], pid, status);
   std::filesystem::remove_all(dir);
   ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
   EXPECT_EQ(WEXITSTATUS(status), 1);
