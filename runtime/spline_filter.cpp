@@ -50,9 +50,9 @@ PrefilterChoice parse_prefilter(std::string_view text) {
   if (text.starts_with("qfir:")) {
     const std::string_view k = text.substr(5);
     if (k.size() != 1 || k.front() < '0' || k.front() > '0' + kMaxFirShell)
-      throw std::invalid_argument(fmt::format(
-          "prefilter '{}': K in qfir:K must be a shell index 0 to {}", text.substr(0, 40),
-          kMaxFirShell));
+      throw std::invalid_argument(
+          fmt::format("prefilter '{}': K in qfir:K must be a shell index 0 to {}",
+                      text.substr(0, 40), kMaxFirShell));
     return PrefilterChoice::qfir(k.front() - '0');
   }
   if (text.starts_with("interp:")) {

@@ -276,10 +276,10 @@ TEST(LatticeSampling, EverySampleIsTheFunctionAtItsLatticePoint) {
 TEST(LatticePrefilter, OnBccItIsTheBccPrefilterBitForBit) {
   const LatticeVolume<double> b = test::sample_bcc_cube<double>(smooth, 6, 2);
   const PrefilterTaps q = {{{0, 0, 0}, 2.0},
-                            {{1, 1, 1}, -0.125},
-                            {{-1, 1, -1}, -0.125},
-                            {{2, 0, 0}, 0.0625},
-                            {{0, -2, 0}, 0.25}};
+                           {{1, 1, 1}, -0.125},
+                           {{-1, 1, -1}, -0.125},
+                           {{2, 0, 0}, 0.0625},
+                           {{0, -2, 0}, 0.25}};
   const LatticeVolume<double> got = prefilter(b, q);
   // x: offsets up to 2 and down to -1, y: 1 and -2, z: 1 and -1: one cell each side.
   EXPECT_EQ(got.sizes(), (Sizes{b.sizes()[0] - 2, b.sizes()[1] - 2, b.sizes()[2] - 2}));

@@ -117,8 +117,7 @@ TEST(BccPrefilter, AgreesWithTheDefinitionForRandomFilters) {
 // The shrink is tight: one more coset cell at either end would need a sample that is not there.
 TEST(BccPrefilter, ShrinkIsNoLargerThanNeeded) {
   const LatticeVolume<double> v(CosetLattice::bcc(), {6, 6, 6}, 1, {0, 0, 0});
-  const PrefilterTaps q = {
-      {{0, 0, 0}, 1.0}, {{1, 1, 1}, 1.0}, {{-2, 0, 0}, 1.0}, {{0, 2, 0}, 1.0}};
+  const PrefilterTaps q = {{{0, 0, 0}, 1.0}, {{1, 1, 1}, 1.0}, {{-2, 0, 0}, 1.0}, {{0, 2, 0}, 1.0}};
   const PrefilterShrink s = prefilter_shrink(q, CosetLattice::bcc());
   for (int a = 0; a < 3; ++a) {
     auto neighbourhood_inside = [&](std::int64_t x_a) {
