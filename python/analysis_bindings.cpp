@@ -126,6 +126,51 @@ std::string shells_text(const std::variant<std::string, std::vector<int>>& shell
 
 void bind_analysis(py::module_& m) {
   m.def(
+      "_eval_json",
+      [](const std::string& spec, const std::vector<std::string>& points,
+         const std::string& derivative, const std::optional<std::string>& lattice) {
+        if (points.empty()) throw py::value_error("eval: give at least one point");
+        return json_result(
+            [&] { return cli::eval_json(common(spec, lattice), points, derivative); });
+      },
+      py::arg("spec"), py::arg("points"), py::arg("derivative") = "",
+      py::arg("lattice") = py::none(),
+      "`boxgen eval SPEC --at POINT... --json` as a list of dicts (boxgen.eval converts it).");
+  m.def(
+      "emit",
+      [](const std::string& spec, const std::string& name,
+         const std::optional<std::string>& lattice, const std::string& target,
+         const std::string& precision, const std::string& strategy,
+         const std::optional<std::variant<std::string, std::vector<int>>>& shells) {
+        const cli::EmitLanguage language{target, precision, shells ? shells_text(*shells) : ""};
+        std::vector<generator::EmittedFile> files;
+        {
+          py::gil_scoped_release release;
+          files = cli::emit_evaluator(common(spec, lattice), name, strategy, language);
+        }
+        py::dict out;
+        for (const auto& f : files) out[py::str(f.filename)] = py::str(f.text);
+        return out;
+      },
+      py::arg("spec"), py::arg("name"), py::arg("lattice") = py::none(), py::arg("target") = "cpp",
+      py::arg("precision") = "float", py::arg("strategy") = "auto", py::arg("shells") = py::none(),
+      "The files `boxgen emit SPEC --name NAME --out DIR` writes, {file name: text}, byte for "
+      "byte (target: cpp | glsl | cuda; precision: float | double, glsl only; strategy: auto | "
+      "horner | shifted | bernstein | separable | monomial; shells: q1's shells, \"0,1\" or [0, "
+      "1]).");
+  m.def(
+      "bbform",
+      [](const std::string& spec, const std::optional<std::string>& lattice,
+         const std::variant<int, std::string>& region) {
+        const std::string r = std::holds_alternative<int>(region)
+                                  ? std::to_string(std::get<int>(region))
+                                  : std::get<std::string>(region);
+        return json_result([&] { return cli::bbform_output(common(spec, lattice), r).json; });
+      },
+      py::arg("spec"), py::arg("lattice") = py::none(), py::arg("region") = "reference",
+      "The BB-coefficients of `boxgen bbform SPEC --json` (region: \"reference\", every reference "
+      "region, or an orbit's index), as a dict.");
+  m.def(
       "analyze",
       [](const std::string& spec, const std::optional<std::string>& lattice,
          const std::string& checks) {

@@ -353,8 +353,14 @@ bool signal_pending() {
 
 // A registry filter, or any SPEC through the loader (compiled and cached on first use, exactly
 // as boxrecon --filter SPEC --lattice L gets it), with the generator's properties of its SPEC.
-Filter make_filter(const std::string& spec_text, const std::optional<std::string>& lattice) {
-  const std::string lattice_text = lattice.value_or("");
+// With `volume` (and no lattice) a direction list is on the volume's lattice, as boxrecon's
+// --filter SPEC --volume FILE (app::lattice_for_volume).
+Filter make_filter(const std::string& spec_text, const std::optional<std::string>& lattice,
+                   const Volume* volume) {
+  const std::string lattice_text =
+      volume ? app::lattice_for_volume(spec_text, lattice.value_or(""), volume->lattice(),
+                                       "the volume", "lattice")
+             : lattice.value_or("");
   std::optional<rt::SplineFilter> filter;
   {
     py::gil_scoped_release release;  // a first use derives and compiles: seconds
@@ -632,7 +638,8 @@ void bind_volume(py::module_& m) {
 
 void bind_filter(py::module_& m) {
   py::class_<Filter>(m, "Filter", "A box-spline filter with its evaluator (docs/python.md)")
-      .def(py::init(&make_filter), py::arg("spec"), py::arg("lattice") = py::none())
+      .def(py::init(&make_filter), py::arg("spec"), py::arg("lattice") = py::none(),
+           py::arg("volume") = py::none())
       .def_property_readonly("name", [](const Filter& f) { return f.filter.name(); })
       .def_property_readonly("spec", [](const Filter& f) { return f.spec.directions_text(); })
       .def_property_readonly("lattice", [](const Filter& f) { return f.filter.lattice().name(); })

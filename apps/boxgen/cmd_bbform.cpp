@@ -66,7 +66,7 @@ nlohmann::json simplex_coefficients(const SimplexBBForm& sx, int degree, std::st
 
 }  // namespace
 
-int run_bbform(const Common& c, const std::string& region) {
+BBFormOutput bbform_output(const Common& c, const std::string& region) {
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
   const PiecewiseForm form =
       derive_piecewise(spec, DerivationMethod::TruncatedPower, {}, derivation_budget(c));
@@ -100,10 +100,15 @@ int run_bbform(const Common& c, const std::string& region) {
     r["simplices"] = simplices;
     regions.push_back(r);
   }
+  return {{{"degree", degree}, {"regions", regions}}, text};
+}
+
+int run_bbform(const Common& c, const std::string& region) {
+  const BBFormOutput out = bbform_output(c, region);
   if (c.json)
-    print_json({{"degree", degree}, {"regions", regions}});
+    print_json(out.json);
   else
-    fmt::print("{}", text);
+    fmt::print("{}", out.text);
   return 0;
 }
 

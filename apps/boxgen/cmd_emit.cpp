@@ -98,45 +98,53 @@ void check_registry(const std::vector<std::string>& registry, const std::string&
 
 }  // namespace
 
+std::vector<EmittedFile> emit_evaluator(const Common& c, const std::string& name,
+                                        const std::string& strategy, const EmitLanguage& language,
+                                        EmissionReport* report) {
+  check_emit_name(name);
+  const auto [target, double_precision] = parse_language(language, false);
+  const EmissionStrategy chosen = parse_strategy(strategy);  // before the derivation
+  const std::vector<int> shells =
+      language.shells.empty() ? std::vector<int>{} : parse_shells(language.shells);
+  const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
+  ProgressPrinter progress(false);  // on a terminal, for derivations beyond two seconds
+  DerivationOptions options;
+  options.progress = progress.callback();
+  options.max_seconds = c.max_seconds;
+  options.max_bytes = c.max_memory_mb * 1e6;
+  const Derivation a = derive(spec, options);  // the exact checks run before anything is emitted
+  progress.finish();
+  // The command that rewrites the file byte for byte, run in the file's folder.
+  const EmissionRequest request{
+      name,
+      fmt::format(
+          "boxgen emit {} {}--name {} --strategy {}{} --out .",
+          spec.name == "custom" ? "\"" + one_line(spec.text) + "\"" : spec.name,
+          c.lattice.empty() ? "" : "--lattice \"" + one_line(c.lattice) + "\" ", name, strategy,
+          target == EmissionTarget::Cpp
+              ? (shells.empty() ? "" : fmt::format(" --shells {}", fmt::join(shells, ",")))
+              : " --target " + language.target + (double_precision ? " --precision double" : "")),
+      chosen,
+      target,
+      double_precision,
+      shells};
+  Emission emission = emit(a, request);
+  if (report) *report = std::move(emission.report);
+  return std::move(emission.files);
+}
+
 int run_emit(const Common& c, const std::string& name, const std::string& out,
              const std::string& strategy, bool report, const std::vector<std::string>& registry,
              const EmitLanguage& language) {
   if (c.spec.empty() != name.empty() || (c.spec.empty() && registry.empty()))
     fail_usage("emit needs a SPEC and --name (an evaluator), or --registry alone, or both");
   if (!name.empty()) check_emit_name(name);
-  const auto [target, double_precision] = parse_language(language, !registry.empty());
+  (void)parse_language(language, !registry.empty());  // checked before any work
   if (!registry.empty()) check_registry(registry, name, out);
   std::vector<EmittedFile> files;
   EmissionReport r;
   if (!name.empty()) {
-    const EmissionStrategy chosen = parse_strategy(strategy);  // before the derivation
-    const std::vector<int> shells =
-        language.shells.empty() ? std::vector<int>{} : parse_shells(language.shells);
-    const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
-    ProgressPrinter progress(false);  // on a terminal, for derivations beyond two seconds
-    DerivationOptions options;
-    options.progress = progress.callback();
-    options.max_seconds = c.max_seconds;
-    options.max_bytes = c.max_memory_mb * 1e6;
-    const Derivation a = derive(spec, options);  // the exact checks run before anything is emitted
-    progress.finish();
-    // The command that rewrites the file byte for byte, run in the file's folder.
-    const EmissionRequest request{
-        name,
-        fmt::format(
-            "boxgen emit {} {}--name {} --strategy {}{} --out .",
-            spec.name == "custom" ? "\"" + one_line(spec.text) + "\"" : spec.name,
-            c.lattice.empty() ? "" : "--lattice \"" + one_line(c.lattice) + "\" ", name, strategy,
-            target == EmissionTarget::Cpp
-                ? (shells.empty() ? "" : fmt::format(" --shells {}", fmt::join(shells, ",")))
-                : " --target " + language.target + (double_precision ? " --precision double" : "")),
-        chosen,
-        target,
-        double_precision,
-        shells};
-    Emission emission = emit(a, request);
-    files = std::move(emission.files);
-    r = std::move(emission.report);
+    files = emit_evaluator(c, name, strategy, language, &r);
   } else if (report) {
     fail_usage("--report needs an evaluator to report on (a SPEC and --name)");
   }

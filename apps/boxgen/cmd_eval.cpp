@@ -13,8 +13,8 @@ constexpr long kMaxEvalCoordinate =
     1000000;  // far beyond any support (entries <= 64, <= 32 columns)
 }  // namespace
 
-int run_eval(const Common& c, const std::vector<std::string>& points,
-             const std::string& derivative) {
+nlohmann::json eval_json(const Common& c, const std::vector<std::string>& points,
+                         const std::string& derivative) {
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
   const int n = spec.dimension();
   std::array<int, 3> orders{0, 0, 0};
@@ -50,16 +50,22 @@ int run_eval(const Common& c, const std::vector<std::string>& points,
     for (int i = 0; i < n; ++i) u[i] = u[i] + centre[i];
     values.push_back(form.value_at(u, orders) * scale);
   }
-  for (size_t k = 0; k < xs.size(); ++k) {
-    if (c.json)
-      out.push_back({{"x", rational_list(xs[k])},
-                     {"derivative", std::vector<int>(orders.begin(), orders.begin() + n)},
-                     {"value", to_string(values[k])},
-                     {"value_float", to_double(values[k])}});
-    else
-      fmt::print("{}\n", to_string(values[k]));
+  for (size_t k = 0; k < xs.size(); ++k)
+    out.push_back({{"x", rational_list(xs[k])},
+                   {"derivative", std::vector<int>(orders.begin(), orders.begin() + n)},
+                   {"value", to_string(values[k])},
+                   {"value_float", to_double(values[k])}});
+  return out;
+}
+
+int run_eval(const Common& c, const std::vector<std::string>& points,
+             const std::string& derivative) {
+  const nlohmann::json out = eval_json(c, points, derivative);
+  if (c.json) {
+    print_json(out);
+  } else {
+    for (const auto& point : out) fmt::print("{}\n", point["value"].get<std::string>());
   }
-  if (c.json) print_json(out);
   return 0;
 }
 

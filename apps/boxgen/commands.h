@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "generator/derivation.h"
+#include "generator/emitter.h"
 #include "generator/piecewise_form.h"
 #include "generator/rational.h"
 
@@ -51,7 +52,17 @@ Derivation analyze_derivation(const Common& c, const AnalyzeOptions& options,
 nlohmann::json analyze_json(const Derivation& a);
 int run_eval(const Common& c, const std::vector<std::string>& points,
              const std::string& derivative);
+// What `eval --json` prints (also boxgen.eval() in Python): per point ("x y z", fractions or
+// decimals) its coordinates, the derivative's orders and the exact value ("p/q") with its double.
+nlohmann::json eval_json(const Common& c, const std::vector<std::string>& points,
+                         const std::string& derivative);
 int run_bbform(const Common& c, const std::string& region);
+// What `bbform` prints: its JSON (--json; also boxgen.bbform() in Python) and its text.
+struct BBFormOutput {
+  nlohmann::json json;
+  std::string text;
+};
+BBFormOutput bbform_output(const Common& c, const std::string& region);
 // The prefilter on `shells` ("0,1,2"), or the one `name` names (q1, q2, qfir:K); exactly one of
 // them is not empty.
 int run_prefilter(const Common& c, const std::string& shells, const std::string& name);
@@ -64,6 +75,12 @@ struct EmitLanguage {
   std::string target = "cpp", precision = "float";
   std::string shells;  // --shells of q1 (q2: and the next); empty: the smallest that exist
 };
+// The files `emit SPEC --name NAME` writes (also boxgen.emit() in Python), byte for byte, with
+// the report of --report in `report` when it is not null; the name, target, precision, strategy
+// and shells are checked before the derivation.
+std::vector<EmittedFile> emit_evaluator(const Common& c, const std::string& name,
+                                        const std::string& strategy, const EmitLanguage& language,
+                                        EmissionReport* report = nullptr);
 int run_emit(const Common& c, const std::string& name, const std::string& out,
              const std::string& strategy, bool report, const std::vector<std::string>& registry,
              const EmitLanguage& language = {});

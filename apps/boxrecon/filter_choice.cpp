@@ -44,21 +44,28 @@ runtime::SplineFilter filter_from(const std::string& filter, const std::string& 
                              options);
 }
 
+std::string lattice_for_volume(const std::string& filter, const std::string& lattice,
+                               const runtime::CosetLattice& volume_lattice,
+                               const std::string& volume, const std::string& option) {
+  if (!lattice.empty()) {
+    const runtime::CosetLattice given = runtime::CosetLattice::parse(lattice);
+    if (!runtime::same_points(given, volume_lattice))
+      throw std::invalid_argument(fmt::format("{} is {}, but {} is on the {} lattice", option,
+                                              given.name(), volume, volume_lattice.name()));
+    return lattice;
+  }
+  const bool direction_list = filter.find_first_of(",;") != std::string::npos;
+  return direction_list ? lattice_text(volume_lattice) : std::string();
+}
+
 runtime::SplineFilter filter_for_volume(const std::string& filter, const std::string& lattice,
                                         const std::string& volume_path) {
   const std::optional<runtime::CosetLattice> of_file = runtime::read_volume_lattice(volume_path);
   if (!of_file) return filter_from(filter, lattice);  // reading the volume will say why
-  if (!lattice.empty()) {
-    const runtime::CosetLattice given = runtime::CosetLattice::parse(lattice);
-    if (!runtime::same_points(given, *of_file))
-      throw std::invalid_argument(
-          fmt::format("--lattice is {}, but the volume '{}' is on the {} lattice", given.name(),
-                      runtime::nrrd_checks::printable(volume_path, 80), of_file->name()));
-    return filter_from(filter, lattice);
-  }
-  const bool direction_list = filter.find_first_of(",;") != std::string::npos;
-  if (!direction_list) return filter_from(filter);
-  return filter_from(filter, lattice_text(*of_file));
+  return filter_from(
+      filter, lattice_for_volume(filter, lattice, *of_file,
+                                 fmt::format("the volume '{}'",
+                                             runtime::nrrd_checks::printable(volume_path, 80))));
 }
 
 int run_filters() {

@@ -19,6 +19,13 @@ runtime::SplineFilter filter_from(const std::string& filter, const std::string& 
 // registry names keep their own lattice (the volume is checked against it when read).
 runtime::SplineFilter filter_for_volume(const std::string& filter, const std::string& lattice,
                                         const std::string& volume_path);
+// The lattice filter_from() gets for --filter on a volume on `volume_lattice` (the rule above):
+// `lattice` when given (std::invalid_argument, one line naming `option` and `volume`, when the
+// volume is not on it), else the volume's for a direction list, else none. Python's
+// Filter(spec, volume=) takes it too.
+std::string lattice_for_volume(const std::string& filter, const std::string& lattice,
+                               const runtime::CosetLattice& volume_lattice,
+                               const std::string& volume, const std::string& option = "--lattice");
 // The GLSL evaluator of f = filter_from(filter, ...) or filter_for_volume(filter, ...) for
 // --device gl: the registry's, or the SPEC's on f's lattice, emitted into the loader's cache with
 // its compile.

@@ -239,3 +239,23 @@ def test_a_spec_filter_compiled_at_run_time(tmp_path, rng):
     q = boxgen.sample(lambda p: 1 + p[:, 0] * p[:, 1] - 2 * p[:, 2] ** 2, 9)
     x, y, z = points.T
     assert np.allclose(f.evaluate(q, points, "q1"), 1 + x * y - 2 * z**2, atol=1e-11, rtol=0)
+
+
+def test_a_spec_filter_takes_its_lattice_from_the_volume():
+    import pickle
+    v = boxgen.sample("ml", 7)  # on BCC
+    f = boxgen.Filter(SPEC, volume=v)  # compiled (or cached) above as SPEC on bcc
+    assert (f.lattice, f.degree) == ("bcc", 3)
+    assert pickle.loads(pickle.dumps(f)).lattice == "bcc"
+    points = np.array([[0.1, -0.2, 0.3], [0.5, 0.25, -0.75]])
+    assert np.array_equal(f.evaluate(v, points), boxgen.Filter(SPEC, "bcc").evaluate(v, points))
+    assert boxgen.Filter(SPEC, lattice="bcc", volume=v).lattice == "bcc"
+    # A lattice the volume is not on: refused before anything is derived or compiled.
+    with pytest.raises(ValueError, match="^lattice is fcc, but the volume is on the bcc lattice$"):
+        boxgen.Filter(SPEC, lattice="fcc", volume=v)
+    # A registry name keeps its own lattice (evaluate then checks the volume against it).
+    assert boxgen.Filter("m7", volume=v).name == "m7"
+    with pytest.raises(ValueError, match="lattice"):
+        boxgen.Filter("tricubic", volume=v).evaluate(v, points)
+    with pytest.raises(TypeError):
+        boxgen.Filter(SPEC, volume="bcc.nrrd")
