@@ -756,7 +756,8 @@ void bind_filter(py::module_& m) {
                                                    : py::object(py::str(f.lattice_text)));
           },
           [](const py::tuple& t) {
-            return make_filter(t[0].cast<std::string>(), t[1].cast<std::optional<std::string>>());
+            return make_filter(t[0].cast<std::string>(), t[1].cast<std::optional<std::string>>(),
+                               nullptr);
           }));
 }
 

@@ -11,6 +11,8 @@ from conftest import cli_error, run
 
 CUSTOM = "1,0,0; 0,1,0; 0,0,1; 1,1,1"
 PLANAR = "1,0; 0,1; 1,1; 1,-1"
+# On a lattice given by the rows of G (its directions must be lattice points).
+STRETCHED, ROWS = "2,0,0; 0,1,0; 0,0,1; 2,1,1", "2,0,0; 0,1,0; 0,0,1"
 
 
 def cli_eval(spec, *points, derivative=None, lattice=None):
@@ -48,8 +50,8 @@ def test_eval_of_derivatives_and_lattices_equals_the_cli():
         "m7", "1/3 1/5 -1/7", derivative="1 0 2")[0]
     assert boxgen.eval("m7", "1/3 1/5 -1/7", derivative="0 1 0") == cli_eval(
         "m7", "1/3 1/5 -1/7", derivative="0 1 0")[0]
-    assert boxgen.eval(CUSTOM, "1/3 1/5 -1/7", lattice="fcc") == cli_eval(
-        CUSTOM, "1/3 1/5 -1/7", lattice="fcc")[0]
+    assert boxgen.eval(STRETCHED, "1/3 1/5 -1/7", lattice=ROWS) == cli_eval(
+        STRETCHED, "1/3 1/5 -1/7", lattice=ROWS)[0]
 
 
 def test_eval_is_exact():
@@ -65,8 +67,8 @@ def test_bbform_equals_the_cli():
     assert boxgen.bbform(PLANAR) == json.loads(run("boxgen", "bbform", PLANAR, "--json")[1])
     assert boxgen.bbform("hex3", region=0) == json.loads(
         run("boxgen", "bbform", "hex3", "--region", "0", "--json")[1])
-    assert boxgen.bbform(CUSTOM, lattice="fcc") == json.loads(
-        run("boxgen", "bbform", CUSTOM, "--lattice", "fcc", "--json")[1])
+    assert boxgen.bbform(STRETCHED, lattice=ROWS) == json.loads(
+        run("boxgen", "bbform", STRETCHED, "--lattice", ROWS, "--json")[1])
 
 
 @pytest.mark.parametrize("options", [[], ["--target", "glsl", "--precision", "double"],
