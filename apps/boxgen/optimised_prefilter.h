@@ -1,6 +1,6 @@
-// q1opt and q2opt: the prefilters on the shells of q1 and q2 (one weight per symmetry orbit) whose
-// free parameters minimise the integrated error kernel over the Nyquist region (docs/design.md
-// §19), joining the exact family of the generator (generator/prefilter.h) and the numerical
+// q1opt and q2opt (docs/design.md §19): the prefilters on the shells of q1 and q2 (one weight per
+// symmetry orbit) whose free parameters minimise the integrated error kernel over the Nyquist
+// region, joining the exact family of the generator (generator/prefilter.h) and the numerical
 // optimisation of the analysis (analysis/optimal_prefilter.h).
 #pragma once
 #include <string>
