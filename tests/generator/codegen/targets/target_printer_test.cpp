@@ -1,16 +1,23 @@
-// The printers per target (generator/codegen/targets/target_printer.h): what each owns, literals, declarations,
-// the orbit functions and their dispatch, and the tables printed from the numbers of
-// generator/codegen/targets/evaluator_tables.h. The printed files are compared byte for byte with generated/
-// (GeneratedHeadersAreFresh) and evaluated where they run (tests/emitted, tests/gpu).
+// The printers per target (generator/codegen/targets/target_printer.h): what each owns, literals,
+// declarations, the orbit functions and their dispatch, and the tables printed from the numbers of
+// generator/codegen/targets/evaluator_tables.h. The printed files are compared byte for byte with
+// generated/ (GeneratedHeadersAreFresh) and evaluated where they run (tests/emitted, tests/gpu).
 #include "generator/codegen/targets/target_printer.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 
+#include "generator/codegen/targets/expr_print.h"
+#include "generator/rational.h"
 #include "tests/generator/derivation_fixture.h"
 
 namespace boxgen::generator {
@@ -102,6 +109,91 @@ TEST(TargetPrinter, TablesArePrintedFromTheNumbers) {
   EXPECT_TRUE(std::equal(t.cube.begin(), t.cube.end(), g.block.begin() + entries));
   EXPECT_EQ(g.constant[0].second.rfind("const int m7_kLookup[", 0), 0u);
   EXPECT_NE(g.buffered[0].second.find("buffer m7_Tables {"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace boxgen::generator
+
+namespace boxgen::generator {
+namespace {
+
+// docs/extending.md, "A target language", step 1, followed once: a printer for Python with exact
+// fractions, a subclass of TargetPrinter and nothing else. The print pass writes statements that
+// Python reads as they are ("t0 = x[0] - Fraction('1');", "return t0 * v[2];").
+class PythonPrinter : public TargetPrinter {
+ public:
+  std::string literal(const Rational& r) const override {
+    return "Fraction('" + to_string(r) + "')";
+  }
+  std::string declaration() const override { return ""; }
+  std::string orbit_functions(const OrbitCode& code, int orbit) const override {
+    return fmt::format("def orbit_{}(v, x, d):\n{}", orbit,
+                       print_straight_line(*code.program, 2, *this, "  "));
+  }
+  std::string orbit_dispatch(int orbit) const override {
+    return fmt::format("  if o == {0}:\n    return orbit_{0}(v, x, d)", orbit);
+  }
+};
+
+// The new target's code, run by Debian's python3, equals sum_k v_k p_k(x) and its exact
+// derivatives at rational points (expected from the basis polynomials, as polynomial_code_test
+// does), for both orbits of fcc6.
+TEST(TargetPrinter, ANewTargetFollowingTheRecipePrintsExactCode) {
+  const Derivation& a = fixture::derivation_of("fcc6");
+  const int n = 3, outputs = 1 + n + n * (n + 1) / 2;
+  std::vector<OrbitCode> orbits;
+  for (std::size_t o = 0; o < a.structure.references.size(); ++o)
+    orbits.push_back(choose_orbit_code(a.structure.references[o], static_cast<int>(o), n,
+                                       a.properties.degree, EmissionStrategy::Auto));
+  const PythonPrinter python;
+  std::string script = "from fractions import Fraction\n\n" + python.functions(orbits) +
+                       "\ndef orbit(o, v, x, d):\n" + python.dispatch(orbits.size()) + "\n\n";
+  std::vector<std::vector<Rational>> expected;
+  for (std::size_t o = 0; o < orbits.size(); ++o) {
+    const ReferenceRegion& ref = a.structure.references[o];
+    for (int trial = 0; trial < 2; ++trial) {
+      RatVec x(n), v(ref.basis.size());
+      std::vector<std::string> xs, vs;
+      for (int i = 0; i < n; ++i) {
+        x[i] = fraction(trial + i + 1, 7 + static_cast<long>(o));
+        xs.push_back("Fraction('" + to_string(x[i]) + "')");
+      }
+      for (std::size_t k = 0; k < v.size(); ++k) {
+        v[k] = fraction(static_cast<long>(k * k) - 5, 3 + trial);
+        vs.push_back("Fraction('" + to_string(v[k]) + "')");
+      }
+      std::vector<Rational> e(outputs, 0);
+      for (std::size_t k = 0; k < ref.basis.size(); ++k) {
+        std::size_t at = 0;
+        e[at] = e[at] + v[k] * ref.basis[k].eval(x);
+        ++at;
+        for (int i = 0; i < n; ++i, ++at) e[at] = e[at] + v[k] * ref.basis[k].derivative(i).eval(x);
+        for (int i = 0; i < n; ++i)
+          for (int j = i; j < n; ++j, ++at)
+            e[at] = e[at] + v[k] * ref.basis[k].derivative(i).derivative(j).eval(x);
+      }
+      expected.push_back(e);
+      script += fmt::format(
+          "d = [Fraction(0)] * {0}\nvalue = orbit({1}, [{2}], [{3}], d)\n"
+          "print(' '.join(str(r) for r in [value] + d))\n",
+          outputs - 1, o, fmt::join(vs, ", "), fmt::join(xs, ", "));
+    }
+  }
+  const std::string dir = ::testing::TempDir();
+  const std::string source = dir + "/boxgen_python_target.py", out = dir + "/boxgen_python_out";
+  std::ofstream(source) << script;
+  ASSERT_EQ(std::system(("/usr/bin/python3 " + source + " > " + out).c_str()), 0) << script;
+  std::ifstream in(out);
+  for (const auto& e : expected) {
+    std::string line;
+    ASSERT_TRUE(std::getline(in, line)) << script;
+    std::istringstream words(line);
+    std::vector<Rational> got;
+    for (std::string w; words >> w;) got.push_back(parse_rational(w));
+    EXPECT_EQ(got, e) << line;
+  }
+  std::remove(source.c_str());
+  std::remove(out.c_str());
 }
 
 }  // namespace
