@@ -15,7 +15,9 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <type_traits>
@@ -333,6 +335,7 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
   // Geometry: a diagonal affine (nifti_header::oblique_entry), translation = world point of voxel
   // (0, 0, 0). Without sform or qform the spacing is pixdim as the file holds it.
   Vec3 steps{}, origin{};
+  std::optional<Affine> frame;
   if (im.sform_code <= 0 && im.qform_code <= 0) {
     steps = {raw.pixdim[1], raw.pixdim[2], raw.pixdim[3]};
   } else {
@@ -341,11 +344,29 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
     double rows[3][4];
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 4; ++c) rows[r][c] = m.m[r][c];
-    if (const std::string oblique = nifti_header::oblique_entry(rows, which); !oblique.empty())
-      fail(oblique);
-    for (int a = 0; a < 3; ++a) {
-      steps[a] = m.m[a][a];
-      origin[a] = m.m[a][3];
+    if (const std::string oblique = nifti_header::oblique_entry(rows, which); !oblique.empty()) {
+      if (!limits.allow_oblique) fail(oblique);
+      if (!source) throw std::logic_error("read_nifti: allow_oblique needs a SourceSamples");
+      // The voxel grid in its own frame; the frame's map to world keeps the file's affine.
+      Affine map;
+      for (int c = 0; c < 3; ++c) {
+        steps[c] = std::hypot(m.m[0][c], m.m[1][c], m.m[2][c]);
+        if (!(std::isfinite(steps[c]) && steps[c] > 0))
+          fail(fmt::format("its {} has a zero or non-finite column {}", which, c));
+        for (int r = 0; r < 3; ++r) map.linear[r][c] = m.m[r][c] / steps[c];
+      }
+      for (int r = 0; r < 3; ++r) map.translation[r] = m.m[r][3];
+      try {
+        (void)map.inverse();
+      } catch (const std::invalid_argument&) {
+        fail(fmt::format("its {} is singular (its voxel axes are not independent)", which));
+      }
+      frame = map;
+    } else {
+      for (int a = 0; a < 3; ++a) {
+        steps[a] = m.m[a][a];
+        origin[a] = m.m[a][3];
+      }
     }
   }
   for (int a = 0; a < 3; ++a)
@@ -371,9 +392,12 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
   if (!limits.allow_non_finite)
     if (const std::string why = nrrd_checks::check_finite<T>(samples, 1, sizes); !why.empty())
       fail(why);
-  orient_axes_positive(std::span<T>(samples), sizes, steps, origin);
+  if (!frame) orient_axes_positive(std::span<T>(samples), sizes, steps, origin);
   LatticeVolume<T> volume(CosetLattice::cartesian(), sizes, steps, origin, std::move(samples));
-  if (source) *source = describe_samples<T>(volume.samples(), type);
+  if (source) {
+    *source = describe_samples<T>(volume.samples(), type);
+    source->frame = frame;
+  }
   return volume;
 }
 
