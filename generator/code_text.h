@@ -1,5 +1,5 @@
-// Small text helpers shared by the code writers (emitter, polynomial_code): C++ literals and
-// brace lists as they appear in emitted headers.
+// Small text helpers shared by the code writers (the printers of generator/target_printer.h, the
+// emitter, polynomial_code): lists as they appear in emitted code. Literals are the printers'.
 #pragma once
 #include <fmt/format.h>
 
@@ -10,9 +10,6 @@
 
 namespace boxgen::generator::code {
 
-// A double literal that round-trips (17 significant digits).
-inline std::string literal(const Rational& r) { return fmt::format("{:.17g}", to_double(r)); }
-
 inline std::string join(const std::vector<std::string>& parts, const char* sep = ", ") {
   std::string out;
   for (std::size_t i = 0; i < parts.size(); ++i) {
@@ -22,11 +19,18 @@ inline std::string join(const std::vector<std::string>& parts, const char* sep =
   return out;
 }
 
+// "1, -2, 3": the values as fmt prints them, comma-separated.
 template <class V>
-std::string brace_list(const V& values) {
+std::string list(const V& values) {
   std::vector<std::string> parts;
   for (const auto& v : values) parts.push_back(fmt::format("{}", v));
-  return "{" + join(parts) + "}";
+  return join(parts);
+}
+
+// "{1, -2, 3}": a C++ initialiser.
+template <class V>
+std::string brace_list(const V& values) {
+  return "{" + list(values) + "}";
 }
 
 // "(a,b,c)" with exact rational entries, for comments.

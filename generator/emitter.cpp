@@ -11,10 +11,10 @@
 #include "generator/error.h"
 #include "generator/evaluator_name.h"
 #include "generator/evaluator_tables.h"
-#include "generator/expr_print.h"
 #include "generator/glsl_evaluator.h"
 #include "generator/polynomial_code.h"
 #include "generator/prefilter.h"
+#include "generator/target_printer.h"
 
 namespace boxgen::generator {
 
@@ -22,13 +22,6 @@ namespace {
 
 using code::brace_list;
 using code::join;
-using code::literal;
-
-std::string join_ints(const IntVec& v) {
-  std::vector<std::string> parts;
-  for (auto x : v) parts.push_back(std::to_string(x));
-  return join(parts);
-}
 
 bool is_identifier(const std::string& s) {
   if (s.empty() || s.size() > 64 ||
@@ -78,12 +71,6 @@ OrbitCodes orbit_codes(const Derivation& a, EmissionStrategy strategy) {
   return out;
 }
 
-std::string ints(const std::vector<int>& v) {
-  std::vector<std::string> parts;
-  for (int x : v) parts.push_back(std::to_string(x));
-  return join(parts);
-}
-
 using Args = fmt::dynamic_format_arg_store<fmt::format_context>;
 
 template <class V>
@@ -111,49 +98,23 @@ std::vector<std::string> orbit_cost_lines(const OrbitCodes& code) {
   return costs;
 }
 
-// What the C++ and CUDA templates share: the tables as C++ initialisers, the counts.
+// What the C++ and CUDA templates share: the counts, and the tables as the C++ printer writes
+// them.
 Args cpp_table_args(const Derivation& a, const EmissionRequest& req, const OrbitCodes& code) {
-  const SplineStructure& s = a.structure;
-  const int n = a.spec.dimension();
-  KnotPlaneKeys keys = knot_plane_keys(a);
-  const IntColumns hermite = hermite_basis(a);
-  const CellTables t = cell_tables(a, keys, hermite);
-  std::vector<std::string> lookup_rows, normal_rows, orbit_sizes, cost_table;
-  for (const auto& row : t.lookup) lookup_rows.push_back(brace_list(row));
-  for (const auto& nu : keys.planes) normal_rows.push_back(brace_list(nu));
-  normal_rows.push_back(brace_list(IntVec(n, 0)));  // a zero row keeps the arrays non-empty
-  keys.mins.push_back(0);
-  keys.widths.push_back(1);
-  for (size_t o = 0; o < s.references.size(); ++o) {
-    orbit_sizes.push_back(std::to_string(s.references[o].stencil.size()));
-    const OrbitCode& c = code.orbits[o];
+  std::vector<std::string> cost_table;
+  for (const OrbitCode& c : code.orbits) {
     std::vector<std::string> paths;
     for (const OperationCount* p : {&c.value, &c.gradient, &c.hessian})
       paths.push_back(fmt::format("{{{}, {}, {}, {}, {}}}", p->adds, p->muls, p->negs, p->loads,
                                   p->temporaries));
     cost_table.push_back("{" + join(paths) + "}");
   }
-  // Per cell its row of Traits::kCells ({cube, orbit, {keys}, {perm}, {sign}, {a}}) and its
-  // stencil offsets, padded with zero points to the largest stencil.
-  std::vector<std::string> cells, offsets;
-  for (std::size_t c = 0; c < t.cube.size(); ++c) {
-    cells.push_back(fmt::format("{{{}, {}, {}, {}, {}, {}}}", t.cube[c], t.orbit[c],
-                                brace_list(t.keys[c]), brace_list(t.perm[c]), brace_list(t.sign[c]),
-                                brace_list(t.a[c])));
-    std::vector<std::string> points;
-    for (const IntVec& d : t.offset[c]) points.push_back(brace_list(d));
-    points.resize(static_cast<std::size_t>(s.stencil_max), brace_list(IntVec(n, 0)));
-    offsets.push_back("{" + join(points) + "}");
-  }
-  std::vector<std::string> centre, hermite_rows;
-  for (const auto& c : s.centre) centre.push_back(literal(c));
-  for (const auto& col : hermite) hermite_rows.push_back(brace_list(col));
   Args args;
   add(args, "banner", banner(a, req));
   add(args, "name", req.name);
-  add(args, "dimension", n);
+  add(args, "dimension", a.spec.dimension());
   add(args, "degree", a.properties.degree);
-  add(args, "stencil_size", s.stencil_max);
+  add(args, "stencil_size", a.structure.stencil_max);
   add(args, "lattice_det", a.spec.lattice.det_abs());
   add(args, "spec_text", a.spec.directions_text());
   add(args, "lattice", a.spec.lattice.name());
@@ -163,37 +124,20 @@ Args cpp_table_args(const Derivation& a, const EmissionRequest& req, const Orbit
   add(args, "hessian_ops", code.hessian.total());
   add(args, "orbit_costs", join(orbit_cost_lines(code), "\n"));
   add(args, "orbit_cost_table", join(cost_table, ",\n    "));
-  add(args, "centre", join(centre));
-  add(args, "reach_lo", join_ints(t.reach_lo));
-  add(args, "reach_hi", join_ints(t.reach_hi));
-  add(args, "hermite", join(hermite_rows));
-  add(args, "scale", s.scale);
-  add(args, "cube_count", t.lookup.size());
-  add(args, "normal_count", keys.planes.size());
-  add(args, "normals", join(normal_rows));
-  add(args, "normal_min", ints(keys.mins));
-  add(args, "normal_width", ints(keys.widths));
-  add(args, "normal_stride", ints(keys.strides));
-  add(args, "lookup_size", keys.size());
-  add(args, "lookup", join(lookup_rows, ",\n      "));
-  add(args, "cell_count", cells.size());
-  add(args, "cells", join(cells, ",\n      "));
-  add(args, "orbit_count", s.references.size());
-  add(args, "orbit_stencil_sizes", join(orbit_sizes));
-  add(args, "offsets", join(offsets, ",\n      "));
+  const KnotPlaneKeys keys = knot_plane_keys(a);
+  const IntColumns hermite = hermite_basis(a);
+  for (const auto& [field, text] :
+       CppPrinter::table_fields(a, keys, hermite, cell_tables(a, keys, hermite)))
+    add(args, field, text);
   return args;
 }
 
 // NAME.hpp's fields but its include guard.
 Args evaluator_args(const Derivation& a, const EmissionRequest& req, const OrbitCodes& code) {
   Args args = cpp_table_args(a, req, code);
-  std::vector<std::string> dispatch, functions;
-  for (size_t o = 0; o < code.orbits.size(); ++o) {
-    dispatch.push_back(fmt::format("      case {0}: return detail::orbit_{0}<Order>(v, x, d);", o));
-    functions.push_back(code.orbits[o].text);
-  }
-  add(args, "orbit_functions", join(functions, "\n"));
-  add(args, "orbit_dispatch", join(dispatch, "\n"));
+  const CppPrinter printer;
+  add(args, "orbit_functions", printer.functions(code.orbits));
+  add(args, "orbit_dispatch", printer.dispatch(code.orbits.size()));
   return args;
 }
 
@@ -202,20 +146,14 @@ std::string cuda_evaluator(const Derivation& a, const EmissionRequest& req,
                            const OrbitCodes& code) {
   Args args = cpp_table_args(a, req, code);
   const int n = a.spec.dimension();
-  std::vector<std::string> dispatch, functions, fetch_args, fetch_params;
-  for (size_t o = 0; o < code.orbits.size(); ++o) {
-    dispatch.push_back(fmt::format("    case {0}: return orbit_{0}<Order>(v, x, d);", o));
-    functions.push_back(fmt::format(
-        fmt::runtime(templates::orbit_function), fmt::arg("comment", code.orbits[o].comment),
-        fmt::arg("qualifiers", "BOXGEN_HOST_DEVICE "), fmt::arg("orbit", o),
-        fmt::arg("body", generator::print_cpp_body(*code.orbits[o].program))));
-  }
+  const CudaPrinter printer;
+  std::vector<std::string> fetch_args, fetch_params;
   for (int i = 0; i < n; ++i) {
     fetch_args.push_back(fmt::format("static_cast<int>(corner[{0}] + o[{0}])", i));
     fetch_params.push_back(fmt::format("int j{}", i));
   }
-  add(args, "orbit_functions", join(functions, "\n"));
-  add(args, "orbit_dispatch", join(dispatch, "\n"));
+  add(args, "orbit_functions", printer.functions(code.orbits));
+  add(args, "orbit_dispatch", printer.dispatch(code.orbits.size()));
   add(args, "fetch_args", join(fetch_args));
   add(args, "fetch_params", join(fetch_params));
   add(args, "hessian_order", n == 3 ? "xx xy xz yy yz zz" : "xx xy yy");
@@ -241,7 +179,7 @@ Prefilters prefilters(const Derivation& a, const EmissionRequest& req) {
       std::vector<std::string> rows;
       for (const auto& w : q.weights)
         rows.push_back(fmt::format("    {{{}, {}}},  // {}", brace_list(w.offset),
-                                   literal(w.weight), to_string(w.weight)));
+                                   CppPrinter::table_literal(w.weight), to_string(w.weight)));
       out.filters += fmt::format(
           "// Shells {}: {} parametrisation.\ninline constexpr PrefilterTap {}[] = {{\n{}\n}};\n\n",
           brace_list(shells), q.parametrisation, id, join(rows, "\n"));

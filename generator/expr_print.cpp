@@ -2,31 +2,26 @@
 
 #include <fmt/format.h>
 
+#include "generator/target_printer.h"
+
 namespace boxgen::generator {
 
 namespace {
 
-// The shortest decimal of 9 (float) or 17 (double) significant digits, always with a '.' or an
-// exponent (GLSL reads "3" as an int).
-std::string decimal(double value, int digits) {
-  std::string text = fmt::format("{:.{}g}", value, digits);
-  if (text.find_first_of(".e") == std::string::npos) text += ".0";
-  return text;
-}
-
 bool is_inline(const Program& p, NodeId id) { return !p.graph.is_leaf(id) && !p.is_temporary(id); }
 
-std::string print(const Program& p, NodeId id, const Syntax& s, bool top);
+std::string print(const Program& p, NodeId id, const TargetPrinter& s, bool top);
 
 // An operand, parenthesised where the operator it stands under binds tighter than its own.
-std::string operand(const Program& p, NodeId id, const Syntax& s, bool parenthesise_products) {
+std::string operand(const Program& p, NodeId id, const TargetPrinter& s,
+                    bool parenthesise_products) {
   std::string text = print(p, id, s, false);
   if (!is_inline(p, id)) return text;
   const Op op = p.graph.node(id).op;
   return op == Op::Add || (parenthesise_products && op == Op::Mul) ? "(" + text + ")" : text;
 }
 
-std::string print(const Program& p, NodeId id, const Syntax& s, bool top) {
+std::string print(const Program& p, NodeId id, const TargetPrinter& s, bool top) {
   const ExprGraph& g = p.graph;
   const Node& n = g.node(id);
   if (!top && p.is_temporary(id)) return p.names.at(id);
@@ -61,14 +56,16 @@ std::string print(const Program& p, NodeId id, const Syntax& s, bool top) {
 
 std::string output_target(int index) { return index < 0 ? "value" : fmt::format("d[{}]", index); }
 
-std::string block_text(const Program& p, int b, const Syntax& s, const std::string& indent) {
+std::string block_text(const Program& p, int b, const TargetPrinter& s, const std::string& indent) {
   std::string out;
   for (const auto& t : p.blocks[b].temporaries)
-    out += fmt::format("{}{}{} = {};\n", indent, s.declaration, t.name, print(p, t.node, s, true));
+    out +=
+        fmt::format("{}{}{} = {};\n", indent, s.declaration(), t.name, print(p, t.node, s, true));
   return out;
 }
 
-std::string outputs_text(const Program& p, int b, const Syntax& s, const std::string& indent) {
+std::string outputs_text(const Program& p, int b, const TargetPrinter& s,
+                         const std::string& indent) {
   std::string out;
   for (const auto& [index, id] : p.blocks[b].outputs)
     if (index >= 0)
@@ -78,24 +75,11 @@ std::string outputs_text(const Program& p, int b, const Syntax& s, const std::st
 
 }  // namespace
 
-Syntax cpp_syntax() {
-  return {"const T ", [](const Rational& r) { return fmt::format("T({:.17g})", to_double(r)); }};
-}
-
-Syntax glsl_syntax(bool double_precision) {
-  if (double_precision)
-    return {"double ", [](const Rational& r) { return decimal(to_double(r), 17) + "LF"; }};
-  return {"float ", [](const Rational& r) {
-            return decimal(static_cast<double>(static_cast<float>(to_double(r))), 9);
-          }};
-}
-
-std::string print_expression(const Program& p, NodeId id, const Syntax& s) {
+std::string print_expression(const Program& p, NodeId id, const TargetPrinter& s) {
   return print(p, id, s, false);
 }
 
-std::string print_cpp_body(const Program& p) {
-  const Syntax s = cpp_syntax();
+std::string print_cpp_body(const Program& p, const TargetPrinter& s) {
   const NodeId value = p.blocks[0].outputs.at(0).second;
   std::string out =
       "  static_cast<void>(v);  // unused where the polynomial is constant\n"
@@ -111,7 +95,7 @@ std::string print_cpp_body(const Program& p) {
   return out;
 }
 
-std::string print_straight_line(const Program& p, int order, const Syntax& s,
+std::string print_straight_line(const Program& p, int order, const TargetPrinter& s,
                                 const std::string& indent) {
   std::string out;
   for (int b = 0; b <= order; ++b) out += block_text(p, b, s, indent);

@@ -9,7 +9,7 @@
 #include "generator/code_text.h"
 #include "generator/embedded_templates.h"
 #include "generator/evaluator_tables.h"
-#include "generator/expr_print.h"
+#include "generator/target_printer.h"
 
 namespace boxgen::generator {
 
@@ -17,67 +17,8 @@ namespace {
 
 using code::join;
 
-template <class V>
-std::string flat(const V& values) {
-  std::vector<std::string> parts;
-  for (const auto& v : values) parts.push_back(fmt::format("{}", v));
-  return join(parts);
-}
-
-template <class Rows>
-std::string flat_rows(const Rows& rows) {
-  std::vector<std::string> parts;
-  for (const auto& row : rows) parts.push_back(flat(row));
-  return join(parts, ",\n    ");
-}
-
 // A template's fields, as text.
-using Fields = std::vector<std::pair<const char*, std::string>>;
-
-template <class Rows>
-std::vector<int> flat_ints(const Rows& rows) {
-  std::vector<int> out;
-  for (const auto& row : rows)
-    for (const auto& v : row) out.push_back(static_cast<int>(v));
-  return out;
-}
-
-// One int table of the evaluator: its template field, name, size as the text declares it, and
-// entries (as the text lists them: one row per line where it has rows).
-struct IntTable {
-  const char* field;
-  std::string name, size;
-  std::string text;
-  std::vector<int> values;
-  bool run_time_indexed;
-};
-
-// The tables' declarations: in `text`, each a `const` array; in `buffered`, the run-time-indexed
-// ones members of one read-only storage block at the place of the first (the others' lines left
-// empty), whose contents are `block` (std430: int arrays, tightly packed, in order).
-void add_tables(const std::string& name, const std::vector<IntTable>& tables, Fields& constant,
-                Fields& buffered, std::vector<int>& block) {
-  std::string members;
-  for (const IntTable& t : tables)
-    if (t.run_time_indexed) members += fmt::format("  int {}[{}];\n", t.name, t.values.size());
-  bool first = true;
-  for (const IntTable& t : tables) {
-    const std::string declaration =
-        fmt::format("const int {}[{}] = int[]({});", t.name, t.size, t.text);
-    constant.emplace_back(t.field, declaration);
-    if (!t.run_time_indexed) {
-      buffered.emplace_back(t.field, declaration);
-      continue;
-    }
-    buffered.emplace_back(
-        t.field, first ? fmt::format("layout(std430, binding = BOXGEN_TABLES_BINDING) readonly "
-                                     "buffer {}_Tables {{\n{}}};",
-                                     name, members)
-                       : std::string());
-    block.insert(block.end(), t.values.begin(), t.values.end());
-    first = false;
-  }
-}
+using Fields = TemplateFields;
 
 // "+ a * name" terms of an integer combination, zeros left out; `first` without a leading "+".
 std::string combination(const std::vector<std::pair<std::int64_t, std::string>>& terms,
@@ -264,37 +205,15 @@ GlslText glsl_evaluator(const Derivation& a, const std::string& banner, const st
   const int derivatives = n + n * (n + 1) / 2;
   const std::string real = double_precision ? "double" : "float";
   const std::string prefix = double_precision ? "d" : "";
-  const Syntax syntax = glsl_syntax(double_precision);
   const SplineStructure& s = a.structure;
+  const GlslPrinter printer(name, n, s.stencil_max, double_precision);
   const KnotPlaneKeys keys = knot_plane_keys(a);
   const IntColumns hermite = hermite_basis(a);
   const CellTables t = cell_tables(a, keys, hermite);
-  std::vector<std::string> centre, functions, dispatch;
-  for (const auto& c : s.centre) centre.push_back(syntax.literal(c));
+  std::vector<std::string> centre;
+  for (const auto& c : s.centre) centre.push_back(printer.literal(c));
   std::vector<std::int64_t> hermite_rows;  // row j holds column j of the basis, as in C++
   for (const auto& col : hermite) hermite_rows.insert(hermite_rows.end(), col.begin(), col.end());
-  std::vector<int> sizes;
-  for (const auto& r : s.references) sizes.push_back(static_cast<int>(r.stencil.size()));
-  std::vector<std::vector<std::int64_t>> reference_stencil;
-  for (const auto& r : s.references) {
-    reference_stencil.emplace_back();
-    for (int k = 0; k < s.stencil_max; ++k)
-      for (int i = 0; i < n; ++i)
-        reference_stencil.back().push_back(k < static_cast<int>(r.stencil.size()) ? r.stencil[k][i]
-                                                                                  : 0);
-  }
-  for (std::size_t o = 0; o < orbits.size(); ++o) {
-    std::string text = orbits[o].comment + "\n";
-    for (int order = 0; order <= 2; ++order) {
-      const std::string f = fmt::format("{}_orbit{}_{}", name, o, order);
-      text += fmt::format("{0} {1}(in {0} v[{2}], in {0} x[{3}], inout {0} d[{4}]) {{\n{5}}}\n",
-                          real, f, s.stencil_max, n, derivatives,
-                          print_straight_line(*orbits[o].program, order, syntax, "  "));
-      dispatch.push_back(
-          fmt::format("  if (order == {} && o == {}) return {}(v, x, d);", order, o, f));
-    }
-    functions.push_back(text);
-  }
   Fields fields;
   auto add = [&](const char* key, const auto& value) {
     fields.emplace_back(key, fmt::format("{}", value));
@@ -316,44 +235,21 @@ GlslText glsl_evaluator(const Derivation& a, const std::string& banner, const st
   add("orbit_count", orbits.size());
   // One orbit: a constant, so that the compiler folds the reference stencil into the code.
   add("orbit_of_cell", orbits.size() == 1 ? std::string("0") : name + "_kCellOrbit[cell]");
-  add("orbit_functions", join(functions, "\n"));
-  add("orbit_dispatch", join(dispatch, "\n"));
+  add("orbit_functions", printer.functions(orbits));
+  add("orbit_dispatch", printer.dispatch(orbits.size()));
   for (const auto& [key, value] : unrolled_glue(a, name, keys, hermite_rows, double_precision))
     add(key, value);
-  // The tables indexed by the point's cell, and with several orbits by its orbit.
-  const std::size_t cells = t.cube.size();
-  const bool orbit_indexed = orbits.size() > 1;
-  const std::vector<IntTable> tables{
-      {"table_lookup", name + "_kLookup", fmt::format("{} * {}", t.lookup.size(), keys.size()),
-       flat_rows(t.lookup), flat_ints(t.lookup), true},
-      {"table_cell_cube", name + "_kCellCube", std::to_string(cells), flat(t.cube), t.cube, true},
-      {"table_cell_orbit", name + "_kCellOrbit", std::to_string(cells), flat(t.orbit), t.orbit,
-       true},
-      {"table_cell_keys", name + "_kCellKeys",
-       fmt::format("{} * ({} + 1)", cells, keys.planes.size()), flat_rows(t.keys),
-       flat_ints(t.keys), true},
-      {"table_cell_perm", name + "_kCellPerm", fmt::format("{} * {}", cells, n), flat_rows(t.perm),
-       flat_ints(t.perm), true},
-      {"table_cell_sign", name + "_kCellSign", fmt::format("{} * {}", cells, n), flat_rows(t.sign),
-       flat_ints(t.sign), true},
-      {"table_cell_a", name + "_kCellA", fmt::format("{} * {}", cells, n), flat_rows(t.a),
-       flat_ints(t.a), true},
-      {"table_orbit_stencil_size", name + "_kOrbitStencilSize", std::to_string(orbits.size()),
-       flat(sizes), sizes, orbit_indexed},
-      {"table_reference_stencil", name + "_kReferenceStencil",
-       fmt::format("{} * {} * {}", orbits.size(), s.stencil_max, n), flat_rows(reference_stencil),
-       flat_ints(reference_stencil), orbit_indexed}};
-  Fields constant, buffered;
-  GlslText out;
-  add_tables(name, tables, constant, buffered, out.block);
+  GlslPrinter::Tables tables = printer.tables(s, keys, t);
   const auto print = [&](const Fields& table_fields) {
     fmt::dynamic_format_arg_store<fmt::format_context> args;
     for (const Fields* f : {static_cast<const Fields*>(&fields), &table_fields})
       for (const auto& [key, value] : *f) args.push_back(fmt::arg(key, value));
     return fmt::vformat(templates::evaluator_glsl, args);
   };
-  out.text = print(constant);
-  out.buffered = print(buffered);
+  GlslText out;
+  out.text = print(tables.constant);
+  out.buffered = print(tables.buffered);
+  out.block = std::move(tables.block);
   return out;
 }
 

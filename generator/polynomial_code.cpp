@@ -12,7 +12,6 @@
 #include "generator/code_text.h"
 #include "generator/embedded_templates.h"
 #include "generator/error.h"
-#include "generator/expr_print.h"
 #include "generator/expr_simplify.h"
 #include "generator/linear_cse.h"
 #include "generator/separable_form.h"
@@ -626,16 +625,8 @@ std::optional<OrbitCode> bernstein_code(const ReferenceRegion& ref, int orbit, i
                             fmt::arg("stencil", ref.stencil.size())));
 }
 
-// The C++ function of the code: the comment, the template head and the printed body.
-void print_cpp(OrbitCode& code, int orbit) {
-  code.text =
-      fmt::format(fmt::runtime(templates::orbit_function), fmt::arg("comment", code.comment),
-                  fmt::arg("qualifiers", ""), fmt::arg("orbit", orbit),
-                  fmt::arg("body", generator::print_cpp_body(*code.program)));
-}
-
-std::optional<OrbitCode> unprinted_orbit_code(const ReferenceRegion& ref, int orbit, int n,
-                                              int degree, EmissionStrategy strategy) {
+std::optional<OrbitCode> strategy_code(const ReferenceRegion& ref, int orbit, int n, int degree,
+                                       EmissionStrategy strategy) {
   switch (strategy) {
     case EmissionStrategy::Monomial:
       return monomial_code(ref, orbit, n, degree);
@@ -657,9 +648,7 @@ std::optional<OrbitCode> unprinted_orbit_code(const ReferenceRegion& ref, int or
 
 std::optional<OrbitCode> orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree,
                                     EmissionStrategy strategy) {
-  auto code = unprinted_orbit_code(ref, orbit, n, degree, strategy);
-  if (code) print_cpp(*code, orbit);
-  return code;
+  return strategy_code(ref, orbit, n, degree, strategy);
 }
 
 namespace {
@@ -698,13 +687,12 @@ OrbitCode choose_orbit_code(const ReferenceRegion& ref, int orbit, int n, int de
   // Ties keep the earlier strategy: the newer forms replace a chosen one only when cheaper.
   for (auto s : {EmissionStrategy::Horner, EmissionStrategy::Separable, EmissionStrategy::Monomial,
                  EmissionStrategy::Shifted, EmissionStrategy::Bernstein}) {
-    auto code = unprinted_orbit_code(ref, orbit, n, degree, s);
+    auto code = strategy_code(ref, orbit, n, degree, s);
     if (!code) continue;
     considered.push_back({s, code->value, code->gradient, code->hessian});
     if (!best || code->gradient.total() < best->gradient.total()) best = std::move(code);
   }
   best->considered = std::move(considered);
-  print_cpp(*best, orbit);
   return std::move(*best);
 }
 

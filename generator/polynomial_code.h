@@ -1,8 +1,9 @@
-// C++ code for one orbit's reference polynomial (docs/design.md §11): the spline on the reference
+// The code of one orbit's reference polynomial (docs/design.md §11): the spline on the reference
 // region is sum_k v[k] p_k(x) over its stencil, and a strategy decides how that sum and its exact
 // derivatives are built into an expression graph (generator/expr.h), shared between the value,
 // the gradient and the Hessian; the counts of the scheduled graph let the emitter choose the
-// cheapest strategy (`auto`) and are recorded in the header.
+// cheapest strategy (`auto`) and are recorded in the header. The strategies build graphs only;
+// each target's printer (generator/target_printer.h) writes them.
 #pragma once
 #include <memory>
 #include <optional>
@@ -45,13 +46,12 @@ struct StrategyCost {
 };
 
 // The code of one orbit: its expression graph scheduled (generator/expr_schedule.h), which every
-// target prints, and the C++ function `template <int Order, class T> T orbit_<orbit>(const T* v,
-// const T* x, T* d)` (support::evaluate_located describes d) printed from it.
+// target's printer writes (C++: `template <int Order, class T> T orbit_<orbit>(const T* v,
+// const T* x, T* d)`, support::evaluate_located describes d).
 struct OrbitCode {
   EmissionStrategy strategy = EmissionStrategy::Horner;
   std::shared_ptr<const generator::Program> program;
   std::string comment;  // what the code computes, as "// " lines (templates/orbit_*.fmt)
-  std::string text;     // the C++ function, comment included
   OperationCount value, gradient, hessian;  // whole paths: value; value + gradient; + Hessian
   std::string form;  // what the strategy chose, for comments and reports ("about (1,1,1)"), or ""
   std::vector<StrategyCost> considered;  // auto: every applicable strategy, in the order tried
