@@ -163,6 +163,11 @@ class OrderConditions {
 
   // Weights per group solving the conditions, or nullopt.
   std::optional<LinearSolution> fit(const std::vector<std::vector<IntVec>>& groups) const {
+    return solve_exactly(rows(groups), static_cast<int>(groups.size()));
+  }
+
+  // The conditions as augmented rows [A | b] on the weights of the groups.
+  std::vector<RatVec> rows(const std::vector<std::vector<IntVec>>& groups) const {
     // hat(q)(w) = sum_j q_j cos(w.j) for symmetric q (every group is closed under j -> -j).
     const RatVec cosine = cos_coefficients(terms_);
     std::vector<Series> columns;
@@ -175,7 +180,7 @@ class OrderConditions {
       columns.push_back(std::move(column));
     }
     const int unknowns = static_cast<int>(groups.size());
-    std::vector<RatVec> rows;
+    std::vector<RatVec> out;
     for (size_t k = 0; k < index_.size(); ++k) {
       RatVec row(unknowns + 1);
       bool any = !cln::zerop(target_[k]);
@@ -184,9 +189,9 @@ class OrderConditions {
         any = any || !cln::zerop(row[p]);
       }
       row[unknowns] = target_[k];
-      if (any) rows.push_back(std::move(row));
+      if (any) out.push_back(std::move(row));
     }
-    return solve_exactly(std::move(rows), unknowns);
+    return out;
   }
 
  private:
@@ -444,6 +449,42 @@ Prefilter derive_fir_prefilter(const BoxSplineSpec& spec, int last_shell,
   Prefilter q{order, shells, "fir", "", {}};
   for (size_t i = 0; i < points.size(); ++i)
     q.weights.push_back({points[i].offset, (*weights)[par.parameter_of_point[i]]});
+  return q;
+}
+
+PrefilterFamily prefilter_family(const BoxSplineSpec& spec, const std::vector<int>& requested) {
+  // derive_prefilter validates the shells and names the order they reach when there is none.
+  const Prefilter solvable = derive_prefilter(spec, requested);
+  const int n = spec.dimension();
+  const auto all_shells = spec.lattice.shells(kMaxPrefilterShell + 1);
+  const auto points = points_of(all_shells, solvable.shells);
+  const Parametrisation par = weight_per_orbit(points, symmetry_group(spec));
+  const OrderConditions conditions(spec.directions, n, solvable.order);
+  const int unknowns = static_cast<int>(par.groups.size());
+  std::vector<RatVec> rows = conditions.rows(par.groups);
+  const auto solution = solve_exactly(rows, unknowns);
+  if (!solution) fail_input("no prefilter of full order for " + spec.name + " on these shells");
+  for (auto& row : rows) row.pop_back();  // the homogeneous system
+  PrefilterFamily family{solvable.order,
+                         solvable.shells,
+                         par.groups,
+                         par.labels,
+                         solution->values,
+                         null_space(std::move(rows), unknowns),
+                         solution->free_columns,
+                         {},
+                         par.parameter_of_point};
+  for (const auto& p : points) family.points.push_back(p.offset);
+  return family;
+}
+
+Prefilter family_member(const PrefilterFamily& family, const RatVec& t) {
+  RatVec weight = family.particular;
+  for (size_t i = 0; i < family.basis.size(); ++i)
+    for (size_t g = 0; g < weight.size(); ++g) weight[g] = weight[g] + t[i] * family.basis[i][g];
+  Prefilter q{family.order, family.shells, "per_orbit", "", {}};
+  for (size_t i = 0; i < family.points.size(); ++i)
+    q.weights.push_back({family.points[i], weight[family.orbit_of_point[i]]});
   return q;
 }
 

@@ -62,10 +62,33 @@ std::vector<int> quasi_interpolation_shells(const BoxSplineSpec& spec, int which
 Prefilter derive_fir_prefilter(const BoxSplineSpec& spec, int last_shell,
                                const std::vector<LatticeSample>& samples);
 
+// Every prefilter of full order on the given shells with one weight per orbit of the symmetry
+// group: the orbit weights are particular + sum_i t_i basis[i] for any parameters t (the free
+// parameters derive_prefilter sets to zero, here kept free for optimisation: the optimised q1opt
+// and q2opt, apps/boxgen/optimised_prefilter.h). Exact; throws like derive_prefilter.
+struct PrefilterFamily {
+  int order = 0;
+  std::vector<int> shells;
+  std::vector<std::vector<IntVec>> orbits;  // the points sharing each weight
+  std::vector<std::string> orbit_labels;    // "shell 1 orbit of (-1,-1,-1)"
+  RatVec particular;                        // one weight per orbit; the parameters zero
+  std::vector<RatVec> basis;                // one per free parameter: solutions of the
+                                            // homogeneous conditions
+  std::vector<int> free_orbits;             // the orbit each parameter is the weight of
+  std::vector<IntVec> points;               // every point of the shells, by shell then offset
+  std::vector<int> orbit_of_point;          // parallel to points
+};
+PrefilterFamily prefilter_family(const BoxSplineSpec& spec, const std::vector<int>& shells);
+
+// The member with parameters t (t.size() == basis.size()), exactly, as a Prefilter on every
+// point of the shells (parametrisation "per_orbit", the note empty).
+Prefilter family_member(const PrefilterFamily& family, const RatVec& t);
+
 // A prefilter by the name the programs take: q1, q2 (quasi_interpolation_shells with
 // derive_prefilter) or qfir:K. Throws InputError (one line) for another name.
 Prefilter named_prefilter(const BoxSplineSpec& spec, std::string_view name);
-// "q1, q2 or qfir:K": the names named_prefilter takes, for messages and help texts.
-inline constexpr const char* kPrefilterNames = "q1, q2 or qfir:K";
+// The names the programs take, for messages and help texts: named_prefilter's, and q1opt, q2opt
+// (apps/boxgen/optimised_prefilter.h, which needs the numerical analysis).
+inline constexpr const char* kPrefilterNames = "q1, q2, q1opt, q2opt or qfir:K";
 
 }  // namespace boxgen::generator

@@ -77,8 +77,9 @@ std::string entry_file_problem(const struct stat& info) {
 }
 
 constexpr const char* kEntryFiles[] = {
-    ".so",  ".json", ".cpp", ".glsl", "_double.glsl", "_buffered.glsl", "_buffered_double.glsl",
-    ".log", ".lock"};
+    ".so",   ".json",        ".cpp",           "_double.cpp",
+    ".glsl", "_double.glsl", "_buffered.glsl", "_buffered_double.glsl",
+    ".log",  ".lock"};
 
 }  // namespace
 

@@ -1,13 +1,14 @@
 // The cache of compiled filters (docs/runtime.md "Filters from any SPEC"): where it is, the key
 // of an entry, an entry's files and the checks that decide whether it may be loaded.
 //
-// An entry is <key>.so (the filter), <key>.cpp (its source, for the curious), <key>.glsl and
-// <key>_double.glsl (its GLSL evaluators), <key>_buffered.glsl and <key>_buffered_double.glsl (the
-// same with their tables in a storage block) and <key>.json (what it is, the size and hash of the
-// .so, the hashes of the .glsl files and the storage block's contents), each written through a
-// temporary file and a rename; the .json goes last, so an entry without it, or whose files are not
-// the ones it describes, is incomplete or corrupt and is rebuilt. <key>.lock serialises first uses
-// of the same filter; <key>.log holds the compiler's messages of a failed compile.
+// An entry is <key>.so (the filter), <key>.cpp and <key>_double.cpp (its two sources, compiled
+// at once; kept for the curious, never read back), <key>.glsl and <key>_double.glsl (its GLSL
+// evaluators), <key>_buffered.glsl and <key>_buffered_double.glsl (the same with their tables in
+// a storage block) and <key>.json (what it is, the size and hash of the .so, the hashes of the
+// .glsl files and the storage block's contents), each written through a temporary file and a
+// rename; the .json goes last, so an entry without it, or whose files are not the ones it
+// describes, is incomplete or corrupt and is rebuilt. <key>.lock serialises first uses of the
+// same filter; <key>.log holds the compiler's messages of a failed compile.
 //
 // The cache holds code this process runs, so it is trusted only as far as nobody else can write
 // it (as ssh treats its keys): the directory must be the user's own and not writable by others,

@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 #include <algorithm>
+#include <atomic>
 #include <cerrno>  // program_invocation_name (glibc)
 #include <chrono>
 #include <cmath>
@@ -19,6 +20,8 @@
 #include <cstring>
 #include <exception>
 #include <fstream>
+#include <future>
+#include <memory>
 #include <sstream>
 
 #include "boxgen/loader_config.h"
@@ -306,32 +309,26 @@ bool wrote_object(const fs::path& path) {
 
 }  // namespace
 
-void compile_shared_object(const Toolchain& t, const fs::path& source, const fs::path& output,
-                           const fs::path& log, const std::string& what, double seconds,
-                           const std::function<void()>& check) {
-  std::vector<std::string> args{t.compiler};
-  args.insert(args.end(), t.flags.begin(), t.flags.end());
-  for (std::string a : {std::string("-x"), std::string("c++"), source.string(), std::string("-x"),
-                        std::string("none"), std::string("-o"), output.string(),
-                        std::string("-Wl,--exclude-libs,ALL"), t.archive.string()})
-    args.push_back(std::move(a));
-  args.insert(args.end(), t.libraries.begin(), t.libraries.end());
-  const ProcessResult run = run_limited(args, seconds, kMaxLogBytes, true, check);
-  std::string failure;
+namespace {
+
+// The failure of a compile or link step, or empty when it wrote its ELF object.
+std::string step_failure(const ProcessResult& run, const Toolchain& t, const fs::path& output,
+                         bool linked, const std::string& what, double seconds) {
   if (run.timed_out)
-    failure = fmt::format(
+    return fmt::format(
         "compiling filter {} was stopped after {} s (the limit: BOXGEN_COMPILE_TIMEOUT)", what,
         seconds);
-  else if (!WIFEXITED(run.status) || WEXITSTATUS(run.status) != 0)
-    failure = fmt::format("compiling filter {} failed", what);
-  else if (!wrote_object(output))
-    failure = fmt::format("the C++ compiler {} exited 0 but wrote no shared object for filter {}",
-                          t.compiler, what);
-  std::error_code ec;
-  if (failure.empty()) {
-    fs::remove(log, ec);  // a link there is removed, never followed
-    return;
-  }
+  if (!WIFEXITED(run.status) || WEXITSTATUS(run.status) != 0)
+    return fmt::format("compiling filter {} failed", what);
+  if (!wrote_object(output))
+    return fmt::format("the C++ compiler {} exited 0 but wrote no {} for filter {}", t.compiler,
+                       linked ? "shared object" : "object file", what);
+  return {};
+}
+
+// Throws LoadError for `failure`, with the step's messages written into the log.
+[[noreturn]] void fail_step(const std::string& failure, const ProcessResult& run,
+                            const fs::path& log) {
   std::string text = run.output;
   if (run.dropped > 0)
     text += fmt::format("\n[boxgen: {} more bytes of the compiler's messages were dropped]\n",
@@ -343,6 +340,99 @@ void compile_shared_object(const Toolchain& t, const fs::path& source, const fs:
   }
   throw LoadError(fmt::format("{} (the compiler's messages: {})", failure,
                               runtime::nrrd_checks::printable(log.string())));
+}
+
+std::vector<std::string> compile_args(const Toolchain& t, const fs::path& source,
+                                      const fs::path& output, bool link) {
+  std::vector<std::string> args{t.compiler};
+  args.insert(args.end(), t.flags.begin(), t.flags.end());
+  if (!link) args.emplace_back("-c");
+  for (std::string a : {std::string("-x"), std::string("c++"), source.string(), std::string("-x"),
+                        std::string("none"), std::string("-o"), output.string()})
+    args.push_back(std::move(a));
+  return args;
+}
+
+void add_link_args(const Toolchain& t, std::vector<std::string>& args) {
+  args.emplace_back("-Wl,--exclude-libs,ALL");
+  args.push_back(t.archive.string());
+  args.insert(args.end(), t.libraries.begin(), t.libraries.end());
+}
+
+}  // namespace
+
+void compile_shared_object(const Toolchain& t, const std::vector<fs::path>& sources,
+                           const fs::path& output, const fs::path& log, const std::string& what,
+                           double seconds, const std::function<void()>& check) {
+  std::error_code ec;
+  if (sources.size() == 1) {
+    auto args = compile_args(t, sources[0], output, true);
+    add_link_args(t, args);
+    const ProcessResult run = run_limited(args, seconds, kMaxLogBytes, true, check);
+    const std::string failure = step_failure(run, t, output, true, what, seconds);
+    if (!failure.empty()) fail_step(failure, run, log);
+    fs::remove(log, ec);  // a link there is removed, never followed
+    return;
+  }
+  // Each source into an object at once (the machine's cores share the work), then one link. The
+  // objects are temporaries beside the output, removed whatever happens.
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::unique_ptr<support::PendingOutput>> objects;
+  for (std::size_t i = 0; i < sources.size(); ++i)
+    objects.push_back(std::make_unique<support::PendingOutput>(fs::path(sources[i].string() + ".o"),
+                                                               std::span<const fs::path>{},
+                                                               support::LinkPolicy::replace));
+  // The other compiles run on threads of their own and stop when this one is stopped (`stop`);
+  // `check` is called on this thread only (Python's interrupt check must be).
+  std::atomic<bool> stop{false};
+  const auto stopped = [&stop] {
+    if (stop.load()) throw LoadError("stopped");
+  };
+  std::vector<std::future<ProcessResult>> others;
+  for (std::size_t i = 1; i < sources.size(); ++i)
+    others.push_back(std::async(std::launch::async, [&, i] {
+      return run_limited(compile_args(t, sources[i], objects[i]->temporary(), false), seconds,
+                         kMaxLogBytes, true, stopped);
+    }));
+  std::vector<ProcessResult> runs(sources.size());
+  try {
+    runs[0] = run_limited(compile_args(t, sources[0], objects[0]->temporary(), false), seconds,
+                          kMaxLogBytes, true, check);
+    if (const std::string failure =
+            step_failure(runs[0], t, objects[0]->temporary(), false, what, seconds);
+        !failure.empty()) {
+      stop.store(true);
+      for (auto& f : others) f.wait();
+      fail_step(failure, runs[0], log);
+    }
+    for (std::size_t i = 1; i < sources.size(); ++i) {
+      while (others[i - 1].wait_for(std::chrono::milliseconds(100)) != std::future_status::ready)
+        if (check) check();
+      runs[i] = others[i - 1].get();
+    }
+  } catch (...) {
+    stop.store(true);
+    for (auto& f : others)
+      if (f.valid()) f.wait();
+    throw;
+  }
+  for (std::size_t i = 1; i < sources.size(); ++i) {
+    const std::string failure =
+        step_failure(runs[i], t, objects[i]->temporary(), false, what, seconds);
+    if (!failure.empty()) fail_step(failure, runs[i], log);
+  }
+  const double left =
+      seconds - std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::vector<std::string> args{t.compiler};
+  args.insert(args.end(), t.flags.begin(), t.flags.end());
+  for (const auto& o : objects) args.push_back(o->temporary().string());
+  args.emplace_back("-o");
+  args.push_back(output.string());
+  add_link_args(t, args);
+  const ProcessResult run = run_limited(args, std::max(left, 1.0), kMaxLogBytes, true, check);
+  const std::string failure = step_failure(run, t, output, true, what, seconds);
+  if (!failure.empty()) fail_step(failure, run, log);
+  fs::remove(log, ec);
 }
 
 }  // namespace boxgen::loader

@@ -36,14 +36,16 @@ Toolchain find_toolchain(const CompileOptions& options);
 double compile_time_limit(const CompileOptions& options);
 inline constexpr std::size_t kMaxLogBytes = 64 * 1024;
 
-// Compiles `source` (C++) into the shared object `output` within `seconds`, the compiler in a
-// process group of its own that is killed when the time is up, when this process is stopped by
-// SIGINT, SIGTERM or SIGHUP (support::handle_signals) or when `check` throws (it is called every
-// 0.1 s; the compiler is killed before the exception goes on). On failure throws
-// LoadError naming `what` and the log `log`, written with the compiler's first kMaxLogBytes of
-// messages; on success the log is removed. An exit status of 0 with no ELF object written is a
-// failure too.
-void compile_shared_object(const Toolchain& toolchain, const std::filesystem::path& source,
+// Compiles `sources` (C++) into the shared object `output` within `seconds`: one source in one
+// step, several each into an object at the same time (the machine's cores share the work), then
+// linked. Each compiler runs in a process group of its own that is killed when the time is up,
+// when this process is stopped by SIGINT, SIGTERM or SIGHUP (support::handle_signals) or when
+// `check` throws (it is called every 0.1 s on the calling thread; the compilers are killed before
+// the exception goes on). On failure throws LoadError naming `what` and the log `log`, written
+// with the compiler's first kMaxLogBytes of messages; on success the log is removed. An exit
+// status of 0 with no ELF object written is a failure too.
+void compile_shared_object(const Toolchain& toolchain,
+                           const std::vector<std::filesystem::path>& sources,
                            const std::filesystem::path& output, const std::filesystem::path& log,
                            const std::string& what, double seconds,
                            const std::function<void()>& check = {});

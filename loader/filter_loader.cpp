@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 
 #include <fmt/format.h>
 #include <atomic>
@@ -80,17 +81,16 @@ std::optional<rt::SplineFilter> registry_filter(const std::string& name) {
   return std::nullopt;
 }
 
-// The shared object's one source: the emitted evaluator and prefilters, and the two exported
+// The shared object's two sources, compiled at the same time (the double precision half of the
+// evaluation paths and SIMD kernels is the second: each half is about half the compile): the
+// emitted evaluator in both, and in the first the prefilters, the float half and the two exported
 // functions. boxgen_filter_stamp() says which loader, boxgen and entry it was built for;
 // boxgen_filter_create() returns the filter as a FilterSource of the runtime's engine, whose
 // batch paths follow the host's thread cap (the object has its own copy of the runtime's
 // functions, so the cap is asked from the host before each batch).
-std::string glue_source(const std::string& name, const gen::Emission& emission,
-                        const std::string& stamp) {
-  const auto table = [](const std::optional<gen::Prefilter>& q, const char* id) {
-    return q ? fmt::format("rt::prefilter_from(g::{})", id) : std::string("rt::PrefilterTaps{}");
-  };
-  return fmt::format(
+std::array<std::string, 2> glue_sources(const std::string& name, const gen::Emission& emission,
+                                        const std::string& stamp) {
+  const std::string head = fmt::format(
       R"(// A run-time filter of boxgen (loader/filter_loader.cpp): do not edit, it is rebuilt.
 #include <memory>
 #include <span>
@@ -104,12 +104,27 @@ std::string glue_source(const std::string& name, const gen::Emission& emission,
 #include "runtime/emitted_filter.h"
 
 {evaluator}
-{prefilters}
 #include "runtime/simd_kernels-inl.h"
 
-namespace {{
-namespace g = boxgen::generated::{name};
 namespace rt = boxgen::runtime;
+namespace g = boxgen::generated::{name};
+
+// The double precision half (the second source) fills these.
+void boxgen_filter_double_kernels(rt::simd::Kernels& kernels);
+)",
+      fmt::arg("evaluator", emission.files.at(0).pasted), fmt::arg("name", name));
+  const auto table = [](const std::optional<gen::Prefilter>& q, const char* id) {
+    return q ? fmt::format("rt::prefilter_from(g::{})", id) : std::string("rt::PrefilterTaps{}");
+  };
+  std::string first =
+      head + fmt::format(
+                 R"(
+extern template std::shared_ptr<const rt::EvaluationPath<double>> rt::emitted_path<g::Traits>(
+    const rt::LatticeVolume<double>&, int, const rt::simd::Kernels*);
+
+{prefilters}
+
+namespace {{
 using HostThreads = int (*)();
 
 // The SIMD kernels of this filter for the instruction set it is compiled for (-march=native);
@@ -117,7 +132,12 @@ using HostThreads = int (*)();
 template <class Tr>
 const rt::simd::Kernels* own_kernels() {{
   if constexpr (Tr::kScale == 1) {{
-    static const rt::simd::Kernels kernels = rt::simd::HWY_NAMESPACE::kernels_for<Tr>();
+    static const rt::simd::Kernels kernels = [] {{
+      rt::simd::Kernels k{{}};
+      rt::simd::HWY_NAMESPACE::set_kernels_for<Tr, float>(k);
+      boxgen_filter_double_kernels(k);
+      return k;
+    }}();
     return &kernels;
   }} else {{
     return nullptr;
@@ -171,10 +191,23 @@ extern "C" __attribute__((visibility("default"))) rt::FilterSource* boxgen_filte
   return new Source(name, threads);
 }}
 )",
-      fmt::arg("evaluator", emission.files.at(0).pasted),
-      fmt::arg("prefilters", emission.files.at(1).pasted), fmt::arg("name", name),
-      fmt::arg("q1", table(emission.q1, "q1")), fmt::arg("q2", table(emission.q2, "q2")),
-      fmt::arg("stamp", stamp));
+                 fmt::arg("prefilters", emission.files.at(1).pasted),
+                 fmt::arg("q1", table(emission.q1, "q1")), fmt::arg("q2", table(emission.q2, "q2")),
+                 fmt::arg("stamp", stamp));
+  std::string second = head + R"(
+template std::shared_ptr<const rt::EvaluationPath<double>> rt::emitted_path<g::Traits>(
+    const rt::LatticeVolume<double>&, int, const rt::simd::Kernels*);
+
+namespace {
+template <class Tr>
+void double_kernels(rt::simd::Kernels& kernels) {
+  if constexpr (Tr::kScale == 1) rt::simd::HWY_NAMESPACE::set_kernels_for<Tr, double>(kernels);
+}
+}  // namespace
+
+void boxgen_filter_double_kernels(rt::simd::Kernels& kernels) { double_kernels<g::Traits>(kernels); }
+)";
+  return {std::move(first), std::move(second)};
 }
 
 using StampFn = const char* (*)();
@@ -295,14 +328,16 @@ void build_entry(const CacheEntry& entry, const gen::BoxSplineSpec& spec, const 
   request.name = name;
   request.command =
       fmt::format("the run-time filter \"{}\" --lattice \"{}\"", info.spec, info.rows);
-  const std::string source = glue_source(name, gen::emit(derivation, request), info.stamp);
+  const auto sources = glue_sources(name, gen::emit(derivation, request), info.stamp);
   try {
-    write_entry_file(entry.file(".cpp"), source);
+    write_entry_file(entry.file(".cpp"), sources[0]);
+    write_entry_file(entry.file("_double.cpp"), sources[1]);
     progress.stage(fmt::format("first use of filter {}: compiling with {} (cached in {})", what,
                                toolchain.compiler, entry.dir.string()));
     support::PendingOutput so(entry.file(".so"), {}, support::LinkPolicy::replace);
-    compile_shared_object(toolchain, entry.file(".cpp"), so.temporary(), entry.file(".log"), what,
-                          compile_seconds, options.check_interrupt);
+    compile_shared_object(toolchain, {entry.file(".cpp"), entry.file("_double.cpp")},
+                          so.temporary(), entry.file(".log"), what, compile_seconds,
+                          options.check_interrupt);
     EntryInfo written = info;
     const int fd = open_entry_file(so.temporary());
     const auto hash = fd < 0 ? std::nullopt : hash_descriptor(fd, written.so_size);

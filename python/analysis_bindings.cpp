@@ -163,7 +163,7 @@ void bind_analysis(py::module_& m) {
       py::arg("spec"), py::arg("shells") = py::none(), py::arg("lattice") = py::none(),
       py::arg("prefilter") = py::none(),
       "The exact prefilter of `boxgen prefilter SPEC --shells 0,1 --json` (shells: \"0,1\" or "
-      "[0, 1]) or of `--prefilter NAME` (q1, q2, qfir:K), as a dict.");
+      "[0, 1]) or of `--prefilter NAME` (q1, q2, q1opt, q2opt, qfir:K), as a dict.");
   m.def(
       "metrics",
       [](const Specs& specs, const std::optional<std::string>& lattice,

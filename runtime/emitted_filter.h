@@ -58,6 +58,28 @@ PrefilterTaps prefilter_from(const Tap (&table)[N]) {
   return out;
 }
 
+// The evaluation path of an emitted evaluator on `volume`, with the stencil policy for it: BCC's
+// parity tables where they apply (the fast path, 32-bit offsets where they fit), the general
+// lattice tables everywhere else. A function of its own (not inline) so that a compiled filter
+// can instantiate its two precisions in two translation units compiled at once, declaring the
+// other one `extern template` (loader/filter_loader.cpp).
+template <class Tr, class T>
+std::shared_ptr<const EvaluationPath<T>> emitted_path(const LatticeVolume<T>& volume,
+                                                      int registry_index,
+                                                      const simd::Kernels* kernels) {
+  if constexpr (std::string_view(Tr::kLattice) == "bcc") {
+    if (volume.lattice() == CosetLattice::bcc()) {
+      if (BccStencils<Tr, T, std::int32_t>::fits(volume))
+        return std::make_shared<EmittedSplinePath<Tr, BccStencils<Tr, T, std::int32_t>>>(
+            BccStencils<Tr, T, std::int32_t>(volume), registry_index, kernels);
+      return std::make_shared<EmittedSplinePath<Tr, BccStencils<Tr, T, std::int64_t>>>(
+          BccStencils<Tr, T, std::int64_t>(volume), registry_index, kernels);
+    }
+  }
+  return std::make_shared<EmittedSplinePath<Tr, LatticeStencils<Tr, T>>>(
+      LatticeStencils<Tr, T>(volume), registry_index, kernels);
+}
+
 // The FilterSource of an emitted evaluator. registry_index: its position in
 // generated/registry.hpp, whose filters have SIMD kernels (simd_batch.cpp); -1 for any other
 // header (which this one must not clash with: it includes no registry), which takes the scalar
@@ -97,21 +119,9 @@ class EmittedFilter final : public FilterSource {
   }
 
  private:
-  // The stencil policy for this volume: BCC's parity tables where they apply (the fast path,
-  // 32-bit offsets where they fit), the general lattice tables everywhere else.
   template <class T>
   std::shared_ptr<const EvaluationPath<T>> make_path(const LatticeVolume<T>& volume) const {
-    if constexpr (std::string_view(Tr::kLattice) == "bcc") {
-      if (volume.lattice() == CosetLattice::bcc()) {
-        if (BccStencils<Tr, T, std::int32_t>::fits(volume))
-          return std::make_shared<EmittedSplinePath<Tr, BccStencils<Tr, T, std::int32_t>>>(
-              BccStencils<Tr, T, std::int32_t>(volume), registry_index_, kernels_);
-        return std::make_shared<EmittedSplinePath<Tr, BccStencils<Tr, T, std::int64_t>>>(
-            BccStencils<Tr, T, std::int64_t>(volume), registry_index_, kernels_);
-      }
-    }
-    return std::make_shared<EmittedSplinePath<Tr, LatticeStencils<Tr, T>>>(
-        LatticeStencils<Tr, T>(volume), registry_index_, kernels_);
+    return emitted_path<Tr>(volume, registry_index_, kernels_);
   }
 
   PrefilterTaps q1_, q2_;

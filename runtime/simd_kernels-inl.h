@@ -528,15 +528,27 @@ void orbit_for(int orbit, int order, const T* v, const T* x, T* out, int lanes) 
   if (order == support::kGradient) return run<Tr, support::kGradient>(orbit, v, x, out, lanes);
   run<Tr, support::kHessian>(orbit, v, x, out, lanes);
 }
+// One precision's kernels of Tr into `k` (a compiled filter fills each in its own translation
+// unit: loader/filter_loader.cpp).
+template <class Tr, class T>
+void set_kernels_for(Kernels& k) {
+  constexpr bool kChunks = kStencilSteps<Tr>.consistent;
+  if constexpr (std::is_same_v<T, float>) {
+    k.locate_float = &locate_for<Tr, float>;
+    k.orbit_float = &orbit_for<Tr, float>;
+    k.chunk_float = kChunks ? &chunk_for<Tr, float> : nullptr;
+  } else {
+    k.locate_double = &locate_for<Tr, double>;
+    k.orbit_double = &orbit_for<Tr, double>;
+    k.chunk_double = kChunks ? &chunk_for<Tr, double> : nullptr;
+  }
+}
 template <class Tr>
 Kernels kernels_for() {
-  constexpr bool kChunks = kStencilSteps<Tr>.consistent;
-  return {&locate_for<Tr, float>,
-          &locate_for<Tr, double>,
-          &orbit_for<Tr, float>,
-          &orbit_for<Tr, double>,
-          kChunks ? &chunk_for<Tr, float> : nullptr,
-          kChunks ? &chunk_for<Tr, double> : nullptr};
+  Kernels k{};
+  set_kernels_for<Tr, float>(k);
+  set_kernels_for<Tr, double>(k);
+  return k;
 }
 
 }  // namespace boxgen::runtime::simd::HWY_NAMESPACE

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "apps/boxgen/optimised_prefilter.h"
 #include "generator/error.h"
 #include "generator/prefilter.h"
 
@@ -24,10 +25,12 @@ std::vector<analysis::LatticeTap> taps_of(const Autocorrelation& a) {
 std::vector<analysis::LatticeTap> prefilter_taps_of(const BoxSplineSpec& spec,
                                                     const std::string& name) {
   if (name == "none") return {};
-  // q1, q2 (the leading shells of full order and the next) or qfir:K; InputError otherwise.
+  // q1, q2 (the leading shells of full order and the next), q1opt, q2opt or qfir:K; InputError
+  // otherwise.
+  const Prefilter q = is_optimised_prefilter(name) ? optimised_prefilter(spec, name).prefilter
+                                                   : named_prefilter(spec, name);
   std::vector<analysis::LatticeTap> out;
-  for (const auto& w : named_prefilter(spec, name).weights)
-    out.push_back({w.offset, to_double(w.weight)});
+  for (const auto& w : q.weights) out.push_back({w.offset, to_double(w.weight)});
   return out;
 }
 

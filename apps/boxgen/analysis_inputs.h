@@ -23,8 +23,8 @@ analysis::BoxSplineSpectrum spectrum_of(const BoxSplineSpec& spec);
 double density_scale(const BoxSplineSpec& spec, bool equal);
 analysis::DualLattice dual_of(const BoxSplineSpec& spec);
 std::vector<analysis::LatticeTap> taps_of(const Autocorrelation& a);
-// "none" -> empty; q1, q2 or qfir:K -> its taps (generator/prefilter.h). Throws InputError
-// otherwise ("min" and "interp" are handled by the caller).
+// "none" -> empty; q1, q2, q1opt, q2opt or qfir:K -> its taps (generator/prefilter.h). Throws
+// InputError otherwise ("min" and "interp" are handled by the caller).
 std::vector<analysis::LatticeTap> prefilter_taps_of(const BoxSplineSpec& spec,
                                                     const std::string& name);
 

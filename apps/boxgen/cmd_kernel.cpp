@@ -13,6 +13,7 @@
 #include "apps/boxgen/analysis_inputs.h"
 #include "apps/boxgen/analysis_specs.h"
 #include "apps/boxgen/commands.h"
+#include "apps/boxgen/optimised_prefilter.h"
 #include "generator/autocorr.h"
 #include "generator/error.h"
 #include "generator/interpolation_symbol.h"
@@ -86,11 +87,11 @@ KernelCurves kernel_curves(const FrequencyOptions& o, bool plot) {
     if (s.spec.dimension() != n)
       fail_input("all SPECs of one kernel command must have the same dimension");
   const bool known = o.prefilter == "none" || o.prefilter == "q1" || o.prefilter == "q2" ||
-                     o.prefilter == "min" || o.prefilter == "interp" ||
-                     o.prefilter.starts_with("qfir:");
+                     is_optimised_prefilter(o.prefilter) || o.prefilter == "min" ||
+                     o.prefilter == "interp" || o.prefilter.starts_with("qfir:");
   if (!known)
     fail_input("unknown prefilter '" + o.prefilter.substr(0, 40) +
-               "': expected none, q1, q2, qfir:K, interp or min");
+               "': expected none, q1, q2, q1opt, q2opt, qfir:K, interp or min");
   const std::string direction = !o.direction.empty() ? o.direction : (n == 3 ? "1,1,1" : "1,1");
   const analysis::Vec d = parse_direction(direction, n, "--direction");
   // A plot defaults to the low band of Fig. 13: w from 0.05 to pi/2 (the Nyquist boundary of

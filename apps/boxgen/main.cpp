@@ -93,8 +93,8 @@ int run(int argc, char** argv) {
   std::string prefilter_name;
   prefilter->add_option("--shells", shells, "shells of the lattice, e.g. 0,1 or 0,1,2");
   prefilter->add_option("--prefilter", prefilter_name,
-                        "q1, q2 or qfir:K (the FIR interpolation prefilter on shells 0..K); "
-                        "instead of --shells");
+                        "q1, q2, q1opt, q2opt (the free parameters optimised) or qfir:K (the FIR "
+                        "interpolation prefilter on shells 0..K); instead of --shells");
   auto* autocorr =
       app.add_subcommand("autocorr", "lattice samples of the doubled box spline (autocorrelation)");
   add_common(autocorr, c);
@@ -180,7 +180,7 @@ int run(int argc, char** argv) {
   add_specs(kernel);
   add_density(kernel);
   kernel->add_option("--prefilter", ao.prefilter,
-                     "none | q1 | q2 | qfir:K | interp | min (E_min), default q2");
+                     "none | q1 | q2 | q1opt | q2opt | qfir:K | interp | min (E_min), default q2");
   kernel->add_option("--direction", ao.direction,
                      "direction d of w * d (default 1,1,1, or 1,1 in 2-D)");
   kernel->add_option("--w", ao.w, "abscissae w (comma or space separated)")->delimiter(',');

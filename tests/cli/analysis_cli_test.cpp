@@ -4,7 +4,9 @@
 // computation), the exact a(0) of M7 from docs/design.md §9, and hand-derived facts (E(0) = 0,
 // |psi_hat(0)| = 1, the Nyquist interval of BCC along (1,0,0) is [-pi, pi]).
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -94,6 +96,30 @@ TEST_F(AnalysisCli, KernelTakesInterpAndQfir) {
   EXPECT_NEAR(fir["E"][0].get<double>(), 0, 1e-14);
   EXPECT_LT(fir["E"][2].get<double>(), none["E"][2].get<double>());
   EXPECT_LT(interp["E"][2].get<double>(), none["E"][2].get<double>());
+}
+
+// q2opt: the free parameter printed to 17 digits (it reads back as the double of --json), the
+// weights not exact, the integrated error kernel lowered; kernel takes it and keeps the order
+// (E(0) = 0); q1opt of M8 has no free parameter and is Q^I, exactly.
+TEST_F(AnalysisCli, PrefilterAndKernelTakeTheOptimisedPrefilters) {
+  const auto q = boxgen_json({"prefilter", "m8", "--prefilter", "q2opt", "--json"});
+  EXPECT_FALSE(q["exact"].get<bool>());
+  const auto& o = q["optimisation"];
+  ASSERT_EQ(o["parameters"].size(), 1U);
+  EXPECT_LT(o["integrated_error_kernel"].get<double>(),
+            o["integrated_error_kernel_at_zero"].get<double>());
+  const double t = o["parameters"][0]["value"].get<double>();
+  const std::string text = boxgen_ok({"prefilter", "m8", "--prefilter", "q2opt"});
+  std::array<char, 64> printed{};
+  std::snprintf(printed.data(), printed.size(), "= %.17g\n", t);
+  EXPECT_NE(text.find(printed.data()), std::string::npos) << text;
+  const auto q1 = boxgen_json({"prefilter", "m8", "--prefilter", "q1", "--json"});
+  const auto q1opt = boxgen_json({"prefilter", "m8", "--prefilter", "q1opt", "--json"});
+  EXPECT_TRUE(q1opt["exact"].get<bool>());
+  EXPECT_EQ(q1opt["weights"], q1["weights"]);
+
+  const auto kernel = boxgen_json({"kernel", "m8", "--prefilter", "q2opt", "--w", "0,1", "--json"});
+  EXPECT_NEAR(kernel["E"][0].get<double>(), 0, 1e-14);
 }
 
 // --equal-density: the tricubic B-spline on Z^3 and the same spline scaled by 2 (directions 2 e_i
@@ -417,6 +443,8 @@ INSTANTIATE_TEST_SUITE_P(
                          "vanishes"},
         BadAnalysisInput{
             "QfirOutOfRange", {"kernel", "m7", "--prefilter", "qfir:9", "--w", "1"}, 1, "qfir"},
+        BadAnalysisInput{
+            "UnknownOptimisedPrefilter", {"prefilter", "m7", "--prefilter", "q3opt"}, 1, "q1opt"},
         BadAnalysisInput{
             "ZeroDirection", {"kernel", "m7", "--direction", "0,0,0", "--w", "1"}, 1, "zero"},
         BadAnalysisInput{

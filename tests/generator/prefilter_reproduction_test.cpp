@@ -3,6 +3,8 @@
 // reference region: s(x) = sum_j (f * q)(j) M(x - j) = f(x).
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "generator/prefilter.h"
 #include "tests/generator/derivation_fixture.h"
 
@@ -69,6 +71,53 @@ TEST(PrefilterReproduction, CubicsAreReproducedWithTheFirInterpolationPrefilter)
         f.set_coefficient(e, 1);
         EXPECT_EQ(reconstruct(ref, q, e), f)
             << preset << " qfir:" << k << " monomial " << e[0] << e[1] << e[2];
+      }
+    }
+  }
+}
+
+TEST(PrefilterReproduction, CubicsAreReproducedByEveryMemberOfTheFamilyOfFreeParameters) {
+  // q1opt and q2opt are members of prefilter_family with optimised double parameters taken
+  // exactly: every member keeps the order, so the moment conditions hold exactly for them.
+  for (const char* preset : {"m7", "m8", "m12"}) {
+    const Derivation& a = derivation_of(preset);
+    const auto& ref = a.structure.references.at(0);
+    for (int which : {1, 2}) {
+      const PrefilterFamily family =
+          prefilter_family(a.spec, quasi_interpolation_shells(a.spec, which));
+      RatVec t;
+      for (size_t i = 0; i < family.basis.size(); ++i)  // an arbitrary double and a rational
+        t.push_back(i % 2 ? Rational(-7) / 5 : exact_rational(0.12345678912345678));
+      const Prefilter q = family_member(family, t);
+      for (const auto& e : monomial_exponents(3, 3)) {
+        if (e[0] + e[1] + e[2] > 3) break;
+        Poly f(3, 3);
+        f.set_coefficient(e, 1);
+        EXPECT_EQ(reconstruct(ref, q, e), f)
+            << preset << " q" << which << " family monomial " << e[0] << e[1] << e[2];
+      }
+    }
+  }
+}
+
+TEST(PrefilterReproduction, TheFamilyHoldsQ1AndQ2AndSpansTheFreeWeights) {
+  // The free parameters are weights of whole orbits: with them at their value in derive_prefilter
+  // (zero where it set them to zero, the common weight otherwise) the member is that prefilter.
+  for (const char* preset : {"m7", "m8", "m12"}) {
+    const BoxSplineSpec spec = parse_spec(preset);
+    for (int which : {1, 2}) {
+      const auto shells = quasi_interpolation_shells(spec, which);
+      const PrefilterFamily family = prefilter_family(spec, shells);
+      const Prefilter q = derive_prefilter(spec, shells);
+      std::map<IntVec, Rational> tap;
+      for (const auto& w : q.weights) tap[w.offset] = w.weight;
+      RatVec t;
+      for (int orbit : family.free_orbits) t.push_back(tap.at(family.orbits[orbit].front()));
+      const Prefilter member = family_member(family, t);
+      ASSERT_EQ(member.weights.size(), q.weights.size()) << preset << " q" << which;
+      for (size_t i = 0; i < q.weights.size(); ++i) {
+        EXPECT_EQ(member.weights[i].offset, q.weights[i].offset);
+        EXPECT_EQ(member.weights[i].weight, q.weights[i].weight) << preset << " q" << which;
       }
     }
   }

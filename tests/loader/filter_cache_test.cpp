@@ -206,7 +206,7 @@ TEST_F(FilterCacheTest, LinksInTheCacheAreNeverFollowed) {
   const std::string cxx = compiler("cxx", "echo oops; exit 1");
   const std::string key = key_for(cxx);
   const fs::path victim = dir_ / "victim";
-  for (const char* ending : {".log", ".cpp", ".so", ".json", ".glsl", "_double.glsl",
+  for (const char* ending : {".log", ".cpp", "_double.cpp", ".so", ".json", ".glsl", "_double.glsl",
                              "_buffered.glsl", "_buffered_double.glsl", ".lock"}) {
     const fs::path cache = dir_ / ("cache" + std::string(ending));
     fs::create_directory(cache);
@@ -229,11 +229,11 @@ TEST_F(FilterCacheTest, LinksInTheCacheAreNeverFollowed) {
 TEST_F(FilterCacheTest, CompilerThatWritesNothingCommitsNothing) {
   const fs::path cache = dir_ / "cache";
   const std::string what = refusal(options(cache, compiler("true", "exit 0")));
-  EXPECT_NE(what.find("exited 0 but wrote no shared object"), std::string::npos) << what;
+  EXPECT_NE(what.find("exited 0 but wrote no object file"), std::string::npos) << what;
   // A file that is not an object is no better.
-  EXPECT_NE(
-      refusal(options(cache, compiler("text", "echo text > \"$out\""))).find("wrote no shared"),
-      std::string::npos);
+  EXPECT_NE(refusal(options(cache, compiler("text", "echo text > \"$out\"")))
+                .find("wrote no object file"),
+            std::string::npos);
   for (const auto& e : fs::directory_iterator(cache)) {
     const std::string name = e.path().filename().string();
     EXPECT_TRUE(name.ends_with(".cpp") || name.ends_with(".lock") || name.ends_with(".log"))

@@ -16,6 +16,7 @@
 #include <set>
 #include <sstream>
 #include <thread>
+#include <type_traits>
 
 #include "../support/scratch_directory.h"
 #include "generator/approximation_order.h"
@@ -100,17 +101,21 @@ gen::Rational generic(std::mt19937_64& rng, int range, long denominator) {
 
 // The filter on a volume that is 0 except for a 1 at lattice point j: s(x) = M(x - j), which the
 // recurrence gives exactly as |det G| M^c_Xi(x - j). Values, at 40 generic points around j.
+// T: the precision of the volume and the path (a compiled filter builds each in a translation
+// unit of its own); float's tolerance is its rounding of a few hundred operations.
+template <class T = double>
 void expect_exact_on_delta(const rt::SplineFilter& f, const std::string& spec,
                            const std::string& lattice) {
+  const double tolerance = std::is_same_v<T, float> ? 2e-5 : 1e-13;
   const gen::BoxSplineSpec s = gen::parse_spec(spec, lattice);
   const rt::CosetLattice& l = f.lattice();
   const int n = 12;
-  rt::LatticeVolume<double> v(l, {n, n, n}, 1.0, {0, 0, 0});
+  rt::LatticeVolume<T> v(l, {n, n, n}, 1.0, {0, 0, 0});
   const rt::Offset& o = l.offsets()[0];
   const rt::LatticePoint j{o[0] + l.period() * n / 2, o[1] + l.period() * n / 2,
                            o[2] + l.period() * n / 2};
-  v.samples()[static_cast<std::size_t>(v.storage_offset(j))] = 1.0;
-  const rt::Reconstructor<double> r(v, f);
+  v.samples()[static_cast<std::size_t>(v.storage_offset(j))] = 1;
+  const rt::Reconstructor<T> r(v, f);
   std::mt19937_64 rng(7);
   const long denominators[3] = {1009, 1013, 1019};
   int checked = 0;
@@ -123,12 +128,13 @@ void expect_exact_on_delta(const rt::SplineFilter& f, const std::string& spec,
     const rt::Vec3 x{static_cast<double>(j[0]) + gen::to_double(d[0]),
                      static_cast<double>(j[1]) + gen::to_double(d[1]),
                      static_cast<double>(j[2]) + gen::to_double(d[2])};
-    EXPECT_NEAR(r.value(x), exact, 1e-13) << spec << " at offset " << gen::to_double(d[0]) << " "
-                                          << gen::to_double(d[1]) << " " << gen::to_double(d[2]);
+    EXPECT_NEAR(r.value(x), exact, tolerance)
+        << spec << " at offset " << gen::to_double(d[0]) << " " << gen::to_double(d[1]) << " "
+        << gen::to_double(d[2]);
     std::vector<rt::Vec3> points{x};
-    std::vector<double> values(1);
+    std::vector<T> values(1);
     r.evaluate(points, values);  // the batch path (SIMD where the filter has kernels)
-    EXPECT_NEAR(values[0], exact, 1e-13);
+    EXPECT_NEAR(values[0], exact, tolerance);
     ++checked;
   }
   EXPECT_GT(checked, 30);
@@ -283,6 +289,17 @@ TEST_F(LoaderTest, BccSpecIsExactReproducesAndIsCached) {
   EXPECT_EQ(fs::last_write_time(so), time);
   EXPECT_EQ(fs::file_size(so), size);
   expect_exact_on_delta(again, kBccSpec, "bcc");
+  expect_exact_on_delta<float>(again, kBccSpec, "bcc");
+  // The sources (the float half with the glue, the double half) are written for the compile and
+  // for the curious, and never read back: edited ones change nothing that is loaded.
+  const fs::path double_half = fs::path(so).replace_extension().string() + "_double.cpp";
+  ASSERT_TRUE(fs::is_regular_file(double_half));
+  ASSERT_TRUE(fs::is_regular_file(fs::path(so).replace_extension(".cpp")));
+  for (const fs::path& source : {double_half, fs::path(so).replace_extension(".cpp")})
+    replace_with_prefix(source, std::string("#error planted\n"), 15);
+  const rt::SplineFilter edited_sources = load_filter(kBccSpec, "bcc", options());
+  EXPECT_EQ(fs::last_write_time(so), time);
+  expect_exact_on_delta(edited_sources, kBccSpec, "bcc");
   // Reordered and with directions negated (issue 33): the same entry, loaded without a compile,
   // named as given, and exact against the recurrence of the directions as given.
   const rt::SplineFilter reordered = load_filter(kBccReordered, "bcc", options());
@@ -322,9 +339,14 @@ TEST_F(LoaderTest, SlowTruncatedObjectIsRebuilt) {
   // Put in place as another program would (a new file renamed over it): truncating the file in
   // place would pull the pages from under this process, which has the object mapped.
   replace_with_prefix(so, so, size / 2);
+  // The rebuild writes its sources again rather than compiling what it finds (here a double
+  // half that cannot compile).
+  const fs::path double_half = fs::path(so).replace_extension().string() + "_double.cpp";
+  replace_with_prefix(double_half, std::string("#error planted\n"), 15);
   const rt::SplineFilter rebuilt = load_filter(kBccSpec, "bcc", options());
   EXPECT_EQ(fs::file_size(so), size);
   expect_exact_on_delta(rebuilt, kBccSpec, "bcc");
+  expect_exact_on_delta<float>(rebuilt, kBccSpec, "bcc");
 }
 
 TEST_F(LoaderTest, SlowFccSpecIsExactAndReproduces) {
@@ -395,9 +417,9 @@ TEST_F(LoaderTest, SlowConcurrentFirstUsesBothSucceed) {
     EXPECT_EQ(name.find(".tmp-"), std::string::npos) << e.path();
     endings.insert(name.substr(std::min(name.size(), name.find_first_of("._"))));
   }
-  EXPECT_EQ(endings,
-            (std::multiset<std::string>{".so", ".cpp", ".json", ".lock", ".glsl", "_double.glsl",
-                                        "_buffered.glsl", "_buffered_double.glsl"}));
+  EXPECT_EQ(endings, (std::multiset<std::string>{".so", ".cpp", "_double.cpp", ".json", ".lock",
+                                                 ".glsl", "_double.glsl", "_buffered.glsl",
+                                                 "_buffered_double.glsl"}));
 }
 
 }  // namespace

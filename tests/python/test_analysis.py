@@ -54,6 +54,15 @@ def test_prefilter_equals_cli():
     assert weights[(0, 0, 0)] == "5/3"
 
 
+def test_optimised_prefilter_equals_cli():
+    # q2opt: one free parameter of M8's Q^II shells chosen by the integrated error kernel.
+    py = boxgen.prefilter("m8", prefilter="q2opt")
+    assert py == cli_json("prefilter", "m8", "--prefilter", "q2opt")
+    assert py["exact"] is False and len(py["optimisation"]["parameters"]) == 1
+    o = py["optimisation"]
+    assert o["integrated_error_kernel"] < o["integrated_error_kernel_at_zero"]
+
+
 def test_metrics_equals_cli():
     # 2-D matrices: the 3-D quadratures take seconds.
     py = boxgen.metrics([PLANAR, "1,0; 0,1; 1,1"])

@@ -1,0 +1,28 @@
+// q1opt and q2opt (docs/design.md §19): the prefilters on the shells of q1 and q2 (one weight per
+// symmetry orbit) whose free parameters minimise the integrated error kernel over the Nyquist
+// region, joining the exact family of the generator (generator/prefilter.h) and the numerical
+// optimisation of the analysis (analysis/optimal_prefilter.h).
+#pragma once
+#include <string>
+#include <string_view>
+
+#include "analysis/optimal_prefilter.h"
+#include "generator/prefilter.h"
+
+namespace boxgen::cli {
+
+struct OptimisedPrefilter {
+  // The weights particular + sum_i t_i basis_i with t the optimised doubles taken exactly: exact
+  // rationals that satisfy the moment conditions exactly. The programs print and use their
+  // nearest doubles.
+  generator::Prefilter prefilter;
+  generator::PrefilterFamily family;
+  analysis::OptimisedParameters optimisation;
+};
+
+// Is `name` q1opt or q2opt?
+bool is_optimised_prefilter(std::string_view name);
+// q1opt or q2opt of the SPEC; InputError (one line) like named_prefilter.
+OptimisedPrefilter optimised_prefilter(const generator::BoxSplineSpec& spec, std::string_view name);
+
+}  // namespace boxgen::cli
