@@ -4,7 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "generator/derivation.h"
-#include "generator/emitter.h"
+#include "generator/codegen/emitter.h"
 #include "generator/spec.h"
 
 namespace {

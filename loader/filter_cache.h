@@ -45,7 +45,7 @@ std::string hash_text(const std::string& text);
 struct EntryInfo {
   std::string spec, lattice, rows, stamp, so_hash, glsl_hash, glsl_double_hash;
   // The GLSL evaluators with their run-time-indexed tables in a storage block, and the block's
-  // contents (generator/glsl_evaluator.h): the GL device's data beside the text.
+  // contents (generator/codegen/targets/glsl_evaluator.h): the GL device's data beside the text.
   std::string glsl_buffered_hash, glsl_buffered_double_hash;
   std::vector<int> glsl_block;
   std::uintmax_t so_size = 0;

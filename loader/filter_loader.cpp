@@ -15,7 +15,7 @@
 
 #include "boxgen/version.h"
 #include "generator/derivation.h"
-#include "generator/emitter.h"
+#include "generator/codegen/emitter.h"
 #include "generator/error.h"
 #include "generator/int_linalg.h"
 #include "generator/spec.h"

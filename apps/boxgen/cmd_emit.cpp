@@ -9,9 +9,9 @@
 
 #include "apps/boxgen/commands.h"
 #include "apps/boxgen/progress.h"
-#include "generator/emitter.h"
+#include "generator/codegen/emitter.h"
 #include "generator/error.h"
-#include "generator/evaluator_name.h"
+#include "generator/codegen/evaluator_name.h"
 #include "generator/prefilter.h"
 #include "support/output_file.h"
 
@@ -57,7 +57,7 @@ void print_report(const EmissionReport& r) {
   }
 }
 
-// --name becomes a namespace, file names and function prefixes: generator/evaluator_name.h.
+// --name becomes a namespace, file names and function prefixes: generator/codegen/evaluator_name.h.
 void check_emit_name(const std::string& name) { check_evaluator_name(name); }
 
 // The target and precision, checked before the derivation.

@@ -1,5 +1,7 @@
-// The tree's conventions that docs/testing.md states: every generator module generator/<m>.cpp has
-// its test file tests/generator/<m>_test.cpp.
+// The tree's conventions that docs/testing.md states: every generator module
+// generator/<path>/<m>.cpp, in generator/ and in its subfolders (codegen/ir, codegen/strategies,
+// codegen/targets, ...), has its test file tests/generator/<path>/<m>_test.cpp. Build-time tools
+// (a folder named tools/) are tested by what they write, not by a file of their own.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -10,15 +12,23 @@ namespace fs = std::filesystem;
 
 TEST(TreeConventions, EveryGeneratorModuleHasATestFileNamedAfterIt) {
   const fs::path root = BOXGEN_SOURCE_DIR;
-  int modules = 0;
-  for (const auto& entry : fs::directory_iterator(root / "generator")) {
-    if (entry.path().extension() != ".cpp") continue;
+  const fs::path generator = root / "generator";
+  int modules = 0, nested = 0;
+  for (auto it = fs::recursive_directory_iterator(generator); it != fs::end(it); ++it) {
+    if (it->is_directory() && it->path().filename() == "tools") {
+      it.disable_recursion_pending();
+      continue;
+    }
+    if (it->path().extension() != ".cpp") continue;
     ++modules;
-    const std::string module = entry.path().stem().string();
-    EXPECT_TRUE(fs::exists(root / "tests" / "generator" / (module + "_test.cpp")))
-        << "generator/" << module << ".cpp has no tests/generator/" << module << "_test.cpp";
+    const fs::path relative = fs::relative(it->path(), generator);
+    if (relative.has_parent_path()) ++nested;
+    const fs::path test = relative.parent_path() / (it->path().stem().string() + "_test.cpp");
+    EXPECT_TRUE(fs::exists(root / "tests" / "generator" / test))
+        << "generator/" << relative.string() << " has no tests/generator/" << test.string();
   }
   EXPECT_GT(modules, 20);
+  EXPECT_GT(nested, 5);  // the subfolders are walked
 }
 
 }  // namespace

@@ -24,7 +24,7 @@ TEST(BBForm, RoundTripOnEveryReferenceRegion) {
   }
 }
 
-// The affine forms the Bernstein emission writes (generator/polynomial_code.cpp): exact, one per
+// The affine forms the Bernstein emission writes (generator/codegen/strategies/polynomial_code.cpp): exact, one per
 // vertex, 1 at their vertex and 0 at the others, summing to 1 everywhere.
 TEST(BBForm, BarycentricFormsAreExactAffineCoordinates) {
   int simplices = 0;
