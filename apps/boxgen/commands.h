@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "generator/codegen/emitter.h"
 #include "generator/derivation.h"
-#include "generator/emitter.h"
 #include "generator/piecewise_form.h"
 #include "generator/rational.h"
 
