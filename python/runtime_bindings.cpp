@@ -228,28 +228,39 @@ rt::Vec3 spacing_of(const py::handle& spacing) {
 // linear part must be diagonal (the runtime's volumes are axis-aligned; an oblique one is
 // refused as the readers refuse oblique files); a negative step reverses that axis of the
 // Cartesian samples (as the NIfTI reader does), keeping every value's world position.
-void from_affine(const py::handle& affine, const rt::CosetLattice& lattice, const rt::Sizes& sizes,
-                 std::vector<double>& storage, rt::Vec3& steps, rt::Vec3& origin) {
+// A 4x4 (or 3x4) affine argument, as nibabel's img.affine: finite, last row (0, 0, 0, 1).
+rt::Affine affine_arg(const py::handle& affine) {
   const py::array_t<double> a = real_array(affine, "affine");
   if (a.ndim() != 2 || (a.shape(0) != 4 && a.shape(0) != 3) || a.shape(1) != 4)
     throw py::value_error(
         fmt::format("affine must be a 4 x 4 (or 3 x 4) matrix, got shape {}", shape_text(a)));
   if (a.shape(0) == 4 && (a.at(3, 0) != 0 || a.at(3, 1) != 0 || a.at(3, 2) != 0 || a.at(3, 3) != 1))
     throw py::value_error("affine's last row must be (0, 0, 0, 1)");
+  rt::Affine out;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 4; ++c) {
       if (!std::isfinite(a.at(r, c)))
         throw py::value_error(fmt::format("affine[{}, {}] is not finite", r, c));
-      if (c < 3 && c != r && a.at(r, c) != 0)
+      const auto ru = static_cast<std::size_t>(r), cu = static_cast<std::size_t>(c);
+      (c < 3 ? out.linear[ru][cu] : out.translation[ru]) = a.at(r, c);
+    }
+  return out;
+}
+
+void from_affine(const py::handle& affine, const rt::CosetLattice& lattice, const rt::Sizes& sizes,
+                 std::vector<double>& storage, rt::Vec3& steps, rt::Vec3& origin) {
+  const rt::Affine a = affine_arg(affine);
+  for (std::size_t r = 0; r < 3; ++r)
+    for (std::size_t c = 0; c < 3; ++c)
+      if (c != r && a.linear[r][c] != 0)
         throw py::value_error(fmt::format(
             "affine[{}, {}] = {}: the affine is oblique (or permutes the axes), but volumes are "
-            "axis-aligned; resample it onto an axis-aligned grid first (scipy.ndimage."
-            "affine_transform, nibabel.processing.resample_from_to)",
-            r, c, a.at(r, c)));
-    }
-  for (int r = 0; r < 3; ++r) {
-    steps[static_cast<std::size_t>(r)] = a.at(r, r);
-    origin[static_cast<std::size_t>(r)] = a.at(r, 3);
+            "axis-aligned; resample it onto an axis-aligned grid first (boxgen.resample with "
+            "affine= or like=, scipy.ndimage.affine_transform)",
+            r, c, a.linear[r][c]));
+  for (std::size_t r = 0; r < 3; ++r) {
+    steps[r] = a.linear[r][r];
+    origin[r] = a.translation[r];
   }
   const bool reversed = steps[0] < 0 || steps[1] < 0 || steps[2] < 0;
   if (reversed && lattice.coset_count() != 1)
@@ -408,19 +419,52 @@ rt::Sizes shape_of(const std::variant<int, std::array<int, 3>>& shape) {
   return {s[0], s[1], s[2]};
 }
 
-// The grid of lo..hi with `shape` points, lo and hi defaulting to the filter's default_box.
-rt::CartesianGrid grid_of(const Volume& volume, const Filter& f, const py::handle& lo,
-                          const py::handle& hi, const rt::Sizes& shape) {
-  if (lo.is_none() != hi.is_none()) throw py::value_error("give both lo and hi, or neither");
-  const rt::Box box =
-      lo.is_none() ? rt::default_box(volume, f.filter) : rt::Box{three(lo, "lo"), three(hi, "hi")};
+// Where the output grid lies: lo..hi, or its voxel-to-world affine, or an image's grid.
+struct GridArgs {
+  py::handle lo, hi, affine, like;
+  std::optional<std::variant<int, std::array<int, 3>>> shape;
+};
+
+// The grid of lo..hi with `shape` points (default 64 per axis), lo and hi defaulting to the
+// filter's default_box; or `shape` points whose world positions are affine (i, j, k, 1), oblique
+// or not; or the grid and affine of the image file `like` (NIfTI or NRRD, oblique included). The
+// volume is axis-aligned, so world points are its own coordinates (CartesianGrid::to_volume).
+rt::CartesianGrid grid_of(const Volume& volume, const Filter& f, const GridArgs& g) {
+  if (g.lo.is_none() != g.hi.is_none()) throw py::value_error("give both lo and hi, or neither");
+  const int given = static_cast<int>(!g.lo.is_none()) + static_cast<int>(!g.affine.is_none()) +
+                    static_cast<int>(!g.like.is_none());
+  if (given > 1) throw py::value_error("give one of lo and hi, affine or like");
+  const rt::Sizes shape = shape_of(g.shape.value_or(64));
+  if (!g.like.is_none()) {
+    if (g.shape) throw py::value_error("like gives the grid's shape: give like or shape, not both");
+    const std::string path = py::str(g.like);
+    rt::NrrdReadLimits limits;
+    limits.allow_non_finite = true;
+    limits.allow_oblique = true;
+    rt::SourceSamples source;
+    const Volume image = [&] {
+      py::gil_scoped_release release;
+      return rt::read_volume_file<double>(path, limits, &source);
+    }();
+    if (image.coset_count() != 1)
+      throw py::value_error(fmt::format("like '{}' is a {} volume: its grid must be Cartesian",
+                                        rt::nrrd_checks::printable(path), image.lattice().name()));
+    return {image.sizes(), image.axis_spacing(), image.origin(), source.frame};
+  }
+  if (!g.affine.is_none()) {
+    rt::CartesianGrid grid = rt::grid_over({{0, 0, 0}, {1, 1, 1}}, shape);  // checks the shape
+    grid.spacing = {1, 1, 1};
+    grid.origin = {0, 0, 0};
+    grid.to_volume = affine_arg(g.affine);
+    return grid;
+  }
+  const rt::Box box = g.lo.is_none() ? rt::default_box(volume, f.filter)
+                                     : rt::Box{three(g.lo, "lo"), three(g.hi, "hi")};
   return rt::grid_over(box, shape);
 }
 
 py::array_t<double> resample(const VolumePtr& volume, const Filter& f,
-                             const std::optional<std::string>& prefilter, const py::handle& lo,
-                             const py::handle& hi,
-                             const std::variant<int, std::array<int, 3>>& shape,
+                             const std::optional<std::string>& prefilter, const GridArgs& where,
                              const std::optional<std::array<std::array<int, 3>, 2>>& block,
                              const std::optional<std::string>& boundary) {
   const Prefiltering q = prefiltering(prefilter, boundary);
@@ -430,7 +474,7 @@ py::array_t<double> resample(const VolumePtr& volume, const Filter& f,
     py::gil_scoped_release release;
     v = &prepared(*volume, f, q, storage);
   }
-  const rt::CartesianGrid grid = grid_of(*v, f, lo, hi, shape_of(shape));
+  const rt::CartesianGrid grid = grid_of(*v, f, where);
   const rt::GridBlock b =
       block ? rt::GridBlock{(*block)[0], (*block)[1]} : rt::GridBlock{{0, 0, 0}, grid.sizes};
   rt::CartesianVolume<double> out;
@@ -762,15 +806,21 @@ void bind_runtime(py::module_& m) {
       "resample",
       [](const VolumePtr& volume, const Filter& f, const std::optional<std::string>& prefilter,
          const py::object& lo, const py::object& hi,
-         const std::variant<int, std::array<int, 3>>& shape,
-         const std::optional<std::string>& boundary) {
-        return resample(volume, f, prefilter, lo, hi, shape, std::nullopt, boundary);
+         const std::optional<std::variant<int, std::array<int, 3>>>& shape,
+         const std::optional<std::string>& boundary, const py::object& affine,
+         const py::object& like) {
+        return resample(volume, f, prefilter, GridArgs{lo, hi, affine, like, shape}, std::nullopt,
+                        boundary);
       },
       py::arg("volume"), py::arg("filter"), py::arg("prefilter") = py::none(),
-      py::arg("lo") = py::none(), py::arg("hi") = py::none(), py::arg("shape") = 64,
-      py::arg("boundary") = py::none(),
-      "The spline on the grid lo + (i, j, k) (hi - lo) / (shape - 1): an array of that shape "
-      "(lo, hi default to filter.default_box of the coefficients after prefilter and boundary)");
+      py::arg("lo") = py::none(), py::arg("hi") = py::none(), py::arg("shape") = py::none(),
+      py::arg("boundary") = py::none(), py::kw_only(), py::arg("affine") = py::none(),
+      py::arg("like") = py::none(),
+      "The spline on the grid lo + (i, j, k) (hi - lo) / (shape - 1) (shape default 64; lo, hi "
+      "default to filter.default_box of the coefficients after prefilter and boundary), or at "
+      "the world points affine @ (i, j, k, 1) (any 4x4 voxel-to-world affine, oblique included), "
+      "or on the grid of the image file like= (its shape and affine, as nibabel's): an array of "
+      "the grid's shape");
   m.def(
       "_resample_block",
       [](const VolumePtr& volume, const Filter& f, const std::optional<std::string>& prefilter,
@@ -778,7 +828,8 @@ void bind_runtime(py::module_& m) {
          const std::variant<int, std::array<int, 3>>& shape,
          const std::array<std::array<int, 3>, 2>& block,
          const std::optional<std::string>& boundary) {
-        return resample(volume, f, prefilter, lo, hi, shape, block, boundary);
+        return resample(volume, f, prefilter, GridArgs{lo, hi, py::none(), py::none(), shape},
+                        block, boundary);
       },
       py::arg("volume"), py::arg("filter"), py::arg("prefilter"), py::arg("lo"), py::arg("hi"),
       py::arg("shape"), py::arg("block"), py::arg("boundary") = py::none(),

@@ -3,9 +3,11 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
+#include "runtime/affine.h"
 #include "runtime/lattice_volume.h"
 
 namespace boxgen::runtime {
@@ -18,6 +20,9 @@ struct CartesianVolume {
   Vec3 spacing{};
   Vec3 origin{};
   std::vector<T> values;  // sizes[0] * sizes[1] * sizes[2], x fastest
+  // An oblique grid's map from the frame of `position` to world (as SourceSamples::frame);
+  // nothing when that frame is the world. Writers store the composed affine.
+  std::optional<Affine> frame{};
 
   std::size_t index(int i, int j, int k) const noexcept {
     return static_cast<std::size_t>(i) +

@@ -15,7 +15,9 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <type_traits>
@@ -276,6 +278,57 @@ void refuse_foreign_file(const fs::path& path) {
         nrrd_checks::printable(path.string())));
 }
 
+namespace {
+
+// The grid's geometry: a diagonal affine (nifti_header::oblique_entry), translation = world point
+// of voxel (0, 0, 0); without sform or qform the spacing is pixdim as the file holds it. An
+// oblique or permuted affine, where allowed, gives the voxel grid in its own frame (steps = the
+// column lengths, origin 0) and the frame's map to world, which keeps the file's affine.
+struct Geometry {
+  Vec3 steps{}, origin{};
+  std::optional<Affine> frame;
+};
+
+// "" and `out`, or why the file's geometry is refused.
+std::string read_geometry(const nifti_image& im, const nifti_header::RawHeader& raw,
+                          bool allow_oblique, Geometry& out) {
+  if (im.sform_code <= 0 && im.qform_code <= 0) {
+    out.steps = {raw.pixdim[1], raw.pixdim[2], raw.pixdim[3]};
+    return {};
+  }
+  const char* which = nullptr;
+  const nifti_dmat44& m = world_affine(im, which);
+  double rows[3][4];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) rows[r][c] = m.m[r][c];
+  std::string oblique = nifti_header::oblique_entry(rows, which);
+  if (oblique.empty()) {
+    for (int a = 0; a < 3; ++a) {
+      out.steps[a] = m.m[a][a];
+      out.origin[a] = m.m[a][3];
+    }
+    return {};
+  }
+  if (!allow_oblique) return oblique;
+  Affine map;
+  for (int c = 0; c < 3; ++c) {
+    out.steps[c] = std::hypot(m.m[0][c], m.m[1][c], m.m[2][c]);
+    if (!(std::isfinite(out.steps[c]) && out.steps[c] > 0))
+      return fmt::format("its {} has a zero or non-finite column {}", which, c);
+    for (int r = 0; r < 3; ++r) map.linear[r][c] = m.m[r][c] / out.steps[c];
+  }
+  for (int r = 0; r < 3; ++r) map.translation[r] = m.m[r][3];
+  try {
+    (void)map.inverse();
+  } catch (const std::invalid_argument&) {
+    return fmt::format("its {} is singular (its voxel axes are not independent)", which);
+  }
+  out.frame = map;
+  return {};
+}
+
+}  // namespace
+
 template <class T>
 LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
                             SourceSamples* source) {
@@ -330,24 +383,14 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
       !why.empty())
     fail(why);
 
-  // Geometry: a diagonal affine (nifti_header::oblique_entry), translation = world point of voxel
-  // (0, 0, 0). Without sform or qform the spacing is pixdim as the file holds it.
-  Vec3 steps{}, origin{};
-  if (im.sform_code <= 0 && im.qform_code <= 0) {
-    steps = {raw.pixdim[1], raw.pixdim[2], raw.pixdim[3]};
-  } else {
-    const char* which = nullptr;
-    const nifti_dmat44& m = world_affine(im, which);
-    double rows[3][4];
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 4; ++c) rows[r][c] = m.m[r][c];
-    if (const std::string oblique = nifti_header::oblique_entry(rows, which); !oblique.empty())
-      fail(oblique);
-    for (int a = 0; a < 3; ++a) {
-      steps[a] = m.m[a][a];
-      origin[a] = m.m[a][3];
-    }
-  }
+  Geometry geometry;
+  if (const std::string why = read_geometry(im, raw, limits.allow_oblique, geometry); !why.empty())
+    fail(why);
+  if (geometry.frame && !source)
+    throw std::logic_error("read_nifti: allow_oblique needs a SourceSamples");
+  Vec3& steps = geometry.steps;
+  Vec3& origin = geometry.origin;
+  const std::optional<Affine>& frame = geometry.frame;
   for (int a = 0; a < 3; ++a)
     if (!std::isfinite(steps[a]) || steps[a] == 0 || !std::isfinite(origin[a]))
       fail(
@@ -371,9 +414,12 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
   if (!limits.allow_non_finite)
     if (const std::string why = nrrd_checks::check_finite<T>(samples, 1, sizes); !why.empty())
       fail(why);
-  orient_axes_positive(std::span<T>(samples), sizes, steps, origin);
+  if (!frame) orient_axes_positive(std::span<T>(samples), sizes, steps, origin);
   LatticeVolume<T> volume(CosetLattice::cartesian(), sizes, steps, origin, std::move(samples));
-  if (source) *source = describe_samples<T>(volume.samples(), type);
+  if (source) {
+    *source = describe_samples<T>(volume.samples(), type);
+    source->frame = frame;
+  }
   return volume;
 }
 

@@ -7,7 +7,8 @@
 // the file's (RAS+ for scanner data), with no change of handedness. The affine must be diagonal
 // (axis-aligned voxels with any spacings, anisotropic included); an axis with a negative spacing
 // is stored flipped (source_samples.h), which keeps every value at its world point. An oblique or
-// permuted affine is refused: the volume would have to be resampled.
+// permuted affine is refused unless NrrdReadLimits::allow_oblique: the volume is then its voxel
+// grid in its own frame and SourceSamples::frame maps that frame to world.
 //
 // Samples: int8, uint8, int16, uint16, int32, uint32, float32, float64, converted to T; a scale
 // slope other than 0 applies value = slope x + intercept (to every type, as the NIfTI standard

@@ -72,6 +72,11 @@ struct NrrdReadLimits {
   // ("a bcc volume is a 4-D NRRD"). A file that says another lattice reads as what it says:
   // the filter refuses it (SplineFilter::check_lattice), naming both.
   std::optional<CosetLattice> lattice;
+  // Accept an oblique or axis-permuting NIfTI affine (a scanner's tilted slices): the volume is
+  // then read in its own frame and the frame's map to world is SourceSamples::frame (the reader
+  // needs a SourceSamples to return it). Commands that do not map world points through the frame
+  // leave this false: such a file is then refused, naming its affine.
+  bool allow_oblique = false;
 };
 
 // Throws NrrdError (one line) unless `path` may be written (output_file.h: a regular file, or a

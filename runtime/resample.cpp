@@ -100,6 +100,12 @@ Vec3 grid_point(const CartesianGrid& grid, int i, int j, int k) noexcept {
           grid.origin[2] + k * grid.spacing[2]};
 }
 
+// The grid point (i, j, k) in the volume's frame, where it is evaluated.
+Vec3 volume_point(const CartesianGrid& grid, int i, int j, int k) noexcept {
+  const Vec3 p = grid_point(grid, i, j, k);
+  return grid.to_volume ? grid.to_volume->apply(p) : p;
+}
+
 // out.values (allocated here) from the spline at the block's grid points, whole z-slices of the
 // block per batch (about 2^16 points): all cores at work, bounded scratch memory. A point within
 // rounding of the region's face that still fails names its slices; a value that is not finite is
@@ -120,7 +126,7 @@ void fill_by_slices(CartesianVolume<T>& out, const CartesianGrid& grid, const Gr
       for (int j = 0; j < n[1]; ++j)
         for (int i = 0; i < n[0]; ++i)
           points.push_back(
-              grid_point(grid, block.begin[0] + i, block.begin[1] + j, block.begin[2] + k));
+              volume_point(grid, block.begin[0] + i, block.begin[1] + j, block.begin[2] + k));
     const std::span<T> values(out.values.data() + out.index(0, 0, k0), points.size());
     try {
       if (evaluate)
@@ -214,18 +220,29 @@ CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& 
                       block.begin[a], block.end[a], a, grid.sizes[a]));
   for (int a = 0; a < 3; ++a) out.sizes[a] = block.end[a] - block.begin[a];
   out.origin = grid_point(grid, block.begin[0], block.begin[1], block.begin[2]);
-  // The first and last points of the block, computed as the evaluation will see them, must lie
-  // in the evaluable region; then every point between them does (the region is a box).
+  // The eight corners of the block, computed as the evaluation will see them, must lie in the
+  // evaluable region; then every point between them does (the region is a box, the block's image
+  // in the volume's frame a parallelepiped spanned by its corners).
   const LatticeRegion region = lattice_region(volume, f);
-  const Box corners{out.origin,
-                    grid_point(grid, block.end[0] - 1, block.end[1] - 1, block.end[2] - 1)};
-  const Vec3 first = volume.to_lattice(corners.min), last = volume.to_lattice(corners.max);
-  for (int a = 0; a < 3; ++a)
-    if (!(first[a] >= region.lo[a] && last[a] < region.hi[a]))
-      throw std::out_of_range(fmt::format(
-          "resampling grid {} leaves the region where the {} stencil lies inside the volume, {}",
-          describe(corners), f.name(),
-          describe({volume.to_world(region.lo), volume.to_world(region.hi)})));
+  Box corners{};
+  bool inside = true;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Sizes at{(corner & 1) ? block.end[0] - 1 : block.begin[0],
+                   (corner & 2) ? block.end[1] - 1 : block.begin[1],
+                   (corner & 4) ? block.end[2] - 1 : block.begin[2]};
+    const Vec3 p = volume_point(grid, at[0], at[1], at[2]);
+    const Vec3 x = volume.to_lattice(p);
+    for (int a = 0; a < 3; ++a) {
+      corners.min[a] = corner == 0 ? p[a] : std::min(corners.min[a], p[a]);
+      corners.max[a] = corner == 0 ? p[a] : std::max(corners.max[a], p[a]);
+      inside = inside && x[a] >= region.lo[a] && x[a] < region.hi[a];
+    }
+  }
+  if (!inside)
+    throw std::out_of_range(fmt::format(
+        "resampling grid {} leaves the region where the {} stencil lies inside the volume, {}",
+        describe(corners), f.name(),
+        describe({volume.to_world(region.lo), volume.to_world(region.hi)})));
   fill_by_slices(out, grid, block, Reconstructor<T>(volume, f), evaluate);
   return out;
 }

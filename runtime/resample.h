@@ -21,8 +21,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 
+#include "runtime/affine.h"
 #include "runtime/cartesian_volume.h"
 #include "runtime/lattice_volume.h"
 #include "runtime/sampling.h"
@@ -46,11 +48,15 @@ Box evaluable_region(const LatticeVolume<T>& volume, const SplineFilter& f);
 template <class T>
 Box default_box(const LatticeVolume<T>& volume, const SplineFilter& f);
 
-// Geometry of a Cartesian grid (a CartesianVolume without its values).
+// Geometry of a Cartesian grid (a CartesianVolume without its values): point (i, j, k) at
+// origin + (i, j, k) * spacing in the grid's frame. `to_volume`, when set, maps the grid's frame
+// to the volume's (an oblique grid or volume: the volume's frame after the inverse of its
+// affine, SourceSamples::frame); unset, the two frames are one and points are used as they are.
 struct CartesianGrid {
   Sizes sizes{};
   Vec3 spacing{};
   Vec3 origin{};
+  std::optional<Affine> to_volume{};
 };
 
 // Largest number of grid points per axis and in total: keeps the sample count far from overflow
@@ -64,12 +70,14 @@ inline constexpr std::uint64_t kMaxGridPoints = std::uint64_t{1} << 34;
 CartesianGrid grid_over(const Box& box, Sizes n);
 
 // The values of the spline of f on `volume` (prefilter it first for quasi-interpolation) at the
-// grid points, evaluated on all cores (Reconstructor::evaluate). Throws std::invalid_argument
-// (one line) for an invalid grid (sizes as in grid_over, spacing not finite and > 0, origin not
-// finite), a volume of another lattice or one too small for the stencil, std::out_of_range (one
-// line) when a grid point lies outside evaluable_region(volume, f): the volume never invents
-// data, and std::domain_error (one line) when the spline's value is not finite at a grid point
-// (finite samples whose sum overflows, or non-finite samples the reader was told to allow).
+// grid points (mapped by grid.to_volume: reconstruction in the volume's own frame, its index space
+// scaled by its voxel sizes), evaluated on all cores (Reconstructor::evaluate). Throws
+// std::invalid_argument (one line) for an invalid grid (sizes as in grid_over, spacing not finite
+// and > 0, origin not finite), a volume of another lattice or one too small for the stencil,
+// std::out_of_range (one line) when a grid point lies outside evaluable_region(volume, f): the
+// volume never invents data, and std::domain_error (one line) when the spline's value is not finite
+// at a grid point (finite samples whose sum overflows, or non-finite samples the reader was told to
+// allow).
 template <class T>
 CartesianVolume<T> resample(const LatticeVolume<T>& volume, const SplineFilter& f,
                             const CartesianGrid& grid);

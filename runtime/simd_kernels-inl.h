@@ -215,16 +215,21 @@ struct PackArith {
     const Whole entry = cube * constant(Tr::kLookupSize) + key;
     return Whole(hn::GatherIndex(D(), kLocateTables<Tr, T>.lookup, to_index(D(), entry.v)));
   }
+  // One gather of the packed map per lane for all axes (the compiler does not merge repeated
+  // gathers of one table).
   template <class Tr>
-  HWY_ATTR static support::CellMap<Whole, Real> cell_map(Whole cell, int i) {
+  HWY_ATTR static void cell_maps(Whole cell, support::CellMap<Whole, Real>* g) {
     const D d;
     const hn::RebindToSigned<D> di;
-    const auto field = map_field(map_word<Tr, T>(index(cell)), i);
-    const auto a = hn::Sub(shift_right_zeros(field, 3), hn::Set(di, kMapBias));
-    return {Whole(from_index(d, field_perm(field))),
-            Real(hn::IfThenElse(hn::RebindMask(d, field_positive(field)), hn::Set(d, T(1)),
-                                hn::Set(d, T(-1)))),
-            Real(from_index(d, a))};
+    const auto word = map_word<Tr, T>(index(cell));
+    for (int i = 0; i < Tr::kDimension; ++i) {
+      const auto field = map_field(word, i);
+      const auto a = hn::Sub(shift_right_zeros(field, 3), hn::Set(di, kMapBias));
+      g[i] = {Whole(from_index(d, field_perm(field))),
+              Real(hn::IfThenElse(hn::RebindMask(d, field_positive(field)), hn::Set(d, T(1)),
+                                  hn::Set(d, T(-1)))),
+              Real(from_index(d, a))};
+    }
   }
   template <int N>
   HWY_ATTR static Pack<T> pick(Whole p, const Pack<T>* xs) {

@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <utility>
 
+#include "runtime/affine.h"
 #include "runtime/lattice_volume.h"
 
 namespace boxgen::runtime {
@@ -20,6 +22,11 @@ namespace boxgen::runtime {
 struct SourceSamples {
   std::string type;
   double min = 0, max = 0;
+  // An oblique (or axis-permuting) NIfTI volume read with NrrdReadLimits::allow_oblique: the
+  // volume is its voxel grid in its own frame (spacings = the voxel sizes, origin 0, axes as
+  // stored) and `frame` maps that frame to the file's world (a rotation, or any linear map with
+  // unit columns, and a translation). Nothing for an axis-aligned volume, whose frame is the world.
+  std::optional<Affine> frame;
 };
 
 // Calls f(S{}) with S the C++ type of a sample type named as SourceSamples::type names it; false
@@ -39,7 +46,8 @@ bool visit_sample_type(std::string_view name, F&& f) {
 
 template <class T>
 SourceSamples describe_samples(std::span<const T> samples, std::string type) {
-  SourceSamples s{std::move(type), 0, 0};
+  SourceSamples s;
+  s.type = std::move(type);
   if (samples.empty()) return s;
   const auto [lo, hi] = std::minmax_element(samples.begin(), samples.end());
   s.min = static_cast<double>(*lo);

@@ -95,6 +95,11 @@ template <class T>
 VolumeWrite write_grid_file(const fs::path& path, const CartesianVolume<T>& grid,
                             std::optional<SampleType> type) {
   const VolumeFormat format = require_volume_output(path, {}, 1, "cartesian");
+  if (format == VolumeFormat::Nrrd && grid.frame)
+    throw NrrdError(fmt::format(
+        "'{}': an oblique grid is written as NIfTI (.nii or .nii.gz), whose affine holds it; the "
+        "NRRD writer stores axis-aligned grids only",
+        nrrd_checks::printable(path.string(), 80)));
   if (format == VolumeFormat::Nrrd && (!type || *type == own_type<T>())) {
     write_cartesian_nrrd(path, grid);
     return {own_type<T>(), 0};
@@ -106,7 +111,8 @@ VolumeWrite write_grid_file(const fs::path& path, const CartesianVolume<T>& grid
     return write_volume_file(path, volume, type);
   }
   const EncodedSamples samples = encode_samples<T>(grid.values, type.value_or(SampleType::Float32));
-  write_nifti(path, grid.sizes, Affine::diagonal(grid.spacing, grid.origin), samples);
+  const Affine in_frame = Affine::diagonal(grid.spacing, grid.origin);
+  write_nifti(path, grid.sizes, grid.frame ? grid.frame->after(in_frame) : in_frame, samples);
   return {samples.type, samples.clamped};
 }
 

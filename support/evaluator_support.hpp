@@ -91,7 +91,8 @@ template <class Tr, class T>
 //   Whole at_least(Real s, Scalar c): 1 where s >= c, else 0,
 //   Whole cell_of<Tr>(Whole cube, Whole key, const Real* r): kLookup[cube][key] (the scalar
 //     arithmetic settles an empty entry; a pack leaves -1 to its caller),
-//   CellMap<Whole, Real> cell_map<Tr>(Whole cell, int i): perm_i, sign_i and a_i of the cell,
+//   void cell_maps<Tr>(Whole cell, CellMap<Whole, Real>* g): g[i] = perm_i, sign_i and a_i of
+//     the cell, every axis at once (a pack reads the cell's map once),
 //   X pick<n>(Whole p, const X* xs): xs[p], for p in [0, n).
 template <class Whole, class Real>
 struct CellMap {
@@ -120,9 +121,10 @@ struct ScalarArith {
     return cell >= 0 ? cell : nearest_cell<Tr>(static_cast<int>(cube), r);
   }
   template <class Tr>
-  [[gnu::always_inline]] static CellMap<Whole, Real> cell_map(Whole cell, int i) {
+  [[gnu::always_inline]] static void cell_maps(Whole cell, CellMap<Whole, Real>* g) {
     const auto& c = Tr::kCells[cell];
-    return {c.perm[i], static_cast<T>(c.sign[i]), static_cast<T>(c.a[i])};
+    for (int i = 0; i < Tr::kDimension; ++i)
+      g[i] = {c.perm[i], static_cast<T>(c.sign[i]), static_cast<T>(c.a[i])};
   }
   template <int N, class X>
   [[gnu::always_inline]] static X pick(Whole p, const X* xs) {
@@ -130,17 +132,40 @@ struct ScalarArith {
   }
 };
 
+// nu_K . r from component I on, added to `sum` (Started) or starting it: a zero component costs
+// nothing and a unit one no multiplication. The value is the one the full sum 0 + nu_0 r_0 + ...
+// gives (1 r = r, (-1) r = -r, s + 0 = s and 0 + s = s exactly, up to the sign of a zero, which
+// no comparison sees), so the cells found do not change; a SIMD pack cannot drop them itself
+// (0 r is not 0 for every float).
+template <class Tr, class A, int K, int I, bool Started>
+[[gnu::always_inline]] inline typename A::Real normal_dot(const typename A::Real* r,
+                                                          typename A::Real sum) {
+  if constexpr (I == Tr::kDimension) {
+    return Started ? sum : A::constant_real(0);
+  } else {
+    constexpr int c = Tr::kNormals[K][I];
+    if constexpr (c == 0) {
+      return normal_dot<Tr, A, K, I + 1, Started>(r, sum);
+    } else if constexpr (c == 1 || c == -1) {
+      if constexpr (Started)
+        return normal_dot<Tr, A, K, I + 1, true>(r, c == 1 ? sum + r[I] : sum - r[I]);
+      else
+        return normal_dot<Tr, A, K, I + 1, true>(r, c == 1 ? r[I] : -r[I]);
+    } else {
+      const typename A::Real term = A::constant_real(static_cast<typename A::Scalar>(c)) * r[I];
+      return normal_dot<Tr, A, K, I + 1, true>(r, Started ? sum + term : term);
+    }
+  }
+}
+
 // floor(nu_K . r) - min_K times the key's stride, for r in [0,1)^n, by comparisons: K is a
 // template argument so that the normal's components are constants and the zero ones vanish.
 template <class Tr, class A, int K>
 [[gnu::always_inline]] inline typename A::Whole knot_level(const typename A::Real* r) {
-  using Scalar = typename A::Scalar;
-  typename A::Real dot = A::constant_real(0);
-  for (int i = 0; i < Tr::kDimension; ++i)
-    dot = dot + A::constant_real(static_cast<Scalar>(Tr::kNormals[K][i])) * r[i];
+  const typename A::Real dot = normal_dot<Tr, A, K, 0, false>(r, A::constant_real(0));
   typename A::Whole levels = A::constant(0);
   for (int m = 1; m < Tr::kNormalWidth[K]; ++m)
-    levels = levels + A::at_least(dot, static_cast<Scalar>(Tr::kNormalMin[K] + m));
+    levels = levels + A::at_least(dot, static_cast<typename A::Scalar>(Tr::kNormalMin[K] + m));
   return levels * A::constant(Tr::kNormalStride[K]);
 }
 
@@ -185,13 +210,14 @@ template <class Tr, class A>
   const Whole key = knot_key<Tr, A>(r, std::make_integer_sequence<int, Tr::kNormalCount>{});
   cell = A::template cell_of<Tr>(cube, key, r);
   // x_ref_i = sign_i (x_p - t_p) + a_i, p = perm_i, with the cell's translation t = corner - rep.
-  Whole t[n];
-  for (int i = 0; i < n; ++i) t[i] = corner[i] - (k == 1 ? rep[i] : rep[i] * A::constant(k));
-  for (int i = 0; i < n; ++i) {
-    const CellMap<Whole, Real> g = A::template cell_map<Tr>(cell, i);
-    xref[i] =
-        g.sign * (A::template pick<n>(g.perm, x) - A::real(A::template pick<n>(g.perm, t))) + g.a;
-  }
+  // x_p - t_p for every p first, so that each axis picks once (the same values).
+  Real shifted[n];
+  for (int i = 0; i < n; ++i)
+    shifted[i] = x[i] - A::real(corner[i] - (k == 1 ? rep[i] : rep[i] * A::constant(k)));
+  CellMap<Whole, Real> g[n];
+  A::template cell_maps<Tr>(cell, g);
+  for (int i = 0; i < n; ++i)
+    xref[i] = g[i].sign * A::template pick<n>(g[i].perm, shifted) + g[i].a;
 }
 
 template <class Tr, class T>

@@ -41,18 +41,21 @@ using namespace boxgen::runtime;
 
 template <class T>
 LatticeVolume<T> read_for(const SplineFilter& f, const PrefilterSetting& setting,
-                          const std::string& path, const NrrdReadLimits& limits) {
+                          const std::string& path, const NrrdReadLimits& limits,
+                          SourceSamples* source) {
   NrrdReadLimits on_lattice = limits;
   on_lattice.lattice = f.lattice();
-  LatticeVolume<T> volume = read_volume_file<T>(path, on_lattice);
+  LatticeVolume<T> volume = read_volume_file<T>(path, on_lattice, source);
   f.check_lattice(volume.lattice());
   return coefficients_for(std::move(volume), f, setting);
 }
 
 template LatticeVolume<float> read_for<float>(const SplineFilter&, const PrefilterSetting&,
-                                              const std::string&, const NrrdReadLimits&);
+                                              const std::string&, const NrrdReadLimits&,
+                                              SourceSamples*);
 template LatticeVolume<double> read_for<double>(const SplineFilter&, const PrefilterSetting&,
-                                                const std::string&, const NrrdReadLimits&);
+                                                const std::string&, const NrrdReadLimits&,
+                                                SourceSamples*);
 
 template <class T>
 void print_evaluations(std::span<const T> values, std::span<const Vec3> gradients,
@@ -204,17 +207,30 @@ Box box_from_options(const std::vector<double>& min, const std::vector<double>& 
 
 namespace {
 
-// The grid of --like: that Cartesian image's sizes, spacings and origin (its samples are read
-// only for the geometry; non-finite ones do not matter).
-CartesianGrid grid_like(const std::string& path) {
+// The grid of --like: that Cartesian image's sizes, spacings and origin, and its frame when it
+// is oblique (its samples are read only for the geometry; non-finite ones do not matter).
+CartesianGrid grid_like(const std::string& path, std::optional<Affine>& frame) {
   NrrdReadLimits limits;
   limits.allow_non_finite = true;
-  const LatticeVolume<float> image = read_volume_file<float>(path, limits);
+  limits.allow_oblique = true;
+  SourceSamples source;
+  const LatticeVolume<float> image = read_volume_file<float>(path, limits, &source);
   if (image.coset_count() != 1)
     throw std::invalid_argument(fmt::format(
         "--like '{}' is a {} volume: its grid must be Cartesian (an image such as the output)",
         nrrd_checks::printable(path, 80), image.lattice().name()));
+  frame = source.frame;
   return {image.sizes(), image.axis_spacing(), image.origin()};
+}
+
+// The map from a grid's frame to a volume's, both given by their maps to world (nothing: the
+// world itself). Nothing when the frames are one, so that a grid on the volume's own frame is
+// evaluated at exactly its points.
+std::optional<Affine> grid_to_volume(const std::optional<Affine>& volume_frame,
+                                     const std::optional<Affine>& grid_frame) {
+  if (volume_frame == grid_frame) return std::nullopt;
+  const Affine from = grid_frame.value_or(Affine::diagonal({1, 1, 1}, {0, 0, 0}));
+  return volume_frame ? volume_frame->inverse().after(from) : from;
 }
 
 // --spacing H (or HX HY HZ) over the box: as many points as fit from box.min on, spacing h.
@@ -310,11 +326,21 @@ int run_resample(const std::string& filter, const std::string& lattice, const Pr
   require_output_volume(output, {&input, 1}, CosetLattice::cartesian());
   const VolumeFormat format = output_format(output);
   const SplineFilter f = filter_for_volume(filter, lattice, volume_path);
-  const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
+  // Oblique volumes are read in their own frame (index space times the voxel sizes); the
+  // output's world points map into it through the inverse of the volume's affine.
+  NrrdReadLimits read_limits = limits;
+  read_limits.allow_oblique = true;
+  SourceSamples source;
+  const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, read_limits, &source);
   CartesianGrid grid;
+  std::optional<Affine> output_frame = source.frame;  // the output's map to world
   if (!options.like.empty()) {
-    grid = grid_like(options.like);
+    grid = grid_like(options.like, output_frame);
+    grid.to_volume = grid_to_volume(source.frame, output_frame);
   } else {
+    // --min/--max are world coordinates: for an oblique volume the output is then axis-aligned
+    // in the world; without them the grid lies on the volume's own axes (its affine kept).
+    const bool world_box = source.frame && !options.min.empty();
     const Box box = options.min.empty() ? default_box(volume, f)
                                         : Box{{options.min[0], options.min[1], options.min[2]},
                                               {options.max[0], options.max[1], options.max[2]}};
@@ -324,7 +350,16 @@ int run_resample(const std::string& filter, const std::string& lattice, const Pr
       grid = grid_over(box, {options.size[0], options.size[1], options.size[2]});
     else
       grid = grid_over(box, {options.n, options.n, options.n});
+    if (world_box) {
+      output_frame = std::nullopt;
+      grid.to_volume = source.frame->inverse();
+    }
   }
+  if (output_frame && format != VolumeFormat::Nifti)
+    throw std::invalid_argument(fmt::format(
+        "the output grid is oblique (the affine of '{}'): write it as NIfTI (.nii or .nii.gz); "
+        "the NRRD writer stores axis-aligned grids only",
+        nrrd_checks::printable(options.like.empty() ? volume_path : options.like, 80)));
   // The values in T, and their copy in the file's type while it is written.
   const SampleType stored =
       type ? *type
@@ -336,19 +371,19 @@ int run_resample(const std::string& filter, const std::string& lattice, const Pr
                    static_cast<std::uint64_t>(n[2]),
                sizeof(T) + sample_type_size(stored),
                fmt::format("the output grid of {} x {} x {} points", n[0], n[1], n[2]), "values");
+  CartesianVolume<T> values;
   if (device == Device::Cpu) {
-    write_output_grid(output, resample_grid(volume, f, grid, BatchEvaluate<T>{}), type);
-    return 0;
+    values = resample_grid(volume, f, grid, BatchEvaluate<T>{});
+  } else {
+    if (verbose) std::cerr << gl_device_line() << '\n';
+    const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, sizeof(T) == 8));
+    values = resample_grid(volume, f, grid,
+                           BatchEvaluate<T>([&gpu](std::span<const Vec3> points, std::span<T> out) {
+                             gpu.evaluate(points, out);
+                           }));
   }
-  if (verbose) std::cerr << gl_device_line() << '\n';
-  const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, sizeof(T) == 8));
-  write_output_grid(
-      output,
-      resample_grid(volume, f, grid,
-                    BatchEvaluate<T>([&gpu](std::span<const Vec3> points, std::span<T> values) {
-                      gpu.evaluate(points, values);
-                    })),
-      type);
+  values.frame = output_frame;
+  write_output_grid(output, values, type);
   return 0;
 }
 

@@ -20,10 +20,12 @@
 namespace boxgen::app {
 
 // The coefficients of the volume of a file (NRRD or NIfTI: runtime/nifti_io.h), on the filter's
-// lattice, after the prefilter and boundary of `setting` (coefficients_for).
+// lattice, after the prefilter and boundary of `setting` (coefficients_for). `source`, when
+// given, receives what the file held (and an oblique volume's frame: NrrdReadLimits).
 template <class T>
 runtime::LatticeVolume<T> read_for(const runtime::SplineFilter& f, const PrefilterSetting& setting,
-                                   const std::string& path, const runtime::NrrdReadLimits& limits);
+                                   const std::string& path, const runtime::NrrdReadLimits& limits,
+                                   runtime::SourceSamples* source = nullptr);
 
 // eval's output: one line per point, the value and (when asked) the gradient and the Hessian's
 // upper triangle h_xx h_xy h_xz h_yy h_yz h_zz, each with 17 significant digits.

@@ -19,6 +19,7 @@
 #include "generated/m12.hpp"
 #include "generated/m7.hpp"
 #include "generated/m8.hpp"
+#include "runtime/affine.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/prefilter.h"
 #include "runtime/sampling.h"
@@ -109,6 +110,58 @@ TEST(Resample, GridGeometryIsWhatWasAsked) {
         EXPECT_EQ(out.values[static_cast<std::size_t>(i + 5 * (j + 3 * k))], r.value(p))
             << i << " " << j << " " << k;
       }
+}
+
+TEST(Resample, AffineInverseAndCompositionAreExact) {
+  // A rotation-and-shear with a translation: inverse().after(a) is the identity to rounding, and
+  // after() applies the first map first (checked on a point by hand).
+  Affine a;
+  a.linear = {Vec3{0.8, -0.6, 0.1}, Vec3{0.6, 0.8, 0.0}, Vec3{0.0, 0.2, 1.5}};
+  a.translation = {3, -2, 0.5};
+  const Affine id = a.inverse().after(a);
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(id.linear[r][c], r == c ? 1 : 0, 1e-15);
+    EXPECT_NEAR(id.translation[r], 0, 1e-15);
+  }
+  const Affine shift = Affine::diagonal({2, 2, 2}, {1, 0, 0});  // x -> 2 x + (1, 0, 0)
+  const Vec3 p = a.after(shift).apply({1, 1, 1});               // a((3, 2, 2))
+  const Vec3 expected{3 + 0.8 * 3 - 0.6 * 2 + 0.1 * 2, -2 + 0.6 * 3 + 0.8 * 2, 0.5 + 0.2 * 2 + 3};
+  for (int r = 0; r < 3; ++r) EXPECT_NEAR(p[r], expected[r], 1e-14) << r;
+  Affine singular;
+  singular.linear = {Vec3{1, 2, 3}, Vec3{2, 4, 6}, Vec3{0, 0, 1}};
+  EXPECT_THROW((void)singular.inverse(), std::invalid_argument);
+}
+
+TEST(Resample, GridPointsMapIntoTheVolumesFrame) {
+  // A grid with to_volume (an oblique grid or volume): each value is the spline at the mapped
+  // point, computed here by the Reconstructor; a grid whose mapped corner leaves the region is
+  // refused although its unmapped points lie inside.
+  const SplineFilter f = SplineFilter::parse("m8");
+  const LatticeVolume<double> volume = prefiltered<double>(cubic, 9, f, PrefilterChoice::Q1);
+  CartesianGrid grid = grid_over({{-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}}, {4, 3, 5});
+  Affine turn;  // 30 degrees about z, then a shift
+  turn.linear = {Vec3{std::sqrt(3.0) / 2, -0.5, 0}, Vec3{0.5, std::sqrt(3.0) / 2, 0},
+                 Vec3{0, 0, 1}};
+  turn.translation = {0.1, -0.2, 0.3};
+  grid.to_volume = turn;
+  const auto out = resample(volume, f, grid);
+  const Reconstructor<double> r(volume, f);
+  double worst = 0;
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 4; ++i) {
+        const Vec3 p = turn.apply(out.position(i, j, k));
+        EXPECT_EQ(out.values[out.index(i, j, k)], r.value(p)) << i << " " << j << " " << k;
+        worst = std::max(worst, std::abs(out.values[out.index(i, j, k)] - cubic(p)));
+      }
+  EXPECT_LE(worst, 1e-11);  // Q1 reproduces the cubic at the mapped points
+  const Box region = evaluable_region(volume, f);
+  CartesianGrid far = grid_over({region.min, region.max}, {3, 3, 3});
+  far.spacing = {(region.max[0] - region.min[0]) / 2.5, (region.max[1] - region.min[1]) / 2.5,
+                 (region.max[2] - region.min[2]) / 2.5};
+  EXPECT_NO_THROW((void)resample(volume, f, far));
+  far.to_volume = turn;  // the turned corners leave the box
+  EXPECT_THROW((void)resample(volume, f, far), std::out_of_range);
 }
 
 TEST(Resample, BlocksHoldTheWholeGridsValuesBitForBit) {
