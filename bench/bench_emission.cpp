@@ -3,8 +3,8 @@
 // clock. Issue 8's limits are shown as target_s.
 #include <benchmark/benchmark.h>
 
-#include "generator/derivation.h"
 #include "generator/codegen/emitter.h"
+#include "generator/derivation.h"
 #include "generator/spec.h"
 
 namespace {

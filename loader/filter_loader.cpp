@@ -14,8 +14,8 @@
 #include <sstream>
 
 #include "boxgen/version.h"
-#include "generator/derivation.h"
 #include "generator/codegen/emitter.h"
+#include "generator/derivation.h"
 #include "generator/error.h"
 #include "generator/int_linalg.h"
 #include "generator/spec.h"

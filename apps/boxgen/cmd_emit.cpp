@@ -10,8 +10,8 @@
 #include "apps/boxgen/commands.h"
 #include "apps/boxgen/progress.h"
 #include "generator/codegen/emitter.h"
-#include "generator/error.h"
 #include "generator/codegen/evaluator_name.h"
+#include "generator/error.h"
 #include "generator/prefilter.h"
 #include "support/output_file.h"
 

@@ -1,5 +1,6 @@
-// Small text helpers shared by the code writers (the printers of generator/codegen/targets/target_printer.h, the
-// emitter, polynomial_code): lists as they appear in emitted code. Literals are the printers'.
+// Small text helpers shared by the code writers (the printers of
+// generator/codegen/targets/target_printer.h, the emitter, polynomial_code): lists as they appear
+// in emitted code. Literals are the printers'.
 #pragma once
 #include <fmt/format.h>
 

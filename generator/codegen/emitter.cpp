@@ -7,14 +7,14 @@
 #include <cctype>
 
 #include "generator/codegen/code_text.h"
-#include "generator/embedded_templates.h"
-#include "generator/error.h"
 #include "generator/codegen/evaluator_name.h"
+#include "generator/codegen/strategies/polynomial_code.h"
 #include "generator/codegen/targets/evaluator_tables.h"
 #include "generator/codegen/targets/glsl_evaluator.h"
-#include "generator/codegen/strategies/polynomial_code.h"
-#include "generator/prefilter.h"
 #include "generator/codegen/targets/target_printer.h"
+#include "generator/embedded_templates.h"
+#include "generator/error.h"
+#include "generator/prefilter.h"
 
 namespace boxgen::generator {
 

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "boxgen/version.h"
-#include "generator/derivation.h"
 #include "generator/codegen/strategies/polynomial_code.h"
+#include "generator/derivation.h"
 #include "generator/prefilter.h"
 
 namespace boxgen::generator {
@@ -29,7 +29,8 @@ enum class EmissionTarget { Cpp, Glsl, Cuda };
 struct EmissionRequest {
   std::string name;     // C++ identifier: the namespace boxgen::generated::<name>
   std::string command;  // the command that reproduces the file, for its header
-  EmissionStrategy strategy = EmissionStrategy::Auto;  // see generator/codegen/strategies/polynomial_code.h
+  // See generator/codegen/strategies/polynomial_code.h.
+  EmissionStrategy strategy = EmissionStrategy::Auto;
   EmissionTarget target = EmissionTarget::Cpp;
   bool double_precision = false;  // GLSL: double, dvec3, dmat3 instead of float, vec3, mat3
   // The shells of q1 (q2: these and the next shell); empty: the smallest on which a prefilter of
@@ -63,7 +64,8 @@ struct Emission {
   // request's shells); none where no prefilter of full order exists there (the header says why).
   std::optional<Prefilter> q1, q2;
   // GLSL: the evaluator with its run-time-indexed tables in a storage block, and the block's
-  // contents (generator/codegen/targets/glsl_evaluator.h); the file is the variant whose tables are `const`.
+  // contents (generator/codegen/targets/glsl_evaluator.h); the file is the variant whose tables are
+  // `const`.
   std::string glsl_buffered;
   std::vector<int> glsl_block;
 };

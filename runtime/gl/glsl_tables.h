@@ -4,9 +4,9 @@
 // different entry in each invocation; a `const` array indexed that way may be copied into each
 // invocation's local memory by a GPU's compiler (the suspect in the H200's rates, performance.md).
 // The generator therefore also prints the evaluator with those tables as members of one
-// read-only storage block (generator/codegen/targets/glsl_evaluator.h), and gives the block's contents as
-// numbers: the device uploads them once. Both come as data with the text (GlslEvaluator,
-// gl_spline.h); nothing searches or rewrites the text.
+// read-only storage block (generator/codegen/targets/glsl_evaluator.h), and gives the block's
+// contents as numbers: the device uploads them once. Both come as data with the text
+// (GlslEvaluator, gl_spline.h); nothing searches or rewrites the text.
 #pragma once
 
 namespace boxgen::runtime::gl {

@@ -10,8 +10,9 @@ struct RegistryGlsl {
   int stencil_size;
   const char* float_text;  // NAME.glsl: its tables `const` arrays
   const char* double_text;
-  // The same with the run-time-indexed tables in a storage block (generator/codegen/targets/glsl_evaluator.h),
-  // and the block's contents (the same in both precisions).
+  // The same with the run-time-indexed tables in a storage block
+  // (generator/codegen/targets/glsl_evaluator.h), and the block's contents (the same in both
+  // precisions).
   const char* float_buffered;
   const char* double_buffered;
   const int* block;

@@ -24,8 +24,9 @@ TEST(BBForm, RoundTripOnEveryReferenceRegion) {
   }
 }
 
-// The affine forms the Bernstein emission writes (generator/codegen/strategies/polynomial_code.cpp): exact, one per
-// vertex, 1 at their vertex and 0 at the others, summing to 1 everywhere.
+// The affine forms the Bernstein emission writes
+// (generator/codegen/strategies/polynomial_code.cpp): exact, one per vertex, 1 at their vertex and
+// 0 at the others, summing to 1 everywhere.
 TEST(BBForm, BarycentricFormsAreExactAffineCoordinates) {
   int simplices = 0;
   for (const char* preset : fixture::kAllPresets) {

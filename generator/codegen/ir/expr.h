@@ -2,8 +2,9 @@
 // immutable nodes (exact rational constants, coordinates x[i], stencil values v[k], binary sums
 // and products, negations), hash-consed so that structurally equal subexpressions are one node.
 // Every emission strategy builds into a graph, through the simplifying constructors of
-// generator/codegen/ir/expr_simplify.h; generator/codegen/ir/expr_schedule.h orders it into straight-line code and
-// counts it, and generator/codegen/targets/expr_print.h prints that code for each target.
+// generator/codegen/ir/expr_simplify.h; generator/codegen/ir/expr_schedule.h orders it into
+// straight-line code and counts it, and generator/codegen/targets/expr_print.h prints that code for
+// each target.
 #pragma once
 #include <cstdint>
 #include <map>
@@ -32,8 +33,8 @@ class ExprGraph {
   NodeId constant(const Rational& c);
   NodeId variable(int i);
   NodeId load(int k);
-  // The node op(a, b) exactly as given (no simplification; generator/codegen/ir/expr_simplify.h builds
-  // through these): the existing node when an equal one exists.
+  // The node op(a, b) exactly as given (no simplification; generator/codegen/ir/expr_simplify.h
+  // builds through these): the existing node when an equal one exists.
   NodeId make(Op op, NodeId a, NodeId b = -1);
 
   const Node& node(NodeId id) const { return nodes_[static_cast<std::size_t>(id)]; }
@@ -64,7 +65,8 @@ class ExprGraph {
 };
 
 // The exact value of every node at coordinates x and stencil values v (the reference the tests
-// compare the graph with: generator/codegen/ir/expr_schedule.h must not change what the graph computes).
+// compare the graph with: generator/codegen/ir/expr_schedule.h must not change what the graph
+// computes).
 std::vector<Rational> evaluate_exactly(const ExprGraph& g, const RatVec& x, const RatVec& v);
 
 }  // namespace boxgen::generator

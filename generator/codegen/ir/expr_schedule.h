@@ -1,6 +1,6 @@
-// The schedule pass of the expression graph (generator/codegen/ir/expr.h): the outputs of one orbit's code
-// (the value, the gradient, the Hessian's upper triangle) become three nested blocks of
-// straight-line code, each holding only what its path adds to the one before (the value path;
+// The schedule pass of the expression graph (generator/codegen/ir/expr.h): the outputs of one
+// orbit's code (the value, the gradient, the Hessian's upper triangle) become three nested blocks
+// of straight-line code, each holding only what its path adds to the one before (the value path;
 // what the gradient needs beyond it; what the Hessian needs beyond both), so a node shared by the
 // value, the gradient and the Hessian is computed once. A node used more than once becomes a
 // named temporary; a node used once is written inline where it is used. Temporaries are ordered

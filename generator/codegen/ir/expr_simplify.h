@@ -1,5 +1,6 @@
-// The simplify pass of the expression graph (generator/codegen/ir/expr.h), applied as each node is built,
-// as GiNaC evaluates its expressions on construction: constants fold, x * 1, x * 0, x + 0 and
+// The simplify pass of the expression graph (generator/codegen/ir/expr.h), applied as each node is
+// built, as GiNaC evaluates its expressions on construction: constants fold, x * 1, x * 0, x + 0
+// and
 // -(-x) vanish, a negation moves out of products and sums (into a constant factor where there is
 // one) so that the printer writes it as a subtraction, and a weighted sum groups its terms of
 // equal weight under one multiplication. What remains is hash-consed by ExprGraph::make.

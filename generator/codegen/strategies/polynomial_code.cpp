@@ -10,11 +10,11 @@
 
 #include "generator/bbform.h"
 #include "generator/codegen/code_text.h"
-#include "generator/embedded_templates.h"
-#include "generator/error.h"
 #include "generator/codegen/ir/expr_simplify.h"
 #include "generator/codegen/ir/linear_cse.h"
 #include "generator/codegen/strategies/separable_form.h"
+#include "generator/embedded_templates.h"
+#include "generator/error.h"
 
 namespace boxgen::generator {
 
@@ -134,8 +134,8 @@ OrbitCode finish(Build&& b, EmissionStrategy strategy, NodeId value,
 // ---- Coefficients: fixed rational combinations of the stencil values. ----
 
 // One node per row: sum_i w_i x_i over the stencil values. `shared` first sums pairs of inputs
-// that several rows hold in the same ratio (generator/codegen/ir/linear_cse.h, named s0, s1, ...), then
-// groups equal weights; otherwise every term is multiplied by its weight.
+// that several rows hold in the same ratio (generator/codegen/ir/linear_cse.h, named s0, s1, ...),
+// then groups equal weights; otherwise every term is multiplied by its weight.
 std::vector<NodeId> linear_nodes(Build& b, const std::vector<LinearRow>& rows, int inputs,
                                  bool shared, std::size_t* shared_sums = nullptr) {
   const SharedRows s = shared ? share_partial_sums(rows, inputs) : SharedRows{{}, rows};

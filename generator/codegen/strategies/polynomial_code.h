@@ -1,7 +1,7 @@
 // The code of one orbit's reference polynomial (docs/design.md §11): the spline on the reference
 // region is sum_k v[k] p_k(x) over its stencil, and a strategy decides how that sum and its exact
-// derivatives are built into an expression graph (generator/codegen/ir/expr.h), shared between the value,
-// the gradient and the Hessian; the counts of the scheduled graph let the emitter choose the
+// derivatives are built into an expression graph (generator/codegen/ir/expr.h), shared between the
+// value, the gradient and the Hessian; the counts of the scheduled graph let the emitter choose the
 // cheapest strategy (`auto`) and are recorded in the header. The strategies build graphs only;
 // each target's printer (generator/codegen/targets/target_printer.h) writes them.
 #pragma once
@@ -45,9 +45,9 @@ struct StrategyCost {
   OperationCount value, gradient, hessian;  // whole paths: value; value + gradient; + Hessian
 };
 
-// The code of one orbit: its expression graph scheduled (generator/codegen/ir/expr_schedule.h), which every
-// target's printer writes (C++: `template <int Order, class T> T orbit_<orbit>(const T* v,
-// const T* x, T* d)`, support::evaluate_located describes d).
+// The code of one orbit: its expression graph scheduled (generator/codegen/ir/expr_schedule.h),
+// which every target's printer writes (C++: `template <int Order, class T> T orbit_<orbit>(const T*
+// v, const T* x, T* d)`, support::evaluate_located describes d).
 struct OrbitCode {
   EmissionStrategy strategy = EmissionStrategy::Horner;
   std::shared_ptr<const generator::Program> program;

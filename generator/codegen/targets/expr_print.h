@@ -1,8 +1,9 @@
-// The print pass of the expression graph: one scheduled program (generator/codegen/ir/expr_schedule.h)
-// written through a target's printer (generator/codegen/targets/target_printer.h: its literals and declarations),
-// as GiNaC prints one expression in several print contexts. The C++ and CUDA evaluators use the
-// template orbit function's body; GLSL, without templates, gets one function per path. Every
-// operation counted by the schedule is written exactly once.
+// The print pass of the expression graph: one scheduled program
+// (generator/codegen/ir/expr_schedule.h) written through a target's printer
+// (generator/codegen/targets/target_printer.h: its literals and declarations), as GiNaC prints one
+// expression in several print contexts. The C++ and CUDA evaluators use the template orbit
+// function's body; GLSL, without templates, gets one function per path. Every operation counted by
+// the schedule is written exactly once.
 #pragma once
 #include <string>
 

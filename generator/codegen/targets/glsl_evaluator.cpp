@@ -7,9 +7,9 @@
 #include <utility>
 
 #include "generator/codegen/code_text.h"
-#include "generator/embedded_templates.h"
 #include "generator/codegen/targets/evaluator_tables.h"
 #include "generator/codegen/targets/target_printer.h"
+#include "generator/embedded_templates.h"
 
 namespace boxgen::generator {
 

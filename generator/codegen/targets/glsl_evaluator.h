@@ -1,14 +1,14 @@
-// The GLSL printer of an evaluator (docs/gpu.md): the tables of generator/codegen/targets/evaluator_tables.h as
-// flat const arrays, every orbit's scheduled code as one function per path (GLSL has no
-// templates), and the glue of templates/evaluator.glsl.fmt (locate, fetch, back to the lattice
-// frame; its loops unrolled here, docs/design.md §16) behind NAME_value, NAME_value_gradient and
-// NAME_value_gradient_hessian.
+// The GLSL printer of an evaluator (docs/gpu.md): the tables of
+// generator/codegen/targets/evaluator_tables.h as flat const arrays, every orbit's scheduled code
+// as one function per path (GLSL has no templates), and the glue of templates/evaluator.glsl.fmt
+// (locate, fetch, back to the lattice frame; its loops unrolled here, docs/design.md §16) behind
+// NAME_value, NAME_value_gradient and NAME_value_gradient_hessian.
 #pragma once
 #include <string>
 #include <vector>
 
-#include "generator/derivation.h"
 #include "generator/codegen/strategies/polynomial_code.h"
+#include "generator/derivation.h"
 
 namespace boxgen::generator {
 

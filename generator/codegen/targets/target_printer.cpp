@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include "generator/codegen/code_text.h"
-#include "generator/embedded_templates.h"
 #include "generator/codegen/targets/expr_print.h"
+#include "generator/embedded_templates.h"
 
 namespace boxgen::generator {
 

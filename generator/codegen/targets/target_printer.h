@@ -1,17 +1,18 @@
 // One printer per target language (docs/design.md §11), in the manner of Halide's CodeGen_C and
-// its GPU subclasses: the strategies build expression graphs only (generator/codegen/strategies/polynomial_code.h),
-// the print pass writes a scheduled graph through a printer (generator/codegen/targets/expr_print.h), and each
-// printer owns what differs between C++, CUDA and GLSL: literals, the declaration of a
-// temporary, the wrapping of an orbit's code into functions, the dispatch between orbits, and
-// the tables of generator/codegen/targets/evaluator_tables.h as the target's initialisers.
+// its GPU subclasses: the strategies build expression graphs only
+// (generator/codegen/strategies/polynomial_code.h), the print pass writes a scheduled graph through
+// a printer (generator/codegen/targets/expr_print.h), and each printer owns what differs between
+// C++, CUDA and GLSL: literals, the declaration of a temporary, the wrapping of an orbit's code
+// into functions, the dispatch between orbits, and the tables of
+// generator/codegen/targets/evaluator_tables.h as the target's initialisers.
 #pragma once
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "generator/derivation.h"
-#include "generator/codegen/targets/evaluator_tables.h"
 #include "generator/codegen/strategies/polynomial_code.h"
+#include "generator/codegen/targets/evaluator_tables.h"
+#include "generator/derivation.h"
 
 namespace boxgen::generator {
 

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "generator/derivation.h"
 #include "generator/codegen/emitter.h"
+#include "generator/derivation.h"
 #include "generator/spec.h"
 
 namespace gen = boxgen::generator;

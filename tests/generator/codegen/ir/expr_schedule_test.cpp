@@ -1,10 +1,11 @@
-// The schedule pass (generator/codegen/ir/expr_schedule.h): blocks per path, temporaries and counts.
+// The schedule pass (generator/codegen/ir/expr_schedule.h): blocks per path, temporaries and
+// counts.
 #include <gtest/gtest.h>
 
 #include "generator/codegen/ir/expr.h"
-#include "generator/codegen/targets/expr_print.h"
 #include "generator/codegen/ir/expr_schedule.h"
 #include "generator/codegen/ir/expr_simplify.h"
+#include "generator/codegen/targets/expr_print.h"
 
 namespace boxgen::generator {
 namespace {

@@ -1,11 +1,11 @@
-// The simplify pass (generator/codegen/ir/expr_simplify.h): constant folding, identities, negations, grouped
-// weights.
+// The simplify pass (generator/codegen/ir/expr_simplify.h): constant folding, identities,
+// negations, grouped weights.
 #include <gtest/gtest.h>
 
 #include "generator/codegen/ir/expr.h"
-#include "generator/codegen/targets/expr_print.h"
 #include "generator/codegen/ir/expr_schedule.h"
 #include "generator/codegen/ir/expr_simplify.h"
+#include "generator/codegen/targets/expr_print.h"
 
 namespace boxgen::generator {
 namespace {

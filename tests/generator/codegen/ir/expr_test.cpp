@@ -2,9 +2,9 @@
 #include <gtest/gtest.h>
 
 #include "generator/codegen/ir/expr.h"
-#include "generator/codegen/targets/expr_print.h"
 #include "generator/codegen/ir/expr_schedule.h"
 #include "generator/codegen/ir/expr_simplify.h"
+#include "generator/codegen/targets/expr_print.h"
 
 namespace boxgen::generator {
 namespace {

@@ -10,9 +10,9 @@
 #include <random>
 #include <regex>
 
-#include "generator/error.h"
 #include "generator/codegen/ir/expr.h"
 #include "generator/codegen/targets/target_printer.h"
+#include "generator/error.h"
 #include "tests/generator/derivation_fixture.h"
 
 namespace boxgen::generator {
@@ -84,8 +84,8 @@ TEST(PolynomialCode, BernsteinOnSimplicesOnly) {
   const auto bb = orbit_code(m7.structure.references[0], 0, 3, 4, EmissionStrategy::Bernstein);
   ASSERT_TRUE(bb);
   // Degree 4 in 3-D: 35 BB-coefficients, de Casteljau levels of 20, 10, 4 and 1 values; those
-  // used once are written inline (the schedule, generator/codegen/ir/expr_schedule.h), so the names that
-  // appear are the shared ones.
+  // used once are written inline (the schedule, generator/codegen/ir/expr_schedule.h), so the names
+  // that appear are the shared ones.
   EXPECT_NE(cpp_text(*bb).find("const T b1 ="), std::string::npos);
   EXPECT_NE(cpp_text(*bb).find("const T q1_1 ="), std::string::npos);
   // The last level is the value; level 3 also feeds the gradient, level 2 the Hessian.

@@ -1,5 +1,6 @@
-// The evaluator's tables (generator/codegen/targets/evaluator_tables.h), as numbers: every cell is found by its
-// cube and keys in the lookup table, and holds one stencil offset per value of its orbit.
+// The evaluator's tables (generator/codegen/targets/evaluator_tables.h), as numbers: every cell is
+// found by its cube and keys in the lookup table, and holds one stencil offset per value of its
+// orbit.
 #include "generator/codegen/targets/evaluator_tables.h"
 
 #include <gtest/gtest.h>

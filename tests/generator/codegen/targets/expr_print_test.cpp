@@ -1,11 +1,11 @@
-// The print pass (generator/codegen/targets/expr_print.h) through the printers of generator/codegen/targets/target_printer.h:
-// C++ and GLSL text of a scheduled graph.
+// The print pass (generator/codegen/targets/expr_print.h) through the printers of
+// generator/codegen/targets/target_printer.h: C++ and GLSL text of a scheduled graph.
 #include <gtest/gtest.h>
 
 #include "generator/codegen/ir/expr.h"
-#include "generator/codegen/targets/expr_print.h"
 #include "generator/codegen/ir/expr_schedule.h"
 #include "generator/codegen/ir/expr_simplify.h"
+#include "generator/codegen/targets/expr_print.h"
 #include "generator/codegen/targets/target_printer.h"
 
 namespace boxgen::generator {

@@ -1,6 +1,6 @@
-// The GLSL printer (generator/codegen/targets/glsl_evaluator.h): the entry points and types of each precision and
-// dimension, the application's fetch, one function per orbit and path. Its numbers are checked
-// where the shader runs: tests/gpu/glsl_exactness_test.cpp.
+// The GLSL printer (generator/codegen/targets/glsl_evaluator.h): the entry points and types of each
+// precision and dimension, the application's fetch, one function per orbit and path. Its numbers
+// are checked where the shader runs: tests/gpu/glsl_exactness_test.cpp.
 #include "generator/codegen/targets/glsl_evaluator.h"
 
 #include <gtest/gtest.h>
