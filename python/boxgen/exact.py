@@ -22,14 +22,18 @@ def _coordinate(c):
     return f"{c.numerator}/{c.denominator}"
 
 
+def _sequence(value, what):
+    """list(value), or TypeError naming what was expected and the type that came."""
+    try:
+        return list(value)
+    except TypeError:
+        raise TypeError(f"{what}, not {type(value).__name__}") from None
+
+
 def _point(p):
     if isinstance(p, str):
         return p
-    try:
-        coordinates = list(p)
-    except TypeError:
-        raise TypeError(f"a point must be a str 'x y z' or a sequence of coordinates, not "
-                        f"{type(p).__name__}") from None
+    coordinates = _sequence(p, "a point must be a str 'x y z' or a sequence of coordinates")
     return " ".join(_coordinate(c) for c in coordinates)
 
 
@@ -38,11 +42,8 @@ def _orders(derivative):
         return ""
     if isinstance(derivative, str):
         return derivative
-    try:
-        orders = list(derivative)
-    except TypeError:
-        raise TypeError(f"derivative must be a sequence of integer orders or a str 'a b c', not "
-                        f"{type(derivative).__name__}") from None
+    orders = _sequence(derivative,
+                       "derivative must be a sequence of integer orders or a str 'a b c'")
     for a in orders:
         if isinstance(a, bool) or not isinstance(a, numbers.Integral):
             raise TypeError(f"a derivative order must be an int, not {type(a).__name__}")
