@@ -296,29 +296,35 @@ BOXGEN_STAGE HWY_ATTR LocatedPack<Tr, T> locate_pack(const T* x, const T* near, 
   for (int i = 0; i < n; ++i) xs[i] = P(hn::LoadU(d, x + i * kRow + at));
   support::locate_in<Tr, A>(xs, l.corner, l.cell, l.ref);
   auto ok = hn::And(hn::Ge(l.cell.v, hn::Zero(d)), hn::Gt(hn::LoadU(d, near + at), hn::Zero(d)));
+  // 0 <= corner + reach_lo and corner + reach_hi <= limit, as bounds of the corner (exact).
   for (int i = 0; i < n; ++i) {
-    const auto lo = hn::Add(l.corner[i].v, hn::Set(d, static_cast<T>(Tr::kStencilReachLo[i])));
-    const auto hi = hn::Add(l.corner[i].v, hn::Set(d, static_cast<T>(Tr::kStencilReachHi[i])));
-    ok = hn::And(ok, hn::And(hn::Ge(lo, hn::Zero(d)),
-                             hn::Le(hi, hn::Set(d, static_cast<T>(frame.limit[i])))));
+    const auto lo = hn::Set(d, static_cast<T>(-Tr::kStencilReachLo[i]));
+    const auto hi = hn::Set(d, static_cast<T>(frame.limit[i] - Tr::kStencilReachHi[i]));
+    ok = hn::And(ok, hn::And(hn::Ge(l.corner[i].v, lo), hn::Le(l.corner[i].v, hi)));
   }
   l.ok = ok;
   return l;
+}
+
+// The set-up both chunk kernels share: kChunk points to lattice coordinates, then each vector of
+// them located (locate_pack); f(at, located) for the vector of lanes at `at`.
+template <class Tr, class T, class F>
+HWY_ATTR void for_each_located_pack(const double* points, const Frame& frame, F&& f) {
+  static_assert(Tr::kDimension == 3 && Tr::kScale == 1, "3-D filters, not scaled pairs");
+  alignas(64) T x[Tr::kDimension * kRow];
+  alignas(64) T near[kChunk];
+  lattice_lanes(points, frame, x, near);
+  const int width = static_cast<int>(hn::Lanes(typename Pack<T>::D()));
+  for (int at = 0; at < kChunk; at += width) f(at, locate_pack<Tr>(x, near, at, frame));
 }
 
 // support::locate_in() for kChunk points at once and the stencil box check (locate_chunk).
 template <class Tr, class T>
 [[gnu::flatten]] HWY_ATTR void locate_lanes(const double* points, const Frame& frame, T* out) {
   constexpr int n = Tr::kDimension;
-  static_assert(n == 3 && Tr::kScale == 1, "3-D filters, not scaled pairs");
   using A = PackArith<T>;
   const typename A::D d;
-  alignas(64) T x[n * kRow];
-  alignas(64) T near[kChunk];
-  lattice_lanes(points, frame, x, near);
-  const int width = static_cast<int>(hn::Lanes(d));
-  for (int at = 0; at < kChunk; at += width) {
-    const LocatedPack<Tr, T> l = locate_pack<Tr>(x, near, at, frame);
+  for_each_located_pack<Tr, T>(points, frame, [&](int at, const LocatedPack<Tr, T>& l) HWY_ATTR {
     hn::StoreU(l.cell.v, d, out + n * kRow + at);
     hn::StoreU(hn::IfThenElseZero(l.ok, hn::Set(d, T(1))), d, out + (2 * n + 2) * kRow + at);
     hn::StoreU(hn::GatherIndex(d, kLocateTables<Tr, T>.orbit, A::index(l.cell)), d,
@@ -327,7 +333,7 @@ template <class Tr, class T>
       hn::StoreU(l.corner[i].v, d, out + i * kRow + at);
       hn::StoreU(l.ref[i].v, d, out + (n + 1 + i) * kRow + at);
     }
-  }
+  });
 }
 
 // m * s for a small constant m >= 0, by shifts and additions (no vector multiplication of 64-bit
@@ -439,11 +445,101 @@ BOXGEN_STAGE HWY_ATTR void gather_orbit(const T* samples, V first, const V* axis
   ((pv[K] = Pack<T>(hn::GatherIndex(d, samples, sample_index<Tr, O, K>(first, axis, flip)))), ...);
 }
 
+#if HWY_TARGET != HWY_SCALAR  // one lane has nothing to transpose
+// Vector m of a run's load (gather_runs): the loads of all lanes one after the other, L samples
+// each from samples + base[lane], cut into vectors of d (m counts vectors).
+template <int L, class D, class T, class I>
+HWY_ATTR hn::Vec<D> run_vector(D d, const T* samples, const I* base, int m) {
+  constexpr int kLanes = static_cast<int>(hn::MaxLanes(d));
+  if constexpr (kLanes <= L) {
+    constexpr int kParts = L / kLanes;
+    return hn::LoadU(d, samples + base[m / kParts] + (m % kParts) * kLanes);
+  } else {
+    const hn::Half<D> dh;
+    constexpr int kHalf = kLanes / 2 / L;  // loads per half
+    return hn::Combine(d, run_vector<L>(dh, samples, base + (2 * m + 1) * kHalf, 0),
+                       run_vector<L>(dh, samples, base + 2 * m * kHalf, 0));
+  }
+}
+
+// Splits the N vectors v (a sequence of values, vector after vector) by the value's position mod
+// N: out[c] holds the values at positions c, c + N, c + 2 N, ... in order.
+template <int N, class D>
+HWY_ATTR void deinterleave(D d, const hn::Vec<D>* v, hn::Vec<D>* out) {
+  if constexpr (N == 1) {
+    out[0] = v[0];
+  } else {
+    hn::Vec<D> even[N / 2], odd[N / 2], split[2][N / 2];
+    for (int q = 0; q < N / 2; ++q) {
+      even[q] = hn::ConcatEven(d, v[2 * q + 1], v[2 * q]);
+      odd[q] = hn::ConcatOdd(d, v[2 * q + 1], v[2 * q]);
+    }
+    deinterleave<N / 2>(d, even, split[0]);
+    deinterleave<N / 2>(d, odd, split[1]);
+    for (int c = 0; c < N / 2; ++c) {
+      out[2 * c] = split[0][c];
+      out[2 * c + 1] = split[1][c];
+    }
+  }
+}
+
+// The stencil of orbit O loaded by runs (StencilSteps::run_axis): each lane loads the kRun
+// samples of a run with one load of L = kRun u consecutive samples (u = run_step; storage axis 0
+// has stride 1), and the loads are transposed into one vector per sample (what the unneeded
+// positions would give is never computed). A lane whose cell reverses the run's axis finds the
+// run's samples in the reverse order. The caller makes sure that no load reaches beyond the
+// volume's samples (with u = 2 a load takes one sample after its run).
+template <class Tr, int O, class T, class V, int... G>
+BOXGEN_STAGE HWY_ATTR void load_runs(const T* samples, V first, const V* axis, V flip, Pack<T>* pv,
+                                     std::integer_sequence<int, G...> /*runs*/) {
+  constexpr auto& steps = kStencilSteps<Tr>;
+  constexpr int kRun = StencilSteps<Tr>::kRun, r = steps.run_axis[O], u = steps.run_step[O];
+  constexpr int L = kRun * u;
+  const typename Pack<T>::D d;
+  const hn::DFromV<V> di;
+  using I = hn::TFromD<decltype(di)>;
+  const auto reversed = hn::Lt(axis[r], hn::Zero(di));
+  // A reversed run starts (kRun - 1) u samples below its first sample.
+  const V back = hn::IfThenElseZero(reversed, hn::Set(di, static_cast<I>(-(kRun - 1) * u)));
+  alignas(64) I base[sizeof...(G)][hn::MaxLanes(di)];
+  ((hn::Store(hn::Add(sample_index<Tr, O, kRun * G>(first, axis, flip), back), di, base[G])), ...);
+  const auto flipped = hn::RebindMask(d, reversed);
+  (
+      [&]() HWY_ATTR {
+        hn::Vec<decltype(d)> v[L], at[L];
+        for (int m = 0; m < L; ++m) v[m] = run_vector<L>(d, samples, base[G], m);
+        deinterleave<L>(d, v, at);
+        for (int j = 0; j < kRun; ++j)
+          pv[kRun * G + j] = Pack<T>(hn::IfThenElse(flipped, at[(kRun - 1 - j) * u], at[j * u]));
+      }(),
+      ...);
+}
+
+// Whether the stencils of the lanes of `lanes` may be loaded by runs: a volume whose storage axis
+// 0 has stride 1, and (where a load takes a sample after its run) no lane whose stencil box holds
+// the volume's last sample, the lattice point at the limit of every axis (then the extra sample
+// would lie beyond it). Else the caller gathers.
+template <class Tr, int O, class T, class M>
+HWY_ATTR bool runs_fit(const LinearVolume<T>& volume, const LocatedPack<Tr, T>& l, M lanes,
+                       const Frame& frame) {
+  constexpr auto& steps = kStencilSteps<Tr>;
+  const typename Pack<T>::D d;
+  if (volume.stride[0] != 1 || hn::AllFalse(d, lanes)) return false;
+  if constexpr (steps.run_step[O] == 1) return true;
+  auto at_end = lanes;
+  for (int i = 0; i < Tr::kDimension; ++i)
+    at_end = hn::And(at_end, hn::Ge(l.corner[i].v, hn::Set(d, static_cast<T>(frame.limit[i] -
+                                                                            Tr::kStencilReachHi[i]))));
+  return hn::AllFalse(d, at_end);
+}
+#endif
+
 // evaluate_chunk (simd_batch.h) for one orbit O: the lanes of `lanes` (the others gather sample 0
 // and their results are not used) take the orbit's polynomial.
 template <class Tr, int Order, int O, class T, class V, class M>
-HWY_ATTR void evaluate_orbit(const LinearVolume<T>& volume, const LocatedPack<Tr, T>& l, M lanes,
-                             const LaneStencil<V>& st, Pack<T>& value, Pack<T>* derivatives) {
+HWY_ATTR void evaluate_orbit(const LinearVolume<T>& volume, const Frame& frame,
+                             const LocatedPack<Tr, T>& l, M lanes, const LaneStencil<V>& st,
+                             Pack<T>& value, Pack<T>* derivatives) {
   constexpr int n = Tr::kDimension;
   constexpr int kDerivatives =
       Order == support::kValue ? 0
@@ -453,9 +549,25 @@ HWY_ATTR void evaluate_orbit(const LinearVolume<T>& volume, const LocatedPack<Tr
   const auto m = hn::RebindMask(di, lanes);
   V axis_in[n];
   for (int i = 0; i < n; ++i) axis_in[i] = hn::IfThenElseZero(m, st.axis[i]);
+  static_cast<void>(frame);  // used where the orbit has runs
   Pack<T> pv[Tr::kStencilSize];
-  gather_orbit<Tr, O>(volume.samples, hn::IfThenElseZero(m, st.first), axis_in,
-                      hn::IfThenElseZero(m, st.flip), pv, std::make_integer_sequence<int, size>{});
+  const V first = hn::IfThenElseZero(m, st.first), flip = hn::IfThenElseZero(m, st.flip);
+  bool loaded = false;
+#if HWY_TARGET != HWY_SCALAR
+  // In double, runs whose loads also carry unused samples (run_step 2) were slower than the
+  // gathers on a cache-resident volume (docs/performance.md), so they gather.
+  constexpr int u = kStencilSteps<Tr>.run_step[O];
+  if constexpr (kStencilSteps<Tr>.run_axis[O] >= 0 && (sizeof(T) == 4 || u == 1)) {
+    if (runs_fit<Tr, O>(volume, l, lanes, frame)) {
+      load_runs<Tr, O>(volume.samples, first, axis_in, flip, pv,
+                       std::make_integer_sequence<int, size / StencilSteps<Tr>::kRun>{});
+      loaded = true;
+    }
+  }
+#endif
+  if (!loaded)
+    gather_orbit<Tr, O>(volume.samples, first, axis_in, flip, pv,
+                        std::make_integer_sequence<int, size>{});
   for (int k = size; k < Tr::kStencilSize; ++k) pv[k] = Pack<T>(0.0);
   Pack<T>
       pd[kDerivatives + 1];  // the orbit function fills d[0, kDerivatives); zeroed for the compiler
@@ -472,34 +584,27 @@ template <class Tr, int Order, class T, int... O>
                                               const LinearVolume<T>& volume, T* out,
                                               std::integer_sequence<int, O...> /*orbits*/) {
   constexpr int n = Tr::kDimension;
-  static_assert(n == 3 && Tr::kScale == 1, "3-D filters, not scaled pairs");
   constexpr int kDerivatives =
       Order == support::kValue ? 0
                                : (Order == support::kGradient ? n : n + support::hessian_size(n));
-  using A = PackArith<T>;
   using P = Pack<T>;
-  const typename A::D d;
+  const typename P::D d;
   const hn::RebindToSigned<decltype(d)> di;
   using V = hn::Vec<decltype(di)>;
-  alignas(64) T x[n * kRow];
-  alignas(64) T near[kChunk];
-  lattice_lanes(points, frame, x, near);
-  const int width = static_cast<int>(hn::Lanes(d));
-  for (int at = 0; at < kChunk; at += width) {
-    const LocatedPack<Tr, T> l = locate_pack<Tr>(x, near, at, frame);
+  for_each_located_pack<Tr, T>(points, frame, [&](int at, const LocatedPack<Tr, T>& l) HWY_ATTR {
     const LaneStencil<V> st = lane_stencil<Tr>(l, volume);
     P value(0.0);
     P derivatives[kDerivatives + 1];
     for (P& e : derivatives) e = P(0.0);
     if constexpr (sizeof...(O) == 1) {
-      evaluate_orbit<Tr, Order, 0>(volume, l, l.ok, st, value, derivatives);
+      evaluate_orbit<Tr, Order, 0>(volume, frame, l, l.ok, st, value, derivatives);
     } else {
       const P orbit(hn::GatherIndex(d, kLocateTables<Tr, T>.orbit, st.cell));
       (
           [&]() HWY_ATTR {
             const auto lanes = hn::And(l.ok, hn::Eq(orbit.v, hn::Set(d, static_cast<T>(O))));
             if (!hn::AllFalse(d, lanes))
-              evaluate_orbit<Tr, Order, O>(volume, l, lanes, st, value, derivatives);
+              evaluate_orbit<Tr, Order, O>(volume, frame, l, lanes, st, value, derivatives);
           }(),
           ...);
     }
@@ -508,7 +613,7 @@ template <class Tr, int Order, class T, int... O>
       hn::StoreU(derivatives[j].v, d, out + (j + 1) * kRow + at);
     hn::StoreU(l.cell.v, d, out + kChunkCellRow * kRow + at);
     hn::StoreU(hn::IfThenElseZero(l.ok, hn::Set(d, T(1))), d, out + kChunkOkRow * kRow + at);
-  }
+  });
 }
 
 template <class Tr, class T>

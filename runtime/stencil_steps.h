@@ -23,7 +23,33 @@ struct StencilSteps {
   bool consistent = true;
   // Every step's coordinates share one parity (on BCC, a step flips the coset when it is odd).
   bool same_parity = true;
+  // Runs: where an orbit's samples come in groups k = kRun g + j (j < kRun) that differ by
+  // j run_step[o] along reference axis run_axis[o], and every cell of the orbit maps that axis to
+  // storage axis 0, a group lies in storage within kRun run_step[o] consecutive samples, so a lane
+  // loads it with vector loads instead of kRun gathers (simd_kernels-inl.h). run_axis[o] is -1
+  // where the orbit has no runs.
+  static constexpr int kRun = 4;
+  int run_axis[kOrbits] = {};
+  int run_step[kOrbits] = {};
 };
+
+// The runs of orbit o along reference axis r (StencilSteps::run_axis), their step, or 0.
+template <class Tr>
+constexpr int run_step_along(const StencilSteps<Tr>& s, int o, int r) {
+  constexpr int kRun = StencilSteps<Tr>::kRun;
+  for (int c = 0; c < Tr::kCellCount; ++c)
+    if (Tr::kCells[c].orbit == o && Tr::kCells[c].perm[r] != 0) return 0;
+  const int size = Tr::kOrbitStencilSize[o];
+  if (size % kRun != 0) return 0;
+  const int u = s.step[o][1][r] - s.step[o][0][r];
+  if (u != 1 && u != 2) return 0;  // a run's load covers kRun u samples (at most 8)
+  for (int k = 0; k < size; ++k)
+    for (int i = 0; i < Tr::kDimension; ++i) {
+      const int j = k % kRun, first = k - j;
+      if (s.step[o][k][i] != s.step[o][first][i] + (i == r ? j * u : 0)) return 0;
+    }
+  return u;
+}
 
 template <class Tr>
 constexpr StencilSteps<Tr> stencil_steps() {
@@ -48,6 +74,13 @@ constexpr StencilSteps<Tr> stencil_steps() {
       }
     }
     seen[o] = true;
+  }
+  for (int o = 0; o < StencilSteps<Tr>::kOrbits; ++o) {
+    s.run_axis[o] = -1;
+    for (int r = 0; r < n && s.run_axis[o] < 0; ++r) {
+      s.run_step[o] = run_step_along(s, o, r);
+      if (s.run_step[o] != 0) s.run_axis[o] = r;
+    }
   }
   return s;
 }

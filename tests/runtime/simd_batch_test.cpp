@@ -225,6 +225,42 @@ TEST(SimdBatch, EqualsTheScalarPathForEverySplineFilterOnItsLatticeInDouble) {
   expect_every_lattice_filter_equals_scalar<double>(60);
 }
 
+// Points in the volume's upper corner, where a run's load (StencilSteps::run_axis) would reach
+// beyond the last sample: the chunk kernels gather those lanes' stencils instead, and every
+// result stays the scalar path's.
+std::vector<Vec3> upper_corner_points(int count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> corner(2.0 * kSize - 6.0, 2.0 * kSize - 1.0);
+  std::vector<Vec3> out(count);
+  for (Vec3& p : out) p = world({corner(rng), corner(rng), corner(rng)});
+  return out;
+}
+
+template <class T>
+void expect_upper_corner_equals_scalar(const std::string& filter, bool own_lattice) {
+  SCOPED_TRACE(filter);
+  const SplineFilter f = SplineFilter::parse(filter);
+  const LatticeVolume<T> volume =
+      own_lattice ? random_lattice_volume<T>(f, 7) : random_volume<T>(7);
+  const Reconstructor<T> r(volume, f);
+  const std::vector<Vec3> points = evaluable(r, upper_corner_points(4000, 8));
+  ASSERT_GT(points.size(), 100u);
+  std::vector<T> values(points.size()), scalar(points.size());
+  r.evaluate(points, values);
+  {
+    const SimdSwitch off("0");
+    r.evaluate(points, scalar);
+  }
+  EXPECT_EQ(values, scalar);
+}
+
+TEST(SimdBatch, RunLoadsStopAtTheLastSample) {
+  expect_upper_corner_equals_scalar<float>("m12", false);
+  expect_upper_corner_equals_scalar<double>("m12", false);
+  expect_upper_corner_equals_scalar<float>("tricubic", true);
+  expect_upper_corner_equals_scalar<double>("tricubic", true);
+}
+
 // Two threads split the chunks differently; the results do not change.
 TEST(SimdBatch, ThreadCountDoesNotChangeResults) {
   const LatticeVolume<float> volume = random_volume<float>(3);
@@ -284,6 +320,39 @@ TEST(SimdBatch, EveryRegistryFilterHasChunkKernels) {
       // Sample 0 is the origin of the steps.
       for (int o = 0; o < StencilSteps<Tr>::kOrbits; ++o)
         for (int a = 0; a < 3; ++a) EXPECT_EQ(kStencilSteps<Tr>.step[o][0][a], 0);
+    });
+  }
+}
+
+// The runs of stencil_steps.h, checked against the emitted offsets themselves: in every cell of
+// an orbit with runs, sample kRun g + j lies j run_step samples from sample kRun g along storage
+// axis 0, forwards or backwards by the cell's sign, and nowhere else. Which filters have them:
+// M12 (4 x 4 x 8 samples, same-coset rows along x) and tricubic (4 x 4 x 4).
+TEST(SimdBatch, StencilRunsLieAlongStorageX) {
+  for (int i = 0; i < generated::kFilterCount; ++i) {
+    SCOPED_TRACE(generated::kFilterNames[i]);
+    generated::with_filter(i, [&](auto entry) {
+      using Tr = typename decltype(entry)::Traits;
+      constexpr auto& s = kStencilSteps<Tr>;
+      const std::string_view name = generated::kFilterNames[i];
+      EXPECT_EQ(s.run_axis[0] >= 0, name == "m12" || name == "tricubic");
+      for (int o = 0; o < StencilSteps<Tr>::kOrbits; ++o) {
+        if (s.run_axis[o] < 0) continue;
+        const int u = s.run_step[o];
+        EXPECT_EQ(u, name == "m12" ? 2 : 1);
+        for (int c = 0; c < Tr::kCellCount; ++c) {
+          const auto& cell = Tr::kCells[c];
+          if (cell.orbit != o) continue;
+          const int sign = cell.sign[s.run_axis[o]];
+          for (int k = 0; k < Tr::kOrbitStencilSize[o]; ++k) {
+            const int j = k % StencilSteps<Tr>::kRun;
+            const auto& first = Tr::kOffsets[c][k - j];
+            EXPECT_EQ(Tr::kOffsets[c][k][0] - first[0], sign * j * u) << c << " " << k;
+            EXPECT_EQ(Tr::kOffsets[c][k][1], first[1]) << c << " " << k;
+            EXPECT_EQ(Tr::kOffsets[c][k][2], first[2]) << c << " " << k;
+          }
+        }
+      }
     });
   }
 }
