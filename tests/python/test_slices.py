@@ -160,6 +160,27 @@ def test_reconstructions_share_the_references_grid_and_window(tmp_path):
     assert compared > (s.w - 4) * (s.h - 4)  # more than one panel's worth
 
 
+def test_without_a_reference_the_window_is_the_volumes(tmp_path):
+    # The BCC volume's own samples (every coset; the NRRD boxrecon writes is raw little-endian
+    # float, its data the file's last bytes) give the window; its space is 3D-right-handed, so
+    # no letters.
+    rng = np.random.default_rng(8)
+    save_nifti(tmp_path / "ref.nii.gz", rng.normal(100, 30, (12, 12, 12)).astype(np.float32),
+               np.eye(4))
+    run("boxrecon", "subsample", "--volume", str(tmp_path / "ref.nii.gz"), "--lattice", "bcc",
+        "--spacing", "1", "-o", str(tmp_path / "bcc.nrrd"))
+    header = open(tmp_path / "bcc.nrrd", "rb").read().split(b"\n\n")[0].decode()
+    assert "encoding: raw" in header and "endian: little" in header and "type: float" in header
+    sizes = [int(n) for n in re.search(r"sizes: (.*)", header).group(1).split()]
+    count = int(np.prod(sizes))
+    samples = np.frombuffer(open(tmp_path / "bcc.nrrd", "rb").read()[-4 * count:], "<f4")
+    s = Slice("--volume", str(tmp_path / "bcc.nrrd"), "--filter", "m7", "--at", "5.5", "-o",
+              str(tmp_path / "s.png"))
+    assert "percentiles 1 and 99 of the volume's samples" in s.lines[0]
+    assert s.window == pytest.approx(np.percentile(samples, (1, 99)), rel=1e-5)
+    assert s.lines[1] == "orientation: x to the right, y upwards (the file has no anatomical frame)"
+
+
 def test_bad_window_options_are_one_line_and_write_nothing(tmp_path):
     save_nifti(tmp_path / "r.nii.gz", np.zeros((6, 6, 6), np.float32), np.eye(4))
     ref = str(tmp_path / "r.nii.gz")
