@@ -528,8 +528,9 @@ HWY_ATTR bool runs_fit(const LinearVolume<T>& volume, const LocatedPack<Tr, T>& 
   if constexpr (steps.run_step[O] == 1) return true;
   auto at_end = lanes;
   for (int i = 0; i < Tr::kDimension; ++i)
-    at_end = hn::And(at_end, hn::Ge(l.corner[i].v, hn::Set(d, static_cast<T>(frame.limit[i] -
-                                                                            Tr::kStencilReachHi[i]))));
+    at_end = hn::And(
+        at_end,
+        hn::Ge(l.corner[i].v, hn::Set(d, static_cast<T>(frame.limit[i] - Tr::kStencilReachHi[i]))));
   return hn::AllFalse(d, at_end);
 }
 #endif
