@@ -306,16 +306,18 @@ BOXGEN_STAGE HWY_ATTR LocatedPack<Tr, T> locate_pack(const T* x, const T* near, 
   return l;
 }
 
-// The set-up both chunk kernels share: kChunk points to lattice coordinates, then each vector of
-// them located (locate_pack); f(at, located) for the vector of lanes at `at`.
+// The set-up both chunk kernels share: kChunk points to lattice coordinates (lattice_lanes), then
+// f(x, near, at) for each vector of lanes, at `at` (it locates them: locate_pack; the pack stays a
+// local of f, which keeps it in registers).
 template <class Tr, class T, class F>
-HWY_ATTR void for_each_located_pack(const double* points, const Frame& frame, F&& f) {
+HWY_ATTR void for_each_pack(const double* points, const Frame& frame, F&& f) {
   static_assert(Tr::kDimension == 3 && Tr::kScale == 1, "3-D filters, not scaled pairs");
   alignas(64) T x[Tr::kDimension * kRow];
   alignas(64) T near[kChunk];
   lattice_lanes(points, frame, x, near);
   const int width = static_cast<int>(hn::Lanes(typename Pack<T>::D()));
-  for (int at = 0; at < kChunk; at += width) f(at, locate_pack<Tr>(x, near, at, frame));
+  for (int at = 0; at < kChunk; at += width)
+    f(static_cast<const T*>(x), static_cast<const T*>(near), at);
 }
 
 // support::locate_in() for kChunk points at once and the stencil box check (locate_chunk).
@@ -324,7 +326,8 @@ template <class Tr, class T>
   constexpr int n = Tr::kDimension;
   using A = PackArith<T>;
   const typename A::D d;
-  for_each_located_pack<Tr, T>(points, frame, [&](int at, const LocatedPack<Tr, T>& l) HWY_ATTR {
+  for_each_pack<Tr, T>(points, frame, [&](const T* x, const T* near, int at) HWY_ATTR {
+    const LocatedPack<Tr, T> l = locate_pack<Tr>(x, near, at, frame);
     hn::StoreU(l.cell.v, d, out + n * kRow + at);
     hn::StoreU(hn::IfThenElseZero(l.ok, hn::Set(d, T(1))), d, out + (2 * n + 2) * kRow + at);
     hn::StoreU(hn::GatherIndex(d, kLocateTables<Tr, T>.orbit, A::index(l.cell)), d,
@@ -592,7 +595,8 @@ template <class Tr, int Order, class T, int... O>
   const typename P::D d;
   const hn::RebindToSigned<decltype(d)> di;
   using V = hn::Vec<decltype(di)>;
-  for_each_located_pack<Tr, T>(points, frame, [&](int at, const LocatedPack<Tr, T>& l) HWY_ATTR {
+  for_each_pack<Tr, T>(points, frame, [&](const T* x, const T* near, int at) HWY_ATTR {
+    const LocatedPack<Tr, T> l = locate_pack<Tr>(x, near, at, frame);
     const LaneStencil<V> st = lane_stencil<Tr>(l, volume);
     P value(0.0);
     P derivatives[kDerivatives + 1];
