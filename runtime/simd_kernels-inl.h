@@ -306,27 +306,18 @@ BOXGEN_STAGE HWY_ATTR LocatedPack<Tr, T> locate_pack(const T* x, const T* near, 
   return l;
 }
 
-// The set-up both chunk kernels share: kChunk points to lattice coordinates (lattice_lanes), then
-// f(x, near, at) for each vector of lanes, at `at` (it locates them: locate_pack; the pack stays a
-// local of f, which keeps it in registers).
-template <class Tr, class T, class F>
-HWY_ATTR void for_each_pack(const double* points, const Frame& frame, F&& f) {
-  static_assert(Tr::kDimension == 3 && Tr::kScale == 1, "3-D filters, not scaled pairs");
-  alignas(64) T x[Tr::kDimension * kRow];
-  alignas(64) T near[kChunk];
-  lattice_lanes(points, frame, x, near);
-  const int width = static_cast<int>(hn::Lanes(typename Pack<T>::D()));
-  for (int at = 0; at < kChunk; at += width)
-    f(static_cast<const T*>(x), static_cast<const T*>(near), at);
-}
-
 // support::locate_in() for kChunk points at once and the stencil box check (locate_chunk).
 template <class Tr, class T>
 [[gnu::flatten]] HWY_ATTR void locate_lanes(const double* points, const Frame& frame, T* out) {
   constexpr int n = Tr::kDimension;
+  static_assert(n == 3 && Tr::kScale == 1, "3-D filters, not scaled pairs");
   using A = PackArith<T>;
   const typename A::D d;
-  for_each_pack<Tr, T>(points, frame, [&](const T* x, const T* near, int at) HWY_ATTR {
+  alignas(64) T x[n * kRow];
+  alignas(64) T near[kChunk];
+  lattice_lanes(points, frame, x, near);
+  const int width = static_cast<int>(hn::Lanes(d));
+  for (int at = 0; at < kChunk; at += width) {
     const LocatedPack<Tr, T> l = locate_pack<Tr>(x, near, at, frame);
     hn::StoreU(l.cell.v, d, out + n * kRow + at);
     hn::StoreU(hn::IfThenElseZero(l.ok, hn::Set(d, T(1))), d, out + (2 * n + 2) * kRow + at);
@@ -336,7 +327,7 @@ template <class Tr, class T>
       hn::StoreU(l.corner[i].v, d, out + i * kRow + at);
       hn::StoreU(l.ref[i].v, d, out + (n + 1 + i) * kRow + at);
     }
-  });
+  }
 }
 
 // m * s for a small constant m >= 0, by shifts and additions (no vector multiplication of 64-bit
@@ -449,7 +440,7 @@ BOXGEN_STAGE HWY_ATTR void gather_orbit(const T* samples, V first, const V* axis
 }
 
 #if HWY_TARGET != HWY_SCALAR  // one lane has nothing to transpose
-// Vector m of a run's load (gather_runs): the loads of all lanes one after the other, L samples
+// Vector m of a run's load (load_runs): the loads of all lanes one after the other, L samples
 // each from samples + base[lane], cut into vectors of d (m counts vectors).
 template <int L, class D, class T, class I>
 HWY_ATTR hn::Vec<D> run_vector(D d, const T* samples, const I* base, int m) {
@@ -595,7 +586,11 @@ template <class Tr, int Order, class T, int... O>
   const typename P::D d;
   const hn::RebindToSigned<decltype(d)> di;
   using V = hn::Vec<decltype(di)>;
-  for_each_pack<Tr, T>(points, frame, [&](const T* x, const T* near, int at) HWY_ATTR {
+  alignas(64) T x[n * kRow];
+  alignas(64) T near[kChunk];
+  lattice_lanes(points, frame, x, near);
+  const int width = static_cast<int>(hn::Lanes(d));
+  for (int at = 0; at < kChunk; at += width) {
     const LocatedPack<Tr, T> l = locate_pack<Tr>(x, near, at, frame);
     const LaneStencil<V> st = lane_stencil<Tr>(l, volume);
     P value(0.0);
@@ -618,7 +613,7 @@ template <class Tr, int Order, class T, int... O>
       hn::StoreU(derivatives[j].v, d, out + (j + 1) * kRow + at);
     hn::StoreU(l.cell.v, d, out + kChunkCellRow * kRow + at);
     hn::StoreU(hn::IfThenElseZero(l.ok, hn::Set(d, T(1))), d, out + kChunkOkRow * kRow + at);
-  });
+  }
 }
 
 template <class Tr, class T>
