@@ -10,7 +10,7 @@
 
 #include "analysis/error_kernel.h"
 #include "analysis/quadrature.h"
-#include "apps/boxgen/optimised_prefilter.h"
+#include "frontend/optimised_prefilter.h"
 #include "tests/analysis/inputs.h"
 
 namespace boxgen::analysis {
