@@ -18,10 +18,10 @@
 
 #include "apps/boxrecon/cmd_bench.h"
 #include "apps/boxrecon/device_choice.h"
-#include "apps/boxrecon/filter_choice.h"
-#include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/output_volume.h"
-#include "apps/boxrecon/sample_command.h"
+#include "frontend/filter_choice.h"
+#include "frontend/input_checks.h"
+#include "frontend/sample_grid.h"
 #include "runtime/batch_threads.h"
 #include "runtime/gl/gl_spline.h"
 #include "runtime/nifti_io.h"
@@ -78,7 +78,7 @@ int run_eval(const std::string& filter, const std::string& lattice, const Prefil
              const std::string& volume_path, const std::string& points_path, bool gradient,
              bool hessian, const NrrdReadLimits& limits, Device device, bool verbose) {
   const PrefilterSetting q = parse_prefilter_options(pre);
-  const SplineFilter f = filter_for_volume(filter, lattice, volume_path);
+  const SplineFilter f = frontend::filter_for_volume(filter, lattice, volume_path);
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
   const auto points = read_points_file(points_path);
   std::vector<T> values(points.size());
@@ -87,7 +87,7 @@ int run_eval(const std::string& filter, const std::string& lattice, const Prefil
   const Reconstructor<T> spline(volume, f);
   if (device == Device::Gl) {
     if (verbose) std::cerr << gl_device_line() << '\n';
-    const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, sizeof(T) == 8));
+    const gl::GlSpline<T> gpu(volume, f, frontend::glsl_for(f, filter, sizeof(T) == 8));
     gpu.evaluate(points, values, gradients, hessians);
   } else {
     spline.evaluate(points, values, gradients, hessians);
@@ -138,8 +138,8 @@ int run_error(const std::string& function, int n, const std::string& filter,
               const std::string& lattice_text, const PrefilterOptions& pre, int count,
               std::uint64_t seed, bool gradient, bool json) {
   const TestFunction& fn = find_test_function(function);
-  const SplineFilter f = filter_from(filter, lattice_text);
-  (void)lattice_for(f, lattice_text);
+  const SplineFilter f = frontend::filter_from(filter, lattice_text);
+  (void)frontend::lattice_for(f, lattice_text);
   const PrefilterSetting q = parse_prefilter_options(pre);
   if (count < 1 || count > 100000000)
     throw std::invalid_argument("--points must be between 1 and 100000000");
@@ -161,7 +161,7 @@ int run_error(const std::string& function, int n, const std::string& filter,
   report.sizes = grid.sizes;
   report.samples = static_cast<std::uint64_t>(lattice.coset_count()) * grid.sizes[0] *
                    grid.sizes[1] * grid.sizes[2];
-  check_memory(report.samples, sizeof(double), fmt::format("--n {}", n), "samples");
+  frontend::check_memory(report.samples, sizeof(double), fmt::format("--n {}", n), "samples");
   InterpolationReport interpolation;
   const LatticeVolume<double> volume = spline_coefficients(
       sample_lattice<double>(fn.value, grid), f, q.choice, q.boundary, &interpolation, true);
@@ -275,7 +275,7 @@ double progress_after() {
 template <class T>
 CartesianVolume<T> resample_grid(const LatticeVolume<T>& volume, const SplineFilter& f,
                                  const CartesianGrid& grid, const BatchEvaluate<T>& evaluate) {
-  if (quiet() || ::isatty(STDERR_FILENO) == 0)
+  if (frontend::quiet() || ::isatty(STDERR_FILENO) == 0)
     return resample(volume, f, grid, GridBlock{{0, 0, 0}, grid.sizes}, evaluate);
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
@@ -325,7 +325,7 @@ int run_resample(const std::string& filter, const std::string& lattice, const Pr
   // Before the work (a SPEC's first compile included), not after it; never the input.
   require_output_volume(output, {&input, 1}, CosetLattice::cartesian());
   const VolumeFormat format = output_format(output);
-  const SplineFilter f = filter_for_volume(filter, lattice, volume_path);
+  const SplineFilter f = frontend::filter_for_volume(filter, lattice, volume_path);
   // Oblique volumes are read in their own frame (index space times the voxel sizes); the
   // output's world points map into it through the inverse of the volume's affine.
   NrrdReadLimits read_limits = limits;
@@ -367,16 +367,17 @@ int run_resample(const std::string& filter, const std::string& lattice, const Pr
                   ? SampleType::Float32
                   : (sizeof(T) == 8 ? SampleType::Float64 : SampleType::Float32));
   const Sizes& n = grid.sizes;
-  check_memory(static_cast<std::uint64_t>(n[0]) * static_cast<std::uint64_t>(n[1]) *
-                   static_cast<std::uint64_t>(n[2]),
-               sizeof(T) + sample_type_size(stored),
-               fmt::format("the output grid of {} x {} x {} points", n[0], n[1], n[2]), "values");
+  frontend::check_memory(static_cast<std::uint64_t>(n[0]) * static_cast<std::uint64_t>(n[1]) *
+                             static_cast<std::uint64_t>(n[2]),
+                         sizeof(T) + sample_type_size(stored),
+                         fmt::format("the output grid of {} x {} x {} points", n[0], n[1], n[2]),
+                         "values");
   CartesianVolume<T> values;
   if (device == Device::Cpu) {
     values = resample_grid(volume, f, grid, BatchEvaluate<T>{});
   } else {
     if (verbose) std::cerr << gl_device_line() << '\n';
-    const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, sizeof(T) == 8));
+    const gl::GlSpline<T> gpu(volume, f, frontend::glsl_for(f, filter, sizeof(T) == 8));
     values = resample_grid(volume, f, grid,
                            BatchEvaluate<T>([&gpu](std::span<const Vec3> points, std::span<T> out) {
                              gpu.evaluate(points, out);

@@ -6,7 +6,7 @@
 #include <iostream>
 #include <utility>
 
-#include "apps/boxrecon/filter_choice.h"
+#include "frontend/filter_choice.h"
 
 namespace boxgen::app {
 
@@ -43,7 +43,7 @@ LatticeVolume<T> coefficients_for(LatticeVolume<T> samples, const SplineFilter& 
   InterpolationReport r;
   LatticeVolume<T> out =
       spline_coefficients(std::move(samples), f, setting.choice, setting.boundary, &r);
-  if (!setting.choice.is_fir() && r.lambda > 0 && !quiet())
+  if (!setting.choice.is_fir() && r.lambda > 0 && !frontend::quiet())
     std::cerr << interpolation_line(f, r) << '\n';
   if (report) *report = r;
   return out;
