@@ -443,7 +443,7 @@ BOXGEN_STAGE HWY_ATTR void gather_orbit(const T* samples, V first, const V* axis
 // Vector m of a run's load (load_runs): the loads of all lanes one after the other, L samples
 // each from samples + base[lane], cut into vectors of d (m counts vectors).
 template <int L, class D, class T, class I>
-HWY_ATTR hn::Vec<D> run_vector(D d, const T* samples, const I* base, int m) {
+HWY_ATTR hn::Vec<D> run_vector(D d, const T* samples, const I* base, std::ptrdiff_t m) {
   constexpr int kLanes = static_cast<int>(hn::MaxLanes(d));
   if constexpr (kLanes <= L) {
     constexpr int kParts = L / kLanes;
@@ -464,13 +464,13 @@ HWY_ATTR void deinterleave(D d, const hn::Vec<D>* v, hn::Vec<D>* out) {
     out[0] = v[0];
   } else {
     hn::Vec<D> even[N / 2], odd[N / 2], split[2][N / 2];
-    for (int q = 0; q < N / 2; ++q) {
+    for (std::ptrdiff_t q = 0; q < N / 2; ++q) {
       even[q] = hn::ConcatEven(d, v[2 * q + 1], v[2 * q]);
       odd[q] = hn::ConcatOdd(d, v[2 * q + 1], v[2 * q]);
     }
     deinterleave<N / 2>(d, even, split[0]);
     deinterleave<N / 2>(d, odd, split[1]);
-    for (int c = 0; c < N / 2; ++c) {
+    for (std::ptrdiff_t c = 0; c < N / 2; ++c) {
       out[2 * c] = split[0][c];
       out[2 * c + 1] = split[1][c];
     }
@@ -494,7 +494,8 @@ BOXGEN_STAGE HWY_ATTR void load_runs(const T* samples, V first, const V* axis, V
   using I = hn::TFromD<decltype(di)>;
   const auto reversed = hn::Lt(axis[r], hn::Zero(di));
   // A reversed run starts (kRun - 1) u samples below its first sample.
-  const V back = hn::IfThenElseZero(reversed, hn::Set(di, static_cast<I>(-(kRun - 1) * u)));
+  constexpr int kBack = -(kRun - 1) * u;
+  const V back = hn::IfThenElseZero(reversed, hn::Set(di, static_cast<I>(kBack)));
   alignas(64) I base[sizeof...(G)][hn::MaxLanes(di)];
   ((hn::Store(hn::Add(sample_index<Tr, O, kRun * G>(first, axis, flip), back), di, base[G])), ...);
   const auto flipped = hn::RebindMask(d, reversed);
