@@ -296,11 +296,11 @@ BOXGEN_STAGE HWY_ATTR LocatedPack<Tr, T> locate_pack(const T* x, const T* near, 
   for (int i = 0; i < n; ++i) xs[i] = P(hn::LoadU(d, x + i * kRow + at));
   support::locate_in<Tr, A>(xs, l.corner, l.cell, l.ref);
   auto ok = hn::And(hn::Ge(l.cell.v, hn::Zero(d)), hn::Gt(hn::LoadU(d, near + at), hn::Zero(d)));
-  // 0 <= corner + reach_lo and corner + reach_hi <= limit, as bounds of the corner (exact).
   for (int i = 0; i < n; ++i) {
-    const auto lo = hn::Set(d, static_cast<T>(-Tr::kStencilReachLo[i]));
-    const auto hi = hn::Set(d, static_cast<T>(frame.limit[i] - Tr::kStencilReachHi[i]));
-    ok = hn::And(ok, hn::And(hn::Ge(l.corner[i].v, lo), hn::Le(l.corner[i].v, hi)));
+    const auto lo = hn::Add(l.corner[i].v, hn::Set(d, static_cast<T>(Tr::kStencilReachLo[i])));
+    const auto hi = hn::Add(l.corner[i].v, hn::Set(d, static_cast<T>(Tr::kStencilReachHi[i])));
+    ok = hn::And(ok, hn::And(hn::Ge(lo, hn::Zero(d)),
+                             hn::Le(hi, hn::Set(d, static_cast<T>(frame.limit[i])))));
   }
   l.ok = ok;
   return l;
