@@ -288,7 +288,7 @@ bool is_cartesian(const CosetLattice& lattice) { return lattice == CosetLattice:
 CosetLattice output_lattice(const std::string& text, const std::optional<LikeImage>& like,
                             const std::string& like_path) {
   if (text.empty()) return like ? like->lattice : CosetLattice::cartesian();
-  const CosetLattice lattice = CosetLattice::parse(text);
+  CosetLattice lattice = CosetLattice::parse(text);
   if (like && !(like->lattice == lattice))
     throw std::invalid_argument(
         fmt::format("--lattice {} differs from the lattice of --like '{}' ({}): give one of them",
