@@ -20,8 +20,8 @@
 #include <variant>
 #include <vector>
 
-#include "apps/boxrecon/filter_choice.h"
-#include "apps/boxrecon/sample_command.h"
+#include "frontend/filter_choice.h"
+#include "frontend/sample_grid.h"
 #include "generator/box_spline_properties.h"
 #include "generator/spec.h"
 #include "python/bindings.h"
@@ -365,17 +365,17 @@ bool signal_pending() {
 // A registry filter, or any SPEC through the loader (compiled and cached on first use, exactly
 // as boxrecon --filter SPEC --lattice L gets it), with the generator's properties of its SPEC.
 // With `volume` (and no lattice) a direction list is on the volume's lattice, as boxrecon's
-// --filter SPEC --volume FILE (app::lattice_for_volume).
+// --filter SPEC --volume FILE (frontend::lattice_for_volume).
 Filter make_filter(const std::string& spec_text, const std::optional<std::string>& lattice,
                    const Volume* volume) {
   const std::string lattice_text =
-      volume ? app::lattice_for_volume(spec_text, lattice.value_or(""), volume->lattice(),
-                                       "the volume", "lattice")
+      volume ? frontend::lattice_for_volume(spec_text, lattice.value_or(""), volume->lattice(),
+                                            "the volume", "lattice")
              : lattice.value_or("");
   std::optional<rt::SplineFilter> filter;
   {
     py::gil_scoped_release release;  // a first use derives and compiles: seconds
-    filter = app::filter_from(spec_text, lattice_text);
+    filter = frontend::filter_from(spec_text, lattice_text);
   }
   gen::BoxSplineSpec spec = gen::parse_spec(spec_text, lattice_text);
   gen::BoxSplineProperties properties = gen::box_spline_properties(spec);
@@ -677,7 +677,7 @@ void bind_volume(py::module_& m) {
       [](const py::object& function, int n, const std::optional<std::string>& lattice,
          const std::optional<std::string>& filter, std::optional<double> h) {
         const rt::LatticeGrid grid =
-            app::sample_grid(n, h, lattice.value_or(""), filter.value_or(""), sizeof(double));
+            frontend::sample_grid(n, h, lattice.value_or(""), filter.value_or(""), sizeof(double));
         if (py::isinstance<py::str>(function)) {
           const rt::TestFunction& fn = rt::find_test_function(function.cast<std::string>());
           py::gil_scoped_release release;

@@ -13,11 +13,11 @@
 #include <vector>
 
 #include "apps/boxrecon/cmd_volumes.h"
-#include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/lattice_commands.h"
 #include "apps/boxrecon/output_volume.h"
 #include "apps/boxrecon/prefilter_options.h"
 #include "apps/boxrecon/progress.h"
+#include "frontend/filter_choice.h"
 #include "runtime/nifti_io.h"
 #include "runtime/nrrd_checks.h"
 #include "runtime/resample.h"
@@ -150,7 +150,7 @@ CLI::App* add_compare_command(CLI::App& app) {
 }
 
 int run_compare() {
-  const SplineFilter filter = app::filter_for_volume(args.filter, args.lattice, args.volume);
+  const SplineFilter filter = frontend::filter_for_volume(args.filter, args.lattice, args.volume);
   const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   const std::filesystem::path inputs[2] = {args.reference, args.volume};
   const std::optional<SampleType> type = app::parse_type_option(args.type);

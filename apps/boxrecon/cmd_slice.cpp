@@ -13,8 +13,8 @@
 
 #include "analysis/gnuplot.h"
 #include "apps/boxrecon/cmd_volumes.h"
-#include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/lattice_commands.h"
+#include "frontend/filter_choice.h"
 #include "runtime/nifti_io.h"
 #include "runtime/nrrd_checks.h"
 #include "runtime/percentiles.h"
@@ -354,7 +354,7 @@ int run_slice() {
     box.max[a] = HUGE_VAL;
   }
   for (const std::string& name : names) {
-    filters.push_back(app::filter_for_volume(name, args.lattice, args.volume));
+    filters.push_back(frontend::filter_for_volume(name, args.lattice, args.volume));
     volumes.push_back(app::read_for<float>(filters.back(), q, args.volume, {}));
     const Box b = default_box(volumes.back(), filters.back());
     for (int a = 0; a < 3; ++a) {  // panels side by side share the box all of them reconstruct

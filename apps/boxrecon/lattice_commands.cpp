@@ -14,11 +14,11 @@
 
 #include "apps/boxrecon/cmd_bench.h"
 #include "apps/boxrecon/device_choice.h"
-#include "apps/boxrecon/filter_choice.h"
-#include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/output_volume.h"
 #include "apps/boxrecon/progress.h"
-#include "apps/boxrecon/sample_command.h"
+#include "frontend/filter_choice.h"
+#include "frontend/input_checks.h"
+#include "frontend/sample_grid.h"
 #include "runtime/batch_threads.h"
 #include "runtime/gl/gl_spline.h"
 #include "runtime/nifti_io.h"
@@ -75,7 +75,7 @@ int run_eval(const std::string& filter, const std::string& lattice, const Prefil
              const std::string& volume_path, const std::string& points_path, bool gradient,
              bool hessian, const NrrdReadLimits& limits, Device device, bool verbose) {
   const PrefilterSetting q = parse_prefilter_options(pre);
-  const SplineFilter f = filter_for_volume(filter, lattice, volume_path);
+  const SplineFilter f = frontend::filter_for_volume(filter, lattice, volume_path);
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
   const auto points = read_points_file(points_path);
   std::vector<T> values(points.size());
@@ -84,7 +84,7 @@ int run_eval(const std::string& filter, const std::string& lattice, const Prefil
   const Reconstructor<T> spline(volume, f);
   if (device == Device::Gl) {
     if (verbose) std::cerr << gl_device_line() << '\n';
-    const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, sizeof(T) == 8));
+    const gl::GlSpline<T> gpu(volume, f, frontend::glsl_for(f, filter, sizeof(T) == 8));
     gpu.evaluate(points, values, gradients, hessians);
   } else {
     spline.evaluate(points, values, gradients, hessians);
@@ -135,8 +135,8 @@ int run_error(const std::string& function, int n, const std::string& filter,
               const std::string& lattice_text, const PrefilterOptions& pre, int count,
               std::uint64_t seed, bool gradient, bool json) {
   const TestFunction& fn = find_test_function(function);
-  const SplineFilter f = filter_from(filter, lattice_text);
-  (void)lattice_for(f, lattice_text);
+  const SplineFilter f = frontend::filter_from(filter, lattice_text);
+  (void)frontend::lattice_for(f, lattice_text);
   const PrefilterSetting q = parse_prefilter_options(pre);
   if (count < 1 || count > 100000000)
     throw std::invalid_argument("--points must be between 1 and 100000000");
@@ -158,7 +158,7 @@ int run_error(const std::string& function, int n, const std::string& filter,
   report.sizes = grid.sizes;
   report.samples = static_cast<std::uint64_t>(lattice.coset_count()) * grid.sizes[0] *
                    grid.sizes[1] * grid.sizes[2];
-  check_memory(report.samples, sizeof(double), fmt::format("--n {}", n), "samples");
+  frontend::check_memory(report.samples, sizeof(double), fmt::format("--n {}", n), "samples");
   InterpolationReport interpolation;
   const LatticeVolume<double> volume = spline_coefficients(
       sample_lattice<double>(fn.value, grid), f, q.choice, q.boundary, &interpolation, true);
@@ -334,7 +334,7 @@ LatticeVolume<T> resample_lattice_grid(const LatticeVolume<T>& volume, const Spl
 // The values in T of a Cartesian grid or of a lattice grid, and their copy in the file's type
 // while it is written (`stored` bytes each), must fit in memory.
 void check_output_memory(std::uint64_t count, std::size_t bytes, const std::string& grid) {
-  check_memory(count, bytes, fmt::format("the output grid of {}", grid), "values");
+  frontend::check_memory(count, bytes, fmt::format("the output grid of {}", grid), "values");
 }
 
 }  // namespace
@@ -367,7 +367,7 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
   require_output_volume(output, {&input, 1}, lattice);
   const VolumeFormat format = output_format(output);
   // The filter is on the volume's lattice (a SPEC's too: --lattice is the output's).
-  const SplineFilter f = filter_for_volume(filter, "", volume_path);
+  const SplineFilter f = frontend::filter_for_volume(filter, "", volume_path);
   // Oblique volumes are read in their own frame (index space times the voxel sizes); the
   // output's world points map into it through the inverse of the volume's affine.
   NrrdReadLimits read_limits = limits;
@@ -390,7 +390,7 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
   const auto evaluator = [&]() {
     if (device == Device::Cpu) return BatchEvaluate<T>{};
     if (verbose) std::cerr << gl_device_line() << '\n';
-    gpu.emplace(volume, f, glsl_for(f, filter, sizeof(T) == 8));
+    gpu.emplace(volume, f, frontend::glsl_for(f, filter, sizeof(T) == 8));
     return BatchEvaluate<T>(
         [&gpu](std::span<const Vec3> points, std::span<T> out) { gpu->evaluate(points, out); });
   };

@@ -6,8 +6,8 @@
 #include <iostream>
 #include <utility>
 
-#include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/progress.h"
+#include "frontend/filter_choice.h"
 
 namespace boxgen::app {
 
@@ -48,7 +48,7 @@ LatticeVolume<T> coefficients_for(LatticeVolume<T> samples, const SplineFilter& 
                                   boundary_name(setting.boundary)));
     return spline_coefficients(std::move(samples), f, setting.choice, setting.boundary, &r);
   }();
-  if (!setting.choice.is_fir() && r.lambda > 0 && !quiet())
+  if (!setting.choice.is_fir() && r.lambda > 0 && !frontend::quiet())
     std::cerr << interpolation_line(f, r) << '\n';
   if (report) *report = r;
   return out;

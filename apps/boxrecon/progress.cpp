@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "apps/boxrecon/filter_choice.h"
+#include "frontend/filter_choice.h"
 #include "runtime/nrrd_checks.h"
 
 namespace boxgen::app {
@@ -29,7 +29,7 @@ double progress_after() {
 }
 
 Progress::Progress(std::string label)
-    : label_(std::move(label)), enabled_(!quiet() && ::isatty(STDERR_FILENO) != 0) {
+    : label_(std::move(label)), enabled_(!frontend::quiet() && ::isatty(STDERR_FILENO) != 0) {
   if (!enabled_) return;
   after_ = std::chrono::duration<double>(progress_after());
   start_ = Clock::now();
@@ -49,7 +49,7 @@ void Progress::update(double done) {
 
 Stage::Stage(std::string label)
     : label_(std::move(label)), start_(Clock::now()), exceptions_(std::uncaught_exceptions()) {
-  if (quiet() || ::isatty(STDERR_FILENO) == 0) return;
+  if (frontend::quiet() || ::isatty(STDERR_FILENO) == 0) return;
   const std::chrono::duration<double> after(progress_after());
   if (after.count() == 0) {
     const std::lock_guard<std::mutex> lock(mutex_);

@@ -1,10 +1,10 @@
-#include "apps/boxgen/analysis_specs.h"
+#include "frontend/analysis_specs.h"
 
 #include <fmt/core.h>
 
 #include <set>
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 std::vector<NamedSpec> parse_named_specs(const std::vector<std::string>& texts,
                                          const std::string& lattice,
@@ -36,4 +36,4 @@ std::vector<NamedSpec> parse_named_specs(const std::vector<std::string>& texts,
   return out;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -1,11 +1,11 @@
 #include <fmt/core.h>
 
-#include "apps/boxgen/commands.h"
+#include "frontend/commands.h"
 #include "generator/bbform.h"
 #include "generator/box_spline_properties.h"
 #include "generator/error.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 namespace {
 
@@ -112,4 +112,4 @@ int run_bbform(const Common& c, const std::string& region) {
   return 0;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -1,12 +1,12 @@
 #include <fmt/core.h>
 
-#include "apps/boxgen/commands.h"
-#include "apps/boxgen/progress.h"
+#include "frontend/commands.h"
+#include "frontend/progress.h"
 #include "generator/error.h"
 #include "generator/piece_checks.h"
 #include "generator/piecewise_form.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 namespace {
 constexpr long kMaxEvalCoordinate =
@@ -69,4 +69,4 @@ int run_eval(const Common& c, const std::vector<std::string>& points,
   return 0;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -2,12 +2,12 @@
 // GiNaC (generator/piece_format.h). Every option is checked before the derivation starts.
 #include <fmt/core.h>
 
-#include "apps/boxgen/commands.h"
+#include "frontend/commands.h"
 #include "generator/error.h"
 #include "generator/piece_format.h"
 #include "generator/pieces.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 std::string pieces_text(const Common& c, const std::string& of, const std::string& region,
                         const std::string& format) {
@@ -33,4 +33,4 @@ int run_pieces(const Common& c, const std::string& of, const std::string& region
   return 0;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

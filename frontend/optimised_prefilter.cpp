@@ -1,12 +1,12 @@
-#include "apps/boxgen/optimised_prefilter.h"
+#include "frontend/optimised_prefilter.h"
 
 #include <string>
 
-#include "apps/boxgen/analysis_inputs.h"
+#include "frontend/analysis_inputs.h"
 #include "generator/autocorr.h"
 #include "generator/error.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 bool is_optimised_prefilter(std::string_view name) { return name == "q1opt" || name == "q2opt"; }
 
@@ -36,4 +36,4 @@ OptimisedPrefilter optimised_prefilter(const BoxSplineSpec& spec, std::string_vi
   return out;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

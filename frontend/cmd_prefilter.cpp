@@ -5,11 +5,11 @@
 #include <optional>
 #include <utility>
 
-#include "apps/boxgen/commands.h"
-#include "apps/boxgen/optimised_prefilter.h"
+#include "frontend/commands.h"
+#include "frontend/optimised_prefilter.h"
 #include "generator/prefilter.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 namespace {
 
@@ -162,4 +162,4 @@ int run_prefilter(const Common& c, const std::string& shells_text, const std::st
   return 0;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

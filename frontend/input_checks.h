@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-namespace boxgen::app {
+namespace boxgen::frontend {
 
 // --h: absent, or finite and > 0.
 void check_spacing(const std::optional<double>& h);
@@ -27,4 +27,4 @@ void check_memory(std::uint64_t items, std::uint64_t bytes_per_item, const std::
 // process may still take when that is less.
 std::uint64_t volume_memory_budget();
 
-}  // namespace boxgen::app
+}  // namespace boxgen::frontend

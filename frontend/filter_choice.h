@@ -7,7 +7,7 @@
 #include "runtime/gl/gl_spline.h"
 #include "runtime/spline_filter.h"
 
-namespace boxgen::app {
+namespace boxgen::frontend {
 
 // Every command's --quiet: no progress of a filter's first use.
 void set_quiet(bool quiet);
@@ -35,4 +35,4 @@ runtime::gl::GlslEvaluator glsl_for(const runtime::SplineFilter& f, const std::s
 // `boxrecon filters`: the registry's filters, then the cached ones.
 int run_filters();
 
-}  // namespace boxgen::app
+}  // namespace boxgen::frontend

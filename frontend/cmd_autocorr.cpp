@@ -1,10 +1,10 @@
 #include <fmt/core.h>
 
-#include "apps/boxgen/commands.h"
+#include "frontend/commands.h"
 #include "generator/autocorr.h"
 #include "generator/error.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 int run_autocorr(const Common& c, const std::string& method) {
   const BoxSplineSpec spec = parse_spec(c.spec, c.lattice);
@@ -31,4 +31,4 @@ int run_autocorr(const Common& c, const std::string& method) {
   return 0;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -8,11 +8,11 @@
 
 #include "generator/derivation.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 // The "interpolation_symbol" object of `analyze --json`.
 nlohmann::json symbol_json(const generator::Derivation& a);
 // Its lines for the text of `analyze`.
 std::string symbol_text(const generator::Derivation& a);
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -9,17 +9,17 @@
 #include "analysis/error_kernel.h"
 #include "analysis/gnuplot.h"
 #include "analysis/symbol_extremes.h"
-#include "apps/boxgen/analysis_args.h"
-#include "apps/boxgen/analysis_inputs.h"
-#include "apps/boxgen/analysis_specs.h"
-#include "apps/boxgen/commands.h"
-#include "apps/boxgen/optimised_prefilter.h"
+#include "frontend/analysis_args.h"
+#include "frontend/analysis_inputs.h"
+#include "frontend/analysis_specs.h"
+#include "frontend/commands.h"
+#include "frontend/optimised_prefilter.h"
 #include "generator/autocorr.h"
 #include "generator/error.h"
 #include "generator/interpolation_symbol.h"
 #include "support/output_file.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 namespace {
 
@@ -189,4 +189,4 @@ int run_kernel(const FrequencyOptions& o) {
   return 0;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

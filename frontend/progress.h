@@ -10,7 +10,7 @@
 
 #include "generator/piecewise_form.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace): the generator's front
                                       // end
@@ -62,4 +62,4 @@ class ProgressPrinter {
   double last_ = 0;
 };
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -1,4 +1,4 @@
-#include "apps/boxgen/analysis_symbol.h"
+#include "frontend/analysis_symbol.h"
 
 #include <fmt/format.h>
 
@@ -8,11 +8,11 @@
 #include <optional>
 
 #include "analysis/symbol_extremes.h"
-#include "apps/boxgen/commands.h"
+#include "frontend/commands.h"
 #include "generator/approximation_order.h"
 #include "generator/interpolation_symbol.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 namespace {
 
@@ -139,4 +139,4 @@ std::string symbol_text(const Derivation& a) {
   return out;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -1,4 +1,4 @@
-#include "apps/boxgen/analysis_args.h"
+#include "frontend/analysis_args.h"
 
 #include <fmt/core.h>
 
@@ -7,7 +7,7 @@
 
 #include "generator/error.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 analysis::Vec parse_direction(const std::string& text, int dimension, const std::string& what) {
   std::string t = text;
@@ -66,4 +66,4 @@ std::vector<double> abscissae(const FrequencyOptions& o, bool log, double fallba
   return out;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -8,12 +8,12 @@
 #include <optional>
 
 #include "analysis/filter_metrics.h"
-#include "apps/boxgen/analysis_inputs.h"
-#include "apps/boxgen/analysis_specs.h"
-#include "apps/boxgen/commands.h"
+#include "frontend/analysis_inputs.h"
+#include "frontend/analysis_specs.h"
+#include "frontend/commands.h"
 #include "generator/autocorr.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 namespace {
 
@@ -121,4 +121,4 @@ int run_metrics(const FrequencyOptions& o) {
   return 0;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

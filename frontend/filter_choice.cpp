@@ -1,4 +1,4 @@
-#include "apps/boxrecon/filter_choice.h"
+#include "frontend/filter_choice.h"
 
 #include <unistd.h>
 
@@ -11,7 +11,7 @@
 #include "runtime/nifti_io.h"
 #include "runtime/nrrd_checks.h"
 
-namespace boxgen::app {
+namespace boxgen::frontend {
 
 namespace {
 bool quiet_flag = false;
@@ -86,4 +86,4 @@ int run_filters() {
   return 0;
 }
 
-}  // namespace boxgen::app
+}  // namespace boxgen::frontend

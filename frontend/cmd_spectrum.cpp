@@ -10,14 +10,14 @@
 #include <vector>
 
 #include "analysis/gnuplot.h"
-#include "apps/boxgen/analysis_args.h"
-#include "apps/boxgen/analysis_inputs.h"
-#include "apps/boxgen/analysis_specs.h"
-#include "apps/boxgen/commands.h"
+#include "frontend/analysis_args.h"
+#include "frontend/analysis_inputs.h"
+#include "frontend/analysis_specs.h"
+#include "frontend/commands.h"
 #include "generator/error.h"
 #include "support/output_file.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 namespace {
 
@@ -275,4 +275,4 @@ int run_spectrum(const FrequencyOptions& o) {
   return o.line.empty() ? run_plane(o, specs, n) : run_line(o, specs, n);
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -1,4 +1,4 @@
-#include "apps/boxrecon/input_checks.h"
+#include "frontend/input_checks.h"
 
 #include <unistd.h>
 
@@ -12,7 +12,7 @@
 
 #include "support/available_memory.h"
 
-namespace boxgen::app {
+namespace boxgen::frontend {
 
 void check_spacing(const std::optional<double>& h) {
   if (h && !(std::isfinite(*h) && *h > 0))
@@ -58,4 +58,4 @@ void check_memory(std::uint64_t items, std::uint64_t bytes_per_item, const std::
   }
 }
 
-}  // namespace boxgen::app
+}  // namespace boxgen::frontend

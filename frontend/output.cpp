@@ -1,8 +1,8 @@
 #include <iostream>
 
-#include "apps/boxgen/commands.h"
+#include "frontend/commands.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 nlohmann::json rational_list(const RatVec& v) {
   nlohmann::json out = nlohmann::json::array();
@@ -22,4 +22,4 @@ std::string format_point(const IntVec& p) {
 
 void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << '\n'; }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -9,7 +9,7 @@
 #include "generator/error.h"
 #include "generator/spec.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 struct NamedSpec {
   std::string text;  // as given, "SPEC@LATTICE" included
@@ -35,4 +35,4 @@ auto about_spec(const std::string& text, Work&& work) -> decltype(work()) {
   }
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -2,11 +2,11 @@
 // (Kim 2013) beside the derived values. The paper's column is the only typed-in data here.
 #include <fmt/core.h>
 
-#include "apps/boxgen/commands.h"
+#include "frontend/commands.h"
 #include "generator/derivation.h"
 #include "generator/prefilter.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 namespace {
 
@@ -127,4 +127,4 @@ int run_table1(bool json) {
   return all_match ? 0 : 1;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

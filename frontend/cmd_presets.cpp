@@ -1,9 +1,9 @@
 #include <fmt/core.h>
 
-#include "apps/boxgen/commands.h"
+#include "frontend/commands.h"
 #include "generator/spec.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 int run_presets(bool json) {
   if (json) {
@@ -21,4 +21,4 @@ int run_presets(bool json) {
   return 0;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

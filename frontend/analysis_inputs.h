@@ -11,7 +11,7 @@
 #include "generator/autocorr.h"
 #include "generator/spec.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace): the generator's front
                                       // end
@@ -28,4 +28,4 @@ std::vector<analysis::LatticeTap> taps_of(const Autocorrelation& a);
 std::vector<analysis::LatticeTap> prefilter_taps_of(const BoxSplineSpec& spec,
                                                     const std::string& name);
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -1,12 +1,12 @@
-#include "apps/boxgen/analysis_inputs.h"
+#include "frontend/analysis_inputs.h"
 
 #include <cmath>
 
-#include "apps/boxgen/optimised_prefilter.h"
+#include "frontend/optimised_prefilter.h"
 #include "generator/error.h"
 #include "generator/prefilter.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 analysis::BoxSplineSpectrum spectrum_of(const BoxSplineSpec& spec) {
   return analysis::BoxSplineSpectrum(spec.directions);
@@ -39,4 +39,4 @@ double density_scale(const BoxSplineSpec& spec, bool equal) {
   return std::pow(static_cast<double>(spec.lattice.det_abs()), -1.0 / spec.dimension());
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -1,5 +1,7 @@
-// The boxgen subcommands. Each writes its whole result to stdout only after it has been
-// derived, so a failure never leaves half an answer behind.
+// The boxgen subcommands, shared by the CLI (apps/boxgen/main.cpp parses their options) and the
+// Python module (python/ binds the builders: *_json, bbform_output, emit_evaluator, pieces_text).
+// Each run_* writes its whole result to stdout only after it has been derived, so a failure never
+// leaves half an answer behind.
 #pragma once
 #include <optional>
 #include <stdexcept>
@@ -13,9 +15,9 @@
 #include "generator/piecewise_form.h"
 #include "generator/rational.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
-// The CLI is the generator's front end: its types and functions are used unqualified here.
+// The front end speaks the generator's types: they are used unqualified here.
 using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace)
 
 // A combination of options that cannot work together: main prints it as a usage error (exit 2).
@@ -48,7 +50,7 @@ int run_analyze(const Common& c, const AnalyzeOptions& options);
 Derivation analyze_derivation(const Common& c, const AnalyzeOptions& options,
                               const ProgressFn& progress);
 // What `analyze --json` prints of it (also boxgen.analyze() in Python): to_json(a) with the
-// interpolation symbol (apps/boxgen/analysis_symbol.h).
+// interpolation symbol (frontend/analysis_symbol.h).
 nlohmann::json analyze_json(const Derivation& a);
 int run_eval(const Common& c, const std::vector<std::string>& points,
              const std::string& derivative);
@@ -88,7 +90,7 @@ int run_emit(const Common& c, const std::string& name, const std::string& out,
 // The frequency-domain analysis (analysis/, docs/design.md §10): cmd_metrics.cpp, cmd_kernel.cpp,
 // cmd_spectrum.cpp.
 struct FrequencyOptions {
-  std::vector<std::string> specs;   // each SPEC or SPEC@LATTICE (apps/boxgen/analysis_specs.h)
+  std::vector<std::string> specs;   // each SPEC or SPEC@LATTICE (frontend/analysis_specs.h)
   std::string lattice;              // the lattice of a SPEC without '@'
   std::vector<std::string> labels;  // --label: one per SPEC, or none
   bool json = false;
@@ -123,4 +125,4 @@ nlohmann::json rational_list(const RatVec& v);
 std::string format_point(const IntVec& p);
 void print_json(const nlohmann::json& j);
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

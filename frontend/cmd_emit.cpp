@@ -7,15 +7,15 @@
 #include <map>
 #include <set>
 
-#include "apps/boxgen/commands.h"
-#include "apps/boxgen/progress.h"
+#include "frontend/commands.h"
+#include "frontend/progress.h"
 #include "generator/codegen/emitter.h"
 #include "generator/codegen/evaluator_name.h"
 #include "generator/error.h"
 #include "generator/prefilter.h"
 #include "support/output_file.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 namespace {
 
@@ -189,4 +189,4 @@ int run_emit(const Common& c, const std::string& name, const std::string& out,
   return 0;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "analysis/spectrum.h"
-#include "apps/boxgen/commands.h"
+#include "frontend/commands.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 // A non-zero vector of `dimension` finite numbers; `what` names the option in the message.
 analysis::Vec parse_direction(const std::string& text, int dimension, const std::string& what);
@@ -16,4 +16,4 @@ analysis::Vec parse_direction(const std::string& text, int dimension, const std:
 std::vector<double> abscissae(const FrequencyOptions& o, bool log, double fallback_from,
                               double fallback_to, int fallback_steps, bool required);
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

@@ -2,14 +2,14 @@
 
 #include <iostream>
 
-#include "apps/boxgen/analysis_symbol.h"
-#include "apps/boxgen/commands.h"
-#include "apps/boxgen/progress.h"
+#include "frontend/analysis_symbol.h"
+#include "frontend/commands.h"
+#include "frontend/progress.h"
 #include "generator/cost_estimate.h"
 #include "generator/derivation.h"
 #include "generator/error.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 Derivation analyze_derivation(const Common& c, const AnalyzeOptions& o,
                               const ProgressFn& progress) {
@@ -72,4 +72,4 @@ nlohmann::json analyze_json(const Derivation& a) {
   return j;
 }
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend

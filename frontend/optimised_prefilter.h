@@ -9,7 +9,7 @@
 #include "analysis/optimal_prefilter.h"
 #include "generator/prefilter.h"
 
-namespace boxgen::cli {
+namespace boxgen::frontend {
 
 struct OptimisedPrefilter {
   // The weights particular + sum_i t_i basis_i with t the optimised doubles taken exactly: exact
@@ -25,4 +25,4 @@ bool is_optimised_prefilter(std::string_view name);
 // q1opt or q2opt of the SPEC; InputError (one line) like named_prefilter.
 OptimisedPrefilter optimised_prefilter(const generator::BoxSplineSpec& spec, std::string_view name);
 
-}  // namespace boxgen::cli
+}  // namespace boxgen::frontend
