@@ -68,7 +68,7 @@ std::string shape_text(const py::array& a) {
 // `obj` as float64 in the layout `order` ("C" or "F"), by NumPy's own asarray: pybind11's
 // ensure() clears a failed conversion's error, so a copy that could not be allocated surfaced as
 // "ValueError: cannot create a pybind11::array_t from a nullptr"; NumPy raises MemoryError,
-// naming the size (issue 32, item 16).
+// naming the size.
 py::array numpy_float64(const py::handle& obj, const char* order) {
   return py::module_::import("numpy").attr("asarray")(obj, py::arg("dtype") = "float64",
                                                       py::arg("order") = order);
@@ -352,7 +352,7 @@ VolumePtr sample_callable(const py::function& f, const rt::LatticeGrid& grid) {
 
 // Work released from the GIL runs in blocks of about this many points; between blocks the GIL
 // is taken back for Python's signal handlers, so Ctrl-C interrupts a long call within a block's
-// time (issue 32, item 19).
+// time.
 constexpr std::size_t kPointsBetweenSignalChecks = std::size_t{1} << 16;
 
 // Called with the GIL released: runs Python's pending signal handlers; true when one raised
@@ -403,7 +403,7 @@ py::object evaluate(const Filter& f, const Volume& volume, const py::handle& poi
     py::gil_scoped_release release;
     std::optional<Volume> storage;
     const rt::Reconstructor<double> spline(prepared(volume, f, q, storage), f.filter);
-    // In blocks, so that Ctrl-C is seen between them (issue 32, item 19).
+    // In blocks, so that Ctrl-C is seen between them.
     for (std::size_t first = 0; first < n; first += kPointsBetweenSignalChecks) {
       const std::size_t m = std::min(kPointsBetweenSignalChecks, n - first);
       const auto gs = derivatives ? g.subspan(first, m) : g;
@@ -503,7 +503,7 @@ py::array_t<double> resample(const VolumePtr& volume, const Filter& f,
   {
     py::gil_scoped_release release;
     // By slabs of z (contiguous in the output, x fastest), so that Ctrl-C is seen between
-    // them (issue 32, item 19); each value is the whole block's, bit for bit (GridBlock).
+    // them; each value is the whole block's, bit for bit (GridBlock).
     const int plane = std::max(1, (b.end[0] - b.begin[0]) * (b.end[1] - b.begin[1]));
     const int slab = std::max(1, static_cast<int>(kPointsBetweenSignalChecks) / plane);
     if (b.end[2] <= b.begin[2]) out = rt::resample(*v, f.filter, grid, b);  // its refusal
@@ -629,7 +629,7 @@ void bind_volume(py::module_& m) {
           py::gil_scoped_release release;
           v = std::make_shared<Volume>(rt::read_volume_file<double>(path, limits));
         }
-        // The lattice asked for is what the caller gets, or an error (issue 32, item 20): the
+        // The lattice asked for is what the caller gets, or an error: the
         // same points (the file's coset offsets may differ in order or representative).
         const rt::CosetLattice& got = v->lattice();
         const bool same_points =
