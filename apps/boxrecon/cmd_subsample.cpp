@@ -10,6 +10,7 @@
 #include "apps/boxrecon/cmd_volumes.h"
 #include "apps/boxrecon/output_volume.h"
 #include "apps/boxrecon/prefilter_options.h"
+#include "apps/boxrecon/progress.h"
 #include "frontend/filter_choice.h"
 #include "frontend/input_checks.h"
 #include "runtime/nifti_io.h"
@@ -93,7 +94,11 @@ int run_subsample() {
       args.spacing ? fmt::format("--spacing {}", h) : fmt::format("--fraction {}", *args.fraction),
       "samples");
   const LatticeGrid grid = lattice_grid_in(lattice, box, h);
-  const LatticeVolume<float> out = resample_to_lattice(volume, filter, grid);
+  const LatticeVolume<float> out = [&] {
+    app::Progress progress("subsampling");
+    return resample_to_lattice(volume, filter, grid, BatchEvaluate<float>{},
+                               [&progress](double done) { progress.update(done); });
+  }();
   app::write_output_volume(args.output, out, type);
   const std::uint64_t kept = out.sample_count();
   std::cout << fmt::format(

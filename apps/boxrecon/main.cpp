@@ -96,7 +96,8 @@ int run(int argc, char** argv) {
       "G); default the volume's with --volume, else the preset's, else cartesian";
   bool quiet = false;
   const auto add_quiet = [&](CLI::App* command) {
-    command->add_flag("--quiet", quiet, "no progress while a SPEC filter is compiled");
+    command->add_flag("--quiet", quiet,
+                      "no progress on stderr (a SPEC filter's compile, long steps)");
   };
   std::string function = "ml", lattice, sample_filter, output, filter = "m7", volume, points_path,
               precision = "double";
@@ -172,10 +173,14 @@ int run(int argc, char** argv) {
   error->add_option("--seed", seed, "random seed, 0..2^64-1");
   error->add_flag("--gradient", gradient, "also the RMS error of the gradient");
   error->add_flag("--json", json, "JSON with keys rms, max, gradient_rms");
-  auto* resample = app.add_subcommand(
-      "resample", "resample the reconstruction onto a Cartesian grid (a plain 3-D NRRD)");
+  auto* resample = app.add_subcommand("resample",
+                                      "resample the reconstruction onto a Cartesian grid (NRRD or "
+                                      "NIfTI) or another lattice (NRRD)");
   resample->add_option("--filter", filter, filters)->required();
-  resample->add_option("--lattice", lattice, spec_lattice);
+  resample->add_option("--lattice", lattice,
+                       "the output lattice: cartesian | bcc | fcc | \"a,b,c; d,e,f; g,h,i\" (rows "
+                       "of G); default the --like image's, else cartesian (a SPEC --filter is on "
+                       "the volume's lattice)");
   boxgen::app::add_prefilter_options(resample, pre);
   resample
       ->add_option("--volume", volume,

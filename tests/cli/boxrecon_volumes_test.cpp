@@ -10,10 +10,12 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -464,6 +466,111 @@ TEST_F(BoxreconVolumes, ResampleWritesNiftiThatNifticlibReadsBack) {
                   1e-5 * from_nrrd[key].get<double>())
           << name << " " << key;
   }
+}
+
+// The samples of a NRRD in double (Teem converts), in storage order.
+std::vector<double> load_doubles(const std::string& path) {
+  std::vector<double> v;
+  Nrrd* nrrd = nrrdNew();
+  Nrrd* doubles = nrrdNew();
+  if (nrrdLoad(nrrd, path.c_str(), nullptr) == 0 &&
+      nrrdConvert(doubles, nrrd, nrrdTypeDouble) == 0) {
+    const auto* data = static_cast<const double*>(doubles->data);
+    v.assign(data, data + nrrdElementNumber(doubles));
+  } else {
+    ADD_FAILURE() << "Teem cannot read " << path;
+  }
+  nrrdNuke(doubles);
+  nrrdNuke(nrrd);
+  return v;
+}
+
+// resample --lattice onto a BCC grid: with --like the input (its own grid) and an interpolating
+// prefilter, the output is the input's samples (to the solve's rounding) in the input's layout;
+// --lattice bcc names the same grid.
+TEST_F(BoxreconVolumes, ResampleOntoItsOwnBccGridReproducesTheSamples) {
+  ok({"sample", "--function", "ml", "--lattice", "bcc", "--n", "9", "-o", file("ml.nrrd")});
+  ok({"resample", "--filter", "m8", "--prefilter", "interp", "--volume", file("ml.nrrd"), "--like",
+      file("ml.nrrd"), "-o", file("same.nrrd")});
+  ok({"resample", "--filter", "m8", "--prefilter", "interp", "--volume", file("ml.nrrd"), "--like",
+      file("ml.nrrd"), "--lattice", "bcc", "-o", file("named.nrrd")});
+  const TeemVolume in = load(file("ml.nrrd")), out = load(file("same.nrrd"));
+  EXPECT_EQ(out.sizes, in.sizes);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(out.step[a], in.step[a]);
+    EXPECT_EQ(out.origin[a], in.origin[a]);
+  }
+  const std::vector<double> samples = load_doubles(file("ml.nrrd"));
+  const std::vector<double> values = load_doubles(file("same.nrrd"));
+  ASSERT_EQ(values.size(), samples.size());
+  EXPECT_EQ(load_doubles(file("named.nrrd")), values);
+  const auto [lo, hi] = std::minmax_element(samples.begin(), samples.end());
+  double worst = 0;
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    worst = std::max(worst, std::fabs(values[i] - samples[i]));
+  EXPECT_LT(worst, 1e-12 * (*hi - *lo));  // measured 7.8e-16 of the range
+}
+
+// resample --lattice fcc --spacing H: each FCC sample (c, i, j, k) at o + h (2 (i, j, k) + offset
+// of coset c) is the value eval gives at that point (the same spline, evaluated by eval); --n N
+// gives about N^3 samples.
+TEST_F(BoxreconVolumes, ResampleOntoFccEqualsEvalAtItsSamples) {
+  ok({"sample", "--function", "ml", "--lattice", "bcc", "--n", "9", "-o", file("ml.nrrd")});
+  const std::vector<std::string> common{"resample", "--filter", "m7",           "--prefilter",
+                                        "q1",       "--volume", file("ml.nrrd")};
+  const auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> a = common;
+    a.insert(a.end(), more.begin(), more.end());
+    return a;
+  };
+  ok(with({"--lattice", "fcc", "--spacing", "0.3", "-o", file("f.nrrd")}));
+  const TeemVolume f = load(file("f.nrrd"));
+  ASSERT_EQ(f.sizes.size(), 4u);
+  ASSERT_EQ(f.sizes[0], 4u);
+  const double h = f.step[0] / 2;  // space direction 2h
+  EXPECT_DOUBLE_EQ(h, 0.3);
+  const int offsets[4][3] = {{0, 0, 0}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1}};
+  std::string points;
+  for (std::size_t k = 0; k < f.sizes[3]; ++k)
+    for (std::size_t j = 0; j < f.sizes[2]; ++j)
+      for (std::size_t i = 0; i < f.sizes[1]; ++i)
+        for (const auto& o : offsets) {
+          char line[96];
+          std::snprintf(line, sizeof line, "%.17g %.17g %.17g\n",
+                        f.origin[0] + h * static_cast<double>(2 * i + o[0]),
+                        f.origin[1] + h * static_cast<double>(2 * j + o[1]),
+                        f.origin[2] + h * static_cast<double>(2 * k + o[2]));
+          points += line;
+        }
+  std::ofstream(file("p.txt")) << points;
+  const std::string printed = ok({"eval", "--filter", "m7", "--prefilter", "q1", "--volume",
+                                  file("ml.nrrd"), "--points", file("p.txt")});
+  std::istringstream lines(printed);
+  std::vector<double> expected;
+  for (double v = 0; lines >> v;) expected.push_back(v);
+  const std::vector<double> values = load_doubles(file("f.nrrd"));
+  ASSERT_EQ(values.size(), expected.size());
+  ASSERT_GT(values.size(), 100u);
+  for (std::size_t s = 0; s < values.size(); ++s)
+    EXPECT_NEAR(values[s], expected[s], 1e-13) << s;  // measured equal; the points may round
+  ok(with({"--lattice", "bcc", "--n", "6", "-o", file("n.nrrd")}));
+  const TeemVolume n = load(file("n.nrrd"));
+  ASSERT_EQ(n.sizes.size(), 4u);
+  const double count = static_cast<double>(n.samples.size());
+  EXPECT_GT(count, 216 / 1.6) << count;
+  EXPECT_LT(count, 216 * 1.6) << count;
+  // Refused in one line, no file: NIfTI cannot hold it, --size and three spacings are for
+  // Cartesian grids, a --lattice other than --like's, a box leaving the evaluable region.
+  refused(with({"--lattice", "bcc", "-o", file("x.nii")}), "cannot be nifti", file("x.nii"));
+  refused(with({"--lattice", "bcc", "--size", "4", "4", "4", "-o", file("x.nrrd")}), "--size",
+          file("x.nrrd"));
+  refused(with({"--lattice", "fcc", "--spacing", "0.3", "0.3", "0.4", "-o", file("x.nrrd")}),
+          "one spacing", file("x.nrrd"));
+  refused(with({"--lattice", "fcc", "--like", file("ml.nrrd"), "-o", file("x.nrrd")}),
+          "differs from the lattice of --like", file("x.nrrd"));
+  refused(with({"--lattice", "fcc", "--min", "-3", "-3", "-3", "--max", "3", "3", "3", "-o",
+                file("x.nrrd")}),
+          "leave the region", file("x.nrrd"));
 }
 
 // --type int16 rounds to the nearest integer and clamps beyond the range, saying how many on
