@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -62,8 +63,12 @@ void run_gnuplot(const std::string& path, int width, int height, const std::stri
                  : "gnuplot could not write the whole PNG (file too large, or the disk is full)");
 }
 
-// gnuplot's palette as colour_map(): the same colours at six evenly spaced stops, linear between.
-std::string palette() {
+// gnuplot's palette: for viridis colour_map()'s colours at six evenly spaced stops, linear
+// between.
+std::string palette(Palette p) {
+  if (p == Palette::grey) return "set palette defined (0 '#000000', 1 '#ffffff')\n";
+  if (p == Palette::difference)
+    return "set palette defined (0 '#0000ff', 1 '#ffffff', 2 '#ff0000')\n";
   std::string out = "set palette defined (";
   for (int i = 0; i <= 5; ++i) {
     std::uint8_t r = 0, g = 0, b = 0;
@@ -71,6 +76,17 @@ std::string palette() {
     out += fmt::format("{}{} '#{:02x}{:02x}{:02x}'", i ? ", " : "", i, r, g, b);
   }
   return out + ")\n";
+}
+
+// A step of 1, 2 or 5 times a power of ten that puts tics at least `gap` pixels apart on an axis
+// of `pixels` pixels spanning `range`.
+double tic_step(double range, int pixels, int gap) {
+  const double least = range * gap / std::max(pixels, 1);
+  if (!(least > 0 && std::isfinite(least))) return 1;
+  const double power = std::pow(10.0, std::floor(std::log10(least)));
+  for (const double m : {1.0, 2.0, 5.0})
+    if (m * power >= least) return m * power;
+  return 10 * power;
 }
 
 // Values below this are written for NaN (gnuplot warns about NaN in a matrix) and drawn as NaN.
@@ -83,8 +99,8 @@ void image_png(const std::string& path, const std::vector<ImagePanel>& panels) {
   // its tics and label; 60 below the image for the x axis, 40 above it for the title.
   int width = 0, height = 0;
   for (const auto& panel : panels) {
-    width += panel.columns + kImagePanelMarginX;
-    height = std::max(height, panel.rows + kImagePanelMarginY);
+    width += panel.columns * panel.zoom + kImagePanelMarginX;
+    height = std::max(height, panel.rows * panel.zoom + kImagePanelMarginY);
   }
   std::string script;
   for (std::size_t p = 0; p < panels.size(); ++p) {
@@ -107,17 +123,36 @@ void image_png(const std::string& path, const std::vector<ImagePanel>& panels) {
     const auto& panel = panels[p];
     const double dx = (panel.x_hi - panel.x_lo) / panel.columns,
                  dy = (panel.y_hi - panel.y_lo) / panel.rows;
+    const int w = panel.columns * panel.zoom, h = panel.rows * panel.zoom;  // the image, pixels
     const auto sx = [&](int px) { return static_cast<double>(px) / width; };
     const auto sy = [&](int px) { return static_cast<double>(px) / height; };
     const int left = x0 + 70, bottom = 60;
-    script += "reset\n" + palette();
+    // Tics outside, so that they do not hide pixels of the image.
+    script += "reset\nset tics out nomirror\n" + palette(panel.palette);
+    if (!panel.blank.empty())  // under the image: shows through its NaN pixels
+      script += fmt::format(
+          "set object 1 rect from graph 0, 0 to graph 1, 1 behind fillcolor rgb {} fillstyle "
+          "solid noborder\n",
+          quoted(panel.blank));
+    const std::array<const char*, 4> where = {
+        "graph 0.02, graph 0.5 left", "graph 0.98, graph 0.5 right", "graph 0.5, graph 0.04 center",
+        "graph 0.5, graph 0.96 center"};
+    for (std::size_t e = 0; e < 4; ++e)
+      if (!panel.edge_letters[e].empty())
+        script += fmt::format("set label {} {} at {} front boxed noenhanced\n", e + 1,
+                              quoted(panel.edge_letters[e]), where[e]);
+    script += "set style textbox opaque fillcolor rgb 'white' noborder\n";
     script += fmt::format(
         "set lmargin at screen {:.8f}\nset rmargin at screen {:.8f}\nset bmargin at screen "
         "{:.8f}\nset tmargin at screen {:.8f}\nset colorbox user origin screen {:.8f}, screen "
         "{:.8f} size screen {:.8f}, screen {:.8f}\n",
-        sx(left), sx(left + panel.columns), sy(bottom), sy(bottom + panel.rows),
-        sx(left + panel.columns + 15), sy(bottom), sx(20), sy(panel.rows));
-    x0 += panel.columns + kImagePanelMarginX;
+        sx(left), sx(left + w), sy(bottom), sy(bottom + h), sx(left + w + 15), sy(bottom), sx(20),
+        sy(h));
+    x0 += w + kImagePanelMarginX;
+    // Tics at a round step, far enough apart for their numbers.
+    script += fmt::format("set xtics {:.10g}\nset ytics {:.10g}\n",
+                          tic_step(panel.x_hi - panel.x_lo, w, 50),
+                          tic_step(panel.y_hi - panel.y_lo, h, 25));
     script += fmt::format(
         "set title {} noenhanced\nset xlabel {} noenhanced\nset ylabel {} noenhanced\n"
         "set cblabel {} noenhanced\nset xrange [{:.10g}:{:.10g}]\nset yrange [{:.10g}:{:.10g}]\n"

@@ -1,6 +1,7 @@
 // Line plots through gnuplot (Debian's gnuplot-nox) with its pngcairo terminal: the program
 // writes a script with inline data blocks into a pipe to gnuplot.
 #pragma once
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,16 +21,26 @@ struct PlotPanel {
   std::vector<PlotSeries> series;
 };
 
+// The colours of an image panel's values from value_lo to value_hi: colour_map() (png_image.h),
+// black to white, or blue - white - red (a signed difference).
+enum class Palette { viridis, grey, difference };
+
 // An image panel: `values` (columns x rows, row-major, bottom row first) filling [x_lo, x_hi] x
-// [y_lo, y_hi], coloured by colour_map() (png_image.h) over [value_lo, value_hi]
-// with a colour bar labelled `value_label`; NaN values are left white, and `dots` are drawn as
-// white discs.
+// [y_lo, y_hi], coloured by `palette` over [value_lo, value_hi] with a colour bar labelled
+// `value_label`, each value drawn as `zoom` x `zoom` pixels; NaN values show `blank` ("#rrggbb";
+// default the white page), `dots` are drawn as white discs, and `edge_letters` (left, right,
+// bottom, top; empty: none) are written inside the image at the middle of each edge, in white
+// boxes.
 struct ImagePanel {
   std::string title, xlabel, ylabel, value_label;
   int columns = 0, rows = 0;
   std::vector<double> values;
   double x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1, value_lo = 0, value_hi = 1;
   std::vector<std::pair<double, double>> dots;
+  Palette palette = Palette::viridis;
+  std::string blank;
+  std::array<std::string, 4> edge_letters;
+  int zoom = 1;
 };
 
 // Draws the panels (rows x columns, in reading order) into a PNG of the given size at `path`,
@@ -39,9 +50,9 @@ void plot_png(const std::string& path, const std::vector<PlotPanel>& panels, int
               int width, int height, const std::string& title = "");
 // The pixels around each image panel: its title, axes and colour bar.
 inline constexpr int kImagePanelMarginX = 200, kImagePanelMarginY = 100;
-// Draws image panels side by side into a PNG at `path`, atomically, each image's values one for one
-// on its pixels: the PNG is the sum of (columns + kImagePanelMarginX) by the largest rows +
-// kImagePanelMarginY. Throws as plot_png.
+// Draws image panels side by side into a PNG at `path`, atomically, each image's values on zoom x
+// zoom pixels: the PNG is the sum of (zoom columns + kImagePanelMarginX) by the largest zoom rows
+// + kImagePanelMarginY. Throws as plot_png.
 void image_png(const std::string& path, const std::vector<ImagePanel>& panels);
 
 }  // namespace boxgen::analysis

@@ -65,7 +65,7 @@ Prefilter derive_fir_prefilter(const BoxSplineSpec& spec, int last_shell,
 // Every prefilter of full order on the given shells with one weight per orbit of the symmetry
 // group: the orbit weights are particular + sum_i t_i basis[i] for any parameters t (the free
 // parameters derive_prefilter sets to zero, here kept free for optimisation: the optimised q1opt
-// and q2opt, apps/boxgen/optimised_prefilter.h). Exact; throws like derive_prefilter.
+// and q2opt, frontend/optimised_prefilter.h). Exact; throws like derive_prefilter.
 struct PrefilterFamily {
   int order = 0;
   std::vector<int> shells;
@@ -88,7 +88,7 @@ Prefilter family_member(const PrefilterFamily& family, const RatVec& t);
 // derive_prefilter) or qfir:K. Throws InputError (one line) for another name.
 Prefilter named_prefilter(const BoxSplineSpec& spec, std::string_view name);
 // The names the programs take, for messages and help texts: named_prefilter's, and q1opt, q2opt
-// (apps/boxgen/optimised_prefilter.h, which needs the numerical analysis).
+// (frontend/optimised_prefilter.h, which needs the numerical analysis).
 inline constexpr const char* kPrefilterNames = "q1, q2, q1opt, q2opt or qfir:K";
 
 }  // namespace boxgen::generator

@@ -13,8 +13,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "apps/boxgen/optimised_prefilter.h"
 #include "boxgen/version.h"
+#include "frontend/optimised_prefilter.h"
 #include "generator/codegen/emitter.h"
 #include "generator/derivation.h"
 #include "generator/error.h"
@@ -332,8 +332,8 @@ void build_entry(const CacheEntry& entry, const gen::BoxSplineSpec& spec, const 
   request.command =
       fmt::format("the run-time filter \"{}\" --lattice \"{}\"", info.spec, info.rows);
   // q1opt and q2opt as `boxgen emit` writes them (their free parameters optimised numerically).
-  request.q1opt = cli::optimised_table(spec, "q1opt");
-  request.q2opt = cli::optimised_table(spec, "q2opt");
+  request.q1opt = frontend::optimised_table(spec, "q1opt");
+  request.q2opt = frontend::optimised_table(spec, "q2opt");
   const auto sources = glue_sources(name, gen::emit(derivation, request), info.stamp);
   try {
     write_entry_file(entry.file(".cpp"), sources[0]);

@@ -1,5 +1,5 @@
 // boxgen.analyze, pieces, prefilter, metrics, kernel, spectrum: the JSON the boxgen commands
-// print with --json (apps/boxgen/commands.h builds it; nothing is rebuilt here), as Python dicts,
+// print with --json (frontend/commands.h builds it; nothing is rebuilt here), as Python dicts,
 // with the sampled curves of kernel and spectrum as NumPy arrays. The derivations run without the
 // GIL.
 #include <pybind11/numpy.h>
@@ -10,7 +10,7 @@
 #include <variant>
 #include <vector>
 
-#include "apps/boxgen/commands.h"
+#include "frontend/commands.h"
 #include "python/bindings.h"
 
 namespace py = pybind11;
@@ -55,8 +55,8 @@ std::vector<std::string> spec_list(const Specs& specs) {
   return many;
 }
 
-cli::Common common(const std::string& spec, const std::optional<std::string>& lattice) {
-  cli::Common c;
+frontend::Common common(const std::string& spec, const std::optional<std::string>& lattice) {
+  frontend::Common c;
   c.spec = spec;
   c.lattice = lattice.value_or("");
   c.json = true;
@@ -89,9 +89,10 @@ py::object with_arrays(py::object result, const std::vector<std::string>& keys) 
 }
 
 // The SPECs (each SPEC or SPEC@LATTICE), the default lattice and the labels (one per SPEC).
-cli::FrequencyOptions spec_options(const Specs& specs, const std::optional<std::string>& lattice,
-                                   const std::optional<std::vector<std::string>>& labels) {
-  cli::FrequencyOptions o;
+frontend::FrequencyOptions spec_options(const Specs& specs,
+                                        const std::optional<std::string>& lattice,
+                                        const std::optional<std::vector<std::string>>& labels) {
+  frontend::FrequencyOptions o;
   o.specs = spec_list(specs);
   o.lattice = lattice.value_or("");
   o.labels = labels.value_or(std::vector<std::string>{});
@@ -100,13 +101,13 @@ cli::FrequencyOptions spec_options(const Specs& specs, const std::optional<std::
 }
 
 // With --w LIST or --from/--to/--steps.
-cli::FrequencyOptions frequency_options(const Specs& specs,
-                                        const std::optional<std::string>& lattice,
-                                        const std::optional<std::vector<std::string>>& labels,
-                                        const std::optional<std::vector<double>>& w,
-                                        std::optional<double> w_from, std::optional<double> w_to,
-                                        int steps) {
-  cli::FrequencyOptions o = spec_options(specs, lattice, labels);
+frontend::FrequencyOptions frequency_options(const Specs& specs,
+                                             const std::optional<std::string>& lattice,
+                                             const std::optional<std::vector<std::string>>& labels,
+                                             const std::optional<std::vector<double>>& w,
+                                             std::optional<double> w_from,
+                                             std::optional<double> w_to, int steps) {
+  frontend::FrequencyOptions o = spec_options(specs, lattice, labels);
   if (w) o.w = *w;
   o.from = w_from;
   o.to = w_to;
@@ -131,7 +132,7 @@ void bind_analysis(py::module_& m) {
          const std::string& derivative, const std::optional<std::string>& lattice) {
         if (points.empty()) throw py::value_error("eval: give at least one point");
         return json_result(
-            [&] { return cli::eval_json(common(spec, lattice), points, derivative); });
+            [&] { return frontend::eval_json(common(spec, lattice), points, derivative); });
       },
       py::arg("spec"), py::arg("points"), py::arg("derivative") = "",
       py::arg("lattice") = py::none(),
@@ -142,11 +143,12 @@ void bind_analysis(py::module_& m) {
          const std::optional<std::string>& lattice, const std::string& target,
          const std::string& precision, const std::string& strategy,
          const std::optional<std::variant<std::string, std::vector<int>>>& shells) {
-        const cli::EmitLanguage language{target, precision, shells ? shells_text(*shells) : ""};
+        const frontend::EmitLanguage language{target, precision,
+                                              shells ? shells_text(*shells) : ""};
         std::vector<generator::EmittedFile> files;
         {
           py::gil_scoped_release release;
-          files = cli::emit_evaluator(common(spec, lattice), name, strategy, language);
+          files = frontend::emit_evaluator(common(spec, lattice), name, strategy, language);
         }
         py::dict out;
         for (const auto& f : files) out[py::str(f.filename)] = py::str(f.text);
@@ -165,7 +167,7 @@ void bind_analysis(py::module_& m) {
         const std::string r = std::holds_alternative<int>(region)
                                   ? std::to_string(std::get<int>(region))
                                   : std::get<std::string>(region);
-        return json_result([&] { return cli::bbform_output(common(spec, lattice), r).json; });
+        return json_result([&] { return frontend::bbform_output(common(spec, lattice), r).json; });
       },
       py::arg("spec"), py::arg("lattice") = py::none(), py::arg("region") = "reference",
       "The BB-coefficients of `boxgen bbform SPEC --json` (region: \"reference\", every reference "
@@ -174,10 +176,10 @@ void bind_analysis(py::module_& m) {
       "analyze",
       [](const std::string& spec, const std::optional<std::string>& lattice,
          const std::string& checks) {
-        cli::AnalyzeOptions o;
+        frontend::AnalyzeOptions o;
         o.checks = checks;
         return json_result([&] {
-          return cli::analyze_json(cli::analyze_derivation(common(spec, lattice), o, {}));
+          return frontend::analyze_json(frontend::analyze_derivation(common(spec, lattice), o, {}));
         });
       },
       py::arg("spec"), py::arg("lattice") = py::none(), py::arg("checks") = "default",
@@ -187,7 +189,8 @@ void bind_analysis(py::module_& m) {
       [](const std::string& spec, const std::optional<std::string>& lattice, const std::string& of,
          const std::string& region) {
         return json_result([&] {
-          return nlohmann::json::parse(cli::pieces_text(common(spec, lattice), of, region, "json"));
+          return nlohmann::json::parse(
+              frontend::pieces_text(common(spec, lattice), of, region, "json"));
         });
       },
       py::arg("spec"), py::arg("lattice") = py::none(), py::arg("of") = "spline",
@@ -203,7 +206,8 @@ void bind_analysis(py::module_& m) {
         const std::string name = prefilter.value_or("");
         if (text.empty() == name.empty())
           throw py::value_error("prefilter: give either shells or prefilter");
-        return json_result([&] { return cli::prefilter_json(common(spec, lattice), text, name); });
+        return json_result(
+            [&] { return frontend::prefilter_json(common(spec, lattice), text, name); });
       },
       py::arg("spec"), py::arg("shells") = py::none(), py::arg("lattice") = py::none(),
       py::arg("prefilter") = py::none(),
@@ -213,9 +217,9 @@ void bind_analysis(py::module_& m) {
       "metrics",
       [](const Specs& specs, const std::optional<std::string>& lattice,
          const std::optional<std::vector<std::string>>& labels, bool equal_density) {
-        cli::FrequencyOptions o = spec_options(specs, lattice, labels);
+        frontend::FrequencyOptions o = spec_options(specs, lattice, labels);
         o.equal_density = equal_density;
-        return json_result([&] { return cli::metrics_json(o); });
+        return json_result([&] { return frontend::metrics_json(o); });
       },
       py::arg("specs"), py::arg("lattice") = py::none(), py::arg("labels") = py::none(),
       py::arg("equal_density") = false,
@@ -228,11 +232,12 @@ void bind_analysis(py::module_& m) {
          const std::optional<std::vector<double>>& w, std::optional<double> w_from,
          std::optional<double> w_to, int steps,
          const std::optional<std::vector<std::string>>& labels, bool equal_density) {
-        cli::FrequencyOptions o = frequency_options(specs, lattice, labels, w, w_from, w_to, steps);
+        frontend::FrequencyOptions o =
+            frequency_options(specs, lattice, labels, w, w_from, w_to, steps);
         o.equal_density = equal_density;
         o.prefilter = prefilter;
         o.direction = direction.value_or("");
-        return with_arrays(json_result([&] { return cli::kernel_json(o); }), {"w", "E"});
+        return with_arrays(json_result([&] { return frontend::kernel_json(o); }), {"w", "E"});
       },
       py::arg("specs"), py::arg("lattice") = py::none(), py::arg("prefilter") = "q2",
       py::arg("direction") = py::none(), py::arg("w") = py::none(), py::arg("w_from") = py::none(),
@@ -246,10 +251,12 @@ void bind_analysis(py::module_& m) {
          const std::optional<std::vector<double>>& w, std::optional<double> w_from,
          std::optional<double> w_to, int steps,
          const std::optional<std::vector<std::string>>& labels, bool equal_density) {
-        cli::FrequencyOptions o = frequency_options(specs, lattice, labels, w, w_from, w_to, steps);
+        frontend::FrequencyOptions o =
+            frequency_options(specs, lattice, labels, w, w_from, w_to, steps);
         o.equal_density = equal_density;
         o.line = line;
-        return with_arrays(json_result([&] { return cli::spectrum_json(o); }), {"w", "magnitude"});
+        return with_arrays(json_result([&] { return frontend::spectrum_json(o); }),
+                           {"w", "magnitude"});
       },
       py::arg("specs"), py::arg("line"), py::arg("lattice") = py::none(), py::arg("w") = py::none(),
       py::arg("w_from") = py::none(), py::arg("w_to") = py::none(), py::arg("steps") = 0,

@@ -6,7 +6,7 @@
 #include <exception>
 #include <stdexcept>
 
-#include "apps/boxgen/commands.h"
+#include "frontend/commands.h"
 #include "generator/error.h"
 #include "python/bindings.h"
 #include "runtime/nrrd_io.h"
@@ -22,7 +22,7 @@ PYBIND11_MODULE(_core, m) {
           if (p) std::rethrow_exception(p);
         } catch (const boxgen::generator::InputError& e) {
           PyErr_SetString(PyExc_ValueError, e.what());
-        } catch (const boxgen::cli::UsageError& e) {
+        } catch (const boxgen::frontend::UsageError& e) {
           PyErr_SetString(PyExc_ValueError, e.what());
         } catch (const boxgen::runtime::NrrdError& e) {
           PyErr_SetString(PyExc_ValueError, e.what());

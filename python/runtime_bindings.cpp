@@ -20,8 +20,8 @@
 #include <variant>
 #include <vector>
 
-#include "apps/boxrecon/filter_choice.h"
-#include "apps/boxrecon/sample_command.h"
+#include "frontend/filter_choice.h"
+#include "frontend/sample_grid.h"
 #include "generator/box_spline_properties.h"
 #include "generator/spec.h"
 #include "python/bindings.h"
@@ -68,7 +68,7 @@ std::string shape_text(const py::array& a) {
 // `obj` as float64 in the layout `order` ("C" or "F"), by NumPy's own asarray: pybind11's
 // ensure() clears a failed conversion's error, so a copy that could not be allocated surfaced as
 // "ValueError: cannot create a pybind11::array_t from a nullptr"; NumPy raises MemoryError,
-// naming the size (issue 32, item 16).
+// naming the size.
 py::array numpy_float64(const py::handle& obj, const char* order) {
   return py::module_::import("numpy").attr("asarray")(obj, py::arg("dtype") = "float64",
                                                       py::arg("order") = order);
@@ -352,7 +352,7 @@ VolumePtr sample_callable(const py::function& f, const rt::LatticeGrid& grid) {
 
 // Work released from the GIL runs in blocks of about this many points; between blocks the GIL
 // is taken back for Python's signal handlers, so Ctrl-C interrupts a long call within a block's
-// time (issue 32, item 19).
+// time.
 constexpr std::size_t kPointsBetweenSignalChecks = std::size_t{1} << 16;
 
 // Called with the GIL released: runs Python's pending signal handlers; true when one raised
@@ -365,17 +365,17 @@ bool signal_pending() {
 // A registry filter, or any SPEC through the loader (compiled and cached on first use, exactly
 // as boxrecon --filter SPEC --lattice L gets it), with the generator's properties of its SPEC.
 // With `volume` (and no lattice) a direction list is on the volume's lattice, as boxrecon's
-// --filter SPEC --volume FILE (app::lattice_for_volume).
+// --filter SPEC --volume FILE (frontend::lattice_for_volume).
 Filter make_filter(const std::string& spec_text, const std::optional<std::string>& lattice,
                    const Volume* volume) {
   const std::string lattice_text =
-      volume ? app::lattice_for_volume(spec_text, lattice.value_or(""), volume->lattice(),
-                                       "the volume", "lattice")
+      volume ? frontend::lattice_for_volume(spec_text, lattice.value_or(""), volume->lattice(),
+                                            "the volume", "lattice")
              : lattice.value_or("");
   std::optional<rt::SplineFilter> filter;
   {
     py::gil_scoped_release release;  // a first use derives and compiles: seconds
-    filter = app::filter_from(spec_text, lattice_text);
+    filter = frontend::filter_from(spec_text, lattice_text);
   }
   gen::BoxSplineSpec spec = gen::parse_spec(spec_text, lattice_text);
   gen::BoxSplineProperties properties = gen::box_spline_properties(spec);
@@ -403,7 +403,7 @@ py::object evaluate(const Filter& f, const Volume& volume, const py::handle& poi
     py::gil_scoped_release release;
     std::optional<Volume> storage;
     const rt::Reconstructor<double> spline(prepared(volume, f, q, storage), f.filter);
-    // In blocks, so that Ctrl-C is seen between them (issue 32, item 19).
+    // In blocks, so that Ctrl-C is seen between them.
     for (std::size_t first = 0; first < n; first += kPointsBetweenSignalChecks) {
       const std::size_t m = std::min(kPointsBetweenSignalChecks, n - first);
       const auto gs = derivatives ? g.subspan(first, m) : g;
@@ -431,6 +431,29 @@ struct GridArgs {
   std::optional<std::variant<int, std::array<int, 3>>> shape;
 };
 
+// The grid of an image file (NIfTI or NRRD, oblique included): its sizes and its voxel-to-world
+// affine (its frame after diag(spacings) and its origin), as nibabel's img.affine. Its samples are
+// read for the geometry only (non-finite ones do not matter).
+struct ImageGrid {
+  rt::Sizes sizes;
+  rt::Affine affine;
+};
+ImageGrid image_grid(const std::string& path) {
+  rt::NrrdReadLimits limits;
+  limits.allow_non_finite = true;
+  limits.allow_oblique = true;
+  rt::SourceSamples source;
+  const Volume image = [&] {
+    py::gil_scoped_release release;
+    return rt::read_volume_file<double>(path, limits, &source);
+  }();
+  if (image.coset_count() != 1)
+    throw py::value_error(fmt::format("like '{}' is a {} volume: its grid must be Cartesian",
+                                      rt::nrrd_checks::printable(path), image.lattice().name()));
+  const rt::Affine own = rt::Affine::diagonal(image.axis_spacing(), image.origin());
+  return {image.sizes(), source.frame ? source.frame->after(own) : own};
+}
+
 // The grid of lo..hi with `shape` points (default 64 per axis), lo and hi defaulting to the
 // filter's default_box; or `shape` points whose world positions are affine (i, j, k, 1), oblique
 // or not; or the grid and affine of the image file `like` (NIfTI or NRRD, oblique included). The
@@ -443,19 +466,12 @@ rt::CartesianGrid grid_of(const Volume& volume, const Filter& f, const GridArgs&
   const rt::Sizes shape = shape_of(g.shape.value_or(64));
   if (!g.like.is_none()) {
     if (g.shape) throw py::value_error("like gives the grid's shape: give like or shape, not both");
-    const std::string path = py::str(g.like);
-    rt::NrrdReadLimits limits;
-    limits.allow_non_finite = true;
-    limits.allow_oblique = true;
-    rt::SourceSamples source;
-    const Volume image = [&] {
-      py::gil_scoped_release release;
-      return rt::read_volume_file<double>(path, limits, &source);
-    }();
-    if (image.coset_count() != 1)
-      throw py::value_error(fmt::format("like '{}' is a {} volume: its grid must be Cartesian",
-                                        rt::nrrd_checks::printable(path), image.lattice().name()));
-    return {image.sizes(), image.axis_spacing(), image.origin(), source.frame};
+    const ImageGrid image = image_grid(py::str(g.like));
+    rt::CartesianGrid grid = rt::grid_over({{0, 0, 0}, {1, 1, 1}}, image.sizes);  // checks them
+    grid.spacing = {1, 1, 1};
+    grid.origin = {0, 0, 0};
+    grid.to_volume = image.affine;  // as affine= with that image's affine: one path
+    return grid;
   }
   if (!g.affine.is_none()) {
     rt::CartesianGrid grid = rt::grid_over({{0, 0, 0}, {1, 1, 1}}, shape);  // checks the shape
@@ -487,7 +503,7 @@ py::array_t<double> resample(const VolumePtr& volume, const Filter& f,
   {
     py::gil_scoped_release release;
     // By slabs of z (contiguous in the output, x fastest), so that Ctrl-C is seen between
-    // them (issue 32, item 19); each value is the whole block's, bit for bit (GridBlock).
+    // them; each value is the whole block's, bit for bit (GridBlock).
     const int plane = std::max(1, (b.end[0] - b.begin[0]) * (b.end[1] - b.begin[1]));
     const int slab = std::max(1, static_cast<int>(kPointsBetweenSignalChecks) / plane);
     if (b.end[2] <= b.begin[2]) out = rt::resample(*v, f.filter, grid, b);  // its refusal
@@ -613,7 +629,7 @@ void bind_volume(py::module_& m) {
           py::gil_scoped_release release;
           v = std::make_shared<Volume>(rt::read_volume_file<double>(path, limits));
         }
-        // The lattice asked for is what the caller gets, or an error (issue 32, item 20): the
+        // The lattice asked for is what the caller gets, or an error: the
         // same points (the file's coset offsets may differ in order or representative).
         const rt::CosetLattice& got = v->lattice();
         const bool same_points =
@@ -661,7 +677,7 @@ void bind_volume(py::module_& m) {
       [](const py::object& function, int n, const std::optional<std::string>& lattice,
          const std::optional<std::string>& filter, std::optional<double> h) {
         const rt::LatticeGrid grid =
-            app::sample_grid(n, h, lattice.value_or(""), filter.value_or(""), sizeof(double));
+            frontend::sample_grid(n, h, lattice.value_or(""), filter.value_or(""), sizeof(double));
         if (py::isinstance<py::str>(function)) {
           const rt::TestFunction& fn = rt::find_test_function(function.cast<std::string>());
           py::gil_scoped_release release;
@@ -838,14 +854,32 @@ void bind_runtime(py::module_& m) {
       [](const VolumePtr& volume, const Filter& f, const std::optional<std::string>& prefilter,
          const py::object& lo, const py::object& hi,
          const std::variant<int, std::array<int, 3>>& shape,
-         const std::array<std::array<int, 3>, 2>& block,
-         const std::optional<std::string>& boundary) {
-        return resample(volume, f, prefilter, GridArgs{lo, hi, py::none(), py::none(), shape},
-                        block, boundary);
+         const std::array<std::array<int, 3>, 2>& block, const std::optional<std::string>& boundary,
+         const py::object& affine) {
+        return resample(volume, f, prefilter, GridArgs{lo, hi, affine, py::none(), shape}, block,
+                        boundary);
       },
       py::arg("volume"), py::arg("filter"), py::arg("prefilter"), py::arg("lo"), py::arg("hi"),
       py::arg("shape"), py::arg("block"), py::arg("boundary") = py::none(),
+      py::arg("affine") = py::none(),
       "resample() at the grid points begin <= (i, j, k) < end of block = (begin, end) only");
+  m.def(
+      "_image_grid",
+      [](const std::string& path) {
+        const ImageGrid g = image_grid(path);
+        py::array_t<double> affine(std::vector<py::ssize_t>{4, 4});
+        auto a = affine.mutable_unchecked<2>();
+        for (py::ssize_t r = 0; r < 4; ++r)
+          for (py::ssize_t c = 0; c < 4; ++c) {
+            const auto ru = static_cast<std::size_t>(r), cu = static_cast<std::size_t>(c);
+            a(r, c) = r == 3 ? (c == 3 ? 1.0 : 0.0)
+                             : (c < 3 ? g.affine.linear[ru][cu] : g.affine.translation[ru]);
+          }
+        return py::make_tuple(py::make_tuple(g.sizes[0], g.sizes[1], g.sizes[2]), affine);
+      },
+      py::arg("path"),
+      "(shape, affine) of the image file's grid (NIfTI or NRRD, oblique included), as like= "
+      "takes it");
   m.def(
       "filters",
       [] {

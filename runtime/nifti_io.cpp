@@ -352,6 +352,9 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
   if (!image) fail("not a valid NIfTI-1 or NIfTI-2 file (bad header, or not NIfTI)");
   const nifti_image& im = *image;
   if (const std::string why = unsupported_kind(im); !why.empty()) fail(why);
+  // NIfTI's world is RAS+ whenever a qform or sform places it (method 2 or 3); pixdim alone
+  // (both codes 0) places the voxels in no patient frame.
+  const bool anatomical = im.qform_code > 0 || im.sform_code > 0;
   for (int a = 4; a <= 7; ++a)
     if (im.dim[0] >= a && im.dim[a] > 1)
       fail(
@@ -419,6 +422,7 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
   if (source) {
     *source = describe_samples<T>(volume.samples(), type);
     source->frame = frame;
+    source->anatomical = anatomical ? "RAS" : "";
   }
   return volume;
 }

@@ -202,7 +202,8 @@ struct VolumeHeader {
   Sizes sizes;
   Vec3 steps;  // the space direction of each domain axis, divided by d (negative: a flipped axis)
   Vec3 origin;
-  int type;  // one of kSampleTypes
+  std::string anatomical;  // SourceSamples::anatomical
+  int type;                // one of kSampleTypes
   std::uint64_t data_bytes;
 };
 
@@ -398,6 +399,10 @@ std::string check_lattice_header(const Nrrd* nrrd, const std::optional<CosetLatt
     return fmt::format(
         "it has no 3-D space directions; a {} volume needs (dh,0,0) (0,dh,0) (0,0,dh), d = {}",
         name, d);
+  header.anatomical = nrrd->space == nrrdSpaceRightAnteriorSuperior   ? "RAS"
+                      : nrrd->space == nrrdSpaceLeftAnteriorSuperior  ? "LAS"
+                      : nrrd->space == nrrdSpaceLeftPosteriorSuperior ? "LPS"
+                                                                      : "";
   if (first == 1)
     for (int b = 0; b < 3; ++b)
       if (!std::isnan(nrrd->axis[0].spaceDirection[b]))
@@ -652,7 +657,10 @@ LatticeVolume<T> read_lattice_nrrd(const fs::path& path, const NrrdReadLimits& l
   Vec3 spacing = header.steps, origin = header.origin;
   orient_axes_positive(std::span<T>(samples), header.sizes, spacing, origin);
   LatticeVolume<T> volume(header.lattice, header.sizes, spacing, origin, std::move(samples));
-  if (source) *source = describe_samples<T>(volume.samples(), sample_type_name(header.type));
+  if (source) {
+    *source = describe_samples<T>(volume.samples(), sample_type_name(header.type));
+    source->anatomical = header.anatomical;
+  }
   return volume;
 }
 

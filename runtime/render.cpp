@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "runtime/percentiles.h"
+
 namespace boxgen::runtime {
 
 namespace {
@@ -355,22 +357,8 @@ RgbBuffer render_isosurface(const LatticeVolume<double>& volume, const SplineFil
 }
 
 IsoChoice percentile_iso(std::span<const double> samples) {
-  if (samples.empty()) throw std::invalid_argument("the volume has no samples");
-  std::vector<double> sorted(samples.begin(), samples.end());
-  const auto percentile = [&](double p) {
-    const double h = p * static_cast<double>(sorted.size() - 1);
-    const auto lo = static_cast<std::size_t>(std::floor(h));
-    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(lo),
-                     sorted.end());
-    const double a = sorted[lo];
-    if (lo + 1 == sorted.size()) return a;
-    // The next rank: the smallest of the elements after lo.
-    const double b =
-        *std::min_element(sorted.begin() + static_cast<std::ptrdiff_t>(lo) + 1, sorted.end());
-    return a + (h - static_cast<double>(lo)) * (b - a);
-  };
-  const double p1 = percentile(0.01), p99 = percentile(0.99);
-  return {0.5 * (p1 + p99), p1, p99};
+  const std::vector<double> p = percentiles(samples, {0.01, 0.99});
+  return {0.5 * (p[0] + p[1]), p[0], p[1]};
 }
 
 }  // namespace boxgen::runtime

@@ -337,11 +337,34 @@ double spacing_for_count(const CosetLattice& lattice, const Box& box, double cou
 
 template <class T>
 LatticeVolume<T> resample_to_lattice(const LatticeVolume<T>& volume, const SplineFilter& f,
-                                     const LatticeGrid& grid) {
+                                     const LatticeGrid& grid, const BatchEvaluate<T>& evaluate,
+                                     const ProgressReport& progress) {
   LatticeVolume<T> out(grid.lattice, grid.sizes, grid.h, grid.origin);
-  const Reconstructor<T> spline(volume, f);
   const Sizes& n = grid.sizes;
   const int k_count = out.coset_count();
+  // The samples' bounding box (each coset's corner samples), as the evaluation will see them,
+  // must lie in the evaluable region: one clear line before any work, as resample's.
+  const LatticeRegion region = lattice_region(volume, f);
+  Box extent{};
+  bool inside = true;
+  for (int c = 0; c < k_count; ++c)
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 p = out.sample_position(c, (corner & 1) ? n[0] - 1 : 0,
+                                         (corner & 2) ? n[1] - 1 : 0, (corner & 4) ? n[2] - 1 : 0);
+      const Vec3 x = volume.to_lattice(p);
+      const bool first = c == 0 && corner == 0;
+      for (int a = 0; a < 3; ++a) {
+        extent.min[a] = first ? p[a] : std::min(extent.min[a], p[a]);
+        extent.max[a] = first ? p[a] : std::max(extent.max[a], p[a]);
+        inside = inside && x[a] >= region.lo[a] && x[a] < region.hi[a];
+      }
+    }
+  if (!inside)
+    throw std::out_of_range(fmt::format(
+        "the {} samples {} leave the region where the {} stencil lies inside the volume, {}",
+        grid.lattice.label(), describe(extent), f.name(),
+        describe({volume.to_world(region.lo), volume.to_world(region.hi)})));
+  const Reconstructor<T> spline(volume, f);
   std::vector<Vec3> points;
   // Whole k-slabs of about 2^16 samples per batch: all cores at work, bounded scratch memory.
   const std::size_t slab = static_cast<std::size_t>(k_count) * static_cast<std::size_t>(n[0]) *
@@ -355,8 +378,12 @@ LatticeVolume<T> resample_to_lattice(const LatticeVolume<T>& volume, const Splin
         for (int i = 0; i < n[0]; ++i)
           for (int c = 0; c < k_count; ++c) points.push_back(out.sample_position(c, i, j, k));
     const std::span<T> values(out.samples().data() + out.index(0, 0, 0, k0), points.size());
-    spline.evaluate(points, values);
+    if (evaluate)
+      evaluate(points, values);
+    else
+      spline.evaluate(points, values);
     spline.require_finite(points, values);
+    if (progress) progress(static_cast<double>(k1) / n[2]);
   }
   return out;
 }
@@ -380,8 +407,12 @@ template CartesianVolume<double> resample<double>(const LatticeVolume<double>&, 
                                                   const CartesianGrid&, const GridBlock&,
                                                   const BatchEvaluate<double>&);
 template LatticeVolume<float> resample_to_lattice<float>(const LatticeVolume<float>&,
-                                                         const SplineFilter&, const LatticeGrid&);
+                                                         const SplineFilter&, const LatticeGrid&,
+                                                         const BatchEvaluate<float>&,
+                                                         const ProgressReport&);
 template LatticeVolume<double> resample_to_lattice<double>(const LatticeVolume<double>&,
-                                                           const SplineFilter&, const LatticeGrid&);
+                                                           const SplineFilter&, const LatticeGrid&,
+                                                           const BatchEvaluate<double>&,
+                                                           const ProgressReport&);
 
 }  // namespace boxgen::runtime

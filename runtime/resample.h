@@ -115,12 +115,20 @@ std::uint64_t lattice_grid_count(const CosetLattice& lattice, const Box& box, do
 // (ties: the larger count). Throws std::invalid_argument for count < 1 or not finite.
 double spacing_for_count(const CosetLattice& lattice, const Box& box, double count);
 
+// How much of a long evaluation is done, in [0, 1], after each batch (apps show it on a terminal).
+using ProgressReport = std::function<void(double done)>;
+
 // The spline of f on `volume` (prefilter it first for quasi-interpolation) at every sample of
-// `grid`, evaluated on all cores: a volume on the grid's lattice. Throws as resample does (a
-// sample outside evaluable_region(volume, f) is std::out_of_range).
+// `grid`, evaluated on all cores, or by `evaluate` when it is set (as resample's): a volume on the
+// grid's lattice. The grid lies in the volume's world frame (no to_volume: lattice volumes are
+// axis-aligned). Throws as resample does: std::out_of_range (one line, naming both boxes) when a
+// sample lies outside evaluable_region(volume, f), before any evaluation. `progress`, when set,
+// is called after each batch of whole k-slabs.
 template <class T>
 LatticeVolume<T> resample_to_lattice(const LatticeVolume<T>& volume, const SplineFilter& f,
-                                     const LatticeGrid& grid);
+                                     const LatticeGrid& grid,
+                                     const BatchEvaluate<T>& evaluate = BatchEvaluate<T>{},
+                                     const ProgressReport& progress = ProgressReport{});
 
 extern template Box evaluable_region<float>(const LatticeVolume<float>&, const SplineFilter&);
 extern template Box evaluable_region<double>(const LatticeVolume<double>&, const SplineFilter&);
@@ -146,9 +154,13 @@ extern template CartesianVolume<double> resample<double>(const LatticeVolume<dou
                                                          const BatchEvaluate<double>&);
 extern template LatticeVolume<float> resample_to_lattice<float>(const LatticeVolume<float>&,
                                                                 const SplineFilter&,
-                                                                const LatticeGrid&);
+                                                                const LatticeGrid&,
+                                                                const BatchEvaluate<float>&,
+                                                                const ProgressReport&);
 extern template LatticeVolume<double> resample_to_lattice<double>(const LatticeVolume<double>&,
                                                                   const SplineFilter&,
-                                                                  const LatticeGrid&);
+                                                                  const LatticeGrid&,
+                                                                  const BatchEvaluate<double>&,
+                                                                  const ProgressReport&);
 
 }  // namespace boxgen::runtime

@@ -27,6 +27,10 @@ struct SourceSamples {
   // stored) and `frame` maps that frame to the file's world (a rotation, or any linear map with
   // unit columns, and a translation). Nothing for an axis-aligned volume, whose frame is the world.
   std::optional<Affine> frame;
+  // The anatomical direction each world axis points to, as three letters ("RAS": +x right, +y
+  // anterior, +z superior; NIfTI with a qform or sform, a NRRD's space "right-anterior-superior";
+  // "LPS" for a NRRD in DICOM's space): empty when the file's world is not tied to a patient.
+  std::string anatomical;
 };
 
 // Calls f(S{}) with S the C++ type of a sample type named as SourceSamples::type names it; false

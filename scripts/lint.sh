@@ -21,7 +21,7 @@ fi
 if git rev-parse --is-inside-work-tree > /dev/null 2>&1; then
   mapfile -t sources < <(git ls-files '*.h' '*.hpp' '*.cpp' | grep -v '^generated/')
 else
-  mapfile -t sources < <(find apps bench examples fuzz generator runtime support tests \
+  mapfile -t sources < <(find apps bench examples frontend fuzz generator runtime support tests \
                            -name '*.h' -o -name '*.hpp' -o -name '*.cpp' | sort)
 fi
 echo "lint: clang-format on ${#sources[@]} files"

@@ -5,15 +5,15 @@
 #include <cstdio>
 #include <iostream>
 
-#include "apps/boxgen/commands.h"
 #include "apps/common/exit_status.h"
 #include "boxgen/version.h"
+#include "frontend/commands.h"
 #include "generator/error.h"
 #include "support/output_file.h"
 
 namespace {
 
-void add_common(CLI::App* cmd, boxgen::cli::Common& c, bool needs_spec = true) {
+void add_common(CLI::App* cmd, boxgen::frontend::Common& c, bool needs_spec = true) {
   if (needs_spec)
     cmd->add_option("SPEC", c.spec,
                     "preset name (see `boxgen presets`) or the directions, i.e. the COLUMNS of Xi, "
@@ -30,7 +30,7 @@ void add_common(CLI::App* cmd, boxgen::cli::Common& c, bool needs_spec = true) {
 
 // The limits of every command that derives: each refuses up front what the cost estimate
 // (generator/cost_estimate.h) puts beyond them.
-void add_limits(CLI::App* cmd, boxgen::cli::Common& c) {
+void add_limits(CLI::App* cmd, boxgen::frontend::Common& c) {
   cmd->add_option("--max-seconds", c.max_seconds,
                   "refuse up front if the predicted time exceeds this (default 600)")
       ->check(boxgen::app::kFinitePositive);
@@ -54,7 +54,7 @@ int run(int argc, char** argv) {
       "boxgen: exact analysis of box splines on lattices and code generation for their evaluators"};
   app.require_subcommand(1);
   app.set_version_flag("--version", boxgen::kVersionBanner);
-  boxgen::cli::Common c;
+  boxgen::frontend::Common c;
   bool verify = true, no_verify = false;
   std::vector<std::string> points;
   std::string derivative, region = "reference", shells, method = "refinement";
@@ -66,7 +66,7 @@ int run(int argc, char** argv) {
   add_common(analyze, c);
   analyze->add_flag("--no-verify", no_verify,
                     "skip the exact checks (second derivation, integral, symmetry, ...)");
-  boxgen::cli::AnalyzeOptions analyze_options;
+  boxgen::frontend::AnalyzeOptions analyze_options;
   analyze->add_option(
       "--checks", analyze_options.checks,
       "default (integral and continuity on one cell per symmetry orbit) or full (every cell)");
@@ -146,7 +146,7 @@ int run(int argc, char** argv) {
   table1->add_flag("--json", c.json, "machine-readable output");
 
   // Frequency-domain analysis of one or more filters (analysis/).
-  boxgen::cli::FrequencyOptions ao;
+  boxgen::frontend::FrequencyOptions ao;
   auto add_specs = [&](CLI::App* cmd) {
     cmd->add_option("SPEC", ao.specs,
                     "one or more presets or direction lists, each optionally SPEC@LATTICE "
@@ -211,25 +211,25 @@ int run(int argc, char** argv) {
   if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxgen")) return *stop;
   verify = !no_verify;
   try {
-    if (presets->parsed()) return boxgen::cli::run_presets(c.json);
+    if (presets->parsed()) return boxgen::frontend::run_presets(c.json);
     if (analyze->parsed()) {
       analyze_options.verify = verify;
-      return boxgen::cli::run_analyze(c, analyze_options);
+      return boxgen::frontend::run_analyze(c, analyze_options);
     }
-    if (eval->parsed()) return boxgen::cli::run_eval(c, points, derivative);
-    if (bbform->parsed()) return boxgen::cli::run_bbform(c, region);
-    if (prefilter->parsed()) return boxgen::cli::run_prefilter(c, shells, prefilter_name);
-    if (autocorr->parsed()) return boxgen::cli::run_autocorr(c, method);
-    if (table1->parsed()) return boxgen::cli::run_table1(c.json);
-    if (metrics->parsed()) return boxgen::cli::run_metrics(ao);
-    if (kernel->parsed()) return boxgen::cli::run_kernel(ao);
-    if (spectrum->parsed()) return boxgen::cli::run_spectrum(ao);
+    if (eval->parsed()) return boxgen::frontend::run_eval(c, points, derivative);
+    if (bbform->parsed()) return boxgen::frontend::run_bbform(c, region);
+    if (prefilter->parsed()) return boxgen::frontend::run_prefilter(c, shells, prefilter_name);
+    if (autocorr->parsed()) return boxgen::frontend::run_autocorr(c, method);
+    if (table1->parsed()) return boxgen::frontend::run_table1(c.json);
+    if (metrics->parsed()) return boxgen::frontend::run_metrics(ao);
+    if (kernel->parsed()) return boxgen::frontend::run_kernel(ao);
+    if (spectrum->parsed()) return boxgen::frontend::run_spectrum(ao);
     if (emit->parsed())
-      return boxgen::cli::run_emit(c, emit_name, emit_out, emit_strategy, emit_report,
-                                   emit_registry, {emit_target, emit_precision, emit_shells});
+      return boxgen::frontend::run_emit(c, emit_name, emit_out, emit_strategy, emit_report,
+                                        emit_registry, {emit_target, emit_precision, emit_shells});
     if (pieces->parsed())
-      return boxgen::cli::run_pieces(c, pieces_of, pieces_region, pieces_format);
-  } catch (const boxgen::cli::UsageError& e) {
+      return boxgen::frontend::run_pieces(c, pieces_of, pieces_region, pieces_format);
+  } catch (const boxgen::frontend::UsageError& e) {
     std::cerr << "boxgen: usage error: " << e.what() << " (see boxgen --help)\n";
     return 2;
   } catch (const boxgen::generator::InputError& e) {

@@ -8,7 +8,7 @@
 //   2 threads over 1 (BOXGEN_THREADS-style cap through set_batch_threads).
 // Every ratio is measured in this run; the fastest of `repeats` runs counts.
 #include "apps/boxrecon/cmd_bench.h"
-#include "apps/boxrecon/input_checks.h"
+#include "frontend/input_checks.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -173,8 +173,9 @@ Row table2_row(int n, long count, int repeats) {
 int run_bench(const BenchOptions& o) {
   const long count = o.points > 0 ? o.points : (o.quick ? 200000 : 10000000);
   // Random and ray points (Vec3 each) and one value per point, in double at most.
-  boxgen::app::check_memory(static_cast<std::uint64_t>(count), 2 * sizeof(Vec3) + sizeof(double),
-                            fmt::format("--points {}", count), "points");
+  boxgen::frontend::check_memory(static_cast<std::uint64_t>(count),
+                                 2 * sizeof(Vec3) + sizeof(double),
+                                 fmt::format("--points {}", count), "points");
   const auto per_point = [count](double seconds) {
     return 1e9 * seconds / static_cast<double>(count);
   };

@@ -13,10 +13,11 @@
 #include <vector>
 
 #include "apps/boxrecon/cmd_volumes.h"
-#include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/lattice_commands.h"
 #include "apps/boxrecon/output_volume.h"
 #include "apps/boxrecon/prefilter_options.h"
+#include "apps/boxrecon/progress.h"
+#include "frontend/filter_choice.h"
 #include "runtime/nifti_io.h"
 #include "runtime/nrrd_checks.h"
 #include "runtime/resample.h"
@@ -149,7 +150,7 @@ CLI::App* add_compare_command(CLI::App& app) {
 }
 
 int run_compare() {
-  const SplineFilter filter = app::filter_for_volume(args.filter, args.lattice, args.volume);
+  const SplineFilter filter = frontend::filter_for_volume(args.filter, args.lattice, args.volume);
   const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   const std::filesystem::path inputs[2] = {args.reference, args.volume};
   const std::optional<SampleType> type = app::parse_type_option(args.type);
@@ -199,15 +200,21 @@ int run_compare() {
     points.clear();
     where.clear();
   };
-  for (int k = range[2].first; k <= range[2].last; ++k) {
-    for (int j = range[1].first; j <= range[1].last; ++j)
-      for (int i = range[0].first; i <= range[0].last; ++i) {
-        points.push_back(ref.sample_position(0, i, j, k));
-        where.push_back(ref.index(0, i, j, k));
+  {
+    app::Progress progress("comparing");
+    const int planes = range[2].last - range[2].first + 1;
+    for (int k = range[2].first; k <= range[2].last; ++k) {
+      for (int j = range[1].first; j <= range[1].last; ++j)
+        for (int i = range[0].first; i <= range[0].last; ++i) {
+          points.push_back(ref.sample_position(0, i, j, k));
+          where.push_back(ref.index(0, i, j, k));
+        }
+      if (points.size() >= (std::size_t{1} << 16) || (k == range[2].last && !points.empty())) {
+        flush();
+        progress.update(static_cast<double>(k - range[2].first + 1) / planes);
       }
-    if (points.size() >= (std::size_t{1} << 16)) flush();
+    }
   }
-  if (!points.empty()) flush();
   if (all.count == 0)
     throw std::invalid_argument(fmt::format(
         "no reference grid point lies in the region the {} filter reconstructs from '{}'",

@@ -1,5 +1,5 @@
 #include "apps/boxrecon/cmd_render.h"
-#include "apps/boxrecon/input_checks.h"
+#include "frontend/input_checks.h"
 
 #include <fmt/format.h>
 
@@ -14,10 +14,10 @@
 
 #include "analysis/png_image.h"
 #include "apps/boxrecon/device_choice.h"
-#include "apps/boxrecon/filter_choice.h"
 #include "apps/boxrecon/lattice_commands.h"
 #include "apps/boxrecon/prefilter_options.h"
-#include "apps/boxrecon/sample_command.h"
+#include "frontend/filter_choice.h"
+#include "frontend/sample_grid.h"
 #include "runtime/gl/gl_render.h"
 #include "runtime/nifti_io.h"
 #include "runtime/prefilter.h"
@@ -66,14 +66,14 @@ void choose_from_data(const LatticeVolume<double>& volume, RenderOptions& o) {
 RgbBuffer render_volume(const SplineFilter& rf, const app::PrefilterSetting& q, RenderOptions o,
                         gl::FrameTimes* times) {
   const Box cube{{-1, -1, -1}, {1, 1, 1}};
-  (void)boxgen::app::lattice_for(rf, args.lattice);
+  (void)boxgen::frontend::lattice_for(rf, args.lattice);
   NrrdReadLimits on_lattice;
   on_lattice.lattice = rf.lattice();
   const auto sampled = [&] {
     const LatticeGrid grid = cube_lattice_grid(rf.lattice(), args.n, rf.required_margin(q.choice));
-    boxgen::app::check_memory(static_cast<std::uint64_t>(rf.lattice().coset_count()) *
-                                  grid.sizes[0] * grid.sizes[1] * grid.sizes[2],
-                              sizeof(double), fmt::format("--n {}", args.n), "samples");
+    boxgen::frontend::check_memory(static_cast<std::uint64_t>(rf.lattice().coset_count()) *
+                                       grid.sizes[0] * grid.sizes[1] * grid.sizes[2],
+                                   sizeof(double), fmt::format("--n {}", args.n), "samples");
     return sample_lattice<double>(find_test_function(args.function).value, grid);
   };
   LatticeVolume<double> volume =
@@ -86,9 +86,9 @@ RgbBuffer render_volume(const SplineFilter& rf, const app::PrefilterSetting& q, 
                   : args.volume.empty() ? cube
                                         : region;
   if (boxgen::app::parse_device(args.device) == boxgen::app::Device::Gl)
-    return gl::render_isosurface(volume, rf, box, o,
-                                 boxgen::app::glsl_for(rf, args.filter, args.precision == "double"),
-                                 args.precision == "double", times);
+    return gl::render_isosurface(
+        volume, rf, box, o, boxgen::frontend::glsl_for(rf, args.filter, args.precision == "double"),
+        args.precision == "double", times);
   return render_isosurface(volume, rf, box, o);
 }
 
@@ -151,8 +151,8 @@ bool render_quiet() { return args.quiet; }
 
 int run_render() {
   const SplineFilter rf = args.volume.empty()
-                              ? app::filter_from(args.filter, args.lattice)
-                              : app::filter_for_volume(args.filter, args.lattice, args.volume);
+                              ? frontend::filter_from(args.filter, args.lattice)
+                              : frontend::filter_for_volume(args.filter, args.lattice, args.volume);
   const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   if (args.shading != "normal" && args.shading != "curvature")
     throw std::invalid_argument("--shading must be normal or curvature, got '" +

@@ -8,10 +8,11 @@
 #include <string>
 
 #include "apps/boxrecon/cmd_volumes.h"
-#include "apps/boxrecon/filter_choice.h"
-#include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/output_volume.h"
 #include "apps/boxrecon/prefilter_options.h"
+#include "apps/boxrecon/progress.h"
+#include "frontend/filter_choice.h"
+#include "frontend/input_checks.h"
 #include "runtime/nifti_io.h"
 #include "runtime/prefilter.h"
 #include "runtime/resample.h"
@@ -71,7 +72,7 @@ int run_subsample() {
     throw std::invalid_argument(
         fmt::format("--spacing must be finite and > 0, got {}", *args.spacing));
   const CosetLattice lattice = CosetLattice::parse(args.lattice);
-  const SplineFilter filter = app::filter_for_volume(args.filter, "", args.volume);
+  const SplineFilter filter = frontend::filter_for_volume(args.filter, "", args.volume);
   const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
   const std::optional<SampleType> type = app::parse_type_option(args.type);
   const std::filesystem::path input = args.volume;
@@ -88,12 +89,16 @@ int run_subsample() {
           ? *args.spacing
           : spacing_for_count(lattice, box, *args.fraction * static_cast<double>(input_count));
   // Before anything is allocated: the output samples, and the points and values of a block.
-  app::check_memory(
+  frontend::check_memory(
       lattice_grid_count(lattice, box, h), 2 * sizeof(float),
       args.spacing ? fmt::format("--spacing {}", h) : fmt::format("--fraction {}", *args.fraction),
       "samples");
   const LatticeGrid grid = lattice_grid_in(lattice, box, h);
-  const LatticeVolume<float> out = resample_to_lattice(volume, filter, grid);
+  const LatticeVolume<float> out = [&] {
+    app::Progress progress("subsampling");
+    return resample_to_lattice(volume, filter, grid, BatchEvaluate<float>{},
+                               [&progress](double done) { progress.update(done); });
+  }();
   app::write_output_volume(args.output, out, type);
   const std::uint64_t kept = out.sample_count();
   std::cout << fmt::format(

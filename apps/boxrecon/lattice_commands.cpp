@@ -1,15 +1,11 @@
 #include "apps/boxrecon/lattice_commands.h"
 
-#include <unistd.h>
-
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <random>
@@ -18,10 +14,11 @@
 
 #include "apps/boxrecon/cmd_bench.h"
 #include "apps/boxrecon/device_choice.h"
-#include "apps/boxrecon/filter_choice.h"
-#include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/output_volume.h"
-#include "apps/boxrecon/sample_command.h"
+#include "apps/boxrecon/progress.h"
+#include "frontend/filter_choice.h"
+#include "frontend/input_checks.h"
+#include "frontend/sample_grid.h"
 #include "runtime/batch_threads.h"
 #include "runtime/gl/gl_spline.h"
 #include "runtime/nifti_io.h"
@@ -78,7 +75,7 @@ int run_eval(const std::string& filter, const std::string& lattice, const Prefil
              const std::string& volume_path, const std::string& points_path, bool gradient,
              bool hessian, const NrrdReadLimits& limits, Device device, bool verbose) {
   const PrefilterSetting q = parse_prefilter_options(pre);
-  const SplineFilter f = filter_for_volume(filter, lattice, volume_path);
+  const SplineFilter f = frontend::filter_for_volume(filter, lattice, volume_path);
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
   const auto points = read_points_file(points_path);
   std::vector<T> values(points.size());
@@ -87,7 +84,7 @@ int run_eval(const std::string& filter, const std::string& lattice, const Prefil
   const Reconstructor<T> spline(volume, f);
   if (device == Device::Gl) {
     if (verbose) std::cerr << gl_device_line() << '\n';
-    const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, sizeof(T) == 8));
+    const gl::GlSpline<T> gpu(volume, f, frontend::glsl_for(f, filter, sizeof(T) == 8));
     gpu.evaluate(points, values, gradients, hessians);
   } else {
     spline.evaluate(points, values, gradients, hessians);
@@ -138,8 +135,8 @@ int run_error(const std::string& function, int n, const std::string& filter,
               const std::string& lattice_text, const PrefilterOptions& pre, int count,
               std::uint64_t seed, bool gradient, bool json) {
   const TestFunction& fn = find_test_function(function);
-  const SplineFilter f = filter_from(filter, lattice_text);
-  (void)lattice_for(f, lattice_text);
+  const SplineFilter f = frontend::filter_from(filter, lattice_text);
+  (void)frontend::lattice_for(f, lattice_text);
   const PrefilterSetting q = parse_prefilter_options(pre);
   if (count < 1 || count > 100000000)
     throw std::invalid_argument("--points must be between 1 and 100000000");
@@ -161,7 +158,7 @@ int run_error(const std::string& function, int n, const std::string& filter,
   report.sizes = grid.sizes;
   report.samples = static_cast<std::uint64_t>(lattice.coset_count()) * grid.sizes[0] *
                    grid.sizes[1] * grid.sizes[2];
-  check_memory(report.samples, sizeof(double), fmt::format("--n {}", n), "samples");
+  frontend::check_memory(report.samples, sizeof(double), fmt::format("--n {}", n), "samples");
   InterpolationReport interpolation;
   const LatticeVolume<double> volume = spline_coefficients(
       sample_lattice<double>(fn.value, grid), f, q.choice, q.boundary, &interpolation, true);
@@ -207,22 +204,6 @@ Box box_from_options(const std::vector<double>& min, const std::vector<double>& 
 
 namespace {
 
-// The grid of --like: that Cartesian image's sizes, spacings and origin, and its frame when it
-// is oblique (its samples are read only for the geometry; non-finite ones do not matter).
-CartesianGrid grid_like(const std::string& path, std::optional<Affine>& frame) {
-  NrrdReadLimits limits;
-  limits.allow_non_finite = true;
-  limits.allow_oblique = true;
-  SourceSamples source;
-  const LatticeVolume<float> image = read_volume_file<float>(path, limits, &source);
-  if (image.coset_count() != 1)
-    throw std::invalid_argument(fmt::format(
-        "--like '{}' is a {} volume: its grid must be Cartesian (an image such as the output)",
-        nrrd_checks::printable(path, 80), image.lattice().name()));
-  frame = source.frame;
-  return {image.sizes(), image.axis_spacing(), image.origin()};
-}
-
 // The map from a grid's frame to a volume's, both given by their maps to world (nothing: the
 // world itself). Nothing when the frames are one, so that a grid on the volume's own frame is
 // evaluated at exactly its points.
@@ -256,36 +237,19 @@ CartesianGrid grid_with_spacing(const Box& box, const std::vector<double>& given
   return {n, h, box.min};
 }
 
-// resample() of the whole grid; on a terminal without --quiet, once the work has taken 2 s
-// (BOXGEN_PROGRESS_AFTER), its progress on stderr. The grid is then done in slabs of z planes
-// (GridBlock: each value bit for bit the one the whole grid gets). BOXGEN_PROGRESS_AFTER: the
-// seconds before progress shows (default 2; 0 at once).
-double progress_after() {
-  const char* text = std::getenv("BOXGEN_PROGRESS_AFTER");
-  if (!text || !*text) return 2;
-  char* end = nullptr;
-  const double seconds = std::strtod(text, &end);
-  if (*end != '\0' || !(seconds >= 0) || !std::isfinite(seconds))
-    throw std::invalid_argument(
-        fmt::format("BOXGEN_PROGRESS_AFTER must be a number of seconds >= 0, got '{}'",
-                    nrrd_checks::printable(text, 40)));
-  return seconds;
-}
-
+// resample() of the whole grid, with its progress (progress.h). While progress may show, the grid
+// is done in slabs of z planes (GridBlock: each value bit for bit the one the whole grid gets).
 template <class T>
 CartesianVolume<T> resample_grid(const LatticeVolume<T>& volume, const SplineFilter& f,
                                  const CartesianGrid& grid, const BatchEvaluate<T>& evaluate) {
-  if (quiet() || ::isatty(STDERR_FILENO) == 0)
+  Progress progress("resampling");
+  if (!progress.enabled())
     return resample(volume, f, grid, GridBlock{{0, 0, 0}, grid.sizes}, evaluate);
-  using Clock = std::chrono::steady_clock;
-  const Clock::time_point start = Clock::now();
-  const std::chrono::duration<double> after(progress_after());
   const Sizes& n = grid.sizes;
   const std::size_t plane = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]);
   CartesianVolume<T> out{n, grid.spacing, grid.origin,
                          std::vector<T>(plane * static_cast<std::size_t>(n[2]))};
   const int slabs = std::min(n[2], 100);
-  bool shown = false;
   for (int s = 0; s < slabs; ++s) {
     const int z0 = n[2] * s / slabs, z1 = n[2] * (s + 1) / slabs;
     const CartesianVolume<T> part =
@@ -293,22 +257,94 @@ CartesianVolume<T> resample_grid(const LatticeVolume<T>& volume, const SplineFil
     std::copy(
         part.values.begin(), part.values.end(),
         out.values.begin() + static_cast<std::ptrdiff_t>(plane * static_cast<std::size_t>(z0)));
-    if (shown || Clock::now() - start >= after) {
-      shown = true;
-      std::fprintf(stderr, "\rresampling %3d%%", 100 * z1 / n[2]);
-    }
+    progress.update(static_cast<double>(z1) / n[2]);
   }
-  if (shown) std::fprintf(stderr, "\n");
   return out;
+}
+
+// The image of --like: its lattice (Cartesian for an image such as resample's output), grid and,
+// when it is oblique, its frame. Its samples are read only for the geometry (non-finite ones do
+// not matter).
+struct LikeImage {
+  CosetLattice lattice = CosetLattice::cartesian();
+  Sizes sizes{};
+  Vec3 spacing{}, origin{};
+  std::optional<Affine> frame;
+};
+
+LikeImage read_like(const std::string& path) {
+  NrrdReadLimits limits;
+  limits.allow_non_finite = true;
+  limits.allow_oblique = true;
+  SourceSamples source;
+  const LatticeVolume<float> image = read_volume_file<float>(path, limits, &source);
+  return {image.lattice(), image.sizes(), image.axis_spacing(), image.origin(), source.frame};
+}
+
+bool is_cartesian(const CosetLattice& lattice) { return lattice == CosetLattice::cartesian(); }
+
+// The output lattice: --lattice, else the --like image's, else Cartesian. A --lattice that
+// differs from the --like image's is refused (one line).
+CosetLattice output_lattice(const std::string& text, const std::optional<LikeImage>& like,
+                            const std::string& like_path) {
+  if (text.empty()) return like ? like->lattice : CosetLattice::cartesian();
+  CosetLattice lattice = CosetLattice::parse(text);
+  if (like && !(like->lattice == lattice))
+    throw std::invalid_argument(
+        fmt::format("--lattice {} differs from the lattice of --like '{}' ({}): give one of them",
+                    lattice.name(), nrrd_checks::printable(like_path, 80), like->lattice.name()));
+  return lattice;
+}
+
+// The grid of a non-Cartesian output: the --like volume's own, or the lattice at --spacing H
+// (its h) or at about --n^3 samples (default 64^3) over the box, centred in it (as subsample's).
+LatticeGrid output_lattice_grid(const CosetLattice& lattice, const OutputGridOptions& options,
+                                const std::optional<LikeImage>& like, const Box& box) {
+  if (like) return {lattice, like->sizes, like->spacing[0], like->origin};
+  if (!options.size.empty())
+    throw std::invalid_argument(
+        fmt::format("--size counts Cartesian grid points: onto the {} lattice give --spacing H "
+                    "(its h) or --n N "
+                    "(about N^3 samples)",
+                    lattice.name()));
+  if (options.spacing.size() > 1)
+    throw std::invalid_argument(fmt::format(
+        "the {} lattice has one spacing h: give --spacing H, not three values", lattice.name()));
+  double h = 0;
+  if (options.spacing.empty()) {
+    const double n = options.n;
+    h = spacing_for_count(lattice, box, n * n * n);
+  } else {
+    h = options.spacing[0];
+    if (!(std::isfinite(h) && h > 0))
+      throw std::invalid_argument(fmt::format("--spacing must be finite and > 0, got {}", h));
+  }
+  return lattice_grid_in(lattice, box, h);
+}
+
+// A whole grid of a non-Cartesian lattice onto which the volume is resampled, with progress.
+template <class T>
+LatticeVolume<T> resample_lattice_grid(const LatticeVolume<T>& volume, const SplineFilter& f,
+                                       const LatticeGrid& grid, const BatchEvaluate<T>& evaluate) {
+  Progress progress("resampling");
+  return resample_to_lattice(volume, f, grid, evaluate,
+                             [&progress](double done) { progress.update(done); });
+}
+
+// The values in T of a Cartesian grid or of a lattice grid, and their copy in the file's type
+// while it is written (`stored` bytes each), must fit in memory.
+void check_output_memory(std::uint64_t count, std::size_t bytes, const std::string& grid) {
+  frontend::check_memory(count, bytes, fmt::format("the output grid of {}", grid), "values");
 }
 
 }  // namespace
 
 template <class T>
-int run_resample(const std::string& filter, const std::string& lattice, const PrefilterOptions& pre,
-                 const std::string& volume_path, const std::string& output,
-                 const std::string& type_text, const OutputGridOptions& options,
-                 const NrrdReadLimits& limits, Device device, bool verbose) {
+int run_resample(const std::string& filter, const std::string& lattice_text,
+                 const PrefilterOptions& pre, const std::string& volume_path,
+                 const std::string& output, const std::string& type_text,
+                 const OutputGridOptions& options, const NrrdReadLimits& limits, Device device,
+                 bool verbose) {
   const PrefilterSetting q = parse_prefilter_options(pre);
   const std::optional<SampleType> type = parse_type_option(type_text);
   if (options.n < 2 || options.n > kMaxGridSize)
@@ -322,20 +358,62 @@ int run_resample(const std::string& filter, const std::string& lattice, const Pr
     throw std::invalid_argument(
         fmt::format("--spacing takes one value or three, got {}", options.spacing.size()));
   const std::filesystem::path input = volume_path;
+  // --like's geometry and the output lattice first: a refused output costs no work.
+  std::optional<LikeImage> like;
+  if (!options.like.empty()) like = read_like(options.like);
+  const CosetLattice lattice = output_lattice(lattice_text, like, options.like);
+  const bool cartesian = is_cartesian(lattice);
   // Before the work (a SPEC's first compile included), not after it; never the input.
-  require_output_volume(output, {&input, 1}, CosetLattice::cartesian());
+  require_output_volume(output, {&input, 1}, lattice);
   const VolumeFormat format = output_format(output);
-  const SplineFilter f = filter_for_volume(filter, lattice, volume_path);
+  // The filter is on the volume's lattice (a SPEC's too: --lattice is the output's).
+  const SplineFilter f = frontend::filter_for_volume(filter, "", volume_path);
   // Oblique volumes are read in their own frame (index space times the voxel sizes); the
   // output's world points map into it through the inverse of the volume's affine.
   NrrdReadLimits read_limits = limits;
   read_limits.allow_oblique = true;
   SourceSamples source;
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, read_limits, &source);
+  if (!cartesian && source.frame)
+    throw std::invalid_argument(fmt::format(
+        "'{}' is oblique: it resamples onto Cartesian grids only (a {} volume is stored "
+        "axis-aligned in the world); resample it onto an axis-aligned grid first (--min/--max)",
+        nrrd_checks::printable(volume_path, 80), lattice.name()));
+  // The values in T, and their copy in the file's type while it is written.
+  const SampleType stored =
+      type ? *type
+           : (format == VolumeFormat::Nifti
+                  ? SampleType::Float32
+                  : (sizeof(T) == 8 ? SampleType::Float64 : SampleType::Float32));
+  const std::size_t bytes = sizeof(T) + sample_type_size(stored);
+  std::optional<gl::GlSpline<T>> gpu;
+  const auto evaluator = [&]() {
+    if (device == Device::Cpu) return BatchEvaluate<T>{};
+    if (verbose) std::cerr << gl_device_line() << '\n';
+    gpu.emplace(volume, f, frontend::glsl_for(f, filter, sizeof(T) == 8));
+    return BatchEvaluate<T>(
+        [&gpu](std::span<const Vec3> points, std::span<T> out) { gpu->evaluate(points, out); });
+  };
+  if (!cartesian) {
+    const Box box = options.min.empty() ? default_box(volume, f)
+                                        : Box{{options.min[0], options.min[1], options.min[2]},
+                                              {options.max[0], options.max[1], options.max[2]}};
+    const LatticeGrid grid = output_lattice_grid(lattice, options, like, box);
+    const Sizes& n = grid.sizes;
+    check_output_memory(static_cast<std::uint64_t>(lattice.coset_count()) *
+                            static_cast<std::uint64_t>(n[0]) * static_cast<std::uint64_t>(n[1]) *
+                            static_cast<std::uint64_t>(n[2]),
+                        bytes,
+                        fmt::format("{} x {} x {} x {} {} samples", lattice.coset_count(), n[0],
+                                    n[1], n[2], lattice.name()));
+    write_output_volume(output, resample_lattice_grid(volume, f, grid, evaluator()), type);
+    return 0;
+  }
   CartesianGrid grid;
   std::optional<Affine> output_frame = source.frame;  // the output's map to world
-  if (!options.like.empty()) {
-    grid = grid_like(options.like, output_frame);
+  if (like) {
+    output_frame = like->frame;
+    grid = {like->sizes, like->spacing, like->origin};
     grid.to_volume = grid_to_volume(source.frame, output_frame);
   } else {
     // --min/--max are world coordinates: for an oblique volume the output is then axis-aligned
@@ -360,28 +438,11 @@ int run_resample(const std::string& filter, const std::string& lattice, const Pr
         "the output grid is oblique (the affine of '{}'): write it as NIfTI (.nii or .nii.gz); "
         "the NRRD writer stores axis-aligned grids only",
         nrrd_checks::printable(options.like.empty() ? volume_path : options.like, 80)));
-  // The values in T, and their copy in the file's type while it is written.
-  const SampleType stored =
-      type ? *type
-           : (format == VolumeFormat::Nifti
-                  ? SampleType::Float32
-                  : (sizeof(T) == 8 ? SampleType::Float64 : SampleType::Float32));
   const Sizes& n = grid.sizes;
-  check_memory(static_cast<std::uint64_t>(n[0]) * static_cast<std::uint64_t>(n[1]) *
-                   static_cast<std::uint64_t>(n[2]),
-               sizeof(T) + sample_type_size(stored),
-               fmt::format("the output grid of {} x {} x {} points", n[0], n[1], n[2]), "values");
-  CartesianVolume<T> values;
-  if (device == Device::Cpu) {
-    values = resample_grid(volume, f, grid, BatchEvaluate<T>{});
-  } else {
-    if (verbose) std::cerr << gl_device_line() << '\n';
-    const gl::GlSpline<T> gpu(volume, f, glsl_for(f, filter, sizeof(T) == 8));
-    values = resample_grid(volume, f, grid,
-                           BatchEvaluate<T>([&gpu](std::span<const Vec3> points, std::span<T> out) {
-                             gpu.evaluate(points, out);
-                           }));
-  }
+  check_output_memory(static_cast<std::uint64_t>(n[0]) * static_cast<std::uint64_t>(n[1]) *
+                          static_cast<std::uint64_t>(n[2]),
+                      bytes, fmt::format("{} x {} x {} points", n[0], n[1], n[2]));
+  CartesianVolume<T> values = resample_grid(volume, f, grid, evaluator());
   values.frame = output_frame;
   write_output_grid(output, values, type);
   return 0;

@@ -82,16 +82,18 @@ int run_error(const std::string& function, int n, const std::string& filter,
               const std::string& lattice, const PrefilterOptions& pre, int count,
               std::uint64_t seed, bool gradient, bool json);
 
-// resample: the grid of `grid` (OutputGridOptions), written as a Cartesian NRRD or NIfTI by the
+// resample: the grid of `grid` (OutputGridOptions) on `output_lattice` (--lattice: empty is the
+// --like image's lattice, else Cartesian), written as NRRD or NIfTI (Cartesian only) by the
 // output's name, samples of --type `type` (empty: the format's default); nothing is written when
-// any value is not finite. A grid whose values do not fit in memory (check_memory: the values in
-// T and their encoded copy) is refused, with the numbers, before any evaluation. Device as for
-// run_eval.
+// any value is not finite. The filter (a SPEC too) is on the volume's lattice. A grid whose values
+// do not fit in memory (check_memory: the values in T and their encoded copy) is refused, with the
+// numbers, before any evaluation. Device as for run_eval.
 template <class T>
-int run_resample(const std::string& filter, const std::string& lattice, const PrefilterOptions& pre,
-                 const std::string& volume_path, const std::string& output, const std::string& type,
-                 const OutputGridOptions& grid, const runtime::NrrdReadLimits& limits,
-                 Device device = Device::Cpu, bool verbose = false);
+int run_resample(const std::string& filter, const std::string& output_lattice,
+                 const PrefilterOptions& pre, const std::string& volume_path,
+                 const std::string& output, const std::string& type, const OutputGridOptions& grid,
+                 const runtime::NrrdReadLimits& limits, Device device = Device::Cpu,
+                 bool verbose = false);
 
 // bench --filter NAME: seconds per point of the filter's value (and value + gradient) at random
 // points of a volume of random samples on its lattice, one thread and all threads.

@@ -40,14 +40,14 @@
 #include "apps/boxrecon/cmd_render.h"
 #include "apps/boxrecon/cmd_volumes.h"
 #include "apps/boxrecon/device_choice.h"
-#include "apps/boxrecon/filter_choice.h"
-#include "apps/boxrecon/input_checks.h"
 #include "apps/boxrecon/lattice_commands.h"
 #include "apps/boxrecon/output_volume.h"
 #include "apps/boxrecon/prefilter_options.h"
 #include "apps/boxrecon/sample_command.h"
 #include "apps/common/exit_status.h"
 #include "boxgen/version.h"
+#include "frontend/filter_choice.h"
+#include "frontend/input_checks.h"
 #include "runtime/batch_threads.h"
 #include "runtime/gl/gl_context.h"
 #include "runtime/nrrd_io.h"
@@ -96,7 +96,8 @@ int run(int argc, char** argv) {
       "G); default the volume's with --volume, else the preset's, else cartesian";
   bool quiet = false;
   const auto add_quiet = [&](CLI::App* command) {
-    command->add_flag("--quiet", quiet, "no progress while a SPEC filter is compiled");
+    command->add_flag("--quiet", quiet,
+                      "no progress on stderr (a SPEC filter's compile, long steps)");
   };
   std::string function = "ml", lattice, sample_filter, output, filter = "m7", volume, points_path,
               precision = "double";
@@ -172,10 +173,14 @@ int run(int argc, char** argv) {
   error->add_option("--seed", seed, "random seed, 0..2^64-1");
   error->add_flag("--gradient", gradient, "also the RMS error of the gradient");
   error->add_flag("--json", json, "JSON with keys rms, max, gradient_rms");
-  auto* resample = app.add_subcommand(
-      "resample", "resample the reconstruction onto a Cartesian grid (a plain 3-D NRRD)");
+  auto* resample = app.add_subcommand("resample",
+                                      "resample the reconstruction onto a Cartesian grid (NRRD or "
+                                      "NIfTI) or another lattice (NRRD)");
   resample->add_option("--filter", filter, filters)->required();
-  resample->add_option("--lattice", lattice, spec_lattice);
+  resample->add_option("--lattice", lattice,
+                       "the output lattice: cartesian | bcc | fcc | \"a,b,c; d,e,f; g,h,i\" (rows "
+                       "of G); default the --like image's, else cartesian (a SPEC --filter is on "
+                       "the volume's lattice)");
   boxgen::app::add_prefilter_options(resample, pre);
   resample
       ->add_option("--volume", volume,
@@ -259,13 +264,13 @@ int run(int argc, char** argv) {
   if (const auto stop = boxgen::app::parse_command_line(app, argc, argv, "boxrecon")) return *stop;
   try {
     if (threads > 0) set_batch_threads(threads);
-    boxgen::app::set_quiet(quiet || boxgen::recon::render_quiet());
-    if (filters_command->parsed()) return boxgen::app::run_filters();
+    boxgen::frontend::set_quiet(quiet || boxgen::recon::render_quiet());
+    if (filters_command->parsed()) return boxgen::frontend::run_filters();
     if (bench->parsed() && !bench_prefilter.prefilter.empty()) {
       if (boxgen::app::parse_device(device) == boxgen::app::Device::Gl)
         throw InputError("bench --prefilter runs on the CPU (the GL device's prefilter does too)");
       return boxgen::app::run_prefilter_bench(
-          boxgen::app::filter_from(bench_filter.empty() ? "m8" : bench_filter, lattice),
+          boxgen::frontend::filter_from(bench_filter.empty() ? "m8" : bench_filter, lattice),
           boxgen::app::parse_prefilter_options(bench_prefilter), bench_n,
           bench->get_option("--repeats")->count() ? bench_options.repeats : 1, bench_options.json);
     }
@@ -273,7 +278,7 @@ int run(int argc, char** argv) {
         boxgen::app::parse_device(device) == boxgen::app::Device::Gl)
       throw InputError("bench --filter runs on the CPU; --device gl measures m7, m8 and m12");
     if (bench->parsed() && !bench_filter.empty())
-      return boxgen::app::run_filter_bench(boxgen::app::filter_from(bench_filter, lattice),
+      return boxgen::app::run_filter_bench(boxgen::frontend::filter_from(bench_filter, lattice),
                                            bench_options.points, bench_options.repeats,
                                            bench_options.json);
     if (bench->parsed() && boxgen::app::parse_device(device) == boxgen::app::Device::Gl)
@@ -303,7 +308,7 @@ int run(int argc, char** argv) {
     if (compare->parsed()) return boxgen::recon::run_compare();
     if (slice->parsed()) return boxgen::recon::run_slice();
     if (error->parsed() && table)
-      return boxgen::recon::run_error_table(count, boxgen::app::parse_seed(seed), json);
+      return boxgen::recon::run_error_table(count, boxgen::frontend::parse_seed(seed), json);
     if (error->parsed() && (error_n->count() == 0 || error_filter->count() == 0)) {
       std::cerr << "boxrecon: usage error: error needs --n and --filter (or --table) (see boxrecon "
                    "--help)\n";
@@ -311,7 +316,7 @@ int run(int argc, char** argv) {
     }
     if (error->parsed())
       return boxgen::app::run_error(function, n, filter, lattice, pre, count,
-                                    boxgen::app::parse_seed(seed), gradient, json);
+                                    boxgen::frontend::parse_seed(seed), gradient, json);
     if (resample->parsed())
       return precision == "float"
                  ? boxgen::app::run_resample<float>(filter, lattice, pre, volume, output,

@@ -6,7 +6,8 @@
 #include <iostream>
 #include <utility>
 
-#include "apps/boxrecon/filter_choice.h"
+#include "apps/boxrecon/progress.h"
+#include "frontend/filter_choice.h"
 
 namespace boxgen::app {
 
@@ -41,9 +42,13 @@ template <class T>
 LatticeVolume<T> coefficients_for(LatticeVolume<T> samples, const SplineFilter& f,
                                   const PrefilterSetting& setting, InterpolationReport* report) {
   InterpolationReport r;
-  LatticeVolume<T> out =
-      spline_coefficients(std::move(samples), f, setting.choice, setting.boundary, &r);
-  if (!setting.choice.is_fir() && r.lambda > 0 && !quiet())
+  LatticeVolume<T> out = [&] {
+    // A solve or a large volume's prefilter takes a while, and counts no steps: a stage line.
+    const Stage stage(fmt::format("prefilter {} ({} boundary)", setting.choice.text(),
+                                  boundary_name(setting.boundary)));
+    return spline_coefficients(std::move(samples), f, setting.choice, setting.boundary, &r);
+  }();
+  if (!setting.choice.is_fir() && r.lambda > 0 && !frontend::quiet())
     std::cerr << interpolation_line(f, r) << '\n';
   if (report) *report = r;
   return out;

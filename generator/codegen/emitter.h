@@ -65,7 +65,7 @@ struct EmissionReport {
 };
 
 // What an emission is, as data beside its text: consumers (the loader, the CLI, the tests) read
-// these and never search or parse the text (issue 34).
+// these and never search or parse the text.
 struct Emission {
   // C++: <name>.hpp (evaluator) and <name>_prefilters.hpp; GLSL: <name>.glsl; CUDA: <name>.cuh.
   std::vector<EmittedFile> files;

@@ -35,7 +35,7 @@ RgbBuffer render_isosurface(const GlSpline<T>& spline, const Box& box, const Ren
     // Float rays: a march's point and its lattice coordinates carry float rounding of the
     // magnitudes involved (eye, box, origin), which at a face of a box that touches the evaluable
     // region (default_box: 16 double ulps inside it) can reach a sample outside the volume (the
-    // 3% BCC MRI volume with m7 at 512 x 512, issue 33). 64 float ulps of those magnitudes
+    // 3% BCC MRI volume with m7 at 512 x 512). 64 float ulps of those magnitudes
     // inside the box (the camera stays the box's) cannot: far below a pixel.
     double magnitude = 0;
     for (int a = 0; a < 3; ++a)

@@ -1,5 +1,5 @@
 // The exact generator's outputs as the analysis takes them (the same conversion the boxgen
-// commands make in apps/boxgen/analysis_inputs.cpp).
+// commands make in frontend/analysis_inputs.cpp).
 #pragma once
 #include <string>
 #include <vector>

@@ -10,7 +10,7 @@
 
 #include "analysis/error_kernel.h"
 #include "analysis/quadrature.h"
-#include "apps/boxgen/optimised_prefilter.h"
+#include "frontend/optimised_prefilter.h"
 #include "tests/analysis/inputs.h"
 
 namespace boxgen::analysis {
@@ -37,7 +37,7 @@ double integrated_kernel(const BoxSplineSpec& spec, const Prefilter& q) {
          dual.cell().volume;
 }
 
-Prefilter at_zero(const cli::OptimisedPrefilter& o) {
+Prefilter at_zero(const frontend::OptimisedPrefilter& o) {
   return family_member(o.family, RatVec(o.family.basis.size(), Rational(0)));
 }
 
@@ -48,7 +48,7 @@ TEST(OptimalPrefilter, FreeParametersLowerTheIntegratedErrorKernelBelowZero) {
   for (const char* preset : {"m7", "m8", "fcc6", "1,0;0,1;1,1;1,0;0,1;1,1"}) {
     const BoxSplineSpec spec = parse_spec(preset);
     for (const char* name : {"q1opt", "q2opt"}) {
-      const cli::OptimisedPrefilter o = cli::optimised_prefilter(spec, name);
+      const frontend::OptimisedPrefilter o = frontend::optimised_prefilter(spec, name);
       const double best = integrated_kernel(spec, o.prefilter);
       const double zero = integrated_kernel(spec, at_zero(o));
       // The optimiser's own values (G exact, b by the iterated rule) agree with the pointwise
@@ -69,7 +69,7 @@ TEST(OptimalPrefilter, FreeParametersLowerTheIntegratedErrorKernelBelowZero) {
 
 TEST(OptimalPrefilter, TheOptimumIsAMinimumAlongEveryParameter) {
   const BoxSplineSpec spec = parse_spec("m8");
-  const cli::OptimisedPrefilter o = cli::optimised_prefilter(spec, "q2opt");
+  const frontend::OptimisedPrefilter o = frontend::optimised_prefilter(spec, "q2opt");
   ASSERT_FALSE(o.family.basis.empty());
   const double best = integrated_kernel(spec, o.prefilter);
   for (size_t i = 0; i < o.family.basis.size(); ++i)

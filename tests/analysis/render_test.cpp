@@ -8,6 +8,7 @@
 #include <numbers>
 #include <vector>
 
+#include "runtime/percentiles.h"
 #include "runtime/render.h"
 #include "runtime/sampling.h"
 #include "runtime/test_functions.h"
@@ -143,6 +144,21 @@ TEST(PercentileIso, IsTheMidpointOfThe1stAnd99thPercentiles) {
   EXPECT_NEAR(f.p1, 0.3, 1e-12);
   EXPECT_NEAR(f.p99, 39.4, 1e-12);
   EXPECT_THROW(percentile_iso(std::vector<double>{}), std::invalid_argument);
+}
+
+// The percentiles behind it (and behind slice's window) on float samples: NaN is skipped (the
+// three others are 40, 0, 20: the 50th is 20, the 25th 0 + 0.5 (20 - 0)), 0 and 100 are the
+// extremes, and only NaN is no sample at all.
+TEST(Percentiles, SkipNanAndMatchNumpyOnFloats) {
+  const std::vector<float> v{40, NAN, 0, 20};
+  const std::vector<double> p = percentiles(std::span<const float>(v), {0.5, 0.25, 0, 1});
+  ASSERT_EQ(p.size(), 4U);
+  EXPECT_DOUBLE_EQ(p[0], 20);
+  EXPECT_DOUBLE_EQ(p[1], 10);
+  EXPECT_DOUBLE_EQ(p[2], 0);
+  EXPECT_DOUBLE_EQ(p[3], 40);
+  const std::vector<float> none{NAN};
+  EXPECT_THROW(percentiles(std::span<const float>(none), {0.5}), std::invalid_argument);
 }
 
 }  // namespace

@@ -24,7 +24,7 @@
 namespace boxgen::test {
 namespace {
 
-// Half of this machine's memory, the budget boxrecon allows (apps/boxrecon/input_checks.h).
+// Half of this machine's memory, the budget boxrecon allows (frontend/input_checks.h).
 double memory_budget_bytes() {
   return static_cast<double>(::sysconf(_SC_PHYS_PAGES)) / 2 *
          static_cast<double>(::sysconf(_SC_PAGE_SIZE));

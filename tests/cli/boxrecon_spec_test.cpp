@@ -190,16 +190,21 @@ TEST_F(BoxreconSpec, SpecFilterInEveryVolumeCommandOnTheVolumesLattice) {
           "--boundary", "strict", "--at", "8", "--size", "64", "64", "-o", file("slice.png")});
   EXPECT_NE(said.find("2 panel(s)"), std::string::npos) << said;
   const Png png = read_png(file("slice.png"));
-  ASSERT_GT(png.width, 128);
-  ASSERT_EQ(png.height, 64);
-  const int second = png.width - 64;  // the second panel's first column
+  // Panel p's image, each pixel drawn 4 x 4: columns from p (4 * 64 + 200) + 70, rows from 40
+  // (analysis/gnuplot.cpp); the centres of the pixels' squares are compared.
+  EXPECT_NE(said.find("(drawn 4 x 4 each)"), std::string::npos) << said;
+  ASSERT_EQ(png.width, 2 * (4 * 64 + 200));
+  ASSERT_EQ(png.height, 4 * 64 + 100);
+  const auto at = [&](int panel, int x, int y) {
+    return png.at(panel * (4 * 64 + 200) + 70 + 4 * x + 2, 40 + 4 * y + 2);
+  };
   int largest = 0;
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x)
       for (int c = 0; c < 3; ++c)
-        largest = std::max(largest, std::abs(png.at(x, y)[c] - png.at(second + x, y)[c]));
+        largest = std::max(largest, std::abs(at(0, x, y)[c] - at(1, x, y)[c]));
   EXPECT_LE(largest, 1);
-  EXPECT_GT(png.at(63, 32)[0] - png.at(0, 32)[0], 100);  // a ramp, not a blank panel
+  EXPECT_GT(at(0, 63, 20)[0] - at(0, 0, 20)[0], 100);  // a ramp, not a blank panel
   EXPECT_EQ(objects().size(), 1U);  // every command loaded the one compiled object
 }
 

@@ -10,10 +10,12 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -183,46 +185,70 @@ TEST_F(BoxreconVolumes, CompareMatchesAHandCheckedCase) {
   EXPECT_EQ(at(7, 4, 4), 0.0f);
 }
 
-// Reference v(i, j, k) = 10 i on a 10^3 grid: its z slice is 10 x 10 pixels, x along i, the top
-// row the largest j, grey round(255 v / 90) over the range [0, 90]. A constant 10 reconstructed
-// by the tricubic (partition of unity) over --range 0 20 is grey round(127.5) = 128 everywhere,
-// and three filters side by side are 3 panels and 2 gaps of 4 pixels.
+// Where image_png (analysis/gnuplot.cpp) draws panel p of a slice of W x H pixels, each drawn as
+// Z x Z (Z = 256 / the longer side, at least 1): columns from p (Z W + 200) + 70, rows from 40;
+// the PNG is panels (Z W + 200) by Z H + 100 pixels. The checks look at the centre of each
+// pixel's square.
+constexpr int kLeft = 70, kTop = 40, kMarginX = 200, kMarginY = 100;
+std::array<int, 3> drawn(const Png& png, int panel, int w, int zoom, int x, int y) {
+  return png.at(panel * (zoom * w + kMarginX) + kLeft + zoom * x + zoom / 2,
+                kTop + zoom * y + zoom / 2);
+}
+bool near_rgb(std::array<int, 3> got, std::array<int, 3> want) {
+  for (int c = 0; c < 3; ++c)
+    if (std::abs(got[c] - want[c]) > 2) return false;
+  return true;
+}
+
+// Reference v(i, j, k) = 10 i on a 10^3 grid: its z slice is 10 x 10 pixels (drawn 25 x 25), x
+// along i, the top row the largest j, grey 255 v / 90 over the default window, the 1st and 99th
+// percentiles of the 1000 samples (each of 0, 10, ..., 90 a hundred times: 0 and 90). A constant
+// 10 reconstructed by the tricubic (partition of unity) over --range 0 20 is grey 128 everywhere,
+// in each of three panels side by side.
 TEST_F(BoxreconVolumes, SlicePngsHaveTheirSizeAndValues) {
   save_cartesian(file("ramp.nrrd"), 10,
                  [](int i, int, int) { return 10.0f * static_cast<float>(i); });
-  ok({"slice", "--reference", file("ramp.nrrd"), "--axis", "z", "--at", "4", "-o", file("r.png")});
+  const std::string said = ok(
+      {"slice", "--reference", file("ramp.nrrd"), "--axis", "z", "--at", "4", "-o", file("r.png")});
+  EXPECT_NE(said.find("10 x 10 pixels per panel (drawn 25 x 25 each), 1 panel(s)"),
+            std::string::npos)
+      << said;
+  EXPECT_NE(said.find("values [0, 90] mapped to the colour map (percentiles 1 and 99 of the "
+                      "reference's samples)"),
+            std::string::npos)
+      << said;
   const Png r = read_png(file("r.png"));
-  ASSERT_EQ(r.width, 10);
-  ASSERT_EQ(r.height, 10);
+  ASSERT_EQ(r.width, 250 + kMarginX);
+  ASSERT_EQ(r.height, 250 + kMarginY);
   for (int x : {0, 3, 9})
-    for (int y : {0, 5, 9}) {
+    for (int y : {0, 3, 9}) {
       const int grey = static_cast<int>(std::lround(255.0 * 10 * x / 90));
-      EXPECT_EQ(r.at(x, y), (std::array<int, 3>{grey, grey, grey})) << x << " " << y;
+      EXPECT_TRUE(near_rgb(drawn(r, 0, 10, 25, x, y), {grey, grey, grey}))
+          << x << " " << y << ": " << drawn(r, 0, 10, 25, x, y)[0];
     }
   save_cartesian(file("ten.nrrd"), 12, [](int, int, int) { return 10.0f; });
   ok({"slice",    "--volume", file("ten.nrrd"), "--filter", "tricubic", "--filter", "cart7",
       "--filter", "tricubic", "--axis",         "y",        "--at",     "5.5",      "--size",
       "8",        "6",        "--range",        "0",        "20",       "-o",       file("t.png")});
-  const Png t = read_png(file("t.png"));
-  ASSERT_EQ(t.width, 3 * 8 + 2 * 4);
-  ASSERT_EQ(t.height, 6);
-  for (int x : {0, 7, 12, 19, 24, 31})
-    EXPECT_EQ(t.at(x, 3), (std::array<int, 3>{128, 128, 128})) << x;
-  for (int x : {8, 11, 20, 23})
-    EXPECT_EQ(t.at(x, 3), (std::array<int, 3>{255, 255, 255})) << x;  // gaps
+  const Png t = read_png(file("t.png"));  // drawn 32 x 32
+  ASSERT_EQ(t.width, 3 * (8 * 32 + kMarginX));
+  ASSERT_EQ(t.height, 6 * 32 + kMarginY);
+  for (int panel = 0; panel < 3; ++panel)
+    for (int x : {0, 2, 7})
+      EXPECT_TRUE(near_rgb(drawn(t, panel, 8, 32, x, 2), {128, 128, 128})) << panel << " " << x;
   // The difference to the ramp at its voxels, 10 - 10 i, over [-20, 20]: white at i = 1, half
-  // way to blue at i = 2 (-10: 255 (1 - 1/2) rounds to 128), blue at i = 3 (-20) and beyond.
+  // way to blue at i = 2 (-10: 255 (1 - 1/2)), blue at i = 3 (-20) and beyond.
   ok({"slice", "--volume", file("ten.nrrd"), "--filter", "tricubic", "--axis", "z", "--at", "5",
       "--difference-to", file("ramp.nrrd"), "--range", "-20", "20", "-o", file("d.png")});
   const Png d = read_png(file("d.png"));
-  ASSERT_EQ(d.width, 10);
-  EXPECT_EQ(d.at(1, 5), (std::array<int, 3>{255, 255, 255}));
-  EXPECT_EQ(d.at(2, 5), (std::array<int, 3>{128, 128, 255}));
-  EXPECT_EQ(d.at(3, 5), (std::array<int, 3>{0, 0, 255}));
-  EXPECT_EQ(d.at(5, 5), (std::array<int, 3>{0, 0, 255}));
+  ASSERT_EQ(d.width, 250 + kMarginX);
+  EXPECT_TRUE(near_rgb(drawn(d, 0, 10, 25, 1, 2), {255, 255, 255}));
+  EXPECT_TRUE(near_rgb(drawn(d, 0, 10, 25, 2, 2), {128, 128, 255}));
+  EXPECT_TRUE(near_rgb(drawn(d, 0, 10, 25, 3, 2), {0, 0, 255}));
+  EXPECT_TRUE(near_rgb(drawn(d, 0, 10, 25, 8, 2), {0, 0, 255}));
   refused({"slice", "--reference", file("ramp.nrrd"), "--filter", "m7", "--at", "4", "-o",
            file("x.png")},
-          "no effect", file("x.png"));
+          "need --volume", file("x.png"));
   refused({"slice", "--reference", file("ramp.nrrd"), "--at", "40", "-o", file("x.png")}, "outside",
           file("x.png"));
 }
@@ -440,6 +466,111 @@ TEST_F(BoxreconVolumes, ResampleWritesNiftiThatNifticlibReadsBack) {
                   1e-5 * from_nrrd[key].get<double>())
           << name << " " << key;
   }
+}
+
+// The samples of a NRRD in double (Teem converts), in storage order.
+std::vector<double> load_doubles(const std::string& path) {
+  std::vector<double> v;
+  Nrrd* nrrd = nrrdNew();
+  Nrrd* doubles = nrrdNew();
+  if (nrrdLoad(nrrd, path.c_str(), nullptr) == 0 &&
+      nrrdConvert(doubles, nrrd, nrrdTypeDouble) == 0) {
+    const auto* data = static_cast<const double*>(doubles->data);
+    v.assign(data, data + nrrdElementNumber(doubles));
+  } else {
+    ADD_FAILURE() << "Teem cannot read " << path;
+  }
+  nrrdNuke(doubles);
+  nrrdNuke(nrrd);
+  return v;
+}
+
+// resample --lattice onto a BCC grid: with --like the input (its own grid) and an interpolating
+// prefilter, the output is the input's samples (to the solve's rounding) in the input's layout;
+// --lattice bcc names the same grid.
+TEST_F(BoxreconVolumes, ResampleOntoItsOwnBccGridReproducesTheSamples) {
+  ok({"sample", "--function", "ml", "--lattice", "bcc", "--n", "9", "-o", file("ml.nrrd")});
+  ok({"resample", "--filter", "m8", "--prefilter", "interp", "--volume", file("ml.nrrd"), "--like",
+      file("ml.nrrd"), "-o", file("same.nrrd")});
+  ok({"resample", "--filter", "m8", "--prefilter", "interp", "--volume", file("ml.nrrd"), "--like",
+      file("ml.nrrd"), "--lattice", "bcc", "-o", file("named.nrrd")});
+  const TeemVolume in = load(file("ml.nrrd")), out = load(file("same.nrrd"));
+  EXPECT_EQ(out.sizes, in.sizes);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(out.step[a], in.step[a]);
+    EXPECT_EQ(out.origin[a], in.origin[a]);
+  }
+  const std::vector<double> samples = load_doubles(file("ml.nrrd"));
+  const std::vector<double> values = load_doubles(file("same.nrrd"));
+  ASSERT_EQ(values.size(), samples.size());
+  EXPECT_EQ(load_doubles(file("named.nrrd")), values);
+  const auto [lo, hi] = std::minmax_element(samples.begin(), samples.end());
+  double worst = 0;
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    worst = std::max(worst, std::fabs(values[i] - samples[i]));
+  EXPECT_LT(worst, 1e-12 * (*hi - *lo));  // measured 7.8e-16 of the range
+}
+
+// resample --lattice fcc --spacing H: each FCC sample (c, i, j, k) at o + h (2 (i, j, k) + offset
+// of coset c) is the value eval gives at that point (the same spline, evaluated by eval); --n N
+// gives about N^3 samples.
+TEST_F(BoxreconVolumes, ResampleOntoFccEqualsEvalAtItsSamples) {
+  ok({"sample", "--function", "ml", "--lattice", "bcc", "--n", "9", "-o", file("ml.nrrd")});
+  const std::vector<std::string> common{"resample", "--filter", "m7",           "--prefilter",
+                                        "q1",       "--volume", file("ml.nrrd")};
+  const auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> a = common;
+    a.insert(a.end(), more.begin(), more.end());
+    return a;
+  };
+  ok(with({"--lattice", "fcc", "--spacing", "0.3", "-o", file("f.nrrd")}));
+  const TeemVolume f = load(file("f.nrrd"));
+  ASSERT_EQ(f.sizes.size(), 4u);
+  ASSERT_EQ(f.sizes[0], 4u);
+  const double h = f.step[0] / 2;  // space direction 2h
+  EXPECT_DOUBLE_EQ(h, 0.3);
+  const int offsets[4][3] = {{0, 0, 0}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1}};
+  std::string points;
+  for (std::size_t k = 0; k < f.sizes[3]; ++k)
+    for (std::size_t j = 0; j < f.sizes[2]; ++j)
+      for (std::size_t i = 0; i < f.sizes[1]; ++i)
+        for (const auto& o : offsets) {
+          char line[96];
+          std::snprintf(line, sizeof line, "%.17g %.17g %.17g\n",
+                        f.origin[0] + h * static_cast<double>(2 * i + o[0]),
+                        f.origin[1] + h * static_cast<double>(2 * j + o[1]),
+                        f.origin[2] + h * static_cast<double>(2 * k + o[2]));
+          points += line;
+        }
+  std::ofstream(file("p.txt")) << points;
+  const std::string printed = ok({"eval", "--filter", "m7", "--prefilter", "q1", "--volume",
+                                  file("ml.nrrd"), "--points", file("p.txt")});
+  std::istringstream lines(printed);
+  std::vector<double> expected;
+  for (double v = 0; lines >> v;) expected.push_back(v);
+  const std::vector<double> values = load_doubles(file("f.nrrd"));
+  ASSERT_EQ(values.size(), expected.size());
+  ASSERT_GT(values.size(), 100u);
+  for (std::size_t s = 0; s < values.size(); ++s)
+    EXPECT_NEAR(values[s], expected[s], 1e-13) << s;  // measured equal; the points may round
+  ok(with({"--lattice", "bcc", "--n", "6", "-o", file("n.nrrd")}));
+  const TeemVolume n = load(file("n.nrrd"));
+  ASSERT_EQ(n.sizes.size(), 4u);
+  const double count = static_cast<double>(n.samples.size());
+  EXPECT_GT(count, 216 / 1.6) << count;
+  EXPECT_LT(count, 216 * 1.6) << count;
+  // Refused in one line, no file: NIfTI cannot hold it, --size and three spacings are for
+  // Cartesian grids, a --lattice other than --like's, a box leaving the evaluable region.
+  refused(with({"--lattice", "bcc", "-o", file("x.nii")}), "cannot be nifti", file("x.nii"));
+  refused(with({"--lattice", "bcc", "--size", "4", "4", "4", "-o", file("x.nrrd")}), "--size",
+          file("x.nrrd"));
+  refused(with({"--lattice", "fcc", "--spacing", "0.3", "0.3", "0.4", "-o", file("x.nrrd")}),
+          "one spacing", file("x.nrrd"));
+  refused(with({"--lattice", "fcc", "--like", file("ml.nrrd"), "-o", file("x.nrrd")}),
+          "differs from the lattice of --like", file("x.nrrd"));
+  refused(with({"--lattice", "fcc", "--min", "-3", "-3", "-3", "--max", "3", "3", "3", "-o",
+                file("x.nrrd")}),
+          "leave the region", file("x.nrrd"));
 }
 
 // --type int16 rounds to the nearest integer and clamps beyond the range, saying how many on

@@ -100,8 +100,8 @@ TEST(DesignCitations, EveryCitationInTheTreeResolves) {
       files.push_back(entry.path());
   const std::set<std::string> extensions{".h",   ".hpp", ".cpp", ".fmt", ".cmake",
                                          ".txt", ".sh",  ".md",  ".in",  ".json"};
-  for (const char* dir : {"apps", "bench", "cmake", "examples", "fuzz", "generated", "generator",
-                          "runtime", "scripts", "support", "templates", "tests"}) {
+  for (const char* dir : {"apps", "bench", "cmake", "examples", "frontend", "fuzz", "generated",
+                          "generator", "runtime", "scripts", "support", "templates", "tests"}) {
     if (!fs::exists(root / dir)) continue;
     for (const auto& entry : fs::recursive_directory_iterator(root / dir))
       if (entry.is_regular_file() && extensions.count(entry.path().extension().string()))

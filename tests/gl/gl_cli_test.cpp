@@ -95,7 +95,7 @@ TEST_F(GlCliTest, ResampleAndRenderWriteTheirFiles) {
 
 // The 3% BCC MRI volume of Fig. 10 rendered on defaults (M7, float, 512 x 512): float rays at the
 // default box's faces reached samples outside the volume and the render failed with "choose a
-// box inside it" while the CPU's succeeded (issue 33). The MRI template comes with Debian's
+// box inside it" while the CPU's succeeded. The MRI template comes with Debian's
 // mricron-data (scripts/install-deps.sh).
 TEST_F(GlCliTest, RenderOfTheBccMriVolumeWorksOnDefaults) {
   const std::string mri = "/usr/share/mricron/templates/ch2better.nii.gz";

@@ -2,7 +2,7 @@
 // runtime/gl/registry_glsl.h, the registry's GLSL evaluators in float and double as `boxgen emit
 // --target glsl` prints them, each with the variant whose run-time-indexed tables live in a
 // storage block and that block's contents, all taken from the generator's Emission: the device
-// reads them as data and never searches the text (issue 34).
+// reads them as data and never searches the text.
 //   boxgen_embed_glsl OUT.cpp NAME...
 #include <fmt/format.h>
 

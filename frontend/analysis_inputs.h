@@ -1,0 +1,31 @@
+// The bridge from the exact generator to the floating-point analysis (analysis/): a SPEC's
+// directions and lattice, its exact autocorrelation samples and prefilter taps, converted to
+// double once, here.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "analysis/dual_lattice.h"
+#include "analysis/error_kernel.h"
+#include "analysis/spectrum.h"
+#include "generator/autocorr.h"
+#include "generator/spec.h"
+
+namespace boxgen::frontend {
+
+using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace): the generator's front
+                                      // end
+
+analysis::BoxSplineSpectrum spectrum_of(const BoxSplineSpec& spec);
+// --equal-density: the factor a = |det G|^(-1/n) by which the SPEC's frequencies are scaled so
+// that lattices compare at one sample per unit volume (the lattice a G, the filter M(x / a),
+// whose transform at w is psi_hat(a w)); 1 when `equal` is false.
+double density_scale(const BoxSplineSpec& spec, bool equal);
+analysis::DualLattice dual_of(const BoxSplineSpec& spec);
+std::vector<analysis::LatticeTap> taps_of(const Autocorrelation& a);
+// "none" -> empty; q1, q2, q1opt, q2opt or qfir:K -> its taps (generator/prefilter.h). Throws
+// InputError otherwise ("min" and "interp" are handled by the caller).
+std::vector<analysis::LatticeTap> prefilter_taps_of(const BoxSplineSpec& spec,
+                                                    const std::string& name);
+
+}  // namespace boxgen::frontend
