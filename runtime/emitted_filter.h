@@ -106,18 +106,20 @@ class EmittedFilter final : public FilterSource {
   CosetLattice lattice() const override { return lattice_; }
   StencilReach reach() const override { return published_reach<Tr>(); }
   PrefilterTaps prefilter(PrefilterChoice q) const override {
+    // Named here, not by q.text(): a compiled filter (loader/) links only what this header uses.
     const PrefilterTaps* taps = nullptr;
-    if (q == PrefilterChoice::Q1) taps = &taps_.q1;
-    if (q == PrefilterChoice::Q2) taps = &taps_.q2;
-    if (q == PrefilterChoice::Q1Opt) taps = &taps_.q1opt;
-    if (q == PrefilterChoice::Q2Opt) taps = &taps_.q2opt;
+    const char* name = "";
+    if (q == PrefilterChoice::Q1) taps = &taps_.q1, name = "q1";
+    if (q == PrefilterChoice::Q2) taps = &taps_.q2, name = "q2";
+    if (q == PrefilterChoice::Q1Opt) taps = &taps_.q1opt, name = "q1opt";
+    if (q == PrefilterChoice::Q2Opt) taps = &taps_.q2opt, name = "q2opt";
     if (!taps)
       throw std::invalid_argument(
-          fmt::format("prefilter {} of filter {} is not a generated table", q.text(), Tr::kName));
+          fmt::format("filter {} has no generated table for this prefilter", Tr::kName));
     if (taps->empty())
       throw std::invalid_argument(fmt::format(
           "filter {} was given no prefilter {} (pass the tables of its _prefilters.hpp)", Tr::kName,
-          q.text()));
+          name));
     return *taps;
   }
   int approximation_order() const override { return order_; }
