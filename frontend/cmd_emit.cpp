@@ -5,9 +5,13 @@
 #include <cctype>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
+#include <string_view>
+#include <utility>
 
 #include "frontend/commands.h"
+#include "frontend/optimised_prefilter.h"
 #include "frontend/progress.h"
 #include "generator/codegen/emitter.h"
 #include "generator/codegen/evaluator_name.h"
@@ -127,7 +131,9 @@ std::vector<EmittedFile> emit_evaluator(const Common& c, const std::string& name
       chosen,
       target,
       double_precision,
-      shells};
+      shells,
+      target == EmissionTarget::Cpp ? optimised_table(spec, "q1opt", shells) : std::nullopt,
+      target == EmissionTarget::Cpp ? optimised_table(spec, "q2opt", shells) : std::nullopt};
   Emission emission = emit(a, request);
   if (report) *report = std::move(emission.report);
   return std::move(emission.files);

@@ -1,6 +1,7 @@
 #include "frontend/optimised_prefilter.h"
 
 #include <string>
+#include <utility>
 
 #include "frontend/analysis_inputs.h"
 #include "generator/autocorr.h"
@@ -10,13 +11,19 @@ namespace boxgen::frontend {
 
 bool is_optimised_prefilter(std::string_view name) { return name == "q1opt" || name == "q2opt"; }
 
-OptimisedPrefilter optimised_prefilter(const BoxSplineSpec& spec, std::string_view name) {
+OptimisedPrefilter optimised_prefilter(const BoxSplineSpec& spec, std::string_view name,
+                                       const std::vector<int>& q1_shells) {
   if (!is_optimised_prefilter(name))
     fail_input("unknown prefilter '" + std::string(name.substr(0, 40)) + "': expected " +
                kPrefilterNames);
   const int which = name == "q1opt" ? 1 : 2;
+  std::vector<int> shells = q1_shells;
+  if (shells.empty())
+    shells = quasi_interpolation_shells(spec, which);
+  else if (which == 2)
+    shells.push_back(shells.back() + 1);
   OptimisedPrefilter out;
-  out.family = prefilter_family(spec, quasi_interpolation_shells(spec, which));
+  out.family = prefilter_family(spec, shells);
   analysis::PrefilterFamilyValues values;
   for (const auto& orbit : out.family.orbits) {
     auto& points = values.orbits.emplace_back();
@@ -34,6 +41,17 @@ OptimisedPrefilter optimised_prefilter(const BoxSplineSpec& spec, std::string_vi
   out.prefilter = family_member(out.family, t);
   out.prefilter.parametrisation = "optimised";
   return out;
+}
+
+std::optional<OptimisedPrefilterTable> optimised_table(const BoxSplineSpec& spec,
+                                                       std::string_view name,
+                                                       const std::vector<int>& q1_shells) {
+  try {
+    OptimisedPrefilter o = optimised_prefilter(spec, name, q1_shells);
+    return OptimisedPrefilterTable{std::move(o.prefilter), o.family.basis.empty()};
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
 }
 
 }  // namespace boxgen::frontend

@@ -3,7 +3,8 @@
 // Do not edit: regenerate instead.
 //
 // Quasi-interpolation prefilters of cart7 (approximation order 4): discrete filters q on
-// the lattice; reconstruct with sum_j (V * q)(j) M(x - j). Exact weights are in the comments.
+// the lattice; reconstruct with sum_j (V * q)(j) M(x - j). Exact weights, where rational, are
+// in the comments.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -15,7 +16,8 @@ struct PrefilterTap {
   double weight;
 };
 
-// Quasi-interpolation with q1 or q2 reproduces every polynomial of degree < kApproximationOrder.
+// Quasi-interpolation with any table below reproduces every polynomial of degree
+// < kApproximationOrder.
 inline constexpr int kApproximationOrder = 4;
 
 // Shells {0, 1}: common parametrisation.
@@ -50,6 +52,43 @@ inline constexpr PrefilterTap q2[] = {
     {{1, 0, -1}, -0.041666666666666664},  // -1/24
     {{1, 0, 1}, -0.041666666666666664},  // -1/24
     {{1, 1, 0}, -0.041666666666666664},  // -1/24
+};
+
+// Shells {0, 1}: no free parameter: the unique prefilter of full order with one weight
+// per symmetry orbit, exact.
+inline constexpr PrefilterTap q1opt[] = {
+    {{0, 0, 0}, 2.25},  // 9/4
+    {{-1, 0, 0}, -0.20833333333333334},  // -5/24
+    {{0, -1, 0}, -0.20833333333333334},  // -5/24
+    {{0, 0, -1}, -0.20833333333333334},  // -5/24
+    {{0, 0, 1}, -0.20833333333333334},  // -5/24
+    {{0, 1, 0}, -0.20833333333333334},  // -5/24
+    {{1, 0, 0}, -0.20833333333333334},  // -5/24
+};
+
+// Shells {0, 1, 2}: one weight per symmetry orbit, the free parameters minimising the
+// mean error kernel over the Nyquist region (boxgen prefilter SPEC --prefilter q2opt);
+// the weights to 17 digits.
+inline constexpr PrefilterTap q2opt[] = {
+    {{0, 0, 0}, 6.0842875701035775},
+    {{-1, 0, 0}, -1.4864291900345257},
+    {{0, -1, 0}, -1.4864291900345257},
+    {{0, 0, -1}, -1.4864291900345257},
+    {{0, 0, 1}, -1.4864291900345257},
+    {{0, 1, 0}, -1.4864291900345257},
+    {{1, 0, 0}, -1.4864291900345257},
+    {{-1, -1, 0}, 0.3195239641752981},
+    {{-1, 0, -1}, 0.3195239641752981},
+    {{-1, 0, 1}, 0.3195239641752981},
+    {{-1, 1, 0}, 0.3195239641752981},
+    {{0, -1, -1}, 0.3195239641752981},
+    {{0, -1, 1}, 0.3195239641752981},
+    {{0, 1, -1}, 0.3195239641752981},
+    {{0, 1, 1}, 0.3195239641752981},
+    {{1, -1, 0}, 0.3195239641752981},
+    {{1, 0, -1}, 0.3195239641752981},
+    {{1, 0, 1}, 0.3195239641752981},
+    {{1, 1, 0}, 0.3195239641752981},
 };
 
 

@@ -3,7 +3,8 @@
 // Do not edit: regenerate instead.
 //
 // Quasi-interpolation prefilters of fcc6 (approximation order 3): discrete filters q on
-// the lattice; reconstruct with sum_j (V * q)(j) M(x - j). Exact weights are in the comments.
+// the lattice; reconstruct with sum_j (V * q)(j) M(x - j). Exact weights, where rational, are
+// in the comments.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -15,7 +16,8 @@ struct PrefilterTap {
   double weight;
 };
 
-// Quasi-interpolation with q1 or q2 reproduces every polynomial of degree < kApproximationOrder.
+// Quasi-interpolation with any table below reproduces every polynomial of degree
+// < kApproximationOrder.
 inline constexpr int kApproximationOrder = 3;
 
 // Shells {0, 1}: common parametrisation.
@@ -56,6 +58,49 @@ inline constexpr PrefilterTap q2[] = {
     {{0, 0, 2}, -0.020833333333333332},  // -1/48
     {{0, 2, 0}, -0.020833333333333332},  // -1/48
     {{2, 0, 0}, -0.020833333333333332},  // -1/48
+};
+
+// Shells {0, 1}: no free parameter: the unique prefilter of full order with one weight
+// per symmetry orbit, exact.
+inline constexpr PrefilterTap q1opt[] = {
+    {{0, 0, 0}, 1.5},  // 3/2
+    {{-1, -1, 0}, -0.041666666666666664},  // -1/24
+    {{-1, 0, -1}, -0.041666666666666664},  // -1/24
+    {{-1, 0, 1}, -0.041666666666666664},  // -1/24
+    {{-1, 1, 0}, -0.041666666666666664},  // -1/24
+    {{0, -1, -1}, -0.041666666666666664},  // -1/24
+    {{0, -1, 1}, -0.041666666666666664},  // -1/24
+    {{0, 1, -1}, -0.041666666666666664},  // -1/24
+    {{0, 1, 1}, -0.041666666666666664},  // -1/24
+    {{1, -1, 0}, -0.041666666666666664},  // -1/24
+    {{1, 0, -1}, -0.041666666666666664},  // -1/24
+    {{1, 0, 1}, -0.041666666666666664},  // -1/24
+    {{1, 1, 0}, -0.041666666666666664},  // -1/24
+};
+
+// Shells {0, 1, 2}: one weight per symmetry orbit, the free parameters minimising the
+// mean error kernel over the Nyquist region (boxgen prefilter SPEC --prefilter q2opt);
+// the weights to 17 digits.
+inline constexpr PrefilterTap q2opt[] = {
+    {{0, 0, 0}, 2.4076708744732978},
+    {{-1, -1, 0}, -0.19294514574554961},
+    {{-1, 0, -1}, -0.19294514574554961},
+    {{-1, 0, 1}, -0.19294514574554961},
+    {{-1, 1, 0}, -0.19294514574554961},
+    {{0, -1, -1}, -0.19294514574554961},
+    {{0, -1, 1}, -0.19294514574554961},
+    {{0, 1, -1}, -0.19294514574554961},
+    {{0, 1, 1}, -0.19294514574554961},
+    {{1, -1, 0}, -0.19294514574554961},
+    {{1, 0, -1}, -0.19294514574554961},
+    {{1, 0, 1}, -0.19294514574554961},
+    {{1, 1, 0}, -0.19294514574554961},
+    {{-2, 0, 0}, 0.15127847907888295},
+    {{0, -2, 0}, 0.15127847907888295},
+    {{0, 0, -2}, 0.15127847907888295},
+    {{0, 0, 2}, 0.15127847907888295},
+    {{0, 2, 0}, 0.15127847907888295},
+    {{2, 0, 0}, 0.15127847907888295},
 };
 
 

@@ -4,8 +4,9 @@
 //
 // Every filter the runtime knows, in one table: code that works for any filter is written once
 // as a generic lambda and called through with_filter(index, f), which passes an Entry whose
-// `Traits` is the evaluator's traits type (support/evaluator_support.hpp), whose q1 / q2 are
-// its generated prefilters (reproducing polynomials of degree < approximation_order) and whose
+// `Traits` is the evaluator's traits type (support/evaluator_support.hpp), whose q1 / q2 (the
+// paper's) and q1opt / q2opt (optimised free parameters) are its generated prefilters
+// (reproducing polynomials of degree < approximation_order) and whose
 // `lattice` names the lattice it was derived on (bcc, fcc, cartesian or custom; Traits::kHermite
 // holds that lattice's basis). Nothing else lists the filters by hand.
 #pragma once
@@ -29,22 +30,25 @@ inline constexpr const char* kFilterNames[kFilterCount] = {"m7", "m8", "m12", "f
 // The lattice of each filter: bcc | fcc | cartesian | custom.
 inline constexpr const char* kFilterLattices[kFilterCount] = {m7::kLattice, m8::kLattice, m12::kLattice, fcc6::kLattice, tricubic::kLattice, cart7::kLattice};
 
-template <class Tr, const auto& Q1, const auto& Q2, int Order>
+template <class Tr, const auto& Q1, const auto& Q2, const auto& Q1opt, const auto& Q2opt,
+          int Order>
 struct RegistryEntry {
   using Traits = Tr;
   static constexpr const char* lattice = Tr::kLattice;
   static constexpr const auto& q1 = Q1;
   static constexpr const auto& q2 = Q2;
-  // q1 and q2 reproduce every polynomial of degree < approximation_order.
+  static constexpr const auto& q1opt = Q1opt;
+  static constexpr const auto& q2opt = Q2opt;
+  // Each of them reproduces every polynomial of degree < approximation_order.
   static constexpr int approximation_order = Order;
 };
 
-using m7_entry = RegistryEntry<m7::Traits, m7::q1, m7::q2, m7::kApproximationOrder>;
-using m8_entry = RegistryEntry<m8::Traits, m8::q1, m8::q2, m8::kApproximationOrder>;
-using m12_entry = RegistryEntry<m12::Traits, m12::q1, m12::q2, m12::kApproximationOrder>;
-using fcc6_entry = RegistryEntry<fcc6::Traits, fcc6::q1, fcc6::q2, fcc6::kApproximationOrder>;
-using tricubic_entry = RegistryEntry<tricubic::Traits, tricubic::q1, tricubic::q2, tricubic::kApproximationOrder>;
-using cart7_entry = RegistryEntry<cart7::Traits, cart7::q1, cart7::q2, cart7::kApproximationOrder>;
+using m7_entry = RegistryEntry<m7::Traits, m7::q1, m7::q2, m7::q1opt, m7::q2opt, m7::kApproximationOrder>;
+using m8_entry = RegistryEntry<m8::Traits, m8::q1, m8::q2, m8::q1opt, m8::q2opt, m8::kApproximationOrder>;
+using m12_entry = RegistryEntry<m12::Traits, m12::q1, m12::q2, m12::q1opt, m12::q2opt, m12::kApproximationOrder>;
+using fcc6_entry = RegistryEntry<fcc6::Traits, fcc6::q1, fcc6::q2, fcc6::q1opt, fcc6::q2opt, fcc6::kApproximationOrder>;
+using tricubic_entry = RegistryEntry<tricubic::Traits, tricubic::q1, tricubic::q2, tricubic::q1opt, tricubic::q2opt, tricubic::kApproximationOrder>;
+using cart7_entry = RegistryEntry<cart7::Traits, cart7::q1, cart7::q2, cart7::q1opt, cart7::q2opt, cart7::kApproximationOrder>;
 
 // f(Entry{}) for the filter at `index` (0 <= index < kFilterCount; any other index gives the
 // last entry, so callers check the index first).

@@ -3,7 +3,8 @@
 // Do not edit: regenerate instead.
 //
 // Quasi-interpolation prefilters of tricubic (approximation order 4): discrete filters q on
-// the lattice; reconstruct with sum_j (V * q)(j) M(x - j). Exact weights are in the comments.
+// the lattice; reconstruct with sum_j (V * q)(j) M(x - j). Exact weights, where rational, are
+// in the comments.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -15,7 +16,8 @@ struct PrefilterTap {
   double weight;
 };
 
-// Quasi-interpolation with q1 or q2 reproduces every polynomial of degree < kApproximationOrder.
+// Quasi-interpolation with any table below reproduces every polynomial of degree
+// < kApproximationOrder.
 inline constexpr int kApproximationOrder = 4;
 
 // Shells {0, 1}: common parametrisation.
@@ -50,6 +52,43 @@ inline constexpr PrefilterTap q2[] = {
     {{1, 0, -1}, -0.033333333333333333},  // -1/30
     {{1, 0, 1}, -0.033333333333333333},  // -1/30
     {{1, 1, 0}, -0.033333333333333333},  // -1/30
+};
+
+// Shells {0, 1}: no free parameter: the unique prefilter of full order with one weight
+// per symmetry orbit, exact.
+inline constexpr PrefilterTap q1opt[] = {
+    {{0, 0, 0}, 2},  // 2
+    {{-1, 0, 0}, -0.16666666666666666},  // -1/6
+    {{0, -1, 0}, -0.16666666666666666},  // -1/6
+    {{0, 0, -1}, -0.16666666666666666},  // -1/6
+    {{0, 0, 1}, -0.16666666666666666},  // -1/6
+    {{0, 1, 0}, -0.16666666666666666},  // -1/6
+    {{1, 0, 0}, -0.16666666666666666},  // -1/6
+};
+
+// Shells {0, 1, 2}: one weight per symmetry orbit, the free parameters minimising the
+// mean error kernel over the Nyquist region (boxgen prefilter SPEC --prefilter q2opt);
+// the weights to 17 digits.
+inline constexpr PrefilterTap q2opt[] = {
+    {{0, 0, 0}, 5.3237803789940736},
+    {{-1, 0, 0}, -1.2745934596646913},
+    {{0, -1, 0}, -1.2745934596646913},
+    {{0, 0, -1}, -1.2745934596646913},
+    {{0, 0, 1}, -1.2745934596646913},
+    {{0, 1, 0}, -1.2745934596646913},
+    {{1, 0, 0}, -1.2745934596646913},
+    {{-1, -1, 0}, 0.27698169824950614},
+    {{-1, 0, -1}, 0.27698169824950614},
+    {{-1, 0, 1}, 0.27698169824950614},
+    {{-1, 1, 0}, 0.27698169824950614},
+    {{0, -1, -1}, 0.27698169824950614},
+    {{0, -1, 1}, 0.27698169824950614},
+    {{0, 1, -1}, 0.27698169824950614},
+    {{0, 1, 1}, 0.27698169824950614},
+    {{1, -1, 0}, 0.27698169824950614},
+    {{1, 0, -1}, 0.27698169824950614},
+    {{1, 0, 1}, 0.27698169824950614},
+    {{1, 1, 0}, 0.27698169824950614},
 };
 
 

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "boxgen/version.h"
+#include "frontend/optimised_prefilter.h"
 #include "generator/codegen/emitter.h"
 #include "generator/derivation.h"
 #include "generator/error.h"
@@ -36,7 +37,7 @@ namespace {
 // The version of the interface between this loader and a compiled filter: the two extern "C"
 // functions of glue_source() and the runtime types they pass (FilterSource, EvaluationPath,
 // LatticeVolume). Raise it whenever one of them changes.
-constexpr int kAbiVersion = 1;
+constexpr int kAbiVersion = 2;
 
 // Progress of a first use on stderr: on a terminal one line rewritten in place, else a line per
 // stage; nothing unless asked for.
@@ -163,7 +164,8 @@ class Path final : public rt::EvaluationPath<T> {{
 class Source final : public rt::FilterSource {{
  public:
   Source(std::string name, HostThreads threads)
-      : filter_({q1}, {q2}, g::kApproximationOrder, -1, own_kernels<g::Traits>()),
+      : filter_({{{q1}, {q2}, {q1opt}, {q2opt}}}, g::kApproximationOrder, -1,
+                own_kernels<g::Traits>()),
         name_(std::move(name)), threads_(threads) {{}}
   std::string name() const override {{ return name_; }}
   rt::CosetLattice lattice() const override {{ return filter_.lattice(); }}
@@ -193,7 +195,8 @@ extern "C" __attribute__((visibility("default"))) rt::FilterSource* boxgen_filte
 )",
                  fmt::arg("prefilters", emission.files.at(1).pasted),
                  fmt::arg("q1", table(emission.q1, "q1")), fmt::arg("q2", table(emission.q2, "q2")),
-                 fmt::arg("stamp", stamp));
+                 fmt::arg("q1opt", table(emission.q1opt, "q1opt")),
+                 fmt::arg("q2opt", table(emission.q2opt, "q2opt")), fmt::arg("stamp", stamp));
   std::string second = head + R"(
 template std::shared_ptr<const rt::EvaluationPath<double>> rt::emitted_path<g::Traits>(
     const rt::LatticeVolume<double>&, int, const rt::simd::Kernels*);
@@ -328,6 +331,9 @@ void build_entry(const CacheEntry& entry, const gen::BoxSplineSpec& spec, const 
   request.name = name;
   request.command =
       fmt::format("the run-time filter \"{}\" --lattice \"{}\"", info.spec, info.rows);
+  // q1opt and q2opt as `boxgen emit` writes them (their free parameters optimised numerically).
+  request.q1opt = frontend::optimised_table(spec, "q1opt");
+  request.q2opt = frontend::optimised_table(spec, "q2opt");
   const auto sources = glue_sources(name, gen::emit(derivation, request), info.stamp);
   try {
     write_entry_file(entry.file(".cpp"), sources[0]);

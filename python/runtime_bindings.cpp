@@ -732,12 +732,15 @@ void bind_filter(py::module_& m) {
           [](const Filter& f) {
             py::dict out;
             for (const auto& [name, q] : {std::pair{"q1", rt::PrefilterChoice::Q1},
-                                          std::pair{"q2", rt::PrefilterChoice::Q2}}) {
+                                          std::pair{"q2", rt::PrefilterChoice::Q2},
+                                          std::pair{"q1opt", rt::PrefilterChoice::Q1Opt},
+                                          std::pair{"q2opt", rt::PrefilterChoice::Q2Opt}}) {
               out[name] = taps_arrays(f.filter.prefilter(q));
             }
             return out;
           },
-          "{'q1': (offsets (m, 3), weights (m,)), 'q2': ...}: the quasi-interpolation prefilters")
+          "{'q1': (offsets (m, 3), weights (m,)), 'q2': ..., 'q1opt': ..., 'q2opt': ...}: the "
+          "generated quasi-interpolation prefilters")
       .def(
           "required_margin",
           [](const Filter& f, const std::optional<std::string>& q) {
@@ -749,7 +752,8 @@ void bind_filter(py::module_& m) {
            py::arg("hessian") = false, py::arg("boundary") = py::none(),
            "The spline at (n, 3) world points: values (n,), or (values, gradients (n, 3)[, "
            "Hessians (n, 6) xx xy xz yy yz zz]); bit for bit `boxrecon eval`. prefilter: none "
-           "(default) | q1 | q2 | interp | interp:LAMBDA; boundary: mirror (default) | clamp | "
+           "(default) | q1 | q2 | q1opt | q2opt | qfir:K | interp | interp:LAMBDA; boundary: "
+           "mirror (default) | clamp | "
            "strict")
       .def(
           "prefilter_volume",
@@ -762,9 +766,9 @@ void bind_filter(py::module_& m) {
             return std::make_shared<Volume>(std::move(*storage));
           },
           py::arg("volume"), py::arg("prefilter"), py::arg("boundary") = py::none(),
-          "The coefficients after prefilter (none | q1 | q2 | interp[:LAMBDA]) and boundary "
-          "(mirror (default) | clamp | strict): a new Volume, evaluated with prefilter none and "
-          "boundary strict")
+          "The coefficients after prefilter (none | q1 | q2 | q1opt | q2opt | qfir:K | "
+          "interp[:LAMBDA]) and boundary (mirror (default) | clamp | strict): a new Volume, "
+          "evaluated with prefilter none and boundary strict")
       .def(
           "interpolation",
           [](const Filter& f, const Volume& volume, const std::string& q,

@@ -50,7 +50,8 @@ StencilReach published_reach() {
   return reach;
 }
 
-// An emitted prefilter table (q1 or q2 of a *_prefilters.hpp) as taps for prefilter().
+// An emitted prefilter table (q1, q2, q1opt or q2opt of a *_prefilters.hpp) as taps for
+// prefilter().
 template <class Tap, std::size_t N>
 PrefilterTaps prefilter_from(const Tap (&table)[N]) {
   PrefilterTaps out;
@@ -80,6 +81,11 @@ std::shared_ptr<const EvaluationPath<T>> emitted_path(const LatticeVolume<T>& vo
       LatticeStencils<Tr, T>(volume), registry_index, kernels);
 }
 
+// The tables of a *_prefilters.hpp; an empty one: the filter was given none.
+struct GeneratedPrefilters {
+  PrefilterTaps q1, q2, q1opt, q2opt;
+};
+
 // The FilterSource of an emitted evaluator. registry_index: its position in
 // generated/registry.hpp, whose filters have SIMD kernels (simd_batch.cpp); -1 for any other
 // header (which this one must not clash with: it includes no registry), which takes the scalar
@@ -88,10 +94,9 @@ template <class Tr>
 class EmittedFilter final : public FilterSource {
  public:
   // kernels: SIMD kernels compiled with the filter (simd_batch.h), for one outside the registry.
-  EmittedFilter(PrefilterTaps q1, PrefilterTaps q2, int approximation_order, int registry_index,
+  EmittedFilter(GeneratedPrefilters taps, int approximation_order, int registry_index,
                 const simd::Kernels* kernels = nullptr)
-      : q1_(std::move(q1)),
-        q2_(std::move(q2)),
+      : taps_(std::move(taps)),
         order_(approximation_order),
         registry_index_(registry_index),
         kernels_(kernels),
@@ -101,12 +106,21 @@ class EmittedFilter final : public FilterSource {
   CosetLattice lattice() const override { return lattice_; }
   StencilReach reach() const override { return published_reach<Tr>(); }
   PrefilterTaps prefilter(PrefilterChoice q) const override {
-    const PrefilterTaps& taps = q == PrefilterChoice::Q1 ? q1_ : q2_;
-    if (taps.empty())
+    // Named here, not by q.text(): a compiled filter (loader/) links only what this header uses.
+    const PrefilterTaps* taps = nullptr;
+    const char* name = "";
+    if (q == PrefilterChoice::Q1) taps = &taps_.q1, name = "q1";
+    if (q == PrefilterChoice::Q2) taps = &taps_.q2, name = "q2";
+    if (q == PrefilterChoice::Q1Opt) taps = &taps_.q1opt, name = "q1opt";
+    if (q == PrefilterChoice::Q2Opt) taps = &taps_.q2opt, name = "q2opt";
+    if (!taps)
+      throw std::invalid_argument(
+          fmt::format("filter {} has no generated table for this prefilter", Tr::kName));
+    if (taps->empty())
       throw std::invalid_argument(fmt::format(
           "filter {} was given no prefilter {} (pass the tables of its _prefilters.hpp)", Tr::kName,
-          q == PrefilterChoice::Q1 ? "q1" : "q2"));
-    return taps;
+          name));
+    return *taps;
   }
   int approximation_order() const override { return order_; }
   std::shared_ptr<const EvaluationPath<float>> path(
@@ -124,7 +138,7 @@ class EmittedFilter final : public FilterSource {
     return emitted_path<Tr>(volume, registry_index_, kernels_);
   }
 
-  PrefilterTaps q1_, q2_;
+  GeneratedPrefilters taps_;
   int order_;
   int registry_index_;
   const simd::Kernels* kernels_;
@@ -132,15 +146,17 @@ class EmittedFilter final : public FilterSource {
 };
 
 // A user's emitted header as a SplineFilter, without prefilters (prefilter(q1 or q2) then throws)
-// or with the tables of its _prefilters.hpp (q1, q2, kApproximationOrder).
+// or with the tables of its _prefilters.hpp (q1, q2, kApproximationOrder; q1opt and q2opt are
+// then not given).
 template <class Tr>
 SplineFilter emitted_filter() {
-  return SplineFilter(std::make_shared<EmittedFilter<Tr>>(PrefilterTaps{}, PrefilterTaps{}, 0, -1));
+  return SplineFilter(std::make_shared<EmittedFilter<Tr>>(GeneratedPrefilters{}, 0, -1));
 }
 template <class Tr, class Tap, std::size_t N1, std::size_t N2>
 SplineFilter emitted_filter(const Tap (&q1)[N1], const Tap (&q2)[N2], int approximation_order) {
-  return SplineFilter(std::make_shared<EmittedFilter<Tr>>(prefilter_from(q1), prefilter_from(q2),
-                                                          approximation_order, -1));
+  return SplineFilter(std::make_shared<EmittedFilter<Tr>>(
+      GeneratedPrefilters{prefilter_from(q1), prefilter_from(q2), {}, {}}, approximation_order,
+      -1));
 }
 
 }  // namespace boxgen::runtime

@@ -4,6 +4,7 @@
 //
 //   none          the samples themselves
 //   q1, q2        the generator's quasi-interpolation prefilters Q^I, Q^II (FIR taps)
+//   q1opt, q2opt  the same shells, free parameters minimising the mean error kernel (FIR taps)
 //   qfir:K        the FIR interpolation prefilter on the lattice shells 0..K (fir_interpolation.h)
 //   interp        interpolation: the spline passes through every sample (runtime/interpolation.h;
 //                 regularised where the filter's symbol vanishes)
@@ -18,10 +19,10 @@ namespace boxgen::runtime {
 
 class PrefilterChoice {
  public:
-  enum class Kind { None, Q1, Q2, QFir, Interp };
+  enum class Kind { None, Q1, Q2, Q1Opt, Q2Opt, QFir, Interp };
 
   // The choices without a parameter, as values: PrefilterChoice::Q1.
-  static const PrefilterChoice None, Q1, Q2;
+  static const PrefilterChoice None, Q1, Q2, Q1Opt, Q2Opt;
 
   constexpr PrefilterChoice() = default;
   constexpr explicit PrefilterChoice(Kind kind, std::optional<double> parameter = std::nullopt)
@@ -58,12 +59,15 @@ class PrefilterChoice {
 inline constexpr PrefilterChoice PrefilterChoice::None{PrefilterChoice::Kind::None};
 inline constexpr PrefilterChoice PrefilterChoice::Q1{PrefilterChoice::Kind::Q1};
 inline constexpr PrefilterChoice PrefilterChoice::Q2{PrefilterChoice::Kind::Q2};
+inline constexpr PrefilterChoice PrefilterChoice::Q1Opt{PrefilterChoice::Kind::Q1Opt};
+inline constexpr PrefilterChoice PrefilterChoice::Q2Opt{PrefilterChoice::Kind::Q2Opt};
 
-// "none" | "q1" | "q2" | "qfir:K" (K = 0..8) | "interp" | "interp:L" (L finite, >= 0 and at most
-// 1); anything else: std::invalid_argument, one line.
+// "none" | "q1" | "q2" | "q1opt" | "q2opt" | "qfir:K" (K = 0..8) | "interp" | "interp:L" (L finite,
+// >= 0 and at most 1); anything else: std::invalid_argument, one line.
 PrefilterChoice parse_prefilter(std::string_view text);
 
-// "none | q1 | q2 | qfir:K | interp[:L]": the choices, for help texts.
-inline constexpr const char* kPrefilterChoices = "none | q1 | q2 | qfir:K | interp[:LAMBDA]";
+// "none | q1 | q2 | q1opt | q2opt | qfir:K | interp[:L]": the choices, for help texts.
+inline constexpr const char* kPrefilterChoices =
+    "none | q1 | q2 | q1opt | q2opt | qfir:K | interp[:LAMBDA]";
 
 }  // namespace boxgen::runtime

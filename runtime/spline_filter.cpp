@@ -31,6 +31,12 @@ std::string PrefilterChoice::text() const {
     case Kind::Q2:
       name = "q2";
       break;
+    case Kind::Q1Opt:
+      name = "q1opt";
+      break;
+    case Kind::Q2Opt:
+      name = "q2opt";
+      break;
     case Kind::QFir:
       name = "qfir";
       break;
@@ -46,6 +52,8 @@ PrefilterChoice parse_prefilter(std::string_view text) {
   if (text == "none") return PrefilterChoice::None;
   if (text == "q1") return PrefilterChoice::Q1;
   if (text == "q2") return PrefilterChoice::Q2;
+  if (text == "q1opt") return PrefilterChoice::Q1Opt;
+  if (text == "q2opt") return PrefilterChoice::Q2Opt;
   if (text == "interp") return PrefilterChoice::interp();
   if (text.starts_with("qfir:")) {
     const std::string_view k = text.substr(5);
@@ -72,7 +80,8 @@ PrefilterChoice parse_prefilter(std::string_view text) {
     return PrefilterChoice::interp(lambda);
   }
   throw std::invalid_argument(
-      fmt::format("unknown prefilter '{}': expected none, q1, q2, qfir:K, interp or interp:LAMBDA",
+      fmt::format("unknown prefilter '{}': expected none, q1, q2, q1opt, q2opt, qfir:K, interp or "
+                  "interp:LAMBDA",
                   text.substr(0, 40)));
 }
 
@@ -95,7 +104,9 @@ SplineFilter SplineFilter::at(int index) {
       all.push_back(
           generated::with_filter(i, [i](auto entry) -> std::shared_ptr<const FilterSource> {
             return std::make_shared<EmittedFilter<typename decltype(entry)::Traits>>(
-                prefilter_from(entry.q1), prefilter_from(entry.q2), entry.approximation_order, i);
+                GeneratedPrefilters{prefilter_from(entry.q1), prefilter_from(entry.q2),
+                                    prefilter_from(entry.q1opt), prefilter_from(entry.q2opt)},
+                entry.approximation_order, i);
           }));
     return all;
   }();

@@ -139,7 +139,7 @@ int run_error_table(int points, std::uint64_t seed, bool json) {
   for (int n : kDensities) {
     for (const char* name : {"m7", "m8", "m12"})
       for (const PrefilterChoice q :
-           {PrefilterChoice::None, PrefilterChoice::Q1, PrefilterChoice::Q2,
+           {PrefilterChoice::None, PrefilterChoice::Q1, PrefilterChoice::Q2, PrefilterChoice::Q2Opt,
             PrefilterChoice::qfir(3), PrefilterChoice::interp()})
         rows.push_back(lattice_row(n, n, SplineFilter::parse(name), q, at));
     const int m = static_cast<int>(std::lround(std::cbrt(2.0) * n));  // the same number of samples

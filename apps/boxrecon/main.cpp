@@ -161,8 +161,8 @@ int run(int argc, char** argv) {
   bool table = false;
   auto* table_flag = error->add_flag(
       "--table", table,
-      "ML errors for N in {17,25,33,41,57} x {m7,m8,m12} x {none,q1,q2,interp} and the "
-      "tricubic on Cartesian");
+      "ML errors for N in {17,25,33,41,57} x {m7,m8,m12} x {none,q1,q2,q2opt,qfir:3,interp} "
+      "and the tricubic on Cartesian");
   error
       ->add_option("--lattice", lattice,
                    "the lattice it samples on, and of a SPEC --filter: only the filter's own (bcc "

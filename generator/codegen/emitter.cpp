@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <utility>
 
 #include "generator/codegen/code_text.h"
 #include "generator/codegen/evaluator_name.h"
@@ -190,6 +191,28 @@ Prefilters prefilters(const Derivation& a, const EmissionRequest& req) {
           shells.empty() ? "" : " on shells " + brace_list(shells), e.what());
     }
   }
+  for (const auto& [id, table] : {std::pair{"q1opt", &req.q1opt}, std::pair{"q2opt", &req.q2opt}}) {
+    if (!*table) {
+      out.filters += fmt::format("// No prefilter {}: this emission was given none.\n\n", id);
+      continue;
+    }
+    const Prefilter& q = (*table)->prefilter;
+    const bool exact = (*table)->exact;
+    std::vector<std::string> rows;
+    for (const auto& w : q.weights)
+      rows.push_back(fmt::format("    {{{}, {}}},{}", brace_list(w.offset),
+                                 CppPrinter::table_literal(w.weight),
+                                 exact ? "  // " + to_string(w.weight) : ""));
+    out.filters += fmt::format(
+        "// Shells {}: {}.\ninline constexpr PrefilterTap {}[] = {{\n{}\n}};\n\n",
+        brace_list(q.shells),
+        exact ? "no free parameter: the unique prefilter of full order with one weight\n// per "
+                "symmetry orbit, exact"
+              : "one weight per symmetry orbit, the free parameters minimising the\n// mean "
+                "error kernel over the Nyquist region (boxgen prefilter SPEC --prefilter " +
+                    std::string(id) + ");\n// the weights to 17 digits",
+        id, join(rows, "\n"));
+  }
   return out;
 }
 
@@ -250,6 +273,8 @@ Emission emit(const Derivation& analysis, const EmissionRequest& request) {
                       [&] { return prefilter_args(analysis, request, q); })};
   out.q1 = std::move(q.q1);
   out.q2 = std::move(q.q2);
+  if (request.q1opt) out.q1opt = request.q1opt->prefilter;
+  if (request.q2opt) out.q2opt = request.q2opt->prefilter;
   return out;
 }
 
@@ -265,8 +290,8 @@ EmittedFile emit_registry(const std::vector<std::string>& names, const std::stri
     quoted.push_back("\"" + n + "\"");
     lattices.push_back(n + "::kLattice");
     entries.push_back(
-        fmt::format("using {0}_entry = RegistryEntry<{0}::Traits, {0}::q1, {0}::q2, "
-                    "{0}::kApproximationOrder>;",
+        fmt::format("using {0}_entry = RegistryEntry<{0}::Traits, {0}::q1, {0}::q2, {0}::q1opt, "
+                    "{0}::q2opt, {0}::kApproximationOrder>;",
                     n));
     const bool last = i + 1 == names.size();
     cases.push_back(fmt::format("    {}: return f({}_entry{{}});",

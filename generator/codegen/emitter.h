@@ -26,6 +26,15 @@ struct EmittedFile {
 // (<name>.glsl) or CUDA (<name>.cuh), all printed from the same scheduled expression graphs.
 enum class EmissionTarget { Cpp, Glsl, Cuda };
 
+// q1opt or q2opt (docs/design.md §19) for NAME_prefilters.hpp: the caller computes them, since
+// their free parameters come from a numerical optimisation (analysis/) that the generator does
+// not link. `exact`: no free parameter, the weights are exact rationals (printed beside the
+// table); otherwise their nearest doubles are the data.
+struct OptimisedPrefilterTable {
+  Prefilter prefilter;
+  bool exact = false;
+};
+
 struct EmissionRequest {
   std::string name;     // C++ identifier: the namespace boxgen::generated::<name>
   std::string command;  // the command that reproduces the file, for its header
@@ -36,6 +45,9 @@ struct EmissionRequest {
   // The shells of q1 (q2: these and the next shell); empty: the smallest on which a prefilter of
   // full order exists (quasi_interpolation_shells, generator/prefilter.h).
   std::vector<int> shells{};
+  // C++: the tables q1opt and q2opt (on the shells of q1 and q2); none: the header says that
+  // this emission has none.
+  std::optional<OptimisedPrefilterTable> q1opt{}, q2opt{};
 };
 
 // What the emitted evaluator costs: the strategy of each orbit and its operation counts (value;
@@ -63,6 +75,8 @@ struct Emission {
   // C++: the quasi-interpolation prefilters q1 and q2 that <name>_prefilters.hpp holds (on the
   // request's shells); none where no prefilter of full order exists there (the header says why).
   std::optional<Prefilter> q1, q2;
+  // C++: the request's q1opt and q2opt, which the header holds where given.
+  std::optional<Prefilter> q1opt, q2opt;
   // GLSL: the evaluator with its run-time-indexed tables in a storage block, and the block's
   // contents (generator/codegen/targets/glsl_evaluator.h); the file is the variant whose tables are
   // `const`.

@@ -321,9 +321,9 @@ TEST_F(AnalysisCli, ErrorTableJsonHasEveryRowAndKey) {
   const ProcessResult r = boxrecon({"error", "--table", "--points", "200", "--json"});
   ASSERT_TRUE(r.exited && r.exit_code == 0) << describe({"error", "--table"}, r);
   const auto j = nlohmann::json::parse(r.out);
-  // 5 densities x (3 filters x 5 prefilters (none q1 q2 qfir:3 interp) + 3 tricubic rows).
-  ASSERT_EQ(j["rows"].size(), 90u);
-  int interp_rows = 0, qfir_rows = 0;
+  // 5 densities x (3 filters x 6 prefilters (none q1 q2 q2opt qfir:3 interp) + 3 tricubic rows).
+  ASSERT_EQ(j["rows"].size(), 105u);
+  int interp_rows = 0, qfir_rows = 0, optimised_rows = 0;
   for (const auto& row : j["rows"]) {
     for (const char* key : {"n", "filter", "prefilter", "rms", "max", "gradient_rms", "samples"})
       EXPECT_TRUE(row.contains(key)) << key << " in " << row.dump();
@@ -331,6 +331,7 @@ TEST_F(AnalysisCli, ErrorTableJsonHasEveryRowAndKey) {
     EXPECT_LE(row["rms"].get<double>(), row["max"].get<double>());
     interp_rows += row["prefilter"] == "interp";
     qfir_rows += row["prefilter"] == "qfir:3";
+    optimised_rows += row["prefilter"] == "q2opt";
     if (row["filter"] == "tricubic") {
       const int m = static_cast<int>(std::lround(std::cbrt(2.0) * n));
       EXPECT_EQ(row["cartesian_n"].get<int>(), m);
@@ -342,6 +343,7 @@ TEST_F(AnalysisCli, ErrorTableJsonHasEveryRowAndKey) {
   }
   EXPECT_EQ(interp_rows, 5 * 4);
   EXPECT_EQ(qfir_rows, 5 * 3);
+  EXPECT_EQ(optimised_rows, 5 * 3);
 }
 
 // eval --hessian: the cubic x^3 - 2xyz + 3y^2 - z + 1 (runtime/test_functions.h) is reproduced by

@@ -169,7 +169,7 @@ TEST_F(FilterCacheTest, PlantedObjectInASharedCacheNeverRuns) {
     info.spec = kSpec;
     info.lattice = "bcc";
     info.rows = "2,0,0; 0,2,0; 1,1,1";
-    info.stamp = "boxgen-filter abi 1; boxgen " + std::string(kVersion) + "; key " + key;
+    info.stamp = "boxgen-filter abi 2; boxgen " + std::string(kVersion) + "; key " + key;
     info.so_size = object.size();
     info.so_hash = hash_text(object);
     info.glsl_hash = hash_text("// float\n");

@@ -35,6 +35,10 @@ def test_unknown_names(files):
     same_message(e, "boxrecon", "eval", "--filter", "m7", "--prefilter", "q3", "--volume", bcc,
                  "--points", pts)
     with pytest.raises(ValueError) as e:
+        boxgen.Filter("m7").evaluate(boxgen.read_volume(bcc), [[0, 0, 0]], prefilter="q3opt")
+    same_message(e, "boxrecon", "eval", "--filter", "m7", "--prefilter", "q3opt", "--volume", bcc,
+                 "--points", pts)
+    with pytest.raises(ValueError) as e:
         boxgen.sample("nope", 5)
     same_message(e, "boxrecon", "sample", "--function", "nope", "--n", "5", "-o", str(d / "x"))
     with pytest.raises(ValueError) as e:

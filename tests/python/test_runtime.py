@@ -102,7 +102,8 @@ def eval_cli(tmp_path, volume, points, *args):
                                                     ("tricubic", "cartesian", "q2"),
                                                     ("m8", "bcc", "interp"),
                                                     ("m7", "bcc", "interp:0.01"),
-                                                    ("fcc6", "fcc", "interp")])
+                                                    ("fcc6", "fcc", "interp"),
+                                                    ("m8", "bcc", "q2opt")])
 def test_evaluate_is_boxrecon_eval_bit_for_bit(tmp_path, rng, name, lattice, prefilter):
     f = boxgen.Filter(name)
     v = boxgen.sample("ml", 7, lattice=lattice)
@@ -117,6 +118,19 @@ def test_evaluate_is_boxrecon_eval_bit_for_bit(tmp_path, rng, name, lattice, pre
     assert np.array_equal(f.evaluate(v, points, prefilter), values)
     vg = f.evaluate(v, points, prefilter, gradient=True)
     assert len(vg) == 2 and np.array_equal(vg[1], gradients)
+
+
+def test_optimised_prefilters_are_boxgen_prefilters():
+    # The runtime's q1opt / q2opt are the generated tables: the weights `boxgen prefilter
+    # --prefilter q1opt|q2opt` prints (17 digits), at the same offsets.
+    for name in ("m7", "m8", "m12", "fcc6", "tricubic", "cart7"):
+        taps = boxgen.Filter(name).prefilters
+        for q in ("q1opt", "q2opt"):
+            printed = boxgen.prefilter(name, prefilter=q)
+            offsets, weights = taps[q]
+            expected = {tuple(w["offset"]): float(w["weight"].split("/")[0]) /
+                        float((w["weight"].split("/") + ["1"])[1]) for w in printed["weights"]}
+            assert {tuple(o): w for o, w in zip(offsets.tolist(), weights.tolist())} == expected
 
 
 def test_interpolation_passes_through_the_samples_and_reports():
