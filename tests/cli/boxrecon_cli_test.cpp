@@ -614,7 +614,7 @@ TEST_F(BoxreconCli, SmallHandWrittenVolumeWorks) {
   EXPECT_NEAR(values[0][0], 1.0, 1e-14);
 }
 
-// boxrecon bench --quick --json: one JSON object with every ratio of issue 8 (each a measured,
+// boxrecon bench --quick --json: one JSON object with every ratio it names (each a measured,
 // positive, finite number) and the machine; --threads takes a positive count.
 TEST(BoxreconBench, QuickJsonHasEveryRatioAndTheMachine) {
   const std::string out = boxrecon_ok(
