@@ -76,8 +76,18 @@ int run_eval(const std::string& filter, const std::string& lattice, const Prefil
              bool hessian, const NrrdReadLimits& limits, Device device, bool verbose) {
   const PrefilterSetting q = parse_prefilter_options(pre);
   const SplineFilter f = frontend::filter_for_volume(filter, lattice, volume_path);
-  const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
-  const auto points = read_points_file(points_path);
+  // An oblique volume is evaluated in its own frame: world points map through the inverse of its
+  // frame, derivatives back through that map's linear part (derivatives_to_world).
+  NrrdReadLimits oblique = limits;
+  oblique.allow_oblique = true;
+  SourceSamples source;
+  const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, oblique, &source);
+  const std::optional<Affine> to_volume = grid_to_volume(source.frame, std::nullopt);
+  const std::vector<Vec3> world = read_points_file(points_path);
+  std::vector<Vec3> in_frame;
+  if (to_volume)
+    for (const Vec3& p : world) in_frame.push_back(to_volume->apply(p));
+  const std::span<const Vec3> points = to_volume ? in_frame : world;
   std::vector<T> values(points.size());
   std::vector<Vec3> gradients(gradient || hessian ? points.size() : 0);
   std::vector<Hessian> hessians(hessian ? points.size() : 0);
@@ -89,7 +99,8 @@ int run_eval(const std::string& filter, const std::string& lattice, const Prefil
   } else {
     spline.evaluate(points, values, gradients, hessians);
   }
-  spline.require_finite(points, values, gradients, hessians);
+  spline.require_finite(world, values, gradients, hessians);  // its message names world points
+  if (to_volume) derivatives_to_world(*to_volume, gradients, hessians);
   print_evaluations<T>(values, gradients, hessians, gradient, hessian);
   return 0;
 }
@@ -184,35 +195,7 @@ int run_error(const std::string& function, int n, const std::string& filter,
   return 0;
 }
 
-Box box_from_options(const std::vector<double>& min, const std::vector<double>& max,
-                     const Box& region, const std::string& filter_name) {
-  Box box = region;
-  for (int a = 0; a < 3; ++a) {
-    box.min[a] = min[static_cast<std::size_t>(a)];
-    box.max[a] = max[static_cast<std::size_t>(a)];
-    if (!(std::isfinite(box.min[a]) && std::isfinite(box.max[a]) && box.min[a] <= box.max[a]))
-      throw std::invalid_argument("--min and --max must be finite with min <= max");
-    if (box.min[a] < region.min[a] || box.max[a] > region.max[a])
-      throw std::out_of_range(fmt::format(
-          "the box --min --max leaves the region the {} filter reconstructs, [{:.9g}, {:.9g}] x "
-          "[{:.9g}, {:.9g}] x [{:.9g}, {:.9g}]",
-          filter_name, region.min[0], region.max[0], region.min[1], region.max[1], region.min[2],
-          region.max[2]));
-  }
-  return box;
-}
-
 namespace {
-
-// The map from a grid's frame to a volume's, both given by their maps to world (nothing: the
-// world itself). Nothing when the frames are one, so that a grid on the volume's own frame is
-// evaluated at exactly its points.
-std::optional<Affine> grid_to_volume(const std::optional<Affine>& volume_frame,
-                                     const std::optional<Affine>& grid_frame) {
-  if (volume_frame == grid_frame) return std::nullopt;
-  const Affine from = grid_frame.value_or(Affine::diagonal({1, 1, 1}, {0, 0, 0}));
-  return volume_frame ? volume_frame->inverse().after(from) : from;
-}
 
 // --spacing H (or HX HY HZ) over the box: as many points as fit from box.min on, spacing h.
 CartesianGrid grid_with_spacing(const Box& box, const std::vector<double>& given) {
@@ -395,9 +378,8 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
         [&gpu](std::span<const Vec3> points, std::span<T> out) { gpu->evaluate(points, out); });
   };
   if (!cartesian) {
-    const Box box = options.min.empty() ? default_box(volume, f)
-                                        : Box{{options.min[0], options.min[1], options.min[2]},
-                                              {options.max[0], options.max[1], options.max[2]}};
+    const std::optional<Box> given = given_box(options.box);
+    const Box box = given ? *given : default_box(volume, f);
     const LatticeGrid grid = output_lattice_grid(lattice, options, like, box);
     const Sizes& n = grid.sizes;
     check_output_memory(static_cast<std::uint64_t>(lattice.coset_count()) *
@@ -416,12 +398,12 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
     grid = {like->sizes, like->spacing, like->origin};
     grid.to_volume = grid_to_volume(source.frame, output_frame);
   } else {
-    // --min/--max are world coordinates: for an oblique volume the output is then axis-aligned
-    // in the world; without them the grid lies on the volume's own axes (its affine kept).
-    const bool world_box = source.frame && !options.min.empty();
-    const Box box = options.min.empty() ? default_box(volume, f)
-                                        : Box{{options.min[0], options.min[1], options.min[2]},
-                                              {options.max[0], options.max[1], options.max[2]}};
+    // --box (--min/--max) is in world coordinates: for an oblique volume the output is then
+    // axis-aligned in the world; without them the grid lies on the volume's own axes (its affine
+    // kept).
+    const std::optional<Box> given = given_box(options.box);
+    const bool world_box = source.frame && given;
+    const Box box = given ? *given : default_box(volume, f);
     if (!options.spacing.empty())
       grid = grid_with_spacing(box, options.spacing);
     else if (!options.size.empty())
