@@ -71,8 +71,7 @@ class FourierSums {
       const std::vector<double>& v = (*kernels_)[p].values;
       for (int t01 = 0; t01 < w[0] * w[1]; ++t01) {
         Complex s = 0;
-        for (int t2 = 0; t2 < w[2]; ++t2)
-          s += v[index(t01 + w[0] * w[1] * t2)] * e[t2];
+        for (int t2 = 0; t2 < w[2]; ++t2) s += v[index(t01 + w[0] * w[1] * t2)] * e[t2];
         g2_[p * static_cast<std::size_t>(w[0] * w[1]) + static_cast<std::size_t>(t01)] = s;
       }
     }
