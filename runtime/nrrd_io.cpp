@@ -1,5 +1,6 @@
 #include "runtime/nrrd_io.h"
 
+#include "runtime/affine.h"
 #include "runtime/nrrd_checks.h"
 #include "support/output_file.h"
 
@@ -25,6 +26,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -218,6 +220,10 @@ struct VolumeHeader {
   std::string anatomical;  // SourceSamples::anatomical
   int type;                // one of kSampleTypes
   std::uint64_t data_bytes;
+  // NrrdReadLimits::allow_oblique (in), and an oblique Cartesian file's frame (out): its voxel
+  // grid is then in its own frame (steps = the directions' lengths, origin 0), as a NIfTI file's.
+  bool allow_oblique = false;
+  std::optional<Affine> frame;
 };
 
 // The sample types the reader converts, with the names SourceSamples::type gives them. Teem's
@@ -315,6 +321,24 @@ std::string file_lattice(const Nrrd* nrrd, VolumeHeader& header) {
   return {};
 }
 
+// An oblique (or axis-permuting) Cartesian file's directions, where allowed: its voxel grid in its
+// own frame and that frame's map to world (split_oblique, as the NIfTI reader's; the space origin,
+// read after this, becomes the frame's translation).
+std::string read_oblique_steps(const Nrrd* nrrd, unsigned first, VolumeHeader& header) {
+  Affine a, frame;
+  for (unsigned c = 0; c < 3; ++c)
+    for (unsigned r = 0; r < 3; ++r) {
+      const double v = nrrd->axis[first + c].spaceDirection[r];
+      if (!std::isfinite(v))
+        return fmt::format("its space direction of axis {} is not finite", first + c);
+      a.linear[r][c] = v;
+    }
+  if (const std::string why = split_oblique(a, header.steps, frame); !why.empty())
+    return "the matrix of its space directions " + why;
+  header.frame = frame;
+  return {};
+}
+
 // The spacing of each domain axis from the space directions (header.steps): Z^3 may have one per
 // axis, and negative ones (read_lattice_nrrd flips those axes); every other lattice has one h > 0.
 std::string read_steps(const Nrrd* nrrd, unsigned first, int k, int d, const std::string& name,
@@ -329,6 +353,7 @@ std::string read_steps(const Nrrd* nrrd, unsigned first, int k, int d, const std
       bool aligned = std::isfinite(step) && step != 0;
       for (int b = 0; b < 3; ++b)
         if (b != a && !(std::fabs(direction[b]) <= 1e-9 * std::fabs(step))) aligned = false;
+      if (!aligned && header.allow_oblique) return read_oblique_steps(nrrd, first, header);
       if (!aligned) {
         std::string found;
         for (int c = 0; c < 3; ++c) {
@@ -424,6 +449,10 @@ std::string check_lattice_header(const Nrrd* nrrd, const std::optional<CosetLatt
   for (int b = 0; b < 3; ++b) {
     header.origin[b] = nrrd->spaceOrigin[b];
     if (!std::isfinite(header.origin[b])) return "its space origin is missing or not finite";
+  }
+  if (header.frame) {  // the origin is the frame's translation; the grid starts at its 0
+    header.frame->translation = header.origin;
+    header.origin = {0, 0, 0};
   }
   return {};
 }
@@ -602,6 +631,7 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, c
 
   std::lock_guard lock(teem_mutex());
   VolumeHeader header{};
+  header.allow_oblique = full.allow_oblique = limits.allow_oblique;
   DataLayout layout;
   {
     NrrdOwner nrrd(nrrdNew());
@@ -669,12 +699,15 @@ LatticeVolume<T> read_lattice_nrrd(const fs::path& path, const NrrdReadLimits& l
   const std::string kind =
       limits.lattice ? limits.lattice->label() + " volume" : std::string("lattice volume");
   std::vector<T> samples = read_volume<T>(path, limits, kind.c_str(), header);
+  if (header.frame && !source)
+    throw std::logic_error("read_lattice_nrrd: allow_oblique needs a SourceSamples");
   Vec3 spacing = header.steps, origin = header.origin;
-  orient_axes_positive(std::span<T>(samples), header.sizes, spacing, origin);
+  orient_axes_positive(std::span<T>(samples), header.sizes, spacing, origin);  // none if oblique
   LatticeVolume<T> volume(header.lattice, header.sizes, spacing, origin, std::move(samples));
   if (source) {
     *source = describe_samples<T>(volume.samples(), sample_type_name(header.type));
     source->anatomical = header.anatomical;
+    source->frame = header.frame;
   }
   return volume;
 }
