@@ -169,12 +169,25 @@ void write_atomically(const fs::path& path, const Nrrd* nrrd) {
   }
 }
 
-// Wraps `data` (not copied, not freed) in a Nrrd with the given sizes, space directions and
-// origin in a 3-D right-handed space.
-NrrdShell wrap(const void* data, int type, unsigned dim, const std::size_t* sizes) {
+// The NRRD space of a world tied to a patient (SourceSamples::anatomical: "RAS", "LAS", "LPS"),
+// 3D-right-handed for one that is not (""); std::invalid_argument for any other text.
+int nrrd_space(const std::string& anatomical) {
+  if (anatomical.empty()) return nrrdSpace3DRightHanded;
+  if (anatomical == "RAS") return nrrdSpaceRightAnteriorSuperior;
+  if (anatomical == "LAS") return nrrdSpaceLeftAnteriorSuperior;
+  if (anatomical == "LPS") return nrrdSpaceLeftPosteriorSuperior;
+  throw std::invalid_argument("no NRRD space for the anatomical frame '" + anatomical.substr(0, 8) +
+                              "' (RAS, LAS or LPS)");
+}
+
+// Wraps `data` (not copied, not freed) in a Nrrd with the given sizes in the space of
+// `anatomical` (nrrd_space); the caller sets the space directions and the origin.
+NrrdShell wrap(const void* data, int type, unsigned dim, const std::size_t* sizes,
+               const std::string& anatomical) {
+  const int space = nrrd_space(anatomical);
   NrrdShell nrrd(nrrdNew());
   if (!nrrd || nrrdWrap_nva(nrrd.get(), const_cast<void*>(data), type, dim, sizes) != 0 ||
-      nrrdSpaceSet(nrrd.get(), nrrdSpace3DRightHanded) != 0)
+      nrrdSpaceSet(nrrd.get(), space) != 0)
     throw NrrdError("cannot describe the volume to Teem: " + teem_error());
   for (unsigned a = 0; a < dim; ++a)
     for (int b = 0; b < 3; ++b) nrrd->axis[a].spaceDirection[b] = AIR_NAN;
@@ -494,8 +507,8 @@ namespace {
 // The lattice volume layout of nrrd_io.h for `volume`'s geometry, with the samples at `data` of
 // Teem type `type`.
 template <class T>
-void write_lattice(const fs::path& path, const LatticeVolume<T>& volume, const void* data,
-                   int type) {
+void write_lattice(const fs::path& path, const LatticeVolume<T>& volume, const void* data, int type,
+                   const std::string& anatomical) {
   std::lock_guard lock(teem_mutex());
   const Sizes& n = volume.sizes();
   const CosetLattice& lattice = volume.lattice();
@@ -506,7 +519,7 @@ void write_lattice(const fs::path& path, const LatticeVolume<T>& volume, const v
   const std::size_t sizes[4] = {
       static_cast<std::size_t>(k == 1 ? n[0] : k), static_cast<std::size_t>(k == 1 ? n[1] : n[0]),
       static_cast<std::size_t>(k == 1 ? n[2] : n[1]), static_cast<std::size_t>(n[2])};
-  NrrdShell nrrd = wrap(data, type, dim, sizes);
+  NrrdShell nrrd = wrap(data, type, dim, sizes, anatomical);
   if (first == 1) nrrd->axis[0].kind = nrrdKindList;
   for (unsigned a = 0; a < 3; ++a) {
     nrrd->axis[first + a].kind = nrrdKindDomain;
@@ -528,22 +541,24 @@ void write_lattice(const fs::path& path, const LatticeVolume<T>& volume, const v
 }  // namespace
 
 template <class T>
-void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume) {
-  write_lattice(path, volume, volume.samples().data(), teem_type<T>());
+void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume,
+                        const std::string& anatomical) {
+  write_lattice(path, volume, volume.samples().data(), teem_type<T>(), anatomical);
 }
 
 template <class T>
 void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume,
-                        const EncodedSamples& samples) {
+                        const EncodedSamples& samples, const std::string& anatomical) {
   if (samples.bytes.size() != volume.sample_count() * sample_type_size(samples.type))
     throw std::invalid_argument(fmt::format("{} samples of {} bytes for a volume of {} samples",
                                             samples.bytes.size() / sample_type_size(samples.type),
                                             sample_type_size(samples.type), volume.sample_count()));
-  write_lattice(path, volume, samples.bytes.data(), teem_type(samples.type));
+  write_lattice(path, volume, samples.bytes.data(), teem_type(samples.type), anatomical);
 }
 
 template <class T>
-void write_cartesian_nrrd(const fs::path& path, const CartesianVolume<T>& grid) {
+void write_cartesian_nrrd(const fs::path& path, const CartesianVolume<T>& grid,
+                          const std::string& anatomical) {
   std::uint64_t count = 1;
   for (int a = 0; a < 3; ++a) {
     if (grid.sizes[a] < 1)
@@ -564,7 +579,7 @@ void write_cartesian_nrrd(const fs::path& path, const CartesianVolume<T>& grid) 
   const std::size_t sizes[3] = {static_cast<std::size_t>(grid.sizes[0]),
                                 static_cast<std::size_t>(grid.sizes[1]),
                                 static_cast<std::size_t>(grid.sizes[2])};
-  NrrdShell nrrd = wrap(grid.values.data(), teem_type<T>(), 3, sizes);
+  NrrdShell nrrd = wrap(grid.values.data(), teem_type<T>(), 3, sizes, anatomical);
   for (int a = 0; a < 3; ++a) {
     nrrd->axis[a].kind = nrrdKindDomain;
     for (int b = 0; b < 3; ++b) nrrd->axis[a].spaceDirection[b] = a == b ? grid.spacing[a] : 0.0;
@@ -697,17 +712,21 @@ LatticeVolume<T> read_lattice_nrrd(const fs::path& path, const NrrdReadLimits& l
   return volume;
 }
 
-template void write_lattice_nrrd<float>(const fs::path&, const LatticeVolume<float>&);
-template void write_lattice_nrrd<double>(const fs::path&, const LatticeVolume<double>&);
 template void write_lattice_nrrd<float>(const fs::path&, const LatticeVolume<float>&,
-                                        const EncodedSamples&);
+                                        const std::string&);
 template void write_lattice_nrrd<double>(const fs::path&, const LatticeVolume<double>&,
-                                         const EncodedSamples&);
+                                         const std::string&);
+template void write_lattice_nrrd<float>(const fs::path&, const LatticeVolume<float>&,
+                                        const EncodedSamples&, const std::string&);
+template void write_lattice_nrrd<double>(const fs::path&, const LatticeVolume<double>&,
+                                         const EncodedSamples&, const std::string&);
 template LatticeVolume<float> read_lattice_nrrd<float>(const fs::path&, const NrrdReadLimits&,
                                                        SourceSamples*);
 template LatticeVolume<double> read_lattice_nrrd<double>(const fs::path&, const NrrdReadLimits&,
                                                          SourceSamples*);
-template void write_cartesian_nrrd<float>(const fs::path&, const CartesianVolume<float>&);
-template void write_cartesian_nrrd<double>(const fs::path&, const CartesianVolume<double>&);
+template void write_cartesian_nrrd<float>(const fs::path&, const CartesianVolume<float>&,
+                                          const std::string&);
+template void write_cartesian_nrrd<double>(const fs::path&, const CartesianVolume<double>&,
+                                           const std::string&);
 
 }  // namespace boxgen::runtime

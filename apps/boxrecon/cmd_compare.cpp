@@ -201,16 +201,19 @@ std::optional<Vec3> compared_point(const Vec3& p, const std::optional<Affine>& t
   return v;
 }
 
-// The errors on the reference's grid: an oblique reference's as NIfTI with its affine.
-void write_error_volume(const LatticeVolume<float>& errors, const std::optional<Affine>& frame,
+// The errors on the reference's grid, in its world (`reference`: what the reference's file held):
+// an oblique reference's as NIfTI with its affine.
+void write_error_volume(const LatticeVolume<float>& errors, const SourceSamples& reference,
                         const std::optional<SampleType>& type) {
-  if (!frame) return app::write_output_volume(args.error_volume, errors, type);
+  const std::optional<Affine>& frame = reference.frame;
+  if (!frame)
+    return app::write_output_volume(args.error_volume, errors, type, reference.anatomical);
   const std::span<const float> e = errors.samples();
   app::write_output_grid(
       args.error_volume,
       CartesianVolume<float>{
           errors.sizes(), errors.axis_spacing(), errors.origin(), {e.begin(), e.end()}, frame},
-      type);
+      type, reference.anatomical);
 }
 
 // The report on stdout: text, or one JSON object with --json.
@@ -340,7 +343,7 @@ int run_compare() {
   const double peak = source.max - source.min;
   if (!(peak > 0))
     throw std::invalid_argument("the reference is constant: PSNR (peak = its range) is undefined");
-  if (error_volume) write_error_volume(*error_volume, source.frame, type);
+  if (error_volume) write_error_volume(*error_volume, source, type);
   print_report(filter.name(), q, peak, ref.sample_count(), box, all, masked, mask.has_value());
   return 0;
 }

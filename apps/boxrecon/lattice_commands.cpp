@@ -253,6 +253,7 @@ struct LikeImage {
   Sizes sizes{};
   Vec3 spacing{}, origin{};
   std::optional<Affine> frame;
+  std::string anatomical;  // SourceSamples::anatomical
 };
 
 LikeImage read_like(const std::string& path) {
@@ -261,7 +262,8 @@ LikeImage read_like(const std::string& path) {
   limits.allow_oblique = true;
   SourceSamples source;
   const LatticeVolume<float> image = read_volume_file<float>(path, limits, &source);
-  return {image.lattice(), image.sizes(), image.axis_spacing(), image.origin(), source.frame};
+  return {image.lattice(), image.sizes(), image.axis_spacing(),
+          image.origin(),  source.frame,  source.anatomical};
 }
 
 bool is_cartesian(const CosetLattice& lattice) { return lattice == CosetLattice::cartesian(); }
@@ -357,6 +359,17 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
   read_limits.allow_oblique = true;
   SourceSamples source;
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, read_limits, &source);
+  // The output is in the volume's world; a --like image in another anatomical frame (LPS
+  // against RAS) would put its grid elsewhere, so it is refused rather than mirrored.
+  if (like && !like->anatomical.empty() && !source.anatomical.empty() &&
+      like->anatomical != source.anatomical)
+    throw std::invalid_argument(fmt::format(
+        "--like '{}' is in {} world coordinates, the volume '{}' in {}: give an image in the "
+        "volume's frame",
+        nrrd_checks::printable(options.like, 80), like->anatomical,
+        nrrd_checks::printable(volume_path, 80), source.anatomical));
+  const std::string& anatomical =
+      source.anatomical.empty() && like ? like->anatomical : source.anatomical;
   if (!cartesian && source.frame)
     throw std::invalid_argument(fmt::format(
         "'{}' is oblique: it resamples onto Cartesian grids only (a {} volume is stored "
@@ -388,7 +401,8 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
                         bytes,
                         fmt::format("{} x {} x {} x {} {} samples", lattice.coset_count(), n[0],
                                     n[1], n[2], lattice.name()));
-    write_output_volume(output, resample_lattice_grid(volume, f, grid, evaluator()), type);
+    write_output_volume(output, resample_lattice_grid(volume, f, grid, evaluator()), type,
+                        anatomical);
     return 0;
   }
   CartesianGrid grid;
@@ -426,7 +440,7 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
                       bytes, fmt::format("{} x {} x {} points", n[0], n[1], n[2]));
   CartesianVolume<T> values = resample_grid(volume, f, grid, evaluator());
   values.frame = output_frame;
-  write_output_grid(output, values, type);
+  write_output_grid(output, values, type, anatomical);
   return 0;
 }
 
