@@ -11,6 +11,7 @@
 
 #include "generator/error.h"
 #include "generator/int_linalg.h"
+#include "support/lattice_text.h"
 
 namespace boxgen::generator {
 
@@ -20,31 +21,21 @@ namespace {
 constexpr std::int64_t kMaxComponent = 64;            // |xi_k[i]|
 constexpr std::int64_t kMaxLatticeEntry = 1000;       // |G_ij|, as enforced by Lattice
 constexpr std::int64_t kMaxSupportCells = 2'000'000;  // unit cells in the support's bounding box
-constexpr std::size_t kMaxEchoedChars = 40;           // how much of a bad token a message repeats
 
 using IntRows = std::vector<IntVec>;
+using support::echo;
+using support::is_blank;
+using support::lower;
+using support::trim;
 
-bool is_blank(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && is_blank(s.front())) s.remove_prefix(1);
-  while (!s.empty() && is_blank(s.back())) s.remove_suffix(1);
-  return s;
-}
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
-// User text repeated inside a message: printable ASCII only and bounded, so every message
-// stays one readable line whatever the input was.
-std::string echo(std::string_view s) {
-  std::string out;
-  for (char c : s.substr(0, kMaxEchoedChars)) out.push_back(c >= 0x20 && c <= 0x7e ? c : '?');
-  if (s.size() > kMaxEchoedChars) out += "...";
-  return out;
+// The shared parser's rows (support/lattice_text.h), its TextError an InputError.
+template <class Parse>
+auto parsed(Parse parse) {
+  try {
+    return parse();
+  } catch (const support::TextError& e) {
+    fail_input(e.what());
+  }
 }
 
 std::string join_row(const IntVec& v) {
@@ -72,118 +63,6 @@ std::string preset_names() {
     out += p.name;
   }
   return out;
-}
-
-// What one kind of row list is called in messages and how large its entries may be.
-struct RowSyntax {
-  std::string_view list;  // "SPEC" or "lattice"
-  std::string_view row;   // "direction" or "lattice row"
-  std::int64_t max_abs;
-  std::string_view too_large;  // why larger entries are refused
-};
-
-// Parses one integer token [+-]digits without overflow: more than 18 significant digits
-// saturate at 10^18, which every caller rejects as too large while naming the token.
-std::optional<std::int64_t> parse_integer(std::string_view token) {
-  std::string_view digits = token;
-  bool negative = false;
-  if (!digits.empty() && (digits.front() == '+' || digits.front() == '-')) {
-    negative = digits.front() == '-';
-    digits.remove_prefix(1);
-  }
-  if (digits.empty()) return std::nullopt;
-  for (char c : digits)
-    if (c < '0' || c > '9') return std::nullopt;
-  while (digits.size() > 1 && digits.front() == '0') digits.remove_prefix(1);
-  constexpr std::int64_t kSaturated = 1'000'000'000'000'000'000;
-  std::int64_t value = 0;
-  if (digits.size() > 18) {
-    value = kSaturated;
-  } else {
-    for (char c : digits) value = value * 10 + (c - '0');
-  }
-  return negative ? -value : value;
-}
-
-// Rows separated by ';' (trailing empty rows tolerated), entries separated by ',' and/or blanks.
-IntRows parse_rows(std::string_view text, const RowSyntax& syntax, std::size_t max_rows) {
-  std::vector<std::string_view> pieces;
-  for (;;) {
-    auto semi = text.find(';');
-    pieces.push_back(text.substr(0, semi));
-    if (semi == std::string_view::npos) break;
-    text.remove_prefix(semi + 1);
-  }
-  while (!pieces.empty() && trim(pieces.back()).empty()) pieces.pop_back();
-  if (pieces.empty())
-    fail_input(
-        fmt::format("empty {}: expected integer {}s separated by ';', such as '1,0; 0,1; 1,1'",
-                    syntax.list, syntax.row));
-  if (pieces.size() > max_rows)
-    fail_input(
-        fmt::format("{} {}s given: at most {} are supported", pieces.size(), syntax.row, max_rows));
-
-  IntRows rows;
-  for (std::size_t r = 0; r < pieces.size(); ++r) {
-    const std::string where = fmt::format("{} {}", syntax.row, r + 1);
-    std::string_view row = trim(pieces[r]);
-    if (row.empty())
-      fail_input(fmt::format("invalid {}: {} is empty (two ';' in a row?)", syntax.list, where));
-    IntVec values;
-    for (;;) {
-      auto comma = row.find(',');
-      std::string_view part = row.substr(0, comma);
-      bool any = false;
-      // Within a comma-separated part, blanks separate further entries.
-      for (;;) {
-        part = trim(part);
-        if (part.empty()) break;
-        auto end = std::find_if(part.begin(), part.end(), is_blank) - part.begin();
-        std::string_view token = part.substr(0, static_cast<std::size_t>(end));
-        part.remove_prefix(static_cast<std::size_t>(end));
-        auto value = parse_integer(token);
-        if (!value)
-          fail_input(fmt::format("invalid {}: {} has the entry '{}', which is not an integer",
-                                 syntax.list, where, echo(token)));
-        if (std::llabs(*value) > syntax.max_abs)
-          fail_input(
-              fmt::format("{} has the entry '{}', which is too large {}: entries must be at most "
-                          "{} in magnitude",
-                          where, echo(token), syntax.too_large, syntax.max_abs));
-        values.push_back(*value);
-        any = true;
-      }
-      if (!any)
-        fail_input(fmt::format("invalid {}: {} ('{}') has an empty entry (stray ',')", syntax.list,
-                               where, echo(trim(pieces[r]))));
-      if (comma == std::string_view::npos) break;
-      row.remove_prefix(comma + 1);
-    }
-    rows.push_back(std::move(values));
-  }
-  return rows;
-}
-
-std::string entries(std::size_t count) {
-  return fmt::format("{} {}", count, count == 1 ? "entry" : "entries");
-}
-
-// Checks that all rows have one length, 2 or 3, and returns it.
-int common_dimension(const IntRows& rows, const RowSyntax& syntax) {
-  const auto n = rows.front().size();
-  if (n != 2 && n != 3)
-    fail_input(fmt::format(
-        "invalid {0}: {1} 1 has {2}, but {1}s must have 2 or 3 entries (2-D or 3-D){3}",
-        syntax.list, syntax.row, entries(n),
-        std::string(syntax.list) == "SPEC"
-            ? "; a SPEC lists the directions (the columns of Xi), one per ';'"
-            : "; --lattice takes the rows of G (its columns are the lattice basis), one per ';'"));
-  for (std::size_t r = 1; r < rows.size(); ++r)
-    if (rows[r].size() != n)
-      fail_input(fmt::format(
-          "invalid {0}: {1} {2} has {3} but {1} 1 has {4}; all must have the same dimension",
-          syntax.list, syntax.row, r + 1, entries(rows[r].size()), n));
-  return static_cast<int>(n);
 }
 
 std::string describe(const Lattice& lattice) {
@@ -307,39 +186,17 @@ std::string BoxSplineSpec::directions_text() const {
 Lattice parse_lattice(std::string_view text, int dimension) {
   if (dimension != 2 && dimension != 3)
     fail_input(fmt::format("lattice dimension must be 2 or 3, got {}", dimension));
-  const std::string_view t = trim(text);
-  if (t.empty())
-    fail_input(
-        "empty lattice: expected bcc, fcc, cartesian or the rows of G such as '1,1,0; 1,0,1; "
-        "0,1,1'");
-  if (std::isalpha(static_cast<unsigned char>(t.front()))) {
-    const std::string name = lower(t);
-    if (name == "cartesian") return Lattice::cartesian(dimension);
-    if (name == "bcc" || name == "fcc") {
-      if (dimension != 3)
-        fail_input(
-            fmt::format("the {} lattice is 3-dimensional but the directions are {}-dimensional",
-                        name, dimension));
-      return name == "bcc" ? Lattice::bcc() : Lattice::fcc();
-    }
-    fail_input(fmt::format(
-        "unknown lattice '{}': expected bcc, fcc, cartesian or the rows of G such as '2,0; 0,1'",
-        echo(t)));
-  }
-  const RowSyntax syntax{"lattice", "lattice row", kMaxLatticeEntry, "for a lattice generator"};
-  const IntRows rows = parse_rows(t, syntax, 3);
-  const int n = common_dimension(rows, syntax);
-  if (n != dimension)
-    fail_input(fmt::format("the lattice is {}-dimensional but the directions are {}-dimensional", n,
-                           dimension));
-  if (static_cast<int>(rows.size()) != n)
-    fail_input(fmt::format(
-        "the lattice generator must be square: got {} rows of {} entries, expected {} rows",
-        rows.size(), n, n));
+  const std::string because = fmt::format("the directions are {}-dimensional", dimension);
+  const support::LatticeText lattice = parsed(
+      [&] { return support::parse_lattice_text(text, dimension, because, kMaxLatticeEntry); });
+  if (lattice.name == "cartesian") return Lattice::cartesian(dimension);
+  if (lattice.name == "bcc") return Lattice::bcc();
+  if (lattice.name == "fcc") return Lattice::fcc();
   // The user writes G by rows; Lattice takes its columns.
-  IntColumns columns(rows.size(), IntVec(rows.size()));
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    for (std::size_t j = 0; j < rows.size(); ++j) columns[j][i] = rows[i][j];
+  const std::size_t n = lattice.rows.size();
+  IntColumns columns(n, IntVec(n));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) columns[j][i] = lattice.rows[i][j];
   return Lattice("custom", std::move(columns));
 }
 
@@ -368,10 +225,11 @@ BoxSplineSpec parse_spec(std::string_view spec, std::string_view lattice_text) {
     default_lattice = preset->lattice;
   }
 
-  const RowSyntax syntax{"SPEC", "direction", kMaxComponent, "to derive"};
-  const IntRows directions =
-      parse_rows(directions_text, syntax, static_cast<std::size_t>(kMaxDirections));
-  const int n = common_dimension(directions, syntax);
+  const support::RowSyntax syntax{"SPEC", "direction", kMaxComponent, "to derive"};
+  const IntRows directions = parsed([&] {
+    return support::parse_rows(directions_text, syntax, static_cast<std::size_t>(kMaxDirections));
+  });
+  const int n = static_cast<int>(directions.front().size());
   check_directions(directions, n);
 
   const std::string_view chosen = trim(lattice_text).empty() ? default_lattice : lattice_text;

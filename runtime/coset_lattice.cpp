@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
 #include <numeric>
 #include <set>
 #include <stdexcept>
@@ -30,19 +29,6 @@ IntRows adjugate(const IntRows& g) {
                 g[r0][c1] * g[r1][c0];  // cofactor of (j, i), signs by the cyclic order
     }
   return a;
-}
-
-std::string trimmed(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-  return std::string(s);
-}
-
-std::string shown(std::string_view s) {
-  std::string out;
-  for (char ch : s.substr(0, 80))
-    out += (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ? '?' : ch;
-  return s.size() > 80 ? out + "..." : out;
 }
 
 }  // namespace
@@ -124,38 +110,6 @@ CosetLattice CosetLattice::from_rows(const IntRows& rows) {
     }
   l.name_ = "custom";
   return l;
-}
-
-CosetLattice CosetLattice::parse(std::string_view text) {
-  const std::string t = trimmed(text);
-  if (t == "bcc") return bcc();
-  if (t == "fcc") return fcc();
-  if (t == "cartesian") return cartesian();
-  auto fail = [&](const std::string& why) {
-    throw std::invalid_argument(fmt::format(
-        "lattice '{}': {} (expected bcc, fcc, cartesian or the rows of G, \"a,b,c; d,e,f; g,h,i\")",
-        shown(text), why));
-  };
-  IntRows rows{};
-  std::string_view rest = text;
-  for (int r = 0; r < 3; ++r) {
-    const std::size_t semicolon = rest.find(';');
-    if ((semicolon == std::string_view::npos) != (r == 2)) fail("it does not have 3 rows");
-    std::string_view row = rest.substr(0, semicolon);
-    rest.remove_prefix(semicolon == std::string_view::npos ? rest.size() : semicolon + 1);
-    for (int c = 0; c < 3; ++c) {
-      const std::size_t comma = row.find(',');
-      if ((comma == std::string_view::npos) != (c == 2))
-        fail(fmt::format("row {} does not have 3 entries", r + 1));
-      const std::string entry = trimmed(row.substr(0, comma));
-      row.remove_prefix(comma == std::string_view::npos ? row.size() : comma + 1);
-      const char* begin = entry.data() + (entry.starts_with('+') ? 1 : 0);
-      const auto [end, error] = std::from_chars(begin, entry.data() + entry.size(), rows[r][c]);
-      if (entry.empty() || error != std::errc() || end != entry.data() + entry.size())
-        fail(fmt::format("'{}' is not an integer", shown(entry)));
-    }
-  }
-  return from_rows(rows);
 }
 
 CosetLattice CosetLattice::with_offsets(const std::vector<Offset>& offsets) const {

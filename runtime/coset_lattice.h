@@ -35,7 +35,7 @@ class CosetLattice {
   // entry exceeds 2^20 in magnitude, or d exceeds kMaxPeriod. Named "bcc", "fcc" or "cartesian"
   // (with those lattices' offsets) when G generates one of them, "custom" otherwise.
   static CosetLattice from_rows(const IntRows& rows);
-  // bcc | fcc | cartesian | "a,b,c; d,e,f; g,h,i" (the rows of G). Throws std::invalid_argument.
+  // Its name (any case) or G's rows, as support/lattice_text.h reads them; std::invalid_argument.
   static CosetLattice parse(std::string_view text);
 
   // The lattice with the same points but these coset offsets, in this order (a file's

@@ -107,6 +107,24 @@ TEST(CosetLattice, CustomLatticesAgreeWithEnumeration) {
   }
 }
 
+// The generator's spellings (support/lattice_text.h): names in any case, blanks or commas, a
+// trailing ';', rows over several lines.
+TEST(CosetLattice, ParsesEverySpellingTheGeneratorTakes) {
+  EXPECT_EQ(CosetLattice::parse("BCC"), CosetLattice::bcc());
+  EXPECT_EQ(CosetLattice::parse("\tFcc\n"), CosetLattice::fcc());
+  EXPECT_EQ(CosetLattice::parse("Cartesian"), CosetLattice::cartesian());
+  EXPECT_EQ(CosetLattice::parse("-1 1 1; 1 -1 1; 1 1 -1;"), CosetLattice::bcc());
+  const CosetLattice custom = CosetLattice::parse("1,0,0; 0,1,0; 0,0,3");
+  EXPECT_EQ(CosetLattice::parse("1 0 0;\n0, 1, 0;\n+0 0 3;"), custom);
+  EXPECT_EQ(custom.name(), "custom");
+  try {
+    (void)CosetLattice::parse("1,0; 0,1");
+    ADD_FAILURE() << "a 2-D lattice was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "the lattice is 2-dimensional but volumes are 3-D");
+  }
+}
+
 TEST(CosetLattice, BadLatticesAreOneLineErrors) {
   for (const char* text :
        {"1,0,0; 0,1,0; 1,1,0", "1,0,0; 0,1,0", "1,0,0; 0,1,0; 0,0,x", "1,0; 0,1; 0,0", "hex", "",

@@ -17,6 +17,7 @@
 
 #include "support/available_memory.h"
 #include "support/integer_math.h"
+#include "support/lattice_text.h"
 #include "support/output_file.h"
 #include "support/union_find.h"
 #include "tests/support/scratch_directory.h"
@@ -265,6 +266,61 @@ TEST_F(OutputFile, AClosedPipeIsAnErrorNotADeadProcess) {
   });
   ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
   EXPECT_EQ(WEXITSTATUS(status), 5);
+}
+
+// The one parser of lattices (the generator's and the runtime's): every spelling, one wording.
+TEST(LatticeText, NamesInAnyCaseAndRowsWithBlanksOrCommas) {
+  EXPECT_EQ(parse_lattice_text(" BCC ", 3, "x", 1000).name, "bcc");
+  EXPECT_EQ(parse_lattice_text("Cartesian", 2, "x", 1000).name, "cartesian");
+  const IntegerRows g{{2, 0, 0}, {0, 2, 0}, {1, 1, 1}};
+  for (const char* text :
+       {"2,0,0; 0,2,0; 1,1,1", "2 0 0;0 2 0;1 1 1;", "2, 0 ,0;\n0 2 0;\t1,1,+1 ;"}) {
+    const LatticeText l = parse_lattice_text(text, 3, "x", 1000);
+    EXPECT_TRUE(l.name.empty()) << text;
+    EXPECT_EQ(l.rows, g) << text;
+  }
+}
+
+TEST(LatticeText, EachMistakeHasOneLine) {
+  struct Case {
+    const char* text;
+    int dimension;  // of the directions
+    const char* message;
+  };
+  const Case cases[] = {
+      {"", 3,
+       "empty lattice: expected bcc, fcc, cartesian or the rows of G such as '1,1,0; 1,0,1; "
+       "0,1,1'"},
+      {"hex", 3,
+       "unknown lattice 'hex': expected bcc, fcc, cartesian or the rows of G such as '1,1,0; "
+       "1,0,1; 0,1,1'"},
+      {"bcc", 2, "the bcc lattice is 3-dimensional but the directions are 2-dimensional"},
+      {"1,0; 0,1", 3, "the lattice is 2-dimensional but the directions are 3-dimensional"},
+      {"1,0,0; 0,1,0", 3,
+       "the lattice generator must be square: got 2 rows of 3 entries, expected 3 rows"},
+      {"1,0,0; 0,1,0; 0,0,1; 1,1,1", 3, "4 lattice rows given: at most 3 are supported"},
+      {"1,0,0; 0,1,0; 0,0,x", 3,
+       "invalid lattice: lattice row 3 has the entry 'x', which is not an integer"},
+      {"1,0,0; 0,1,0; 0,0,1001", 3,
+       "lattice row 3 has the entry '1001', which is too large for a lattice generator: entries "
+       "must be at most 1000 in magnitude"},
+      {"1,0,0;; 0,0,1", 3, "invalid lattice: lattice row 2 is empty (two ';' in a row?)"},
+      {"1,,0; 0,1,0; 0,0,1", 3,
+       "invalid lattice: lattice row 1 ('1,,0') has an empty entry (stray ',')"},
+      {"1,0,0; 0,1; 0,0,1", 3,
+       "invalid lattice: lattice row 2 has 2 entries but lattice row 1 has 3; all must have the "
+       "same dimension"},
+  };
+  for (const Case& c : cases) {
+    const std::string because =
+        "the directions are " + std::to_string(c.dimension) + "-dimensional";
+    try {
+      (void)parse_lattice_text(c.text, c.dimension, because, 1000);
+      ADD_FAILURE() << c.text << ": no error";
+    } catch (const TextError& e) {
+      EXPECT_STREQ(e.what(), c.message) << c.text;
+    }
+  }
 }
 
 }  // namespace

@@ -1,0 +1,24 @@
+// CosetLattice::parse, apart from coset_lattice.cpp: a filter compiled at run time (loader/) links
+// the runtime's archive alone, and the objects it pulls in must not need support/'s text parser.
+#include <cstdint>
+
+#include "runtime/coset_lattice.h"
+#include "support/lattice_text.h"
+
+namespace boxgen::runtime {
+
+CosetLattice CosetLattice::parse(std::string_view text) {
+  // from_rows refuses larger entries with the same bound.
+  constexpr std::int64_t kMaxEntry = std::int64_t{1} << 20;
+  const support::LatticeText lattice =
+      support::parse_lattice_text(text, 3, "volumes are 3-D", kMaxEntry);
+  if (lattice.name == "bcc") return bcc();
+  if (lattice.name == "fcc") return fcc();
+  if (lattice.name == "cartesian") return cartesian();
+  IntRows rows{};
+  for (std::size_t r = 0; r < 3; ++r)
+    for (std::size_t c = 0; c < 3; ++c) rows.at(r).at(c) = lattice.rows.at(r).at(c);
+  return from_rows(rows);
+}
+
+}  // namespace boxgen::runtime
