@@ -16,6 +16,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <type_traits>
 #include <utility>
 
@@ -202,8 +203,14 @@ struct PackArith {
   HWY_ATTR static Whole whole(Real f) { return f; }
   HWY_ATTR static Whole constant(std::int64_t c) { return Whole(static_cast<double>(c)); }
   HWY_ATTR static Real constant_real(T c) { return Real(static_cast<double>(c)); }
+  // b is a constant of the tables (a Hermite diagonal): for a power of two, a / b is a * (1 / b)
+  // exactly, and the multiplication keeps the divider, the slowest vector unit, free.
   HWY_ATTR static Whole floor_div(Whole a, std::int64_t b) {
-    return b == 1 ? a : Whole(hn::Floor(hn::Div(a.v, hn::Set(D(), static_cast<T>(b)))));
+    if (b == 1) return a;
+    if ((b & (b - 1)) == 0)
+      return Whole(
+          hn::Floor(hn::Mul(a.v, hn::Set(D(), static_cast<T>(1.0 / static_cast<double>(b))))));
+    return Whole(hn::Floor(hn::Div(a.v, hn::Set(D(), static_cast<T>(b)))));
   }
   HWY_ATTR static Whole at_least(Real s, T c) {
     return Whole(hn::IfThenElseZero(hn::Ge(s.v, hn::Set(D(), c)), hn::Set(D(), T(1))));
@@ -240,10 +247,21 @@ struct PackArith {
   }
 };
 
+// Whether 1 / h is exact and h and 1 / h are normal: h = +-2^k, |k| < 1022 (its mantissa bits
+// zero, its exponent field away from both ends).
+inline bool exact_inverse(double h) {
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &h, sizeof bits);
+  const std::uint64_t exponent = (bits >> 52) & 0x7FF;
+  return (bits & ((std::uint64_t{1} << 52) - 1)) == 0 && exponent > 1 && exponent < 2045;
+}
+
 // World to lattice coordinates in double, as LatticeVolume::to_lattice, rounded to T as the scalar
-// path rounds them; x[i * kRow + lane] and near[lane] (1 or 0). points[3 * lane + i]: the chunk's
-// world coordinates, point after point. Lanes that are not near get x = 0, so that nothing below
-// converts a huge or non-finite number to an integer.
+// path rounds them (where the spacing h is a power of two, the division by it is a multiplication
+// by 1 / h: the same bits, and the divider, the slowest vector unit, stays free); x[i * kRow +
+// lane] and near[lane] (1 or 0). points[3 * lane + i]: the chunk's world coordinates, point after
+// point. Lanes that are not near get x = 0, so that nothing below converts a huge or non-finite
+// number to an integer.
 template <class T>
 BOXGEN_STAGE HWY_ATTR void lattice_lanes(const double* points, const Frame& frame, T* x, T* near) {
   const hn::ScalableTag<double> dd;
@@ -256,14 +274,17 @@ BOXGEN_STAGE HWY_ATTR void lattice_lanes(const double* points, const Frame& fram
       return hn::DemoteTo(dt, v);
     }
   };
+  bool exact[3];
+  for (int i = 0; i < 3; ++i) exact[i] = exact_inverse(frame.h[i]);
   const int width = static_cast<int>(hn::Lanes(dd));
   for (int at = 0; at < kChunk; at += width) {
     hn::Vec<decltype(dd)> lattice[3];
     hn::LoadInterleaved3(dd, points + std::ptrdiff_t{3} * at, lattice[0], lattice[1], lattice[2]);
     auto ok = hn::Eq(hn::Zero(dd), hn::Zero(dd));
     for (int i = 0; i < 3; ++i) {
-      lattice[i] =
-          hn::Div(hn::Sub(lattice[i], hn::Set(dd, frame.origin[i])), hn::Set(dd, frame.h[i]));
+      const auto shifted = hn::Sub(lattice[i], hn::Set(dd, frame.origin[i]));
+      lattice[i] = exact[i] ? hn::Mul(shifted, hn::Set(dd, 1.0 / frame.h[i]))
+                            : hn::Div(shifted, hn::Set(dd, frame.h[i]));
       ok = hn::And(ok, hn::And(hn::Gt(lattice[i], hn::Set(dd, frame.lower)),
                                hn::Lt(lattice[i], hn::Set(dd, frame.upper[i]))));
     }
