@@ -1,5 +1,5 @@
 // What a user waits for in `boxgen analyze SPEC`: the exact derivation of the piecewise form and
-// structure plus the default exact checks, for the presets (issue 3's limits) and the issue-11
+// structure plus the default exact checks, for the presets (with their time limits) and the
 // table of matrices a researcher tries next (at most 10 s and 1 GB each; degree 1 and 2 under
 // 1 s). Each iteration runs in a forked child, so its peak memory (ru_maxrss) and CPU time are
 // its own; the counters also show the cost estimate (`boxgen analyze --estimate`) beside them.
@@ -64,13 +64,13 @@ void analyze_case(benchmark::State& state, Case c) {
       ->UseManualTime()                                              \
       ->Iterations(1)
 
-// Presets (issue 3's limits).
+// Presets (with their time limits).
 BOXGEN_DERIVATION_BENCHMARK(m7, "m7", "", 10);
 BOXGEN_DERIVATION_BENCHMARK(m8, "m8", "", 20);
 BOXGEN_DERIVATION_BENCHMARK(m12, "m12", "", 60);
 BOXGEN_DERIVATION_BENCHMARK(fcc6, "fcc6", "", 20);
 BOXGEN_DERIVATION_BENCHMARK(cart7, "cart7", "", 20);
-// Issue 11's table.
+// Matrices a researcher tries next.
 BOXGEN_DERIVATION_BENCHMARK(cartesian_and_face_diagonals,
                             "1,0,0; 0,1,0; 0,0,1; 1,1,0; 1,-1,0; 1,0,1; 1,0,-1; 0,1,1; 0,1,-1",
                             "cartesian", 10);
@@ -108,7 +108,7 @@ BOXGEN_DERIVATION_BENCHMARK(m7_scaled_by_32,
                             "32,32,32; 32,-32,-32; -32,32,-32; -32,-32,32; 64,0,0; 0,64,0; 0,0,64",
                             "-32,32,32; 32,-32,32; 32,32,-32", 10);
 
-// Issue 19's estimate rows: long axes with a diagonal (the stencil of 274432 points dominates). The
+// Estimate rows: long axes with a diagonal (the stencil of 274432 points dominates). The
 // two 32-direction rows of docs/performance.md ("Cost estimate") take minutes each and are
 // commands there, not benchmark rows.
 BOXGEN_DERIVATION_BENCHMARK(long_axes_and_diagonal, "64,0,0; 0,64,0; 0,0,64; 1,1,1", "cartesian",

@@ -1,6 +1,6 @@
 // Derivation + emission time of M7, M8 and M12: boxgen emit's work (the exact analysis with its
 // default checks, then the cost-chosen emission of the evaluator and prefilter headers), wall
-// clock. Issue 8's limits are shown as target_s.
+// clock. The time limits we keep are shown as target_s.
 #include <benchmark/benchmark.h>
 
 #include "generator/codegen/emitter.h"

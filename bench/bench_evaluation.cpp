@@ -1,4 +1,4 @@
-// Evaluation speed (Google Benchmark; `boxrecon bench` prints the issue-8 ratios and the full
+// Evaluation speed (Google Benchmark; `boxrecon bench` prints the ratios and the full
 // Table 2 replica). Two groups:
 //   scalar/<filter>_<strategy>_<path>: the emitted evaluate<double>() per strategy (generated/
 //     holds the cost-chosen `auto` forms; the monomial and Horner ones are emitted at build time),

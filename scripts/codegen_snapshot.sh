@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Writes into OUT_DIR everything the code generator prints, so that a refactor of generator/ can
-# be checked to change no output (issue 34): `diff -r BEFORE AFTER` must be empty.
+# be checked to change no output: `diff -r BEFORE AFTER` must be empty.
 #   scripts/codegen_snapshot.sh BUILD_DIR OUT_DIR
 # BUILD_DIR holds apps/boxgen (and apps/boxrecon, for the filter cache's sources). It emits:
 # - every registry filter for every target (C++ and prefilters, GLSL float and double, CUDA) with

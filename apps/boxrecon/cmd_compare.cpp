@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/boxrecon/box_options.h"
 #include "apps/boxrecon/cmd_volumes.h"
 #include "apps/boxrecon/lattice_commands.h"
 #include "apps/boxrecon/output_volume.h"
@@ -33,7 +34,7 @@ struct CompareArgs {
   std::string reference, volume, filter, lattice, error_volume, type, mask;
   app::PrefilterOptions prefilter;
   std::optional<double> mask_above;
-  std::vector<double> min, max;
+  app::BoxOptions box;
   bool json = false;
 };
 CompareArgs args;
@@ -134,13 +135,9 @@ CLI::App* add_compare_command(CLI::App& app) {
                 "FILE: also the errors over the voxels where this mask is not 0 (a Cartesian "
                 "volume on the reference's grid, NRRD or NIfTI, e.g. a brain mask)")
       ->excludes(above);
-  auto* min = c->add_option("--min", args.min,
-                            "X Y Z: compare only in the box from here to --max (world), which "
-                            "must lie in the region the filter reconstructs (default: that region)")
-                  ->expected(3);
-  auto* max = c->add_option("--max", args.max, "X Y Z: the box's upper corner")->expected(3);
-  min->needs(max);
-  max->needs(min);
+  app::add_box_options(c, args.box,
+                       "compare only in this box, which must lie in the region the filter "
+                       "reconstructs (default: that region)");
   c->add_flag("--json", args.json, "one JSON object");
   c->add_option("--error-volume", args.error_volume,
                 "NRRD (.nrrd) or NIfTI (.nii, .nii.gz) on the reference's grid: reconstruction "
@@ -170,8 +167,7 @@ int run_compare() {
   if (!args.mask.empty()) mask.emplace(read_mask(ref));
   const LatticeVolume<float> volume = app::read_for<float>(filter, q, args.volume, {});
   const Box region = default_box(volume, filter);
-  const Box box =
-      args.min.empty() ? region : app::box_from_options(args.min, args.max, region, filter.name());
+  const Box box = app::box_from_options(args.box, region, filter.name());
   IndexRange range[3];
   for (int a = 0; a < 3; ++a) range[a] = indices_inside(ref, box, a);
   const Reconstructor<float> spline(volume, filter);

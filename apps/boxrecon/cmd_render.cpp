@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "analysis/png_image.h"
+#include "apps/boxrecon/box_options.h"
 #include "apps/boxrecon/device_choice.h"
 #include "apps/boxrecon/lattice_commands.h"
 #include "apps/boxrecon/prefilter_options.h"
@@ -42,7 +43,7 @@ struct RenderArgs {
   int width = 512, height = 512;
   double step = 0;
   std::optional<double> azimuth, elevation, distance;
-  std::vector<double> min, max;
+  app::BoxOptions box;
 };
 RenderArgs args;
 
@@ -82,9 +83,9 @@ RgbBuffer render_volume(const SplineFilter& rf, const app::PrefilterSetting& q, 
   if (!args.volume.empty()) choose_from_data(volume, o);
   volume = app::coefficients_for(std::move(volume), rf, q);
   const Box region = default_box(volume, rf);
-  const Box box = !args.min.empty() ? app::box_from_options(args.min, args.max, region, rf.name())
-                  : args.volume.empty() ? cube
-                                        : region;
+  const Box box = app::given_box(args.box) ? app::box_from_options(args.box, region, rf.name())
+                  : args.volume.empty()    ? cube
+                                           : region;
   if (boxgen::app::parse_device(args.device) == boxgen::app::Device::Gl)
     return gl::render_isosurface(
         volume, rf, box, o, boxgen::frontend::glsl_for(rf, args.filter, args.precision == "double"),
@@ -126,14 +127,9 @@ CLI::App* add_render_command(CLI::App& app) {
                 "camera: degrees above the xy plane, -90 < E < 90 (default 32.89)");
   r->add_option("--distance", args.distance,
                 "camera: from the box's centre in box diagonals (default 1.6)");
-  auto* min_option = r->add_option("--min", args.min,
-                                   "X Y Z: the box rendered (world), lower corner; default: "
-                                   "[-1,1]^3 for --function, the region the filter reconstructs "
-                                   "for --volume; the box must lie in that region")
-                         ->expected(3);
-  auto* max_option = r->add_option("--max", args.max, "X Y Z: the box's upper corner")->expected(3);
-  min_option->needs(max_option);
-  max_option->needs(min_option);
+  app::add_box_options(r, args.box,
+                       "default: [-1,1]^3 for --function, the region the filter reconstructs for "
+                       "--volume; the box must lie in that region");
   r->add_option("--shading", args.shading, "normal (default) | curvature");
   r->add_option("--width", args.width, "pixels (default 512)");
   r->add_option("--height", args.height, "pixels (default 512)");

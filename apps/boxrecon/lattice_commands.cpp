@@ -184,24 +184,6 @@ int run_error(const std::string& function, int n, const std::string& filter,
   return 0;
 }
 
-Box box_from_options(const std::vector<double>& min, const std::vector<double>& max,
-                     const Box& region, const std::string& filter_name) {
-  Box box = region;
-  for (int a = 0; a < 3; ++a) {
-    box.min[a] = min[static_cast<std::size_t>(a)];
-    box.max[a] = max[static_cast<std::size_t>(a)];
-    if (!(std::isfinite(box.min[a]) && std::isfinite(box.max[a]) && box.min[a] <= box.max[a]))
-      throw std::invalid_argument("--min and --max must be finite with min <= max");
-    if (box.min[a] < region.min[a] || box.max[a] > region.max[a])
-      throw std::out_of_range(fmt::format(
-          "the box --min --max leaves the region the {} filter reconstructs, [{:.9g}, {:.9g}] x "
-          "[{:.9g}, {:.9g}] x [{:.9g}, {:.9g}]",
-          filter_name, region.min[0], region.max[0], region.min[1], region.max[1], region.min[2],
-          region.max[2]));
-  }
-  return box;
-}
-
 namespace {
 
 // The map from a grid's frame to a volume's, both given by their maps to world (nothing: the
@@ -395,9 +377,8 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
         [&gpu](std::span<const Vec3> points, std::span<T> out) { gpu->evaluate(points, out); });
   };
   if (!cartesian) {
-    const Box box = options.min.empty() ? default_box(volume, f)
-                                        : Box{{options.min[0], options.min[1], options.min[2]},
-                                              {options.max[0], options.max[1], options.max[2]}};
+    const std::optional<Box> given = given_box(options.box);
+    const Box box = given ? *given : default_box(volume, f);
     const LatticeGrid grid = output_lattice_grid(lattice, options, like, box);
     const Sizes& n = grid.sizes;
     check_output_memory(static_cast<std::uint64_t>(lattice.coset_count()) *
@@ -416,12 +397,12 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
     grid = {like->sizes, like->spacing, like->origin};
     grid.to_volume = grid_to_volume(source.frame, output_frame);
   } else {
-    // --min/--max are world coordinates: for an oblique volume the output is then axis-aligned
-    // in the world; without them the grid lies on the volume's own axes (its affine kept).
-    const bool world_box = source.frame && !options.min.empty();
-    const Box box = options.min.empty() ? default_box(volume, f)
-                                        : Box{{options.min[0], options.min[1], options.min[2]},
-                                              {options.max[0], options.max[1], options.max[2]}};
+    // --box (--min/--max) is in world coordinates: for an oblique volume the output is then
+    // axis-aligned in the world; without them the grid lies on the volume's own axes (its affine
+    // kept).
+    const std::optional<Box> given = given_box(options.box);
+    const bool world_box = source.frame && given;
+    const Box box = given ? *given : default_box(volume, f);
     if (!options.spacing.empty())
       grid = grid_with_spacing(box, options.spacing);
     else if (!options.size.empty())

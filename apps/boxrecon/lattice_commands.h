@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/boxrecon/box_options.h"
 #include "apps/boxrecon/device_choice.h"
 #include "apps/boxrecon/prefilter_options.h"
 #include "runtime/nrrd_io.h"
@@ -33,21 +34,15 @@ template <class T>
 void print_evaluations(std::span<const T> values, std::span<const runtime::Vec3> gradients,
                        std::span<const runtime::Hessian> hessians, bool gradient, bool hessian);
 
-// The box of --min X Y Z --max X Y Z (world; compare and render): finite, min <= max on each
-// axis, and inside `region` (default_box of the coefficients: where the filter reconstructs);
-// else std::invalid_argument or std::out_of_range, one line naming the region.
-runtime::Box box_from_options(const std::vector<double>& min, const std::vector<double>& max,
-                              const runtime::Box& region, const std::string& filter_name);
-
 // resample's output grid (issue 33): --n N (a cube, default 64), --size NX NY NZ, or --spacing H
-// (one, or three) over the box --min/--max (default: default_box); or --like IMAGE, the grid of
-// that Cartesian image (its sizes, spacings and origin). CLI11 keeps them exclusive.
+// (one, or three) over the box --box or --min/--max (default: default_box); or --like IMAGE, the
+// grid of that Cartesian image (its sizes, spacings and origin). CLI11 keeps them exclusive.
 struct OutputGridOptions {
   int n = 64;
   std::vector<int> size;
   std::vector<double> spacing;
   std::string like;
-  std::vector<double> min, max;
+  BoxOptions box;
 };
 
 // eval: the filter's spline (after the prefilter and boundary of `pre`) at the points of a file,

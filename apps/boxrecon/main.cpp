@@ -9,7 +9,7 @@
 //                  [--gradient] [--json]
 //   boxrecon error --table [--points K] [--seed S] [--json]
 //   boxrecon resample --filter F [--prefilter P] --volume v.nrrd -o grid.nrrd [--n N]
-//                     [--min X Y Z --max X Y Z] [--precision float|double]
+//                     [--box LO HI | --min X Y Z --max X Y Z] [--precision float|double]
 //   boxrecon render (--function F --n N | --volume v.nrrd) [--filter F] ... -o out.png
 //   boxrecon subsample --volume IN --lattice L (--fraction F | --spacing H) [--filter F] ... -o OUT
 //   boxrecon compare --reference IN --volume LAT --filter F [--prefilter P] [--mask-above V] ...
@@ -208,21 +208,13 @@ int run(int argc, char** argv) {
       "--like", grid_options.like,
       "IMAGE: the grid of this Cartesian image (NRRD or NIfTI: its sizes, spacings and origin), "
       "instead of --n and the box");
-  auto* min_option = resample
-                         ->add_option("--min", grid_options.min,
-                                      "X Y Z: lower corner of the box (world); default (without "
-                                      "--min/--max): the largest box "
-                                      "in which the filter's stencil lies inside the volume")
-                         ->expected(3);
-  auto* max_option =
-      resample->add_option("--max", grid_options.max, "X Y Z: upper corner of the box (world)")
-          ->expected(3);
-  min_option->needs(max_option);
-  max_option->needs(min_option);
+  const auto box_options = boxgen::app::add_box_options(
+      resample, grid_options.box,
+      "default: the largest box in which the filter's stencil lies inside the volume");
   n_option->excludes(size_option)->excludes(spacing_option)->excludes(like_option);
   size_option->excludes(spacing_option)->excludes(like_option);
   spacing_option->excludes(like_option);
-  like_option->excludes(min_option)->excludes(max_option);
+  for (auto* box_option : box_options) like_option->excludes(box_option);
   auto* resample_precision = resample->add_option(
       "--precision", precision, "float | double (default double; float with --device gl)");
   boxgen::app::add_device_option(resample, device, &verbose);

@@ -288,8 +288,8 @@ TEST_F(AnalysisCli, RenderWritesAPngOfTheRequestedSize) {
   EXPECT_EQ(listing(), (std::vector<std::string>{"r.png"}));
 }
 
-// render --min/--max: the default box given explicitly ([-1,1]^3 for --function) is the same
-// picture byte for byte; a smaller box another one; a box beyond the region the filter
+// render --min/--max (or --box): the default box given explicitly ([-1,1]^3 for --function) is the
+// same picture byte for byte; a smaller box another one; a box beyond the region the filter
 // reconstructs one line and no file.
 TEST_F(AnalysisCli, RenderTakesABox) {
   const std::vector<std::string> base{"render",  "--function", "ml",       "--n", "13",
@@ -306,7 +306,12 @@ TEST_F(AnalysisCli, RenderTakesABox) {
   const std::string plain = render({}, "plain.png");
   ASSERT_FALSE(plain.empty());
   EXPECT_EQ(render({"--min", "-1", "-1", "-1", "--max", "1", "1", "1"}, "same.png"), plain);
-  EXPECT_NE(render({"--min", "-0.5", "-1", "-1", "--max", "1", "0.6", "1"}, "small.png"), plain);
+  const std::string small =
+      render({"--min", "-0.5", "-1", "-1", "--max", "1", "0.6", "1"}, "small.png");
+  EXPECT_NE(small, plain);
+  // --box LO HI, the same boxes: one number per corner (the cube), or x,y,z.
+  EXPECT_EQ(render({"--box", "-1", "1"}, "box.png"), plain);
+  EXPECT_EQ(render({"--box", "-0.5,-1,-1", "1,0.6,1"}, "small_box.png"), small);
   std::vector<std::string> outside = base;
   outside.insert(outside.end(),
                  {"--min", "-3", "-1", "-1", "--max", "1", "1", "1", "-o", file("out.png")});

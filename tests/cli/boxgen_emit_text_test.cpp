@@ -1,4 +1,4 @@
-// What `boxgen emit` pastes into the files it writes must compile: issue 32, item 14 (a SPEC,
+// What `boxgen emit` pastes into the files it writes must compile (a SPEC,
 // lattice or shell list given over several lines was pasted as it was into the first comment
 // line, so the headers did not compile) and item 15 (a name the checks accept compiles beside
 // the usual C and C++ headers). The emitted headers are compiled with the system's c++.

@@ -1,4 +1,4 @@
-// The filter cache from the command line (issue 32, items 1, 3 and 18): `boxrecon filters` shows
+// The filter cache from the command line: `boxrecon filters` shows
 // what an entry's .json says only as plain text, a cache others can write is refused in one line,
 // and a compile stopped by SIGTERM or SIGINT leaves no compiler running and no temporary behind.
 // The caches and compilers (shell scripts) are made here. BOXRECON_UNDER_TEST runs them against

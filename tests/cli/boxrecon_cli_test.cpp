@@ -17,9 +17,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <set>
 #include <sstream>
+#include <string>
+#include <tuple>
 
 #include "cli_support.h"
 #include "tests/support/scratch_directory.h"
@@ -269,6 +272,30 @@ TEST_F(BoxreconCli, ResampleWritesAPlain3dNrrdOfTheReconstruction) {
                     cubic({-1 + 0.5 * i, -1 + 0.5 * j, -1 + 0.5 * k}), 1e-10)
             << i << " " << j << " " << k;
 
+  // The same box spelt --box LO HI: one number per corner, or x,y,z; the same file byte for byte.
+  const auto bytes = [&](const std::string& name) {
+    std::ifstream in(file(name), std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const auto& [name, lo, hi] :
+       {std::tuple<std::string, std::string, std::string>{"cube.nrrd", "-1", "1"},
+        {"corners.nrrd", "-1,-1,-1", "1,1,1"}}) {
+    EXPECT_EQ(boxrecon_ok({"resample", "--filter", "m7", "--prefilter", "q1", "--volume",
+                           file("vol.nrrd"), "-o", file(name), "--n", "5", "--box", lo, hi}),
+              "");
+    EXPECT_EQ(bytes(name), bytes("grid.nrrd")) << name;
+  }
+  // A box that is not a cube: 5 points over [-1, 1] x [-0.5, 0.5] x [0, 1].
+  EXPECT_EQ(
+      boxrecon_ok({"resample", "--filter", "m7", "--prefilter", "q1", "--volume", file("vol.nrrd"),
+                   "-o", file("slab.nrrd"), "--n", "5", "--box", "-1,-0.5,0", "1,0.5,1"}),
+      "");
+  const auto slab =
+      load_grid(file("slab.nrrd"), nrrdTypeDouble, {5, 5, 5}, {0.5, 0.25, 0.25}, {-1, -0.5, 0});
+  ASSERT_EQ(slab.size(), 125u);
+  EXPECT_NEAR(slab[124], cubic({1, 0.5, 1}), 1e-10);
+  EXPECT_NEAR(slab[0], cubic({-1, -0.5, 0}), 1e-10);
+
   // Defaults: the largest box where the stencil fits, which holds the sampled cube [-1,1]^3.
   EXPECT_EQ(boxrecon_ok({"resample", "--filter", "m12", "--volume", file("vol.nrrd"), "-o",
                          file("default.nrrd"), "--n", "4", "--precision", "float"}),
@@ -282,7 +309,8 @@ TEST_F(BoxreconCli, ResampleWritesAPlain3dNrrdOfTheReconstruction) {
     EXPECT_GE(nrrd->spaceOrigin[a] + 3 * nrrd->axis[a].spaceDirection[a], 1);
   }
   nrrdNuke(nrrd);
-  EXPECT_EQ(listing(), (std::set<std::string>{"vol.nrrd", "grid.nrrd", "default.nrrd"}));
+  EXPECT_EQ(listing(), (std::set<std::string>{"vol.nrrd", "grid.nrrd", "cube.nrrd", "corners.nrrd",
+                                              "slab.nrrd", "default.nrrd"}));
 }
 
 TEST_F(BoxreconCli, AFailedWriteToStdoutIsAnError) {
@@ -411,6 +439,25 @@ std::vector<BadInput> bad_inputs() {
        resample_with("vol.nrrd", {"--min", "-1", "-1", "--max", "1", "1", "1"}),
        2,
        {"--min", "3"}},
+      // --box LO HI: each corner one number or x,y,z; not beside --min/--max
+      {"BoxCornerWithTwoCoordinates",
+       resample_with("vol.nrrd", {"--box", "-1,-1", "1"}),
+       2,
+       {"--box", "-1,-1"}},
+      {"BoxCornerWithATrailingComma",
+       resample_with("vol.nrrd", {"--box", "-1,-1,-1,", "1"}),
+       2,
+       {"--box"}},
+      {"BoxCornerNotANumber", resample_with("vol.nrrd", {"--box", "-1", "x"}), 2, {"--box", "x"}},
+      {"BoxCornerNotFinite", resample_with("vol.nrrd", {"--box", "-1", "inf"}), 2, {"--box"}},
+      {"BoxWithOneCorner", resample_with("vol.nrrd", {"--box", "-1"}), 2, {"--box"}},
+      {"BoxBesideMinMax",
+       resample_with("vol.nrrd",
+                     {"--box", "-1", "1", "--min", "-1", "-1", "-1", "--max", "1", "1", "1"}),
+       2,
+       {"--box"}},
+      {"BoxSpeltLeavesTheVolume", resample_with("vol.nrrd", {"--box", "-1", "9"}), 1, {"leaves"}},
+      {"BoxSpeltInverted", resample_with("vol.nrrd", {"--box", "1", "-1"}), 1, {"degenerate"}},
       // names
       {"UnknownFilter",
        {"eval", "--filter", "m9", "--volume", "@/vol.nrrd", "--points", "@/good.txt"},
@@ -567,7 +614,7 @@ TEST_F(BoxreconCli, SmallHandWrittenVolumeWorks) {
   EXPECT_NEAR(values[0][0], 1.0, 1e-14);
 }
 
-// boxrecon bench --quick --json: one JSON object with every ratio of issue 8 (each a measured,
+// boxrecon bench --quick --json: one JSON object with every ratio it names (each a measured,
 // positive, finite number) and the machine; --threads takes a positive count.
 TEST(BoxreconBench, QuickJsonHasEveryRatioAndTheMachine) {
   const std::string out = boxrecon_ok(

@@ -1,4 +1,4 @@
-// Faults a hostile trial found in boxrecon's reading and results (issue 19, items 1 and 3): a BCC
+// Faults a hostile trial found in boxrecon's reading and results: a BCC
 // file's coset order is honoured or refused, never guessed, and a result that is not finite is an
 // error naming its cause, with nothing printed or written. Each case is a file written here by
 // hand. BOXRECON_UNDER_TEST runs them against another boxrecon (an older build fails them).

@@ -1,4 +1,4 @@
-// boxrecon's bounds on work and memory (issue 19, items 4-6): arguments inside their allowed
+// boxrecon's bounds on work and memory: arguments inside their allowed
 // ranges that once ran for ever or died of std::bad_alloc (exit 3) are refused up front with one
 // line naming the bound and the size asked for, exit 1, within seconds.
 #include <fcntl.h>
@@ -87,7 +87,7 @@ TEST_F(BoxreconLimits, SizesBeyondMemoryAreRefusedNamingTheSizeNeeded) {
   refused({"bench", "--points", "1000000000"}, {"--points 1000000000", "GiB"});
 }
 
-// Issue 32, item 13: under a 4 GiB address-space limit (ulimit -v), requests that fit the
+// Under a 4 GiB address-space limit (ulimit -v), requests that fit the
 // machine's memory but not the process's ended in std::bad_alloc (exit 3). Each limit now comes
 // from the memory the process may still take, checked before allocating: one line, exit 1.
 class BoxreconMemoryLimit : public BoxreconLimits {

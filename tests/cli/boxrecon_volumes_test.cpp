@@ -185,6 +185,33 @@ TEST_F(BoxreconVolumes, CompareMatchesAHandCheckedCase) {
   EXPECT_EQ(at(7, 4, 4), 0.0f);
 }
 
+// compare's box spelt --box LO HI: one number per corner is the cube (the same 4^3 points as
+// --min 3 3 3 --max 6 6 6 above), three comma-separated numbers a box of any shape (z in [3, 4]:
+// two of the grid's z layers, 4 x 4 x 2 points).
+TEST_F(BoxreconVolumes, CompareTakesTheBoxInEitherSpelling) {
+  save_cartesian(file("ref.nrrd"), 10,
+                 [](int i, int, int) { return 10 + (static_cast<float>(i) - 4.5f); });
+  save_cartesian(file("ten.nrrd"), 10, [](int, int, int) { return 10.0f; });
+  const auto region = [&](const std::string& lo, const std::string& hi) {
+    return nlohmann::json::parse(
+        ok({"compare", "--reference", file("ref.nrrd"), "--volume", file("ten.nrrd"), "--filter",
+            "tricubic", "--box", lo, hi, "--json"}))["region"];
+  };
+  const nlohmann::json cube = region("3", "6");
+  EXPECT_EQ(cube["points"], 64);
+  EXPECT_NEAR(cube["rms"].get<double>(), std::sqrt(1.25), 1e-6);
+  EXPECT_EQ(region("3,3,3", "6,6,6"), cube);
+  const nlohmann::json flat = region("3,3,3", "6,6,4");
+  EXPECT_EQ(flat["points"], 32);
+  EXPECT_NEAR(flat["rms"].get<double>(), std::sqrt(1.25), 1e-6);
+  refused({"compare", "--reference", file("ref.nrrd"), "--volume", file("ten.nrrd"), "--filter",
+           "tricubic", "--box", "3,3", "6", "--error-volume", file("e.nrrd")},
+          "--box", file("e.nrrd"));
+  refused({"compare", "--reference", file("ref.nrrd"), "--volume", file("ten.nrrd"), "--filter",
+           "tricubic", "--box", "-30", "6", "--error-volume", file("e.nrrd")},
+          "leaves the region", file("e.nrrd"));
+}
+
 // Where image_png (analysis/gnuplot.cpp) draws panel p of a slice of W x H pixels, each drawn as
 // Z x Z (Z = 256 / the longer side, at least 1): columns from p (Z W + 200) + 70, rows from 40;
 // the PNG is panels (Z W + 200) by Z H + 100 pixels. The checks look at the centre of each

@@ -116,7 +116,7 @@ std::vector<BadInput> bad_inputs() {
       {"EmitNameIsAKeyword",
        {"emit", "zp", "--name", "namespace", "--out", "/nonexistent/boxgen"},
        {"keyword"}},
-      // names that compile nowhere or clobber another file of the folder (issue 19)
+      // names that compile nowhere or clobber another file of the folder
       {"EmitNameShadowsStd", {"emit", "zp", "--name", "std", "--out", "/nonexistent/b"}, {"std"}},
       {"EmitNameIsTheRegistry",
        {"emit", "zp", "--name", "registry", "--out", "/nonexistent/b"},
@@ -131,7 +131,7 @@ std::vector<BadInput> bad_inputs() {
       {"EmitNameIsAnIntegerMacro",
        {"emit", "zp", "--name", "INT8_MAX", "--out", "/nonexistent/b"},
        {"macro"}},
-      // names that were accepted and did not compile, or were refused late (issue 32, item 15)
+      // names that were accepted and did not compile, or were refused late
       {"EmitNameIsMaxfloat",
        {"emit", "zp", "--name", "MAXFLOAT", "--out", "/nonexistent/b"},
        {"MAXFLOAT", "macro"}},
@@ -155,7 +155,7 @@ std::vector<BadInput> bad_inputs() {
        {"twice"}},
       {"EmitWithoutSpecOrRegistry", {"emit", "--out", "/nonexistent/b"}, {"--registry"}},
       {"EmitNameWithoutSpec", {"emit", "--name", "z", "--out", "/nonexistent/b"}, {"SPEC"}},
-      // values that once fell back to a default in silence (issue 19)
+      // values that once fell back to a default in silence
       {"MaxSecondsNegative", {"analyze", "zp", "--max-seconds", "-5"}, {"--max-seconds"}},
       {"MaxSecondsNaN", {"analyze", "zp", "--max-seconds", "nan"}, {"--max-seconds", "nan"}},
       {"MaxSecondsEmpty", {"analyze", "zp", "--max-seconds", ""}, {"--max-seconds"}},
@@ -166,7 +166,7 @@ std::vector<BadInput> bad_inputs() {
        {"spectrum", "m7", "--plane", "1,0,0", "--size", "0", "-o", "/nonexistent/b.png"},
        {"--size", "0"}},
       {"NotANumberInADirectionList", {"analyze", "nan,1; 0,1"}, {"not an integer"}},
-      // issue 11 conventions
+      // the command-line conventions
       {"RankDeficientButTransposeValid",
        {"analyze", "1,0,1; 0,1,1"},
        {"transpose '1,0; 0,1; 1,1'"}},

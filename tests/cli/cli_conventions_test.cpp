@@ -1,4 +1,4 @@
-// Issue 11's conventions, as a new user meets them: --help says what a SPEC and --lattice list,
+// The CLI's conventions, as a new user meets them: --help says what a SPEC and --lattice list,
 // --estimate predicts without deriving, the checks modes, eval --json records the derivative,
 // and the prefilter summary names a shell only when all its taps carry the weight it claims.
 #include <algorithm>

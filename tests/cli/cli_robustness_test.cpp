@@ -71,7 +71,7 @@ TEST(CliRobustness, AClosedPipeEndsQuietlyWithStatusOne) {
   EXPECT_EQ(stderr_text, "");
 }
 
-// Issue 32, item 20: `boxrecon eval ... | head -c1`: the reader goes after the first byte, while
+// `boxrecon eval ... | head -c1`: the reader goes after the first byte, while
 // boxrecon has more to write. The write that meets EPIPE is long past when boxrecon finishes, so
 // errno no longer says so; it printed "could not write the output: disk full or closed pipe?".
 TEST(CliRobustness, AReaderGoneMidwayEndsQuietlyWithStatusOne) {

@@ -165,7 +165,7 @@ TEST(ReadmeCommands, EveryCommandRunsAndPrintsWhatTheReadmeShows) {
 }
 
 // The README is a user's guide (what, set-up, a tour, dependencies, links); reference and
-// measurements live in docs/ (issue 18 set the bound).
+// measurements live in docs/.
 TEST(ReadmeCommands, TheReadmeStaysAShortGuide) {
   const auto lines = split_lines(read_text_file(std::string(BOXGEN_SOURCE_DIR) + "/README.md"));
   EXPECT_LT(lines.size(), 350U) << "README.md has " << lines.size()

@@ -95,7 +95,7 @@ TEST(CostEstimate, RefusalNamesThePredictionAndTheLimit) {
   EXPECT_NO_THROW(refuse_if_too_costly(e, 2000));
 }
 
-// Issue 32, item 12: thirteen directions whose knot cells number up to 1.05e7 (the general-position
+// Thirteen directions whose knot cells number up to 1.05e7 (the general-position
 // bound) were enumerated for 126 s and 5.5 GB before the cost check said "too costly", and under a
 // 4 GB limit ended in std::bad_alloc. The refusal now comes first, on the prediction `--estimate`
 // prints: its message says "at most", which only the bound (never the enumerated count) gives.

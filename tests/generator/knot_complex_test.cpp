@@ -1,4 +1,4 @@
-// The derivation on the true knot planes (issue 11): the knot levels, the cell keys, exact point
+// The derivation on the true knot planes: the knot levels, the cell keys, exact point
 // location of shifts, scale invariance, the symmetry-reduced checks against the full ones (and
 // against broken forms, so they can fail).
 #include <gtest/gtest.h>

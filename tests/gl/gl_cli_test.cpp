@@ -168,7 +168,7 @@ TEST_F(GlCliTest, DumpWritesEachKernelsSourceLogAndBinary) {
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
 }
 
-// Issue 32, item 20: BOXGEN_GL_DUMP naming a folder that does not exist created it with its
+// BOXGEN_GL_DUMP naming a folder that does not exist created it with its
 // parents, and BOXGEN_GL_PLATFORM=bogus was ignored. Each is one line, exit 1, nothing made.
 TEST_F(GlCliTest, AMissingDumpFolderAndAnUnknownPlatformAreRefused) {
   const std::string missing = file("no/such/folder");

@@ -1,4 +1,4 @@
-// NIfTI files that lie (issue 32, items 4 to 8): every file here is written byte by byte, as the
+// NIfTI files that lie: every file here is written byte by byte, as the
 // NIfTI-1 standard lays it out (nifti1.h: 348 header bytes, 4 extension bytes, then the data), so
 // the reader is tested against the bytes and not against nifticlib's own writer. nifticlib repairs
 // such headers silently (NaN samples become 0, a spacing of 0, -2 or NaN becomes 1, a vox_offset

@@ -673,7 +673,7 @@ TEST_F(BccNrrd, ReplacingAFileKeepsItsPermissions) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Faults a hostile trial found (issue 19, items 1, 12, 13)
+// Faults a hostile trial found
 
 // A BCC file whose cosets are stored odd first, and says so, is that volume; coset offsets that
 // are not two cosets, rows that are not numbers and rows of another lattice are refused.

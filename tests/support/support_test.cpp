@@ -39,7 +39,7 @@ TEST(IntegerMath, FloorDivIsTheMathematicalFloorForEverySignCombination) {
   EXPECT_EQ(floor_div(-(std::int64_t{1} << 40) - 1, 1 << 20), -(std::int64_t{1} << 20) - 1);
 }
 
-// Issue 32, item 13: the memory a process may still take is bounded by its address-space limit
+// The memory a process may still take is bounded by its address-space limit
 // (ulimit -v), not only by the machine's MemAvailable. A child sets RLIMIT_AS 256 MiB above what
 // it has mapped; what it may still take must come out at most 256 MiB (and not 0).
 TEST(AvailableMemory, AnAddressSpaceLimitBoundsIt) {
@@ -203,7 +203,7 @@ TEST_F(OutputFile, ASignalRemovesThePendingTemporaries) {
   }
 }
 
-// Issue 32, item 10: a signal between the two renames of a set left a new h.hpp beside the old
+// A signal between the two renames of a set left a new h.hpp beside the old
 // h_prefilters.hpp. The writer stops itself there (the test hook raises SIGSTOP), the signal is
 // sent, and the writer goes on: SIGINT, SIGTERM and SIGHUP are held until both renames are done;
 // SIGKILL cannot be held, and the next write of a set into the folder completes the first one.

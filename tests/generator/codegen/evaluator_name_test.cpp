@@ -1,4 +1,4 @@
-// Issue 32, item 15: `boxgen emit --name` accepted names that do not compile (MAXFLOAT, RAND_MAX,
+// `boxgen emit --name` accepted names that do not compile (MAXFLOAT, RAND_MAX,
 // EXIT_SUCCESS and Traits on their own; FLT_MAX, DBL_MAX, CHAR_BIT, BUFSIZ beside the usual
 // headers; GLSL's reserved gl_ prefix), and refused a name over 64 characters only after the
 // derivation, as "not an identifier". The macros are read from this machine's compiler, not
