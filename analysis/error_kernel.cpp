@@ -15,6 +15,17 @@ long double phase(const Vec& w, const std::vector<std::int64_t>& j) {
   return t;
 }
 
+// sum_j t(j) e^{-i w.j}
+std::complex<long double> fourier_sum(const std::vector<LatticeTap>& taps, const Vec& w) {
+  long double re = 0, im = 0;
+  for (const auto& t : taps) {
+    const long double ph = phase(w, t.point);
+    re += t.value * std::cos(ph);
+    im -= t.value * std::sin(ph);
+  }
+  return {re, im};
+}
+
 }  // namespace
 
 ErrorKernel::ErrorKernel(BoxSplineSpectrum psi, double det_g,
@@ -37,6 +48,19 @@ ErrorKernel ErrorKernel::interpolation(BoxSplineSpectrum psi, double det_g,
   return e;
 }
 
+ErrorKernel ErrorKernel::regularised_interpolation(BoxSplineSpectrum psi, double det_g,
+                                                   std::vector<LatticeTap> autocorrelation,
+                                                   std::vector<LatticeTap> lattice_samples,
+                                                   std::vector<LatticeTap> regulariser, double mu) {
+  if (!(mu >= 0) || (mu > 0 && regulariser.empty()))
+    throw std::invalid_argument("the regularised error kernel needs D and mu >= 0");
+  ErrorKernel e =
+      interpolation(std::move(psi), det_g, std::move(autocorrelation), std::move(lattice_samples));
+  e.regulariser_ = std::move(regulariser);
+  e.mu_ = mu;
+  return e;
+}
+
 long double ErrorKernel::aliasing_sum(const Vec& w) const {
   long double a = 0;
   for (const auto& t : autocorrelation_)
@@ -49,25 +73,21 @@ long double ErrorKernel::minimum(const Vec& w) const {
   return 1 - p * p / aliasing_sum(w);
 }
 
+std::complex<long double> ErrorKernel::prefilter_response(const Vec& w) const {
+  if (prefilter_.empty()) return 1;
+  const std::complex<long double> s = fourier_sum(prefilter_, w);
+  if (!inverse_) return s;
+  long double d2 = 0;
+  if (mu_ > 0) d2 = std::norm(fourier_sum(regulariser_, w));
+  return std::conj(s) / (std::norm(s) + mu_ * d2);
+}
+
 long double ErrorKernel::operator()(const Vec& w) const {
   const long double p = psi_.precise(w);
   const long double a = aliasing_sum(w);
-  long double qr = 1, qi = 0;
-  if (!prefilter_.empty()) {
-    qr = 0;
-    for (const auto& t : prefilter_) {
-      const long double ph = phase(w, t.point);
-      qr += t.value * std::cos(ph);
-      qi -= t.value * std::sin(ph);
-    }
-    if (inverse_) {  // Q = 1 / S = conj(S) / |S|^2
-      const long double s2 = qr * qr + qi * qi;
-      qr /= s2;
-      qi = -qi / s2;
-    }
-  }
-  const long double dr = qr - p / a;
-  return 1 - p * p / a + a * (dr * dr + qi * qi);
+  const std::complex<long double> q = prefilter_response(w);
+  const long double dr = q.real() - p / a;
+  return 1 - p * p / a + a * (dr * dr + q.imag() * q.imag());
 }
 
 long double aliasing_sum_direct(const BoxSplineSpectrum& psi, const DualLattice& dual, const Vec& w,

@@ -4,10 +4,13 @@
 //   Q(w) = sum_j q(j) e^{-i w.j},
 // where a(j) are the generator's exact autocorrelation samples and q the prefilter taps (both
 // converted to double by the caller). Interpolation (`interp`) has Q = 1 / S with the
-// interpolation symbol S(w) = sum_k M(k) e^{-i w.k} of the lattice samples M(k) (§18): given
-// those samples instead of taps, the kernel uses that Q. Evaluated in long double: E falls like
-// |w|^8 with an order-4 prefilter and is formed by cancellation near 0.
+// interpolation symbol S(w) = sum_k M(k) e^{-i w.k} of the lattice samples M(k) (§18), and its
+// regularisation where S vanishes Q = conj(S) / (|S|^2 + mu |D|^2) (§17, with the runtime's D and
+// mu: support/lattice_regulariser.h): given those samples instead of taps, the kernel uses that Q.
+// Evaluated in long double: E falls like |w|^8 with an order-4 prefilter and is formed by
+// cancellation near 0.
 #pragma once
+#include <complex>
 #include <cstdint>
 #include <vector>
 
@@ -31,15 +34,24 @@ class ErrorKernel {
   static ErrorKernel interpolation(BoxSplineSpectrum psi, double det_g,
                                    std::vector<LatticeTap> autocorrelation,
                                    std::vector<LatticeTap> lattice_samples);
-  long double operator()(const Vec& w) const;    // E(w)
-  long double minimum(const Vec& w) const;       // E_min(w)
+  // Regularised interpolation: Q = conj(S) / (|S|^2 + mu |D|^2), D from the regulariser's taps
+  // (mu = 0: interpolation).
+  static ErrorKernel regularised_interpolation(BoxSplineSpectrum psi, double det_g,
+                                               std::vector<LatticeTap> autocorrelation,
+                                               std::vector<LatticeTap> lattice_samples,
+                                               std::vector<LatticeTap> regulariser, double mu);
+  std::complex<long double> prefilter_response(const Vec& w) const;  // Q(w)
+  long double operator()(const Vec& w) const;                        // E(w)
+  long double minimum(const Vec& w) const;                           // E_min(w)
   long double aliasing_sum(const Vec& w) const;  // A(w) from the autocorrelation samples
 
  private:
   BoxSplineSpectrum psi_;
   double det_g_;
   std::vector<LatticeTap> autocorrelation_, prefilter_;
-  bool inverse_ = false;  // prefilter_ holds M(k): Q = 1 / S
+  bool inverse_ = false;                 // prefilter_ holds M(k): Q = conj(S) / (|S|^2 + mu |D|^2)
+  std::vector<LatticeTap> regulariser_;  // D
+  double mu_ = 0;
 };
 
 // A(w) as the truncated sum over the dual lattice points with |k| <= radius (for tests: an

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <string>
 
 #include "analysis/error_kernel.h"
 #include "analysis/gnuplot.h"
-#include "analysis/symbol_extremes.h"
 #include "frontend/analysis_args.h"
 #include "frontend/analysis_inputs.h"
 #include "frontend/analysis_specs.h"
@@ -16,7 +16,6 @@
 #include "frontend/optimised_prefilter.h"
 #include "generator/autocorr.h"
 #include "generator/error.h"
-#include "generator/interpolation_symbol.h"
 #include "support/output_file.h"
 
 namespace boxgen::frontend {
@@ -50,28 +49,6 @@ std::vector<double> kernel_values(const analysis::ErrorKernel& e, const analysis
   return out;
 }
 
-// Interpolation's kernel (Q = 1 / S, S the interpolation symbol): only where S has no zero, the
-// runtime's test of a vanishing symbol (min |S| < 1e-6 max |S|); the regularised kernel is not
-// offered here.
-analysis::ErrorKernel interpolation_kernel(
-    const NamedSpec& named, const std::vector<analysis::LatticeTap>& autocorrelation) {
-  const auto& spec = named.spec;
-  std::vector<analysis::LatticeTap> samples;
-  about_spec(named.text, [&] {
-    for (const auto& s : lattice_samples(spec)) samples.push_back({s.point, to_double(s.value)});
-    return 0;
-  });
-  const analysis::SymbolExtremes x = analysis::symbol_extremes(samples);
-  if (x.min_abs < 1e-6 * x.max_abs)
-    fail_input(fmt::format(
-        "prefilter interp: the interpolation symbol of {} vanishes (min |A| = {:.3g}), so exact "
-        "interpolation is ill posed; kernel does not offer the regularised one (use qfir:K)",
-        named.key, x.min_abs));
-  return analysis::ErrorKernel::interpolation(spectrum_of(spec),
-                                              static_cast<double>(spec.lattice.det_abs()),
-                                              autocorrelation, std::move(samples));
-}
-
 // The curves of every SPEC at the abscissae: the one prefilter asked for, or, for a plot, none, q1,
 // q2 and the minimum.
 struct KernelCurves {
@@ -88,10 +65,10 @@ KernelCurves kernel_curves(const FrequencyOptions& o, bool plot) {
       fail_input("all SPECs of one kernel command must have the same dimension");
   const bool known = o.prefilter == "none" || o.prefilter == "q1" || o.prefilter == "q2" ||
                      is_optimised_prefilter(o.prefilter) || o.prefilter == "min" ||
-                     o.prefilter == "interp" || o.prefilter.starts_with("qfir:");
+                     is_interpolation(o.prefilter) || o.prefilter.starts_with("qfir:");
   if (!known)
     fail_input("unknown prefilter '" + o.prefilter.substr(0, 40) +
-               "': expected none, q1, q2, q1opt, q2opt, qfir:K, interp or min");
+               "': expected none, q1, q2, q1opt, q2opt, qfir:K, interp, interp:LAMBDA or min");
   const std::string direction = !o.direction.empty() ? o.direction : (n == 3 ? "1,1,1" : "1,1");
   const analysis::Vec d = parse_direction(direction, n, "--direction");
   // A plot defaults to the low band of Fig. 13: w from 0.05 to pi/2 (the Nyquist boundary of
@@ -114,7 +91,7 @@ KernelCurves kernel_curves(const FrequencyOptions& o, bool plot) {
     for (const auto& name : names) {
       std::vector<analysis::LatticeTap> prefilter;
       try {
-        if (name != "min" && name != "interp")
+        if (name != "min" && !is_interpolation(name))
           prefilter = about_spec(named.text, [&] { return prefilter_taps_of(spec, name); });
       } catch (const InputError& e) {
         if (!plot) throw;
@@ -122,8 +99,9 @@ KernelCurves kernel_curves(const FrequencyOptions& o, bool plot) {
         fmt::print(stderr, "boxgen: kernel: {} left out of the plot: {}\n", name, e.what());
         continue;
       }
-      if (name == "interp") {
-        const analysis::ErrorKernel e = interpolation_kernel(named, taps);
+      if (is_interpolation(name)) {
+        const analysis::ErrorKernel e = about_spec(
+            named.text, [&] { return interpolation_kernel(spec, named.key, taps, name); });
         c.e[name] = kernel_values(e, da, w, false);
         continue;
       }

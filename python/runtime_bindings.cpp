@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "frontend/filter_choice.h"
+#include "frontend/input_checks.h"
 #include "frontend/sample_grid.h"
 #include "generator/box_spline_properties.h"
 #include "generator/spec.h"
@@ -48,7 +49,17 @@ namespace boxgen::python {
 
 namespace {
 
-using Volume = rt::LatticeVolume<double>;
+using Samples = rt::LatticeVolume<double>;
+
+// A boxgen.Volume: samples on a lattice and, for an oblique Cartesian volume (a scanner's tilted
+// slices), the map from its own frame to world (SourceSamples::frame, as boxrecon keeps it): the
+// samples lie on the axes of that frame, world points map through its inverse and derivatives
+// back through its linear part (rt::derivatives_to_world). Nothing for an axis-aligned volume.
+struct Volume : Samples {
+  std::optional<rt::Affine> frame;
+  explicit Volume(Samples&& samples, std::optional<rt::Affine> to_world = std::nullopt)
+      : Samples(std::move(samples)), frame(to_world) {}
+};
 using VolumePtr = std::shared_ptr<Volume>;
 
 // A box spline filter: the runtime's SplineFilter and the generator's SPEC and properties.
@@ -144,8 +155,9 @@ Prefiltering prefiltering(const std::optional<std::string>& prefilter,
 // The coefficients the filter evaluates after prefilter and boundary p (runtime/coefficients.h):
 // the volume itself (none, strict), or a new volume in `storage`. The lattice is checked first
 // (one line naming both lattices).
-const Volume& prepared(const Volume& volume, const Filter& f, const Prefiltering& p,
-                       std::optional<Volume>& storage, rt::InterpolationReport* report = nullptr) {
+const Samples& prepared(const Samples& volume, const Filter& f, const Prefiltering& p,
+                        std::optional<Samples>& storage,
+                        rt::InterpolationReport* report = nullptr) {
   f.filter.check_lattice(volume.lattice());
   if (p.q == rt::PrefilterChoice::None && p.b == rt::Boundary::Strict) return volume;
   storage.emplace(rt::spline_coefficients(volume, f.filter, p.q, p.b, report, report != nullptr));
@@ -224,10 +236,6 @@ rt::Vec3 spacing_of(const py::handle& spacing) {
   return three(spacing, "spacing");
 }
 
-// affine=: the 4x4 (or 3x4) map from lattice coordinates to world, as nibabel's img.affine. Its
-// linear part must be diagonal (the runtime's volumes are axis-aligned; an oblique one is
-// refused as the readers refuse oblique files); a negative step reverses that axis of the
-// Cartesian samples (as the NIfTI reader does), keeping every value's world position.
 // A 4x4 (or 3x4) affine argument, as nibabel's img.affine: finite, last row (0, 0, 0, 1).
 rt::Affine affine_arg(const py::handle& affine) {
   const py::array_t<double> a = real_array(affine, "affine");
@@ -247,17 +255,30 @@ rt::Affine affine_arg(const py::handle& affine) {
   return out;
 }
 
+// affine=: the 4x4 (or 3x4) map from lattice coordinates to world, as nibabel's img.affine. A
+// diagonal one gives the spacings and origin; a negative step reverses that axis of the
+// Cartesian samples (as the NIfTI reader does), keeping every value's world position. An oblique
+// (or axis-permuting) one, Cartesian only, is kept as the NIfTI reader keeps a tilted file's:
+// the voxel grid in its own frame and `frame` (rt::split_oblique).
 void from_affine(const py::handle& affine, const rt::CosetLattice& lattice, const rt::Sizes& sizes,
-                 std::vector<double>& storage, rt::Vec3& steps, rt::Vec3& origin) {
+                 std::vector<double>& storage, rt::Vec3& steps, rt::Vec3& origin,
+                 std::optional<rt::Affine>& frame) {
   const rt::Affine a = affine_arg(affine);
   for (std::size_t r = 0; r < 3; ++r)
-    for (std::size_t c = 0; c < 3; ++c)
-      if (c != r && a.linear[r][c] != 0)
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (c == r || a.linear[r][c] == 0) continue;
+      if (lattice != rt::CosetLattice::cartesian())
         throw py::value_error(fmt::format(
-            "affine[{}, {}] = {}: the affine is oblique (or permutes the axes), but volumes are "
-            "axis-aligned; resample it onto an axis-aligned grid first (boxgen.resample with "
-            "affine= or like=, scipy.ndimage.affine_transform)",
-            r, c, a.linear[r][c]));
+            "affine[{}, {}] = {}: the affine is oblique (or permutes the axes), which only a "
+            "Cartesian volume can be, not a {} lattice's",
+            r, c, a.linear[r][c], lattice.name()));
+      rt::Affine to_world;
+      if (const std::string why = rt::split_oblique(a, steps, to_world); !why.empty())
+        throw py::value_error("affine " + why);
+      origin = {0, 0, 0};
+      frame = to_world;
+      return;
+    }
   for (std::size_t r = 0; r < 3; ++r) {
     steps[r] = a.linear[r][r];
     origin[r] = a.translation[r];
@@ -281,15 +302,17 @@ VolumePtr make_volume(const py::handle& samples, const std::string& lattice_text
   const rt::Sizes sizes{static_cast<int>(a.shape(1)), static_cast<int>(a.shape(2)),
                         static_cast<int>(a.shape(3))};
   rt::Vec3 steps{}, corner{};
+  std::optional<rt::Affine> frame;
   if (affine.is_none()) {
     steps = spacing_of(spacing);
     corner = three(origin, "origin");
   } else {
     if (!spacing.is_none() || !origin.is_none())
       throw py::value_error("give affine= or spacing= and origin=, not both");
-    from_affine(affine, lattice, sizes, storage, steps, corner);
+    from_affine(affine, lattice, sizes, storage, steps, corner, frame);
   }
-  return std::make_shared<Volume>(lattice, sizes, steps, corner, std::move(storage));
+  return std::make_shared<Volume>(Samples(lattice, sizes, steps, corner, std::move(storage)),
+                                  frame);
 }
 
 py::tuple spacings_of(const Volume& v) {
@@ -297,17 +320,23 @@ py::tuple spacings_of(const Volume& v) {
   return py::make_tuple(h[0], h[1], h[2]);
 }
 
-// The map from lattice coordinates to world: diag(spacings) and the origin (for a Cartesian
-// volume the voxel-to-world affine of nibabel and NIfTI's sform).
-py::array_t<double> affine_of(const Volume& v) {
+// An affine as a 4x4 NumPy array (last row 0 0 0 1).
+py::array_t<double> affine_array(const rt::Affine& a) {
   py::array_t<double> out({4, 4});
   for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) out.mutable_at(r, c) = r == c ? 1.0 : 0.0;
-  for (int a = 0; a < 3; ++a) {
-    out.mutable_at(a, a) = v.axis_spacing()[static_cast<std::size_t>(a)];
-    out.mutable_at(a, 3) = v.origin()[static_cast<std::size_t>(a)];
-  }
+    for (int c = 0; c < 4; ++c) {
+      const auto ru = static_cast<std::size_t>(r), cu = static_cast<std::size_t>(c);
+      out.mutable_at(r, c) =
+          r == 3 ? (c == 3 ? 1.0 : 0.0) : (c < 3 ? a.linear[ru][cu] : a.translation[ru]);
+    }
   return out;
+}
+
+// The map from lattice coordinates to world: diag(spacings) and the origin, after an oblique
+// volume's frame (for a Cartesian volume the voxel-to-world affine of nibabel and NIfTI's sform).
+rt::Affine affine_of(const Volume& v) {
+  const rt::Affine own = rt::Affine::diagonal(v.axis_spacing(), v.origin());
+  return v.frame ? v.frame->after(own) : own;
 }
 
 bool isotropic(const Volume& v) {
@@ -325,13 +354,15 @@ py::array_t<double> positions(const Volume& v) {
     for (int y = 0; y < n[1]; ++y)
       for (int x = 0; x < n[0]; ++x)
         for (int c = 0; c < v.coset_count(); ++c)
-          for (double p : v.sample_position(c, x, y, z)) out.push_back(p);
+          for (double p : v.frame ? v.frame->apply(v.sample_position(c, x, y, z))
+                                  : v.sample_position(c, x, y, z))
+            out.push_back(p);
   return adopt(std::move(out), {static_cast<py::ssize_t>(v.sample_count()), 3}, false);
 }
 
 // A Python callable sampled once at every sample position (storage order), vectorised.
 VolumePtr sample_callable(const py::function& f, const rt::LatticeGrid& grid) {
-  auto volume = std::make_shared<Volume>(grid.lattice, grid.sizes, grid.h, grid.origin);
+  auto volume = std::make_shared<Volume>(Samples(grid.lattice, grid.sizes, grid.h, grid.origin));
   const auto m = static_cast<py::ssize_t>(volume->sample_count());
   const py::array_t<double> values = real_array(f(positions(*volume)), "the function's result");
   if (values.ndim() != 1 || values.shape(0) != m)
@@ -394,6 +425,9 @@ py::object evaluate(const Filter& f, const Volume& volume, const py::handle& poi
   py::array_t<double> gradients(std::vector<py::ssize_t>{derivatives ? count : 0, 3});
   py::array_t<double> hessians(std::vector<py::ssize_t>{hessian ? count : 0, 6});
   const std::span<const rt::Vec3> p(reinterpret_cast<const rt::Vec3*>(points.data()), n);
+  // An oblique volume: world points in its frame, derivatives back in world.
+  const std::optional<rt::Affine> to_volume = rt::grid_to_volume(volume.frame, std::nullopt);
+  std::vector<rt::Vec3> in_frame;
   const std::span<double> v(values.mutable_data(), n);
   const std::span<rt::Vec3> g(reinterpret_cast<rt::Vec3*>(gradients.mutable_data()),
                               derivatives ? n : 0);
@@ -401,15 +435,22 @@ py::object evaluate(const Filter& f, const Volume& volume, const py::handle& poi
                                  hessian ? n : 0);
   {
     py::gil_scoped_release release;
-    std::optional<Volume> storage;
+    std::optional<Samples> storage;
     const rt::Reconstructor<double> spline(prepared(volume, f, q, storage), f.filter);
     // In blocks, so that Ctrl-C is seen between them.
     for (std::size_t first = 0; first < n; first += kPointsBetweenSignalChecks) {
       const std::size_t m = std::min(kPointsBetweenSignalChecks, n - first);
       const auto gs = derivatives ? g.subspan(first, m) : g;
       const auto hs = hessian ? h.subspan(first, m) : h;
-      spline.evaluate(p.subspan(first, m), v.subspan(first, m), gs, hs);
-      spline.require_finite(p.subspan(first, m), v.subspan(first, m), gs, hs);
+      const std::span<const rt::Vec3> world = p.subspan(first, m);
+      if (to_volume) {
+        in_frame.resize(m);
+        for (std::size_t i = 0; i < m; ++i) in_frame[i] = to_volume->apply(world[i]);
+      }
+      spline.evaluate(to_volume ? std::span<const rt::Vec3>(in_frame) : world, v.subspan(first, m),
+                      gs, hs);
+      spline.require_finite(world, v.subspan(first, m), gs, hs);
+      if (to_volume) rt::derivatives_to_world(*to_volume, gs, hs);
       if (first + m < n && signal_pending()) break;
     }
   }
@@ -443,22 +484,25 @@ ImageGrid image_grid(const std::string& path) {
   limits.allow_non_finite = true;
   limits.allow_oblique = true;
   rt::SourceSamples source;
-  const Volume image = [&] {
+  const Samples image = [&] {
     py::gil_scoped_release release;
     return rt::read_volume_file<double>(path, limits, &source);
   }();
   if (image.coset_count() != 1)
-    throw py::value_error(fmt::format("like '{}' is a {} volume: its grid must be Cartesian",
-                                      rt::nrrd_checks::printable(path), image.lattice().name()));
+    throw py::value_error(fmt::format(
+        "like '{}' is a {} volume: its grid is the output's with lattice='{}' (a Volume back)",
+        rt::nrrd_checks::printable(path), image.lattice().name(), image.lattice().name()));
   const rt::Affine own = rt::Affine::diagonal(image.axis_spacing(), image.origin());
   return {image.sizes(), source.frame ? source.frame->after(own) : own};
 }
 
 // The grid of lo..hi with `shape` points (default 64 per axis), lo and hi defaulting to the
 // filter's default_box; or `shape` points whose world positions are affine (i, j, k, 1), oblique
-// or not; or the grid and affine of the image file `like` (NIfTI or NRRD, oblique included). The
-// volume is axis-aligned, so world points are its own coordinates (CartesianGrid::to_volume).
-rt::CartesianGrid grid_of(const Volume& volume, const Filter& f, const GridArgs& g) {
+// or not; or the grid and affine of the image file `like` (NIfTI or NRRD, oblique included).
+// World points map into an oblique volume's frame (`frame`; CartesianGrid::to_volume); its
+// default box lies in that frame, so such a volume needs the grid given.
+rt::CartesianGrid grid_of(const Samples& volume, const std::optional<rt::Affine>& frame,
+                          const Filter& f, const GridArgs& g) {
   if (g.lo.is_none() != g.hi.is_none()) throw py::value_error("give both lo and hi, or neither");
   const int given = static_cast<int>(!g.lo.is_none()) + static_cast<int>(!g.affine.is_none()) +
                     static_cast<int>(!g.like.is_none());
@@ -470,19 +514,25 @@ rt::CartesianGrid grid_of(const Volume& volume, const Filter& f, const GridArgs&
     rt::CartesianGrid grid = rt::grid_over({{0, 0, 0}, {1, 1, 1}}, image.sizes);  // checks them
     grid.spacing = {1, 1, 1};
     grid.origin = {0, 0, 0};
-    grid.to_volume = image.affine;  // as affine= with that image's affine: one path
+    grid.to_volume = rt::grid_to_volume(frame, image.affine);  // as affine= with it: one path
     return grid;
   }
   if (!g.affine.is_none()) {
     rt::CartesianGrid grid = rt::grid_over({{0, 0, 0}, {1, 1, 1}}, shape);  // checks the shape
     grid.spacing = {1, 1, 1};
     grid.origin = {0, 0, 0};
-    grid.to_volume = affine_arg(g.affine);
+    grid.to_volume = rt::grid_to_volume(frame, affine_arg(g.affine));
     return grid;
   }
+  if (g.lo.is_none() && frame)
+    throw py::value_error(
+        "the volume is oblique: give the output grid (lo and hi in world coordinates, affine= or "
+        "like=); its default box lies in its own frame (Filter.default_box, Volume.frame)");
   const rt::Box box = g.lo.is_none() ? rt::default_box(volume, f.filter)
                                      : rt::Box{three(g.lo, "lo"), three(g.hi, "hi")};
-  return rt::grid_over(box, shape);
+  rt::CartesianGrid grid = rt::grid_over(box, shape);
+  grid.to_volume = rt::grid_to_volume(frame, std::nullopt);
+  return grid;
 }
 
 py::array_t<double> resample(const VolumePtr& volume, const Filter& f,
@@ -490,13 +540,13 @@ py::array_t<double> resample(const VolumePtr& volume, const Filter& f,
                              const std::optional<std::array<std::array<int, 3>, 2>>& block,
                              const std::optional<std::string>& boundary) {
   const Prefiltering q = prefiltering(prefilter, boundary);
-  std::optional<Volume> storage;
-  const Volume* v = nullptr;
+  std::optional<Samples> storage;
+  const Samples* v = nullptr;
   {
     py::gil_scoped_release release;
     v = &prepared(*volume, f, q, storage);
   }
-  const rt::CartesianGrid grid = grid_of(*v, f, where);
+  const rt::CartesianGrid grid = grid_of(*v, volume->frame, f, where);
   const rt::GridBlock b =
       block ? rt::GridBlock{(*block)[0], (*block)[1]} : rt::GridBlock{{0, 0, 0}, grid.sizes};
   rt::CartesianVolume<double> out;
@@ -526,6 +576,91 @@ py::array_t<double> resample(const VolumePtr& volume, const Filter& f,
   return grid_array(std::move(out));
 }
 
+// resample(lattice=L) onto a non-Cartesian lattice, as `boxrecon resample --lattice L`: the grid
+// of like= (a volume file of that lattice), or of L at spacing= h or at about shape^3 samples
+// (shape one integer, default 64) over lo..hi (default: the filter's default_box), centred in it.
+// A Volume, holding what the CLI writes as NRRD.
+VolumePtr resample_onto_lattice(const VolumePtr& volume, const Filter& f,
+                                const std::optional<std::string>& prefilter,
+                                const std::optional<std::string>& boundary,
+                                const rt::CosetLattice& lattice, const GridArgs& g,
+                                const py::handle& spacing) {
+  const std::string& name = lattice.name();
+  if (volume->frame)
+    throw py::value_error(fmt::format(
+        "the volume is oblique: it resamples onto Cartesian grids only (a {} volume is stored "
+        "axis-aligned in the world); resample it onto an axis-aligned grid first (lo and hi)",
+        name));
+  if (!g.affine.is_none())
+    throw py::value_error(fmt::format(
+        "affine= gives a Cartesian grid: onto the {} lattice give lo and hi with spacing or "
+        "shape, or like=",
+        name));
+  if (g.lo.is_none() != g.hi.is_none()) throw py::value_error("give both lo and hi, or neither");
+  if (g.shape && std::holds_alternative<std::array<int, 3>>(*g.shape))
+    throw py::value_error(fmt::format(
+        "shape=(nx, ny, nz) counts Cartesian grid points: onto the {} lattice give spacing= (its "
+        "h) or shape=N (about N^3 samples)",
+        name));
+  if (g.shape && !spacing.is_none()) throw py::value_error("give spacing or shape, not both");
+  std::optional<rt::LatticeGrid> grid;
+  if (!g.like.is_none()) {
+    if (!g.lo.is_none() || g.shape || !spacing.is_none())
+      throw py::value_error("like gives the grid: give like, or lo, hi, shape and spacing");
+    const std::string path = py::str(g.like);
+    rt::NrrdReadLimits limits;
+    limits.allow_non_finite = true;
+    limits.allow_oblique = true;
+    const Samples image = [&] {
+      py::gil_scoped_release release;
+      return rt::read_volume_file<double>(path, limits);
+    }();
+    if (!(image.lattice() == lattice))
+      throw py::value_error(
+          fmt::format("lattice {} differs from the lattice of like '{}' ({}): give one of them",
+                      name, rt::nrrd_checks::printable(path, 80), image.lattice().name()));
+    grid = rt::LatticeGrid{lattice, image.sizes(), image.axis_spacing()[0], image.origin()};
+  }
+  const Prefiltering q = prefiltering(prefilter, boundary);
+  std::optional<Samples> storage;
+  const Samples* v = nullptr;
+  {
+    py::gil_scoped_release release;
+    v = &prepared(*volume, f, q, storage);
+  }
+  if (!grid) {
+    const rt::Box box = g.lo.is_none() ? rt::default_box(*v, f.filter)
+                                       : rt::Box{three(g.lo, "lo"), three(g.hi, "hi")};
+    const int count = g.shape ? std::get<int>(*g.shape) : 64;
+    if (count < 2 || count > rt::kMaxGridSize)
+      throw py::value_error(
+          fmt::format("shape must be between 2 and {}, got {}", rt::kMaxGridSize, count));
+    const double n = count;
+    double h = 0;
+    if (spacing.is_none()) {
+      h = rt::spacing_for_count(lattice, box, n * n * n);
+    } else {
+      const py::array_t<double> a = real_array(spacing, "spacing");
+      if (a.ndim() != 0)
+        throw py::value_error(
+            fmt::format("the {} lattice has one spacing h: give one number, got shape {}", name,
+                        shape_text(a)));
+      h = *a.data();
+    }
+    grid = rt::lattice_grid_in(lattice, box, h);  // checks h, the box and the count
+  }
+  const rt::Sizes& n = grid->sizes;
+  frontend::check_memory(static_cast<std::uint64_t>(lattice.coset_count()) *
+                             static_cast<std::uint64_t>(n[0]) * static_cast<std::uint64_t>(n[1]) *
+                             static_cast<std::uint64_t>(n[2]),
+                         sizeof(double),
+                         fmt::format("the output grid of {} x {} x {} x {} {} samples",
+                                     lattice.coset_count(), n[0], n[1], n[2], name),
+                         "values");
+  py::gil_scoped_release release;
+  return std::make_shared<Volume>(rt::resample_to_lattice(*v, f.filter, *grid));
+}
+
 py::tuple box_tuple(const rt::Box& b) {
   return py::make_tuple(py::make_tuple(b.min[0], b.min[1], b.min[2]),
                         py::make_tuple(b.max[0], b.max[1], b.max[2]));
@@ -540,7 +675,7 @@ void bind_volume(py::module_& m) {
                                 "Samples on a lattice (docs/python.md): `samples` is a (K, N0, "
                                 "N1, N2) view of the storage, sample (c, i, j, k) at origin + "
                                 "spacing * (d (i, j, k) + offset_c); spacing one number or three "
-                                "(Cartesian), or an axis-aligned `affine` instead.")
+                                "(Cartesian), or an `affine` instead (oblique: Cartesian only).")
       .def(py::init([](const py::handle& samples, const std::string& lattice,
                        const py::handle& spacing, const py::handle& origin,
                        const std::optional<std::vector<std::array<int, 3>>>& offsets,
@@ -571,7 +706,7 @@ void bind_volume(py::module_& m) {
                              [](const Volume& v) { return v.lattice().rows_text(); })
       .def_property_readonly("coset_offsets",
                              [](const Volume& v) { return offsets_of(v.lattice()); })
-      .def_property_readonly("period", &Volume::period)
+      .def_property_readonly("period", [](const Volume& v) { return v.period(); })
       .def_property_readonly(
           "spacing",
           [](const Volume& v) {
@@ -583,12 +718,21 @@ void bind_volume(py::module_& m) {
             return v.spacing();
           })
       .def_property_readonly("spacings", &spacings_of, "The spacing along x, y and z")
-      .def_property_readonly("affine", &affine_of,
-                             "4 x 4: lattice coordinates to world (diag(spacings), origin); for "
-                             "a Cartesian volume the voxel-to-world affine, as nibabel's")
+      .def_property_readonly(
+          "affine", [](const Volume& v) { return affine_array(affine_of(v)); },
+          "4 x 4: lattice coordinates to world (diag(spacings), origin, after an oblique volume's "
+          "frame); for a Cartesian volume the voxel-to-world affine, as nibabel's")
+      .def_property_readonly(
+          "frame",
+          [](const Volume& v) {
+            return v.frame ? py::object(affine_array(*v.frame)) : py::object(py::none());
+          },
+          "None for an axis-aligned volume; for an oblique one the 4 x 4 map from its own frame "
+          "(where its samples lie on the axes: positions origin + spacings * (i, j, k), and "
+          "default_box and evaluable_region lie) to world")
       .def_property_readonly("origin",
                              [](const Volume& v) {
-                               const rt::Vec3& o = v.origin();
+                               const rt::Vec3 o = affine_of(v).translation;
                                return py::make_tuple(o[0], o[1], o[2]);
                              })
       .def_property_readonly("sizes", [](const Volume& v) { return v.sizes(); })
@@ -600,22 +744,28 @@ void bind_volume(py::module_& m) {
              const std::string spacing =
                  isotropic(v) ? fmt::format("spacing {}", h[0])
                               : fmt::format("spacings ({}, {}, {})", h[0], h[1], h[2]);
+             const rt::Vec3 o = affine_of(v).translation;
              return fmt::format(
-                 "boxgen.Volume({} lattice, {} x {} x {} x {} samples, {}, origin ({}, {}, {}))",
+                 "boxgen.Volume({} lattice, {} x {} x {} x {} samples, {}, origin ({}, {}, "
+                 "{}){})",
                  v.lattice().name(), v.coset_count(), v.sizes()[0], v.sizes()[1], v.sizes()[2],
-                 spacing, v.origin()[0], v.origin()[1], v.origin()[2]);
+                 spacing, o[0], o[1], o[2], v.frame ? ", oblique (see affine)" : "");
            })
       .def(py::pickle(
           [](const py::object& self) {
             const auto& v = self.cast<const Volume&>();
             const std::string lattice =
                 v.lattice().name() == "custom" ? v.lattice().rows_text() : v.lattice().name();
+            const rt::Vec3& o = v.origin();  // in its own frame: the frame travels apart
             return py::make_tuple(self.attr("samples").attr("copy")(), lattice, spacings_of(v),
-                                  self.attr("origin"), offsets_of(v.lattice()));
+                                  py::make_tuple(o[0], o[1], o[2]), offsets_of(v.lattice()),
+                                  self.attr("frame"));
           },
           [](const py::tuple& t) {
-            return make_volume(t[0], t[1].cast<std::string>(), t[2], t[3],
-                               t[4].cast<std::vector<std::array<int, 3>>>(), py::none());
+            VolumePtr v = make_volume(t[0], t[1].cast<std::string>(), t[2], t[3],
+                                      t[4].cast<std::vector<std::array<int, 3>>>(), py::none());
+            if (t.size() > 5 && !t[5].is_none()) v->frame = affine_arg(t[5]);
+            return v;
           }));
 
   m.def(
@@ -623,11 +773,14 @@ void bind_volume(py::module_& m) {
       [](const std::string& path, bool allow_nonfinite, const std::optional<std::string>& lattice) {
         rt::NrrdReadLimits limits;
         limits.allow_non_finite = allow_nonfinite;
+        limits.allow_oblique = true;  // kept as boxrecon keeps it: Volume.frame
         if (lattice) limits.lattice = rt::CosetLattice::parse(*lattice);
         std::shared_ptr<Volume> v;
         {
           py::gil_scoped_release release;
-          v = std::make_shared<Volume>(rt::read_volume_file<double>(path, limits));
+          rt::SourceSamples source;
+          v = std::make_shared<Volume>(rt::read_volume_file<double>(path, limits, &source),
+                                       source.frame);
         }
         // The lattice asked for is what the caller gets, or an error: the
         // same points (the file's coset offsets may differ in order or representative).
@@ -646,7 +799,8 @@ void bind_volume(py::module_& m) {
       },
       py::arg("path"), py::arg("allow_nonfinite") = false, py::arg("lattice") = py::none(),
       "A volume file as a Volume of doubles: a lattice NRRD (docs/runtime.md#nrrd-layout) or a "
-      "NIfTI-1/2 image (.nii, .nii.gz, a .hdr/.img pair), with every check of boxrecon's readers; "
+      "NIfTI-1/2 image (.nii, .nii.gz, a .hdr/.img pair; an oblique one keeps its affine: "
+      "Volume.frame), with every check of boxrecon's readers; "
       "`lattice`: the one the caller needs (a NRRD that does not say its lattice is then refused "
       "in its terms)");
   m.def(
@@ -657,7 +811,14 @@ void bind_volume(py::module_& m) {
         rt::VolumeWrite written;
         {
           py::gil_scoped_release release;
-          written = rt::write_volume_file(path, v, t);
+          if (v.frame) {  // oblique: NIfTI with the composed affine (NRRD refuses it)
+            const auto samples = v.samples();
+            const rt::CartesianVolume<double> grid{
+                v.sizes(), v.axis_spacing(), v.origin(), {samples.begin(), samples.end()}, v.frame};
+            written = rt::write_grid_file(path, grid, t);
+          } else {
+            written = rt::write_volume_file(path, static_cast<const Samples&>(v), t);
+          }
         }
         if (written.clamped > 0 &&
             PyErr_WarnEx(PyExc_RuntimeWarning,
@@ -759,11 +920,11 @@ void bind_filter(py::module_& m) {
           "prefilter_volume",
           [](const Filter& f, const Volume& volume, const std::string& q,
              const std::optional<std::string>& boundary) {
-            std::optional<Volume> storage;
+            std::optional<Samples> storage;
             py::gil_scoped_release release;
             (void)prepared(volume, f, prefiltering(q, boundary), storage);
             if (!storage) return std::make_shared<Volume>(volume);  // none, strict: a copy
-            return std::make_shared<Volume>(std::move(*storage));
+            return std::make_shared<Volume>(std::move(*storage), volume.frame);
           },
           py::arg("volume"), py::arg("prefilter"), py::arg("boundary") = py::none(),
           "The coefficients after prefilter (none | q1 | q2 | q1opt | q2opt | qfir:K | "
@@ -778,7 +939,7 @@ void bind_filter(py::module_& m) {
               throw py::value_error(fmt::format("prefilter {} is not interp", p.q.text()));
             rt::InterpolationReport r;
             {
-              std::optional<Volume> storage;
+              std::optional<Samples> storage;
               py::gil_scoped_release release;
               (void)prepared(volume, f, p, storage, &r);
             }
@@ -836,19 +997,32 @@ void bind_runtime(py::module_& m) {
          const py::object& lo, const py::object& hi,
          const std::optional<std::variant<int, std::array<int, 3>>>& shape,
          const std::optional<std::string>& boundary, const py::object& affine,
-         const py::object& like) {
-        return resample(volume, f, prefilter, GridArgs{lo, hi, affine, like, shape}, std::nullopt,
-                        boundary);
+         const py::object& like, const std::optional<std::string>& lattice,
+         const py::object& spacing) -> py::object {
+        const GridArgs where{lo, hi, affine, like, shape};
+        const rt::CosetLattice onto =
+            lattice ? rt::CosetLattice::parse(*lattice) : rt::CosetLattice::cartesian();
+        if (!(onto == rt::CosetLattice::cartesian()))
+          return py::cast(
+              resample_onto_lattice(volume, f, prefilter, boundary, onto, where, spacing));
+        if (!spacing.is_none())
+          throw py::value_error(
+              "spacing= is the h of a lattice= output (bcc, fcc, ...); a Cartesian grid is lo, hi "
+              "and shape, affine= or like=");
+        return resample(volume, f, prefilter, where, std::nullopt, boundary);
       },
       py::arg("volume"), py::arg("filter"), py::arg("prefilter") = py::none(),
       py::arg("lo") = py::none(), py::arg("hi") = py::none(), py::arg("shape") = py::none(),
       py::arg("boundary") = py::none(), py::kw_only(), py::arg("affine") = py::none(),
-      py::arg("like") = py::none(),
+      py::arg("like") = py::none(), py::arg("lattice") = py::none(),
+      py::arg("spacing") = py::none(),
       "The spline on the grid lo + (i, j, k) (hi - lo) / (shape - 1) (shape default 64; lo, hi "
       "default to filter.default_box of the coefficients after prefilter and boundary), or at "
       "the world points affine @ (i, j, k, 1) (any 4x4 voxel-to-world affine, oblique included), "
       "or on the grid of the image file like= (its shape and affine, as nibabel's): an array of "
-      "the grid's shape");
+      "the grid's shape. lattice= a non-Cartesian lattice (bcc, fcc, rows of G): a Volume on "
+      "that lattice's grid over lo..hi at spacing= h or about shape^3 samples, or on the grid of "
+      "the volume file like=, as `boxrecon resample --lattice`");
   m.def(
       "_resample_block",
       [](const VolumePtr& volume, const Filter& f, const std::optional<std::string>& prefilter,
@@ -867,15 +1041,8 @@ void bind_runtime(py::module_& m) {
       "_image_grid",
       [](const std::string& path) {
         const ImageGrid g = image_grid(path);
-        py::array_t<double> affine(std::vector<py::ssize_t>{4, 4});
-        auto a = affine.mutable_unchecked<2>();
-        for (py::ssize_t r = 0; r < 4; ++r)
-          for (py::ssize_t c = 0; c < 4; ++c) {
-            const auto ru = static_cast<std::size_t>(r), cu = static_cast<std::size_t>(c);
-            a(r, c) = r == 3 ? (c == 3 ? 1.0 : 0.0)
-                             : (c < 3 ? g.affine.linear[ru][cu] : g.affine.translation[ru]);
-          }
-        return py::make_tuple(py::make_tuple(g.sizes[0], g.sizes[1], g.sizes[2]), affine);
+        return py::make_tuple(py::make_tuple(g.sizes[0], g.sizes[1], g.sizes[2]),
+                              affine_array(g.affine));
       },
       py::arg("path"),
       "(shape, affine) of the image file's grid (NIfTI or NRRD, oblique included), as like= "

@@ -8,11 +8,9 @@
 #include <complex>
 #include <cstddef>
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <mutex>
 #include <new>
-#include <numbers>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -20,113 +18,27 @@
 #include "runtime/batch_threads.h"
 #include "runtime/reconstruction.h"
 #include "runtime/resample.h"
+#include "support/fourier_sums.h"
 #include "support/integer_math.h"
+#include "support/lattice_regulariser.h"
 
 namespace boxgen::runtime {
 
 namespace {
 
 using Complex = std::complex<double>;
-using support::floor_div;
+using support::BoxKernel;
+using support::FourierSums;
 
 // Complex products by the textbook formula. The library's (C99 Annex G) also checks each result
 // for NaN parts to recover infinities, a cost the per-frequency systems (finite numbers of order
 // 1) do not need: callgrind counts 455 million instructions in the solve of m7 on 2 x 40^3
 // samples with it, 309 million without. Found by ordinary lookup here and preferred to the
 // library's template.
-Complex operator*(const Complex& a, const Complex& b) {
-  return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
-}
+Complex operator*(const Complex& a, const Complex& b) { return support::product(a, b); }
 
 // An index or size computed in int (the kernels' boxes, K^2: small), as a std::size_t.
 std::size_t index_of(int i) { return static_cast<std::size_t>(i); }
-
-// ---------------------------------------------------------------------------------------------
-// Small dense kernels over a box of integer offsets, and their Fourier sums by axis.
-
-// A real kernel on a box lo <= t <= hi of Z^3 (x fastest).
-struct BoxKernel {
-  std::array<int, 3> lo{}, width{};
-  std::vector<double> values;
-  double& at(int t0, int t1, int t2) {
-    return values[static_cast<std::size_t>(t0 - lo[0]) +
-                  static_cast<std::size_t>(width[0]) *
-                      (static_cast<std::size_t>(t1 - lo[1]) +
-                       static_cast<std::size_t>(width[1]) * static_cast<std::size_t>(t2 - lo[2]))];
-  }
-};
-
-// e^{-2 pi i k t / n} for k in [0, count) and t in [lo, lo + width): table[k * width + t - lo].
-std::vector<Complex> twiddles(int n, int count, int lo, int width) {
-  std::vector<Complex> table(static_cast<std::size_t>(count) * static_cast<std::size_t>(width));
-  for (int k = 0; k < count; ++k)
-    for (int t = 0; t < width; ++t) {
-      // The phase reduced mod n in integers first: exact for large k t.
-      const std::int64_t r = static_cast<std::int64_t>(k) * (lo + t) -
-                             n * floor_div(static_cast<std::int64_t>(k) * (lo + t), n);
-      const double angle = -2 * std::numbers::pi * static_cast<double>(r) / n;
-      table[static_cast<std::size_t>(k) * static_cast<std::size_t>(width) +
-            static_cast<std::size_t>(t)] = {std::cos(angle), std::sin(angle)};
-    }
-  return table;
-}
-
-// The Fourier sums F_p(k) = sum_t kernel_p(t) e^{-2 pi i k.t / n} of several kernels on one box,
-// frequency by frequency: fix k2 (partial sums over t2), then k1, then k0, so that each
-// frequency costs width0 complex products per kernel.
-class FourierSums {
- public:
-  FourierSums(const std::vector<BoxKernel>& kernels, const std::array<int, 3>& n,
-              const std::array<int, 3>& count)
-      : kernels_(&kernels), box_(kernels.front()) {
-    for (int a = 0; a < 3; ++a)
-      e_[static_cast<std::size_t>(a)] =
-          twiddles(n[static_cast<std::size_t>(a)], count[static_cast<std::size_t>(a)],
-                   box_.lo[static_cast<std::size_t>(a)], box_.width[static_cast<std::size_t>(a)]);
-    const auto w = box_.width;
-    g2_.resize(kernels.size() * static_cast<std::size_t>(w[0] * w[1]));
-    g1_.resize(kernels.size() * static_cast<std::size_t>(w[0]));
-  }
-  void set_k2(int k2) {
-    const auto w = box_.width;
-    const Complex* e = &e_[2][static_cast<std::size_t>(k2) * static_cast<std::size_t>(w[2])];
-    for (std::size_t p = 0; p < kernels_->size(); ++p) {
-      const std::vector<double>& v = (*kernels_)[p].values;
-      for (int t01 = 0; t01 < w[0] * w[1]; ++t01) {
-        Complex s = 0;
-        for (int t2 = 0; t2 < w[2]; ++t2) s += v[index_of(t01 + w[0] * w[1] * t2)] * e[t2];
-        g2_[p * static_cast<std::size_t>(w[0] * w[1]) + static_cast<std::size_t>(t01)] = s;
-      }
-    }
-  }
-  void set_k1(int k1) {
-    const auto w = box_.width;
-    const Complex* e = &e_[1][static_cast<std::size_t>(k1) * static_cast<std::size_t>(w[1])];
-    for (std::size_t p = 0; p < kernels_->size(); ++p)
-      for (int t0 = 0; t0 < w[0]; ++t0) {
-        Complex s = 0;
-        for (int t1 = 0; t1 < w[1]; ++t1)
-          s += g2_[p * static_cast<std::size_t>(w[0] * w[1]) +
-                   static_cast<std::size_t>(t0 + w[0] * t1)] *
-               e[t1];
-        g1_[p * static_cast<std::size_t>(w[0]) + static_cast<std::size_t>(t0)] = s;
-      }
-  }
-  Complex at_k0(std::size_t p, int k0) const {
-    const auto w = box_.width;
-    const Complex* e = &e_[0][static_cast<std::size_t>(k0) * static_cast<std::size_t>(w[0])];
-    const Complex* g = &g1_[p * static_cast<std::size_t>(w[0])];
-    Complex s = 0;
-    for (int t0 = 0; t0 < w[0]; ++t0) s += g[t0] * e[t0];
-    return s;
-  }
-
- private:
-  const std::vector<BoxKernel>* kernels_;
-  const BoxKernel& box_;
-  std::array<std::vector<Complex>, 3> e_;
-  std::vector<Complex> g2_, g1_;
-};
 
 // ---------------------------------------------------------------------------------------------
 // The coset system: h_ab(t) = M(d t + off_a - off_b).
@@ -462,32 +374,6 @@ constexpr double kPaddingDecay = 1e-10;
 constexpr double kRegularisedPaddingDecay = 1e-6;
 constexpr double kMarginDecay = 1e-6;
 
-struct Regularisation {
-  SymbolBounds symbol;
-  double lambda = 0;
-};
-
-Regularisation regularisation(const SplineFilter& f, const PrefilterTaps& values,
-                              std::optional<double> lambda) {
-  Regularisation r{symbol_bounds(values), 0};
-  const bool vanishes = r.symbol.min < kVanishing * r.symbol.max;
-  if (lambda) {
-    const double l = *lambda;
-    if (!std::isfinite(l) || l < 0 || l > 1)
-      throw std::invalid_argument(
-          fmt::format("interpolation lambda {} must be finite and in [0, 1]", l));
-    if (l == 0 && vanishes)
-      throw std::invalid_argument(fmt::format(
-          "the symbol of filter {} vanishes (min |A| = {:.3g} max |A|): exact interpolation is "
-          "ill posed; use interp:LAMBDA with LAMBDA > 0 (default {})",
-          f.name(), r.symbol.min / r.symbol.max, kDefaultLambda));
-    r.lambda = l;
-  } else {
-    r.lambda = vanishes ? kDefaultLambda : 0;
-  }
-  return r;
-}
-
 void require_few_cosets(const CosetLattice& lattice) {
   if (lattice.coset_count() > kMaxInterpolationCosets)
     throw std::invalid_argument(fmt::format(
@@ -495,67 +381,20 @@ void require_few_cosets(const CosetLattice& lattice) {
         kMaxInterpolationCosets, lattice.label(), lattice.coset_count()));
 }
 
-// The discrete convolution of two tap tables.
-PrefilterTaps convolve(const PrefilterTaps& p, const PrefilterTaps& q) {
-  std::map<std::array<int, 3>, double> sum;
-  for (const auto& [o, w] : p)
-    for (const auto& [t, v] : q) sum[{o[0] + t[0], o[1] + t[1], o[2] + t[2]}] += w * v;
-  PrefilterTaps out;
-  for (const auto& [o, w] : sum)
-    if (w != 0) out.push_back({o, w});
-  return out;
-}
-
-// The regulariser D: the lattice Laplacian sum_t (2 delta_0 - delta_t - delta_-t) over the
-// shortest lattice vectors and the columns of G, a basis of L (so that its symbol 2 sum_t (1 - cos
-// w.t) vanishes exactly on the dual lattice 2 pi L*, where the filter's response must stay 1), to
-// the power m = ceil(k / 4): |D|^2 vanishes to order 4 m >= k there, so that regularisation keeps
-// the reproduction of polynomials of degree < k (k: the filter's approximation order, at least 4).
-PrefilterTaps regulariser_taps(const CosetLattice& lattice, int order) {
-  const int d = lattice.period();
-  std::vector<std::array<int, 3>> steps;
-  std::int64_t shortest = -1;
-  for (int z = -d; z <= d; ++z)
-    for (int y = -d; y <= d; ++y)
-      for (int x = -d; x <= d; ++x) {
-        if ((x == 0 && y == 0 && z == 0) || !lattice.contains(x, y, z)) continue;
-        const std::int64_t norm = std::int64_t{x} * x + std::int64_t{y} * y + std::int64_t{z} * z;
-        if (shortest < 0 || norm < shortest) {
-          shortest = norm;
-          steps.clear();
-        }
-        if (norm == shortest) steps.push_back({x, y, z});
-      }
-  const IntRows& g = lattice.rows();  // L = G Z^3: G's columns are a basis of L
-  for (std::size_t col = 0; col < 3; ++col)
-    for (const int sign : {1, -1}) {
-      const std::array<int, 3> t{static_cast<int>(sign * g[0][col]),
-                                 static_cast<int>(sign * g[1][col]),
-                                 static_cast<int>(sign * g[2][col])};
-      if (std::find(steps.begin(), steps.end(), t) == steps.end()) steps.push_back(t);
-    }
-  PrefilterTaps laplacian{{{0, 0, 0}, static_cast<double>(steps.size())}};
-  for (const auto& t : steps) laplacian.push_back({t, -1.0});  // each t and -t: 2 - 2 cos w.t
-  PrefilterTaps out = laplacian;
-  for (int m = 1; m < (std::max(order, 4) + 3) / 4; ++m) out = convolve(out, laplacian);
-  return out;
-}
-
-// The problem of f's interpolation with lambda (see Regularisation): mu = lambda max|A|^2 /
-// max|D|^2, so that lambda weighs the regulariser against the filter where D is largest.
+// The problem of f's interpolation with lambda (support::regularisation: D and mu).
 struct Setup {
-  Regularisation regular;
+  support::Regularisation regular;
   Problem problem;
 };
 Setup setup(const SplineFilter& f, const PrefilterTaps& values, std::optional<double> lambda) {
-  Setup s{regularisation(f, values, lambda), {}};
+  const IntRows& g = f.lattice().rows();  // L = G Z^3: G's columns are a basis of L
+  std::vector<std::vector<std::int64_t>> basis;
+  for (std::size_t col = 0; col < 3; ++col) basis.push_back({g[0][col], g[1][col], g[2][col]});
+  Setup s{support::regularisation(values, basis, f.approximation_order(), lambda, f.name()), {}};
   s.problem.h = coset_system(values, f.lattice());
   if (s.regular.lambda > 0) {
-    const PrefilterTaps d = regulariser_taps(f.lattice(), f.approximation_order());
-    const SymbolBounds db = symbol_bounds(d);
-    s.problem.d = coset_system(d, f.lattice());
-    s.problem.mu =
-        s.regular.lambda * s.regular.symbol.max * s.regular.symbol.max / (db.max * db.max);
+    s.problem.d = coset_system(s.regular.regulariser, f.lattice());
+    s.problem.mu = s.regular.mu;
   }
   return s;
 }
@@ -607,37 +446,6 @@ PrefilterTaps lattice_values(const SplineFilter& f) {
   if (out.empty())
     throw std::invalid_argument(fmt::format("filter {} is zero at every lattice point", f.name()));
   return out;
-}
-
-SymbolBounds symbol_bounds(const PrefilterTaps& values) {
-  constexpr int kGrid = 64;
-  // The values as one kernel on their box of Z^3 (zero off the lattice): A on the grid.
-  BoxKernel kernel;
-  std::array<int, 3> lo{0, 0, 0}, hi{0, 0, 0};
-  for (const auto& [v, w] : values)
-    for (std::size_t a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], v[a]);
-      hi[a] = std::max(hi[a], v[a]);
-    }
-  kernel.lo = lo;
-  for (std::size_t a = 0; a < 3; ++a) kernel.width[a] = hi[a] - lo[a] + 1;
-  kernel.values.assign(index_of(kernel.width[0] * kernel.width[1] * kernel.width[2]), 0.0);
-  for (const auto& [v, w] : values) kernel.at(v[0], v[1], v[2]) += w;
-  const std::vector<BoxKernel> kernels{kernel};
-  FourierSums sums(kernels, {kGrid, kGrid, kGrid}, {kGrid, kGrid, kGrid});
-  SymbolBounds b{std::numeric_limits<double>::infinity(), 0};
-  for (int k2 = 0; k2 < kGrid; ++k2) {
-    sums.set_k2(k2);
-    for (int k1 = 0; k1 < kGrid; ++k1) {
-      sums.set_k1(k1);
-      for (int k0 = 0; k0 < kGrid; ++k0) {
-        const double m = std::sqrt(std::norm(sums.at_k0(0, k0)));  // no hypot: values of order 1
-        b.min = std::min(b.min, m);
-        b.max = std::max(b.max, m);
-      }
-    }
-  }
-  return b;
 }
 
 namespace {

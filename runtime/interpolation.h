@@ -24,6 +24,7 @@
 #include "runtime/lattice_volume.h"
 #include "runtime/prefilter.h"
 #include "runtime/spline_filter.h"
+#include "support/lattice_regulariser.h"
 
 namespace boxgen::runtime {
 
@@ -33,16 +34,14 @@ namespace boxgen::runtime {
 PrefilterTaps lattice_values(const SplineFilter& f);
 
 // The smallest and largest |A(w)| over the grid w = 2 pi (i, j, k) / 64 (lattice coordinates:
-// A has period 2 pi along each axis), which holds the zeros of the registry's filters.
-struct SymbolBounds {
-  double min = 0, max = 0;
-};
-SymbolBounds symbol_bounds(const PrefilterTaps& values);
-
-// Where min |A| < kVanishing max |A| the symbol is taken to vanish: interp then regularises with
-// lambda = kDefaultLambda unless told otherwise (and refuses lambda = 0).
-inline constexpr double kVanishing = 1e-6;
-inline constexpr double kDefaultLambda = 1e-3;
+// A has period 2 pi along each axis), which holds the zeros of the registry's filters; where
+// min |A| < kVanishing max |A| the symbol is taken to vanish: interp then regularises with
+// lambda = kDefaultLambda unless told otherwise (and refuses lambda = 0). One implementation with
+// boxgen's error kernel (support/lattice_regulariser.h).
+using support::symbol_bounds;
+using support::SymbolBounds;
+inline constexpr double kVanishing = support::kVanishing;
+inline constexpr double kDefaultLambda = support::kDefaultLambda;
 // Largest K (cosets of d Z^3) interpolation takes: each frequency solves a K x K system (BCC 2,
 // FCC 4; a custom lattice of period d up to d^3 / |det G|).
 inline constexpr int kMaxInterpolationCosets = 32;

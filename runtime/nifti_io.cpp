@@ -310,19 +310,13 @@ std::string read_geometry(const nifti_image& im, const nifti_header::RawHeader& 
     return {};
   }
   if (!allow_oblique) return oblique;
-  Affine map;
-  for (int c = 0; c < 3; ++c) {
-    out.steps[c] = std::hypot(m.m[0][c], m.m[1][c], m.m[2][c]);
-    if (!(std::isfinite(out.steps[c]) && out.steps[c] > 0))
-      return fmt::format("its {} has a zero or non-finite column {}", which, c);
-    for (int r = 0; r < 3; ++r) map.linear[r][c] = m.m[r][c] / out.steps[c];
+  Affine a, map;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) a.linear[r][c] = m.m[r][c];
+    a.translation[r] = m.m[r][3];
   }
-  for (int r = 0; r < 3; ++r) map.translation[r] = m.m[r][3];
-  try {
-    (void)map.inverse();
-  } catch (const std::invalid_argument&) {
-    return fmt::format("its {} is singular (its voxel axes are not independent)", which);
-  }
+  if (const std::string why = split_oblique(a, out.steps, map); !why.empty())
+    return fmt::format("its {} {}", which, why);
   out.frame = map;
   return {};
 }

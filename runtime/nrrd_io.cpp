@@ -1,5 +1,6 @@
 #include "runtime/nrrd_io.h"
 
+#include "runtime/affine.h"
 #include "runtime/nrrd_checks.h"
 #include "support/output_file.h"
 
@@ -25,6 +26,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -167,12 +169,25 @@ void write_atomically(const fs::path& path, const Nrrd* nrrd) {
   }
 }
 
-// Wraps `data` (not copied, not freed) in a Nrrd with the given sizes, space directions and
-// origin in a 3-D right-handed space.
-NrrdShell wrap(const void* data, int type, unsigned dim, const std::size_t* sizes) {
+// The NRRD space of a world tied to a patient (SourceSamples::anatomical: "RAS", "LAS", "LPS"),
+// 3D-right-handed for one that is not (""); std::invalid_argument for any other text.
+int nrrd_space(const std::string& anatomical) {
+  if (anatomical.empty()) return nrrdSpace3DRightHanded;
+  if (anatomical == "RAS") return nrrdSpaceRightAnteriorSuperior;
+  if (anatomical == "LAS") return nrrdSpaceLeftAnteriorSuperior;
+  if (anatomical == "LPS") return nrrdSpaceLeftPosteriorSuperior;
+  throw std::invalid_argument("no NRRD space for the anatomical frame '" + anatomical.substr(0, 8) +
+                              "' (RAS, LAS or LPS)");
+}
+
+// Wraps `data` (not copied, not freed) in a Nrrd with the given sizes in the space of
+// `anatomical` (nrrd_space); the caller sets the space directions and the origin.
+NrrdShell wrap(const void* data, int type, unsigned dim, const std::size_t* sizes,
+               const std::string& anatomical) {
+  const int space = nrrd_space(anatomical);
   NrrdShell nrrd(nrrdNew());
   if (!nrrd || nrrdWrap_nva(nrrd.get(), const_cast<void*>(data), type, dim, sizes) != 0 ||
-      nrrdSpaceSet(nrrd.get(), nrrdSpace3DRightHanded) != 0)
+      nrrdSpaceSet(nrrd.get(), space) != 0)
     throw NrrdError("cannot describe the volume to Teem: " + teem_error());
   for (unsigned a = 0; a < dim; ++a)
     for (int b = 0; b < 3; ++b) nrrd->axis[a].spaceDirection[b] = AIR_NAN;
@@ -205,6 +220,10 @@ struct VolumeHeader {
   std::string anatomical;  // SourceSamples::anatomical
   int type;                // one of kSampleTypes
   std::uint64_t data_bytes;
+  // NrrdReadLimits::allow_oblique (in), and an oblique Cartesian file's frame (out): its voxel
+  // grid is then in its own frame (steps = the directions' lengths, origin 0), as a NIfTI file's.
+  bool allow_oblique = false;
+  std::optional<Affine> frame;
 };
 
 // The sample types the reader converts, with the names SourceSamples::type gives them. Teem's
@@ -302,6 +321,24 @@ std::string file_lattice(const Nrrd* nrrd, VolumeHeader& header) {
   return {};
 }
 
+// An oblique (or axis-permuting) Cartesian file's directions, where allowed: its voxel grid in its
+// own frame and that frame's map to world (split_oblique, as the NIfTI reader's; the space origin,
+// read after this, becomes the frame's translation).
+std::string read_oblique_steps(const Nrrd* nrrd, unsigned first, VolumeHeader& header) {
+  Affine a, frame;
+  for (unsigned c = 0; c < 3; ++c)
+    for (unsigned r = 0; r < 3; ++r) {
+      const double v = nrrd->axis[first + c].spaceDirection[r];
+      if (!std::isfinite(v))
+        return fmt::format("its space direction of axis {} is not finite", first + c);
+      a.linear[r][c] = v;
+    }
+  if (const std::string why = split_oblique(a, header.steps, frame); !why.empty())
+    return "the matrix of its space directions " + why;
+  header.frame = frame;
+  return {};
+}
+
 // The spacing of each domain axis from the space directions (header.steps): Z^3 may have one per
 // axis, and negative ones (read_lattice_nrrd flips those axes); every other lattice has one h > 0.
 std::string read_steps(const Nrrd* nrrd, unsigned first, int k, int d, const std::string& name,
@@ -316,6 +353,7 @@ std::string read_steps(const Nrrd* nrrd, unsigned first, int k, int d, const std
       bool aligned = std::isfinite(step) && step != 0;
       for (int b = 0; b < 3; ++b)
         if (b != a && !(std::fabs(direction[b]) <= 1e-9 * std::fabs(step))) aligned = false;
+      if (!aligned && header.allow_oblique) return read_oblique_steps(nrrd, first, header);
       if (!aligned) {
         std::string found;
         for (int c = 0; c < 3; ++c) {
@@ -412,6 +450,10 @@ std::string check_lattice_header(const Nrrd* nrrd, const std::optional<CosetLatt
     header.origin[b] = nrrd->spaceOrigin[b];
     if (!std::isfinite(header.origin[b])) return "its space origin is missing or not finite";
   }
+  if (header.frame) {  // the origin is the frame's translation; the grid starts at its 0
+    header.frame->translation = header.origin;
+    header.origin = {0, 0, 0};
+  }
   return {};
 }
 
@@ -465,8 +507,8 @@ namespace {
 // The lattice volume layout of nrrd_io.h for `volume`'s geometry, with the samples at `data` of
 // Teem type `type`.
 template <class T>
-void write_lattice(const fs::path& path, const LatticeVolume<T>& volume, const void* data,
-                   int type) {
+void write_lattice(const fs::path& path, const LatticeVolume<T>& volume, const void* data, int type,
+                   const std::string& anatomical) {
   std::lock_guard lock(teem_mutex());
   const Sizes& n = volume.sizes();
   const CosetLattice& lattice = volume.lattice();
@@ -477,7 +519,7 @@ void write_lattice(const fs::path& path, const LatticeVolume<T>& volume, const v
   const std::size_t sizes[4] = {
       static_cast<std::size_t>(k == 1 ? n[0] : k), static_cast<std::size_t>(k == 1 ? n[1] : n[0]),
       static_cast<std::size_t>(k == 1 ? n[2] : n[1]), static_cast<std::size_t>(n[2])};
-  NrrdShell nrrd = wrap(data, type, dim, sizes);
+  NrrdShell nrrd = wrap(data, type, dim, sizes, anatomical);
   if (first == 1) nrrd->axis[0].kind = nrrdKindList;
   for (unsigned a = 0; a < 3; ++a) {
     nrrd->axis[first + a].kind = nrrdKindDomain;
@@ -499,22 +541,24 @@ void write_lattice(const fs::path& path, const LatticeVolume<T>& volume, const v
 }  // namespace
 
 template <class T>
-void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume) {
-  write_lattice(path, volume, volume.samples().data(), teem_type<T>());
+void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume,
+                        const std::string& anatomical) {
+  write_lattice(path, volume, volume.samples().data(), teem_type<T>(), anatomical);
 }
 
 template <class T>
 void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume,
-                        const EncodedSamples& samples) {
+                        const EncodedSamples& samples, const std::string& anatomical) {
   if (samples.bytes.size() != volume.sample_count() * sample_type_size(samples.type))
     throw std::invalid_argument(fmt::format("{} samples of {} bytes for a volume of {} samples",
                                             samples.bytes.size() / sample_type_size(samples.type),
                                             sample_type_size(samples.type), volume.sample_count()));
-  write_lattice(path, volume, samples.bytes.data(), teem_type(samples.type));
+  write_lattice(path, volume, samples.bytes.data(), teem_type(samples.type), anatomical);
 }
 
 template <class T>
-void write_cartesian_nrrd(const fs::path& path, const CartesianVolume<T>& grid) {
+void write_cartesian_nrrd(const fs::path& path, const CartesianVolume<T>& grid,
+                          const std::string& anatomical) {
   std::uint64_t count = 1;
   for (int a = 0; a < 3; ++a) {
     if (grid.sizes[a] < 1)
@@ -535,7 +579,7 @@ void write_cartesian_nrrd(const fs::path& path, const CartesianVolume<T>& grid) 
   const std::size_t sizes[3] = {static_cast<std::size_t>(grid.sizes[0]),
                                 static_cast<std::size_t>(grid.sizes[1]),
                                 static_cast<std::size_t>(grid.sizes[2])};
-  NrrdShell nrrd = wrap(grid.values.data(), teem_type<T>(), 3, sizes);
+  NrrdShell nrrd = wrap(grid.values.data(), teem_type<T>(), 3, sizes, anatomical);
   for (int a = 0; a < 3; ++a) {
     nrrd->axis[a].kind = nrrdKindDomain;
     for (int b = 0; b < 3; ++b) nrrd->axis[a].spaceDirection[b] = a == b ? grid.spacing[a] : 0.0;
@@ -587,6 +631,7 @@ std::vector<T> read_volume(const fs::path& path, const NrrdReadLimits& limits, c
 
   std::lock_guard lock(teem_mutex());
   VolumeHeader header{};
+  header.allow_oblique = full.allow_oblique = limits.allow_oblique;
   DataLayout layout;
   {
     NrrdOwner nrrd(nrrdNew());
@@ -654,27 +699,34 @@ LatticeVolume<T> read_lattice_nrrd(const fs::path& path, const NrrdReadLimits& l
   const std::string kind =
       limits.lattice ? limits.lattice->label() + " volume" : std::string("lattice volume");
   std::vector<T> samples = read_volume<T>(path, limits, kind.c_str(), header);
+  if (header.frame && !source)
+    throw std::logic_error("read_lattice_nrrd: allow_oblique needs a SourceSamples");
   Vec3 spacing = header.steps, origin = header.origin;
-  orient_axes_positive(std::span<T>(samples), header.sizes, spacing, origin);
+  orient_axes_positive(std::span<T>(samples), header.sizes, spacing, origin);  // none if oblique
   LatticeVolume<T> volume(header.lattice, header.sizes, spacing, origin, std::move(samples));
   if (source) {
     *source = describe_samples<T>(volume.samples(), sample_type_name(header.type));
     source->anatomical = header.anatomical;
+    source->frame = header.frame;
   }
   return volume;
 }
 
-template void write_lattice_nrrd<float>(const fs::path&, const LatticeVolume<float>&);
-template void write_lattice_nrrd<double>(const fs::path&, const LatticeVolume<double>&);
 template void write_lattice_nrrd<float>(const fs::path&, const LatticeVolume<float>&,
-                                        const EncodedSamples&);
+                                        const std::string&);
 template void write_lattice_nrrd<double>(const fs::path&, const LatticeVolume<double>&,
-                                         const EncodedSamples&);
+                                         const std::string&);
+template void write_lattice_nrrd<float>(const fs::path&, const LatticeVolume<float>&,
+                                        const EncodedSamples&, const std::string&);
+template void write_lattice_nrrd<double>(const fs::path&, const LatticeVolume<double>&,
+                                         const EncodedSamples&, const std::string&);
 template LatticeVolume<float> read_lattice_nrrd<float>(const fs::path&, const NrrdReadLimits&,
                                                        SourceSamples*);
 template LatticeVolume<double> read_lattice_nrrd<double>(const fs::path&, const NrrdReadLimits&,
                                                          SourceSamples*);
-template void write_cartesian_nrrd<float>(const fs::path&, const CartesianVolume<float>&);
-template void write_cartesian_nrrd<double>(const fs::path&, const CartesianVolume<double>&);
+template void write_cartesian_nrrd<float>(const fs::path&, const CartesianVolume<float>&,
+                                          const std::string&);
+template void write_cartesian_nrrd<double>(const fs::path&, const CartesianVolume<double>&,
+                                           const std::string&);
 
 }  // namespace boxgen::runtime

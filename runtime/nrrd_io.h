@@ -22,6 +22,10 @@
 // directions (sx,0,0) (0,sy,0) (0,0,sz), space origin, kinds domain domain domain; 3D Slicer,
 // ParaView and `unu` open it.
 //
+// Both are written with `space: 3D-right-handed`, or, when the world is tied to a patient, its
+// anatomical space (right-anterior-superior, left-anterior-superior, left-posterior-superior):
+// the space of the volume they came from, so that readers know its orientation.
+//
 // Writing follows output_file.h: symbolic links are written through, special files (FIFOs,
 // devices) refused, and the data goes to a temporary file in the target's directory, renamed over
 // the target only once it is complete: a failed write never leaves a half-written file behind.
@@ -47,6 +51,7 @@
 #include <optional>
 #include <span>
 #include <stdexcept>
+#include <string>
 
 #include "runtime/cartesian_volume.h"
 #include "runtime/lattice_volume.h"
@@ -87,15 +92,19 @@ void require_output_file(const std::filesystem::path& path,
 // require_output_file(path, {}).
 void require_output_directory(const std::filesystem::path& path);
 
-// A volume on any lattice (lattice_volume.h): the layout in the comment at the top. Throws
-// NrrdError if the file cannot be written.
+// A volume on any lattice (lattice_volume.h): the layout in the comment at the top. Its space
+// is the world's anatomical frame (SourceSamples::anatomical: "RAS", "LAS" or "LPS" write
+// right-anterior-superior, left-anterior-superior or left-posterior-superior, so that readers
+// know the patient's orientation; "" 3D-right-handed). Throws NrrdError if the file cannot be
+// written, std::invalid_argument for another `anatomical`.
 template <class T>
-void write_lattice_nrrd(const std::filesystem::path& path, const LatticeVolume<T>& volume);
+void write_lattice_nrrd(const std::filesystem::path& path, const LatticeVolume<T>& volume,
+                        const std::string& anatomical = "");
 // The same with `samples` (volume.sample_count() of them, encode_samples) stored in place of the
 // volume's own: another sample type (boxrecon's --type).
 template <class T>
 void write_lattice_nrrd(const std::filesystem::path& path, const LatticeVolume<T>& volume,
-                        const EncodedSamples& samples);
+                        const EncodedSamples& samples, const std::string& anatomical = "");
 
 // Reads a lattice volume (any lattice; a 3-D NRRD without a lattice key is a Cartesian volume).
 // Samples of any type in int8, uint8, int16, uint16, int32, uint32, float, double are converted
@@ -115,19 +124,21 @@ std::optional<CosetLattice> read_nrrd_lattice(const std::filesystem::path& path)
 
 // Throws std::invalid_argument for an inconsistent grid (sizes < 1, values.size() different
 // from N0 N1 N2, spacing not finite and > 0, origin not finite) and NrrdError if the file
-// cannot be written.
+// cannot be written. Its space: as write_lattice_nrrd's.
 template <class T>
-void write_cartesian_nrrd(const std::filesystem::path& path, const CartesianVolume<T>& grid);
+void write_cartesian_nrrd(const std::filesystem::path& path, const CartesianVolume<T>& grid,
+                          const std::string& anatomical = "");
 
 extern template void write_lattice_nrrd<float>(const std::filesystem::path&,
-                                               const LatticeVolume<float>&);
+                                               const LatticeVolume<float>&, const std::string&);
 extern template void write_lattice_nrrd<double>(const std::filesystem::path&,
-                                                const LatticeVolume<double>&);
+                                                const LatticeVolume<double>&, const std::string&);
 extern template void write_lattice_nrrd<float>(const std::filesystem::path&,
-                                               const LatticeVolume<float>&, const EncodedSamples&);
+                                               const LatticeVolume<float>&, const EncodedSamples&,
+                                               const std::string&);
 extern template void write_lattice_nrrd<double>(const std::filesystem::path&,
-                                                const LatticeVolume<double>&,
-                                                const EncodedSamples&);
+                                                const LatticeVolume<double>&, const EncodedSamples&,
+                                                const std::string&);
 extern template LatticeVolume<float> read_lattice_nrrd<float>(const std::filesystem::path&,
                                                               const NrrdReadLimits&,
                                                               SourceSamples*);
@@ -135,8 +146,9 @@ extern template LatticeVolume<double> read_lattice_nrrd<double>(const std::files
                                                                 const NrrdReadLimits&,
                                                                 SourceSamples*);
 extern template void write_cartesian_nrrd<float>(const std::filesystem::path&,
-                                                 const CartesianVolume<float>&);
+                                                 const CartesianVolume<float>&, const std::string&);
 extern template void write_cartesian_nrrd<double>(const std::filesystem::path&,
-                                                  const CartesianVolume<double>&);
+                                                  const CartesianVolume<double>&,
+                                                  const std::string&);
 
 }  // namespace boxgen::runtime

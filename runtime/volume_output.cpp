@@ -31,6 +31,16 @@ constexpr SampleType own_type() {
   return std::is_same_v<T, float> ? SampleType::Float32 : SampleType::Float64;
 }
 
+// NIfTI's world is RAS: the map from a world with anatomical frame `anatomical` (SourceSamples)
+// to RAS, a sign per axis (L -> R and P -> A flip; "" and "RAS" keep the world as it is).
+Affine world_to_ras(const std::string& anatomical) {
+  Vec3 sign{1, 1, 1};
+  const std::string ras = "RAS";
+  for (std::size_t a = 0; a < 3 && anatomical.size() == 3; ++a)
+    if (anatomical[a] != ras[a]) sign[a] = -1;
+  return Affine::diagonal(sign, {0, 0, 0});
+}
+
 }  // namespace
 
 VolumeFormat output_format(const fs::path& path) {
@@ -64,19 +74,19 @@ VolumeFormat require_volume_output(const fs::path& path, std::span<const fs::pat
 
 template <class T>
 VolumeWrite write_volume_file(const fs::path& path, const LatticeVolume<T>& volume,
-                              std::optional<SampleType> type) {
+                              std::optional<SampleType> type, const std::string& anatomical) {
   const CosetLattice& lattice = volume.lattice();
   const VolumeFormat format =
       require_volume_output(path, {}, volume.coset_count(), lattice.name().c_str());
   if (format == VolumeFormat::Nrrd && (!type || *type == own_type<T>())) {
-    write_lattice_nrrd(path, volume);
+    write_lattice_nrrd(path, volume, anatomical);
     return {own_type<T>(), 0};
   }
   const EncodedSamples samples = encode_samples<T>(
       volume.samples(),
       type.value_or(format == VolumeFormat::Nifti ? SampleType::Float32 : own_type<T>()));
   if (format == VolumeFormat::Nrrd) {
-    write_lattice_nrrd(path, volume, samples);
+    write_lattice_nrrd(path, volume, samples, anatomical);
     return {samples.type, samples.clamped};
   }
   // One coset: sample (i, j, k) at o + h (d (i, j, k) + offset).
@@ -87,13 +97,14 @@ VolumeWrite write_volume_file(const fs::path& path, const LatticeVolume<T>& volu
     step[a] = d * volume.axis_spacing()[a];
     origin[a] = volume.origin()[a] + volume.axis_spacing()[a] * static_cast<double>(offset[a]);
   }
-  write_nifti(path, volume.sizes(), Affine::diagonal(step, origin), samples);
+  write_nifti(path, volume.sizes(), world_to_ras(anatomical).after(Affine::diagonal(step, origin)),
+              samples);
   return {samples.type, samples.clamped};
 }
 
 template <class T>
 VolumeWrite write_grid_file(const fs::path& path, const CartesianVolume<T>& grid,
-                            std::optional<SampleType> type) {
+                            std::optional<SampleType> type, const std::string& anatomical) {
   const VolumeFormat format = require_volume_output(path, {}, 1, "cartesian");
   if (format == VolumeFormat::Nrrd && grid.frame)
     throw NrrdError(fmt::format(
@@ -101,28 +112,30 @@ VolumeWrite write_grid_file(const fs::path& path, const CartesianVolume<T>& grid
         "NRRD writer stores axis-aligned grids only",
         nrrd_checks::printable(path.string(), 80)));
   if (format == VolumeFormat::Nrrd && (!type || *type == own_type<T>())) {
-    write_cartesian_nrrd(path, grid);
+    write_cartesian_nrrd(path, grid, anatomical);
     return {own_type<T>(), 0};
   }
   if (format == VolumeFormat::Nrrd) {
     std::vector<T> copy = grid.values;
     const LatticeVolume<T> volume(CosetLattice::cartesian(), grid.sizes, grid.spacing, grid.origin,
                                   std::move(copy));
-    return write_volume_file(path, volume, type);
+    return write_volume_file(path, volume, type, anatomical);
   }
   const EncodedSamples samples = encode_samples<T>(grid.values, type.value_or(SampleType::Float32));
   const Affine in_frame = Affine::diagonal(grid.spacing, grid.origin);
-  write_nifti(path, grid.sizes, grid.frame ? grid.frame->after(in_frame) : in_frame, samples);
+  write_nifti(path, grid.sizes,
+              world_to_ras(anatomical).after(grid.frame ? grid.frame->after(in_frame) : in_frame),
+              samples);
   return {samples.type, samples.clamped};
 }
 
 template VolumeWrite write_volume_file<float>(const fs::path&, const LatticeVolume<float>&,
-                                              std::optional<SampleType>);
+                                              std::optional<SampleType>, const std::string&);
 template VolumeWrite write_volume_file<double>(const fs::path&, const LatticeVolume<double>&,
-                                               std::optional<SampleType>);
+                                               std::optional<SampleType>, const std::string&);
 template VolumeWrite write_grid_file<float>(const fs::path&, const CartesianVolume<float>&,
-                                            std::optional<SampleType>);
+                                            std::optional<SampleType>, const std::string&);
 template VolumeWrite write_grid_file<double>(const fs::path&, const CartesianVolume<double>&,
-                                             std::optional<SampleType>);
+                                             std::optional<SampleType>, const std::string&);
 
 }  // namespace boxgen::runtime

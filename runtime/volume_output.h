@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <optional>
 #include <span>
+#include <string>
 
 #include "runtime/cartesian_volume.h"
 #include "runtime/lattice_volume.h"
@@ -38,27 +39,33 @@ VolumeFormat require_volume_output(const std::filesystem::path& path,
                                    const char* lattice_name);
 
 // Writes `volume` in the format of its name with samples of `type` (default: NRRD the volume's T,
-// NIfTI float32). Returns the type written and how many values were clamped to its range. Throws
-// NrrdError (one line) for a name or lattice require_volume_output refuses, or a failed write.
+// NIfTI float32). `anatomical` is the world's frame (SourceSamples::anatomical of the volume the
+// output came from: "RAS", "LAS", "LPS" or ""): NRRD writes it as its space, NIfTI (whose world
+// is RAS) maps the world to RAS. Returns the type written and how many values were clamped to its
+// range. Throws NrrdError (one line) for a name or lattice require_volume_output refuses, or a
+// failed write.
 template <class T>
 VolumeWrite write_volume_file(const std::filesystem::path& path, const LatticeVolume<T>& volume,
-                              std::optional<SampleType> type = std::nullopt);
+                              std::optional<SampleType> type = std::nullopt,
+                              const std::string& anatomical = "");
 // The same for a Cartesian grid.
 template <class T>
 VolumeWrite write_grid_file(const std::filesystem::path& path, const CartesianVolume<T>& grid,
-                            std::optional<SampleType> type = std::nullopt);
+                            std::optional<SampleType> type = std::nullopt,
+                            const std::string& anatomical = "");
 
 extern template VolumeWrite write_volume_file<float>(const std::filesystem::path&,
                                                      const LatticeVolume<float>&,
-                                                     std::optional<SampleType>);
+                                                     std::optional<SampleType>, const std::string&);
 extern template VolumeWrite write_volume_file<double>(const std::filesystem::path&,
                                                       const LatticeVolume<double>&,
-                                                      std::optional<SampleType>);
+                                                      std::optional<SampleType>,
+                                                      const std::string&);
 extern template VolumeWrite write_grid_file<float>(const std::filesystem::path&,
                                                    const CartesianVolume<float>&,
-                                                   std::optional<SampleType>);
+                                                   std::optional<SampleType>, const std::string&);
 extern template VolumeWrite write_grid_file<double>(const std::filesystem::path&,
                                                     const CartesianVolume<double>&,
-                                                    std::optional<SampleType>);
+                                                    std::optional<SampleType>, const std::string&);
 
 }  // namespace boxgen::runtime

@@ -227,7 +227,8 @@ int run_compare() {
   const double peak = source.max - source.min;
   if (!(peak > 0))
     throw std::invalid_argument("the reference is constant: PSNR (peak = its range) is undefined");
-  if (error_volume) app::write_output_volume(args.error_volume, *error_volume, type);
+  if (error_volume)
+    app::write_output_volume(args.error_volume, *error_volume, type, source.anatomical);
   if (args.json) {
     nlohmann::json j{{"reference", args.reference},
                      {"volume", args.volume},

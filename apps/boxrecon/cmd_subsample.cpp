@@ -78,7 +78,8 @@ int run_subsample() {
   const std::filesystem::path input = args.volume;
   app::require_output_volume(args.output, {&input, 1}, lattice);
 
-  LatticeVolume<float> volume = read_volume_file<float>(args.volume);
+  SourceSamples source;  // its anatomical frame goes to the output
+  LatticeVolume<float> volume = read_volume_file<float>(args.volume, {}, &source);
   filter.check_lattice(volume.lattice());
   const std::uint64_t input_count = volume.sample_count();
   if (args.smooth) volume = gaussian_smooth(volume, *args.smooth);
@@ -99,7 +100,7 @@ int run_subsample() {
     return resample_to_lattice(volume, filter, grid, BatchEvaluate<float>{},
                                [&progress](double done) { progress.update(done); });
   }();
-  app::write_output_volume(args.output, out, type);
+  app::write_output_volume(args.output, out, type, source.anatomical);
   const std::uint64_t kept = out.sample_count();
   std::cout << fmt::format(
       "kept {} of {} samples: fraction {}/{} = {:.6f}, {} lattice h = {:.9g}, {} x {} x {} x {} "

@@ -76,8 +76,18 @@ int run_eval(const std::string& filter, const std::string& lattice, const Prefil
              bool hessian, const NrrdReadLimits& limits, Device device, bool verbose) {
   const PrefilterSetting q = parse_prefilter_options(pre);
   const SplineFilter f = frontend::filter_for_volume(filter, lattice, volume_path);
-  const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, limits);
-  const auto points = read_points_file(points_path);
+  // An oblique volume is evaluated in its own frame: world points map through the inverse of its
+  // frame, derivatives back through that map's linear part (derivatives_to_world).
+  NrrdReadLimits oblique = limits;
+  oblique.allow_oblique = true;
+  SourceSamples source;
+  const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, oblique, &source);
+  const std::optional<Affine> to_volume = grid_to_volume(source.frame, std::nullopt);
+  const std::vector<Vec3> world = read_points_file(points_path);
+  std::vector<Vec3> in_frame;
+  if (to_volume)
+    for (const Vec3& p : world) in_frame.push_back(to_volume->apply(p));
+  const std::span<const Vec3> points = to_volume ? in_frame : world;
   std::vector<T> values(points.size());
   std::vector<Vec3> gradients(gradient || hessian ? points.size() : 0);
   std::vector<Hessian> hessians(hessian ? points.size() : 0);
@@ -89,7 +99,8 @@ int run_eval(const std::string& filter, const std::string& lattice, const Prefil
   } else {
     spline.evaluate(points, values, gradients, hessians);
   }
-  spline.require_finite(points, values, gradients, hessians);
+  spline.require_finite(world, values, gradients, hessians);  // its message names world points
+  if (to_volume) derivatives_to_world(*to_volume, gradients, hessians);
   print_evaluations<T>(values, gradients, hessians, gradient, hessian);
   return 0;
 }
@@ -186,16 +197,6 @@ int run_error(const std::string& function, int n, const std::string& filter,
 
 namespace {
 
-// The map from a grid's frame to a volume's, both given by their maps to world (nothing: the
-// world itself). Nothing when the frames are one, so that a grid on the volume's own frame is
-// evaluated at exactly its points.
-std::optional<Affine> grid_to_volume(const std::optional<Affine>& volume_frame,
-                                     const std::optional<Affine>& grid_frame) {
-  if (volume_frame == grid_frame) return std::nullopt;
-  const Affine from = grid_frame.value_or(Affine::diagonal({1, 1, 1}, {0, 0, 0}));
-  return volume_frame ? volume_frame->inverse().after(from) : from;
-}
-
 // --spacing H (or HX HY HZ) over the box: as many points as fit from box.min on, spacing h.
 CartesianGrid grid_with_spacing(const Box& box, const std::vector<double>& given) {
   const Vec3 h =
@@ -252,6 +253,7 @@ struct LikeImage {
   Sizes sizes{};
   Vec3 spacing{}, origin{};
   std::optional<Affine> frame;
+  std::string anatomical;  // SourceSamples::anatomical
 };
 
 LikeImage read_like(const std::string& path) {
@@ -260,7 +262,8 @@ LikeImage read_like(const std::string& path) {
   limits.allow_oblique = true;
   SourceSamples source;
   const LatticeVolume<float> image = read_volume_file<float>(path, limits, &source);
-  return {image.lattice(), image.sizes(), image.axis_spacing(), image.origin(), source.frame};
+  return {image.lattice(), image.sizes(), image.axis_spacing(),
+          image.origin(),  source.frame,  source.anatomical};
 }
 
 bool is_cartesian(const CosetLattice& lattice) { return lattice == CosetLattice::cartesian(); }
@@ -356,6 +359,17 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
   read_limits.allow_oblique = true;
   SourceSamples source;
   const LatticeVolume<T> volume = read_for<T>(f, q, volume_path, read_limits, &source);
+  // The output is in the volume's world; a --like image in another anatomical frame (LPS
+  // against RAS) would put its grid elsewhere, so it is refused rather than mirrored.
+  if (like && !like->anatomical.empty() && !source.anatomical.empty() &&
+      like->anatomical != source.anatomical)
+    throw std::invalid_argument(fmt::format(
+        "--like '{}' is in {} world coordinates, the volume '{}' in {}: give an image in the "
+        "volume's frame",
+        nrrd_checks::printable(options.like, 80), like->anatomical,
+        nrrd_checks::printable(volume_path, 80), source.anatomical));
+  const std::string& anatomical =
+      source.anatomical.empty() && like ? like->anatomical : source.anatomical;
   if (!cartesian && source.frame)
     throw std::invalid_argument(fmt::format(
         "'{}' is oblique: it resamples onto Cartesian grids only (a {} volume is stored "
@@ -387,7 +401,8 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
                         bytes,
                         fmt::format("{} x {} x {} x {} {} samples", lattice.coset_count(), n[0],
                                     n[1], n[2], lattice.name()));
-    write_output_volume(output, resample_lattice_grid(volume, f, grid, evaluator()), type);
+    write_output_volume(output, resample_lattice_grid(volume, f, grid, evaluator()), type,
+                        anatomical);
     return 0;
   }
   CartesianGrid grid;
@@ -425,7 +440,7 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
                       bytes, fmt::format("{} x {} x {} points", n[0], n[1], n[2]));
   CartesianVolume<T> values = resample_grid(volume, f, grid, evaluator());
   values.frame = output_frame;
-  write_output_grid(output, values, type);
+  write_output_grid(output, values, type, anatomical);
   return 0;
 }
 

@@ -47,27 +47,27 @@ void require_output_volume(const std::filesystem::path& path,
 
 template <class T>
 void write_output_volume(const std::filesystem::path& path, const runtime::LatticeVolume<T>& volume,
-                         std::optional<runtime::SampleType> type) {
-  report_clamped(path, runtime::write_volume_file(path, volume, type));
+                         std::optional<runtime::SampleType> type, const std::string& anatomical) {
+  report_clamped(path, runtime::write_volume_file(path, volume, type, anatomical));
 }
 
 template <class T>
 void write_output_grid(const std::filesystem::path& path, const runtime::CartesianVolume<T>& grid,
-                       std::optional<runtime::SampleType> type) {
-  report_clamped(path, runtime::write_grid_file(path, grid, type));
+                       std::optional<runtime::SampleType> type, const std::string& anatomical) {
+  report_clamped(path, runtime::write_grid_file(path, grid, type, anatomical));
 }
 
 template void write_output_volume<float>(const std::filesystem::path&,
                                          const runtime::LatticeVolume<float>&,
-                                         std::optional<runtime::SampleType>);
+                                         std::optional<runtime::SampleType>, const std::string&);
 template void write_output_volume<double>(const std::filesystem::path&,
                                           const runtime::LatticeVolume<double>&,
-                                          std::optional<runtime::SampleType>);
+                                          std::optional<runtime::SampleType>, const std::string&);
 template void write_output_grid<float>(const std::filesystem::path&,
                                        const runtime::CartesianVolume<float>&,
-                                       std::optional<runtime::SampleType>);
+                                       std::optional<runtime::SampleType>, const std::string&);
 template void write_output_grid<double>(const std::filesystem::path&,
                                         const runtime::CartesianVolume<double>&,
-                                        std::optional<runtime::SampleType>);
+                                        std::optional<runtime::SampleType>, const std::string&);
 
 }  // namespace boxgen::app

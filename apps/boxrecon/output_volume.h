@@ -26,13 +26,15 @@ void require_output_volume(const std::filesystem::path& path,
                            std::span<const std::filesystem::path> inputs,
                            const runtime::CosetLattice& lattice);
 
-// Writes the volume or grid (runtime/volume_output.h) and says on stderr how many values an
-// integer --type clamped to its range.
+// Writes the volume or grid (runtime/volume_output.h) in the world of `anatomical` (the
+// SourceSamples::anatomical of the volume it came from: its NRRD space, or RAS for NIfTI) and
+// says on stderr how many values an integer --type clamped to its range.
 template <class T>
 void write_output_volume(const std::filesystem::path& path, const runtime::LatticeVolume<T>& volume,
-                         std::optional<runtime::SampleType> type);
+                         std::optional<runtime::SampleType> type,
+                         const std::string& anatomical = "");
 template <class T>
 void write_output_grid(const std::filesystem::path& path, const runtime::CartesianVolume<T>& grid,
-                       std::optional<runtime::SampleType> type);
+                       std::optional<runtime::SampleType> type, const std::string& anatomical = "");
 
 }  // namespace boxgen::app

@@ -53,7 +53,7 @@ def resample(volume, filter, prefilter=None, lo=None, hi=None, shape=None, chunk
         raise ValueError("give both lo and hi, or neither")
     if affine is not None:
         affine = np.array(affine, dtype=np.float64)  # a copy the caller cannot change later
-    elif lo is None:
+    elif lo is None and volume.frame is None:  # an oblique volume's is refused by the blocks
         lo, hi = filter.default_box(volume)
     if lo is not None:
         lo = tuple(float(x) for x in lo)
@@ -65,7 +65,7 @@ def resample(volume, filter, prefilter=None, lo=None, hi=None, shape=None, chunk
                           (tuple(s - 1 for s in shape), shape), "strict", affine=affine)
     chunks = da.core.normalize_chunks(chunks, shape, dtype=np.float64)
     token = tokenize(volume.samples, volume.lattice_rows, volume.coset_offsets, volume.spacings,
-                     volume.origin, filter.name, filter.spec, filter.lattice_rows, lo, hi, affine,
+                     volume.affine, filter.name, filter.spec, filter.lattice_rows, lo, hi, affine,
                      shape, chunks)
     name = "boxgen-resample-" + token
     volume_key = "boxgen-volume-" + token

@@ -98,6 +98,27 @@ TEST_F(AnalysisCli, KernelTakesInterpAndQfir) {
   EXPECT_LT(interp["E"][2].get<double>(), none["E"][2].get<double>());
 }
 
+// Where the symbol vanishes (M7, M12) interp is the runtime's regularised interpolation, by default
+// with lambda 1e-3 (tests/analysis checks its Q against the runtime's coefficients): its kernel
+// keeps the order (E(0) = 0), lies above E_min, and changes with lambda. On M8 interp is exact:
+// interp:0 is the same kernel.
+TEST_F(AnalysisCli, KernelTakesTheRegularisedInterpolation) {
+  auto run = [](const char* filter, const char* prefilter) {
+    return boxgen_json({"kernel", filter, "--prefilter", prefilter, "--w", "0,0.5,1,2", "--json"});
+  };
+  for (const char* filter : {"m7", "m12"}) {
+    const auto lo = run(filter, "min"), interp = run(filter, "interp"),
+               same = run(filter, "interp:0.001"), other = run(filter, "interp:0.1");
+    EXPECT_NEAR(interp["E"][0].get<double>(), 0, 1e-14) << filter;
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_GE(interp["E"][i].get<double>(), lo["E"][i].get<double>() - 1e-15) << filter;
+      EXPECT_EQ(interp["E"][i].get<double>(), same["E"][i].get<double>()) << filter;
+    }
+    EXPECT_NE(interp["E"][3].get<double>(), other["E"][3].get<double>()) << filter;
+  }
+  EXPECT_EQ(run("m8", "interp")["E"], run("m8", "interp:0")["E"]);
+}
+
 // q2opt: the free parameter printed to 17 digits (it reads back as the double of --json), the
 // weights not exact, the integrated error kernel lowered; kernel takes it and keeps the order
 // (E(0) = 0); q1opt of M8 has no free parameter and is Q^I, exactly.
@@ -444,10 +465,22 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadAnalysisInput{
             "UnknownPrefilter", {"kernel", "m7", "--prefilter", "q3", "--w", "1"}, 1, "prefilter"},
-        BadAnalysisInput{"InterpWhereTheSymbolVanishes",
-                         {"kernel", "m7", "--prefilter", "interp", "--w", "1"},
+        BadAnalysisInput{"ExactInterpWhereTheSymbolVanishes",
+                         {"kernel", "m7", "--prefilter", "interp:0", "--w", "1"},
                          1,
                          "vanishes"},
+        BadAnalysisInput{"InterpLambdaNotANumber",
+                         {"kernel", "m8", "--prefilter", "interp:1e-3x", "--w", "1"},
+                         1,
+                         "interp:"},
+        BadAnalysisInput{"InterpLambdaNotFinite",
+                         {"kernel", "m7", "--prefilter", "interp:inf", "--w", "1"},
+                         1,
+                         "finite"},
+        BadAnalysisInput{"InterpLambdaAboveOne",
+                         {"kernel", "m7", "--prefilter", "interp:2", "--w", "1"},
+                         1,
+                         "[0, 1]"},
         BadAnalysisInput{
             "QfirOutOfRange", {"kernel", "m7", "--prefilter", "qfir:9", "--w", "1"}, 1, "qfir"},
         BadAnalysisInput{

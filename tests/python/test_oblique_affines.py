@@ -184,3 +184,187 @@ def test_python_resample_affine_and_like_match_scipy(tmp_path, oblique_volume):
         boxgen.resample(volume, tricubic, affine=np.ones((4, 4)), shape=4)
     with pytest.raises(ValueError, match="leaves the region"):
         boxgen.resample(volume, tricubic, affine=affine(5 * np.eye(3), a_vol[:3, 3]), shape=20)
+
+
+def test_python_oblique_volume_reads_resamples_and_writes(tmp_path, oblique_volume):
+    """boxgen.read_volume of a tilted NIfTI keeps its affine (Volume.frame, as boxrecon keeps it):
+    its samples as stored, its positions affine @ (i, j, k, 1); resample onto another image's
+    grid (like=, affine=) or a world box (lo, hi) equals affine_transform with inv(A_in) A_out;
+    Volume(affine=) of the same affine is the same volume; write_volume writes NIfTI that nibabel
+    reads back with that affine, and refuses NRRD; pickling keeps the frame."""
+    import pickle
+
+    boxgen = pytest.importorskip("boxgen")
+    source, a_in, data = oblique_volume
+    v = boxgen.read_volume(str(source))
+    assert v.frame is not None and "oblique" in repr(v)
+    np.testing.assert_allclose(v.affine, a_in, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(v.samples[0], data)
+    np.testing.assert_allclose(v.spacings, [1.1, 0.9, 1.3], rtol=1e-6)
+    np.testing.assert_allclose(v.origin, a_in[:3, 3], rtol=0, atol=1e-12)
+    ijk = np.array([3, 5, 7])
+    index = ijk[0] + data.shape[0] * (ijk[1] + data.shape[1] * ijk[2])
+    np.testing.assert_allclose(v.positions()[index], (a_in @ [*ijk, 1])[:3], rtol=0, atol=1e-12)
+
+    tricubic = boxgen.Filter("tricubic")
+    tolerance = 1e-9 * np.ptp(data)
+    like, a_out = target_grid(tmp_path, "like.nii", rotation((-2, 1, 0.5), 40) @
+                              np.diag([1.2, 1.0, 0.8]), a_in, data.shape)
+    for prefilter in ("none", "interp"):
+        expected = scipy_values(data, a_in, a_out, (9, 8, 7), prefilter == "interp")
+        got = boxgen.resample(v, tricubic, prefilter, like=like)
+        np.testing.assert_allclose(got, expected, rtol=0, atol=tolerance)
+        np.testing.assert_allclose(boxgen.resample(v, tricubic, prefilter, affine=a_out,
+                                                   shape=(9, 8, 7)), expected, rtol=0,
+                                   atol=tolerance)
+    # The CLI's file of the same resampling (boxrecon resample --like).
+    out = tmp_path / "cli.nii"
+    run("boxrecon", "resample", "--filter", "tricubic", "--volume", str(source), "--like",
+        str(like), "--type", "float64", "-o", str(out))
+    np.testing.assert_allclose(boxgen.resample(v, tricubic, like=like),
+                               nib.load(str(out)).get_fdata(), rtol=0, atol=tolerance)
+    # A world box: the output axis-aligned in the world.
+    centre = a_in[:3, :3] @ ((np.asarray(data.shape) - 1) / 2) + a_in[:3, 3]
+    lo, hi = centre - 4, centre + 4
+    np.testing.assert_allclose(
+        boxgen.resample(v, tricubic, lo=lo, hi=hi, shape=(5, 6, 7)),
+        scipy_values(data, a_in, affine(np.diag((hi - lo) / [4, 5, 6]), lo), (5, 6, 7), False),
+        rtol=0, atol=tolerance)
+
+    # Volume(affine=) of the file's affine: the same frame and spacings, the same values.
+    w = boxgen.Volume(data[None], lattice="cartesian", affine=a_in)
+    np.testing.assert_array_equal(w.frame, v.frame)
+    assert w.spacings == v.spacings
+    np.testing.assert_array_equal(boxgen.resample(w, tricubic, like=like),
+                                  boxgen.resample(v, tricubic, like=like))
+
+    again = pickle.loads(pickle.dumps(v))
+    np.testing.assert_array_equal(again.frame, v.frame)
+    np.testing.assert_array_equal(again.affine, v.affine)
+    np.testing.assert_array_equal(boxgen.resample(again, tricubic, like=like),
+                                  boxgen.resample(v, tricubic, like=like))
+
+    written = tmp_path / "written.nii.gz"
+    boxgen.write_volume(str(written), v, type="int16")
+    image = nib.load(str(written))
+    np.testing.assert_allclose(image.affine, a_in, atol=1e-5)  # float32 in the header
+    np.testing.assert_array_equal(np.asarray(image.dataobj), data)
+    back = boxgen.read_volume(str(written))
+    np.testing.assert_allclose(back.frame, v.frame, atol=1e-6)
+    nrrd = tmp_path / "written.nrrd"
+    with pytest.raises(ValueError, match="oblique grid is written as NIfTI"):
+        boxgen.write_volume(str(nrrd), v)
+    assert not nrrd.exists()
+
+    # Without a grid, an oblique volume's output grid is not guessed.
+    with pytest.raises(ValueError, match="the volume is oblique: give the output grid"):
+        boxgen.resample(v, tricubic)
+    # Lattice volumes are axis-aligned: an oblique volume goes onto a Cartesian grid first.
+    with pytest.raises(ValueError, match="resamples onto Cartesian grids only"):
+        boxgen.resample(v, tricubic, lattice="bcc", spacing=1.0)
+
+
+def test_python_dask_resample_of_an_oblique_volume(oblique_volume, tmp_path):
+    """boxgen.dask.resample of an oblique volume equals boxgen.resample bit for bit, and refuses
+    the default grid as boxgen.resample does."""
+    boxgen = pytest.importorskip("boxgen")
+    bdask = pytest.importorskip("boxgen.dask")
+    source, a_in, data = oblique_volume
+    v = boxgen.read_volume(str(source))
+    tricubic = boxgen.Filter("tricubic")
+    like, _ = target_grid(tmp_path, "like.nii", np.diag([1.2, 1.0, 0.8]), a_in, data.shape)
+    lazy = bdask.resample(v, tricubic, "q1", like=str(like), chunks=4)
+    np.testing.assert_array_equal(lazy.compute(scheduler="threads"),
+                                  boxgen.resample(v, tricubic, "q1", like=str(like)))
+    with pytest.raises(ValueError, match="the volume is oblique"):
+        bdask.resample(v, tricubic)
+
+
+def quadratic_on_a_tilted_grid(tmp_path):
+    """f(w) = w.Q w + b.w + 3 sampled (float64) at the world points of a 14 x 13 x 12 grid tilted
+    by 30 degrees about (2, -1, 1) with voxels 0.8 x 1.1 x 0.95, written by nibabel; returns
+    (path, affine, f, gradient, Hessian) with the world gradient and Hessian known exactly."""
+    q = np.array([[0.3, 0.1, -0.2], [0.1, -0.4, 0.05], [-0.2, 0.05, 0.25]])
+    b = np.array([0.7, -1.3, 0.4])
+
+    def f(w):
+        return np.einsum("ni,ij,nj->n", w, q, w) + w @ b + 3
+
+    a = affine(rotation((2, -1, 1), 30) @ np.diag([0.8, 1.1, 0.95]), (5.0, -2.0, 1.5))
+    shape = (14, 13, 12)
+    index = np.stack(np.meshgrid(*(np.arange(s) for s in shape), indexing="ij"), -1)
+    world = index.reshape(-1, 3) @ a[:3, :3].T + a[:3, 3]
+    path = tmp_path / "quadratic.nii"
+    nib.save(nib.Nifti1Image(f(world).reshape(shape), a), str(path))
+    a = nib.load(str(path)).affine  # as stored: the samples are f at the stored grid's points
+    world = index.reshape(-1, 3) @ a[:3, :3].T + a[:3, 3]
+    nib.save(nib.Nifti1Image(f(world).reshape(shape), a), str(path))
+    return path, a, f, (lambda w: 2 * w @ q + b), 2 * q
+
+
+def test_eval_of_an_oblique_volume_maps_derivatives_to_world(tmp_path):
+    """boxrecon eval and Filter.evaluate on a tilted grid: a world point maps through the inverse
+    affine, the gradient back as A^-T g, the Hessian as A^-T H A^-1. Tricubic with its q1
+    prefilter reproduces the quadratic exactly away from the boundary (approximation order 4), so
+    the world value, gradient and Hessian are f's own, up to rounding."""
+    boxgen = pytest.importorskip("boxgen")
+    path, a, f, gradient, hessian = quadratic_on_a_tilted_grid(tmp_path)
+    rng = np.random.default_rng(7)
+    index = 4.5 + 2 * rng.random((40, 3))  # the prefilter's and spline's stencils inside
+    points = index @ a[:3, :3].T + a[:3, 3]
+    points_file = tmp_path / "points.txt"
+    points_file.write_text("".join(f"{x!r} {y!r} {z!r}\n" for x, y, z in points))
+    _, out, _ = run("boxrecon", "eval", "--filter", "tricubic", "--prefilter", "q1", "--volume",
+                    str(path), "--points", str(points_file), "--gradient", "--hessian")
+    got = np.loadtxt(out.splitlines())
+    # Rounding only (measured 1.4e-14, 8.9e-15, 1.3e-14; values up to 26).
+    np.testing.assert_allclose(got[:, 0], f(points), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(got[:, 1:4], gradient(points), rtol=0, atol=1e-12)
+    h = hessian[[0, 0, 0, 1, 1, 2], [0, 1, 2, 1, 2, 2]]  # xx xy xz yy yz zz
+    np.testing.assert_allclose(got[:, 4:], np.tile(h, (len(points), 1)), rtol=0, atol=1e-12)
+    # The map matters: in the volume's own frame (its axes R) the gradient R^T g is not g.
+    frame = a[:3, :3] / np.linalg.norm(a[:3, :3], axis=0)
+    assert np.abs(gradient(points) @ frame - gradient(points)).max() > 0.1
+
+    v = boxgen.read_volume(str(path))
+    values, gradients, hessians = boxgen.Filter("tricubic").evaluate(v, points, "q1",
+                                                                     hessian=True)
+    # The same path as boxrecon eval: its printed values (%.17g) bit for bit.
+    np.testing.assert_array_equal(values, got[:, 0])
+    np.testing.assert_array_equal(gradients, got[:, 1:4])
+    np.testing.assert_array_equal(hessians, got[:, 4:])
+
+
+def test_oblique_nrrd_reads_as_the_nifti_of_the_same_affine(tmp_path, oblique_volume):
+    """A Cartesian NRRD with oblique space directions (as 3D Slicer writes tilted scans) reads as
+    an oblique volume in Python and in boxrecon resample and eval: the same frame as the NIfTI
+    file of the same affine, so the same values bit for bit."""
+    boxgen = pytest.importorskip("boxgen")
+    source, a_in, data = oblique_volume
+    path = tmp_path / "oblique.nrrd"
+    vectors = " ".join("({!r},{!r},{!r})".format(*a_in[:3, c]) for c in range(3))
+    header = ("NRRD0004\ntype: double\ndimension: 3\nspace: right-anterior-superior\n"
+              f"sizes: {' '.join(map(str, data.shape))}\nspace directions: {vectors}\n"
+              "kinds: domain domain domain\nendian: little\nencoding: raw\n"
+              "space origin: ({!r},{!r},{!r})\n\n".format(*a_in[:3, 3]))
+    path.write_bytes(header.encode() + data.astype("<f8").tobytes(order="F"))
+    v, w = boxgen.read_volume(str(path)), boxgen.read_volume(str(source))
+    np.testing.assert_array_equal(v.frame, w.frame)
+    np.testing.assert_array_equal(v.affine, w.affine)
+    np.testing.assert_array_equal(v.samples, w.samples)
+    tricubic = boxgen.Filter("tricubic")
+    like, _ = target_grid(tmp_path, "like.nii", np.diag([1.2, 1.0, 0.8]), a_in, data.shape)
+    np.testing.assert_array_equal(boxgen.resample(v, tricubic, like=like),
+                                  boxgen.resample(w, tricubic, like=like))
+    outs = []
+    for volume in (path, source):
+        out = tmp_path / f"from-{volume.suffix}.nii"
+        run("boxrecon", "resample", "--filter", "tricubic", "--volume", str(volume), "--like",
+            str(like), "--type", "float64", "-o", str(out))
+        outs.append(nib.load(str(out)).get_fdata())
+    np.testing.assert_array_equal(outs[0], outs[1])
+    # Singular directions: one line.
+    path.write_bytes(header.replace(vectors, "(1,0,0) (2,0,0) (0,0,1)").encode() +
+                     data.astype("<f8").tobytes(order="F"))
+    with pytest.raises(ValueError, match="space directions is singular"):
+        boxgen.read_volume(str(path))

@@ -189,6 +189,73 @@ def test_resample_is_the_grid_and_boxrecon_resample(tmp_path, ml_volume):
     assert np.array_equal(cli.samples[0], boxgen.resample(ml_volume, f, "q2", shape=6))
 
 
+def test_resample_onto_a_lattice_is_boxrecon_resample_lattice(tmp_path, ml_volume):
+    """resample(lattice=L) returns a Volume on L's grid: the NRRD `boxrecon resample --lattice L`
+    writes, bit for bit (samples and geometry), at spacing= h, at about shape^3 samples, over a
+    box lo..hi, and on the grid of like= a volume file of L; every value is the spline at its
+    sample's world position."""
+    f = boxgen.Filter("m7")
+    vpath = str(tmp_path / "v.nrrd")
+    boxgen.write_volume(vpath, ml_volume)
+
+    def cli(name, *args):
+        path = str(tmp_path / name)
+        run("boxrecon", "resample", "--filter", "m7", "--prefilter", "q1", "--volume", vpath,
+            *args, "-o", path)
+        return boxgen.read_volume(path), path
+
+    def same(got, want):
+        assert isinstance(got, boxgen.Volume)
+        assert (got.lattice, got.coset_offsets, got.sizes) == (want.lattice, want.coset_offsets,
+                                                               want.sizes)
+        assert got.spacings == want.spacings and got.origin == want.origin
+        np.testing.assert_array_equal(got.samples, want.samples)
+
+    fcc, fcc_path = cli("fcc.nrrd", "--lattice", "fcc", "--spacing", "0.3")
+    got = boxgen.resample(ml_volume, f, "q1", lattice="fcc", spacing=0.3)
+    same(got, fcc)
+    assert got.lattice == "fcc" and got.samples.shape[0] == 4
+    np.testing.assert_array_equal(got.samples.reshape(-1, order="F"),
+                                  f.evaluate(ml_volume, got.positions(), "q1"))
+    same(boxgen.resample(ml_volume, f, "q1", like=fcc_path, lattice="fcc"), fcc)
+    bcc, _ = cli("bcc.nrrd", "--lattice", "bcc", "--n", "6")
+    same(boxgen.resample(ml_volume, f, "q1", shape=6, lattice="bcc"), bcc)
+    lo, hi = (-0.6, -0.5, -0.4), (0.5, 0.6, 0.3)
+    box, _ = cli("box.nrrd", "--lattice", "bcc", "--spacing", "0.2", "--min", *map(str, lo),
+                 "--max", *map(str, hi))
+    same(boxgen.resample(ml_volume, f, "q1", lo, hi, lattice="bcc", spacing=0.2), box)
+    # lattice="cartesian" is the Cartesian grid's array, as without lattice=.
+    np.testing.assert_array_equal(boxgen.resample(ml_volume, f, "q1", shape=5, lattice="cartesian"),
+                                  boxgen.resample(ml_volume, f, "q1", shape=5))
+
+
+@pytest.mark.parametrize("kwargs,message", [
+    (dict(lattice="fcc", affine=np.eye(4)), "affine= gives a Cartesian grid"),
+    (dict(lattice="fcc", shape=(4, 5, 6)), r"about N\^3 samples"),
+    (dict(lattice="fcc", shape=6, spacing=0.3), "spacing or shape, not both"),
+    (dict(lattice="fcc", spacing=-0.3), "must be finite and > 0"),
+    (dict(lattice="fcc", lo=(0, 0, 0)), "both lo and hi"),
+    (dict(lattice="fcc", lo=(-9, -9, -9), hi=(9, 9, 9), spacing=0.5), "region"),
+    (dict(spacing=0.3), "spacing= is the h of a lattice= output"),
+    (dict(lattice="hexagonal"), "lattice"),
+])
+def test_resample_onto_a_lattice_refusals(ml_volume, kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        boxgen.resample(ml_volume, boxgen.Filter("m7"), **kwargs)
+
+
+def test_resample_onto_a_lattice_like_refusals(tmp_path, ml_volume):
+    f = boxgen.Filter("m7")
+    path = str(tmp_path / "bcc.nrrd")
+    boxgen.write_volume(path, ml_volume)
+    with pytest.raises(ValueError, match="differs from the lattice of like"):
+        boxgen.resample(ml_volume, f, like=path, lattice="fcc")
+    with pytest.raises(ValueError, match="like gives the grid"):
+        boxgen.resample(ml_volume, f, like=path, lattice="bcc", spacing=0.3)
+    with pytest.raises(ValueError, match="lattice='bcc'"):
+        boxgen.resample(ml_volume, f, like=path)  # a Cartesian array cannot take a BCC grid
+
+
 def test_gil_is_released_during_evaluation(ml_volume, rng):
     f = boxgen.Filter("m7")
     points = points_in(f.default_box(ml_volume), 400000, rng)

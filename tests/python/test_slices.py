@@ -162,8 +162,8 @@ def test_reconstructions_share_the_references_grid_and_window(tmp_path):
 
 def test_without_a_reference_the_window_is_the_volumes(tmp_path):
     # The BCC volume's own samples (every coset; the NRRD boxrecon writes is raw little-endian
-    # float, its data the file's last bytes) give the window; its space is 3D-right-handed, so
-    # no letters.
+    # float, its data the file's last bytes) give the window; its space is the NIfTI's RAS, so
+    # the letters stand on the BCC file's slice alone.
     rng = np.random.default_rng(8)
     save_nifti(tmp_path / "ref.nii.gz", rng.normal(100, 30, (12, 12, 12)).astype(np.float32),
                np.eye(4))
@@ -178,7 +178,7 @@ def test_without_a_reference_the_window_is_the_volumes(tmp_path):
               str(tmp_path / "s.png"))
     assert "percentiles 1 and 99 of the volume's samples" in s.lines[0]
     assert s.window == pytest.approx(np.percentile(samples, (1, 99)), rel=1e-5)
-    assert s.lines[1] == "orientation: x to the right, y upwards (the file has no anatomical frame)"
+    assert s.lines[1] == "orientation: left L, right R, bottom P, top A (RAS world)"
 
 
 def test_bad_window_options_are_one_line_and_write_nothing(tmp_path):

@@ -175,7 +175,7 @@ TEST(Interpolation, WhereTheSymbolVanishesItRegularisesAndReportsTheResidual) {
   EXPECT_GT(r.residual_max, 1e-6);  // random data: not an interpolation
 
   // On the Marschner-Lobb function at N = 33 (docs/runtime.md states at most 1e-2 of max |V|; it
-  // is 6.1e-3 for m7, 5.8e-2 for m12 at the default lambda).
+  // is 5.7e-3 for m7, 4.8e-2 for m12 at the default lambda).
   const TestFunction& ml = find_test_function("ml");
   const LatticeVolume<double> s = sample_lattice<double>(
       ml.value, cube_lattice_grid(m7.lattice(), 33, m7.required_margin(PrefilterChoice::interp())));

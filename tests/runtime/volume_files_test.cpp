@@ -23,6 +23,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace boxgen::runtime {
@@ -452,6 +453,45 @@ TEST_F(VolumeFiles, WrittenNiftiAndTypedNrrdReadBack) {
     for (int c = 0; c < 4; ++c) EXPECT_NEAR(nim->qto_xyz.m[r][c], nim->sto_xyz.m[r][c], 1e-6);
   EXPECT_EQ(nim->datatype, DT_FLOAT32);
   nifti_image_free(nim);
+}
+
+// The world's anatomical frame goes into the file: a NRRD's space (read back by Teem and by the
+// reader, which reports the same letters), a NIfTI's RAS world (an LPS world's x and y negated:
+// the voxel at LPS (x, y, z) lies at RAS (-x, -y, z)); an unknown frame is refused, no file.
+TEST_F(VolumeFiles, TheAnatomicalFrameIsWrittenAsTheNrrdSpaceAndAsNiftisRas) {
+  const LatticeVolume<float> v(CosetLattice::cartesian(), {3, 2, 2}, Vec3{1.5, 2, 2.5}, {4, -5, 6},
+                               std::vector<float>(12, 1.0f));
+  const LatticeVolume<float> bcc(CosetLattice::bcc(), {2, 2, 2}, 1.0, {0, 0, 0});
+  for (const auto& [frame, space] : {std::pair<std::string, int>{"", nrrdSpace3DRightHanded},
+                                     {"RAS", nrrdSpaceRightAnteriorSuperior},
+                                     {"LAS", nrrdSpaceLeftAnteriorSuperior},
+                                     {"LPS", nrrdSpaceLeftPosteriorSuperior}}) {
+    SCOPED_TRACE(frame);
+    for (const bool lattice : {false, true}) {
+      const fs::path path = file(lattice ? "bcc.nrrd" : "grid.nrrd");
+      (void)write_volume_file(path, lattice ? bcc : v, SampleType::Int16, frame);
+      Nrrd* nrrd = nrrdNew();
+      ASSERT_EQ(nrrdLoad(nrrd, path.c_str(), nullptr), 0);
+      EXPECT_EQ(nrrd->space, space);
+      nrrdNuke(nrrd);
+      SourceSamples source;
+      (void)read_volume_file<float>(path, {}, &source);
+      EXPECT_EQ(source.anatomical, frame);
+    }
+  }
+  (void)write_volume_file(file("lps.nii"), v, std::nullopt, "LPS");
+  nifti_image* nim = nifti_image_read(file("lps.nii").c_str(), 0);
+  ASSERT_NE(nim, nullptr);
+  const double want[3][4] = {{-1.5, 0, 0, -4}, {0, -2, 0, 5}, {0, 0, 2.5, 6}};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) {
+      EXPECT_EQ(nim->sto_xyz.m[r][c], want[r][c]) << r << c;
+      EXPECT_NEAR(nim->qto_xyz.m[r][c], want[r][c], 1e-6) << r << c;
+    }
+  nifti_image_free(nim);
+  EXPECT_THROW((void)write_volume_file(file("bad.nrrd"), v, std::nullopt, "XYZ"),
+               std::invalid_argument);
+  EXPECT_FALSE(fs::exists(file("bad.nrrd")));
 }
 
 TEST_F(VolumeFiles, OutputNamesChooseTheFormatOrAreRefused) {
