@@ -25,18 +25,6 @@ std::string lattice_text(const runtime::CosetLattice& lattice) {
 void set_quiet(bool quiet) { quiet_flag = quiet; }
 bool quiet() { return quiet_flag; }
 
-runtime::gl::GlslEvaluator glsl_for(const runtime::SplineFilter& f, const std::string& filter,
-                                    bool double_precision) {
-  if (f.registry_index() >= 0) return runtime::gl::registry_glsl(f.name(), double_precision);
-  loader::CompileOptions options;
-  options.progress = !quiet_flag && isatty(STDERR_FILENO) != 0;
-  // The SPEC on the lattice f was compiled for (--lattice, or the volume's: filter_for_volume).
-  loader::EmittedGlsl glsl =
-      loader::load_glsl(filter, lattice_text(f.lattice()), double_precision, options);
-  return {std::move(glsl.name), std::move(glsl.text), std::move(glsl.buffered),
-          std::move(glsl.block)};
-}
-
 runtime::SplineFilter filter_from(const std::string& filter, const std::string& lattice) {
   loader::CompileOptions options;
   options.progress = !quiet_flag && isatty(STDERR_FILENO) != 0;

@@ -4,7 +4,6 @@
 #pragma once
 #include <string>
 
-#include "runtime/gl/gl_spline.h"
 #include "runtime/spline_filter.h"
 
 namespace boxgen::frontend {
@@ -26,12 +25,6 @@ runtime::SplineFilter filter_for_volume(const std::string& filter, const std::st
 std::string lattice_for_volume(const std::string& filter, const std::string& lattice,
                                const runtime::CosetLattice& volume_lattice,
                                const std::string& volume, const std::string& option = "--lattice");
-// The GLSL evaluator of f = filter_from(filter, ...) or filter_for_volume(filter, ...) for
-// --device gl: the registry's, or the SPEC's on f's lattice, emitted into the loader's cache with
-// its compile.
-runtime::gl::GlslEvaluator glsl_for(const runtime::SplineFilter& f, const std::string& filter,
-                                    bool double_precision);
-
 // `boxrecon filters`: the registry's filters, then the cached ones.
 int run_filters();
 

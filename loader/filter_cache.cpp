@@ -11,6 +11,7 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 
+#include "boxgen/version.h"
 #include "loader/filter_loader.h"
 #include "runtime/nrrd_checks.h"
 #include "support/output_file.h"
@@ -123,6 +124,10 @@ std::string hash_text(const std::string& text) {
   Fnv f;
   f.add(text.data(), text.size());
   return f.hex();
+}
+
+std::string entry_stamp(const std::string& key) {
+  return fmt::format("boxgen-filter abi {}; boxgen {}; key {}", kAbiVersion, kVersion, key);
 }
 
 void check_entry_files(const CacheEntry& entry) {

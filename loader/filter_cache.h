@@ -42,6 +42,16 @@ std::optional<std::filesystem::path> checked_cache_dir(const std::filesystem::pa
 // the .json that holds the hashes).
 std::string hash_text(const std::string& text);
 
+// The version of the interface between this loader and a compiled filter: the two extern "C"
+// functions of its glue (filter_loader.cpp) and the runtime types they pass (FilterSource,
+// EvaluationPath, LatticeVolume). Raise it whenever one of them changes; an entry of another
+// version is built again.
+inline constexpr int kAbiVersion = 3;
+
+// The stamp of an entry this loader builds under `key`: its object returns it
+// (boxgen_filter_stamp) and its .json records it.
+std::string entry_stamp(const std::string& key);
+
 struct EntryInfo {
   std::string spec, lattice, rows, stamp, so_hash, glsl_hash, glsl_double_hash;
   // The GLSL evaluators with their run-time-indexed tables in a storage block, and the block's

@@ -34,11 +34,6 @@ namespace gen = boxgen::generator;
 
 namespace {
 
-// The version of the interface between this loader and a compiled filter: the two extern "C"
-// functions of glue_source() and the runtime types they pass (FilterSource, EvaluationPath,
-// LatticeVolume). Raise it whenever one of them changes.
-constexpr int kAbiVersion = 2;
-
 // Progress of a first use on stderr: on a terminal one line rewritten in place, else a line per
 // stage; nothing unless asked for.
 class Progress {
@@ -232,21 +227,34 @@ std::string EntryInfo::*glsl_hash(bool double_precision, bool buffered) {
 // Why an entry whose object is intact is not complete: emitting its GLSL again repairs it.
 constexpr const char* kGlslChanged = "its GLSL evaluator is not the one written";
 
-// The entry's description when the entry is complete and this loader's: the .json parses, its
-// stamp is `stamp`, and both GLSL files hold what it records (the .so is checked as it is
-// loaded, through the descriptor it is loaded from).
-std::optional<EntryInfo> complete_entry(const CacheEntry& entry, const std::string& stamp,
-                                        std::string& why) {
+// A complete entry: its description, and its GLSL evaluators (float, double) as read and checked
+// against it.
+struct CompleteEntry {
+  EntryInfo info;
+  std::array<rt::GlslEvaluator, 2> glsl;
+};
+
+// The entry when it is complete and this loader's: the .json parses, its stamp is `stamp`, and
+// the GLSL files hold what it records (the .so is checked as it is loaded, through the
+// descriptor it is loaded from).
+std::optional<CompleteEntry> complete_entry(const CacheEntry& entry, const std::string& stamp,
+                                            std::string& why) {
   auto info = read_entry(entry);
   if (!info) return why = "no complete entry", std::nullopt;
   if (info->stamp != stamp) return why = "built for another boxgen", std::nullopt;
-  for (const bool dbl : {false, true})
+  CompleteEntry out{*info, {}};
+  for (const bool dbl : {false, true}) {
+    rt::GlslEvaluator& glsl = out.glsl.at(dbl ? 1 : 0);
+    glsl.name = "spec_" + entry.key;
+    glsl.block = info->glsl_block;  // the same numbers in both precisions
     for (const bool buffered : {false, true}) {
-      const auto text = read_entry_file(glsl_file(entry, dbl, buffered));
+      auto text = read_entry_file(glsl_file(entry, dbl, buffered));
       if (!text || hash_text(*text) != (*info).*glsl_hash(dbl, buffered))
         return why = kGlslChanged, std::nullopt;
+      (buffered ? glsl.buffered : glsl.text) = std::move(*text);
     }
-  return info;
+  }
+  return out;
 }
 
 // The entry's description when its .json is this loader's and its .so is the one it describes.
@@ -262,6 +270,37 @@ std::optional<EntryInfo> intact_object(const CacheEntry& entry, const std::strin
   return info;
 }
 
+// A compiled filter as the host sees it: the object's FilterSource, and the GLSL evaluators read
+// and checked with it (the GL device's, FilterSource::glsl).
+class CachedSource final : public rt::FilterSource {
+ public:
+  CachedSource(std::unique_ptr<const rt::FilterSource> compiled,
+               std::array<rt::GlslEvaluator, 2> glsl)
+      : compiled_(std::move(compiled)), glsl_(std::move(glsl)) {}
+  std::string name() const override { return compiled_->name(); }
+  rt::CosetLattice lattice() const override { return compiled_->lattice(); }
+  rt::StencilReach reach() const override { return compiled_->reach(); }
+  rt::PrefilterTaps prefilter(rt::PrefilterChoice q) const override {
+    return compiled_->prefilter(q);
+  }
+  int approximation_order() const override { return compiled_->approximation_order(); }
+  std::shared_ptr<const rt::EvaluationPath<float>> path(
+      const rt::LatticeVolume<float>& volume) const override {
+    return compiled_->path(volume);
+  }
+  std::shared_ptr<const rt::EvaluationPath<double>> path(
+      const rt::LatticeVolume<double>& volume) const override {
+    return compiled_->path(volume);
+  }
+  std::optional<rt::GlslEvaluator> glsl(bool double_precision) const override {
+    return glsl_.at(double_precision ? 1 : 0);
+  }
+
+ private:
+  std::unique_ptr<const rt::FilterSource> compiled_;
+  std::array<rt::GlslEvaluator, 2> glsl_;
+};
+
 // The entry's filter, or nothing (with the reason) when it is missing, incomplete, corrupt or
 // built for another loader, boxgen or key. The object is opened without following a link,
 // hashed and compared with the .json through that descriptor, and loaded from the same
@@ -272,12 +311,13 @@ std::optional<EntryInfo> intact_object(const CacheEntry& entry, const std::strin
 std::shared_ptr<const rt::FilterSource> open_entry(const CacheEntry& entry,
                                                    const std::string& stamp,
                                                    const std::string& name, std::string& why) {
-  const auto info = complete_entry(entry, stamp, why);
-  if (!info) return nullptr;
+  auto complete = complete_entry(entry, stamp, why);
+  if (!complete) return nullptr;
+  const EntryInfo& info = complete->info;
   const int fd = open_entry_file(entry.file(".so"));
   std::uintmax_t size = 0;
   const auto hash = fd < 0 ? std::nullopt : hash_descriptor(fd, size);
-  if (!hash || size != info->so_size || *hash != info->so_hash) {
+  if (!hash || size != info.so_size || *hash != info.so_hash) {
     if (fd >= 0) ::close(fd);
     return why = "its shared object is not the one built", nullptr;
   }
@@ -293,7 +333,9 @@ std::shared_ptr<const rt::FilterSource> open_entry(const CacheEntry& entry,
     ::dlclose(handle);
     return why = "its stamp is not this boxgen's", nullptr;
   }
-  return std::shared_ptr<const rt::FilterSource>(create(name.c_str(), &rt::batch_threads));
+  return std::make_shared<CachedSource>(
+      std::unique_ptr<const rt::FilterSource>(create(name.c_str(), &rt::batch_threads)),
+      std::move(complete->glsl));
 }
 
 // Emits the GLSL evaluators into the entry and records their hashes in `info`.
@@ -368,7 +410,7 @@ std::string key_directions(gen::BoxSplineSpec spec) {
   return spec.directions_text();
 }
 
-// A SPEC (not a registry name) and its place in the cache: load_filter and load_glsl share it.
+// A SPEC (not a registry name) and its place in the cache.
 struct Resolved {
   gen::BoxSplineSpec spec;
   EntryInfo info;
@@ -401,26 +443,24 @@ Resolved resolve(const std::string& spec_or_name, const std::optional<std::strin
   CacheEntry entry{*checked_cache_dir(resolve_cache_dir(options.cache_dir), true),
                    hash_text(identity)};
   check_entry_files(entry);
-  info.stamp =
-      fmt::format("boxgen-filter abi {}; boxgen {}; key {}", kAbiVersion, kVersion, entry.key);
+  info.stamp = entry_stamp(entry.key);
   return {std::move(spec), std::move(info), std::move(entry), std::move(toolchain)};
 }
 
-// A complete entry for the SPEC, built under the entry's lock unless one is there; its filter is
-// opened when `filter` is not null.
-void ensure_entry(const Resolved& r, const CompileOptions& options,
-                  std::shared_ptr<const rt::FilterSource>* filter) {
+// The SPEC's filter from a complete entry, built under the entry's lock unless one is there.
+std::shared_ptr<const rt::FilterSource> ensure_entry(const Resolved& r,
+                                                     const CompileOptions& options) {
   const std::string& name = r.info.spec;
   std::string why;
+  std::shared_ptr<const rt::FilterSource> filter;
   const auto ready = [&] {
-    if (filter) return (*filter = open_entry(r.entry, r.info.stamp, name, why)) != nullptr;
-    return complete_entry(r.entry, r.info.stamp, why).has_value();
+    return (filter = open_entry(r.entry, r.info.stamp, name, why)) != nullptr;
   };
-  if (ready()) return;
+  if (ready()) return filter;
   {
     // One process builds; another one wanting the same filter waits and then loads its result.
     const EntryLock lock(r.entry);
-    if (ready()) return;
+    if (ready()) return filter;
     try {
       auto kept = why == kGlslChanged ? intact_object(r.entry, r.info.stamp) : std::nullopt;
       if (kept) {
@@ -439,7 +479,7 @@ void ensure_entry(const Resolved& r, const CompileOptions& options,
       throw LoadError(fmt::format("cannot write the compiled filter into the cache: {}", e.what()));
     }
   }
-  if (ready()) return;
+  if (ready()) return filter;
   throw LoadError(fmt::format("the compiled filter {} cannot be loaded: {}",
                               runtime::nrrd_checks::printable(r.entry.file(".so").string()), why));
 }
@@ -470,30 +510,7 @@ rt::SplineFilter load_filter(const std::string& spec_or_name, std::optional<std:
     throw LoadError(fmt::format("filter {} is for the {} lattice, but --lattice is {}",
                                 registry->name(), registry->lattice().name(), given.name()));
   }
-  const Resolved r = resolve(spec_or_name, lattice, options);
-  std::shared_ptr<const rt::FilterSource> source;
-  ensure_entry(r, options, &source);
-  return rt::SplineFilter(source);
-}
-
-EmittedGlsl load_glsl(const std::string& spec, std::optional<std::string> lattice,
-                      bool double_precision, const CompileOptions& options) {
-  if (lattice && lattice->empty()) lattice.reset();
-  const Resolved r = resolve(spec, lattice, options);
-  ensure_entry(r, options, nullptr);
-  // Read once, and checked against the .json on what was read.
-  const auto info = read_entry(r.entry);
-  EmittedGlsl out{"spec_" + r.entry.key, {}, {}, {}};
-  for (const bool buffered : {false, true}) {
-    const fs::path file = glsl_file(r.entry, double_precision, buffered);
-    const auto text = read_entry_file(file);
-    if (!info || !text || hash_text(*text) != (*info).*glsl_hash(double_precision, buffered))
-      throw LoadError(fmt::format("the GLSL evaluator {} changed while it was read",
-                                  runtime::nrrd_checks::printable(file.string())));
-    (buffered ? out.buffered : out.text) = *text;
-  }
-  out.block = info->glsl_block;
-  return out;
+  return rt::SplineFilter(ensure_entry(resolve(spec_or_name, lattice, options), options));
 }
 
 std::vector<CachedFilter> cached_filters(const CompileOptions& options) {

@@ -46,23 +46,14 @@ struct CompileOptions {
 // takes them; none: the preset's lattice). A registry name without a lattice, or with its own
 // lattice, is the registry's filter; a registry name with another lattice is refused (give its
 // directions instead). Throws LoadError (one line) for a SPEC boxgen refuses, a 2-D SPEC, no
-// compiler ("install g++ (Debian: apt-get install g++)") or a failed compile.
+// compiler ("install g++ (Debian: apt-get install g++)") or a failed compile. A SPEC's filter
+// carries its GLSL evaluators for the GL device (FilterSource::glsl, float and double: prefix
+// spec_KEY, the text, and the evaluator with its run-time-indexed tables in a storage block with
+// the block's contents), emitted into the cache entry with the shared object and read with it,
+// checked against the entry's record.
 runtime::SplineFilter load_filter(const std::string& spec_or_name,
                                   std::optional<std::string> lattice = std::nullopt,
                                   const CompileOptions& options = {});
-
-// The GLSL evaluator of a SPEC filter (`boxgen emit --target glsl`, float or double precision)
-// for the GL device (runtime/gl): its functions' prefix (spec_KEY) and text, and the generator's
-// data beside it (the evaluator with its run-time-indexed tables in a storage block, and the
-// block's contents: runtime/gl/glsl_tables.h), from the cache entry of load_filter, written
-// there with the shared object (or derived again for an entry that predates it). Throws
-// LoadError as load_filter. Registry names are the GL device's own.
-struct EmittedGlsl {
-  std::string name, text, buffered;
-  std::vector<int> block;
-};
-EmittedGlsl load_glsl(const std::string& spec, std::optional<std::string> lattice,
-                      bool double_precision, const CompileOptions& options = {});
 
 // The directions of a SPEC as its cache key hashes them: each with its first nonzero entry
 // positive, sorted. The centred spline is the same for any order and sign of its directions, so

@@ -8,8 +8,10 @@
 #pragma once
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "runtime/coset_lattice.h"
 #include "runtime/prefilter.h"
@@ -27,6 +29,18 @@ struct StencilReach {
 
 template <class T>
 class EvaluationPath;
+
+// An emitted GLSL evaluator for the GL device (runtime/gl/gl_spline.h): the prefix of its
+// functions (NAME_value, ...) and its text (NAME.glsl, tables `const`); and, as data from the
+// generator's emission beside the text, the same evaluator with its run-time-indexed tables in
+// the storage block NAME_Tables and the block's contents (runtime/gl/glsl_tables.h). Those two
+// are empty for a text read from a file.
+struct GlslEvaluator {
+  std::string name;
+  std::string text;
+  std::string buffered = {};
+  std::vector<int> block = {};
+};
 
 // What the runtime needs from a filter. Implement it to plug in a filter from elsewhere: the
 // evaluation paths come from the runtime's engine (EmittedSplinePath of emitted_spline.h) or
@@ -49,6 +63,12 @@ class FilterSource {
       const LatticeVolume<float>& volume) const = 0;
   virtual std::shared_ptr<const EvaluationPath<double>> path(
       const LatticeVolume<double>& volume) const = 0;
+  // The filter's own GLSL evaluator (float, or double precision) for the GL device, when it
+  // carries one: a SPEC compiled by the loader does (loader/filter_loader.h). The registry's
+  // come from the GL device's build (gl::filter_glsl); an emitted header's from its NAME.glsl.
+  virtual std::optional<GlslEvaluator> glsl(bool /*double_precision*/) const {
+    return std::nullopt;
+  }
 };
 
 class SplineFilter {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <iostream>
 #include <limits>
@@ -19,9 +20,11 @@
 #include "apps/boxrecon/prefilter_options.h"
 #include "apps/boxrecon/progress.h"
 #include "frontend/filter_choice.h"
+#include "runtime/affine.h"
 #include "runtime/nifti_io.h"
 #include "runtime/nrrd_checks.h"
 #include "runtime/resample.h"
+#include "runtime/volume_output.h"
 #include "support/output_file.h"
 
 namespace boxgen::recon {
@@ -82,14 +85,36 @@ std::string stats_text(const ErrorSums& e, double peak) {
                      e.rms(), e.max, e.mean_abs(), 20 * std::log10(peak / e.rms()));
 }
 
-// The mask of --mask: a Cartesian volume on the reference's grid (the same sizes, and spacings
-// and origin equal up to NIfTI's float32 affine), read as every volume is (axes positive).
-LatticeVolume<float> read_mask(const LatticeVolume<float>& ref) {
-  LatticeVolume<float> mask = read_volume_file<float>(args.mask);
+// Two oblique frames (maps to world with unit columns) equal up to NIfTI's float32 affine; h: the
+// grid's spacing, for the translations. Nothing and nothing are equal.
+bool same_frame(const std::optional<Affine>& a, const std::optional<Affine>& b, double h) {
+  if (!a || !b) return !a && !b;
+  for (std::size_t r = 0; r < 3; ++r) {
+    if (std::abs(a->translation[r] - b->translation[r]) > 1e-4 * h) return false;
+    for (std::size_t c = 0; c < 3; ++c)
+      if (std::abs(a->linear[r][c] - b->linear[r][c]) > 1e-6) return false;
+  }
+  return true;
+}
+
+// The mask of --mask: a Cartesian volume on the reference's grid (the same sizes, and spacings,
+// origin and an oblique reference's frame equal up to NIfTI's float32 affine), read as every
+// volume is (axes positive).
+LatticeVolume<float> read_mask(const LatticeVolume<float>& ref,
+                               const std::optional<Affine>& ref_frame) {
+  NrrdReadLimits limits;
+  limits.allow_oblique = true;
+  SourceSamples source;
+  LatticeVolume<float> mask = read_volume_file<float>(args.mask, limits, &source);
   const std::string name = nrrd_checks::printable(args.mask, 80);
   if (mask.coset_count() != 1 || mask.period() != 1)
     throw std::invalid_argument(fmt::format("--mask '{}' must be a Cartesian volume, not a {} one",
                                             name, mask.lattice().label()));
+  if (!same_frame(source.frame, ref_frame, ref.axis_spacing()[0]))
+    throw std::invalid_argument(fmt::format(
+        "--mask '{}' is not on the reference's grid: its affine's axes are not the reference's; "
+        "resample it onto the reference first (boxrecon resample --like)",
+        name));
   bool same = mask.sizes() == ref.sizes();
   for (int a = 0; a < 3 && same; ++a) {
     const double h = ref.axis_spacing()[a];
@@ -146,6 +171,87 @@ CLI::App* add_compare_command(CLI::App& app) {
   return c;
 }
 
+// --reference: a Cartesian volume, oblique included (its frame in `source`); an oblique one's
+// --error-volume must be NIfTI, whose affine holds its grid (checked before any work).
+LatticeVolume<float> read_reference(SourceSamples& source) {
+  NrrdReadLimits oblique;
+  oblique.allow_oblique = true;
+  LatticeVolume<float> ref = read_volume_file<float>(args.reference, oblique, &source);
+  if (ref.coset_count() != 1 || ref.period() != 1)
+    throw std::invalid_argument(
+        fmt::format("--reference must be a Cartesian volume, not a {} one", ref.lattice().label()));
+  if (source.frame && !args.error_volume.empty() &&
+      output_format(args.error_volume) != VolumeFormat::Nifti)
+    throw std::invalid_argument(fmt::format(
+        "the reference '{}' is oblique: write --error-volume as NIfTI (.nii or .nii.gz), whose "
+        "affine holds its grid",
+        nrrd_checks::printable(args.reference, 80)));
+  return ref;
+}
+
+// A reference grid point `p` (in the reference's frame) in the volume's frame, when it is compared:
+// all points of the box without a map (their range is cut to the box already), else those whose
+// image lies in it.
+std::optional<Vec3> compared_point(const Vec3& p, const std::optional<Affine>& to_volume,
+                                   const Box& box) {
+  if (!to_volume) return p;
+  const Vec3 v = to_volume->apply(p);
+  for (std::size_t a = 0; a < 3; ++a)
+    if (!(v[a] >= box.min[a] && v[a] <= box.max[a])) return std::nullopt;
+  return v;
+}
+
+// The errors on the reference's grid, in its world (`reference`: what the reference's file held):
+// an oblique reference's as NIfTI with its affine.
+void write_error_volume(const LatticeVolume<float>& errors, const SourceSamples& reference,
+                        const std::optional<SampleType>& type) {
+  const std::optional<Affine>& frame = reference.frame;
+  if (!frame)
+    return app::write_output_volume(args.error_volume, errors, type, reference.anatomical);
+  const std::span<const float> e = errors.samples();
+  app::write_output_grid(
+      args.error_volume,
+      CartesianVolume<float>{
+          errors.sizes(), errors.axis_spacing(), errors.origin(), {e.begin(), e.end()}, frame},
+      type, reference.anatomical);
+}
+
+// The report on stdout: text, or one JSON object with --json.
+void print_report(const std::string& filter, const app::PrefilterSetting& q, double peak,
+                  std::size_t reference_points, const Box& box, const ErrorSums& all,
+                  const ErrorSums& masked, bool mask) {
+  if (args.json) {
+    nlohmann::json j{{"reference", args.reference},
+                     {"volume", args.volume},
+                     {"filter", filter},
+                     {"prefilter", q.choice.text()},
+                     {"boundary", boundary_name(q.boundary)},
+                     {"peak", peak},
+                     {"reference_points", reference_points},
+                     {"box", {{"min", box.min}, {"max", box.max}}},
+                     {"region", stats_json(all, peak)}};
+    if (args.mask_above) {
+      j["mask_above"] = *args.mask_above;
+      j["mask"] = stats_json(masked, peak);
+    }
+    if (mask) {
+      j["mask_file"] = args.mask;
+      j["mask"] = stats_json(masked, peak);
+    }
+    std::cout << j.dump(2) << '\n';
+  } else {
+    std::cout << fmt::format(
+        "{} ({}) against '{}' (peak = range {:.6g}, {} of {} grid points in [{:.6g}, {:.6g}] x "
+        "[{:.6g}, {:.6g}] x [{:.6g}, {:.6g}])\n",
+        filter, q.choice.text(), args.reference, peak, all.count, reference_points, box.min[0],
+        box.max[0], box.min[1], box.max[1], box.min[2], box.max[2]);
+    std::cout << "region: " << stats_text(all, peak) << '\n';
+    if (args.mask_above)
+      std::cout << fmt::format("mask > {}: ", *args.mask_above) << stats_text(masked, peak) << '\n';
+    if (mask) std::cout << "mask: " << stats_text(masked, peak) << '\n';
+  }
+}
+
 int run_compare() {
   const SplineFilter filter = frontend::filter_for_volume(args.filter, args.lattice, args.volume);
   const app::PrefilterSetting q = app::parse_prefilter_options(args.prefilter);
@@ -158,18 +264,27 @@ int run_compare() {
     app::require_output_volume(args.error_volume, inputs, CosetLattice::cartesian());
   if (args.mask_above && !std::isfinite(*args.mask_above))
     throw std::invalid_argument("--mask-above must be finite");
-  SourceSamples source;
-  const LatticeVolume<float> ref = read_volume_file<float>(args.reference, {}, &source);
-  if (ref.coset_count() != 1 || ref.period() != 1)
-    throw std::invalid_argument(
-        fmt::format("--reference must be a Cartesian volume, not a {} one", ref.lattice().label()));
+  // Oblique volumes (either or both) are read in their own frames: each reference grid point maps
+  // from the reference's frame to the volume's (to_volume), and is compared where it lands in the
+  // region the filter reconstructs.
+  NrrdReadLimits oblique;
+  oblique.allow_oblique = true;
+  SourceSamples source, volume_source;
+  const LatticeVolume<float> ref = read_reference(source);
   std::optional<LatticeVolume<float>> mask;
-  if (!args.mask.empty()) mask.emplace(read_mask(ref));
-  const LatticeVolume<float> volume = app::read_for<float>(filter, q, args.volume, {});
+  if (!args.mask.empty()) mask.emplace(read_mask(ref, source.frame));
+  const LatticeVolume<float> volume =
+      app::read_for<float>(filter, q, args.volume, oblique, &volume_source);
+  const std::optional<Affine> to_volume = grid_to_volume(volume_source.frame, source.frame);
+  if ((source.frame || volume_source.frame) && app::given_box(args.box))
+    throw std::invalid_argument(
+        "--box and --min/--max are world coordinates, which do not bound an oblique reference's "
+        "or volume's grid: leave them out to compare over the whole region");
   const Box region = default_box(volume, filter);
   const Box box = app::box_from_options(args.box, region, filter.name());
   IndexRange range[3];
-  for (int a = 0; a < 3; ++a) range[a] = indices_inside(ref, box, a);
+  for (int a = 0; a < 3; ++a)
+    range[a] = to_volume ? IndexRange{0, ref.sizes()[a] - 1} : indices_inside(ref, box, a);
   const Reconstructor<float> spline(volume, filter);
 
   std::optional<LatticeVolume<float>> error_volume;
@@ -201,10 +316,11 @@ int run_compare() {
     const int planes = range[2].last - range[2].first + 1;
     for (int k = range[2].first; k <= range[2].last; ++k) {
       for (int j = range[1].first; j <= range[1].last; ++j)
-        for (int i = range[0].first; i <= range[0].last; ++i) {
-          points.push_back(ref.sample_position(0, i, j, k));
-          where.push_back(ref.index(0, i, j, k));
-        }
+        for (int i = range[0].first; i <= range[0].last; ++i)
+          if (const auto p = compared_point(ref.sample_position(0, i, j, k), to_volume, box)) {
+            points.push_back(*p);
+            where.push_back(ref.index(0, i, j, k));
+          }
       if (points.size() >= (std::size_t{1} << 16) || (k == range[2].last && !points.empty())) {
         flush();
         progress.update(static_cast<double>(k - range[2].first + 1) / planes);
@@ -227,38 +343,8 @@ int run_compare() {
   const double peak = source.max - source.min;
   if (!(peak > 0))
     throw std::invalid_argument("the reference is constant: PSNR (peak = its range) is undefined");
-  if (error_volume)
-    app::write_output_volume(args.error_volume, *error_volume, type, source.anatomical);
-  if (args.json) {
-    nlohmann::json j{{"reference", args.reference},
-                     {"volume", args.volume},
-                     {"filter", filter.name()},
-                     {"prefilter", q.choice.text()},
-                     {"boundary", boundary_name(q.boundary)},
-                     {"peak", peak},
-                     {"reference_points", ref.sample_count()},
-                     {"box", {{"min", box.min}, {"max", box.max}}},
-                     {"region", stats_json(all, peak)}};
-    if (args.mask_above) {
-      j["mask_above"] = *args.mask_above;
-      j["mask"] = stats_json(masked, peak);
-    }
-    if (mask) {
-      j["mask_file"] = args.mask;
-      j["mask"] = stats_json(masked, peak);
-    }
-    std::cout << j.dump(2) << '\n';
-  } else {
-    std::cout << fmt::format(
-        "{} ({}) against '{}' (peak = range {:.6g}, {} of {} grid points in [{:.6g}, {:.6g}] x "
-        "[{:.6g}, {:.6g}] x [{:.6g}, {:.6g}])\n",
-        filter.name(), q.choice.text(), args.reference, peak, all.count, ref.sample_count(),
-        box.min[0], box.max[0], box.min[1], box.max[1], box.min[2], box.max[2]);
-    std::cout << "region: " << stats_text(all, peak) << '\n';
-    if (args.mask_above)
-      std::cout << fmt::format("mask > {}: ", *args.mask_above) << stats_text(masked, peak) << '\n';
-    if (mask) std::cout << "mask: " << stats_text(masked, peak) << '\n';
-  }
+  if (error_volume) write_error_volume(*error_volume, source, type);
+  print_report(filter.name(), q, peak, ref.sample_count(), box, all, masked, mask.has_value());
   return 0;
 }
 

@@ -87,9 +87,9 @@ RgbBuffer render_volume(const SplineFilter& rf, const app::PrefilterSetting& q, 
                   : args.volume.empty()    ? cube
                                            : region;
   if (boxgen::app::parse_device(args.device) == boxgen::app::Device::Gl)
-    return gl::render_isosurface(
-        volume, rf, box, o, boxgen::frontend::glsl_for(rf, args.filter, args.precision == "double"),
-        args.precision == "double", times);
+    return gl::render_isosurface(volume, rf, box, o,
+                                 gl::filter_glsl(rf, args.precision == "double"),
+                                 args.precision == "double", times);
   return render_isosurface(volume, rf, box, o);
 }
 

@@ -94,7 +94,7 @@ int run_eval(const std::string& filter, const std::string& lattice, const Prefil
   const Reconstructor<T> spline(volume, f);
   if (device == Device::Gl) {
     if (verbose) std::cerr << gl_device_line() << '\n';
-    const gl::GlSpline<T> gpu(volume, f, frontend::glsl_for(f, filter, sizeof(T) == 8));
+    const gl::GlSpline<T> gpu(volume, f, gl::filter_glsl(f, sizeof(T) == 8));
     gpu.evaluate(points, values, gradients, hessians);
   } else {
     spline.evaluate(points, values, gradients, hessians);
@@ -386,7 +386,7 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
   const auto evaluator = [&]() {
     if (device == Device::Cpu) return BatchEvaluate<T>{};
     if (verbose) std::cerr << gl_device_line() << '\n';
-    gpu.emplace(volume, f, frontend::glsl_for(f, filter, sizeof(T) == 8));
+    gpu.emplace(volume, f, gl::filter_glsl(f, sizeof(T) == 8));
     return BatchEvaluate<T>(
         [&gpu](std::span<const Vec3> points, std::span<T> out) { gpu->evaluate(points, out); });
   };

@@ -386,9 +386,18 @@ GlslEvaluator registry_glsl(const std::string& name, bool double_precision) {
     names += fmt::format("{}{}", i ? ", " : "", r.name);
   }
   throw GlError(fmt::format(
-      "this build embeds the GLSL of the registry's filters ({}), not of {}: a SPEC's comes from "
-      "loader::load_glsl, a file of `boxgen emit --target glsl` from read_glsl",
+      "this build embeds the GLSL of the registry's filters ({}), not of {}: a SPEC's comes with "
+      "its filter (filter_glsl), a file of `boxgen emit --target glsl` from read_glsl",
       names, name));
+}
+
+GlslEvaluator filter_glsl(const SplineFilter& filter, bool double_precision) {
+  if (filter.registry_index() >= 0) return registry_glsl(filter.name(), double_precision);
+  if (auto own = filter.source().glsl(double_precision)) return std::move(*own);
+  throw GlError(fmt::format(
+      "filter {} carries no GLSL evaluator: give the NAME.glsl of `boxgen emit --target glsl` "
+      "(read_glsl)",
+      filter.name()));
 }
 
 GlslEvaluator read_glsl(const std::string& path) {

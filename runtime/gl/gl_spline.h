@@ -20,20 +20,14 @@
 
 namespace boxgen::runtime::gl {
 
-// An emitted GLSL evaluator: the prefix of its functions (NAME_value, ...) and its text (NAME.glsl,
-// tables `const`); and, as data from the generator's emission beside the text, the same
-// evaluator with its run-time-indexed tables in the storage block NAME_Tables and the block's
-// contents (glsl_tables.h). Those two are empty for a text read from a file.
-struct GlslEvaluator {
-  std::string name;
-  std::string text;
-  std::string buffered = {};
-  std::vector<int> block = {};
-};
-
-// The GLSL of a registry filter as this build emitted it (float, or double precision), with its
-// tables as data; GlError for a name outside the registry (a SPEC filter: loader::load_glsl).
+// The GLSL evaluator (runtime::GlslEvaluator, spline_filter.h) of a registry filter as this build
+// emitted it (float, or double precision), with its tables as data; GlError for a name outside
+// the registry.
 GlslEvaluator registry_glsl(const std::string& name, bool double_precision);
+// The GLSL evaluator of any filter that has one: a registry filter's (registry_glsl), or the one
+// its source carries (a SPEC from loader::load_filter). GlError for a filter without one (an
+// emitted header's: read_glsl its NAME.glsl).
+GlslEvaluator filter_glsl(const SplineFilter& filter, bool double_precision);
 // A user's emitted NAME.glsl: the name is the file's stem; text only, so the device uses its
 // tables as the file declares them (`const`). GlError if it cannot be read.
 GlslEvaluator read_glsl(const std::string& path);

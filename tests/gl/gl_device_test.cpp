@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -112,6 +114,52 @@ TEST_F(GlTest, ATextReadFromAFileKeepsItsConstTables) {
   from_file.evaluate(points, a);
   with_data.evaluate(points, b);
   for (std::size_t i = 0; i < points.size(); ++i) EXPECT_NEAR(a[i], b[i], kFloatTolerance) << i;
+}
+
+// A filter outside the registry, as the loader makes one: m8's source, carrying `glsl` (or none).
+class CarriedGlsl final : public FilterSource {
+ public:
+  explicit CarriedGlsl(std::optional<GlslEvaluator> glsl) : glsl_(std::move(glsl)) {}
+  std::string name() const override { return "carried"; }
+  CosetLattice lattice() const override { return m8_.lattice(); }
+  StencilReach reach() const override { return m8_.reach(); }
+  PrefilterTaps prefilter(PrefilterChoice q) const override { return m8_.prefilter(q); }
+  int approximation_order() const override { return m8_.approximation_order(); }
+  std::shared_ptr<const EvaluationPath<float>> path(const LatticeVolume<float>& v) const override {
+    return m8_.source().path(v);
+  }
+  std::shared_ptr<const EvaluationPath<double>> path(
+      const LatticeVolume<double>& v) const override {
+    return m8_.source().path(v);
+  }
+  std::optional<GlslEvaluator> glsl(bool) const override { return glsl_; }
+
+ private:
+  SplineFilter m8_ = SplineFilter::parse("m8");
+  std::optional<GlslEvaluator> glsl_;
+};
+
+// The device takes a filter's GLSL from the filter: the registry's, or the one its source
+// carries; a filter without one is refused, naming it.
+TEST_F(GlTest, AFilterCarriesItsGlsl) {
+  EXPECT_EQ(filter_glsl(SplineFilter::parse("m12"), true).text, registry_glsl("m12", true).text);
+  const SplineFilter f(std::make_shared<CarriedGlsl>(registry_glsl("m8", false)));
+  ASSERT_EQ(f.registry_index(), -1);
+  const LatticeVolume<float> v = random_volume<float>(f, 12);
+  const GlSpline<float> gpu(v, f, filter_glsl(f, false));
+  const std::vector<Vec3> points = points_in(default_box(v, f), 200);
+  std::vector<float> on_gpu(points.size()), on_cpu(points.size());
+  gpu.evaluate(points, on_gpu);
+  Reconstructor<float>(v, f).evaluate(points, on_cpu);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    EXPECT_NEAR(on_gpu[i], on_cpu[i], kFloatTolerance) << i;
+  try {
+    (void)filter_glsl(SplineFilter(std::make_shared<CarriedGlsl>(std::nullopt)), false);
+    ADD_FAILURE() << "no GlError";
+  } catch (const GlError& e) {
+    EXPECT_NE(std::string(e.what()).find("filter carried carries no GLSL"), std::string::npos)
+        << e.what();
+  }
 }
 
 class GlEveryFilter : public GlTest, public ::testing::WithParamInterface<const char*> {};

@@ -17,7 +17,6 @@
 #include <sstream>
 
 #include "../support/scratch_directory.h"
-#include "boxgen/version.h"
 #include "loader/filter_cache.h"
 #include "loader/filter_compiler.h"
 #include "loader/filter_loader.h"
@@ -169,7 +168,7 @@ TEST_F(FilterCacheTest, PlantedObjectInASharedCacheNeverRuns) {
     info.spec = kSpec;
     info.lattice = "bcc";
     info.rows = "2,0,0; 0,2,0; 1,1,1";
-    info.stamp = "boxgen-filter abi 2; boxgen " + std::string(kVersion) + "; key " + key;
+    info.stamp = entry_stamp(key);
     info.so_size = object.size();
     info.so_hash = hash_text(object);
     info.glsl_hash = hash_text("// float\n");

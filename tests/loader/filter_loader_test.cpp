@@ -310,24 +310,41 @@ TEST_F(LoaderTest, BccSpecIsExactReproducesAndIsCached) {
   EXPECT_EQ(cached_filters(options())[0].spec, kBccSpec);
   EXPECT_EQ(cached_filters(options())[0].lattice, "bcc");
 
-  // The GLSL evaluators are checked against the .json as the object is: one edited constant, or
-  // another evaluator with its prefix renamed, is emitted again (without a compile), never used.
-  const EmittedGlsl glsl = load_glsl(kBccSpec, "bcc", false, options());
+  // The filter carries its GLSL evaluators (the GL device's), read and checked against the .json
+  // as the object is: one edited constant, or another evaluator with its prefix renamed, is
+  // emitted again (without a compile), never used.
+  const auto glsl_of = [&](bool double_precision) {
+    const auto glsl = load_filter(kBccSpec, "bcc", options()).source().glsl(double_precision);
+    EXPECT_TRUE(glsl.has_value());
+    return glsl.value_or(rt::GlslEvaluator{});
+  };
+  const rt::GlslEvaluator glsl = glsl_of(false);
   const fs::path glsl_path = fs::path(so).replace_extension(".glsl");
   ASSERT_EQ(hash_of(glsl_path), hash_text(glsl.text));
-  const std::string other = load_glsl(kBccSpec, "bcc", true, options()).text;
+  EXPECT_EQ(glsl.name, "spec_" + fs::path(so).stem().string());
+  EXPECT_FALSE(glsl.buffered.empty());
+  EXPECT_FALSE(glsl.block.empty());
+  const rt::GlslEvaluator other = glsl_of(true);
+  EXPECT_EQ(hash_of(fs::path(so).replace_extension().string() + "_double.glsl"),
+            hash_text(other.text));
+  EXPECT_EQ(other.name, glsl.name);
   const std::size_t digit = glsl.text.find_first_of("123456789", glsl.text.find("const"));
   ASSERT_NE(digit, std::string::npos);
   std::string edited = glsl.text;
   edited[digit] = edited[digit] == '9' ? '8' : static_cast<char>(edited[digit] + 1);
-  std::string renamed = other;
+  std::string renamed = other.text;
   for (std::size_t at = 0; (at = renamed.find(glsl.name, at)) != std::string::npos; ++at)
     renamed.insert(at + glsl.name.size(), "x");
   for (const std::string& planted : {edited, renamed}) {
     replace_with_prefix(glsl_path, planted, planted.size());
-    EXPECT_EQ(load_glsl(kBccSpec, "bcc", false, options()).text, glsl.text);
+    EXPECT_EQ(glsl_of(false).text, glsl.text);
     EXPECT_EQ(hash_of(glsl_path), hash_text(glsl.text));
   }
+  // A filter loaded before its file was planted keeps the text that was checked.
+  const rt::SplineFilter loaded = load_filter(kBccSpec, "bcc", options());
+  replace_with_prefix(glsl_path, edited, edited.size());
+  EXPECT_EQ(loaded.source().glsl(false)->text, glsl.text);
+  EXPECT_EQ(glsl_of(false).text, glsl.text);
   EXPECT_EQ(fs::last_write_time(so), time);  // not compiled again
 }
 

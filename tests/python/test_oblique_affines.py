@@ -136,8 +136,9 @@ def test_world_box_of_an_oblique_volume(tmp_path, oblique_volume):
 
 
 def test_oblique_refusals(tmp_path, oblique_volume):
-    """One line, no file: an oblique output grid into NRRD, a --like grid that leaves the volume; commands that do not map through the affine still refuse
-    an oblique volume, naming its affine."""
+    """One line, no file: an oblique output grid into NRRD, a --like grid that leaves the volume;
+    commands that do not map through the affine (render) still refuse an oblique volume, naming
+    its affine."""
     source, a_in, data = oblique_volume
     out = tmp_path / "o.nrrd"
     message = cli_error("boxrecon", "resample", "--filter", "tricubic", "--volume", str(source),
@@ -148,8 +149,8 @@ def test_oblique_refusals(tmp_path, oblique_volume):
     message = cli_error("boxrecon", "resample", "--filter", "tricubic", "--volume", str(source),
                         "--like", str(far), "-o", str(out))
     assert "leaves the region" in message and not out.exists()
-    message = cli_error("boxrecon", "compare", "--volume", str(source), "--reference",
-                        str(source), "--filter", "tricubic")
+    message = cli_error("boxrecon", "render", "--volume", str(source), "--filter", "tricubic",
+                        "-o", str(tmp_path / "r.png"))
     assert "oblique" in message
 
 
@@ -368,3 +369,73 @@ def test_oblique_nrrd_reads_as_the_nifti_of_the_same_affine(tmp_path, oblique_vo
                      data.astype("<f8").tobytes(order="F"))
     with pytest.raises(ValueError, match="space directions is singular"):
         boxgen.read_volume(str(path))
+
+
+def test_compare_maps_reference_points_between_frames(tmp_path):
+    """boxrecon compare with an oblique reference, an oblique volume, or both: each reference grid
+    point maps from the reference's frame to the volume's. A quadratic sampled on a tilted grid
+    (the reference) and on an axis-aligned grid around it (the volume), or the other way round:
+    tricubic with q1 reproduces it, so the errors are float rounding (the command reads floats),
+    and the points compared are exactly the reference points whose world position lies in the
+    volume's box (counted here from the affines)."""
+    tilted, a, f, _, _ = quadratic_on_a_tilted_grid(tmp_path)
+    shape = (14, 13, 12)
+    corners = np.array([[i, j, k, 1] for i in (0, shape[0] - 1) for j in (0, shape[1] - 1)
+                        for k in (0, shape[2] - 1)]) @ a.T
+    lo, hi = corners[:, :3].min(0) - 3, corners[:, :3].max(0) + 3  # the stencils inside
+    n = np.ceil((hi - lo) / 0.7).astype(int) + 1
+    aligned_affine = affine(np.diag([0.7] * 3), lo)
+    grid = np.stack(np.meshgrid(*(np.arange(m) for m in n), indexing="ij"), -1).reshape(-1, 3)
+    aligned = tmp_path / "aligned.nii"
+    nib.save(nib.Nifti1Image(f(grid * 0.7 + lo).reshape(tuple(n)), aligned_affine), str(aligned))
+    aligned_affine = nib.load(str(aligned)).affine
+    assert np.allclose(aligned_affine[:3, 3], lo)  # float32 header: lo itself, near enough
+
+    def compare(reference, volume, *more):
+        _, out, _ = run("boxrecon", "compare", "--reference", str(reference), "--volume",
+                        str(volume), "--filter", "tricubic", "--prefilter", "q1", "--json", *more)
+        import json
+        return json.loads(out)["region"]
+
+    # Oblique reference, axis-aligned volume: its box (mirror boundary: the sampled box) holds
+    # the whole tilted grid.
+    region = compare(tilted, aligned)
+    assert region["points"] == np.prod(shape)
+    assert region["max"] < 1e-4 * 26
+    # Axis-aligned reference, oblique volume: the reference points inside the tilted grid's box
+    # (in its own frame: index 0 .. n - 1 on each axis, up to rounding at the faces).
+    # Near the tilted grid's faces the mirror boundary bends the quadratic; 3 voxels in, it is f.
+    error = tmp_path / "aligned-error.nii"
+    region = compare(aligned, tilted, "--error-volume", str(error))
+    # The region the filter reconstructs (with the mirror extension: beyond the samples), in the
+    # tilted volume's own frame; points within 1e-4 of its faces may go either way (compare reads
+    # floats: its box is pulled in by 16 float ulps).
+    boxgen = pytest.importorskip("boxgen")
+    tricubic, v = boxgen.Filter("tricubic"), boxgen.read_volume(str(tilted))
+    box_lo, box_hi = map(np.asarray, tricubic.default_box(tricubic.prefilter_volume(v, "q1")))
+    world = np.c_[grid, np.ones(len(grid))] @ aligned_affine.T
+    in_frame = (world @ np.linalg.inv(v.frame).T)[:, :3]
+    inside = np.all((in_frame >= box_lo) & (in_frame <= box_hi), 1)
+    near_face = np.any(np.minimum(np.abs(in_frame - box_lo), np.abs(in_frame - box_hi)) < 1e-4, 1)
+    assert abs(region["points"] - inside.sum()) <= near_face.sum()
+    index = (world @ np.linalg.inv(a).T)[:, :3]
+    errors = nib.load(str(error)).get_fdata().reshape(-1)  # [i, j, k] as `grid`
+    interior = np.all((index >= 3) & (index <= np.asarray(shape) - 4), 1)
+    assert interior.sum() > 100
+    assert np.abs(errors[interior]).max() < 1e-4 * 26
+    assert np.all(errors[~inside & ~near_face] == 0)  # not compared: 0 in the error volume
+    # The same oblique frame on both sides, and the error volume on the oblique reference's grid.
+    error = tmp_path / "error.nii.gz"
+    region = compare(tilted, tilted, "--error-volume", str(error))
+    assert region["points"] == np.prod(shape)
+    image = nib.load(str(error))
+    np.testing.assert_allclose(image.affine, a, atol=1e-5)
+    assert np.abs(image.get_fdata()[3:-3, 3:-3, 3:-3]).max() < 1e-4 * 26
+    # One line, no file: an oblique reference's error volume into NRRD, a world box.
+    out = tmp_path / "error.nrrd"
+    message = cli_error("boxrecon", "compare", "--reference", str(tilted), "--volume",
+                        str(aligned), "--filter", "tricubic", "--error-volume", str(out))
+    assert "write --error-volume as NIfTI" in message and not out.exists()
+    message = cli_error("boxrecon", "compare", "--reference", str(tilted), "--volume",
+                        str(aligned), "--filter", "tricubic", "--box", "0", "1")
+    assert "world coordinates" in message
