@@ -29,6 +29,7 @@
 #include "runtime/batch_threads.h"
 #include "runtime/lattice_volume.h"
 #include "runtime/reconstruction.h"
+#include "support/evaluator_support.hpp"
 
 using namespace boxgen::runtime;
 
@@ -56,6 +57,47 @@ __attribute__((noinline)) void fetch_floor(const LatticeVolume<T>& volume,
   }
 }
 
+// The memory each point's stencil touches (its cell's orbit's samples), summed over the points:
+// distinct 64-byte cache lines, storage rows (samples of one j, k: the storage index is
+// c + K (i + N0 (j + N1 k))) and 4 KiB pages.
+struct Footprint {
+  double lines = 0, rows = 0, pages = 0;
+};
+
+template <class Tr, class T>
+Footprint stencil_footprint(const LatticeVolume<T>& volume, const std::vector<Vec3>& points) {
+  namespace support = boxgen::generated::support;
+  const auto row_size = static_cast<std::int64_t>(volume.coset_count()) * volume.sizes()[0];
+  const auto distinct = [](std::vector<std::int64_t>& v) {
+    std::sort(v.begin(), v.end());
+    return static_cast<double>(std::unique(v.begin(), v.end()) - v.begin());
+  };
+  Footprint f;
+  std::vector<std::int64_t> lines, rows, pages;
+  for (const Vec3& p : points) {
+    const Vec3 x = volume.to_lattice(p);
+    const auto at =
+        support::locate<Tr, T>({static_cast<T>(x[0]), static_cast<T>(x[1]), static_cast<T>(x[2])});
+    lines.clear();
+    rows.clear();
+    pages.clear();
+    const int size = Tr::kOrbitStencilSize[Tr::kCells[at.cell].orbit];
+    for (int k = 0; k < size; ++k) {
+      const auto& d = Tr::kOffsets[at.cell][k];
+      const std::int64_t index =
+          volume.storage_offset({at.corner[0] + d[0], at.corner[1] + d[1], at.corner[2] + d[2]});
+      const auto address = reinterpret_cast<std::uintptr_t>(volume.samples().data() + index);
+      lines.push_back(static_cast<std::int64_t>(address / 64));
+      pages.push_back(static_cast<std::int64_t>(address / 4096));
+      rows.push_back(index / row_size);
+    }
+    f.lines += distinct(lines);
+    f.rows += distinct(rows);
+    f.pages += distinct(pages);
+  }
+  return f;
+}
+
 // The fastest of `runs` calls of run() in CPU time of this thread (ns), which a loaded machine
 // disturbs far less than wall-clock time (it still shares caches and the core's frequency).
 template <class F>
@@ -74,10 +116,11 @@ double best_thread_ns(int runs, F&& run) {
 }
 
 // Any registry filter on a volume of its own lattice with about 2 x side^3 samples (M7, M8, M12:
-// side^3 x 2 on BCC), or the fetch floor of a BCC filter.
+// side^3 x 2 on BCC), or the fetch floor of a BCC filter; or, with `footprint`, no evaluation
+// but the points' stencil footprint.
 template <class T>
 double filter_ns(const SplineFilter& f, std::vector<T>& values, long count, bool floor, int runs,
-                 int side) {
+                 int side, Footprint* footprint = nullptr) {
   const CosetLattice lattice = f.lattice();
   const int n =
       static_cast<int>(std::lround(std::cbrt(2.0 * side * side * side / lattice.coset_count())));
@@ -89,6 +132,12 @@ double filter_ns(const SplineFilter& f, std::vector<T>& values, long count, bool
   std::vector<Vec3> points(count > 0 ? count : 1);
   for (auto& p : points) p = {u(rng), u(rng), u(rng)};
   values.resize(points.size());
+  if (footprint) {
+    boxgen::generated::with_filter(f.registry_index(), [&](auto entry) {
+      *footprint = stencil_footprint<typename decltype(entry)::Traits>(volume, points);
+    });
+    return 0;
+  }
   const Reconstructor<T> reconstructor(volume, f);
   return best_thread_ns(runs, [&] {
     if (floor)
@@ -102,17 +151,19 @@ double filter_ns(const SplineFilter& f, std::vector<T>& values, long count, bool
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr,
-                 "usage: bench_instructions FILTER POINTS [floor] [time] [double] [side=N]\n");
+    std::fprintf(
+        stderr,
+        "usage: bench_instructions FILTER POINTS [floor] [time] [lines] [double] [side=N]\n");
     return 2;
   }
   const long count = std::atol(argv[2]);
-  bool floor = false, timed = false, in_double = false;
+  bool floor = false, timed = false, in_double = false, lines = false;
   int side = 32;
   for (int a = 3; a < argc; ++a) {
     if (std::string(argv[a]).rfind("side=", 0) == 0) side = std::atoi(argv[a] + 5);
     floor = floor || std::string(argv[a]) == "floor";
     timed = timed || std::string(argv[a]) == "time";
+    lines = lines || std::string(argv[a]) == "lines";
     in_double = in_double || std::string(argv[a]) == "double";
   }
   set_batch_threads(1);
@@ -123,9 +174,11 @@ int main(int argc, char** argv) {
   }
   double best = 0, sum = 0;
   std::size_t size = 0;
+  Footprint footprint;
   const auto measure = [&](auto zero) {
     std::vector<decltype(zero)> values;
-    best = filter_ns(filter, values, count, floor, timed ? 10 : 1, side);
+    best =
+        filter_ns(filter, values, count, floor, timed ? 10 : 1, side, lines ? &footprint : nullptr);
     for (auto v : values) sum += static_cast<double>(v);
     size = values.size();
   };
@@ -135,6 +188,11 @@ int main(int argc, char** argv) {
     measure(0.0F);
   std::printf("%s%s%s: %ld points, side %d, checksum %.6g", argv[1], in_double ? " double" : "",
               floor ? " floor" : "", count, side, sum);
+  if (lines) {
+    const auto per_point = [&](double total) { return total / static_cast<double>(size); };
+    std::printf(", per point: %.2f cache lines, %.2f storage rows, %.2f pages",
+                per_point(footprint.lines), per_point(footprint.rows), per_point(footprint.pages));
+  }
   if (timed)
     std::printf(", %.2f ns per point (thread CPU time, best of 10)",
                 best / static_cast<double>(size));

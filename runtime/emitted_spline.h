@@ -185,11 +185,12 @@ class EmittedSpline {
     FirstError error{count, {}};
     if (simd_serves()) {
       // Blocks of consecutive points, each packed into SIMD chunks (chunk_block on linear
-      // volumes, else simd_block).
+      // volumes, else simd_block). Handed out one at a time: a thread that another process
+      // slows down takes fewer blocks instead of holding the others up at the end.
       constexpr std::ptrdiff_t kBlock = 1024;
       const std::ptrdiff_t blocks = (count + kBlock - 1) / kBlock;
       const bool chunks = !linear_rows_.empty();
-#pragma omp parallel for schedule(static) num_threads(threads) if (count > 256)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (count > 256)
       for (std::ptrdiff_t b = 0; b < blocks; ++b) {
         const std::ptrdiff_t first = b * kBlock, last = std::min(count, (b + 1) * kBlock);
         if (chunks)

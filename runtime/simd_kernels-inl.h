@@ -16,6 +16,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <type_traits>
 #include <utility>
 
@@ -202,8 +203,14 @@ struct PackArith {
   HWY_ATTR static Whole whole(Real f) { return f; }
   HWY_ATTR static Whole constant(std::int64_t c) { return Whole(static_cast<double>(c)); }
   HWY_ATTR static Real constant_real(T c) { return Real(static_cast<double>(c)); }
+  // b is a constant of the tables (a Hermite diagonal): for a power of two, a / b is a * (1 / b)
+  // exactly, and the multiplication keeps the divider, the slowest vector unit, free.
   HWY_ATTR static Whole floor_div(Whole a, std::int64_t b) {
-    return b == 1 ? a : Whole(hn::Floor(hn::Div(a.v, hn::Set(D(), static_cast<T>(b)))));
+    if (b == 1) return a;
+    if ((b & (b - 1)) == 0)
+      return Whole(
+          hn::Floor(hn::Mul(a.v, hn::Set(D(), static_cast<T>(1.0 / static_cast<double>(b))))));
+    return Whole(hn::Floor(hn::Div(a.v, hn::Set(D(), static_cast<T>(b)))));
   }
   HWY_ATTR static Whole at_least(Real s, T c) {
     return Whole(hn::IfThenElseZero(hn::Ge(s.v, hn::Set(D(), c)), hn::Set(D(), T(1))));
@@ -240,15 +247,27 @@ struct PackArith {
   }
 };
 
+// Whether 1 / h is exact and h and 1 / h are normal: h = +-2^k, |k| < 1022 (its mantissa bits
+// zero, its exponent field away from both ends).
+inline bool exact_inverse(double h) {
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &h, sizeof bits);
+  const std::uint64_t exponent = (bits >> 52) & 0x7FF;
+  return (bits & ((std::uint64_t{1} << 52) - 1)) == 0 && exponent > 1 && exponent < 2045;
+}
+
 // World to lattice coordinates in double, as LatticeVolume::to_lattice, rounded to T as the scalar
 // path rounds them; x[i * kRow + lane] and near[lane] (1 or 0). points[3 * lane + i]: the chunk's
 // world coordinates, point after point. Lanes that are not near get x = 0, so that nothing below
-// converts a huge or non-finite number to an integer.
+// converts a huge or non-finite number to an integer. Where every spacing h is a power of two,
+// the division by h is a multiplication by 1 / h: the same bits, without the vector divisions
+// (the slowest operation here).
 template <class T>
 BOXGEN_STAGE HWY_ATTR void lattice_lanes(const double* points, const Frame& frame, T* x, T* near) {
   const hn::ScalableTag<double> dd;
+  using V = hn::Vec<decltype(dd)>;
   const hn::Rebind<T, decltype(dd)> dt;
-  const auto to_t = [&](hn::Vec<decltype(dd)> v) HWY_ATTR {
+  const auto to_t = [&](V v) HWY_ATTR {
     if constexpr (std::is_same_v<T, double>) {
       static_cast<void>(dt);
       return v;
@@ -256,21 +275,39 @@ BOXGEN_STAGE HWY_ATTR void lattice_lanes(const double* points, const Frame& fram
       return hn::DemoteTo(dt, v);
     }
   };
-  const int width = static_cast<int>(hn::Lanes(dd));
-  for (int at = 0; at < kChunk; at += width) {
-    hn::Vec<decltype(dd)> lattice[3];
-    hn::LoadInterleaved3(dd, points + std::ptrdiff_t{3} * at, lattice[0], lattice[1], lattice[2]);
-    auto ok = hn::Eq(hn::Zero(dd), hn::Zero(dd));
-    for (int i = 0; i < 3; ++i) {
-      lattice[i] =
-          hn::Div(hn::Sub(lattice[i], hn::Set(dd, frame.origin[i])), hn::Set(dd, frame.h[i]));
-      ok = hn::And(ok, hn::And(hn::Gt(lattice[i], hn::Set(dd, frame.lower)),
-                               hn::Lt(lattice[i], hn::Set(dd, frame.upper[i]))));
-    }
-    for (int i = 0; i < 3; ++i)
-      hn::StoreU(to_t(hn::IfThenElseZero(ok, lattice[i])), dt, x + i * kRow + at);
-    hn::StoreU(to_t(hn::IfThenElseZero(ok, hn::Set(dd, 1.0))), dt, near + at);
+  // The frame as vectors, once: the stores to x do not make the compiler read it again.
+  const bool exact =
+      exact_inverse(frame.h[0]) && exact_inverse(frame.h[1]) && exact_inverse(frame.h[2]);
+  V origin[3], scale[3], upper[3];
+  for (int i = 0; i < 3; ++i) {
+    origin[i] = hn::Set(dd, frame.origin[i]);
+    scale[i] = hn::Set(dd, exact ? 1.0 / frame.h[i] : frame.h[i]);
+    upper[i] = hn::Set(dd, frame.upper[i]);
   }
+  const V lower = hn::Set(dd, frame.lower);
+  const int width = static_cast<int>(hn::Lanes(dd));
+  const auto convert = [&](auto multiply) HWY_ATTR {
+    for (int at = 0; at < kChunk; at += width) {
+      V lattice[3];
+      hn::LoadInterleaved3(dd, points + std::ptrdiff_t{3} * at, lattice[0], lattice[1], lattice[2]);
+      auto ok = hn::Eq(hn::Zero(dd), hn::Zero(dd));
+      for (int i = 0; i < 3; ++i) {
+        const V shifted = hn::Sub(lattice[i], origin[i]);
+        if constexpr (decltype(multiply)::value)
+          lattice[i] = hn::Mul(shifted, scale[i]);
+        else
+          lattice[i] = hn::Div(shifted, scale[i]);
+        ok = hn::And(ok, hn::And(hn::Gt(lattice[i], lower), hn::Lt(lattice[i], upper[i])));
+      }
+      for (int i = 0; i < 3; ++i)
+        hn::StoreU(to_t(hn::IfThenElseZero(ok, lattice[i])), dt, x + i * kRow + at);
+      hn::StoreU(to_t(hn::IfThenElseZero(ok, hn::Set(dd, 1.0))), dt, near + at);
+    }
+  };
+  if (exact)
+    convert(std::true_type{});
+  else
+    convert(std::false_type{});
 }
 
 // One vector of located points: support::locate_in()'s corner, cell and reference coordinates,

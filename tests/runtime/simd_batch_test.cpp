@@ -37,6 +37,7 @@ namespace {
 
 constexpr int kSize = 12;  // N^3 x 2 samples
 constexpr double kSpacing = 0.37;
+const Vec3 kSpacings{kSpacing, kSpacing, kSpacing};
 const Vec3 kOrigin{-1.1, 0.3, 2.0};
 
 template <class T>
@@ -48,15 +49,16 @@ LatticeVolume<T> random_volume(std::uint64_t seed) {
   return volume;
 }
 
-Vec3 world(const Vec3& lattice) {
-  return {kOrigin[0] + kSpacing * lattice[0], kOrigin[1] + kSpacing * lattice[1],
-          kOrigin[2] + kSpacing * lattice[2]};
+Vec3 world(const Vec3& lattice, const Vec3& h) {
+  return {kOrigin[0] + h[0] * lattice[0], kOrigin[1] + h[1] * lattice[1],
+          kOrigin[2] + h[2] * lattice[2]};
 }
 
 // Lattice coordinates inside the volume, one in eight also near or beyond a face (some points
 // evaluate through checked fetches, some are refused); a third of them on the planes x_i = k/4 and
 // x_i +- x_j = k/4, where the knot planes of every filter lie, exactly or moved by about 1e-7.
-std::vector<Vec3> candidate_points(int count, std::uint64_t seed) {
+// h: the volume's spacings.
+std::vector<Vec3> candidate_points(int count, std::uint64_t seed, const Vec3& h = kSpacings) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> inner(4.0, 2.0 * kSize - 5.0);
   std::uniform_real_distribution<double> wide(-4.0, 2.0 * kSize + 3.0);
@@ -81,7 +83,7 @@ std::vector<Vec3> candidate_points(int count, std::uint64_t seed) {
       default:
         break;
     }
-    out[i] = world(x);
+    out[i] = world(x, h);
   }
   return out;
 }
@@ -145,9 +147,10 @@ T scalar_value(const Reconstructor<T>& r, const Vec3& p, Vec3* g, Hessian* h) {
 }
 
 template <class T, class Spline>
-void expect_batch_equals_scalar(const Spline& r, std::uint64_t seed) {
+void expect_batch_equals_scalar(const Spline& r, std::uint64_t seed,
+                                const Vec3& spacing = kSpacings) {
   SCOPED_TRACE(sizeof(T) == 4 ? "float" : "double");
-  const std::vector<Vec3> all = evaluable(r, candidate_points(1500, seed + 1));
+  const std::vector<Vec3> all = evaluable(r, candidate_points(1500, seed + 1, spacing));
   ASSERT_GT(all.size(), 600u);
   // Counts that fill chunks exactly, leave partial chunks, or fit in one.
   for (std::size_t count :
@@ -195,6 +198,35 @@ TEST(SimdBatch, EqualsTheScalarPathForEveryBccSplineFilterInFloat) {
   EXPECT_EQ(tested, 3);  // m7, m8, m12: the filters Reconstructor (BCC) takes
 }
 
+// Where every spacing is a power of two the kernels multiply by the inverses instead of dividing
+// (lattice_lanes): the same bits. BCC volumes take one spacing; a Cartesian one three different
+// ones (so that an axis taking another axis' inverse would show).
+template <class T>
+void expect_power_of_two_spacings_equal_scalar(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const char* name : {"m7", "m12"})
+    for (const double h : {0.5, 2.0}) {
+      SCOPED_TRACE(testing::Message() << name << ", spacing " << h);
+      LatticeVolume<T> volume(CosetLattice::bcc(), {kSize, kSize, kSize}, h, kOrigin);
+      for (auto& s : volume.samples()) s = static_cast<T>(u(rng));
+      expect_batch_equals_scalar<T>(Reconstructor<T>(volume, SplineFilter::parse(name)), seed,
+                                    {h, h, h});
+    }
+  const Vec3 spacing{0.5, 0.25, 4.0};
+  std::vector<T> samples(std::size_t{8} * kSize * kSize * kSize);
+  for (auto& s : samples) s = static_cast<T>(u(rng));
+  const LatticeVolume<T> volume(CosetLattice::cartesian(), {2 * kSize, 2 * kSize, 2 * kSize},
+                                spacing, kOrigin, std::move(samples));
+  expect_batch_equals_scalar<T>(Reconstructor<T>(volume, SplineFilter::parse("tricubic")), seed,
+                                spacing);
+}
+
+TEST(SimdBatch, PowerOfTwoSpacingsEqualTheScalarPath) {
+  expect_power_of_two_spacings_equal_scalar<float>(40);
+  expect_power_of_two_spacings_equal_scalar<double>(50);
+}
+
 TEST(SimdBatch, EqualsTheScalarPathForEveryBccSplineFilterInDouble) {
   int tested = 0;
   for (int i = 0; i < generated::kFilterCount; ++i)
@@ -232,7 +264,7 @@ std::vector<Vec3> upper_corner_points(int count, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> corner(2.0 * kSize - 6.0, 2.0 * kSize - 1.0);
   std::vector<Vec3> out(count);
-  for (Vec3& p : out) p = world({corner(rng), corner(rng), corner(rng)});
+  for (Vec3& p : out) p = world({corner(rng), corner(rng), corner(rng)}, kSpacings);
   return out;
 }
 
@@ -282,7 +314,7 @@ TEST(SimdBatch, ReportsTheFirstBadPointAsTheScalarPathDoes) {
   const Reconstructor<double> r(volume, SplineFilter::parse("m7"));
   std::vector<Vec3> points = evaluable(r, candidate_points(800, 6));
   ASSERT_GT(points.size(), 300u);
-  points[37] = world({-20, 3, 3});                                     // outside
+  points[37] = world({-20, 3, 3}, kSpacings);                          // outside
   points[200] = {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0};  // not finite
   std::vector<double> values(points.size());
   std::string expected;

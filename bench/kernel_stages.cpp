@@ -1,0 +1,185 @@
+// Where the chunk kernel (runtime/simd_kernels-inl.h) of M7 and M8 spends its time, stage by stage
+// (docs/performance.md, "Why M7's time ratio lags its instruction ratio"). For the same random
+// points of an n^3 x 2 BCC volume, one thread, the thread CPU time per point of
+//   full:   the kernel as Reconstructor runs it: locate, stencil addresses, gathers, polynomial;
+//   fetch:  the same with the orbit polynomial replaced by the sum of the stencil values;
+//   locate: locate and the stencil addresses only (no gather, no polynomial).
+// Each stage is a simd::Kernels chunk function passed to EmittedSpline, so all three run through
+// the same batch loop; all three are compiled here for this machine alone (-march=native, as
+// loader/ compiles a filter's kernels). The stages and filters alternate, round after round, and
+// the minimum and median over the rounds are printed:
+//   build/bench/bench_kernel_stages [double] [side=32] [rounds=30]
+#define HWY_COMPILE_ONLY_STATIC 1
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "generated/m7.hpp"
+#include "generated/m8.hpp"
+#include "runtime/batch_threads.h"
+#include "runtime/emitted_spline.h"
+#include "runtime/simd_kernels-inl.h"
+
+namespace rt = boxgen::runtime;
+namespace simd = rt::simd;
+namespace kernels = rt::simd::HWY_NAMESPACE;
+namespace hn = hwy::HWY_NAMESPACE;
+namespace support = boxgen::generated::support;
+
+namespace {
+
+// Tr with the orbit polynomial replaced by the sum of the orbit's stencil values: the kernel's
+// fetch floor (every sample is still gathered, since the sum uses it).
+template <class Tr>
+struct StencilSum : Tr {
+  template <int Order, class T>
+  static T orbit(int o, const T* v, const T* /*x*/, T* /*d*/) {
+    T sum = v[0];
+    for (int k = 1; k < Tr::kOrbitStencilSize[o]; ++k) sum = sum + v[k];
+    return sum;
+  }
+};
+
+// The value path of the chunk kernel of Tr (the bench asks for values only).
+template <class Tr, class T>
+void value_chunk(int /*order*/, const double* points, const simd::Frame& frame,
+                 const simd::LinearVolume<T>& volume, T* out) {
+  kernels::evaluate_lanes<Tr, support::kValue>(
+      points, frame, volume, out, std::make_integer_sequence<int, rt::StencilSteps<Tr>::kOrbits>{});
+}
+
+// Locate and stencil addresses only: the stages of evaluate_lanes before the gathers; the value of
+// a lane is its first sample's index, so that nothing is optimised away.
+template <class Tr, class T>
+[[gnu::flatten]] void locate_chunk(int /*order*/, const double* points, const simd::Frame& frame,
+                                   const simd::LinearVolume<T>& volume, T* out) {
+  constexpr int kRow = simd::kChunk;
+  const typename kernels::Pack<T>::D d;
+  alignas(64) T x[3 * kRow];
+  alignas(64) T near[kRow];
+  kernels::lattice_lanes(points, frame, x, near);
+  for (int at = 0; at < kRow; at += static_cast<int>(hn::Lanes(d))) {
+    const auto l = kernels::locate_pack<Tr>(x, near, at, frame);
+    const auto st = kernels::lane_stencil<Tr>(l, volume);
+    auto index = hn::Add(st.first, hn::Add(st.flip, hn::Add(st.axis[0], st.axis[1])));
+    index = hn::Add(index, st.axis[2]);
+    hn::StoreU(hn::ConvertTo(d, index), d, out + at);
+    hn::StoreU(l.cell.v, d, out + simd::kChunkCellRow * kRow + at);
+    hn::StoreU(hn::IfThenElseZero(l.ok, hn::Set(d, T(1))), d, out + simd::kChunkOkRow * kRow + at);
+  }
+}
+
+template <class T>
+double thread_ns() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e9 * static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec);
+}
+
+// One filter's three stages on one volume and one set of points.
+template <class Tr, class T>
+class Stages {
+ public:
+  Stages(int registry_index, int side, const std::vector<rt::Vec3>& points)
+      : volume_(rt::CosetLattice::bcc(), {side, side, side}, 1.0, {0, 0, 0}), points_(points) {
+    std::mt19937_64 rng(1);
+    for (auto& s : volume_.samples()) s = static_cast<T>(rng() % 1000) / T(1000);
+    const simd::Kernels& registry = *simd::registry_kernels(registry_index);
+    for (simd::Kernels& k : kernels_) k = registry;
+    set_chunk(kernels_[0], &value_chunk<Tr, float>, &value_chunk<Tr, double>);
+    set_chunk(kernels_[1], &value_chunk<StencilSum<Tr>, float>,
+              &value_chunk<StencilSum<Tr>, double>);
+    set_chunk(kernels_[2], &locate_chunk<Tr, float>, &locate_chunk<Tr, double>);
+    values_.resize(points.size());
+  }
+
+  // Thread CPU ns per point of stage s (0 full, 1 fetch, 2 locate).
+  double run(int s) {
+    using Spline = rt::EmittedSpline<Tr, rt::BccStencils<Tr, T, std::int32_t>>;
+    const Spline spline(rt::BccStencils<Tr, T, std::int32_t>(volume_), -1, &kernels_[s]);
+    const double t0 = thread_ns<T>();
+    spline.batch(points_, values_, {}, {});
+    return (thread_ns<T>() - t0) / static_cast<double>(points_.size());
+  }
+
+ private:
+  static void set_chunk(simd::Kernels& k, decltype(simd::Kernels::chunk_float) f,
+                        decltype(simd::Kernels::chunk_double) d) {
+    k.chunk_float = f;
+    k.chunk_double = d;
+  }
+
+  rt::LatticeVolume<T> volume_;
+  const std::vector<rt::Vec3>& points_;
+  std::vector<T> values_;
+  simd::Kernels kernels_[3];
+};
+
+template <class T>
+void run_all(int side, int rounds) {
+  std::mt19937_64 rng(2);
+  std::uniform_real_distribution<double> u(6.0, 2.0 * side - 7.0);
+  std::vector<rt::Vec3> points(200000);
+  for (auto& p : points) p = {u(rng), u(rng), u(rng)};
+  Stages<boxgen::generated::m7::Traits, T> m7(0, side, points);
+  Stages<boxgen::generated::m8::Traits, T> m8(1, side, points);
+  std::vector<double> times[2][3];
+  for (int r = 0; r < rounds; ++r)
+    for (int s = 0; s < 3; ++s) {
+      times[0][s].push_back(m7.run(s));
+      times[1][s].push_back(m8.run(s));
+    }
+  const char* names[3] = {"full", "fetch", "locate"};
+  double least[2][3];
+  std::printf("%s, %d^3 x 2, %d rounds: ns per point, minimum (median)\n",
+              sizeof(T) == 4 ? "float" : "double", side, rounds);
+  for (int s = 0; s < 3; ++s) {
+    double median[2];
+    for (int f = 0; f < 2; ++f) {
+      std::sort(times[f][s].begin(), times[f][s].end());
+      least[f][s] = times[f][s].front();
+      median[f] = times[f][s][times[f][s].size() / 2];
+    }
+    std::printf("  %-6s  M7 %6.2f (%6.2f)  M8 %6.2f (%6.2f)  M7/M8 %.3f (%.3f)\n", names[s],
+                least[0][s], median[0], least[1][s], median[1], least[0][s] / least[1][s],
+                median[0] / median[1]);
+  }
+  std::printf("  M7 fetch / M8 full %.3f, M7 locate / M8 full %.3f (minima)\n",
+              least[0][1] / least[1][0], least[0][2] / least[1][0]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool in_double = false;
+  int side = 32, rounds = 30;
+  for (int a = 1; a < argc; ++a) {
+    const std::string arg = argv[a];
+    if (arg == "double") {
+      in_double = true;
+    } else if (arg.rfind("side=", 0) == 0) {
+      side = std::atoi(argv[a] + 5);
+    } else if (arg.rfind("rounds=", 0) == 0) {
+      rounds = std::atoi(argv[a] + 7);
+    } else {
+      std::fprintf(stderr, "usage: bench_kernel_stages [double] [side=N] [rounds=R]\n");
+      return 2;
+    }
+  }
+  if (side < 8 || rounds < 1) {
+    std::fprintf(stderr, "bench_kernel_stages: side must be at least 8 and rounds at least 1\n");
+    return 2;
+  }
+  rt::set_batch_threads(1);
+  if (in_double)
+    run_all<double>(side, rounds);
+  else
+    run_all<float>(side, rounds);
+  return 0;
+}
