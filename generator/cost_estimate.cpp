@@ -14,6 +14,7 @@
 #include "generator/error.h"
 #include "generator/knot_normals.h"
 #include "generator/piecewise_form.h"
+#include "generator/zonotope.h"
 #include "support/available_memory.h"
 
 namespace boxgen::generator {

@@ -6,6 +6,7 @@
 
 #include "generator/approximation_order.h"
 #include "generator/error.h"
+#include "generator/zonotope.h"
 
 namespace boxgen::generator {
 

@@ -11,11 +11,6 @@
 
 namespace boxgen::generator {
 
-Zonotope::Zonotope(const IntColumns& directions, int n) : lo_(n, 0), hi_(n, 0) {
-  for (const auto& xi : directions)
-    for (int i = 0; i < n; ++i) (xi[i] < 0 ? lo_[i] : hi_[i]) += xi[i];
-}
-
 const Poly& PiecewiseForm::poly_at(const RatVec& x) const {
   const int i = knots.locate(x);
   return i < 0 ? zero_ : polys[i];

@@ -8,50 +8,11 @@
 
 #include "generator/box_spline_derivation.h"
 #include "generator/cell_complex.h"
+#include "generator/fine_arrangement.h"
 #include "generator/spec.h"
+#include "generator/zonotope.h"
 
 namespace boxgen::generator {
-
-// The bounding box [lo, hi] of the support Xi [0,1]^m.
-class Zonotope {
- public:
-  explicit Zonotope(const IntColumns& directions, int n);
-  const IntVec& box_lo() const { return lo_; }
-  const IntVec& box_hi() const { return hi_; }
-
- private:
-  IntVec lo_, hi_;
-};
-
-// The fine arrangement: every integer level of the knot normals plus the axes (axes first), on
-// the bounding box [lo, hi) of the support. It is invariant under integer shifts, so it holds the
-// cells of the unit cube at the origin, split once (the cost estimate counts them, the spline
-// structure translates them); every other cube's cells are their translates.
-class FineArrangement {
- public:
-  FineArrangement(std::vector<IntVec> normals, IntVec lo, IntVec hi)
-      : normals_(std::move(normals)),
-        lo_(std::move(lo)),
-        hi_(std::move(hi)),
-        unit_cells_(split_cube(normals_, IntVec(lo_.size(), 0))) {}
-  const std::vector<IntVec>& normals() const { return normals_; }
-  const IntVec& lo() const { return lo_; }
-  const IntVec& hi() const { return hi_; }
-  const std::vector<FineCell>& unit_cells() const { return unit_cells_; }
-  // The arrangement of the directions divided by k (generator/common_scale.h): the same normals
-  // and unit cube, on the box divided by k.
-  FineArrangement scaled_down(std::int64_t k) const {
-    FineArrangement out = *this;
-    for (auto& v : out.lo_) v /= k;  // the support's box: sums of entries, multiples of k
-    for (auto& v : out.hi_) v /= k;
-    return out;
-  }
-
- private:
-  std::vector<IntVec> normals_;
-  IntVec lo_, hi_;
-  std::vector<FineCell> unit_cells_;
-};
 
 struct PiecewiseForm {
   PiecewiseForm(BoxSplineSpec s, DerivationMethod m, KnotComplex k, FineArrangement f)
