@@ -1,5 +1,5 @@
 // boxrecon bench: evaluation speed of the generated evaluators through the runtime's batch API
-// (the paper's Table 2 and the ratios of issue 8). See cmd_bench.cpp.
+// (the paper's Table 2 and the ratios docs/performance.md names). See cmd_bench.cpp.
 #pragma once
 #include <algorithm>
 #include <chrono>

@@ -1,5 +1,5 @@
 // boxrecon bench --prefilter P: the time and peak memory of one prefilter (interp above all) on a
-// volume of N^3 random samples per coset on the filter's lattice (issue 36's target: interp on
+// volume of N^3 random samples per coset on the filter's lattice (the target we keep: interp on
 // 256^3 x 2 BCC samples in under 3 s on 2 cores, peak memory under 4x the volume in double).
 #include "apps/boxrecon/cmd_bench_prefilter.h"
 

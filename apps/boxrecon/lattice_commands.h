@@ -34,7 +34,7 @@ template <class T>
 void print_evaluations(std::span<const T> values, std::span<const runtime::Vec3> gradients,
                        std::span<const runtime::Hessian> hessians, bool gradient, bool hessian);
 
-// resample's output grid (issue 33): --n N (a cube, default 64), --size NX NY NZ, or --spacing H
+// resample's output grid: --n N (a cube, default 64), --size NX NY NZ, or --spacing H
 // (one, or three) over the box --box or --min/--max (default: default_box); or --like IMAGE, the
 // grid of that Cartesian image (its sizes, spacings and origin). CLI11 keeps them exclusive.
 struct OutputGridOptions {

@@ -1,4 +1,4 @@
-// SPEC filters in the commands that read volumes (issue 33, item 4): eval, compare, subsample and
+// SPEC filters in the commands that read volumes: eval, compare, subsample and
 // slice take a direction list as --filter (never split at its commas), on the volume's lattice
 // when --lattice is not given (read from the header before anything is compiled), and refuse a
 // --lattice the volume is not on in one line. One SPEC (six of M7's seven directions, no preset)

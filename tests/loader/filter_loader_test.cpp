@@ -300,7 +300,7 @@ TEST_F(LoaderTest, BccSpecIsExactReproducesAndIsCached) {
   const rt::SplineFilter edited_sources = load_filter(kBccSpec, "bcc", options());
   EXPECT_EQ(fs::last_write_time(so), time);
   expect_exact_on_delta(edited_sources, kBccSpec, "bcc");
-  // Reordered and with directions negated (issue 33): the same entry, loaded without a compile,
+  // Reordered and with directions negated: the same entry, loaded without a compile,
   // named as given, and exact against the recurrence of the directions as given.
   const rt::SplineFilter reordered = load_filter(kBccReordered, "bcc", options());
   EXPECT_EQ(fs::last_write_time(so), time);

@@ -138,7 +138,7 @@ def test_wrong_arguments_elsewhere(files):
 
 
 def test_thread_counts_have_an_upper_bound(files, ml_volume):
-    """Issue 32, item 11: set_threads(66000) then an evaluation crashed the interpreter, and 33000
+    """set_threads(66000) then an evaluation crashed the interpreter, and 33000
     ended it in libgomp's "Thread creation failed"; boxrecon --threads says the same line."""
     d, bcc, pts = files
     for n in (33000, 66000):
@@ -152,7 +152,7 @@ def test_thread_counts_have_an_upper_bound(files, ml_volume):
 
 
 def test_memory_failures_are_memory_errors():
-    """Issue 32, item 16: points whose float64 copy cannot be allocated raised "ValueError: cannot
+    """Points whose float64 copy cannot be allocated raised "ValueError: cannot
     create a pybind11::array_t from a nullptr"; now NumPy's MemoryError, naming the size. Run in a
     child under an address-space limit 1 GiB above what it has mapped."""
     script = textwrap.dedent("""
@@ -176,7 +176,7 @@ def test_memory_failures_are_memory_errors():
 
 
 def test_read_volume_gives_the_lattice_asked_for(tmp_path):
-    """Issue 32, item 20: read_volume(path, lattice='fcc') on a BCC file returned a BCC volume."""
+    """read_volume(path, lattice='fcc') on a BCC file returned a BCC volume."""
     path = str(tmp_path / "bcc.nrrd")
     boxgen.write_volume(path, boxgen.sample("ml", 6))
     with pytest.raises(ValueError, match="holds a BCC volume, not the FCC lattice asked for"):
@@ -186,7 +186,7 @@ def test_read_volume_gives_the_lattice_asked_for(tmp_path):
 
 @pytest.mark.parametrize("call", ["evaluate", "resample"])
 def test_ctrl_c_interrupts_a_long_call(call):
-    """Issue 32, item 19: SIGINT during a long evaluation raised KeyboardInterrupt only when the
+    """SIGINT during a long evaluation raised KeyboardInterrupt only when the
     work had ended. The child times the call uninterrupted (T), then sends itself SIGINT 0.3 s into
     the same call: KeyboardInterrupt must come well before T (before the fix it came after T)."""
     script = textwrap.dedent("""

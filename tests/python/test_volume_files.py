@@ -1,4 +1,4 @@
-"""Scanner volumes in Python (issue 33, item 5): read_volume takes NIfTI (.nii, .nii.gz, .hdr/.img
+"""Scanner volumes in Python: read_volume takes NIfTI (.nii, .nii.gz, .hdr/.img
 pairs) as well as NRRD, write_volume writes both by the name, and Volume takes three spacings or
 an affine (oblique ones: test_oblique_affines.py). The files are written here by nibabel (Debian python3-nibabel) and read
 back by it: every expected value comes from nibabel, never from boxgen."""

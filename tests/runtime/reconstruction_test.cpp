@@ -274,7 +274,7 @@ TEST(Reconstruction, ThreadCapFromEnvironmentAndProgram) {
   EXPECT_GE(batch_threads(), 1);
 }
 
-// Set_threads(66000) crashed and 33000 ended the process in libgomp's "Thread
+// set_threads(66000) crashed and 33000 ended the process in libgomp's "Thread
 // creation failed". The cap is 4 per processor, and less under an address-space limit; within it
 // a batch runs; beyond it the request is refused in one line.
 TEST(Reconstruction, ThreadCountsHaveAnUpperBound) {

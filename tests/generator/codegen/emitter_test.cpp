@@ -27,7 +27,7 @@ TEST(Emitter, TwoHeadersWithProvenance) {
   EXPECT_NE(files[0].text.find("boxgen emit zp --name zp_test"), std::string::npos);
 }
 
-// The data beside the text (issue 34): the prefilters the header holds, and the headers' text to
+// The data beside the text: the prefilters the header holds, and the headers' text to
 // paste into one translation unit (the loader's), which is the file's but its include guard.
 TEST(Emitter, ReturnsWhatItEmitsAsData) {
   const Derivation& zp = fixture::derivation_of("zp");
