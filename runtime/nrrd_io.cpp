@@ -350,60 +350,63 @@ std::string read_oblique_steps(const Nrrd* nrrd, unsigned first, VolumeHeader& h
   return {};
 }
 
+// The one spacing h of a lattice of period d (every lattice but Z^3): space directions d h along
+// the axes, or, where allowed, along the unit axes of an oblique frame (read_oblique_steps).
+std::string read_lattice_steps(const Nrrd* nrrd, unsigned first, int d, const std::string& name,
+                               VolumeHeader& header) {
+  const double step = nrrd->axis[first].spaceDirection[0];
+  bool consistent = std::isfinite(step) && step / d > 0;
+  for (unsigned a = 0; a < 3 && consistent; ++a)
+    for (unsigned b = 0; b < 3; ++b) {
+      const double v = nrrd->axis[first + a].spaceDirection[b];
+      if (!std::isfinite(v) || std::fabs(v - (a == b ? step : 0.0)) > 1e-9 * step)
+        consistent = false;
+    }
+  if (consistent) {
+    header.steps = {step / d, step / d, step / d};
+    return {};
+  }
+  if (!header.allow_oblique)
+    return fmt::format(
+        "its space directions are not (dh,0,0) (0,dh,0) (0,0,dh) for one h > 0 (d = {} for the "
+        "{} lattice)",
+        d, name);
+  if (std::string why = read_oblique_steps(nrrd, first, header); !why.empty()) return why;
+  const Vec3 s = header.steps;
+  if (std::fabs(s[1] - s[0]) > 1e-9 * s[0] || std::fabs(s[2] - s[0]) > 1e-9 * s[0])
+    return fmt::format(
+        "its space directions have lengths {:.9g}, {:.9g}, {:.9g}; a {} volume's are all d h", s[0],
+        s[1], s[2], name);
+  header.steps = {s[0] / d, s[0] / d, s[0] / d};
+  return {};
+}
+
 // The spacing of each domain axis from the space directions (header.steps): Z^3 may have one per
 // axis, and negative ones (read_lattice_nrrd flips those axes); every other lattice has one h > 0.
 std::string read_steps(const Nrrd* nrrd, unsigned first, int k, int d, const std::string& name,
                        VolumeHeader& header) {
-  const bool cartesian = k == 1 && d == 1;
-  if (cartesian) {
-    // The domain axes start at `first`: a 4-D file with a coset axis of size 1 (the layout
-    // boxrecon once wrote for Cartesian volumes) has its directions on axes 1..3.
-    for (int a = 0; a < 3; ++a) {
-      const double* direction = nrrd->axis[first + a].spaceDirection;
-      const double step = direction[a];
-      bool aligned = std::isfinite(step) && step != 0;
-      for (int b = 0; b < 3; ++b)
-        if (b != a && !(std::fabs(direction[b]) <= 1e-9 * std::fabs(step))) aligned = false;
-      if (!aligned && header.allow_oblique) return read_oblique_steps(nrrd, first, header);
-      if (!aligned) {
-        std::string found;
-        for (int c = 0; c < 3; ++c) {
-          const double* v = nrrd->axis[first + c].spaceDirection;
-          found += fmt::format("{}({:.9g},{:.9g},{:.9g})", c ? " " : "", v[0], v[1], v[2]);
-        }
-        return fmt::format(
-            "its space directions {} are not along the axes ((sx,0,0) (0,sy,0) (0,0,sz)): axis {} "
-            "is oblique or permuted",
-            found, first + a);
+  if (k != 1 || d != 1) return read_lattice_steps(nrrd, first, d, name, header);
+  // The domain axes start at `first`: a 4-D file with a coset axis of size 1 (the layout
+  // boxrecon once wrote for Cartesian volumes) has its directions on axes 1..3.
+  for (int a = 0; a < 3; ++a) {
+    const double* direction = nrrd->axis[first + a].spaceDirection;
+    const double step = direction[a];
+    bool aligned = std::isfinite(step) && step != 0;
+    for (int b = 0; b < 3; ++b)
+      if (b != a && !(std::fabs(direction[b]) <= 1e-9 * std::fabs(step))) aligned = false;
+    if (!aligned && header.allow_oblique) return read_oblique_steps(nrrd, first, header);
+    if (!aligned) {
+      std::string found;
+      for (int c = 0; c < 3; ++c) {
+        const double* v = nrrd->axis[first + c].spaceDirection;
+        found += fmt::format("{}({:.9g},{:.9g},{:.9g})", c ? " " : "", v[0], v[1], v[2]);
       }
-      header.steps[a] = step;
-    }
-  } else {
-    const double step = nrrd->axis[first].spaceDirection[0];
-    bool consistent = std::isfinite(step) && step / d > 0;
-    for (int a = 0; a < 3 && consistent; ++a)
-      for (int b = 0; b < 3; ++b) {
-        const double v = nrrd->axis[first + a].spaceDirection[b];
-        if (!std::isfinite(v) || std::fabs(v - (a == b ? step : 0.0)) > 1e-9 * step)
-          consistent = false;
-      }
-    if (!consistent && header.allow_oblique) {
-      // One step d h along every axis of the volume's own frame.
-      if (std::string why = read_oblique_steps(nrrd, first, header); !why.empty()) return why;
-      const Vec3 s = header.steps;
-      if (std::fabs(s[1] - s[0]) > 1e-9 * s[0] || std::fabs(s[2] - s[0]) > 1e-9 * s[0])
-        return fmt::format(
-            "its space directions have lengths {:.9g}, {:.9g}, {:.9g}; a {} volume's are all d h",
-            s[0], s[1], s[2], name);
-      header.steps = {s[0] / d, s[0] / d, s[0] / d};
-      return {};
-    }
-    if (!consistent)
       return fmt::format(
-          "its space directions are not (dh,0,0) (0,dh,0) (0,0,dh) for one h > 0 (d = {} for the "
-          "{} lattice)",
-          d, name);
-    header.steps = {step / d, step / d, step / d};
+          "its space directions {} are not along the axes ((sx,0,0) (0,sy,0) (0,0,sz)): axis {} "
+          "is oblique or permuted",
+          found, first + a);
+    }
+    header.steps[a] = step;
   }
   return {};
 }
