@@ -31,9 +31,16 @@ def smooth(p):
     return np.sin(1.3 * p[:, 0] + 0.4) * np.cos(0.9 * p[:, 1] - 0.2) * np.exp(0.5 * p[:, 2])
 
 
-H = 1.0 / (N - 1)  # lattice unit: BCC point j = 2 i + c at -1 + H (2 i + c)
-SIZE = N + 2 * MARGIN
-ORIGIN = (-1 - 2 * H * MARGIN,) * 3
+def use_density(n):
+    """Sample with n points per coset and axis over [-1,1]^3 (scripts/fir_limit.py varies it)."""
+    global N, H, SIZE, ORIGIN  # pylint: disable=global-statement
+    N = n
+    H = 1.0 / (N - 1)  # lattice unit: BCC point j = 2 i + c at -1 + H (2 i + c)
+    SIZE = N + 2 * MARGIN
+    ORIGIN = (-1 - 2 * H * MARGIN,) * 3
+
+
+use_density(N)
 
 
 def samples(f):
