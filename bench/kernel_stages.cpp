@@ -8,12 +8,13 @@
 //           samples of the NEXT chunk's points (located once more for that), every sample or
 //           every N-th with `prefetch=N`, so that their memory latency overlaps this chunk's work;
 //   pipelined: the same experiment with each chunk located once (the lanes carried from one call
-//           to the next). Both give `full`'s values bit for bit (checked before timing).
+//           to the next); with `prefetch=lines` only where a sample's cache line differs from the
+//           previous sample's. Both give `full`'s values bit for bit (checked before timing).
 // Each stage is a simd::Kernels chunk function passed to EmittedSpline, so all run through
 // the same batch loop; all are compiled here for this machine alone (-march=native, as
 // loader/ compiles a filter's kernels). The stages and filters alternate, round after round, and
 // the minimum and median over the rounds are printed:
-//   build/bench/bench_kernel_stages [double] [side=32] [rounds=30] [prefetch=1]
+//   build/bench/bench_kernel_stages [double] [side=32] [rounds=30] [prefetch=1|N|lines]
 #define HWY_COMPILE_ONLY_STATIC 1
 #include <hwy/highway.h>
 
@@ -118,7 +119,8 @@ template <class Tr, class T, int... K>
     for (auto& a : st.axis) a = hn::IfThenElseZero(m, a);
     alignas(64) I index[sizeof...(K)][hn::MaxLanes(di)];
     ((hn::Store(kernels::sample_index<Tr, 0, K>(st.first, st.axis, st.flip), di, index[K])), ...);
-    for (std::size_t k = 0; k < sizeof...(K); k += static_cast<std::size_t>(prefetch_every))
+    for (std::size_t k = 0; k < sizeof...(K);
+         k += static_cast<std::size_t>(std::max(1, prefetch_every)))
       for (std::size_t lane = 0; lane < hn::Lanes(di); ++lane)
         prefetch_line(volume.samples + index[k][lane]);
   }
@@ -170,6 +172,24 @@ template <class Tr, class T, int... K>
     for (int i = 0; i < 3; ++i) axis[i] = hn::IfThenElseZero(m, c.st[v].axis[i]);
     const auto first = hn::IfThenElseZero(m, c.st[v].first);
     const auto flip = hn::IfThenElseZero(m, c.st[v].flip);
+    if (prefetch_every == 0) {
+      // One prefetch per change of cache line from the previous sample (per lane): the samples
+      // whose line differs, compressed into one list.
+      constexpr int kShift = sizeof(T) == 4 ? 4 : 3;  // sample index -> 64-byte line
+      alignas(64) I wanted[sizeof...(K) * hn::MaxLanes(di)];
+      std::size_t count = 0;
+      auto previous = hn::Set(di, I{-1});
+      (
+          [&]() HWY_ATTR {
+            const auto index = kernels::sample_index<Tr, 0, K>(first, axis, flip);
+            const auto line = hn::ShiftRight<kShift>(index);
+            count += hn::CompressStore(index, hn::Ne(line, previous), di, wanted + count);
+            previous = line;
+          }(),
+          ...);
+      for (std::size_t i = 0; i < count; ++i) prefetch_line(volume.samples + wanted[i]);
+      continue;
+    }
     alignas(64) I index[sizeof...(K)][hn::MaxLanes(di)];
     ((hn::Store(kernels::sample_index<Tr, 0, K>(first, axis, flip), di, index[K])), ...);
     for (std::size_t k = 0; k < sizeof...(K); k += static_cast<std::size_t>(prefetch_every))
@@ -312,7 +332,8 @@ int main(int argc, char** argv) {
     } else if (arg.rfind("side=", 0) == 0) {
       side = std::atoi(argv[a] + 5);
     } else if (arg.rfind("prefetch=", 0) == 0) {
-      prefetch_every = std::max(1, std::atoi(argv[a] + 9));
+      // prefetch=lines: one per change of line (the `pipelined` stage; `prefetched` takes all).
+      prefetch_every = arg == "prefetch=lines" ? 0 : std::max(1, std::atoi(argv[a] + 9));
     } else if (arg.rfind("rounds=", 0) == 0) {
       rounds = std::atoi(argv[a] + 7);
     } else {
