@@ -79,6 +79,7 @@ def test_nrrd_outputs_of_a_nifti_keep_its_ras_frame(tmp_path, ras_nifti):
     np.testing.assert_array_equal(nrrd_affine(fields), affine)
     written = nib.load(str(tmp_path / "grid.nii.gz"))
     np.testing.assert_array_equal(written.affine, affine)
+    assert (int(written.header["sform_code"]), int(written.header["qform_code"])) == (2, 2)
     np.testing.assert_array_equal(nrrd_floats(out, fields), np.asarray(written.dataobj))
     assert orientation("--reference", str(out), "--at", "0", "-o", str(tmp_path / "r.png")) \
         == RAS_LETTERS
@@ -126,6 +127,7 @@ def test_an_lps_nrrd_stays_lps_and_becomes_ras_in_nifti(tmp_path):
     # (the same values at the same RAS points as the NRRD's at the same LPS points).
     written = nib.load(str(tmp_path / "out.nii.gz"))
     np.testing.assert_array_equal(written.affine, np.diag([-1.0, -1.0, 1.0, 1.0]) @ lps_affine)
+    assert (int(written.header["sform_code"]), int(written.header["qform_code"])) == (2, 2)
     np.testing.assert_array_equal(np.asarray(written.dataobj),
                                   nrrd_floats(tmp_path / "out.nrrd", fields))
 
@@ -151,3 +153,12 @@ def test_a_volume_without_a_frame_stays_without_one(tmp_path):
     run("boxrecon", "resample", "--filter", "tricubic", "--volume", str(tmp_path / "v.nrrd"),
         "--n", "4", "-o", str(tmp_path / "r.nrrd"))
     assert nrrd_header(tmp_path / "r.nrrd")["space"] == "3D-right-handed"
+    # Into NIfTI: the affine as the sform (code 2, aligned) and a qform of code 0, as nibabel
+    # writes Nifti1Image(data, affine): no reader takes it for a scanner's anatomical qform, and
+    # nibabel's affine is still the grid's (both codes 0 would lose it to pixdim alone).
+    run("boxrecon", "resample", "--filter", "tricubic", "--volume", str(tmp_path / "v.nrrd"),
+        "--n", "4", "-o", str(tmp_path / "r.nii"))
+    written = nib.load(str(tmp_path / "r.nii"))
+    assert (int(written.header["sform_code"]), int(written.header["qform_code"])) == (2, 0)
+    np.testing.assert_allclose(written.affine, nrrd_affine(nrrd_header(tmp_path / "r.nrrd")),
+                               rtol=0, atol=1e-6)
