@@ -115,7 +115,7 @@ void boxgen_filter_double_kernels(rt::simd::Kernels& kernels);
   std::string first =
       head + fmt::format(
                  R"(
-extern template std::shared_ptr<const rt::EvaluationPath<double>> rt::emitted_path<g::Traits>(
+extern template std::shared_ptr<const rt::EvaluationPath<double>> rt::emitted_path<g::Traits, double, false>(
     const rt::LatticeVolume<double>&, int, const rt::simd::Kernels*);
 
 {prefilters}
@@ -174,7 +174,7 @@ class Source final : public rt::FilterSource {{
     return std::make_shared<Path<double>>(filter_.path(v), threads_);
   }}
  private:
-  rt::EmittedFilter<g::Traits> filter_;
+  rt::EmittedFilter<g::Traits, false> filter_;
   std::string name_;
   HostThreads threads_;
 }};
@@ -193,7 +193,7 @@ extern "C" __attribute__((visibility("default"))) rt::FilterSource* boxgen_filte
                  fmt::arg("q1opt", table(emission.q1opt, "q1opt")),
                  fmt::arg("q2opt", table(emission.q2opt, "q2opt")), fmt::arg("stamp", stamp));
   std::string second = head + R"(
-template std::shared_ptr<const rt::EvaluationPath<double>> rt::emitted_path<g::Traits>(
+template std::shared_ptr<const rt::EvaluationPath<double>> rt::emitted_path<g::Traits, double, false>(
     const rt::LatticeVolume<double>&, int, const rt::simd::Kernels*);
 
 namespace {

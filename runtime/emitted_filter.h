@@ -59,22 +59,49 @@ PrefilterTaps prefilter_from(const Tap (&table)[N]) {
   return out;
 }
 
-// The evaluation path of an emitted evaluator on `volume`, with the stencil policy for it: BCC's
-// parity tables where they apply (the fast path, 32-bit offsets where they fit), the general
-// lattice tables everywhere else. A function of its own (not inline) so that a compiled filter
-// can instantiate its two precisions in two translation units compiled at once, declaring the
-// other one `extern template` (loader/filter_loader.cpp).
-template <class Tr, class T>
+// The stencil policies of the engine (runtime/stencils.h) an emitted evaluator can take.
+enum class StencilPolicy {
+  kBcc32,    // BccStencils with 32-bit offsets
+  kBcc64,    // BccStencils with 64-bit offsets
+  kLattice,  // LatticeStencils
+};
+
+// The policy an emitted evaluator takes on a volume of this lattice and these sizes: BCC's parity
+// tables where they apply (the fast path, 32-bit offsets where they fit, else 64-bit ones), the
+// general lattice tables everywhere else. Without kBccWideOffsets a BCC volume too large for
+// 32-bit offsets (N0 N1 over 2^31 / (reach + 1) samples per coset and z) takes the general tables
+// too: a compiled filter (loader/filter_loader.cpp) drops the 64-bit policy, which costs about an
+// eighth of each half's compile and serves only such volumes.
+template <class Tr, bool kBccWideOffsets = true>
+StencilPolicy stencil_policy(const CosetLattice& lattice, const Sizes& sizes) {
+  if constexpr (std::string_view(Tr::kLattice) == "bcc") {
+    if (lattice == CosetLattice::bcc()) {
+      if (BccStencils<Tr, float, std::int32_t>::fits(sizes)) return StencilPolicy::kBcc32;
+      if (kBccWideOffsets) return StencilPolicy::kBcc64;
+    }
+  }
+  return StencilPolicy::kLattice;
+}
+
+// The evaluation path of an emitted evaluator on `volume`, with the policy stencil_policy()
+// picks; only the policies the evaluator's lattice (and kBccWideOffsets) can take are
+// instantiated. A function of its own (not inline) so that a compiled filter can instantiate its
+// two precisions in two translation units compiled at once, declaring the other one `extern
+// template` (loader/filter_loader.cpp).
+template <class Tr, class T, bool kBccWideOffsets = true>
 std::shared_ptr<const EvaluationPath<T>> emitted_path(const LatticeVolume<T>& volume,
                                                       int registry_index,
                                                       const simd::Kernels* kernels) {
+  const StencilPolicy policy =
+      stencil_policy<Tr, kBccWideOffsets>(volume.lattice(), volume.sizes());
   if constexpr (std::string_view(Tr::kLattice) == "bcc") {
-    if (volume.lattice() == CosetLattice::bcc()) {
-      if (BccStencils<Tr, T, std::int32_t>::fits(volume))
-        return std::make_shared<EmittedSplinePath<Tr, BccStencils<Tr, T, std::int32_t>>>(
-            BccStencils<Tr, T, std::int32_t>(volume), registry_index, kernels);
-      return std::make_shared<EmittedSplinePath<Tr, BccStencils<Tr, T, std::int64_t>>>(
-          BccStencils<Tr, T, std::int64_t>(volume), registry_index, kernels);
+    if (policy == StencilPolicy::kBcc32)
+      return std::make_shared<EmittedSplinePath<Tr, BccStencils<Tr, T, std::int32_t>>>(
+          BccStencils<Tr, T, std::int32_t>(volume), registry_index, kernels);
+    if constexpr (kBccWideOffsets) {
+      if (policy == StencilPolicy::kBcc64)
+        return std::make_shared<EmittedSplinePath<Tr, BccStencils<Tr, T, std::int64_t>>>(
+            BccStencils<Tr, T, std::int64_t>(volume), registry_index, kernels);
     }
   }
   return std::make_shared<EmittedSplinePath<Tr, LatticeStencils<Tr, T>>>(
@@ -89,8 +116,8 @@ struct GeneratedPrefilters {
 // The FilterSource of an emitted evaluator. registry_index: its position in
 // generated/registry.hpp, whose filters have SIMD kernels (simd_batch.cpp); -1 for any other
 // header (which this one must not clash with: it includes no registry), which takes the scalar
-// batch path.
-template <class Tr>
+// batch path. kBccWideOffsets: see stencil_policy().
+template <class Tr, bool kBccWideOffsets = true>
 class EmittedFilter final : public FilterSource {
  public:
   // kernels: SIMD kernels compiled with the filter (simd_batch.h), for one outside the registry.
@@ -135,7 +162,7 @@ class EmittedFilter final : public FilterSource {
  private:
   template <class T>
   std::shared_ptr<const EvaluationPath<T>> make_path(const LatticeVolume<T>& volume) const {
-    return emitted_path<Tr>(volume, registry_index_, kernels_);
+    return emitted_path<Tr, T, kBccWideOffsets>(volume, registry_index_, kernels_);
   }
 
   GeneratedPrefilters taps_;

@@ -155,12 +155,13 @@ class BccStencils {
         }
   }
 
-  // Do all offsets fit in O for this volume? |offset| <= (max reach + 1) (1 + N0 + N0 N1).
-  static bool fits(const LatticeVolume<T>& volume) {
+  // Do all offsets fit in O for a volume of these sizes? |offset| <= (max reach + 1) (1 + N0 +
+  // N0 N1).
+  static bool fits(const Sizes& sizes) {
     int reach = 0;
     for (int a = 0; a < 3; ++a)
       reach = std::max({reach, -Tr::kStencilReachLo[a], Tr::kStencilReachHi[a]});
-    const double n0 = volume.sizes()[0], n1 = volume.sizes()[1];
+    const double n0 = sizes[0], n1 = sizes[1];
     return (reach + 1.0) * (1.0 + n0 + n0 * n1) <
            static_cast<double>(std::numeric_limits<O>::max());
   }

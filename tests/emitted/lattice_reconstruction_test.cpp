@@ -160,6 +160,46 @@ TEST(LatticeReconstruction, OnBccItAgreesWithTheBccParityPath) {
   }
 }
 
+// The stencil policy of a volume: BCC's parity tables only on BCC volumes with the offsets
+// (0,0,0) (1,1,1); 64-bit offsets only where 32-bit ones cannot reach every sample (a z slice of
+// 50000^2 samples per coset: over 2^31 whatever the reach) and the filter keeps that policy; a
+// compiled filter does not, and such a volume takes the general lattice tables.
+TEST(LatticeReconstruction, TheStencilPolicyOfAVolume) {
+  using M7 = gen::m7::Traits;
+  const CosetLattice bcc = CosetLattice::bcc();
+  const Sizes small{1000, 1000, 1000}, large{50000, 50000, 1};
+  EXPECT_EQ((stencil_policy<M7>(bcc, small)), StencilPolicy::kBcc32);
+  EXPECT_EQ((stencil_policy<M7>(bcc, large)), StencilPolicy::kBcc64);
+  EXPECT_EQ((stencil_policy<M7, false>(bcc, small)), StencilPolicy::kBcc32);
+  EXPECT_EQ((stencil_policy<M7, false>(bcc, large)), StencilPolicy::kLattice);
+  EXPECT_EQ((stencil_policy<M7>(bcc.with_offsets({{1, 1, 1}, {0, 0, 0}}), small)),
+            StencilPolicy::kLattice);
+  EXPECT_EQ((stencil_policy<gen::fcc6::Traits>(CosetLattice::fcc(), small)),
+            StencilPolicy::kLattice);
+}
+
+// What such a large volume then gets: the general lattice tables on BCC volumes with the offsets
+// (0,0,0) (1,1,1), here on a small one, give what the parity tables give; and a filter without
+// the 64-bit policy takes the parity tables wherever 32-bit offsets fit.
+TEST(LatticeReconstruction, OnBccTheLatticeTablesAgreeWithTheParityTables) {
+  using M7 = gen::m7::Traits;
+  const LatticeVolume<double> bcc = test::sample_bcc_cube<double>(marschner_lobb, 11, 3);
+  const EmittedSplinePath<M7, LatticeStencils<M7, double>> general(LatticeStencils<M7, double>(bcc),
+                                                                   -1);
+  const auto narrow = emitted_path<M7, double, false>(bcc, -1, nullptr);
+  const Reconstructor<double> parity(bcc, SplineFilter::parse("m7"));
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 500; ++i) {
+    const Vec3 p{u(rng), u(rng), u(rng)};
+    Vec3 g{}, g_parity{};
+    const double expected = parity.value(p, &g_parity);
+    EXPECT_NEAR(general.at(p, &g, nullptr), expected, 1e-14);
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(g[a], g_parity[a], 1e-12);
+    EXPECT_DOUBLE_EQ(narrow->at(p, nullptr, nullptr), parity.value(p));
+  }
+}
+
 // RMS error of Marschner-Lobb over 100000 random points of [-1,1]^3 (seed 1) at density n.
 template <class Tr, class Tap, std::size_t N>
 double ml_rms(int n, const Tap (*q)[N]) {
