@@ -811,14 +811,8 @@ void bind_volume(py::module_& m) {
         rt::VolumeWrite written;
         {
           py::gil_scoped_release release;
-          if (v.frame) {  // oblique: NIfTI with the composed affine (NRRD refuses it)
-            const auto samples = v.samples();
-            const rt::CartesianVolume<double> grid{
-                v.sizes(), v.axis_spacing(), v.origin(), {samples.begin(), samples.end()}, v.frame};
-            written = rt::write_grid_file(path, grid, t);
-          } else {
-            written = rt::write_volume_file(path, static_cast<const Samples&>(v), t);
-          }
+          // An oblique volume's frame is composed into the file's affine.
+          written = rt::write_volume_file(path, static_cast<const Samples&>(v), t, "", v.frame);
         }
         if (written.clamped > 0 &&
             PyErr_WarnEx(PyExc_RuntimeWarning,

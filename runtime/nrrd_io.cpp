@@ -194,8 +194,19 @@ NrrdShell wrap(const void* data, int type, unsigned dim, const std::size_t* size
   return nrrd;
 }
 
-void set_origin(Nrrd* nrrd, const Vec3& origin) {
-  double o[3] = {origin[0], origin[1], origin[2]};
+// The domain axes first..first+2 (kind domain) with steps `steps` along the axes of `frame`
+// (nothing: the world's), and the space origin: the grid's `origin` in that frame, mapped to world.
+// An oblique frame gives oblique space directions, the columns of frame.linear times the steps.
+void set_geometry(Nrrd* nrrd, unsigned first, const Vec3& steps, const Vec3& origin,
+                  const std::optional<Affine>& frame) {
+  const Affine to_world = frame.value_or(Affine::diagonal({1, 1, 1}, {0, 0, 0}));
+  for (unsigned a = 0; a < 3; ++a) {
+    nrrd->axis[first + a].kind = nrrdKindDomain;
+    for (unsigned b = 0; b < 3; ++b)
+      nrrd->axis[first + a].spaceDirection[b] = to_world.linear[b][a] * steps[a];
+  }
+  const Vec3 world = to_world.apply(origin);
+  double o[3] = {world[0], world[1], world[2]};
   if (nrrdSpaceOriginSet(nrrd, o) != 0)
     throw NrrdError("cannot describe the volume to Teem: " + teem_error());
 }
@@ -339,49 +350,63 @@ std::string read_oblique_steps(const Nrrd* nrrd, unsigned first, VolumeHeader& h
   return {};
 }
 
+// The one spacing h of a lattice of period d (every lattice but Z^3): space directions d h along
+// the axes, or, where allowed, along the unit axes of an oblique frame (read_oblique_steps).
+std::string read_lattice_steps(const Nrrd* nrrd, unsigned first, int d, const std::string& name,
+                               VolumeHeader& header) {
+  const double step = nrrd->axis[first].spaceDirection[0];
+  bool consistent = std::isfinite(step) && step / d > 0;
+  for (unsigned a = 0; a < 3 && consistent; ++a)
+    for (unsigned b = 0; b < 3; ++b) {
+      const double v = nrrd->axis[first + a].spaceDirection[b];
+      if (!std::isfinite(v) || std::fabs(v - (a == b ? step : 0.0)) > 1e-9 * step)
+        consistent = false;
+    }
+  if (consistent) {
+    header.steps = {step / d, step / d, step / d};
+    return {};
+  }
+  if (!header.allow_oblique)
+    return fmt::format(
+        "its space directions are not (dh,0,0) (0,dh,0) (0,0,dh) for one h > 0 (d = {} for the "
+        "{} lattice)",
+        d, name);
+  if (std::string why = read_oblique_steps(nrrd, first, header); !why.empty()) return why;
+  const Vec3 s = header.steps;
+  if (std::fabs(s[1] - s[0]) > 1e-9 * s[0] || std::fabs(s[2] - s[0]) > 1e-9 * s[0])
+    return fmt::format(
+        "its space directions have lengths {:.9g}, {:.9g}, {:.9g}; a {} volume's are all d h", s[0],
+        s[1], s[2], name);
+  header.steps = {s[0] / d, s[0] / d, s[0] / d};
+  return {};
+}
+
 // The spacing of each domain axis from the space directions (header.steps): Z^3 may have one per
 // axis, and negative ones (read_lattice_nrrd flips those axes); every other lattice has one h > 0.
 std::string read_steps(const Nrrd* nrrd, unsigned first, int k, int d, const std::string& name,
                        VolumeHeader& header) {
-  const bool cartesian = k == 1 && d == 1;
-  if (cartesian) {
-    // The domain axes start at `first`: a 4-D file with a coset axis of size 1 (the layout
-    // boxrecon once wrote for Cartesian volumes) has its directions on axes 1..3.
-    for (int a = 0; a < 3; ++a) {
-      const double* direction = nrrd->axis[first + a].spaceDirection;
-      const double step = direction[a];
-      bool aligned = std::isfinite(step) && step != 0;
-      for (int b = 0; b < 3; ++b)
-        if (b != a && !(std::fabs(direction[b]) <= 1e-9 * std::fabs(step))) aligned = false;
-      if (!aligned && header.allow_oblique) return read_oblique_steps(nrrd, first, header);
-      if (!aligned) {
-        std::string found;
-        for (int c = 0; c < 3; ++c) {
-          const double* v = nrrd->axis[first + c].spaceDirection;
-          found += fmt::format("{}({:.9g},{:.9g},{:.9g})", c ? " " : "", v[0], v[1], v[2]);
-        }
-        return fmt::format(
-            "its space directions {} are not along the axes ((sx,0,0) (0,sy,0) (0,0,sz)): axis {} "
-            "is oblique or permuted",
-            found, first + a);
+  if (k != 1 || d != 1) return read_lattice_steps(nrrd, first, d, name, header);
+  // The domain axes start at `first`: a 4-D file with a coset axis of size 1 (the layout
+  // boxrecon once wrote for Cartesian volumes) has its directions on axes 1..3.
+  for (int a = 0; a < 3; ++a) {
+    const double* direction = nrrd->axis[first + a].spaceDirection;
+    const double step = direction[a];
+    bool aligned = std::isfinite(step) && step != 0;
+    for (int b = 0; b < 3; ++b)
+      if (b != a && !(std::fabs(direction[b]) <= 1e-9 * std::fabs(step))) aligned = false;
+    if (!aligned && header.allow_oblique) return read_oblique_steps(nrrd, first, header);
+    if (!aligned) {
+      std::string found;
+      for (int c = 0; c < 3; ++c) {
+        const double* v = nrrd->axis[first + c].spaceDirection;
+        found += fmt::format("{}({:.9g},{:.9g},{:.9g})", c ? " " : "", v[0], v[1], v[2]);
       }
-      header.steps[a] = step;
-    }
-  } else {
-    const double step = nrrd->axis[first].spaceDirection[0];
-    bool consistent = std::isfinite(step) && step / d > 0;
-    for (int a = 0; a < 3 && consistent; ++a)
-      for (int b = 0; b < 3; ++b) {
-        const double v = nrrd->axis[first + a].spaceDirection[b];
-        if (!std::isfinite(v) || std::fabs(v - (a == b ? step : 0.0)) > 1e-9 * step)
-          consistent = false;
-      }
-    if (!consistent)
       return fmt::format(
-          "its space directions are not (dh,0,0) (0,dh,0) (0,0,dh) for one h > 0 (d = {} for the "
-          "{} lattice)",
-          d, name);
-    header.steps = {step / d, step / d, step / d};
+          "its space directions {} are not along the axes ((sx,0,0) (0,sy,0) (0,0,sz)): axis {} "
+          "is oblique or permuted",
+          found, first + a);
+    }
+    header.steps[a] = step;
   }
   return {};
 }
@@ -508,7 +533,7 @@ namespace {
 // Teem type `type`.
 template <class T>
 void write_lattice(const fs::path& path, const LatticeVolume<T>& volume, const void* data, int type,
-                   const std::string& anatomical) {
+                   const std::string& anatomical, const std::optional<Affine>& frame) {
   std::lock_guard lock(teem_mutex());
   const Sizes& n = volume.sizes();
   const CosetLattice& lattice = volume.lattice();
@@ -521,12 +546,8 @@ void write_lattice(const fs::path& path, const LatticeVolume<T>& volume, const v
       static_cast<std::size_t>(k == 1 ? n[2] : n[1]), static_cast<std::size_t>(n[2])};
   NrrdShell nrrd = wrap(data, type, dim, sizes, anatomical);
   if (first == 1) nrrd->axis[0].kind = nrrdKindList;
-  for (unsigned a = 0; a < 3; ++a) {
-    nrrd->axis[first + a].kind = nrrdKindDomain;
-    for (unsigned b = 0; b < 3; ++b)
-      nrrd->axis[first + a].spaceDirection[b] = a == b ? lattice.period() * h[a] : 0.0;
-  }
-  set_origin(nrrd.get(), volume.origin());
+  const double d = lattice.period();
+  set_geometry(nrrd.get(), first, {d * h[0], d * h[1], d * h[2]}, volume.origin(), frame);
   bool ok = nrrdKeyValueAdd(nrrd.get(), "lattice", lattice.name().c_str()) == 0;
   const bool custom = lattice.name() == "custom";
   if (ok && custom)
@@ -542,18 +563,19 @@ void write_lattice(const fs::path& path, const LatticeVolume<T>& volume, const v
 
 template <class T>
 void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume,
-                        const std::string& anatomical) {
-  write_lattice(path, volume, volume.samples().data(), teem_type<T>(), anatomical);
+                        const std::string& anatomical, const std::optional<Affine>& frame) {
+  write_lattice(path, volume, volume.samples().data(), teem_type<T>(), anatomical, frame);
 }
 
 template <class T>
 void write_lattice_nrrd(const fs::path& path, const LatticeVolume<T>& volume,
-                        const EncodedSamples& samples, const std::string& anatomical) {
+                        const EncodedSamples& samples, const std::string& anatomical,
+                        const std::optional<Affine>& frame) {
   if (samples.bytes.size() != volume.sample_count() * sample_type_size(samples.type))
     throw std::invalid_argument(fmt::format("{} samples of {} bytes for a volume of {} samples",
                                             samples.bytes.size() / sample_type_size(samples.type),
                                             sample_type_size(samples.type), volume.sample_count()));
-  write_lattice(path, volume, samples.bytes.data(), teem_type(samples.type), anatomical);
+  write_lattice(path, volume, samples.bytes.data(), teem_type(samples.type), anatomical, frame);
 }
 
 template <class T>
@@ -580,11 +602,7 @@ void write_cartesian_nrrd(const fs::path& path, const CartesianVolume<T>& grid,
                                 static_cast<std::size_t>(grid.sizes[1]),
                                 static_cast<std::size_t>(grid.sizes[2])};
   NrrdShell nrrd = wrap(grid.values.data(), teem_type<T>(), 3, sizes, anatomical);
-  for (int a = 0; a < 3; ++a) {
-    nrrd->axis[a].kind = nrrdKindDomain;
-    for (int b = 0; b < 3; ++b) nrrd->axis[a].spaceDirection[b] = a == b ? grid.spacing[a] : 0.0;
-  }
-  set_origin(nrrd.get(), grid.origin);
+  set_geometry(nrrd.get(), 0, grid.spacing, grid.origin, grid.frame);
   write_atomically(path, nrrd.get());
 }
 
@@ -713,13 +731,15 @@ LatticeVolume<T> read_lattice_nrrd(const fs::path& path, const NrrdReadLimits& l
 }
 
 template void write_lattice_nrrd<float>(const fs::path&, const LatticeVolume<float>&,
-                                        const std::string&);
+                                        const std::string&, const std::optional<Affine>&);
 template void write_lattice_nrrd<double>(const fs::path&, const LatticeVolume<double>&,
-                                         const std::string&);
+                                         const std::string&, const std::optional<Affine>&);
 template void write_lattice_nrrd<float>(const fs::path&, const LatticeVolume<float>&,
-                                        const EncodedSamples&, const std::string&);
+                                        const EncodedSamples&, const std::string&,
+                                        const std::optional<Affine>&);
 template void write_lattice_nrrd<double>(const fs::path&, const LatticeVolume<double>&,
-                                         const EncodedSamples&, const std::string&);
+                                         const EncodedSamples&, const std::string&,
+                                         const std::optional<Affine>&);
 template LatticeVolume<float> read_lattice_nrrd<float>(const fs::path&, const NrrdReadLimits&,
                                                        SourceSamples*);
 template LatticeVolume<double> read_lattice_nrrd<double>(const fs::path&, const NrrdReadLimits&,

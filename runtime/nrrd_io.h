@@ -22,6 +22,11 @@
 // directions (sx,0,0) (0,sy,0) (0,0,sz), space origin, kinds domain domain domain; 3D Slicer,
 // ParaView and `unu` open it.
 //
+// An oblique volume (scanners tilt their slices) has its grid in its own frame, which a map with
+// unit columns takes to world: its space directions are that map's columns times the steps (dh
+// for a lattice, sx sy sz for a grid), its space origin the world point of sample (0, 0, 0)
+// (lattice point 0). Readers take such a file only with NrrdReadLimits::allow_oblique.
+//
 // Both are written with `space: 3D-right-handed`, or, when the world is tied to a patient, its
 // anatomical space (right-anterior-superior, left-anterior-superior, left-posterior-superior):
 // the space of the volume they came from, so that readers know its orientation.
@@ -95,16 +100,20 @@ void require_output_directory(const std::filesystem::path& path);
 // A volume on any lattice (lattice_volume.h): the layout in the comment at the top. Its space
 // is the world's anatomical frame (SourceSamples::anatomical: "RAS", "LAS" or "LPS" write
 // right-anterior-superior, left-anterior-superior or left-posterior-superior, so that readers
-// know the patient's orientation; "" 3D-right-handed). Throws NrrdError if the file cannot be
-// written, std::invalid_argument for another `anatomical`.
+// know the patient's orientation; "" 3D-right-handed). `frame`: an oblique volume's map from its
+// own frame (where the volume's grid lies) to world (SourceSamples::frame): the space directions
+// are then its columns times d h, and the space origin the volume's origin mapped to world.
+// Throws NrrdError if the file cannot be written, std::invalid_argument for another `anatomical`.
 template <class T>
 void write_lattice_nrrd(const std::filesystem::path& path, const LatticeVolume<T>& volume,
-                        const std::string& anatomical = "");
+                        const std::string& anatomical = "",
+                        const std::optional<Affine>& frame = std::nullopt);
 // The same with `samples` (volume.sample_count() of them, encode_samples) stored in place of the
 // volume's own: another sample type (boxrecon's --type).
 template <class T>
 void write_lattice_nrrd(const std::filesystem::path& path, const LatticeVolume<T>& volume,
-                        const EncodedSamples& samples, const std::string& anatomical = "");
+                        const EncodedSamples& samples, const std::string& anatomical = "",
+                        const std::optional<Affine>& frame = std::nullopt);
 
 // Reads a lattice volume (any lattice; a 3-D NRRD without a lattice key is a Cartesian volume).
 // Samples of any type in int8, uint8, int16, uint16, int32, uint32, float, double are converted
@@ -130,15 +139,17 @@ void write_cartesian_nrrd(const std::filesystem::path& path, const CartesianVolu
                           const std::string& anatomical = "");
 
 extern template void write_lattice_nrrd<float>(const std::filesystem::path&,
-                                               const LatticeVolume<float>&, const std::string&);
+                                               const LatticeVolume<float>&, const std::string&,
+                                               const std::optional<Affine>&);
 extern template void write_lattice_nrrd<double>(const std::filesystem::path&,
-                                                const LatticeVolume<double>&, const std::string&);
+                                                const LatticeVolume<double>&, const std::string&,
+                                                const std::optional<Affine>&);
 extern template void write_lattice_nrrd<float>(const std::filesystem::path&,
                                                const LatticeVolume<float>&, const EncodedSamples&,
-                                               const std::string&);
+                                               const std::string&, const std::optional<Affine>&);
 extern template void write_lattice_nrrd<double>(const std::filesystem::path&,
                                                 const LatticeVolume<double>&, const EncodedSamples&,
-                                                const std::string&);
+                                                const std::string&, const std::optional<Affine>&);
 extern template LatticeVolume<float> read_lattice_nrrd<float>(const std::filesystem::path&,
                                                               const NrrdReadLimits&,
                                                               SourceSamples*);

@@ -74,19 +74,20 @@ VolumeFormat require_volume_output(const fs::path& path, std::span<const fs::pat
 
 template <class T>
 VolumeWrite write_volume_file(const fs::path& path, const LatticeVolume<T>& volume,
-                              std::optional<SampleType> type, const std::string& anatomical) {
+                              std::optional<SampleType> type, const std::string& anatomical,
+                              const std::optional<Affine>& frame) {
   const CosetLattice& lattice = volume.lattice();
   const VolumeFormat format =
       require_volume_output(path, {}, volume.coset_count(), lattice.name().c_str());
   if (format == VolumeFormat::Nrrd && (!type || *type == own_type<T>())) {
-    write_lattice_nrrd(path, volume, anatomical);
+    write_lattice_nrrd(path, volume, anatomical, frame);
     return {own_type<T>(), 0};
   }
   const EncodedSamples samples = encode_samples<T>(
       volume.samples(),
       type.value_or(format == VolumeFormat::Nifti ? SampleType::Float32 : own_type<T>()));
   if (format == VolumeFormat::Nrrd) {
-    write_lattice_nrrd(path, volume, samples, anatomical);
+    write_lattice_nrrd(path, volume, samples, anatomical, frame);
     return {samples.type, samples.clamped};
   }
   // One coset: sample (i, j, k) at o + h (d (i, j, k) + offset).
@@ -97,8 +98,9 @@ VolumeWrite write_volume_file(const fs::path& path, const LatticeVolume<T>& volu
     step[a] = d * volume.axis_spacing()[a];
     origin[a] = volume.origin()[a] + volume.axis_spacing()[a] * static_cast<double>(offset[a]);
   }
-  write_nifti(path, volume.sizes(), world_to_ras(anatomical).after(Affine::diagonal(step, origin)),
-              samples);
+  const Affine in_frame = Affine::diagonal(step, origin);
+  write_nifti(path, volume.sizes(),
+              world_to_ras(anatomical).after(frame ? frame->after(in_frame) : in_frame), samples);
   return {samples.type, samples.clamped};
 }
 
@@ -106,11 +108,6 @@ template <class T>
 VolumeWrite write_grid_file(const fs::path& path, const CartesianVolume<T>& grid,
                             std::optional<SampleType> type, const std::string& anatomical) {
   const VolumeFormat format = require_volume_output(path, {}, 1, "cartesian");
-  if (format == VolumeFormat::Nrrd && grid.frame)
-    throw NrrdError(fmt::format(
-        "'{}': an oblique grid is written as NIfTI (.nii or .nii.gz), whose affine holds it; the "
-        "NRRD writer stores axis-aligned grids only",
-        nrrd_checks::printable(path.string(), 80)));
   if (format == VolumeFormat::Nrrd && (!type || *type == own_type<T>())) {
     write_cartesian_nrrd(path, grid, anatomical);
     return {own_type<T>(), 0};
@@ -119,7 +116,7 @@ VolumeWrite write_grid_file(const fs::path& path, const CartesianVolume<T>& grid
     std::vector<T> copy = grid.values;
     const LatticeVolume<T> volume(CosetLattice::cartesian(), grid.sizes, grid.spacing, grid.origin,
                                   std::move(copy));
-    return write_volume_file(path, volume, type, anatomical);
+    return write_volume_file(path, volume, type, anatomical, grid.frame);
   }
   const EncodedSamples samples = encode_samples<T>(grid.values, type.value_or(SampleType::Float32));
   const Affine in_frame = Affine::diagonal(grid.spacing, grid.origin);
@@ -130,9 +127,11 @@ VolumeWrite write_grid_file(const fs::path& path, const CartesianVolume<T>& grid
 }
 
 template VolumeWrite write_volume_file<float>(const fs::path&, const LatticeVolume<float>&,
-                                              std::optional<SampleType>, const std::string&);
+                                              std::optional<SampleType>, const std::string&,
+                                              const std::optional<Affine>&);
 template VolumeWrite write_volume_file<double>(const fs::path&, const LatticeVolume<double>&,
-                                               std::optional<SampleType>, const std::string&);
+                                               std::optional<SampleType>, const std::string&,
+                                               const std::optional<Affine>&);
 template VolumeWrite write_grid_file<float>(const fs::path&, const CartesianVolume<float>&,
                                             std::optional<SampleType>, const std::string&);
 template VolumeWrite write_grid_file<double>(const fs::path&, const CartesianVolume<double>&,

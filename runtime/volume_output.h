@@ -12,6 +12,7 @@
 #include <span>
 #include <string>
 
+#include "runtime/affine.h"
 #include "runtime/cartesian_volume.h"
 #include "runtime/lattice_volume.h"
 #include "runtime/sample_encoding.h"
@@ -41,14 +42,16 @@ VolumeFormat require_volume_output(const std::filesystem::path& path,
 // Writes `volume` in the format of its name with samples of `type` (default: NRRD the volume's T,
 // NIfTI float32). `anatomical` is the world's frame (SourceSamples::anatomical of the volume the
 // output came from: "RAS", "LAS", "LPS" or ""): NRRD writes it as its space, NIfTI (whose world
-// is RAS) maps the world to RAS. Returns the type written and how many values were clamped to its
-// range. Throws NrrdError (one line) for a name or lattice require_volume_output refuses, or a
-// failed write.
+// is RAS) maps the world to RAS. `frame`: an oblique volume's map from its own frame to world
+// (SourceSamples::frame), composed into the file's affine (NRRD: oblique space directions).
+// Returns the type written and how many values were clamped to its range. Throws NrrdError (one
+// line) for a name or lattice require_volume_output refuses, or a failed write.
 template <class T>
 VolumeWrite write_volume_file(const std::filesystem::path& path, const LatticeVolume<T>& volume,
                               std::optional<SampleType> type = std::nullopt,
-                              const std::string& anatomical = "");
-// The same for a Cartesian grid.
+                              const std::string& anatomical = "",
+                              const std::optional<Affine>& frame = std::nullopt);
+// The same for a Cartesian grid (an oblique one's frame is its own, CartesianVolume::frame).
 template <class T>
 VolumeWrite write_grid_file(const std::filesystem::path& path, const CartesianVolume<T>& grid,
                             std::optional<SampleType> type = std::nullopt,
@@ -56,11 +59,12 @@ VolumeWrite write_grid_file(const std::filesystem::path& path, const CartesianVo
 
 extern template VolumeWrite write_volume_file<float>(const std::filesystem::path&,
                                                      const LatticeVolume<float>&,
-                                                     std::optional<SampleType>, const std::string&);
+                                                     std::optional<SampleType>, const std::string&,
+                                                     const std::optional<Affine>&);
 extern template VolumeWrite write_volume_file<double>(const std::filesystem::path&,
                                                       const LatticeVolume<double>&,
-                                                      std::optional<SampleType>,
-                                                      const std::string&);
+                                                      std::optional<SampleType>, const std::string&,
+                                                      const std::optional<Affine>&);
 extern template VolumeWrite write_grid_file<float>(const std::filesystem::path&,
                                                    const CartesianVolume<float>&,
                                                    std::optional<SampleType>, const std::string&);

@@ -78,8 +78,12 @@ int run_subsample() {
   const std::filesystem::path input = args.volume;
   app::require_output_volume(args.output, {&input, 1}, lattice);
 
-  SourceSamples source;  // its anatomical frame goes to the output
-  LatticeVolume<float> volume = read_volume_file<float>(args.volume, {}, &source);
+  // Its anatomical frame goes to the output; an oblique volume is subsampled in its own frame
+  // (its box, and the output lattice, on its voxel axes) and the output keeps its affine.
+  SourceSamples source;
+  NrrdReadLimits oblique;
+  oblique.allow_oblique = true;
+  LatticeVolume<float> volume = read_volume_file<float>(args.volume, oblique, &source);
   filter.check_lattice(volume.lattice());
   const std::uint64_t input_count = volume.sample_count();
   if (args.smooth) volume = gaussian_smooth(volume, *args.smooth);
@@ -100,7 +104,7 @@ int run_subsample() {
     return resample_to_lattice(volume, filter, grid, BatchEvaluate<float>{},
                                [&progress](double done) { progress.update(done); });
   }();
-  app::write_output_volume(args.output, out, type, source.anatomical);
+  app::write_output_volume(args.output, out, type, source.anatomical, source.frame);
   const std::uint64_t kept = out.sample_count();
   std::cout << fmt::format(
       "kept {} of {} samples: fraction {}/{} = {:.6f}, {} lattice h = {:.9g}, {} x {} x {} x {} "

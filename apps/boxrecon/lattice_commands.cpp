@@ -370,11 +370,18 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
         nrrd_checks::printable(volume_path, 80), source.anatomical));
   const std::string& anatomical =
       source.anatomical.empty() && like ? like->anatomical : source.anatomical;
-  if (!cartesian && source.frame)
+  // A lattice grid lies on the volume's own axes (an oblique volume's output keeps its affine):
+  // a world box, or a --like lattice volume with an affine of its own, would need another frame.
+  if (!cartesian && source.frame && given_box(options.box))
     throw std::invalid_argument(fmt::format(
-        "'{}' is oblique: it resamples onto Cartesian grids only (a {} volume is stored "
-        "axis-aligned in the world); resample it onto an axis-aligned grid first (--min/--max)",
+        "'{}' is oblique: onto the {} lattice it is resampled on its own axes (the output keeps "
+        "its affine), which a world box does not bound; leave out --box (--min/--max)",
         nrrd_checks::printable(volume_path, 80), lattice.name()));
+  if (!cartesian && like && like->frame)
+    throw std::invalid_argument(fmt::format(
+        "--like '{}' is an oblique {} volume: resample onto its lattice with subsample, or onto "
+        "a Cartesian --like image",
+        nrrd_checks::printable(options.like, 80), lattice.name()));
   // The values in T, and their copy in the file's type while it is written.
   const SampleType stored =
       type ? *type
@@ -402,7 +409,7 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
                         fmt::format("{} x {} x {} x {} {} samples", lattice.coset_count(), n[0],
                                     n[1], n[2], lattice.name()));
     write_output_volume(output, resample_lattice_grid(volume, f, grid, evaluator()), type,
-                        anatomical);
+                        anatomical, source.frame);
     return 0;
   }
   CartesianGrid grid;
@@ -429,11 +436,6 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
       grid.to_volume = source.frame->inverse();
     }
   }
-  if (output_frame && format != VolumeFormat::Nifti)
-    throw std::invalid_argument(fmt::format(
-        "the output grid is oblique (the affine of '{}'): write it as NIfTI (.nii or .nii.gz); "
-        "the NRRD writer stores axis-aligned grids only",
-        nrrd_checks::printable(options.like.empty() ? volume_path : options.like, 80)));
   const Sizes& n = grid.sizes;
   check_output_memory(static_cast<std::uint64_t>(n[0]) * static_cast<std::uint64_t>(n[1]) *
                           static_cast<std::uint64_t>(n[2]),

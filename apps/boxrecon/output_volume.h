@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 
+#include "runtime/affine.h"
 #include "runtime/cartesian_volume.h"
 #include "runtime/lattice_volume.h"
 #include "runtime/sample_encoding.h"
@@ -27,12 +28,14 @@ void require_output_volume(const std::filesystem::path& path,
                            const runtime::CosetLattice& lattice);
 
 // Writes the volume or grid (runtime/volume_output.h) in the world of `anatomical` (the
-// SourceSamples::anatomical of the volume it came from: its NRRD space, or RAS for NIfTI) and
-// says on stderr how many values an integer --type clamped to its range.
+// SourceSamples::anatomical of the volume it came from: its NRRD space, or RAS for NIfTI; an
+// oblique volume's `frame`, SourceSamples::frame, composed in) and says on stderr how many values
+// an integer --type clamped to its range.
 template <class T>
 void write_output_volume(const std::filesystem::path& path, const runtime::LatticeVolume<T>& volume,
                          std::optional<runtime::SampleType> type,
-                         const std::string& anatomical = "");
+                         const std::string& anatomical = "",
+                         const std::optional<runtime::Affine>& frame = std::nullopt);
 template <class T>
 void write_output_grid(const std::filesystem::path& path, const runtime::CartesianVolume<T>& grid,
                        std::optional<runtime::SampleType> type, const std::string& anatomical = "");

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from conftest import cli_error, run
+from test_output_frames import nrrd_affine, nrrd_floats, nrrd_header
 
 nib = pytest.importorskip("nibabel")
 ndimage = pytest.importorskip("scipy.ndimage")
@@ -113,6 +114,14 @@ def test_resample_onto_its_own_oblique_grid(tmp_path, oblique_volume):
     first, last = to_index[:3, 3], to_index[:3, 3] + steps * [5, 4, 3]
     assert np.all(first >= 0.99) and np.all(first <= 1.01)
     assert np.all(last >= np.asarray(data.shape) - 2.01) and np.all(last < np.asarray(data.shape) - 1)
+    # Into NRRD: the same grid, its affine as oblique space directions.
+    nrrd = tmp_path / "self.nrrd"
+    run("boxrecon", "resample", "--filter", "tricubic", "--boundary", "strict", "--volume",
+        str(source), "--size", "6", "5", "4", "--type", "float32", "-o", str(nrrd))
+    fields = nrrd_header(nrrd)
+    assert fields["space"] == "right-anterior-superior"
+    np.testing.assert_allclose(nrrd_affine(fields), image.affine, atol=1e-5)
+    np.testing.assert_allclose(nrrd_floats(nrrd, fields), image.get_fdata(), rtol=0, atol=1e-3)
 
 
 def test_world_box_of_an_oblique_volume(tmp_path, oblique_volume):
@@ -136,14 +145,10 @@ def test_world_box_of_an_oblique_volume(tmp_path, oblique_volume):
 
 
 def test_oblique_refusals(tmp_path, oblique_volume):
-    """One line, no file: an oblique output grid into NRRD, a --like grid that leaves the volume;
+    """One line, no file: a --like grid that leaves the volume;
     commands that do not map through the affine (render) still refuse an oblique volume, naming
     its affine."""
     source, a_in, data = oblique_volume
-    out = tmp_path / "o.nrrd"
-    message = cli_error("boxrecon", "resample", "--filter", "tricubic", "--volume", str(source),
-                        "-o", str(out))
-    assert "write it as NIfTI" in message and not out.exists()
     out = tmp_path / "o.nii"
     far, _ = target_grid(tmp_path, "far.nii", 3 * np.eye(3), a_in, data.shape, shape=(20, 20, 20))
     message = cli_error("boxrecon", "resample", "--filter", "tricubic", "--volume", str(source),
@@ -192,7 +197,8 @@ def test_python_oblique_volume_reads_resamples_and_writes(tmp_path, oblique_volu
     its samples as stored, its positions affine @ (i, j, k, 1); resample onto another image's
     grid (like=, affine=) or a world box (lo, hi) equals affine_transform with inv(A_in) A_out;
     Volume(affine=) of the same affine is the same volume; write_volume writes NIfTI that nibabel
-    reads back with that affine, and refuses NRRD; pickling keeps the frame."""
+    reads back with that affine, and NRRD with oblique space directions; pickling keeps the
+    frame."""
     import pickle
 
     boxgen = pytest.importorskip("boxgen")
@@ -252,10 +258,12 @@ def test_python_oblique_volume_reads_resamples_and_writes(tmp_path, oblique_volu
     np.testing.assert_array_equal(np.asarray(image.dataobj), data)
     back = boxgen.read_volume(str(written))
     np.testing.assert_allclose(back.frame, v.frame, atol=1e-6)
+    # NRRD holds the affine as oblique space directions (double precision).
     nrrd = tmp_path / "written.nrrd"
-    with pytest.raises(ValueError, match="oblique grid is written as NIfTI"):
-        boxgen.write_volume(str(nrrd), v)
-    assert not nrrd.exists()
+    boxgen.write_volume(str(nrrd), v)
+    back = boxgen.read_volume(str(nrrd))
+    np.testing.assert_allclose(back.affine, v.affine, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(back.samples, v.samples)
 
     # Without a grid, an oblique volume's output grid is not guessed.
     with pytest.raises(ValueError, match="the volume is oblique: give the output grid"):
