@@ -16,7 +16,11 @@
 // volume of its own lattice with about as many samples (2 x 32^3), no floor:
 //   valgrind --tool=callgrind --toggle-collect='*Reconstructor<float>::evaluate*'
 //            build/bench/bench_instructions tricubic 20000
+// `sorted` evaluates the same points in storage order (by the integer parts of z, y, x), so that
+// consecutive points share their stencils' cache lines: the same instructions with (nearly) no
+// memory latency, the bound that prefetching could at best reach on a volume beyond the caches.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -120,7 +124,7 @@ double best_thread_ns(int runs, F&& run) {
 // but the points' stencil footprint.
 template <class T>
 double filter_ns(const SplineFilter& f, std::vector<T>& values, long count, bool floor, int runs,
-                 int side, Footprint* footprint = nullptr) {
+                 int side, bool sorted, Footprint* footprint = nullptr) {
   const CosetLattice lattice = f.lattice();
   const int n =
       static_cast<int>(std::lround(std::cbrt(2.0 * side * side * side / lattice.coset_count())));
@@ -131,6 +135,13 @@ double filter_ns(const SplineFilter& f, std::vector<T>& values, long count, bool
   std::uniform_real_distribution<double> u(6.0, extent - 7.0);
   std::vector<Vec3> points(count > 0 ? count : 1);
   for (auto& p : points) p = {u(rng), u(rng), u(rng)};
+  if (sorted)
+    std::sort(points.begin(), points.end(), [](const Vec3& a, const Vec3& b) {
+      const auto key = [](const Vec3& p) {
+        return std::array<double, 3>{std::floor(p[2]), std::floor(p[1]), p[0]};
+      };
+      return key(a) < key(b);
+    });
   values.resize(points.size());
   if (footprint) {
     boxgen::generated::with_filter(f.registry_index(), [&](auto entry) {
@@ -151,13 +162,13 @@ double filter_ns(const SplineFilter& f, std::vector<T>& values, long count, bool
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(
-        stderr,
-        "usage: bench_instructions FILTER POINTS [floor] [time] [lines] [double] [side=N]\n");
+    std::fprintf(stderr,
+                 "usage: bench_instructions FILTER POINTS [floor] [time] [lines] [double] [sorted] "
+                 "[side=N]\n");
     return 2;
   }
   const long count = std::atol(argv[2]);
-  bool floor = false, timed = false, in_double = false, lines = false;
+  bool floor = false, timed = false, in_double = false, lines = false, sorted = false;
   int side = 32;
   for (int a = 3; a < argc; ++a) {
     if (std::string(argv[a]).rfind("side=", 0) == 0) side = std::atoi(argv[a] + 5);
@@ -165,6 +176,7 @@ int main(int argc, char** argv) {
     timed = timed || std::string(argv[a]) == "time";
     lines = lines || std::string(argv[a]) == "lines";
     in_double = in_double || std::string(argv[a]) == "double";
+    sorted = sorted || std::string(argv[a]) == "sorted";
   }
   set_batch_threads(1);
   const SplineFilter filter = SplineFilter::parse(argv[1]);
@@ -177,8 +189,8 @@ int main(int argc, char** argv) {
   Footprint footprint;
   const auto measure = [&](auto zero) {
     std::vector<decltype(zero)> values;
-    best =
-        filter_ns(filter, values, count, floor, timed ? 10 : 1, side, lines ? &footprint : nullptr);
+    best = filter_ns(filter, values, count, floor, timed ? 10 : 1, side, sorted,
+                     lines ? &footprint : nullptr);
     for (auto v : values) sum += static_cast<double>(v);
     size = values.size();
   };
@@ -186,8 +198,8 @@ int main(int argc, char** argv) {
     measure(0.0);
   else
     measure(0.0F);
-  std::printf("%s%s%s: %ld points, side %d, checksum %.6g", argv[1], in_double ? " double" : "",
-              floor ? " floor" : "", count, side, sum);
+  std::printf("%s%s%s%s: %ld points, side %d, checksum %.6g", argv[1], in_double ? " double" : "",
+              floor ? " floor" : "", sorted ? " sorted" : "", count, side, sum);
   if (lines) {
     const auto per_point = [&](double total) { return total / static_cast<double>(size); };
     std::printf(", per point: %.2f cache lines, %.2f storage rows, %.2f pages",

@@ -3,20 +3,25 @@
 // points of an n^3 x 2 BCC volume, one thread, the thread CPU time per point of
 //   full:   the kernel as Reconstructor runs it: locate, stencil addresses, gathers, polynomial;
 //   fetch:  the same with the orbit polynomial replaced by the sum of the stencil values;
-//   locate: locate and the stencil addresses only (no gather, no polynomial).
-// Each stage is a simd::Kernels chunk function passed to EmittedSpline, so all three run through
-// the same batch loop; all three are compiled here for this machine alone (-march=native, as
+//   locate: locate and the stencil addresses only (no gather, no polynomial);
+//   prefetched: an experiment, not the library's kernel: `full` after prefetching the stencil
+//           samples of the NEXT chunk's points (located once more for that), every sample or
+//           every N-th with `prefetch=N`, so that their memory latency overlaps this chunk's work.
+// Each stage is a simd::Kernels chunk function passed to EmittedSpline, so all run through
+// the same batch loop; all are compiled here for this machine alone (-march=native, as
 // loader/ compiles a filter's kernels). The stages and filters alternate, round after round, and
 // the minimum and median over the rounds are printed:
-//   build/bench/bench_kernel_stages [double] [side=32] [rounds=30]
+//   build/bench/bench_kernel_stages [double] [side=32] [rounds=30] [prefetch=1]
 #define HWY_COMPILE_ONLY_STATIC 1
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -75,6 +80,56 @@ template <class Tr, class T>
   }
 }
 
+// The `prefetched` stage: prefetch the stencil samples of the chunk at `points` (the next one: the
+// bench pads its points so that it is readable), every prefetch_every-th of them, lanes outside the
+// volume at sample index 0. M7 and M8 have one orbit each.
+int prefetch_every = 1;
+
+// A prefetch the compiler keeps: GCC 12 removed every __builtin_prefetch (and _mm_prefetch) of
+// prefetch_next, whose only effect is the prefetches.
+inline void prefetch_line(const void* p) {
+#if defined(__x86_64__) || defined(__i386__)
+  asm volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(p)));
+#else
+  __builtin_prefetch(p, 0, 3);
+#endif
+}
+
+template <class Tr, class T, int... K>
+[[gnu::flatten]] HWY_ATTR void prefetch_next(const double* points, const simd::Frame& frame,
+                                             const simd::LinearVolume<T>& volume,
+                                             std::integer_sequence<int, K...> /*samples*/) {
+  constexpr int kRow = simd::kChunk;
+  const typename kernels::Pack<T>::D d;
+  const hn::RebindToSigned<decltype(d)> di;
+  using I = hn::TFromD<decltype(di)>;
+  alignas(64) T x[3 * kRow];
+  alignas(64) T near[kRow];
+  kernels::lattice_lanes(points, frame, x, near);
+  for (int at = 0; at < kRow; at += static_cast<int>(hn::Lanes(d))) {
+    const auto l = kernels::locate_pack<Tr>(x, near, at, frame);
+    auto st = kernels::lane_stencil<Tr>(l, volume);
+    const auto m = hn::RebindMask(di, l.ok);
+    st.first = hn::IfThenElseZero(m, st.first);
+    st.flip = hn::IfThenElseZero(m, st.flip);
+    for (auto& a : st.axis) a = hn::IfThenElseZero(m, a);
+    alignas(64) I index[sizeof...(K)][hn::MaxLanes(di)];
+    ((hn::Store(kernels::sample_index<Tr, 0, K>(st.first, st.axis, st.flip), di, index[K])), ...);
+    for (std::size_t k = 0; k < sizeof...(K); k += static_cast<std::size_t>(prefetch_every))
+      for (std::size_t lane = 0; lane < hn::Lanes(di); ++lane)
+        prefetch_line(volume.samples + index[k][lane]);
+  }
+}
+
+template <class Tr, class T>
+void prefetched_chunk(int order, const double* points, const simd::Frame& frame,
+                      const simd::LinearVolume<T>& volume, T* out) {
+  static_assert(Tr::kOrbitCount == 1, "the prefetch takes orbit 0's stencil");
+  prefetch_next<Tr>(points + std::ptrdiff_t{3} * simd::kChunk, frame, volume,
+                    std::make_integer_sequence<int, Tr::kOrbitStencilSize[0]>{});
+  value_chunk<Tr, T>(order, points, frame, volume, out);
+}
+
 template <class T>
 double thread_ns() {
   timespec t{};
@@ -86,7 +141,7 @@ double thread_ns() {
 template <class Tr, class T>
 class Stages {
  public:
-  Stages(int registry_index, int side, const std::vector<rt::Vec3>& points)
+  Stages(int registry_index, int side, std::span<const rt::Vec3> points)
       : volume_(rt::CosetLattice::bcc(), {side, side, side}, 1.0, {0, 0, 0}), points_(points) {
     std::mt19937_64 rng(1);
     for (auto& s : volume_.samples()) s = static_cast<T>(rng() % 1000) / T(1000);
@@ -96,10 +151,11 @@ class Stages {
     set_chunk(kernels_[1], &value_chunk<StencilSum<Tr>, float>,
               &value_chunk<StencilSum<Tr>, double>);
     set_chunk(kernels_[2], &locate_chunk<Tr, float>, &locate_chunk<Tr, double>);
+    set_chunk(kernels_[3], &prefetched_chunk<Tr, float>, &prefetched_chunk<Tr, double>);
     values_.resize(points.size());
   }
 
-  // Thread CPU ns per point of stage s (0 full, 1 fetch, 2 locate).
+  // Thread CPU ns per point of stage s (0 full, 1 fetch, 2 locate, 3 prefetched).
   double run(int s) {
     using Spline = rt::EmittedSpline<Tr, rt::BccStencils<Tr, T, std::int32_t>>;
     const Spline spline(rt::BccStencils<Tr, T, std::int32_t>(volume_), -1, &kernels_[s]);
@@ -116,37 +172,38 @@ class Stages {
   }
 
   rt::LatticeVolume<T> volume_;
-  const std::vector<rt::Vec3>& points_;
+  std::span<const rt::Vec3> points_;
   std::vector<T> values_;
-  simd::Kernels kernels_[3];
+  simd::Kernels kernels_[4];
 };
 
 template <class T>
 void run_all(int side, int rounds) {
   std::mt19937_64 rng(2);
   std::uniform_real_distribution<double> u(6.0, 2.0 * side - 7.0);
-  std::vector<rt::Vec3> points(200000);
-  for (auto& p : points) p = {u(rng), u(rng), u(rng)};
+  std::vector<rt::Vec3> padded(200000 + simd::kChunk);
+  for (auto& p : padded) p = {u(rng), u(rng), u(rng)};
+  const std::span<const rt::Vec3> points(padded.data(), 200000);
   Stages<boxgen::generated::m7::Traits, T> m7(0, side, points);
   Stages<boxgen::generated::m8::Traits, T> m8(1, side, points);
-  std::vector<double> times[2][3];
+  std::vector<double> times[2][4];
   for (int r = 0; r < rounds; ++r)
-    for (int s = 0; s < 3; ++s) {
+    for (int s = 0; s < 4; ++s) {
       times[0][s].push_back(m7.run(s));
       times[1][s].push_back(m8.run(s));
     }
-  const char* names[3] = {"full", "fetch", "locate"};
-  double least[2][3];
+  const char* names[4] = {"full", "fetch", "locate", "prefetched"};
+  double least[2][4];
   std::printf("%s, %d^3 x 2, %d rounds: ns per point, minimum (median)\n",
               sizeof(T) == 4 ? "float" : "double", side, rounds);
-  for (int s = 0; s < 3; ++s) {
+  for (int s = 0; s < 4; ++s) {
     double median[2];
     for (int f = 0; f < 2; ++f) {
       std::sort(times[f][s].begin(), times[f][s].end());
       least[f][s] = times[f][s].front();
       median[f] = times[f][s][times[f][s].size() / 2];
     }
-    std::printf("  %-6s  M7 %6.2f (%6.2f)  M8 %6.2f (%6.2f)  M7/M8 %.3f (%.3f)\n", names[s],
+    std::printf("  %-10s  M7 %6.2f (%6.2f)  M8 %6.2f (%6.2f)  M7/M8 %.3f (%.3f)\n", names[s],
                 least[0][s], median[0], least[1][s], median[1], least[0][s] / least[1][s],
                 median[0] / median[1]);
   }
@@ -165,10 +222,13 @@ int main(int argc, char** argv) {
       in_double = true;
     } else if (arg.rfind("side=", 0) == 0) {
       side = std::atoi(argv[a] + 5);
+    } else if (arg.rfind("prefetch=", 0) == 0) {
+      prefetch_every = std::max(1, std::atoi(argv[a] + 9));
     } else if (arg.rfind("rounds=", 0) == 0) {
       rounds = std::atoi(argv[a] + 7);
     } else {
-      std::fprintf(stderr, "usage: bench_kernel_stages [double] [side=N] [rounds=R]\n");
+      std::fprintf(stderr,
+                   "usage: bench_kernel_stages [double] [side=N] [rounds=R] [prefetch=N]\n");
       return 2;
     }
   }
