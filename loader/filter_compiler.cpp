@@ -204,6 +204,10 @@ void find_engine(Toolchain& t) {
   if (!binary.empty() && b.compare(0, root.size(), root) == 0) {
     t.include_dir = config::kSourceDir;
     t.archive = config::kRuntimeArchive;
+    const fs::path precompiled = config::kPrecompiledDir;
+    if (!precompiled.empty() &&
+        fs::is_regular_file(precompiled / "runtime" / "compiled_filter.h.gch", ec))
+      t.precompiled_dir = precompiled;
   } else {
     for (fs::path dir = binary.parent_path(); !dir.empty(); dir = dir.parent_path()) {
       if (fs::exists(dir / config::kInstalledInclude / "runtime" / "emitted_filter.h", ec) &&
@@ -259,17 +263,13 @@ Toolchain find_toolchain(const CompileOptions& options) {
         "working compiler",
         t.compiler, limit));
   t.version = version.output.substr(0, version.output.find_first_of("\r\n"));
-  // The build's optimisation flags (as the registry's evaluators get), this machine's instruction
-  // set (the object's SIMD kernels are compiled for it alone, not for every Highway target as the
-  // runtime's are: a quarter of the compile), position independent, only the two entry points
-  // exported, OpenMP for the batch paths, no fused multiply-adds (the SIMD path and the scalar
-  // path round alike, as in the runtime).
+  // The build's flags for a filter (loader/CMakeLists.txt says why each is there).
   t.flags = words(config::kFlags);
-  for (const char* f :
-       {"-march=native", "-std=c++20", "-fPIC", "-shared", "-fvisibility=hidden",
-        "-fvisibility-inlines-hidden", "-fopenmp", "-ffp-contract=off", "-Wno-psabi", "-w"})
-    t.flags.emplace_back(f);
   t.flags.push_back("-I" + t.include_dir.string());
+  // The precompiled header was made by the build's compiler for the build tree's headers.
+  std::error_code ec;
+  if (!t.precompiled_dir.empty() && !fs::equivalent(t.compiler, config::kCompiler, ec))
+    t.precompiled_dir.clear();
   t.libraries = words(config::kLibraries);
   return t;
 }
@@ -345,6 +345,7 @@ std::string step_failure(const ProcessResult& run, const Toolchain& t, const fs:
 std::vector<std::string> compile_args(const Toolchain& t, const fs::path& source,
                                       const fs::path& output, bool link) {
   std::vector<std::string> args{t.compiler};
+  if (!t.precompiled_dir.empty()) args.push_back("-I" + t.precompiled_dir.string());
   args.insert(args.end(), t.flags.begin(), t.flags.end());
   if (!link) args.emplace_back("-c");
   for (std::string a : {std::string("-x"), std::string("c++"), source.string(), std::string("-x"),

@@ -19,6 +19,10 @@ struct Toolchain {
       include_dir;  // holds runtime/, support/ (the build tree or <prefix>/include/boxgen)
   std::filesystem::path archive;       // the runtime's static library the object links
   std::vector<std::string> libraries;  // after the archive
+  // A folder holding runtime/compiled_filter.h precompiled by the build for this compiler and
+  // these flags, searched first; empty when there is none (an installed tree, another compiler).
+  // Not part of the identity: the object compiled is the same with it or without.
+  std::filesystem::path precompiled_dir;
   // What the cache key needs to know about all this: compiler, version, flags, and the engine
   // (the archive's size and modification time: a rebuilt runtime is a new engine).
   std::string identity() const;

@@ -88,19 +88,10 @@ std::array<std::string, 2> glue_sources(const std::string& name, const gen::Emis
                                         const std::string& stamp) {
   const std::string head = fmt::format(
       R"(// A run-time filter of boxgen (loader/filter_loader.cpp): do not edit, it is rebuilt.
-#include <memory>
-#include <span>
-#include <string>
-
-// One instruction set, this machine's (-march=native): no dynamic dispatch inside the object.
-#define HWY_COMPILE_ONLY_STATIC 1
-#include <hwy/highway.h>
-
-#include "runtime/batch_threads.h"
-#include "runtime/emitted_filter.h"
+// The engine first, so that the build's precompiled header can stand for it.
+#include <runtime/compiled_filter.h>
 
 {evaluator}
-#include "runtime/simd_kernels-inl.h"
 
 namespace rt = boxgen::runtime;
 namespace g = boxgen::generated::{name};

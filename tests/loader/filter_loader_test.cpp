@@ -7,6 +7,7 @@
 // custom-lattice cases, the truncated object and the stale stamp rebuilt, and the concurrent first
 // uses; the fast suite compiles one BCC filter once. qfir:K (docs/design.md §18) is checked
 // against the generator's exact weights and for reproduction on the registry and these SPECs.
+#include <dlfcn.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,6 +20,7 @@
 #include <type_traits>
 
 #include "../support/scratch_directory.h"
+#include "boxgen/loader_config.h"
 #include "generator/approximation_order.h"
 #include "generator/interpolation_symbol.h"
 #include "generator/prefilter.h"
@@ -26,6 +28,7 @@
 #include "generator/recurrence.h"
 #include "generator/spec.h"
 #include "loader/filter_cache.h"
+#include "loader/filter_compiler.h"
 #include "loader/filter_loader.h"
 #include "runtime/prefilter.h"
 #include "runtime/reconstruction.h"
@@ -267,6 +270,59 @@ TEST_F(LoaderTest, NoCompilerSaysWhatToInstall) {
     EXPECT_NE(what.find("install g++"), std::string::npos) << what;
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
   }
+}
+
+// The build's precompiled runtime/compiled_filter.h (loader/CMakeLists.txt): the loader puts its
+// folder first for the build's own compiler only, and that compiler takes it with the loader's
+// flags (-H marks a precompiled header it uses with "!"), so the two cannot drift apart unseen.
+TEST_F(LoaderTest, PrecompiledEngineHeaderIsTakenWithTheLoadersFlags) {
+  if (std::string_view(config::kPrecompiledDir).empty()) GTEST_SKIP() << "not built with GCC";
+  const Toolchain t = find_toolchain(options());
+  ASSERT_EQ(t.precompiled_dir, fs::path(config::kPrecompiledDir));
+  const fs::path source = dir_ / "first.cpp";
+  std::ofstream(source) << "// a comment first\n#include <runtime/compiled_filter.h>\nint x;\n";
+  std::string command = "'" + t.compiler + "' '-I" + t.precompiled_dir.string() + "'";
+  for (const std::string& f : t.flags) command += " '" + f + "'";
+  command += " -H -fsyntax-only '" + source.string() + "' 2>&1";
+  std::string out;
+  if (FILE* pipe = ::popen(command.c_str(), "r")) {
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
+      out.append(buffer, n);
+    EXPECT_EQ(::pclose(pipe), 0) << out;
+  }
+  const std::string used =
+      "! " + (t.precompiled_dir / "runtime" / "compiled_filter.h.gch").string() + "\n";
+  EXPECT_EQ(out.rfind(used, 0), 0u) << out.substr(0, 2000);
+  // Another compiler (here a script in front of the same one) gets none.
+  const fs::path script = dir_ / "cxx";
+  std::ofstream(script) << "#!/bin/sh\nexec '" << t.compiler << "' \"$@\"\n";
+  fs::permissions(script, fs::perms(0755));
+  CompileOptions o = options();
+  o.compiler = script.string();
+  EXPECT_TRUE(find_toolchain(o).precompiled_dir.empty());
+}
+
+// A precompiled header the compiler cannot take (here not one at all; equally one of another
+// compiler, target or macros) is passed over: the compile reads the header itself, and the object
+// holds what the header declares.
+TEST_F(LoaderTest, UnusablePrecompiledHeaderIsPassedOver) {
+  Toolchain t = find_toolchain(options());
+  t.precompiled_dir = dir_ / "precompiled";
+  fs::create_directories(t.precompiled_dir / "runtime");
+  std::ofstream(t.precompiled_dir / "runtime" / "compiled_filter.h.gch") << "not one\n";
+  const fs::path source = dir_ / "probe.cpp", object = dir_ / "probe.so";
+  std::ofstream(source) << "#include <runtime/compiled_filter.h>\n"
+                           "extern \"C\" __attribute__((visibility(\"default\"))) int probe() {\n"
+                           "  return static_cast<int>(boxgen::runtime::StencilPolicy::kLattice);\n"
+                           "}\n";
+  compile_shared_object(t, {source}, object, dir_ / "probe.log", "the probe", 600);
+  void* handle = ::dlopen(object.c_str(), RTLD_NOW | RTLD_LOCAL);
+  ASSERT_NE(handle, nullptr) << ::dlerror();
+  auto* probe = reinterpret_cast<int (*)()>(::dlsym(handle, "probe"));
+  ASSERT_NE(probe, nullptr);
+  EXPECT_EQ(probe(), 2);
+  ::dlclose(handle);
 }
 
 // One BCC filter: exact, reproduces with q1, then loaded from the cache without a compile.
