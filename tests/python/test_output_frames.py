@@ -132,6 +132,60 @@ def test_an_lps_nrrd_stays_lps_and_becomes_ras_in_nifti(tmp_path):
                                   nrrd_floats(tmp_path / "out.nrrd", fields))
 
 
+def test_python_volumes_keep_the_anatomical_frame(tmp_path, ras_nifti):
+    """boxgen.read_volume records the world's anatomical frame (Volume.anatomical) and
+    write_volume converts it as boxrecon does: an LPS NRRD written as NIfTI is the CLI's file
+    byte for byte (x and y mirrored into RAS), as NRRD it stays LPS; RAS for NIfTI, None for a
+    frameless world; Volume(anatomical=), pickling, prefilter_volume and resample(lattice=) keep
+    it."""
+    import pickle
+
+    boxgen = pytest.importorskip("boxgen")
+    lps = tmp_path / "lps.nrrd"
+    with open(lps, "wb") as f:
+        f.write(b"NRRD0004\ntype: float\ndimension: 3\nspace: left-posterior-superior\n"
+                b"sizes: 8 9 10\nspace directions: (1.5,0,0) (0,1.25,0) (0,0,2)\n"
+                b"space origin: (3,-4,5)\nendian: little\nencoding: raw\n\n")
+        f.write(np.arange(720, dtype="<f4").tobytes())
+    v = boxgen.read_volume(str(lps))
+    assert v.anatomical == "LPS"
+    cli = tmp_path / "cli.nii"  # the CLI's NIfTI of the same samples (--like itself, interp)
+    run("boxrecon", "resample", "--filter", "tricubic", "--prefilter", "interp", "--volume",
+        str(lps), "--like", str(lps), "--precision", "float", "-o", str(tmp_path / "cli.nrrd"))
+    run("boxrecon", "resample", "--filter", "tricubic", "--prefilter", "interp", "--volume",
+        str(lps), "--like", str(lps), "--precision", "float", "-o", str(cli))
+    resampled = boxgen.read_volume(str(tmp_path / "cli.nrrd"))
+    assert resampled.anatomical == "LPS"
+    boxgen.write_volume(str(tmp_path / "py.nii"), resampled)
+    assert (tmp_path / "py.nii").read_bytes() == cli.read_bytes()
+    image = nib.load(str(tmp_path / "py.nii"))
+    np.testing.assert_array_equal(image.affine, np.diag([-1.0, -1.0, 1.0, 1.0]) @ v.affine)
+    assert (int(image.header["sform_code"]), int(image.header["qform_code"])) == (2, 2)
+    boxgen.write_volume(str(tmp_path / "py.nrrd"), v)
+    fields = nrrd_header(tmp_path / "py.nrrd")
+    assert fields["space"] == "left-posterior-superior"
+    np.testing.assert_array_equal(nrrd_affine(fields), v.affine)
+
+    assert boxgen.read_volume(str(ras_nifti[0])).anatomical == "RAS"
+    assert pickle.loads(pickle.dumps(v)).anatomical == "LPS"
+    tricubic = boxgen.Filter("tricubic")
+    assert tricubic.prefilter_volume(v, "q1").anatomical == "LPS"
+    assert boxgen.resample(v, tricubic, lattice="bcc", spacing=2.0).anatomical == "LPS"
+
+    # A volume of arrays has no frame unless given one; given LPS, NIfTI mirrors x and y.
+    plain = boxgen.Volume(v.samples.copy(), lattice="cartesian", spacing=(1.5, 1.25, 2),
+                          origin=(3, -4, 5))
+    assert plain.anatomical is None
+    tagged = boxgen.Volume(v.samples.copy(), lattice="cartesian", spacing=(1.5, 1.25, 2),
+                           origin=(3, -4, 5), anatomical="LPS")
+    boxgen.write_volume(str(tmp_path / "tagged.nii"), tagged)
+    np.testing.assert_array_equal(nib.load(str(tmp_path / "tagged.nii")).affine, image.affine)
+    boxgen.write_volume(str(tmp_path / "plain.nii"), plain)
+    np.testing.assert_array_equal(nib.load(str(tmp_path / "plain.nii")).affine, v.affine)
+    with pytest.raises(ValueError, match="anatomical must be"):
+        boxgen.Volume(v.samples.copy(), lattice="cartesian", anatomical="XYZ")
+
+
 def test_a_like_image_in_another_frame_is_refused(tmp_path, ras_nifti):
     nifti, _ = ras_nifti
     lps = tmp_path / "lps.nrrd"
