@@ -2,7 +2,7 @@
 
 #include <functional>
 
-namespace boxgen::generator {
+namespace boxgen::expr {
 
 std::size_t ExprGraph::KeyHash::operator()(const Key& k) const {
   std::size_t h = static_cast<std::size_t>(k.op);
@@ -76,4 +76,4 @@ std::vector<Rational> evaluate_exactly(const ExprGraph& g, const RatVec& x, cons
   return value;
 }
 
-}  // namespace boxgen::generator
+}  // namespace boxgen::expr

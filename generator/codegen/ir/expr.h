@@ -13,7 +13,11 @@
 
 #include "generator/rational.h"
 
-namespace boxgen::generator {
+namespace boxgen::expr {
+
+// Exact constants are the generator's rationals.
+using generator::Rational;
+using generator::RatVec;
 
 enum class Op : std::uint8_t { Constant, Variable, Load, Add, Mul, Neg };
 
@@ -69,4 +73,4 @@ class ExprGraph {
 // computes).
 std::vector<Rational> evaluate_exactly(const ExprGraph& g, const RatVec& x, const RatVec& v);
 
-}  // namespace boxgen::generator
+}  // namespace boxgen::expr

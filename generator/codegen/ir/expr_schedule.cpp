@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <set>
 
-namespace boxgen::generator {
+namespace boxgen::expr {
 
 namespace {
 
@@ -147,4 +147,4 @@ Program schedule(ExprGraph graph, const Outputs& outputs, int dimension,
   return p;
 }
 
-}  // namespace boxgen::generator
+}  // namespace boxgen::expr

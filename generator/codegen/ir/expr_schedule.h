@@ -15,7 +15,7 @@
 
 #include "generator/codegen/ir/expr.h"
 
-namespace boxgen::generator {
+namespace boxgen::expr {
 
 // What one path of straight-line code costs: additions (and subtractions), multiplications,
 // negations that remain after the simplifier moved them into subtractions and constants (none in
@@ -68,4 +68,4 @@ struct Program {
 Program schedule(ExprGraph graph, const Outputs& outputs, int dimension,
                  const std::unordered_map<NodeId, std::string>& hints = {});
 
-}  // namespace boxgen::generator
+}  // namespace boxgen::expr

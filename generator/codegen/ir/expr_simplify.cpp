@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace boxgen::generator {
+namespace boxgen::expr {
 
 namespace {
 
@@ -91,4 +91,4 @@ NodeId term_by_term_sum(ExprGraph& g, const WeightedTerms& terms) {
   return out;
 }
 
-}  // namespace boxgen::generator
+}  // namespace boxgen::expr

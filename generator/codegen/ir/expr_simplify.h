@@ -10,7 +10,7 @@
 
 #include "generator/codegen/ir/expr.h"
 
-namespace boxgen::generator {
+namespace boxgen::expr {
 
 NodeId negate(ExprGraph& g, NodeId a);
 NodeId sum(ExprGraph& g, NodeId a, NodeId b);
@@ -26,4 +26,4 @@ NodeId weighted_sum(ExprGraph& g, const WeightedTerms& terms);
 // The same without grouping: one multiplication per term whose weight is not +-1.
 NodeId term_by_term_sum(ExprGraph& g, const WeightedTerms& terms);
 
-}  // namespace boxgen::generator
+}  // namespace boxgen::expr

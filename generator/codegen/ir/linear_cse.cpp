@@ -9,7 +9,9 @@
 #include <tuple>
 #include <unordered_map>
 
-namespace boxgen::generator {
+namespace boxgen::expr {
+
+using generator::to_double;
 
 namespace {
 
@@ -230,4 +232,4 @@ SharedRows share_partial_sums(const std::vector<LinearRow>& rows, int inputs,
   return out;
 }
 
-}  // namespace boxgen::generator
+}  // namespace boxgen::expr

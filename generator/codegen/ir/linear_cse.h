@@ -9,7 +9,9 @@
 
 #include "generator/rational.h"
 
-namespace boxgen::generator {
+namespace boxgen::expr {
+
+using generator::Rational;
 
 using LinearRow = std::vector<std::pair<int, Rational>>;  // (input, weight), weight != 0
 
@@ -28,4 +30,4 @@ struct SharedRows {
 SharedRows share_partial_sums(const std::vector<LinearRow>& rows, int inputs,
                               std::size_t max_entries = 4000);
 
-}  // namespace boxgen::generator
+}  // namespace boxgen::expr

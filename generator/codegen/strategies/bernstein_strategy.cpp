@@ -41,8 +41,7 @@ BBLevels casteljau_levels(Build& b, const std::vector<NodeId>& level0, const std
       for (int i = 0; i <= n; ++i) {
         MultiIndex up = indices[q];
         ++up[i];
-        acc =
-            generator::sum(b.g, acc, generator::product(b.g, l[i], levels.back()[previous.at(up)]));
+        acc = expr::sum(b.g, acc, expr::product(b.g, l[i], levels.back()[previous.at(up)]));
       }
       next[q] = acc;
       b.name(acc, fmt::format("q{}_{}", r, q));
@@ -61,7 +60,7 @@ NodeId level_combination(Build& b, const BBLevels& levels, int level, int n, int
   for (std::size_t q = 0; q < indices.size(); ++q)
     if (!b.g.is_constant(levels[level][q]) || !cln::zerop(b.g.constant_value(levels[level][q])))
       terms.emplace_back(levels[level][q], weight(indices[q]));
-  return generator::weighted_sum(b.g, terms);
+  return expr::weighted_sum(b.g, terms);
 }
 
 // The gradient from level d - 1 and the Hessian's upper triangle from level d - 2, in the order
@@ -128,7 +127,7 @@ std::optional<OrbitCode> bernstein_code(const ReferenceRegion& ref, int orbit, i
   for (int i = 0; i <= n; ++i) {
     NodeId acc = b.g.constant(lambda[i][0]);
     for (int j = 0; j < n; ++j)
-      acc = generator::sum(b.g, acc, generator::scaled(b.g, lambda[i][j + 1], x[j]));
+      acc = expr::sum(b.g, acc, expr::scaled(b.g, lambda[i][j + 1], x[j]));
     l.push_back(acc);
     b.name(acc, fmt::format("l{}", i));
   }

@@ -48,8 +48,8 @@ class HornerForm {
       next[k] = a;
       long factor = 1;
       for (int j = 0; j < d[k]; ++j) factor *= a - j;
-      const NodeId term = generator::scaled(b_.g, Rational(factor), partial(next, k + 1, rest));
-      acc = a == top ? term : generator::sum(b_.g, term, generator::product(b_.g, vars_[k], acc));
+      const NodeId term = expr::scaled(b_.g, Rational(factor), partial(next, k + 1, rest));
+      acc = a == top ? term : expr::sum(b_.g, term, expr::product(b_.g, vars_[k], acc));
     }
     memo_.emplace(key, acc);
     return acc;

@@ -17,25 +17,25 @@ std::optional<OrbitCode> monomial_code(const ReferenceRegion& ref, int orbit, in
   std::vector<std::vector<NodeId>> power(n, {b.g.constant(1)});
   for (int i = 0; i < n; ++i)
     for (int e = 1; e <= degree; ++e) {
-      power[i].push_back(generator::product(b.g, power[i].back(), x[i]));
+      power[i].push_back(expr::product(b.g, power[i].back(), x[i]));
       b.name(power[i].back(), fmt::format("p{}_{}", i, e));
     }
   auto monomial = [&](const Exponent& e) {
     NodeId m = b.g.constant(1);
-    for (int i = 0; i < n; ++i) m = generator::product(b.g, m, power[i][e[i]]);
+    for (int i = 0; i < n; ++i) m = expr::product(b.g, m, power[i][e[i]]);
     return m;
   };
   const auto derivatives = derivative_indices(n, 2);
   NodeId value = b.zero();
   std::vector<NodeId> d(derivatives.size(), b.zero());
   for (const auto& [e, coefficient] : c.node) {
-    value = generator::sum(b.g, value, generator::product(b.g, coefficient, monomial(e)));
+    value = expr::sum(b.g, value, expr::product(b.g, coefficient, monomial(e)));
     for (std::size_t k = 0; k < derivatives.size(); ++k) {
       Exponent lowered{0, 0, 0};
       const long factor = derivative_factor(e, derivatives[k], lowered);
       if (!factor) continue;
-      const NodeId term = generator::scaled(b.g, Rational(factor), coefficient);
-      d[k] = generator::sum(b.g, d[k], generator::product(b.g, term, monomial(lowered)));
+      const NodeId term = expr::scaled(b.g, Rational(factor), coefficient);
+      d[k] = expr::sum(b.g, d[k], expr::product(b.g, term, monomial(lowered)));
     }
   }
   return finish(std::move(b), EmissionStrategy::Monomial, value, d, n,

@@ -41,7 +41,8 @@ enum class EmissionStrategy { Auto, Monomial, Horner, Separable, Shifted, Bernst
 EmissionStrategy parse_strategy(std::string_view name);
 const char* strategy_name(EmissionStrategy s);
 
-using generator::OperationCount;
+// The schedule's operation count (generator/codegen/ir/expr_schedule.h), which reports carry.
+using expr::OperationCount;
 
 struct StrategyCost {
   EmissionStrategy strategy = EmissionStrategy::Horner;
@@ -61,7 +62,7 @@ struct OrbitComment {
 // v, const T* x, T* d)`, support::evaluate_located describes d).
 struct OrbitCode {
   EmissionStrategy strategy = EmissionStrategy::Horner;
-  std::shared_ptr<const generator::Program> program;
+  std::shared_ptr<const expr::Program> program;
   OrbitComment comment;                     // what the code computes
   OperationCount value, gradient, hessian;  // whole paths: value; value + gradient; + Hessian
   std::string form;  // what the strategy chose, for comments and reports ("about (1,1,1)"), or ""

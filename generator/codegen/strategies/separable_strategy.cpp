@@ -34,7 +34,7 @@ UnivariatePoly derivative(UnivariatePoly f, int order) {
 NodeId univariate_horner(Build& b, const UnivariatePoly& f, NodeId x) {
   NodeId acc = b.g.constant(f.back());
   for (int a = static_cast<int>(f.size()) - 2; a >= 0; --a)
-    acc = generator::sum(b.g, b.g.constant(f[a]), generator::product(b.g, x, acc));
+    acc = expr::sum(b.g, b.g.constant(f[a]), expr::product(b.g, x, acc));
   return acc;
 }
 
@@ -93,9 +93,9 @@ std::map<ContractionKey, NodeId> contract_axis(Build& b,
       if (weight[axis][a][o] < 0) continue;
       std::vector<int> orders = key.first;
       orders.push_back(o);
-      const NodeId term = generator::product(b.g, weight[axis][a][o], node);
+      const NodeId term = expr::product(b.g, weight[axis][a][o], node);
       const auto [it, fresh] = next.emplace(ContractionKey{orders, rest}, term);
-      if (!fresh) it->second = generator::sum(b.g, it->second, term);
+      if (!fresh) it->second = expr::sum(b.g, it->second, term);
     }
   }
   for (const auto& [key, node] : next)
@@ -121,7 +121,7 @@ std::optional<OrbitCode> separable_code(const ReferenceRegion& ref, int orbit, i
       Exponent e{0, 0, 0};
       for (int i = 0; i < n; ++i) e[i] = key.first[i];
       const auto [it, fresh] = results.emplace(e, node);
-      if (!fresh) it->second = generator::sum(b.g, it->second, node);
+      if (!fresh) it->second = expr::sum(b.g, it->second, node);
     }
   }
   auto result = [&](const Exponent& e) {

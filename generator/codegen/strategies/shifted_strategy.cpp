@@ -50,7 +50,7 @@ OrbitCode shifted_form(const ReferenceRegion& ref, const RatVec& origin, int orb
   for (const auto& p : ref.basis) basis.push_back(p.translated(minus));  // q(y) = p(y + o)
   std::vector<NodeId> vars = b.coordinates(n);
   for (int i = 0; i < n; ++i) {
-    vars[i] = generator::sum(b.g, vars[i], b.g.constant(-origin[i]));
+    vars[i] = expr::sum(b.g, vars[i], b.g.constant(-origin[i]));
     b.name(vars[i], fmt::format("y{}", i));
   }
   const HornerNodes h = horner_nodes(b, basis, n, degree, vars);

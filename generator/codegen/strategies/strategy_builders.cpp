@@ -9,6 +9,9 @@
 namespace boxgen::generator::strategies {
 
 using code::join;
+using expr::share_partial_sums;
+using expr::SharedRows;
+using expr::SharedSum;
 
 std::vector<Exponent> derivative_indices(int n, int order) {
   std::vector<Exponent> out;
@@ -37,12 +40,12 @@ std::string orbit_vertices(const ReferenceRegion& ref) {
 
 OrbitCode finish(Build&& b, EmissionStrategy strategy, NodeId value,
                  const std::vector<NodeId>& derivatives, int n, OrbitComment comment) {
-  generator::Outputs out;
+  expr::Outputs out;
   out.value = value;
   out.gradient.assign(derivatives.begin(), derivatives.begin() + n);
   out.hessian.assign(derivatives.begin() + n, derivatives.end());
-  auto program = std::make_shared<const generator::Program>(
-      generator::schedule(std::move(b.g), out, n, b.hints));
+  auto program =
+      std::make_shared<const expr::Program>(expr::schedule(std::move(b.g), out, n, b.hints));
   OrbitCode code;
   code.strategy = strategy;
   code.program = program;
@@ -60,7 +63,7 @@ std::vector<NodeId> linear_nodes(Build& b, const std::vector<LinearRow>& rows, i
   for (int k = 0; k < inputs; ++k) input.push_back(b.g.load(k));
   for (std::size_t j = 0; j < s.temporaries.size(); ++j) {
     const SharedSum& t = s.temporaries[j];
-    input.push_back(generator::sum(b.g, input[t.a], generator::scaled(b.g, t.r, input[t.b])));
+    input.push_back(expr::sum(b.g, input[t.a], expr::scaled(b.g, t.r, input[t.b])));
     b.name(input.back(), fmt::format("s{}", j));
   }
   if (shared_sums) *shared_sums = s.temporaries.size();
@@ -68,8 +71,7 @@ std::vector<NodeId> linear_nodes(Build& b, const std::vector<LinearRow>& rows, i
   for (const auto& row : s.rows) {
     WeightedTerms terms;
     for (const auto& [i, w] : row) terms.emplace_back(input[i], w);
-    out.push_back(shared ? generator::weighted_sum(b.g, terms)
-                         : generator::term_by_term_sum(b.g, terms));
+    out.push_back(shared ? expr::weighted_sum(b.g, terms) : expr::term_by_term_sum(b.g, terms));
   }
   return out;
 }

@@ -16,6 +16,12 @@
 
 namespace boxgen::generator::strategies {
 
+// The IR (generator/codegen/ir/) the strategies build in.
+using expr::ExprGraph;
+using expr::LinearRow;
+using expr::NodeId;
+using expr::WeightedTerms;
+
 // Multi-indices of the derivatives an evaluation of `order` writes, in the order of d[]: the
 // gradient (e_i), then the Hessian's upper triangle row by row (e_i + e_j, i <= j).
 std::vector<Exponent> derivative_indices(int n, int order);

@@ -6,6 +6,12 @@
 
 namespace boxgen::generator {
 
+using expr::ExprGraph;
+using expr::Node;
+using expr::NodeId;
+using expr::Op;
+using expr::Program;
+
 namespace {
 
 bool is_inline(const Program& p, NodeId id) { return !p.graph.is_leaf(id) && !p.is_temporary(id); }

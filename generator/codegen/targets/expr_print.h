@@ -14,16 +14,16 @@ namespace boxgen::generator {
 class TargetPrinter;
 
 // The expression of `id` with its temporaries named and the rest inline.
-std::string print_expression(const Program& p, NodeId id, const TargetPrinter& t);
+std::string print_expression(const expr::Program& p, expr::NodeId id, const TargetPrinter& t);
 
 // The body of `template <int Order, class T> T orbit_k(const T* v, const T* x, T* d)`: the value
 // block, then the gradient block under `if constexpr (Order >= 1)` and the Hessian block nested in
 // it under `if constexpr (Order >= 2)`.
-std::string print_cpp_body(const Program& p, const TargetPrinter& t);
+std::string print_cpp_body(const expr::Program& p, const TargetPrinter& t);
 
 // The statements of the paths up to `order` (0, 1, 2), d[i] assigned, ending in
 // "return <value>;", each line indented by `indent`.
-std::string print_straight_line(const Program& p, int order, const TargetPrinter& t,
+std::string print_straight_line(const expr::Program& p, int order, const TargetPrinter& t,
                                 const std::string& indent);
 
 }  // namespace boxgen::generator

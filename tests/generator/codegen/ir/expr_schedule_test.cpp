@@ -7,8 +7,10 @@
 #include "generator/codegen/ir/expr_simplify.h"
 #include "generator/codegen/targets/expr_print.h"
 
-namespace boxgen::generator {
+namespace boxgen::expr {
 namespace {
+
+using generator::fraction;
 
 TEST(ExprSchedule, SharedNodesBecomeTemporariesInTheFirstBlockThatNeedsThem) {
   ExprGraph g;
@@ -33,4 +35,4 @@ TEST(ExprSchedule, SharedNodesBecomeTemporariesInTheFirstBlockThatNeedsThem) {
 }
 
 }  // namespace
-}  // namespace boxgen::generator
+}  // namespace boxgen::expr

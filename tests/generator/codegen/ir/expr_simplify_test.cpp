@@ -7,8 +7,10 @@
 #include "generator/codegen/ir/expr_simplify.h"
 #include "generator/codegen/targets/expr_print.h"
 
-namespace boxgen::generator {
+namespace boxgen::expr {
 namespace {
+
+using generator::fraction;
 
 TEST(ExprSimplify, FoldsConstantsAndIdentities) {
   ExprGraph g;
@@ -54,4 +56,4 @@ TEST(ExprSimplify, WeightedSumGroupsEqualWeights) {
 }
 
 }  // namespace
-}  // namespace boxgen::generator
+}  // namespace boxgen::expr

@@ -6,8 +6,10 @@
 #include "generator/codegen/ir/expr_simplify.h"
 #include "generator/codegen/targets/expr_print.h"
 
-namespace boxgen::generator {
+namespace boxgen::expr {
 namespace {
+
+using generator::fraction;
 
 TEST(ExprGraph, EqualSubexpressionsAreOneNode) {
   ExprGraph g;
@@ -37,4 +39,4 @@ TEST(ExprGraph, EvaluatesExactly) {
 }
 
 }  // namespace
-}  // namespace boxgen::generator
+}  // namespace boxgen::expr

@@ -9,8 +9,14 @@
 #include "generator/derivation.h"
 #include "generator/spec.h"
 
-namespace boxgen::generator {
+namespace boxgen::expr {
 namespace {
+
+using generator::Derivation;
+using generator::derive;
+using generator::monomial_count;
+using generator::parse_spec;
+using generator::ReferenceRegion;
 
 // Expands a row over inputs and temporaries back to the original inputs.
 std::map<int, Rational> expand(const LinearRow& row, const SharedRows& s, int inputs) {
@@ -69,4 +75,4 @@ TEST(LinearCse, SharedPartialSumsReproduceEveryRowExactlyWithFewerTerms) {
 }
 
 }  // namespace
-}  // namespace boxgen::generator
+}  // namespace boxgen::expr

@@ -101,12 +101,12 @@ void check_exact(const std::string& preset) {
       const auto code = orbit_code(ref, static_cast<int>(o), n, a.properties.degree, s);
       if (!code) continue;
       ++checked;
-      const generator::Program& p = *code->program;
+      const expr::Program& p = *code->program;
       for (int trial = 0; trial < 3; ++trial) {
         RatVec x(n), v(ref.basis.size());
         for (auto& xi : x) xi = rational();
         for (auto& vk : v) vk = rational();
-        const auto values = generator::evaluate_exactly(p.graph, x, v);
+        const auto values = expr::evaluate_exactly(p.graph, x, v);
         // Expected: value, then d[] in the order of the outputs (gradient, Hessian row by row).
         std::vector<Rational> expected(1 + n + n * (n + 1) / 2, 0);
         for (std::size_t k = 0; k < ref.basis.size(); ++k) {

@@ -98,7 +98,7 @@ TEST(StrategyBuilders, ANewStrategyFollowingTheRecipeIsExact) {
   const int n = 2;
   const auto code = written_out_code(ref, n, a.properties.degree);
   ASSERT_TRUE(code);
-  const Program& p = *code->program;
+  const expr::Program& p = *code->program;
   std::mt19937_64 rng(11);
   auto rational = [&] {
     return Rational(static_cast<long>(rng() % 2001) - 1000) /

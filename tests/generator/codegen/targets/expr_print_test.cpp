@@ -11,6 +11,11 @@
 namespace boxgen::generator {
 namespace {
 
+using expr::ExprGraph;
+using expr::NodeId;
+using expr::Outputs;
+using expr::Program;
+
 TEST(ExprPrint, WritesNegationsAsSubtractionsAndKeepsTheTree) {
   ExprGraph g;
   const NodeId x = g.variable(0), v = g.load(2);
