@@ -29,6 +29,7 @@
 #include "runtime/batch_threads.h"
 #include "runtime/coefficients.h"
 #include "runtime/interpolation.h"
+#include "runtime/lattice_grid_choice.h"
 #include "runtime/nifti_io.h"
 #include "runtime/nrrd_checks.h"
 #include "runtime/nrrd_io.h"
@@ -648,11 +649,8 @@ VolumePtr resample_onto_lattice(const VolumePtr& volume, const Filter& f,
     if (count < 2 || count > rt::kMaxGridSize)
       throw py::value_error(
           fmt::format("shape must be between 2 and {}, got {}", rt::kMaxGridSize, count));
-    const double n = count;
-    double h = 0;
-    if (spacing.is_none()) {
-      h = rt::spacing_for_count(lattice, box, n * n * n);
-    } else {
+    std::optional<double> h;
+    if (!spacing.is_none()) {
       const py::array_t<double> a = real_array(spacing, "spacing");
       if (a.ndim() != 0)
         throw py::value_error(
@@ -660,7 +658,7 @@ VolumePtr resample_onto_lattice(const VolumePtr& volume, const Filter& f,
                         shape_text(a)));
       h = *a.data();
     }
-    grid = rt::lattice_grid_in(lattice, box, h);  // checks h, the box and the count
+    grid = rt::lattice_grid_for(lattice, box, h, count);  // checks h, the box and the count
   }
   const rt::Sizes& n = grid->sizes;
   frontend::check_memory(static_cast<std::uint64_t>(lattice.coset_count()) *

@@ -7,11 +7,11 @@
 #include <set>
 #include <stdexcept>
 
+#include "runtime/lattice_limits.h"
+
 namespace boxgen::runtime {
 
 namespace {
-
-constexpr std::int64_t kMaxEntry = std::int64_t{1} << 20;
 
 std::int64_t det3(const IntRows& g) {
   return g[0][0] * (g[1][1] * g[2][2] - g[1][2] * g[2][1]) -
@@ -69,9 +69,9 @@ CosetLattice CosetLattice::cartesian() {
 CosetLattice CosetLattice::from_rows(const IntRows& rows) {
   for (const auto& row : rows)
     for (std::int64_t v : row)
-      if (v < -kMaxEntry || v > kMaxEntry)
+      if (v < -kMaxLatticeEntry || v > kMaxLatticeEntry)
         throw std::invalid_argument(fmt::format(
-            "lattice matrix entry {} is too large (at most {} in magnitude)", v, kMaxEntry));
+            "lattice matrix entry {} is too large (at most {} in magnitude)", v, kMaxLatticeEntry));
   const std::int64_t det = det3(rows);
   if (det == 0)
     throw std::invalid_argument("the lattice matrix is singular (its rows do not span 3-D space)");
@@ -120,7 +120,7 @@ CosetLattice CosetLattice::with_offsets(const std::vector<Offset>& offsets) cons
   std::set<int> seen;
   for (const Offset& o : offsets) {
     for (int v : o)
-      if (v < -kMaxEntry || v > kMaxEntry)
+      if (v < -kMaxLatticeEntry || v > kMaxLatticeEntry)
         throw std::invalid_argument(fmt::format("coset offset coordinate {} is too large", v));
     const int c = coset_of(o[0], o[1], o[2]);
     if (c < 0)

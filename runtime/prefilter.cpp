@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "runtime/lattice_limits.h"
 #include "support/integer_math.h"
 
 namespace boxgen::runtime {
@@ -18,16 +19,14 @@ using support::floor_div;
 
 namespace {
 
-constexpr int kMaxOffset = 1 << 20;
-
 void validate_on(const PrefilterTaps& q, const CosetLattice& lattice) {
   if (q.empty()) throw std::invalid_argument("prefilter has no taps");
   for (const auto& [o, w] : q) {
     for (int x : o)
-      if (x < -kMaxOffset || x > kMaxOffset)
+      if (x < -kMaxLatticeEntry || x > kMaxLatticeEntry)
         throw std::invalid_argument(
             fmt::format("prefilter offset ({}, {}, {}) is too far out (at most {} per coordinate)",
-                        o[0], o[1], o[2], kMaxOffset));
+                        o[0], o[1], o[2], kMaxLatticeEntry));
     if (!lattice.contains(o[0], o[1], o[2]))
       throw std::invalid_argument(
           fmt::format("prefilter offset ({}, {}, {}) is not a {} lattice vector", o[0], o[1], o[2],

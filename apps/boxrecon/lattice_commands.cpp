@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <utility>
@@ -21,6 +22,7 @@
 #include "frontend/sample_grid.h"
 #include "runtime/batch_threads.h"
 #include "runtime/gl/gl_spline.h"
+#include "runtime/lattice_grid_choice.h"
 #include "runtime/nifti_io.h"
 #include "runtime/nrrd_checks.h"
 #include "runtime/points_file.h"
@@ -295,16 +297,13 @@ LatticeGrid output_lattice_grid(const CosetLattice& lattice, const OutputGridOpt
   if (options.spacing.size() > 1)
     throw std::invalid_argument(fmt::format(
         "the {} lattice has one spacing h: give --spacing H, not three values", lattice.name()));
-  double h = 0;
-  if (options.spacing.empty()) {
-    const double n = options.n;
-    h = spacing_for_count(lattice, box, n * n * n);
-  } else {
+  std::optional<double> h;
+  if (!options.spacing.empty()) {
     h = options.spacing[0];
-    if (!(std::isfinite(h) && h > 0))
-      throw std::invalid_argument(fmt::format("--spacing must be finite and > 0, got {}", h));
+    if (!(std::isfinite(*h) && *h > 0))
+      throw std::invalid_argument(fmt::format("--spacing must be finite and > 0, got {}", *h));
   }
-  return lattice_grid_in(lattice, box, h);
+  return lattice_grid_for(lattice, box, h, options.n);
 }
 
 // A whole grid of a non-Cartesian lattice onto which the volume is resampled, with progress.

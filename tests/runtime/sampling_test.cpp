@@ -5,9 +5,13 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
+#include "runtime/lattice_grid_choice.h"
 #include "runtime/test_functions.h"
 #include "tests/support/bcc_volumes.h"
 
@@ -94,6 +98,28 @@ TEST(BccSampling, BadArgumentsAreRejected) {
   EXPECT_THROW(cube_lattice_grid(CosetLattice::bcc(), 5, -1), std::invalid_argument);
   EXPECT_THROW(cube_lattice_grid(CosetLattice::bcc(), LatticeVolume<double>::kMaxSize, 1),
                std::invalid_argument);
+}
+
+// The output grid of a lattice that no volume gives, the same for the CLI and Python: a spacing
+// is taken as it is; a count N gives about N^3 samples (here N = 10 on BCC over [0,2]^3: no
+// spacing 25% finer or coarser comes nearer 1000).
+TEST(LatticeGridFor, ASpacingOrAboutNCubedSamples) {
+  const CosetLattice bcc = CosetLattice::bcc();
+  const Box box{{0, 0, 0}, {2, 2, 2}};
+  const LatticeGrid given = lattice_grid_for(bcc, box, 0.25, 10);
+  EXPECT_EQ(given.h, 0.25);
+  const LatticeGrid counted = lattice_grid_for(bcc, box, std::nullopt, 10);
+  const std::uint64_t samples =
+      static_cast<std::uint64_t>(bcc.coset_count()) * static_cast<std::uint64_t>(counted.sizes[0]) *
+      static_cast<std::uint64_t>(counted.sizes[1]) * static_cast<std::uint64_t>(counted.sizes[2]);
+  EXPECT_EQ(samples, lattice_grid_count(bcc, box, counted.h));
+  EXPECT_GT(samples, 500u);
+  EXPECT_LT(samples, 2000u);
+  for (double other : {0.8 * counted.h, 1.25 * counted.h}) {
+    const std::int64_t off = static_cast<std::int64_t>(lattice_grid_count(bcc, box, other)) - 1000;
+    EXPECT_GE(std::abs(off), std::abs(static_cast<std::int64_t>(samples) - 1000)) << other;
+  }
+  EXPECT_THROW(lattice_grid_for(bcc, box, 0.0, 10), std::invalid_argument);
 }
 
 }  // namespace
