@@ -3,9 +3,9 @@ volume's own frame and maps world points through the inverse of its affine (runt
 so a tilted volume gives what the same function sampled on an axis-aligned grid gives. The NRRD
 headers are parsed here by hand, NIfTI files written and read by nibabel (Debian
 python3-nibabel)."""
+import os
 import re
-import struct
-import zlib
+import sys
 
 import numpy as np
 import pytest
@@ -13,6 +13,9 @@ import pytest
 from conftest import cli_error, run
 from test_oblique_affines import affine, rotation
 from test_output_frames import nrrd_affine, nrrd_header
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "../../scripts"))
+from png_agreement import read_rgb  # noqa: E402  (the project's one PNG reader in Python)
 
 nib = pytest.importorskip("nibabel")
 
@@ -56,38 +59,8 @@ def lattice_samples(path):
 
 
 def read_png(path):
-    """The pixels (height, width, 3) of an 8-bit RGB PNG, decoded here (every PNG row filter)."""
-    data = open(path, "rb").read()
-    at, idat, width, height = 8, b"", 0, 0
-    while at < len(data):
-        length, kind = struct.unpack(">I4s", data[at:at + 8])
-        body = data[at + 8:at + 8 + length]
-        if kind == b"IHDR":
-            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
-            assert (depth, colour) == (8, 2), (depth, colour)
-        elif kind == b"IDAT":
-            idat += body
-        at += 12 + length
-    raw, stride = zlib.decompress(idat), 3 * width
-    rows, previous = [], bytearray(stride)
-    for y in range(height):
-        kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        for i in range(stride):
-            left = line[i - 3] if i >= 3 else 0
-            up, corner = previous[i], previous[i - 3] if i >= 3 else 0
-            if kind == 1:
-                line[i] = (line[i] + left) & 255
-            elif kind == 2:
-                line[i] = (line[i] + up) & 255
-            elif kind == 3:
-                line[i] = (line[i] + (left + up) // 2) & 255
-            elif kind == 4:
-                p = left + up - corner
-                pa, pb, pc = abs(p - left), abs(p - up), abs(p - corner)
-                line[i] = (line[i] + (left if pa <= pb and pa <= pc else up if pb <= pc
-                                      else corner)) & 255
-        rows.append(bytes(line))
-        previous = line
+    """The pixels (height, width, 3) of a PNG boxrecon wrote."""
+    width, height, rows = read_rgb(path)
     return np.frombuffer(b"".join(rows), np.uint8).reshape(height, width, 3)
 
 
