@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "runtime/frame_box.h"
 #include "runtime/percentiles.h"
 
 namespace boxgen::runtime {
@@ -64,6 +65,20 @@ Vec3 Camera::ray(int x, int y, int width, int height) const {
 }
 
 Camera camera_for(const Box& box, const CameraView& view) {
+  if (view.frame) {  // the world's camera, its eye and axes taken into the volume's frame
+    CameraView in_world = view;
+    in_world.frame.reset();
+    const Camera w = camera_for(world_box(box, view.frame), in_world);
+    const Affine to_volume = view.frame->inverse();
+    Affine turn = to_volume;
+    turn.translation = {0, 0, 0};
+    Camera c = w;
+    c.eye = to_volume.apply(w.eye);
+    c.forward = turn.apply(w.forward);
+    c.right = turn.apply(w.right);
+    c.up = turn.apply(w.up);
+    return c;
+  }
   const bool angles = view.azimuth || view.elevation;
   if (view.closeup && (angles || view.distance))
     throw std::invalid_argument(

@@ -17,6 +17,7 @@
 #include <span>
 #include <vector>
 
+#include "runtime/affine.h"
 #include "runtime/reconstruction.h"
 #include "runtime/resample.h"
 
@@ -33,6 +34,10 @@ struct CameraView {
   std::optional<double> azimuth, elevation;  // degrees; |elevation| < 90
   std::optional<double> distance;  // from the box's centre in box diagonals, > 0; default 1.6
   bool closeup = false;            // the fixed camera of Fig. 9, close to the top rims (no angles)
+  // An oblique volume's map from its own frame (where the box and the volume lie) to world
+  // (SourceSamples::frame; a rotation): the camera is then the world's, placed for the world's
+  // box around the box's image, and given in the volume's frame.
+  std::optional<Affine> frame;
 };
 
 // A pinhole camera: the eye, its unit frame and tan(field of view / 2). The one camera of every

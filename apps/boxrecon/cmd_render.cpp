@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -21,6 +22,7 @@
 #include "frontend/sample_grid.h"
 #include "runtime/gl/gl_render.h"
 #include "runtime/nifti_io.h"
+#include "runtime/nrrd_checks.h"
 #include "runtime/prefilter.h"
 #include "runtime/render.h"
 #include "runtime/sampling.h"
@@ -63,6 +65,21 @@ void choose_from_data(const LatticeVolume<double>& volume, RenderOptions& o) {
       choice.iso, choice.p1, choice.p99);
 }
 
+// An oblique volume's frame must turn its voxel axes rigidly (orthonormal columns, to NIfTI's
+// float32 precision): the image of a sheared frame would be distorted.
+void check_rotation(const Affine& frame) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      double d = 0;
+      for (int r = 0; r < 3; ++r) d += frame.linear[r][i] * frame.linear[r][j];
+      if (std::fabs(d - (i == j ? 1.0 : 0.0)) > 1e-5)
+        throw std::invalid_argument(
+            fmt::format("'{}' has an affine that shears its voxel axes (axes {} and {} are not "
+                        "perpendicular): render takes rotated grids only; resample it first",
+                        nrrd_checks::printable(args.volume, 80), i, j));
+    }
+}
+
 // The image of the chosen filter's spline, on a volume of its own lattice.
 RgbBuffer render_volume(const SplineFilter& rf, const app::PrefilterSetting& q, RenderOptions o,
                         gl::FrameTimes* times) {
@@ -77,9 +94,21 @@ RgbBuffer render_volume(const SplineFilter& rf, const app::PrefilterSetting& q, 
                                    sizeof(double), fmt::format("--n {}", args.n), "samples");
     return sample_lattice<double>(find_test_function(args.function).value, grid);
   };
+  // An oblique volume is rendered in its own frame with the world's camera (CameraView::frame).
+  on_lattice.allow_oblique = true;
+  SourceSamples source;
   LatticeVolume<double> volume =
-      args.volume.empty() ? sampled() : read_volume_file<double>(args.volume, on_lattice);
+      args.volume.empty() ? sampled() : read_volume_file<double>(args.volume, on_lattice, &source);
   rf.check_lattice(volume.lattice());
+  if (source.frame && app::given_box(args.box))
+    throw std::invalid_argument(fmt::format(
+        "'{}' is oblique: it is rendered over its region on its own axes (the camera is the "
+        "world's), which a world box does not bound; leave out --box (--min/--max)",
+        nrrd_checks::printable(args.volume, 80)));
+  if (source.frame) {
+    check_rotation(*source.frame);
+    o.camera.frame = source.frame;
+  }
   if (!args.volume.empty()) choose_from_data(volume, o);
   volume = app::coefficients_for(std::move(volume), rf, q);
   const Box region = default_box(volume, rf);
@@ -180,7 +209,7 @@ int run_render() {
   o.height = args.height;
   o.iso = args.iso.value_or(0.5);
   o.cutaway = args.cutaway;
-  o.camera = {args.azimuth, args.elevation, args.distance, args.closeup};
+  o.camera = {args.azimuth, args.elevation, args.distance, args.closeup, std::nullopt};
   (void)camera_for(Box{{-1, -1, -1}, {1, 1, 1}}, o.camera);  // a bad camera fails before the work
   o.shading = args.shading == "curvature" ? Shading::Curvature : Shading::Normal;
   o.step = args.step;

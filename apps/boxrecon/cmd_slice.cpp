@@ -16,6 +16,7 @@
 #include "apps/boxrecon/lattice_commands.h"
 #include "frontend/filter_choice.h"
 #include "runtime/affine.h"
+#include "runtime/frame_box.h"
 #include "runtime/nifti_io.h"
 #include "runtime/nrrd_checks.h"
 #include "runtime/percentiles.h"
@@ -56,27 +57,6 @@ std::optional<float> nearest_voxel(const LatticeVolume<float>& v, const Vec3& p)
     index[a] = static_cast<int>(r);
   }
   return v(0, index[0], index[1], index[2]);
-}
-
-// The world's axis-aligned box around `box` of a volume's own frame (`frame`: its map to world;
-// nothing: the box itself).
-Box world_box(const Box& box, const std::optional<Affine>& frame) {
-  if (!frame) return box;
-  Box out{};
-  for (int a = 0; a < 3; ++a) {
-    out.min[a] = HUGE_VAL;
-    out.max[a] = -HUGE_VAL;
-  }
-  for (int corner = 0; corner < 8; ++corner) {
-    Vec3 p{};
-    for (int a = 0; a < 3; ++a) p[a] = (corner >> a & 1) != 0 ? box.max[a] : box.min[a];
-    const Vec3 w = frame->apply(p);
-    for (int a = 0; a < 3; ++a) {
-      out.min[a] = std::min(out.min[a], w[a]);
-      out.max[a] = std::max(out.max[a], w[a]);
-    }
-  }
-  return out;
 }
 
 // World points in a volume's own frame (through the inverse of `frame`, its map to world).
