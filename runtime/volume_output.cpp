@@ -41,6 +41,17 @@ Affine world_to_ras(const std::string& anatomical) {
   return Affine::diagonal(sign, {0, 0, 0});
 }
 
+// A NIfTI of a Cartesian grid whose index-to-frame map is `in_frame`, in a volume's frame
+// (`frame`: its map to world; nothing: the world itself) and anatomical frame: NIfTI's world is
+// RAS, and only a grid tied to a patient claims an anatomical qform (write_nifti).
+void write_nifti_grid(const fs::path& path, const Sizes& sizes, const Affine& in_frame,
+                      const std::optional<Affine>& frame, const std::string& anatomical,
+                      const EncodedSamples& samples) {
+  write_nifti(path, sizes,
+              world_to_ras(anatomical).after(frame ? frame->after(in_frame) : in_frame), samples,
+              !anatomical.empty());
+}
+
 }  // namespace
 
 VolumeFormat output_format(const fs::path& path) {
@@ -98,10 +109,8 @@ VolumeWrite write_volume_file(const fs::path& path, const LatticeVolume<T>& volu
     step[a] = d * volume.axis_spacing()[a];
     origin[a] = volume.origin()[a] + volume.axis_spacing()[a] * static_cast<double>(offset[a]);
   }
-  const Affine in_frame = Affine::diagonal(step, origin);
-  write_nifti(path, volume.sizes(),
-              world_to_ras(anatomical).after(frame ? frame->after(in_frame) : in_frame), samples,
-              !anatomical.empty());
+  write_nifti_grid(path, volume.sizes(), Affine::diagonal(step, origin), frame, anatomical,
+                   samples);
   return {samples.type, samples.clamped};
 }
 
@@ -120,10 +129,8 @@ VolumeWrite write_grid_file(const fs::path& path, const CartesianVolume<T>& grid
     return write_volume_file(path, volume, type, anatomical, grid.frame);
   }
   const EncodedSamples samples = encode_samples<T>(grid.values, type.value_or(SampleType::Float32));
-  const Affine in_frame = Affine::diagonal(grid.spacing, grid.origin);
-  write_nifti(path, grid.sizes,
-              world_to_ras(anatomical).after(grid.frame ? grid.frame->after(in_frame) : in_frame),
-              samples, !anatomical.empty());
+  write_nifti_grid(path, grid.sizes, Affine::diagonal(grid.spacing, grid.origin), grid.frame,
+                   anatomical, samples);
   return {samples.type, samples.clamped};
 }
 
