@@ -16,8 +16,6 @@ namespace {
 using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace): the generator's
                                       // lattices and SPECs
 
-constexpr double kPi = std::numbers::pi;
-
 DualLattice dual_of(const Lattice& l) { return DualLattice(l.generator()); }
 
 TEST(DualLattice, BasisIsTwoPiTimesInverseTranspose) {
@@ -28,7 +26,7 @@ TEST(DualLattice, BasisIsTwoPiTimesInverseTranspose) {
       double dot = 0;
       for (int r = 0; r < 3; ++r)
         dot += d.basis()[i][r] * static_cast<double>(bcc.generator()[j][r]);
-      EXPECT_NEAR(dot, i == j ? 2 * kPi : 0, 1e-12);
+      EXPECT_NEAR(dot, i == j ? 2 * std::numbers::pi : 0, 1e-12);
     }
 }
 
@@ -37,15 +35,15 @@ TEST(DualLattice, BccCellIsTheRhombicDodecahedron) {
   const VoronoiCell& c = d.cell();
   EXPECT_EQ(c.faces.size(), 12u);
   EXPECT_EQ(c.vertices.size(), 14u);
-  EXPECT_NEAR(c.volume, 2 * kPi * kPi * kPi, 1e-9);
+  EXPECT_NEAR(c.volume, 2 * std::numbers::pi * std::numbers::pi * std::numbers::pi, 1e-9);
   for (const auto& v : c.vertices) {  // every vertex on |w_i| + |w_j| <= pi with equality somewhere
     double worst = 0;
     for (int i = 0; i < 3; ++i)
       for (int j = i + 1; j < 3; ++j) worst = std::max(worst, std::abs(v[i]) + std::abs(v[j]));
-    EXPECT_NEAR(worst, kPi, 1e-9);
+    EXPECT_NEAR(worst, std::numbers::pi, 1e-9);
   }
-  EXPECT_TRUE(c.contains({kPi / 2 - 1e-6, kPi / 2 - 1e-6, 0}));
-  EXPECT_FALSE(c.contains({kPi / 2 + 1e-6, kPi / 2 + 1e-6, 0}));
+  EXPECT_TRUE(c.contains({std::numbers::pi / 2 - 1e-6, std::numbers::pi / 2 - 1e-6, 0}));
+  EXPECT_FALSE(c.contains({std::numbers::pi / 2 + 1e-6, std::numbers::pi / 2 + 1e-6, 0}));
 }
 
 TEST(DualLattice, FccCellIsTheTruncatedOctahedron) {
@@ -53,7 +51,7 @@ TEST(DualLattice, FccCellIsTheTruncatedOctahedron) {
   const VoronoiCell& c = d.cell();
   EXPECT_EQ(c.faces.size(), 14u);
   EXPECT_EQ(c.vertices.size(), 24u);
-  EXPECT_NEAR(c.volume, 4 * kPi * kPi * kPi, 1e-9);
+  EXPECT_NEAR(c.volume, 4 * std::numbers::pi * std::numbers::pi * std::numbers::pi, 1e-9);
 }
 
 TEST(DualLattice, CartesianCellsAreCubesAndSquares) {
@@ -61,11 +59,11 @@ TEST(DualLattice, CartesianCellsAreCubesAndSquares) {
   const VoronoiCell& c3 = d3.cell();
   EXPECT_EQ(c3.faces.size(), 6u);
   EXPECT_EQ(c3.vertices.size(), 8u);
-  EXPECT_NEAR(c3.volume, 8 * kPi * kPi * kPi, 1e-9);
+  EXPECT_NEAR(c3.volume, 8 * std::numbers::pi * std::numbers::pi * std::numbers::pi, 1e-9);
   const DualLattice d2 = dual_of(Lattice::cartesian(2));
   const VoronoiCell& c2 = d2.cell();
   EXPECT_EQ(c2.faces.size(), 4u);
-  EXPECT_NEAR(c2.volume, 4 * kPi * kPi, 1e-9);
+  EXPECT_NEAR(c2.volume, 4 * std::numbers::pi * std::numbers::pi, 1e-9);
 }
 
 TEST(DualLattice, HexagonalCellOfASkewPlanarLattice) {
@@ -73,22 +71,24 @@ TEST(DualLattice, HexagonalCellOfASkewPlanarLattice) {
   // lattice rotated by 45 degrees: the cell is a square of area (2 pi)^2 / 2.
   const DualLattice d(IntDirections{{1, 1}, {1, -1}});
   EXPECT_EQ(d.cell().faces.size(), 4u);
-  EXPECT_NEAR(d.cell().volume, 2 * kPi * kPi, 1e-9);
+  EXPECT_NEAR(d.cell().volume, 2 * std::numbers::pi * std::numbers::pi, 1e-9);
   // Columns (2,0), (1,2) (det 4): an oblique lattice, whose dual's cell is a hexagon of area
   // (2 pi)^2 / 4.
   const DualLattice h(IntDirections{{2, 0}, {1, 2}});
   EXPECT_EQ(h.cell().faces.size(), 6u);
-  EXPECT_NEAR(h.cell().volume, 4 * kPi * kPi / 4, 1e-9);
+  EXPECT_NEAR(h.cell().volume, 4 * std::numbers::pi * std::numbers::pi / 4, 1e-9);
 }
 
 TEST(DualLattice, NearestPointAndBoundaryGap) {
   const DualLattice d = dual_of(Lattice::bcc());
   double gap = -1;
-  const Vec k = d.nearest({2 * kPi - 0.1, 0.05, 0}, &gap);  // (2 pi, 0, 0) is a dual point
-  EXPECT_NEAR(k[0], 2 * kPi, 1e-12);
+  const Vec k =
+      d.nearest({2 * std::numbers::pi - 0.1, 0.05, 0}, &gap);  // (2 pi, 0, 0) is a dual point
+  EXPECT_NEAR(k[0], 2 * std::numbers::pi, 1e-12);
   EXPECT_NEAR(k[1], 0, 1e-12);
   EXPECT_GT(gap, 0.05);
-  d.nearest({kPi / 2, kPi / 2, 0}, &gap);  // on a face: two points equally near
+  d.nearest({std::numbers::pi / 2, std::numbers::pi / 2, 0},
+            &gap);  // on a face: two points equally near
   EXPECT_NEAR(gap, 0, 1e-12);
 }
 

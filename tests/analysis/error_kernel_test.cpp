@@ -16,8 +16,6 @@ namespace {
 using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace): the generator's
                                       // lattices and SPECs
 
-constexpr double kPi = std::numbers::pi;
-
 ErrorKernel kernel_of(const BoxSplineSpec& spec, const std::vector<int>& shells) {
   return ErrorKernel(
       BoxSplineSpectrum(spec.directions), static_cast<double>(spec.lattice.det_abs()),
@@ -35,7 +33,7 @@ TEST(ErrorKernel, DtftOfTheExactAutocorrelationEqualsTheTruncatedDualLatticeSum)
     for (const Vec& w : {Vec{0.3, 0.1, -0.2}, Vec{1.0, 1.0, 1.0}, Vec{2.5, 0.0, 0.4}}) {
       const long double exact = e.aliasing_sum(w);
       const long double direct =
-          aliasing_sum_direct(BoxSplineSpectrum(spec.directions), dual, w, 40 * kPi);
+          aliasing_sum_direct(BoxSplineSpectrum(spec.directions), dual, w, 40 * std::numbers::pi);
       // The truncated sum misses a positive tail, which bounds the difference from above.
       EXPECT_NEAR(static_cast<double>(direct), static_cast<double>(exact),
                   2e-6 * static_cast<double>(exact))
@@ -71,7 +69,7 @@ TEST(ErrorKernel, VanishesAtZeroAndNeverFallsBelowTheMinimum) {
   const BoxSplineSpec spec = parse_spec("m7");
   const ErrorKernel e = kernel_of(spec, {0, 1, 2});
   EXPECT_NEAR(static_cast<double>(e({0, 0, 0})), 0, 1e-15);
-  for (double w = 0.05; w < kPi; w += 0.05) {
+  for (double w = 0.05; w < std::numbers::pi; w += 0.05) {
     const Vec p{w, 0.7 * w, -0.3 * w};
     EXPECT_GE(e(p), e.minimum(p) - 1e-15L);
     EXPECT_GE(e.minimum(p), -1e-15L);
@@ -87,7 +85,7 @@ TEST(ErrorKernel, PapersOrderingsHoldOnTheBandOfFig13) {
        {std::vector<int>{}, std::vector<int>{0, 1}, std::vector<int>{0, 1, 2}}) {
     const ErrorKernel e7 = kernel_of(m7, shells), e8 = kernel_of(m8, shells),
                       e12 = kernel_of(m12, shells);
-    for (double w = 0.05; w <= kPi / 2; w += 0.05) {
+    for (double w = 0.05; w <= std::numbers::pi / 2; w += 0.05) {
       EXPECT_LT(e7(along(d, w)), e8(along(d, w))) << "w " << w << " shells " << shells.size();
       if (shells.empty()) {
         EXPECT_LT(e12.minimum(along(d, w)), e8.minimum(along(d, w))) << w;
@@ -125,7 +123,7 @@ TEST(ErrorKernel, InterpolationFallsLikeW8AndNeverBelowTheMinimum) {
   for (const char* preset : {"m8", "tricubic"}) {
     const ErrorKernel e = interpolation_kernel_of(parse_spec(preset));
     EXPECT_NEAR(slope(e, 0.08), 8.0, 0.1) << preset;  // at 0.02 E is below long double's floor
-    for (double w = 0.05; w < kPi; w += 0.05) {
+    for (double w = 0.05; w < std::numbers::pi; w += 0.05) {
       const Vec p{w, 0.7 * w, -0.3 * w};
       EXPECT_GE(e(p), e.minimum(p) - 1e-15L) << preset << " " << w;
     }

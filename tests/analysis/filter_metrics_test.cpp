@@ -15,8 +15,6 @@ namespace {
 using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace): the generator's
                                       // lattices and SPECs
 
-constexpr double kPi = std::numbers::pi;
-
 FilterMetrics metrics_of(const std::string& preset) {
   const BoxSplineSpec spec = parse_spec(preset);
   return filter_metrics(BoxSplineSpectrum(spec.directions), DualLattice(spec.lattice.generator()),
@@ -49,13 +47,15 @@ TEST(FilterMetrics, TricubicOnTheCubeFactorsIntoOneDimensionalIntegrals) {
   const int pieces = 8;
   for (int p = 0; p < pieces; ++p)
     for (std::size_t k = 0; k < g.nodes.size(); ++k) {
-      const double t = -kPi + 2 * kPi * (p + g.nodes[k]) / pieces;
-      one_d += 2 * kPi / pieces * g.weights[k] * std::pow(std::sin(t / 2) / (t / 2), 8);
+      const double t = -std::numbers::pi + 2 * std::numbers::pi * (p + g.nodes[k]) / pieces;
+      one_d +=
+          2 * std::numbers::pi / pieces * g.weights[k] * std::pow(std::sin(t / 2) / (t / 2), 8);
     }
-  const double volume = std::pow(2 * kPi, 3);
+  const double volume = std::pow(2 * std::numbers::pi, 3);
   const double expected_s = 1 - std::pow(one_d, 3) / volume;
   const double expected_p =
-      (std::pow(2 * kPi, 3) * std::pow(151.0 / 315.0, 3) - std::pow(one_d, 3)) / volume;
+      (std::pow(2 * std::numbers::pi, 3) * std::pow(151.0 / 315.0, 3) - std::pow(one_d, 3)) /
+      volume;
   const FilterMetrics m = metrics_of("tricubic");
   EXPECT_NEAR(m.smoothing, expected_s, 1e-12);
   EXPECT_NEAR(m.postaliasing, expected_p, 1e-12);
@@ -69,7 +69,7 @@ TEST(FilterMetrics, PostaliasingByParsevalEqualsTheSumOverReplicas) {
   const BoxSplineSpectrum psi(spec.directions);
   const DualLattice dual(spec.lattice.generator());
   double replicas = 0;
-  for (const Vec& k : dual.points_within(6 * kPi)) {
+  for (const Vec& k : dual.points_within(6 * std::numbers::pi)) {
     if (k[0] == 0 && k[1] == 0 && k[2] == 0) continue;
     replicas += integrate_iterated(
         dual.cell(),

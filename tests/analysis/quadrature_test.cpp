@@ -16,8 +16,6 @@ namespace {
 using namespace ::boxgen::generator;  // NOLINT(google-build-using-namespace): the generator's
                                       // lattices and SPECs
 
-constexpr double kPi = std::numbers::pi;
-
 TEST(GaussLegendre, IntegratesPolynomialsOfDegreeBelowTwiceTheOrderExactly) {
   for (int order : {1, 2, 5, 16, 40}) {
     const GaussRule g = gauss_legendre(order);
@@ -37,10 +35,11 @@ TEST(CellQuadrature, VolumeAndSecondMomentOfTheRhombicDodecahedron) {
   // (pi - x)^2 - (pi - 2x)^2 / 2 = pi^2/2 - x^2 for x <= pi/2 and (pi - x)^2 beyond, so the octant
   // gives pi^5 (7/480 + 1/60) = pi^5 / 32 and the cell pi^5 / 4 (the same slices give the
   // volume 2 pi^3).
-  const double exact_moment = std::pow(kPi, 5) / 4;
+  const double exact_moment = std::pow(std::numbers::pi, 5) / 4;
   for (int order : {4, 8}) {
-    EXPECT_NEAR(integrate_iterated(d.cell(), one, order), 2 * std::pow(kPi, 3), 1e-10);
-    EXPECT_NEAR(integrate_simplex_fan(d.cell(), one, order), 2 * std::pow(kPi, 3), 1e-10);
+    EXPECT_NEAR(integrate_iterated(d.cell(), one, order), 2 * std::pow(std::numbers::pi, 3), 1e-10);
+    EXPECT_NEAR(integrate_simplex_fan(d.cell(), one, order), 2 * std::pow(std::numbers::pi, 3),
+                1e-10);
     EXPECT_NEAR(integrate_iterated(d.cell(), x2, order), exact_moment, 1e-9);
     EXPECT_NEAR(integrate_simplex_fan(d.cell(), x2, order), exact_moment, 1e-9);
   }
@@ -52,7 +51,8 @@ TEST(CellQuadrature, SmoothIntegrandOnTheCubeConvergesToTheClosedForm) {
   const Integrand f = [](const Vec& w) {
     return std::cos(w[0] / 2) * std::cos(w[1] / 3) * std::exp(w[2] / 4);
   };
-  const double exact = 4 * (6 * std::sin(kPi / 3)) * (4 * (std::exp(kPi / 4) - std::exp(-kPi / 4)));
+  const double exact = 4 * (6 * std::sin(std::numbers::pi / 3)) *
+                       (4 * (std::exp(std::numbers::pi / 4) - std::exp(-std::numbers::pi / 4)));
   EXPECT_NEAR(integrate_iterated(d.cell(), f, 12), exact, 1e-11 * exact);
   EXPECT_NEAR(integrate_simplex_fan(d.cell(), f, 16), exact, 1e-11 * exact);
 }
@@ -60,8 +60,8 @@ TEST(CellQuadrature, SmoothIntegrandOnTheCubeConvergesToTheClosedForm) {
 TEST(CellQuadrature, PlanarCells) {
   const DualLattice d(IntDirections{{2, 0}, {1, 2}});  // hexagonal cell, area pi^2
   const Integrand one = [](const Vec&) { return 1.0; };
-  EXPECT_NEAR(integrate_iterated(d.cell(), one, 3), kPi * kPi, 1e-11);
-  EXPECT_NEAR(integrate_simplex_fan(d.cell(), one, 3), kPi * kPi, 1e-11);
+  EXPECT_NEAR(integrate_iterated(d.cell(), one, 3), std::numbers::pi * std::numbers::pi, 1e-11);
+  EXPECT_NEAR(integrate_simplex_fan(d.cell(), one, 3), std::numbers::pi * std::numbers::pi, 1e-11);
 }
 
 }  // namespace

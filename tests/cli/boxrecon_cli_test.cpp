@@ -33,25 +33,6 @@ namespace {
 namespace fs = std::filesystem;
 using Point = std::array<double, 3>;
 
-std::string boxrecon_ok(const std::vector<std::string>& args) {
-  const ProcessResult r = boxrecon(args);
-  EXPECT_TRUE(r.exited && r.exit_code == 0 && !r.timed_out) << describe(args, r);
-  EXPECT_EQ(r.err, "") << describe(args, r);
-  return r.out;
-}
-
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void write_bytes(const fs::path& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
-
 // The header of a BCC volume written by hand (not by boxrecon): 2 x n^3 doubles, h = 0.5, origin 0.
 std::string hand_written_header(int n, bool with_lattice_key, const std::string& encoding = "raw") {
   std::string text = "NRRD0004\ntype: double\ndimension: 4\nspace dimension: 3\n";

@@ -21,11 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void write_bytes(const fs::path& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
-
 // The header of a BCC volume of 2 x n^3 little-endian doubles, h = 1/2 (coset cells of 1),
 // origin 0, and `extra` key/value lines.
 std::string bcc_header(std::size_t n, const std::string& extra = "") {

@@ -28,18 +28,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void write_bytes(const fs::path& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
-
 class BoxreconFiles : public ScratchDirectoryTest {
  protected:
   BoxreconFiles() : ScratchDirectoryTest("boxrecon-files") {}
@@ -342,8 +330,6 @@ std::vector<double> data_of(const std::string& text) {
   return values;
 }
 
-double cubic(double x, double y, double z) { return x * x * x - 2 * x * y * z + 3 * y * y - z + 1; }
-
 TEST_F(BoxreconFiles, SampleOnEveryLattice) {
   // --lattice bcc is the default, byte for byte.
   ok({"sample", "--function", "cubic", "--n", "4", "-o", file("default.nrrd")});
@@ -381,7 +367,7 @@ TEST_F(BoxreconFiles, SampleOnEveryLattice) {
       const double x = -3 + h * (c.d * static_cast<double>(i) + off[0]);
       const double y = -3 + h * (c.d * static_cast<double>(j) + off[1]);
       const double z = -3 + h * (c.d * static_cast<double>(l) + off[2]);
-      EXPECT_NEAR(values[s], cubic(x, y, z), 1e-12 * (1 + std::abs(cubic(x, y, z)))) << s;
+      EXPECT_NEAR(values[s], cubic({x, y, z}), 1e-12 * (1 + std::abs(cubic({x, y, z})))) << s;
     }
   }
   // A BCC filter on the FCC volume is one error naming both lattices.

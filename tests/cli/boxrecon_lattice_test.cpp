@@ -37,13 +37,6 @@ struct OffBccFilter {
 constexpr OffBccFilter kFilters[] = {
     {"fcc6", "fcc", 3}, {"tricubic", "cartesian", 4}, {"cart7", "cartesian", 4}};
 
-std::string boxrecon_ok(const std::vector<std::string>& args) {
-  const ProcessResult r = boxrecon(args);
-  EXPECT_TRUE(r.exited && r.exit_code == 0 && !r.timed_out) << describe(args, r);
-  EXPECT_EQ(r.err, "") << describe(args, r);
-  return r.out;
-}
-
 std::vector<std::vector<double>> numbers_per_line(const std::string& out) {
   std::vector<std::vector<double>> lines;
   std::istringstream in(out);
@@ -56,13 +49,6 @@ std::vector<std::vector<double>> numbers_per_line(const std::string& out) {
     lines.push_back(values);
   }
   return lines;
-}
-
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 class BoxreconLattices : public test::ScratchDirectoryTest {

@@ -13,6 +13,8 @@
 #include <cctype>
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <optional>
 #include <regex>
 #include <sstream>
@@ -94,6 +96,27 @@ inline std::string boxgen_ok(const std::vector<std::string>& args) {
   EXPECT_TRUE(r.exited && r.exit_code == 0 && !r.timed_out) << describe(args, r);
   EXPECT_EQ(r.err, "") << describe(args, r);
   return r.out;
+}
+
+// The same for boxrecon.
+inline std::string boxrecon_ok(const std::vector<std::string>& args) {
+  const ProcessResult r = boxrecon(args);
+  EXPECT_TRUE(r.exited && r.exit_code == 0 && !r.timed_out) << describe(args, r);
+  EXPECT_EQ(r.err, "") << describe(args, r);
+  return r.out;
+}
+
+// A whole file's bytes, and a file written from bytes (volumes and images the tests inspect or
+// plant by hand).
+inline std::string read_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+inline void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
 // Runs a command that must succeed and print one JSON document.

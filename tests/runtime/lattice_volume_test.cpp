@@ -20,6 +20,7 @@
 #include "runtime/sampling.h"
 #include "tests/support/bcc_volumes.h"
 #include "tests/support/scratch_directory.h"
+#include "tests/support/volume_expectations.h"
 
 namespace boxgen::runtime {
 namespace {
@@ -378,16 +379,7 @@ LatticeVolume<T> random_volume(const CosetLattice& lattice, Sizes sizes, unsigne
   return v;
 }
 
-template <class T>
-void expect_identical(const LatticeVolume<T>& a, const LatticeVolume<T>& b) {
-  EXPECT_EQ(a.lattice(), b.lattice());
-  EXPECT_EQ(a.lattice().name(), b.lattice().name());
-  EXPECT_EQ(a.sizes(), b.sizes());
-  EXPECT_EQ(a.spacing(), b.spacing());
-  EXPECT_EQ(a.origin(), b.origin());
-  ASSERT_EQ(a.sample_count(), b.sample_count());
-  EXPECT_EQ(std::memcmp(a.samples().data(), b.samples().data(), a.samples().size_bytes()), 0);
-}
+using test::expect_identical;
 
 std::string key(const Nrrd* nrrd, const char* name) {
   char* v = nrrdKeyValueGet(nrrd, name);

@@ -2,6 +2,7 @@
 // files, and every kind of bad file giving one clear error (never a crash: these run under ASan).
 #include "runtime/nrrd_io.h"
 #include "tests/support/scratch_directory.h"
+#include "tests/support/volume_expectations.h"
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -78,14 +79,7 @@ LatticeVolume<T> random_volume(Sizes sizes, double h, Vec3 origin, unsigned seed
   return v;
 }
 
-template <class T>
-void expect_identical(const LatticeVolume<T>& a, const LatticeVolume<T>& b) {
-  EXPECT_EQ(a.sizes(), b.sizes());
-  EXPECT_EQ(a.spacing(), b.spacing());
-  EXPECT_EQ(a.origin(), b.origin());
-  ASSERT_EQ(a.sample_count(), b.sample_count());
-  EXPECT_EQ(std::memcmp(a.samples().data(), b.samples().data(), a.samples().size_bytes()), 0);
-}
+using test::expect_identical;
 
 // Teem's own view of a file.
 struct TeemNrrd {

@@ -14,8 +14,6 @@
 namespace boxgen::runtime {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // A point at distance r from the z axis (any angle) and height z.
 Vec3 at_radius(double r, double angle, double z) {
   return {r * std::cos(angle), r * std::sin(angle), z};
@@ -36,13 +34,13 @@ TEST(TestFunction, MarschnerLobbValuesWorkedByHand) {
   EXPECT_NEAR(marschner_lobb({0, -1, 0}), 0.6, tol);
   // u = 1/24: cos(pi/2) = 0, a (1 + 0) = 0.25; z = -1/3: sin(-pi/6) = -1/2: (1.5 + 0.25) / 2.5 =
   // 0.7.
-  const double r24 = 2 / kPi * std::acos(1.0 / 24);
+  const double r24 = 2 / std::numbers::pi * std::acos(1.0 / 24);
   EXPECT_NEAR(marschner_lobb(at_radius(r24, 0.7, -1.0 / 3)), 0.7, tol);
   // u = 1/36: cos(pi/3) = 1/2, a * 1.5 = 0.375; z = 1/3: (1 - 0.5 + 0.375) / 2.5 = 0.35.
-  const double r36 = 2 / kPi * std::acos(1.0 / 36);
+  const double r36 = 2 / std::numbers::pi * std::acos(1.0 / 36);
   EXPECT_NEAR(marschner_lobb(at_radius(r36, 2.1, 1.0 / 3)), 0.35, tol);
   // u = 1/12: cos(pi) = -1, radial term 0; z = 0: 1 / 2.5 = 0.4.
-  const double r12 = 2 / kPi * std::acos(1.0 / 12);
+  const double r12 = 2 / std::numbers::pi * std::acos(1.0 / 12);
   EXPECT_NEAR(marschner_lobb(at_radius(r12, -1.3, 0)), 0.4, tol);
   EXPECT_EQ(kMarschnerLobbFrequency, 6.0);
   EXPECT_EQ(kMarschnerLobbAlpha, 0.25);
