@@ -6,12 +6,15 @@
 //   locate: locate and the stencil addresses only (no gather, no polynomial);
 //   prefetched: an experiment, not the library's kernel: `full` after prefetching the stencil
 //           samples of the NEXT chunk's points (located once more for that), every sample or
-//           every N-th with `prefetch=N`, so that their memory latency overlaps this chunk's work.
+//           every N-th with `prefetch=N`, so that their memory latency overlaps this chunk's work;
+//   pipelined: the same experiment with each chunk located once (the lanes carried from one call
+//           to the next); with `prefetch=lines` only where a sample's cache line differs from the
+//           previous sample's. Both give `full`'s values bit for bit (checked before timing).
 // Each stage is a simd::Kernels chunk function passed to EmittedSpline, so all run through
 // the same batch loop; all are compiled here for this machine alone (-march=native, as
 // loader/ compiles a filter's kernels). The stages and filters alternate, round after round, and
 // the minimum and median over the rounds are printed:
-//   build/bench/bench_kernel_stages [double] [side=32] [rounds=30] [prefetch=1]
+//   build/bench/bench_kernel_stages [double] [side=32] [rounds=30] [prefetch=1|N|lines]
 #define HWY_COMPILE_ONLY_STATIC 1
 #include <hwy/highway.h>
 
@@ -20,6 +23,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <exception>
 #include <random>
 #include <span>
 #include <string>
@@ -115,7 +119,8 @@ template <class Tr, class T, int... K>
     for (auto& a : st.axis) a = hn::IfThenElseZero(m, a);
     alignas(64) I index[sizeof...(K)][hn::MaxLanes(di)];
     ((hn::Store(kernels::sample_index<Tr, 0, K>(st.first, st.axis, st.flip), di, index[K])), ...);
-    for (std::size_t k = 0; k < sizeof...(K); k += static_cast<std::size_t>(prefetch_every))
+    for (std::size_t k = 0; k < sizeof...(K);
+         k += static_cast<std::size_t>(std::max(1, prefetch_every)))
       for (std::size_t lane = 0; lane < hn::Lanes(di); ++lane)
         prefetch_line(volume.samples + index[k][lane]);
   }
@@ -128,6 +133,96 @@ void prefetched_chunk(int order, const double* points, const simd::Frame& frame,
   prefetch_next<Tr>(points + std::ptrdiff_t{3} * simd::kChunk, frame, volume,
                     std::make_integer_sequence<int, Tr::kOrbitStencilSize[0]>{});
   value_chunk<Tr, T>(order, points, frame, volume, out);
+}
+
+// The `pipelined` stage: each chunk located once. A call evaluates its chunk from the lanes the
+// previous call located (when that call's next chunk is this one), then locates the next chunk
+// and prefetches its stencil samples (every prefetch_every-th) before evaluating its own.
+template <class Tr, class T>
+struct Carried {
+  using D = typename kernels::Pack<T>::D;
+  using V = hn::Vec<hn::RebindToSigned<D>>;
+  static constexpr int kVectors = simd::kChunk / static_cast<int>(hn::MaxLanes(D()));
+  const double* points = nullptr;
+  kernels::LocatedPack<Tr, T> l[kVectors];
+  kernels::LaneStencil<V> st[kVectors];
+};
+template <class Tr, class T>
+thread_local Carried<Tr, T> carried;
+
+template <class Tr, class T, int... K>
+[[gnu::flatten]] HWY_ATTR void locate_into(const double* points, const simd::Frame& frame,
+                                           const simd::LinearVolume<T>& volume, Carried<Tr, T>& c,
+                                           bool prefetch,
+                                           std::integer_sequence<int, K...> /*samples*/) {
+  constexpr int kRow = simd::kChunk;
+  const typename kernels::Pack<T>::D d;
+  const hn::RebindToSigned<decltype(d)> di;
+  using I = hn::TFromD<decltype(di)>;
+  alignas(64) T x[3 * kRow];
+  alignas(64) T near[kRow];
+  kernels::lattice_lanes(points, frame, x, near);
+  for (int v = 0; v < Carried<Tr, T>::kVectors; ++v) {
+    const int at = v * static_cast<int>(hn::Lanes(d));
+    c.l[v] = kernels::locate_pack<Tr>(x, near, at, frame);
+    c.st[v] = kernels::lane_stencil<Tr>(c.l[v], volume);
+    if (!prefetch) continue;
+    const auto m = hn::RebindMask(di, c.l[v].ok);
+    typename Carried<Tr, T>::V axis[3];
+    for (int i = 0; i < 3; ++i) axis[i] = hn::IfThenElseZero(m, c.st[v].axis[i]);
+    const auto first = hn::IfThenElseZero(m, c.st[v].first);
+    const auto flip = hn::IfThenElseZero(m, c.st[v].flip);
+    if (prefetch_every == 0) {
+      // One prefetch per change of cache line from the previous sample (per lane): the samples
+      // whose line differs, compressed into one list.
+      constexpr int kShift = sizeof(T) == 4 ? 4 : 3;  // sample index -> 64-byte line
+      alignas(64) I wanted[sizeof...(K) * hn::MaxLanes(di)];
+      std::size_t count = 0;
+      auto previous = hn::Set(di, I{-1});
+      (
+          [&]() HWY_ATTR {
+            const auto index = kernels::sample_index<Tr, 0, K>(first, axis, flip);
+            const auto line = hn::ShiftRight<kShift>(index);
+            count += hn::CompressStore(index, hn::Ne(line, previous), di, wanted + count);
+            previous = line;
+          }(),
+          ...);
+      for (std::size_t i = 0; i < count; ++i) prefetch_line(volume.samples + wanted[i]);
+      continue;
+    }
+    alignas(64) I index[sizeof...(K)][hn::MaxLanes(di)];
+    ((hn::Store(kernels::sample_index<Tr, 0, K>(first, axis, flip), di, index[K])), ...);
+    for (std::size_t k = 0; k < sizeof...(K); k += static_cast<std::size_t>(prefetch_every))
+      for (std::size_t lane = 0; lane < hn::Lanes(di); ++lane)
+        prefetch_line(volume.samples + index[k][lane]);
+  }
+  c.points = points;
+}
+
+template <class Tr, class T>
+[[gnu::flatten]] HWY_ATTR void pipelined_chunk(int /*order*/, const double* points,
+                                               const simd::Frame& frame,
+                                               const simd::LinearVolume<T>& volume, T* out) {
+  static_assert(Tr::kOrbitCount == 1, "the prefetch takes orbit 0's stencil");
+  constexpr int kRow = simd::kChunk;
+  constexpr auto kSamples = std::make_integer_sequence<int, Tr::kOrbitStencilSize[0]>{};
+  using P = kernels::Pack<T>;
+  const typename P::D d;
+  Carried<Tr, T>& c = carried<Tr, T>;
+  if (c.points != points) locate_into<Tr>(points, frame, volume, c, false, kSamples);
+  const Carried<Tr, T> now = c;
+  locate_into<Tr>(points + std::ptrdiff_t{3} * kRow, frame, volume, c, true, kSamples);
+  for (int v = 0; v < Carried<Tr, T>::kVectors; ++v) {
+    const int at = v * static_cast<int>(hn::Lanes(d));
+    P value(0.0);
+    P derivatives[1] = {P(0.0)};
+    kernels::evaluate_orbit<Tr, support::kValue, 0>(volume, frame, now.l[v], now.l[v].ok, now.st[v],
+                                                    value, derivatives);
+    hn::StoreU(value.v, d, out + at);
+    hn::StoreU(now.l[v].cell.v, d, out + simd::kChunkCellRow * kRow + at);
+    hn::StoreU(hn::IfThenElseZero(now.l[v].ok, hn::Set(d, T(1))), d,
+               out + simd::kChunkOkRow * kRow + at);
+  }
 }
 
 template <class T>
@@ -152,16 +247,25 @@ class Stages {
               &value_chunk<StencilSum<Tr>, double>);
     set_chunk(kernels_[2], &locate_chunk<Tr, float>, &locate_chunk<Tr, double>);
     set_chunk(kernels_[3], &prefetched_chunk<Tr, float>, &prefetched_chunk<Tr, double>);
+    set_chunk(kernels_[4], &pipelined_chunk<Tr, float>, &pipelined_chunk<Tr, double>);
     values_.resize(points.size());
   }
 
-  // Thread CPU ns per point of stage s (0 full, 1 fetch, 2 locate, 3 prefetched).
+  // Thread CPU ns per point of stage s (0 full, 1 fetch, 2 locate, 3 prefetched, 4 pipelined).
   double run(int s) {
     using Spline = rt::EmittedSpline<Tr, rt::BccStencils<Tr, T, std::int32_t>>;
     const Spline spline(rt::BccStencils<Tr, T, std::int32_t>(volume_), -1, &kernels_[s]);
     const double t0 = thread_ns<T>();
     spline.batch(points_, values_, {}, {});
     return (thread_ns<T>() - t0) / static_cast<double>(points_.size());
+  }
+
+  // Whether stages a and b give the same values, bit for bit.
+  bool same_values(int a, int b) {
+    run(a);
+    const std::vector<T> first = values_;
+    run(b);
+    return first == values_;
   }
 
  private:
@@ -174,7 +278,7 @@ class Stages {
   rt::LatticeVolume<T> volume_;
   std::span<const rt::Vec3> points_;
   std::vector<T> values_;
-  simd::Kernels kernels_[4];
+  simd::Kernels kernels_[5];
 };
 
 template <class T>
@@ -186,17 +290,22 @@ void run_all(int side, int rounds) {
   const std::span<const rt::Vec3> points(padded.data(), 200000);
   Stages<boxgen::generated::m7::Traits, T> m7(0, side, points);
   Stages<boxgen::generated::m8::Traits, T> m8(1, side, points);
-  std::vector<double> times[2][4];
+  if (!m7.same_values(0, 3) || !m7.same_values(0, 4) || !m8.same_values(0, 3) ||
+      !m8.same_values(0, 4)) {
+    std::fprintf(stderr, "bench_kernel_stages: an experimental stage changed the values\n");
+    std::exit(1);
+  }
+  std::vector<double> times[2][5];
   for (int r = 0; r < rounds; ++r)
-    for (int s = 0; s < 4; ++s) {
+    for (int s = 0; s < 5; ++s) {
       times[0][s].push_back(m7.run(s));
       times[1][s].push_back(m8.run(s));
     }
-  const char* names[4] = {"full", "fetch", "locate", "prefetched"};
-  double least[2][4];
+  const char* names[5] = {"full", "fetch", "locate", "prefetched", "pipelined"};
+  double least[2][5];
   std::printf("%s, %d^3 x 2, %d rounds: ns per point, minimum (median)\n",
               sizeof(T) == 4 ? "float" : "double", side, rounds);
-  for (int s = 0; s < 4; ++s) {
+  for (int s = 0; s < 5; ++s) {
     double median[2];
     for (int f = 0; f < 2; ++f) {
       std::sort(times[f][s].begin(), times[f][s].end());
@@ -223,7 +332,8 @@ int main(int argc, char** argv) {
     } else if (arg.rfind("side=", 0) == 0) {
       side = std::atoi(argv[a] + 5);
     } else if (arg.rfind("prefetch=", 0) == 0) {
-      prefetch_every = std::max(1, std::atoi(argv[a] + 9));
+      // prefetch=lines: one per change of line (the `pipelined` stage; `prefetched` takes all).
+      prefetch_every = arg == "prefetch=lines" ? 0 : std::max(1, std::atoi(argv[a] + 9));
     } else if (arg.rfind("rounds=", 0) == 0) {
       rounds = std::atoi(argv[a] + 7);
     } else {
@@ -237,9 +347,14 @@ int main(int argc, char** argv) {
     return 2;
   }
   rt::set_batch_threads(1);
-  if (in_double)
-    run_all<double>(side, rounds);
-  else
-    run_all<float>(side, rounds);
+  try {
+    if (in_double)
+      run_all<double>(side, rounds);
+    else
+      run_all<float>(side, rounds);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_kernel_stages: %s\n", e.what());
+    return 1;
+  }
   return 0;
 }

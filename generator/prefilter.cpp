@@ -439,6 +439,7 @@ Prefilter derive_fir_prefilter(const BoxSplineSpec& spec, int last_shell,
   problem.order = order;
   for (const auto& s : samples) problem.samples.push_back({s.point, s.value});
   problem.groups = par.groups;
+  problem.smoothing = support::kQfirSmoothing;
   const auto weights = support::solve_fir_prefilter(problem);
   if (!weights) {
     const int least = quasi_interpolation_shells(spec, 1).back();

@@ -55,10 +55,10 @@ std::vector<int> quasi_interpolation_shells(const BoxSplineSpec& spec, int which
 // qfir:K, the FIR interpolation prefilter on the shells 0..last_shell (docs/design.md §18,
 // support/fir_prefilter.hpp): of the prefilters there that keep the approximation order, the one
 // whose spline comes closest to the samples (least squares of the residual at the samples of a
-// unit impulse), exactly. `samples`: lattice_samples(spec). One weight per orbit of the symmetry
-// group (the minimiser is unique, hence symmetric). Throws InputError (one line) for a shell out
-// of range or when no prefilter of full order exists on those shells, naming the least K that has
-// one.
+// unit impulse, smoothed twice by M: the |A|^4-weighted error), exactly. `samples`:
+// lattice_samples(spec). One weight per orbit of the symmetry group (the minimiser is unique, hence
+// symmetric). Throws InputError (one line) for a shell out of range or when no prefilter of full
+// order exists on those shells, naming the least K that has one.
 Prefilter derive_fir_prefilter(const BoxSplineSpec& spec, int last_shell,
                                const std::vector<LatticeSample>& samples);
 

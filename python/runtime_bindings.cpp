@@ -55,10 +55,14 @@ using Samples = rt::LatticeVolume<double>;
 // slices), the map from its own frame to world (SourceSamples::frame, as boxrecon keeps it): the
 // samples lie on the axes of that frame, world points map through its inverse and derivatives
 // back through its linear part (rt::derivatives_to_world). Nothing for an axis-aligned volume.
+// `anatomical`: the patient's frame of its world (SourceSamples::anatomical: "RAS", "LAS", "LPS";
+// "" for none), which write_volume passes on as boxrecon's outputs do (NIfTI: mapped to RAS).
 struct Volume : Samples {
   std::optional<rt::Affine> frame;
-  explicit Volume(Samples&& samples, std::optional<rt::Affine> to_world = std::nullopt)
-      : Samples(std::move(samples)), frame(to_world) {}
+  std::string anatomical;
+  explicit Volume(Samples&& samples, std::optional<rt::Affine> to_world = std::nullopt,
+                  std::string world = {})
+      : Samples(std::move(samples)), frame(to_world), anatomical(std::move(world)) {}
 };
 using VolumePtr = std::shared_ptr<Volume>;
 
@@ -313,6 +317,15 @@ VolumePtr make_volume(const py::handle& samples, const std::string& lattice_text
   }
   return std::make_shared<Volume>(Samples(lattice, sizes, steps, corner, std::move(storage)),
                                   frame);
+}
+
+// Volume(anatomical=): None, or the letters of a patient's frame boxrecon writes.
+std::string anatomical_arg(const std::optional<std::string>& letters) {
+  if (!letters) return {};
+  if (*letters != "RAS" && *letters != "LAS" && *letters != "LPS")
+    throw py::value_error(fmt::format("anatomical must be 'RAS', 'LAS', 'LPS' or None, got '{}'",
+                                      rt::nrrd_checks::printable(*letters, 16)));
+  return *letters;
 }
 
 py::tuple spacings_of(const Volume& v) {
@@ -658,7 +671,8 @@ VolumePtr resample_onto_lattice(const VolumePtr& volume, const Filter& f,
                                      lattice.coset_count(), n[0], n[1], n[2], name),
                          "values");
   py::gil_scoped_release release;
-  return std::make_shared<Volume>(rt::resample_to_lattice(*v, f.filter, *grid));
+  return std::make_shared<Volume>(rt::resample_to_lattice(*v, f.filter, *grid), std::nullopt,
+                                  volume->anatomical);
 }
 
 py::tuple box_tuple(const rt::Box& b) {
@@ -679,16 +693,19 @@ void bind_volume(py::module_& m) {
       .def(py::init([](const py::handle& samples, const std::string& lattice,
                        const py::handle& spacing, const py::handle& origin,
                        const std::optional<std::vector<std::array<int, 3>>>& offsets,
-                       const py::handle& affine) {
-             if (affine.is_none())
-               return make_volume(samples, lattice, spacing.is_none() ? py::float_(1.0) : spacing,
-                                  origin.is_none() ? py::make_tuple(0, 0, 0) : origin, offsets,
-                                  affine);
-             return make_volume(samples, lattice, spacing, origin, offsets, affine);
+                       const py::handle& affine, const std::optional<std::string>& anatomical) {
+             VolumePtr v =
+                 affine.is_none()
+                     ? make_volume(samples, lattice, spacing.is_none() ? py::float_(1.0) : spacing,
+                                   origin.is_none() ? py::make_tuple(0, 0, 0) : origin, offsets,
+                                   affine)
+                     : make_volume(samples, lattice, spacing, origin, offsets, affine);
+             v->anatomical = anatomical_arg(anatomical);
+             return v;
            }),
            py::arg("samples"), py::arg("lattice") = "bcc", py::arg("spacing") = py::none(),
            py::arg("origin") = py::none(), py::arg("coset_offsets") = py::none(),
-           py::arg("affine") = py::none())
+           py::arg("affine") = py::none(), py::arg("anatomical") = py::none())
       .def_property_readonly(
           "samples",
           [](const py::object& self) {
@@ -730,6 +747,14 @@ void bind_volume(py::module_& m) {
           "None for an axis-aligned volume; for an oblique one the 4 x 4 map from its own frame "
           "(where its samples lie on the axes: positions origin + spacings * (i, j, k), and "
           "default_box and evaluable_region lie) to world")
+      .def_property_readonly(
+          "anatomical",
+          [](const Volume& v) {
+            return v.anatomical.empty() ? py::object(py::none()) : py::object(py::str(v.anatomical));
+          },
+          "The patient's frame of the world: 'RAS' (+x right, +y anterior, +z superior: NIfTI, "
+          "a NRRD in right-anterior-superior), 'LAS', 'LPS' (DICOM's, a NRRD in "
+          "left-posterior-superior), or None for a world tied to no patient")
       .def_property_readonly("origin",
                              [](const Volume& v) {
                                const rt::Vec3 o = affine_of(v).translation;
@@ -759,12 +784,13 @@ void bind_volume(py::module_& m) {
             const rt::Vec3& o = v.origin();  // in its own frame: the frame travels apart
             return py::make_tuple(self.attr("samples").attr("copy")(), lattice, spacings_of(v),
                                   py::make_tuple(o[0], o[1], o[2]), offsets_of(v.lattice()),
-                                  self.attr("frame"));
+                                  self.attr("frame"), v.anatomical);
           },
           [](const py::tuple& t) {
             VolumePtr v = make_volume(t[0], t[1].cast<std::string>(), t[2], t[3],
                                       t[4].cast<std::vector<std::array<int, 3>>>(), py::none());
             if (t.size() > 5 && !t[5].is_none()) v->frame = affine_arg(t[5]);
+            if (t.size() > 6) v->anatomical = t[6].cast<std::string>();
             return v;
           }));
 
@@ -780,7 +806,7 @@ void bind_volume(py::module_& m) {
           py::gil_scoped_release release;
           rt::SourceSamples source;
           v = std::make_shared<Volume>(rt::read_volume_file<double>(path, limits, &source),
-                                       source.frame);
+                                       source.frame, source.anatomical);
         }
         // The lattice asked for is what the caller gets, or an error: the
         // same points (the file's coset offsets may differ in order or representative).
@@ -812,7 +838,8 @@ void bind_volume(py::module_& m) {
         {
           py::gil_scoped_release release;
           // An oblique volume's frame is composed into the file's affine.
-          written = rt::write_volume_file(path, static_cast<const Samples&>(v), t, "", v.frame);
+          written =
+              rt::write_volume_file(path, static_cast<const Samples&>(v), t, v.anatomical, v.frame);
         }
         if (written.clamped > 0 &&
             PyErr_WarnEx(PyExc_RuntimeWarning,
@@ -918,7 +945,7 @@ void bind_filter(py::module_& m) {
             py::gil_scoped_release release;
             (void)prepared(volume, f, prefiltering(q, boundary), storage);
             if (!storage) return std::make_shared<Volume>(volume);  // none, strict: a copy
-            return std::make_shared<Volume>(std::move(*storage), volume.frame);
+            return std::make_shared<Volume>(std::move(*storage), volume.frame, volume.anatomical);
           },
           py::arg("volume"), py::arg("prefilter"), py::arg("boundary") = py::none(),
           "The coefficients after prefilter (none | q1 | q2 | q1opt | q2opt | qfir:K | "

@@ -44,6 +44,7 @@ PrefilterTaps fir_interpolation_taps(const SplineFilter& f, int last_shell) {
   // One unknown per point: the minimiser is unique, hence as symmetric as the filter.
   const std::vector<support::FirPoint> points = shell_points(f.lattice(), last_shell);
   for (const auto& p : points) problem.groups.push_back({p});
+  problem.smoothing = support::kQfirSmoothing;
   const auto weights = support::solve_fir_prefilter(problem);
   if (!weights)
     throw std::invalid_argument(fmt::format(

@@ -141,8 +141,9 @@ bool ends_with_gz(const fs::path& path) {
 }
 
 // The NIfTI-1 header of a single-file image (magic "n+1", data at byte 352) of `sizes` voxels of
-// `type`, with the affine as sform and qform.
-nifti_1_header nifti1_header(const Sizes& sizes, const Affine& affine, SampleType type) {
+// `type`, with the affine as sform and qform (write_nifti says with which codes).
+nifti_1_header nifti1_header(const Sizes& sizes, const Affine& affine, SampleType type,
+                             bool anatomical) {
   const std::int64_t dims[8] = {3, sizes[0], sizes[1], sizes[2], 1, 1, 1, 1};
   std::unique_ptr<nifti_1_header, decltype(&std::free)> made(
       nifti_make_new_n1_header(dims, nifti_datatype(type)), &std::free);
@@ -156,7 +157,7 @@ nifti_1_header nifti1_header(const Sizes& sizes, const Affine& affine, SampleTyp
   m.m[3][3] = 1;
   double qb = 0, qc = 0, qd = 0, qx = 0, qy = 0, qz = 0, dx = 0, dy = 0, dz = 0, qfac = 0;
   nifti_dmat44_to_quatern(m, &qb, &qc, &qd, &qx, &qy, &qz, &dx, &dy, &dz, &qfac);
-  h.qform_code = NIFTI_XFORM_ALIGNED_ANAT;
+  h.qform_code = anatomical ? NIFTI_XFORM_ALIGNED_ANAT : NIFTI_XFORM_UNKNOWN;
   h.sform_code = NIFTI_XFORM_ALIGNED_ANAT;
   h.quatern_b = static_cast<float>(qb);
   h.quatern_c = static_cast<float>(qc);
@@ -182,7 +183,7 @@ nifti_1_header nifti1_header(const Sizes& sizes, const Affine& affine, SampleTyp
 }  // namespace
 
 void write_nifti(const fs::path& path, const Sizes& sizes, const Affine& affine,
-                 const EncodedSamples& samples) {
+                 const EncodedSamples& samples, bool anatomical) {
   const auto count = static_cast<std::uint64_t>(sizes[0]) * static_cast<std::uint64_t>(sizes[1]) *
                      static_cast<std::uint64_t>(sizes[2]);
   if (count * sample_type_size(samples.type) != samples.bytes.size())
@@ -207,7 +208,7 @@ void write_nifti(const fs::path& path, const Sizes& sizes, const Affine& affine,
   {
     std::lock_guard lock(nifti_mutex());
     nifti_set_debug_level(0);
-    header = nifti1_header(sizes, affine, samples.type);
+    header = nifti1_header(sizes, affine, samples.type, anatomical);
   }
   const char extension[4] = {0, 0, 0, 0};  // no header extensions
   const bool gz = ends_with_gz(path);

@@ -44,13 +44,15 @@ void refuse_foreign_file(const std::filesystem::path& path);
 
 // Writes a Cartesian grid as one NIfTI-1 file (.nii; gzip-compressed when the name ends in .gz):
 // `sizes` voxels, x fastest, of `samples` (their type is the file's datatype), voxel (i, j, k) at
-// the world point affine(i, j, k). The affine is the sform (exact) and the qform (its rotation,
-// voxel sizes and qfac: exact for every grid without shear), both with code 2 (aligned
-// anatomical: the world frame of the volume it came from); units unknown, as nibabel writes
-// them. Written through output_file.h (atomic; links followed, special files refused). Throws
-// NrrdError (one line).
+// the world point affine(i, j, k). The affine is the sform (exact, code 2: aligned) and the
+// qform (its rotation, voxel sizes and qfac: exact for every grid without shear). `anatomical`:
+// the world is tied to a patient (the input had a qform/sform, or a RAS/LAS/LPS NRRD space): the
+// qform has code 2 too; otherwise (3D-right-handed NRRD, Python arrays) its code is 0, as nibabel
+// writes a new image, so that no reader takes the qform for a scanner's. Units unknown, as
+// nibabel writes them. Written through output_file.h (atomic; links followed, special files
+// refused). Throws NrrdError (one line).
 void write_nifti(const std::filesystem::path& path, const Sizes& sizes, const Affine& affine,
-                 const EncodedSamples& samples);
+                 const EncodedSamples& samples, bool anatomical);
 
 // The one reader of volume files: NIfTI by extension (is_nifti_path), NRRD otherwise (after
 // refuse_foreign_file).

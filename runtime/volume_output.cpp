@@ -100,7 +100,8 @@ VolumeWrite write_volume_file(const fs::path& path, const LatticeVolume<T>& volu
   }
   const Affine in_frame = Affine::diagonal(step, origin);
   write_nifti(path, volume.sizes(),
-              world_to_ras(anatomical).after(frame ? frame->after(in_frame) : in_frame), samples);
+              world_to_ras(anatomical).after(frame ? frame->after(in_frame) : in_frame), samples,
+              !anatomical.empty());
   return {samples.type, samples.clamped};
 }
 
@@ -122,7 +123,7 @@ VolumeWrite write_grid_file(const fs::path& path, const CartesianVolume<T>& grid
   const Affine in_frame = Affine::diagonal(grid.spacing, grid.origin);
   write_nifti(path, grid.sizes,
               world_to_ras(anatomical).after(grid.frame ? grid.frame->after(in_frame) : in_frame),
-              samples);
+              samples, !anatomical.empty());
   return {samples.type, samples.clamped};
 }
 

@@ -6,16 +6,18 @@
 // With M(k) the filter's values at the lattice points and r = M * q (the spline at the samples
 // after prefiltering a unit impulse with q), q minimises
 //
-//     sum_j (r(j) - delta(j))^2 + mu sum_j ((D * q)(j))^2
+//     sum_j ((M^s * (r - delta))(j))^2 + mu sum_j ((D * q)(j))^2,   M^s = M * ... * M (s times),
 //
 // over the weights of the given lattice points, subject to the moment conditions
 // sum_j r(j) j^a = delta(a) for every multi-index |a| < order. Those say hat(q) A = 1 +
 // O(|w|^order), A(w) = sum_k M(k) e^(-i w.k), which keeps the filter's approximation order because
-// A = hat(M^c) + O(|w|^order) (the Strang-Fix conditions). By Parseval the objective is the
-// integral over the Brillouin zone of (|A|^2 + mu |D|^2) |Q - conj(A) / (|A|^2 + mu |D|^2)|^2 plus
-// a constant: the best approximation, in that weighted norm, of the interpolation prefilter 1 / A
-// (mu = 0) or of its Tikhonov regularisation. It is well posed even where A vanishes at points
-// (M7), since sum_j (M * q)(j)^2 = (1/|N|) integral_N |A Q|^2 > 0 for every q != 0.
+// A = hat(M^c) + O(|w|^order) (the Strang-Fix conditions). By Parseval the first term is the
+// integral over the Brillouin zone of |A|^(2 s) |A Q - 1|^2: the error at the samples for samples
+// whose spectrum is |A|^(2 s) (s = 0: white samples). With s = 0 the objective is, up to a
+// constant, the integral of (|A|^2 + mu |D|^2) |Q - conj(A) / (|A|^2 + mu |D|^2)|^2: the best
+// approximation, in that weighted norm, of the interpolation prefilter 1 / A (mu = 0) or of its
+// Tikhonov regularisation. It is well posed even where A vanishes at points (M7), since
+// sum_j (M^(s+1) * q)(j)^2 = (1/|N|) integral_N |A^(s+1) Q|^2 > 0 for every q != 0.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -47,6 +49,11 @@ struct FirTap {
   T value;
 };
 
+// qfir's s (docs/design.md §18): the samples' spectrum modelled as |A|^4, the filter's lattice
+// samples applied twice to white noise, so the taps follow 1 / A where A, and a signal's samples,
+// are large rather than where A vanishes (s = 0 spends them there on M7).
+inline constexpr int kQfirSmoothing = 2;
+
 template <class T>
 struct FirPrefilterProblem {
   int order = 0;                              // the moment conditions of degree < order
@@ -54,6 +61,9 @@ struct FirPrefilterProblem {
   std::vector<std::vector<FirPoint>> groups;  // the unknowns: each group shares one weight
   std::vector<FirTap<T>> regulariser;         // D (empty: none)
   T mu{};                                     // the weight of |D q|^2
+  // s: the residual is measured after s further convolutions with M, sum_j ((M^s * (M * q -
+  // delta))(j))^2, which weights |A Q - 1|^2 by |A|^(2 s) (0: the plain residual).
+  int smoothing = 0;
 };
 
 namespace fir_detail {
@@ -81,6 +91,22 @@ Matrix<T> convolution_rows(const std::vector<FirTap<T>>& filter,
         rows[it->second][g] = rows[it->second][g] + tap.value;
       }
   return rows;
+}
+
+// The taps of a * b.
+template <class T>
+std::vector<FirTap<T>> convolve(const std::vector<FirTap<T>>& a, const std::vector<FirTap<T>>& b) {
+  std::map<FirPoint, T> sum;
+  for (const FirTap<T>& x : a)
+    for (const FirTap<T>& y : b) {
+      FirPoint j = x.point;
+      for (std::size_t i = 0; i < j.size(); ++i) j[i] += y.point[i];
+      auto [it, added] = sum.emplace(j, T(0));
+      it->second = it->second + x.value * y.value;
+    }
+  std::vector<FirTap<T>> out;
+  for (auto& [j, v] : sum) out.push_back({j, v});
+  return out;
 }
 
 // Multi-indices a with |a| < order in `dimension` variables.
@@ -195,8 +221,11 @@ std::optional<std::vector<T>> solve_fir_prefilter(const FirPrefilterProblem<T>& 
   std::vector<T> zero_row(free.size(), T(0));
   zero_row.push_back(T(0));
   Matrix<T> h(free.size(), zero_row);
-  const auto add_term = [&](const Matrix<T>& op, const T& weight, const FirPoint* target) {
-    // op (q0 + N t) - e, e the unit impulse at `target` (none: 0).
+  const auto add_term = [&](const std::vector<FirTap<T>>& filter, const T& weight,
+                            const std::vector<FirTap<T>>& target) {
+    // op (q0 + N t) - e, op: q -> filter * q, e: the target's values (none: 0).
+    std::vector<FirPoint> op_points;
+    const Matrix<T> op = fir_detail::convolution_rows(filter, problem.groups, &op_points);
     std::vector<std::vector<T>> columns(free.size(), std::vector<T>(op.size(), T(0)));
     std::vector<T> offset(op.size(), T(0));
     for (std::size_t j = 0; j < op.size(); ++j) {
@@ -205,9 +234,12 @@ std::optional<std::vector<T>> solve_fir_prefilter(const FirPrefilterProblem<T>& 
         for (std::size_t c = 0; c < unknowns; ++c)
           columns[f][j] = columns[f][j] + op[j][c] * basis[f][c];
     }
-    if (target)
-      for (std::size_t j = 0; j < op.size(); ++j)
-        if (points[j] == *target) offset[j] = offset[j] - T(1);
+    // A target value where op reaches nothing adds a constant to the objective: skipped.
+    std::map<FirPoint, std::size_t> row_of;
+    for (std::size_t j = 0; j < op_points.size(); ++j) row_of.emplace(op_points[j], j);
+    for (const FirTap<T>& e : target)
+      if (const auto it = row_of.find(e.point); it != row_of.end())
+        offset[it->second] = offset[it->second] - e.value;
     for (std::size_t a = 0; a < free.size(); ++a) {
       for (std::size_t b = 0; b < free.size(); ++b) {
         T s(0);
@@ -219,11 +251,13 @@ std::optional<std::vector<T>> solve_fir_prefilter(const FirPrefilterProblem<T>& 
       h[a][free.size()] = h[a][free.size()] - weight * s;
     }
   };
-  const FirPoint origin(static_cast<std::size_t>(n), 0);
-  add_term(r, T(1), &origin);
+  // The residual M^s * (M * q - delta) = M^(s+1) * q - M^s.
+  std::vector<FirTap<T>> smoothing{{FirPoint(static_cast<std::size_t>(n), 0), T(1)}};
+  for (int s = 0; s < problem.smoothing; ++s)
+    smoothing = fir_detail::convolve(smoothing, problem.samples);
+  add_term(fir_detail::convolve(smoothing, problem.samples), T(1), smoothing);
   if (!problem.regulariser.empty() && !(problem.mu == T(0)))
-    add_term(fir_detail::convolution_rows(problem.regulariser, problem.groups), problem.mu,
-             nullptr);
+    add_term(problem.regulariser, problem.mu, {});
   // H is positive definite (the objective is strictly convex in t).
   const auto solved = fir_detail::reduce(h, free.size());
   if (!solved || solved->size() != free.size()) return std::nullopt;

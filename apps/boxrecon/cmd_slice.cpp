@@ -15,6 +15,7 @@
 #include "apps/boxrecon/cmd_volumes.h"
 #include "apps/boxrecon/lattice_commands.h"
 #include "frontend/filter_choice.h"
+#include "runtime/affine.h"
 #include "runtime/nifti_io.h"
 #include "runtime/nrrd_checks.h"
 #include "runtime/percentiles.h"
@@ -55,6 +56,37 @@ std::optional<float> nearest_voxel(const LatticeVolume<float>& v, const Vec3& p)
     index[a] = static_cast<int>(r);
   }
   return v(0, index[0], index[1], index[2]);
+}
+
+// The world's axis-aligned box around `box` of a volume's own frame (`frame`: its map to world;
+// nothing: the box itself).
+Box world_box(const Box& box, const std::optional<Affine>& frame) {
+  if (!frame) return box;
+  Box out{};
+  for (int a = 0; a < 3; ++a) {
+    out.min[a] = HUGE_VAL;
+    out.max[a] = -HUGE_VAL;
+  }
+  for (int corner = 0; corner < 8; ++corner) {
+    Vec3 p{};
+    for (int a = 0; a < 3; ++a) p[a] = (corner >> a & 1) != 0 ? box.max[a] : box.min[a];
+    const Vec3 w = frame->apply(p);
+    for (int a = 0; a < 3; ++a) {
+      out.min[a] = std::min(out.min[a], w[a]);
+      out.max[a] = std::max(out.max[a], w[a]);
+    }
+  }
+  return out;
+}
+
+// World points in a volume's own frame (through the inverse of `frame`, its map to world).
+std::vector<Vec3> into_frame(const std::vector<Vec3>& world, const std::optional<Affine>& frame) {
+  const std::optional<Affine> to_volume = grid_to_volume(frame, std::nullopt);
+  if (!to_volume) return world;
+  std::vector<Vec3> out(world.size());
+  std::transform(world.begin(), world.end(), out.begin(),
+                 [&](const Vec3& w) { return to_volume->apply(w); });
+  return out;
 }
 
 // Every argument check that needs no file, before any work.
@@ -353,11 +385,19 @@ int run_slice() {
     box.min[a] = -HUGE_VAL;
     box.max[a] = HUGE_VAL;
   }
+  // Oblique volumes and references are read in their own frames (SourceSamples::frame); the
+  // panels lie along the world's axes and each pixel's world point maps into those frames.
+  NrrdReadLimits oblique;
+  oblique.allow_oblique = true;
+  SourceSamples volume_source;
   for (const std::string& name : names) {
     filters.push_back(frontend::filter_for_volume(name, args.lattice, args.volume));
-    volumes.push_back(app::read_for<float>(filters.back(), q, args.volume, {}));
-    const Box b = default_box(volumes.back(), filters.back());
-    for (int a = 0; a < 3; ++a) {  // panels side by side share the box all of them reconstruct
+    volumes.push_back(
+        app::read_for<float>(filters.back(), q, args.volume, oblique, &volume_source));
+    // Panels side by side share the box all of them reconstruct (in world: around an oblique
+    // volume's region, the pixels outside it blank).
+    const Box b = world_box(default_box(volumes.back(), filters.back()), volume_source.frame);
+    for (int a = 0; a < 3; ++a) {
       box.min[a] = std::max(box.min[a], b.min[a]);
       box.max[a] = std::min(box.max[a], b.max[a]);
     }
@@ -366,19 +406,25 @@ int run_slice() {
   // frame the letters come from: the reference's when there is one, else the volume's.
   SourceSamples source;
   std::optional<LatticeVolume<float>> samples;
-  if (reconstruct) samples = read_volume_file<float>(args.volume, {}, &source);
+  if (reconstruct) samples = read_volume_file<float>(args.volume, oblique, &source);
   std::optional<LatticeVolume<float>> reference;
   const std::string& ref_path =
       reconstruct && args.reference.empty() ? args.difference_to : args.reference;
+  std::optional<Affine> reference_frame;
   if (!ref_path.empty()) {
-    reference = read_volume_file<float>(ref_path, {}, &source);
+    SourceSamples ref_source;
+    reference = read_volume_file<float>(ref_path, oblique, &ref_source);
+    source = ref_source;
+    reference_frame = ref_source.frame;
     if (reference->coset_count() != 1 || reference->period() != 1)
       throw std::invalid_argument("--reference and --difference-to must be Cartesian volumes");
-    for (int a = 0; a < 3; ++a) {  // the reference's grid is the image's
-      box.min[a] = reference->origin()[a];
-      box.max[a] =
+    Box grid{};  // the reference's grid is the image's (its world box, when oblique)
+    for (int a = 0; a < 3; ++a) {
+      grid.min[a] = reference->origin()[a];
+      grid.max[a] =
           reference->origin()[a] + reference->axis_spacing()[a] * (reference->sizes()[a] - 1);
     }
+    box = world_box(grid, reference_frame);
   }
   const Plane plane = plane_over(box, reference);
   const bool difference = !args.difference_to.empty();
@@ -390,9 +436,12 @@ int run_slice() {
     for (int x = 0; x < plane.width; ++x)
       points[static_cast<std::size_t>(y) * plane.width + x] = plane.point(x, y);
   std::vector<double> ref_values(pixels, NAN);
-  if (reference)
+  if (reference) {
+    const std::vector<Vec3> in_frame = into_frame(points, reference_frame);
     for (std::size_t i = 0; i < pixels; ++i)
-      if (const auto r = nearest_voxel(*reference, points[i])) ref_values[i] = *r;
+      if (const auto r = nearest_voxel(*reference, in_frame[i])) ref_values[i] = *r;
+  }
+  const std::vector<Vec3> volume_points = into_frame(points, volume_source.frame);
   std::vector<std::vector<double>> values;
   std::vector<std::string> titles;
   if (reference_panel) {
@@ -402,8 +451,8 @@ int run_slice() {
         nrrd_checks::printable(std::filesystem::path(args.reference).filename().string(), 40)));
   }
   for (std::size_t f = 0; f < filters.size(); ++f) {
-    values.push_back(
-        reconstructed_panel(volumes[f], filters[f], points, ref_values, reference.has_value()));
+    values.push_back(reconstructed_panel(volumes[f], filters[f], volume_points, ref_values,
+                                         reference.has_value()));
     titles.push_back(
         nrrd_checks::printable(names[f], 40) +
         (args.prefilter.prefilter == "none" ? "" : " after " + args.prefilter.prefilter) +

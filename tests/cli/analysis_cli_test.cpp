@@ -77,8 +77,8 @@ TEST_F(AnalysisCli, KernelJsonVanishesAtZeroAndGrows) {
   EXPECT_DOUBLE_EQ(r["w"][9].get<double>(), 1.0);
 }
 
-// The new prefilters: interp and qfir:K lie above E_min and vanish at 0; on M8 qfir:3 is between
-// no prefilter and interp at w = 1 along (1,1,1) (as measured: 2.8e-3 and 1.1e-2 vs 0.18).
+// The new prefilters: interp and qfir:K lie above E_min and vanish at 0; on M8 qfir:3 and interp
+// are below no prefilter at w = 1 along (1,1,1) (as measured: 1.2e-2 and 1.1e-2 vs 0.43).
 TEST_F(AnalysisCli, KernelTakesInterpAndQfir) {
   const std::vector<std::string> w{"--w", "0,0.5,1", "--json"};
   auto run = [&](const char* filter, const char* prefilter) {

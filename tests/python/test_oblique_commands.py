@@ -3,6 +3,8 @@ volume's own frame and maps world points through the inverse of its affine (runt
 so a tilted volume gives what the same function sampled on an axis-aligned grid gives. The NRRD
 headers are parsed here by hand, NIfTI files written and read by nibabel (Debian
 python3-nibabel)."""
+import re
+
 import numpy as np
 import pytest
 
@@ -126,3 +128,44 @@ def test_resample_onto_a_lattice_of_an_oblique_volume(tmp_path, tilted_linear):
     message = cli_error("boxrecon", "resample", "--volume", str(path), "--like", str(sub),
                         "--filter", "tricubic", "-o", str(out))
     assert "oblique bcc volume" in message and not out.exists()
+
+
+def slice_summary(*args):
+    """`boxrecon slice ARGS`: its box on the plane, its window and its orientation line."""
+    _, out, _ = run("boxrecon", "slice", *args)
+    first, orientation = out.strip().split("\n")[:2]
+    numbers = r"\[([-0-9.e+]+), ([-0-9.e+]+)\]"
+    box = re.search(numbers + " x " + numbers, first).groups()
+    window = re.search("values " + numbers, first).groups()
+    return [float(x) for x in box], [float(x) for x in window], orientation
+
+
+def test_slice_of_an_oblique_volume_is_along_world_axes(tmp_path, tilted_linear):
+    """slice maps each pixel's world point into an oblique volume's frame: against an
+    axis-aligned reference of the same linear function (--difference-to), tricubic without a
+    prefilter differs by float rounding only. An oblique reference's panels cover its world box
+    (the axis-aligned box around its grid), with RAS letters."""
+    path, a = tilted_linear
+    centre = a[:3, :3] @ ((np.array([16, 15, 14]) - 1) / 2) + a[:3, 3]
+    ref_affine = affine(np.eye(3), centre - 3)
+    index = np.stack(np.meshgrid(*(np.arange(7),) * 3, indexing="ij"), -1).reshape(-1, 3)
+    ref = tmp_path / "ref.nii"
+    nib.save(nib.Nifti1Image(linear(index + centre - 3).reshape(7, 7, 7), ref_affine), str(ref))
+    at = f"{centre[2]:.6f}"
+    box, window, orientation = slice_summary(
+        "--volume", str(path), "--filter", "tricubic", "--prefilter", "none", "--difference-to",
+        str(ref), "--axis", "z", "--at", at, "-o", str(tmp_path / "d.png"))
+    np.testing.assert_allclose(box, [centre[0] - 3, centre[0] + 3, centre[1] - 3, centre[1] + 3],
+                               rtol=0, atol=1e-4)  # printed to 6 digits
+    # +- the largest difference: float rounding (measured 1.4e-6; values -5 to 23), none from
+    # the mapping (a wrong one would be off by about |b| = 1.5 per unit).
+    assert window[0] == -window[1] and 0 <= window[1] < 1e-4, window
+    assert orientation == "orientation: left L, right R, bottom P, top A (RAS world)"
+
+    # The oblique volume as the reference: the world box around its grid.
+    corners = np.array([[i, j, k] for i in (0, 15) for j in (0, 14) for k in (0, 13)])
+    world = corners @ a[:3, :3].T + a[:3, 3]
+    box, _, _ = slice_summary("--reference", str(path), "--axis", "z", "--at", at, "-o",
+                              str(tmp_path / "r.png"))
+    np.testing.assert_allclose(box, [world[:, 0].min(), world[:, 0].max(), world[:, 1].min(),
+                                     world[:, 1].max()], rtol=0, atol=1e-4)

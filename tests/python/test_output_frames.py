@@ -79,6 +79,7 @@ def test_nrrd_outputs_of_a_nifti_keep_its_ras_frame(tmp_path, ras_nifti):
     np.testing.assert_array_equal(nrrd_affine(fields), affine)
     written = nib.load(str(tmp_path / "grid.nii.gz"))
     np.testing.assert_array_equal(written.affine, affine)
+    assert (int(written.header["sform_code"]), int(written.header["qform_code"])) == (2, 2)
     np.testing.assert_array_equal(nrrd_floats(out, fields), np.asarray(written.dataobj))
     assert orientation("--reference", str(out), "--at", "0", "-o", str(tmp_path / "r.png")) \
         == RAS_LETTERS
@@ -126,8 +127,63 @@ def test_an_lps_nrrd_stays_lps_and_becomes_ras_in_nifti(tmp_path):
     # (the same values at the same RAS points as the NRRD's at the same LPS points).
     written = nib.load(str(tmp_path / "out.nii.gz"))
     np.testing.assert_array_equal(written.affine, np.diag([-1.0, -1.0, 1.0, 1.0]) @ lps_affine)
+    assert (int(written.header["sform_code"]), int(written.header["qform_code"])) == (2, 2)
     np.testing.assert_array_equal(np.asarray(written.dataobj),
                                   nrrd_floats(tmp_path / "out.nrrd", fields))
+
+
+def test_python_volumes_keep_the_anatomical_frame(tmp_path, ras_nifti):
+    """boxgen.read_volume records the world's anatomical frame (Volume.anatomical) and
+    write_volume converts it as boxrecon does: an LPS NRRD written as NIfTI is the CLI's file
+    byte for byte (x and y mirrored into RAS), as NRRD it stays LPS; RAS for NIfTI, None for a
+    frameless world; Volume(anatomical=), pickling, prefilter_volume and resample(lattice=) keep
+    it."""
+    import pickle
+
+    boxgen = pytest.importorskip("boxgen")
+    lps = tmp_path / "lps.nrrd"
+    with open(lps, "wb") as f:
+        f.write(b"NRRD0004\ntype: float\ndimension: 3\nspace: left-posterior-superior\n"
+                b"sizes: 8 9 10\nspace directions: (1.5,0,0) (0,1.25,0) (0,0,2)\n"
+                b"space origin: (3,-4,5)\nendian: little\nencoding: raw\n\n")
+        f.write(np.arange(720, dtype="<f4").tobytes())
+    v = boxgen.read_volume(str(lps))
+    assert v.anatomical == "LPS"
+    cli = tmp_path / "cli.nii"  # the CLI's NIfTI of the same samples (--like itself, interp)
+    run("boxrecon", "resample", "--filter", "tricubic", "--prefilter", "interp", "--volume",
+        str(lps), "--like", str(lps), "--precision", "float", "-o", str(tmp_path / "cli.nrrd"))
+    run("boxrecon", "resample", "--filter", "tricubic", "--prefilter", "interp", "--volume",
+        str(lps), "--like", str(lps), "--precision", "float", "-o", str(cli))
+    resampled = boxgen.read_volume(str(tmp_path / "cli.nrrd"))
+    assert resampled.anatomical == "LPS"
+    boxgen.write_volume(str(tmp_path / "py.nii"), resampled)
+    assert (tmp_path / "py.nii").read_bytes() == cli.read_bytes()
+    image = nib.load(str(tmp_path / "py.nii"))
+    np.testing.assert_array_equal(image.affine, np.diag([-1.0, -1.0, 1.0, 1.0]) @ v.affine)
+    assert (int(image.header["sform_code"]), int(image.header["qform_code"])) == (2, 2)
+    boxgen.write_volume(str(tmp_path / "py.nrrd"), v)
+    fields = nrrd_header(tmp_path / "py.nrrd")
+    assert fields["space"] == "left-posterior-superior"
+    np.testing.assert_array_equal(nrrd_affine(fields), v.affine)
+
+    assert boxgen.read_volume(str(ras_nifti[0])).anatomical == "RAS"
+    assert pickle.loads(pickle.dumps(v)).anatomical == "LPS"
+    tricubic = boxgen.Filter("tricubic")
+    assert tricubic.prefilter_volume(v, "q1").anatomical == "LPS"
+    assert boxgen.resample(v, tricubic, lattice="bcc", spacing=2.0).anatomical == "LPS"
+
+    # A volume of arrays has no frame unless given one; given LPS, NIfTI mirrors x and y.
+    plain = boxgen.Volume(v.samples.copy(), lattice="cartesian", spacing=(1.5, 1.25, 2),
+                          origin=(3, -4, 5))
+    assert plain.anatomical is None
+    tagged = boxgen.Volume(v.samples.copy(), lattice="cartesian", spacing=(1.5, 1.25, 2),
+                           origin=(3, -4, 5), anatomical="LPS")
+    boxgen.write_volume(str(tmp_path / "tagged.nii"), tagged)
+    np.testing.assert_array_equal(nib.load(str(tmp_path / "tagged.nii")).affine, image.affine)
+    boxgen.write_volume(str(tmp_path / "plain.nii"), plain)
+    np.testing.assert_array_equal(nib.load(str(tmp_path / "plain.nii")).affine, v.affine)
+    with pytest.raises(ValueError, match="anatomical must be"):
+        boxgen.Volume(v.samples.copy(), lattice="cartesian", anatomical="XYZ")
 
 
 def test_a_like_image_in_another_frame_is_refused(tmp_path, ras_nifti):
@@ -151,3 +207,12 @@ def test_a_volume_without_a_frame_stays_without_one(tmp_path):
     run("boxrecon", "resample", "--filter", "tricubic", "--volume", str(tmp_path / "v.nrrd"),
         "--n", "4", "-o", str(tmp_path / "r.nrrd"))
     assert nrrd_header(tmp_path / "r.nrrd")["space"] == "3D-right-handed"
+    # Into NIfTI: the affine as the sform (code 2, aligned) and a qform of code 0, as nibabel
+    # writes Nifti1Image(data, affine): no reader takes it for a scanner's anatomical qform, and
+    # nibabel's affine is still the grid's (both codes 0 would lose it to pixdim alone).
+    run("boxrecon", "resample", "--filter", "tricubic", "--volume", str(tmp_path / "v.nrrd"),
+        "--n", "4", "-o", str(tmp_path / "r.nii"))
+    written = nib.load(str(tmp_path / "r.nii"))
+    assert (int(written.header["sform_code"]), int(written.header["qform_code"])) == (2, 0)
+    np.testing.assert_allclose(written.affine, nrrd_affine(nrrd_header(tmp_path / "r.nrrd")),
+                               rtol=0, atol=1e-6)

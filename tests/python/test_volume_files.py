@@ -107,7 +107,10 @@ def test_write_volume_nifti_reads_in_nibabel(tmp_path, name):
     assert image.header.get_data_dtype() == np.float32
     np.testing.assert_array_equal(np.asarray(image.dataobj), data[0].astype(np.float32))
     np.testing.assert_allclose(image.affine, v.affine, rtol=1e-7, atol=1e-6)
-    assert int(image.header["sform_code"]) > 0 and int(image.header["qform_code"]) > 0
+    # An array's world is tied to no patient: as nibabel's Nifti1Image(data, affine).
+    expected = nib.Nifti1Image(data[0], image.affine).header
+    assert int(image.header["sform_code"]) == int(expected["sform_code"]) == 2
+    assert int(image.header["qform_code"]) == int(expected["qform_code"]) == 0
     # And boxgen reads its own file back (float32 values, the affine to float32's precision).
     back = boxgen.read_volume(str(tmp_path / name))
     np.testing.assert_array_equal(back.samples, data.astype(np.float32))

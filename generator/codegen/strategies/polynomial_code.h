@@ -3,12 +3,15 @@
 // derivatives are built into an expression graph (generator/codegen/ir/expr.h), shared between the
 // value, the gradient and the Hessian; the counts of the scheduled graph let the emitter choose the
 // cheapest strategy (`auto`) and are recorded in the header. The strategies build graphs only;
-// each target's printer (generator/codegen/targets/target_printer.h) writes them.
+// each target's printer (generator/codegen/targets/target_printer.h) writes them. Each strategy is
+// its own file, <name>_strategy.{h,cpp} beside this one, built with strategy_builders.h; this
+// module names them and chooses between them.
 #pragma once
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "generator/codegen/ir/expr_schedule.h"
@@ -45,13 +48,21 @@ struct StrategyCost {
   OperationCount value, gradient, hessian;  // whole paths: value; value + gradient; + Hessian
 };
 
+// What an orbit's code computes, as data: a comment template (templates/orbit_<strategy>.fmt) and
+// its named arguments; each target's printer writes it above the code (orbit_comment in
+// generator/codegen/targets/target_printer.h).
+struct OrbitComment {
+  std::string_view format;  // a template of generator/embedded_templates.h
+  std::vector<std::pair<const char*, std::string>> args;  // (name, value); names are literals
+};
+
 // The code of one orbit: its expression graph scheduled (generator/codegen/ir/expr_schedule.h),
 // which every target's printer writes (C++: `template <int Order, class T> T orbit_<orbit>(const T*
 // v, const T* x, T* d)`, support::evaluate_located describes d).
 struct OrbitCode {
   EmissionStrategy strategy = EmissionStrategy::Horner;
   std::shared_ptr<const generator::Program> program;
-  std::string comment;  // what the code computes, as "// " lines (templates/orbit_*.fmt)
+  OrbitComment comment;                     // what the code computes
   OperationCount value, gradient, hessian;  // whole paths: value; value + gradient; + Hessian
   std::string form;  // what the strategy chose, for comments and reports ("about (1,1,1)"), or ""
   std::vector<StrategyCost> considered;  // auto: every applicable strategy, in the order tried

@@ -1,5 +1,6 @@
 #include "generator/codegen/targets/target_printer.h"
 
+#include <fmt/args.h>
 #include <fmt/format.h>
 
 #include "generator/codegen/code_text.h"
@@ -27,6 +28,14 @@ std::string TargetPrinter::dispatch(std::size_t orbit_count) const {
 
 // ---- C++ ----
 
+std::string orbit_comment(const OrbitCode& code) {
+  fmt::dynamic_format_arg_store<fmt::format_context> args;
+  for (const auto& [name, value] : code.comment.args) args.push_back(fmt::arg(name, value));
+  std::string text = fmt::vformat(code.comment.format, args);
+  if (!text.empty() && text.back() == '\n') text.pop_back();
+  return text;
+}
+
 std::string CppPrinter::literal(const Rational& r) const {
   return fmt::format("T({})", table_literal(r));
 }
@@ -40,8 +49,9 @@ std::string CppPrinter::declaration() const { return "const T "; }
 std::string CppPrinter::qualifiers() const { return ""; }
 
 std::string CppPrinter::orbit_functions(const OrbitCode& code, int orbit) const {
-  return fmt::format(fmt::runtime(templates::orbit_function), fmt::arg("comment", code.comment),
-                     fmt::arg("qualifiers", qualifiers()), fmt::arg("orbit", orbit),
+  return fmt::format(fmt::runtime(templates::orbit_function),
+                     fmt::arg("comment", orbit_comment(code)), fmt::arg("qualifiers", qualifiers()),
+                     fmt::arg("orbit", orbit),
                      fmt::arg("body", print_cpp_body(*code.program, *this)));
 }
 
@@ -159,7 +169,7 @@ std::string GlslPrinter::declaration() const { return double_precision_ ? "doubl
 std::string GlslPrinter::orbit_functions(const OrbitCode& code, int orbit) const {
   const std::string real = double_precision_ ? "double" : "float";
   const int derivatives = dimension_ + dimension_ * (dimension_ + 1) / 2;
-  std::string text = code.comment + "\n";
+  std::string text = orbit_comment(code) + "\n";
   for (int order = 0; order <= 2; ++order)
     text += fmt::format(
         "{0} {1}_orbit{2}_{3}(in {0} v[{4}], in {0} x[{5}], inout {0} d[{6}]) {{\n"

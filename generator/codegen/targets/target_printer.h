@@ -19,6 +19,10 @@ namespace boxgen::generator {
 // A template's fields (templates/*.fmt) by name, as text.
 using TemplateFields = std::vector<std::pair<const char*, std::string>>;
 
+// The comment above an orbit's code, the same in every target: the strategy's template
+// (OrbitComment) filled in, as "// " lines without a final newline.
+std::string orbit_comment(const OrbitCode& code);
+
 class TargetPrinter {
  public:
   TargetPrinter() = default;

@@ -56,59 +56,6 @@ TEST(PolynomialCode, OneFunctionPerOrbitInEachStrategy) {
             std::min(horner->gradient.total(), monomial->gradient.total()));
 }
 
-// The shifted form names its origin, a point of the reference region other than 0 that the
-// generator chose by its own count: here M8's, the midpoint of two vertices, since the vertex at 0
-// is the Horner form itself. Its code uses y = x - o and no other coordinates.
-TEST(PolynomialCode, ShiftedFormRecordsItsOriginAndWritesY) {
-  const Derivation& a = fixture::derivation_of("m8");
-  const ReferenceRegion& ref = a.structure.references[0];
-  const auto shifted = orbit_code(ref, 0, 3, a.properties.degree, EmissionStrategy::Shifted);
-  ASSERT_TRUE(shifted);
-  EXPECT_EQ(shifted->form, "about (1,1,0)");
-  EXPECT_NE(cpp_text(*shifted).find("origin o = (1,1,0)"), std::string::npos);
-  EXPECT_NE(cpp_text(*shifted).find("const T y0 = x[0] - T(1);"), std::string::npos)
-      << cpp_text(*shifted);
-  EXPECT_NE(cpp_text(*shifted).find("const T y1 = x[1] - T(1);"), std::string::npos);
-  EXPECT_EQ(cpp_text(*shifted).find("const T y2"), std::string::npos);  // o_2 = 0: x[2] itself
-  // Horner about M8's corner costs more, so auto takes the shifted form (ties would keep Horner).
-  const auto horner = orbit_code(ref, 0, 3, a.properties.degree, EmissionStrategy::Horner);
-  EXPECT_LT(shifted->gradient.total(), horner->gradient.total());
-  EXPECT_EQ(choose_orbit_code(ref, 0, 3, a.properties.degree, EmissionStrategy::Auto).strategy,
-            EmissionStrategy::Shifted);
-}
-
-// Bernstein-Bezier code exists on simplices only: M7's tetrahedron and zp's triangle, not the
-// cubes of M12; asking for it there is an input error naming the region.
-TEST(PolynomialCode, BernsteinOnSimplicesOnly) {
-  const Derivation& m7 = fixture::derivation_of("m7");
-  const auto bb = orbit_code(m7.structure.references[0], 0, 3, 4, EmissionStrategy::Bernstein);
-  ASSERT_TRUE(bb);
-  // Degree 4 in 3-D: 35 BB-coefficients, de Casteljau levels of 20, 10, 4 and 1 values; those
-  // used once are written inline (the schedule, generator/codegen/ir/expr_schedule.h), so the names
-  // that appear are the shared ones.
-  EXPECT_NE(cpp_text(*bb).find("const T b1 ="), std::string::npos);
-  EXPECT_NE(cpp_text(*bb).find("const T q1_1 ="), std::string::npos);
-  // The last level is the value; level 3 also feeds the gradient, level 2 the Hessian.
-  EXPECT_NE(cpp_text(*bb).find("const T q3_3 ="), std::string::npos);
-  EXPECT_NE(cpp_text(*bb).find("const T q2_9 ="), std::string::npos);
-  EXPECT_NE(cpp_text(*bb).find("const T value = "), std::string::npos);
-  // Barycentric coordinates that are a coordinate itself are no temporaries (l3 = x[2]); l0 =
-  // 1 - x[0] is kept as its negation x[0] - 1, subtracted where it is used.
-  EXPECT_NE(cpp_text(*bb).find("const T l1 = x[0] - x[1];"), std::string::npos) << cpp_text(*bb);
-  EXPECT_EQ(cpp_text(*bb).find("const T l3 ="), std::string::npos) << cpp_text(*bb);
-  const Derivation& zp = fixture::derivation_of("zp");
-  EXPECT_TRUE(orbit_code(zp.structure.references[0], 0, 2, 2, EmissionStrategy::Bernstein));
-  const Derivation& m12 = fixture::derivation_of("m12");
-  const ReferenceRegion& cube = m12.structure.references[0];
-  EXPECT_FALSE(orbit_code(cube, 0, 3, m12.properties.degree, EmissionStrategy::Bernstein));
-  try {
-    choose_orbit_code(cube, 0, 3, m12.properties.degree, EmissionStrategy::Bernstein);
-    ADD_FAILURE() << "bernstein on a cube";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("not a simplex"), std::string::npos) << e.what();
-  }
-}
-
 // auto weighs every applicable strategy by the value + gradient count, reports them all, and
 // takes the cheapest; on fcc6 the two orbits each get their own origin.
 TEST(PolynomialCode, AutoConsidersEveryApplicableStrategy) {
@@ -187,22 +134,6 @@ TEST(PolynomialCode, GraphsAreExactOnZp) { check_exact("zp"); }
 TEST(PolynomialCode, GraphsAreExactOnM7) { check_exact("m7"); }
 TEST(PolynomialCode, GraphsAreExactOnFcc6) { check_exact("fcc6"); }
 TEST(PolynomialCode, GraphsAreExactOnTricubic) { check_exact("tricubic"); }
-
-// Sharing between the value, the gradient and the Hessian (the derivatives differentiate the
-// Horner form) makes M7's and M8's value + gradient + Hessian at least 15% cheaper than the 536
-// and 895 operations of the unshared code they replace; the value path is never dearer.
-TEST(PolynomialCode, DerivativesShareTheValuesHornerForm) {
-  const std::pair<const char*, std::array<long, 3>> before[] = {{"m7", {278, 404, 536}},
-                                                                {"m8", {415, 628, 895}}};
-  for (const auto& [preset, counts] : before) {
-    const Derivation& a = fixture::derivation_of(preset);
-    const OrbitCode c = choose_orbit_code(a.structure.references[0], 0, 3, a.properties.degree,
-                                          EmissionStrategy::Auto);
-    EXPECT_LE(c.value.total(), counts[0]) << preset;
-    EXPECT_LE(c.gradient.total(), counts[1]) << preset;
-    EXPECT_LE(c.hessian.total() * 100, counts[2] * 85) << preset;
-  }
-}
 
 }  // namespace
 }  // namespace boxgen::generator

@@ -58,7 +58,9 @@ TEST(TargetPrinter, OrbitFunctionsAndDispatchPerTarget) {
 
   const std::string cpp_text = cpp.functions(orbits);
   EXPECT_EQ(count(cpp_text, "template <int Order, class T>\nT orbit_"), 2u) << cpp_text;
-  EXPECT_NE(cpp_text.find(orbits[1].comment), std::string::npos);  // each with its comment
+  EXPECT_NE(cpp_text.find(orbit_comment(orbits[1])), std::string::npos);  // each with its comment
+  EXPECT_EQ(orbit_comment(orbits[1]).rfind("// Orbit 1: the spline on the reference region", 0),
+            0u);
   const std::string cuda_text = cuda.functions(orbits);
   EXPECT_EQ(count(cuda_text, "template <int Order, class T>\nBOXGEN_HOST_DEVICE T orbit_"), 2u);
   // CUDA's code is C++'s with the qualifier: nothing else differs.
