@@ -39,7 +39,7 @@ std::string repeated(const std::string& directions, int times, bool whole = fals
   return out;
 }
 
-void analyze_case(benchmark::State& state, Case c) {
+void analyze_case(benchmark::State& state, const Case& c) {
   const boxgen::generator::BoxSplineSpec spec = boxgen::generator::parse_spec(c.spec, c.lattice);
   const boxgen::generator::CostEstimate estimate = boxgen::generator::estimate_cost(spec);
   double peak_mb = 0, user_s = 0;
