@@ -10,6 +10,9 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "generator/cost_estimate.h"
 #include "generator/derivation.h"
@@ -18,12 +21,25 @@
 namespace {
 
 struct Case {
-  const char* spec;
+  std::string spec;
   const char* lattice;
   double target_seconds;
 };
 
-void analyze_case(benchmark::State& state, Case c) {
+// The directions "a; b; ..." as "a; a; ...; b; b; ..." (each `times` times), or the whole list
+// `times` times ("a; b; ...; a; b; ...") when `whole`.
+std::string repeated(const std::string& directions, int times, bool whole = false) {
+  std::vector<std::string> list;
+  std::stringstream in(directions);
+  for (std::string d; std::getline(in, d, ';');) list.push_back(d);
+  std::string out;
+  for (int outer = 0; outer < (whole ? times : 1); ++outer)
+    for (const std::string& d : list)
+      for (int inner = 0; inner < (whole ? 1 : times); ++inner) out += (out.empty() ? "" : ";") + d;
+  return out;
+}
+
+void analyze_case(benchmark::State& state, const Case& c) {
   const boxgen::generator::BoxSplineSpec spec = boxgen::generator::parse_spec(c.spec, c.lattice);
   const boxgen::generator::CostEstimate estimate = boxgen::generator::estimate_cost(spec);
   double peak_mb = 0, user_s = 0;
@@ -108,9 +124,19 @@ BOXGEN_DERIVATION_BENCHMARK(m7_scaled_by_32,
                             "32,32,32; 32,-32,-32; -32,32,-32; -32,-32,32; 64,0,0; 0,64,0; 0,0,64",
                             "-32,32,32; 32,-32,32; 32,32,-32", 10);
 
-// Estimate rows: long axes with a diagonal (the stencil of 274432 points dominates). The
-// two 32-direction rows of docs/performance.md ("Cost estimate") take minutes each and are
-// commands there, not benchmark rows.
+// Estimate rows: the families the cost estimate is fitted on (docs/performance.md, "Cost
+// estimate"; the two 32-direction rows there take minutes each and are commands, not benchmark
+// rows; target 0: none), and long axes with a diagonal (the stencil of 274432 points dominates).
+BOXGEN_DERIVATION_BENCHMARK(square_directions_5, repeated("1,0; 0,1; 1,1; 1,-1", 5), "cartesian",
+                            0);
+BOXGEN_DERIVATION_BENCHMARK(square_directions_6, repeated("1,0; 0,1; 1,1; 1,-1", 6), "cartesian",
+                            0);
+BOXGEN_DERIVATION_BENCHMARK(axes_7, repeated("1,0,0; 0,1,0; 0,0,1", 7), "cartesian", 0);
+BOXGEN_DERIVATION_BENCHMARK(axes_9, repeated("1,0,0; 0,1,0; 0,0,1", 9), "cartesian", 0);
+BOXGEN_DERIVATION_BENCHMARK(axes_and_diagonal_3, repeated("1,0,0; 0,1,0; 0,0,1; 1,1,1", 3, true),
+                            "cartesian", 0);
+BOXGEN_DERIVATION_BENCHMARK(axes_and_diagonal_4, repeated("1,0,0; 0,1,0; 0,0,1; 1,1,1", 4, true),
+                            "cartesian", 0);
 BOXGEN_DERIVATION_BENCHMARK(long_axes_and_diagonal, "64,0,0; 0,64,0; 0,0,64; 1,1,1", "cartesian",
                             10);
 

@@ -15,6 +15,7 @@
 #include "frontend/progress.h"
 #include "generator/codegen/emitter.h"
 #include "generator/codegen/evaluator_name.h"
+#include "generator/codegen/targets/emission_report.h"
 #include "generator/error.h"
 #include "generator/prefilter.h"
 #include "support/output_file.h"

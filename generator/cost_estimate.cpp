@@ -14,6 +14,7 @@
 #include "generator/error.h"
 #include "generator/knot_normals.h"
 #include "generator/piecewise_form.h"
+#include "generator/symmetry.h"
 #include "generator/zonotope.h"
 #include "support/available_memory.h"
 
@@ -22,7 +23,8 @@ namespace boxgen::generator {
 namespace {
 
 // Calibration: a least-squares fit of the relative error of the CPU seconds (user + sys) and the
-// peak memory (max RSS) of `boxgen analyze` with its default checks, on the table of
+// peak memory (max RSS) of `boxgen analyze` with the second derivation on every knot cell (as
+// the full checks run it; the default checks' share of it is below), on the table of
 // docs/performance.md ("Derivation cost": bench/bench_derivation.cpp and the families
 // (1,0) x k, (0,1) x k, (1,1) x k, (1,-1) x k, e1 x k, e2 x k, e3 x k, [e1 e2 e3 (1,1,1)] x k,
 // measured with /usr/bin/time on the 2-core development machine). The work terms follow the
@@ -47,6 +49,14 @@ constexpr double kSecondsPerIntegrationProduct3D = 7.82e-9;
 constexpr double kSecondsPerIntegrationProductDegree3D = 1.17e-9;
 constexpr double kSecondsPerStencilPoint = 7.88e-7;  // fine cell of F x stencil point
 constexpr double kSecondsPerFineCell = 1.02e-4;  // translating, facets and merging of a fine cell
+// The default checks run the second derivation on one knot cell per symmetry orbit only
+// (derivation.cpp). Its lazy integration still visits most cells of the lower levels on the way,
+// so its time is a share of the whole complex's, fitted as one constant (the per-row shares came
+// out 0.3 to 0.9 with no trend in the group's order); the coefficients it keeps alive shrink
+// with the group's order |G|, fitted as min(1, c / sqrt|G|). Fitted on bench_derivation's rows
+// (docs/performance.md, "Cost estimate"); the full checks keep the whole complex's work.
+constexpr double kOrbitIntegrationShare = 0.45;
+constexpr double kOrbitStoredPerRootGroupOrder = 1.4;
 // The process's own start (CLN, GiNaC and the presets) and the smallest derivations.
 constexpr double kSecondsStart = 0.02;
 // Peak memory: the process (10 MB), each knot cell's polynomial with its translates and cell
@@ -200,12 +210,17 @@ CostEstimate estimate_cost(const BoxSplineSpec& given, std::size_t knot_cells,
                                           w.integration_deg * kSecondsPerIntegrationProductDegree2D
                                     : w.integration * kSecondsPerIntegrationProduct3D +
                                           w.integration_deg * kSecondsPerIntegrationProductDegree3D;
+  const bool per_orbit = verify && !full_checks;
+  const double group_order = static_cast<double>(symmetry_group(spec).size());
+  const double integration_share = per_orbit ? kOrbitIntegrationShare : 1.0;
+  const double stored_share =
+      per_orbit ? std::min(1.0, kOrbitStoredPerRootGroupOrder / std::sqrt(group_order)) : 1.0;
   e.seconds = kSecondsStart + checks * w.plane_checks * kSecondsPerPlaneCoefficient +
-              (verify ? integration : 0.0) +
+              (verify ? integration_share * integration : 0.0) +
               (verify && full_checks ? 2.0 : 1.0) * w.stencil * kSecondsPerStencilPoint +
               w.fine * kSecondsPerFineCell;
   e.bytes = kBytesBase + kBytesPerKnotCell * cells +
-            (verify ? w.stored * kBytesPerStoredCoefficient : 0.0) +
+            (verify ? stored_share * w.stored * kBytesPerStoredCoefficient : 0.0) +
             kBytesPerStencilPoint * w.stencil;
   return e;
 }

@@ -60,18 +60,22 @@ Rational PiecewiseForm::value_at(const RatVec& x, const std::array<int, 3>& deri
 
 namespace {
 
+// The pieces on every cell of `knots`, or on the listed ones only.
 std::vector<Poly> derive_on_cells(const BoxSplineSpec& spec, const KnotComplex& knots,
-                                  DerivationMethod method, const ProgressFn& progress) {
+                                  DerivationMethod method, const ProgressFn& progress,
+                                  const std::vector<int>* listed = nullptr) {
   auto derivation = BoxSplineDerivation::make(spec.directions, spec.dimension(), method);
   const auto& cells = knots.cells();
+  const std::size_t count = listed ? listed->size() : cells.size();
   const char* stage = method == DerivationMethod::TruncatedPower
                           ? "deriving (truncated power)"
                           : "deriving (directional integration)";
   std::vector<Poly> polys;
-  polys.reserve(cells.size());
-  for (const auto& cell : cells) {
-    polys.push_back(derivation->polynomial_at(cell.interior));
-    if (progress) progress(stage, polys.size(), cells.size());
+  polys.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t cell = listed ? static_cast<std::size_t>((*listed)[i]) : i;
+    polys.push_back(derivation->polynomial_at(cells[cell].interior));
+    if (progress) progress(stage, polys.size(), count);
   }
   return polys;
 }
@@ -101,8 +105,8 @@ PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod metho
 }
 
 std::vector<Poly> rederive(const PiecewiseForm& form, DerivationMethod method,
-                           const ProgressFn& progress) {
-  return derive_on_cells(form.spec, form.knots, method, progress);
+                           const ProgressFn& progress, const std::vector<int>* cells) {
+  return derive_on_cells(form.spec, form.knots, method, progress, cells);
 }
 
 }  // namespace boxgen::generator

@@ -57,8 +57,10 @@ struct DerivationBudget {
 PiecewiseForm derive_piecewise(const BoxSplineSpec& spec, DerivationMethod method,
                                const ProgressFn& progress = {},
                                const DerivationBudget& budget = {});
-// The same pieces by the other method, on the cells of `form` (the second, independent derivation).
+// The same pieces by the other method (the second, independent derivation), on every cell of
+// `form`, or on the cells listed in `cells` only, in that order.
 std::vector<Poly> rederive(const PiecewiseForm& form, DerivationMethod method,
-                           const ProgressFn& progress = {});
+                           const ProgressFn& progress = {},
+                           const std::vector<int>* cells = nullptr);
 
 }  // namespace boxgen::generator

@@ -58,12 +58,18 @@ using Samples = rt::LatticeVolume<double>;
 // back through its linear part (rt::derivatives_to_world). Nothing for an axis-aligned volume.
 // `anatomical`: the patient's frame of its world (SourceSamples::anatomical: "RAS", "LAS", "LPS";
 // "" for none), which write_volume passes on as boxrecon's outputs do (NIfTI: mapped to RAS).
+// `nifti_codes`: the qform and sform codes of the NIfTI file it was read from
+// (SourceSamples::nifti_codes), which a NIfTI write_volume claims again.
 struct Volume : Samples {
   std::optional<rt::Affine> frame;
   std::string anatomical;
+  rt::NiftiCodes nifti_codes;
   explicit Volume(Samples&& samples, std::optional<rt::Affine> to_world = std::nullopt,
-                  std::string world = {})
-      : Samples(std::move(samples)), frame(to_world), anatomical(std::move(world)) {}
+                  std::string world = {}, rt::NiftiCodes codes = {})
+      : Samples(std::move(samples)),
+        frame(to_world),
+        anatomical(std::move(world)),
+        nifti_codes(codes) {}
 };
 using VolumePtr = std::shared_ptr<Volume>;
 
@@ -328,6 +334,21 @@ std::string anatomical_arg(const std::optional<std::string>& letters) {
                                       rt::nrrd_checks::printable(*letters, 16)));
   return *letters;
 }
+
+// Volume(nifti_codes=): None, or (qform_code, sform_code) as NIfTI numbers them (0..5; nibabel's
+// header['qform_code'], header['sform_code']).
+rt::NiftiCodes nifti_codes_arg(const std::optional<std::array<int, 2>>& codes) {
+  if (!codes) return {};
+  const auto [q, s] = *codes;
+  if (q < 0 || q > 5 || s < 0 || s > 5)
+    throw py::value_error(fmt::format(
+        "nifti_codes must be (qform_code, sform_code), each 0..5 as NIfTI numbers them, got ({}, "
+        "{})",
+        q, s));
+  return {q, s};
+}
+
+py::tuple nifti_codes_tuple(const rt::NiftiCodes& c) { return py::make_tuple(c.qform, c.sform); }
 
 py::tuple spacings_of(const Volume& v) {
   const rt::Vec3& h = v.axis_spacing();
@@ -670,7 +691,7 @@ VolumePtr resample_onto_lattice(const VolumePtr& volume, const Filter& f,
                          "values");
   py::gil_scoped_release release;
   return std::make_shared<Volume>(rt::resample_to_lattice(*v, f.filter, *grid), std::nullopt,
-                                  volume->anatomical);
+                                  volume->anatomical, volume->nifti_codes);
 }
 
 py::tuple box_tuple(const rt::Box& b) {
@@ -691,7 +712,8 @@ void bind_volume(py::module_& m) {
       .def(py::init([](const py::handle& samples, const std::string& lattice,
                        const py::handle& spacing, const py::handle& origin,
                        const std::optional<std::vector<std::array<int, 3>>>& offsets,
-                       const py::handle& affine, const std::optional<std::string>& anatomical) {
+                       const py::handle& affine, const std::optional<std::string>& anatomical,
+                       const std::optional<std::array<int, 2>>& nifti_codes) {
              VolumePtr v =
                  affine.is_none()
                      ? make_volume(samples, lattice, spacing.is_none() ? py::float_(1.0) : spacing,
@@ -699,11 +721,13 @@ void bind_volume(py::module_& m) {
                                    affine)
                      : make_volume(samples, lattice, spacing, origin, offsets, affine);
              v->anatomical = anatomical_arg(anatomical);
+             v->nifti_codes = nifti_codes_arg(nifti_codes);
              return v;
            }),
            py::arg("samples"), py::arg("lattice") = "bcc", py::arg("spacing") = py::none(),
            py::arg("origin") = py::none(), py::arg("coset_offsets") = py::none(),
-           py::arg("affine") = py::none(), py::arg("anatomical") = py::none())
+           py::arg("affine") = py::none(), py::arg("anatomical") = py::none(),
+           py::arg("nifti_codes") = py::none())
       .def_property_readonly(
           "samples",
           [](const py::object& self) {
@@ -753,6 +777,11 @@ void bind_volume(py::module_& m) {
           "The patient's frame of the world: 'RAS' (+x right, +y anterior, +z superior: NIfTI, "
           "a NRRD in right-anterior-superior), 'LAS', 'LPS' (DICOM's, a NRRD in "
           "left-posterior-superior), or None for a world tied to no patient")
+      .def_property_readonly(
+          "nifti_codes", [](const Volume& v) { return nifti_codes_tuple(v.nifti_codes); },
+          "(qform_code, sform_code) of the NIfTI file the volume was read from (1 scanner, 2 "
+          "aligned, 3 Talairach, 4 MNI, 5 template; (0, 0) otherwise), claimed again by a NIfTI "
+          "write_volume")
       .def_property_readonly("origin",
                              [](const Volume& v) {
                                const rt::Vec3 o = affine_of(v).translation;
@@ -782,13 +811,15 @@ void bind_volume(py::module_& m) {
             const rt::Vec3& o = v.origin();  // in its own frame: the frame travels apart
             return py::make_tuple(self.attr("samples").attr("copy")(), lattice, spacings_of(v),
                                   py::make_tuple(o[0], o[1], o[2]), offsets_of(v.lattice()),
-                                  self.attr("frame"), v.anatomical);
+                                  self.attr("frame"), v.anatomical,
+                                  nifti_codes_tuple(v.nifti_codes));
           },
           [](const py::tuple& t) {
             VolumePtr v = make_volume(t[0], t[1].cast<std::string>(), t[2], t[3],
                                       t[4].cast<std::vector<std::array<int, 3>>>(), py::none());
             if (t.size() > 5 && !t[5].is_none()) v->frame = affine_arg(t[5]);
             if (t.size() > 6) v->anatomical = t[6].cast<std::string>();
+            if (t.size() > 7) v->nifti_codes = nifti_codes_arg(t[7].cast<std::array<int, 2>>());
             return v;
           }));
 
@@ -804,7 +835,7 @@ void bind_volume(py::module_& m) {
           py::gil_scoped_release release;
           rt::SourceSamples source;
           v = std::make_shared<Volume>(rt::read_volume_file<double>(path, limits, &source),
-                                       source.frame, source.anatomical);
+                                       source.frame, source.anatomical, source.nifti_codes);
         }
         // The lattice asked for is what the caller gets, or an error: the
         // same points (the file's coset offsets may differ in order or representative).
@@ -836,8 +867,8 @@ void bind_volume(py::module_& m) {
         {
           py::gil_scoped_release release;
           // An oblique volume's frame is composed into the file's affine.
-          written =
-              rt::write_volume_file(path, static_cast<const Samples&>(v), t, v.anatomical, v.frame);
+          written = rt::write_volume_file(path, static_cast<const Samples&>(v), t, v.anatomical,
+                                          v.frame, v.nifti_codes);
         }
         if (written.clamped > 0 &&
             PyErr_WarnEx(PyExc_RuntimeWarning,
@@ -943,7 +974,8 @@ void bind_filter(py::module_& m) {
             py::gil_scoped_release release;
             (void)prepared(volume, f, prefiltering(q, boundary), storage);
             if (!storage) return std::make_shared<Volume>(volume);  // none, strict: a copy
-            return std::make_shared<Volume>(std::move(*storage), volume.frame, volume.anatomical);
+            return std::make_shared<Volume>(std::move(*storage), volume.frame, volume.anatomical,
+                                            volume.nifti_codes);
           },
           py::arg("volume"), py::arg("prefilter"), py::arg("boundary") = py::none(),
           "The coefficients after prefilter (none | q1 | q2 | q1opt | q2opt | qfir:K | "

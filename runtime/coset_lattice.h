@@ -32,7 +32,8 @@ class CosetLattice {
   static CosetLattice fcc();
   static CosetLattice cartesian();
   // The lattice of the rows of G. Throws std::invalid_argument (one line) if G is singular, an
-  // entry exceeds 2^20 in magnitude, or d exceeds kMaxPeriod. Named "bcc", "fcc" or "cartesian"
+  // entry exceeds kMaxLatticeEntry (runtime/lattice_limits.h) in magnitude, or d exceeds
+  // kMaxPeriod. Named "bcc", "fcc" or "cartesian"
   // (with those lattices' offsets) when G generates one of them, "custom" otherwise.
   static CosetLattice from_rows(const IntRows& rows);
   // Its name (any case) or G's rows, as support/lattice_text.h reads them; std::invalid_argument.

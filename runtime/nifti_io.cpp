@@ -34,6 +34,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
+constexpr int kLastXformCode = NIFTI_XFORM_TEMPLATE_OTHER;  // NIfTI-1's codes are 0..5
+
+// A file's qform or sform code as carried to outputs: NIfTI's own codes as they are; a positive
+// code NIfTI does not define still placed the world (the reader used it), as an aligned one.
+int known_xform_code(int code) {
+  if (code <= 0) return NIFTI_XFORM_UNKNOWN;
+  return code <= kLastXformCode ? code : NIFTI_XFORM_ALIGNED_ANAT;
+}
+
 struct ImageDeleter {
   void operator()(nifti_image* image) const { nifti_image_free(image); }
 };
@@ -143,7 +152,7 @@ bool ends_with_gz(const fs::path& path) {
 // The NIfTI-1 header of a single-file image (magic "n+1", data at byte 352) of `sizes` voxels of
 // `type`, with the affine as sform and qform (write_nifti says with which codes).
 nifti_1_header nifti1_header(const Sizes& sizes, const Affine& affine, SampleType type,
-                             bool anatomical) {
+                             const NiftiCodes& codes) {
   const std::int64_t dims[8] = {3, sizes[0], sizes[1], sizes[2], 1, 1, 1, 1};
   std::unique_ptr<nifti_1_header, decltype(&std::free)> made(
       nifti_make_new_n1_header(dims, nifti_datatype(type)), &std::free);
@@ -157,8 +166,8 @@ nifti_1_header nifti1_header(const Sizes& sizes, const Affine& affine, SampleTyp
   m.m[3][3] = 1;
   double qb = 0, qc = 0, qd = 0, qx = 0, qy = 0, qz = 0, dx = 0, dy = 0, dz = 0, qfac = 0;
   nifti_dmat44_to_quatern(m, &qb, &qc, &qd, &qx, &qy, &qz, &dx, &dy, &dz, &qfac);
-  h.qform_code = anatomical ? NIFTI_XFORM_ALIGNED_ANAT : NIFTI_XFORM_UNKNOWN;
-  h.sform_code = NIFTI_XFORM_ALIGNED_ANAT;
+  h.qform_code = static_cast<std::int16_t>(codes.qform);
+  h.sform_code = static_cast<std::int16_t>(codes.sform);
   h.quatern_b = static_cast<float>(qb);
   h.quatern_c = static_cast<float>(qc);
   h.quatern_d = static_cast<float>(qd);
@@ -182,8 +191,19 @@ nifti_1_header nifti1_header(const Sizes& sizes, const Affine& affine, SampleTyp
 
 }  // namespace
 
+NiftiCodes nifti_output_codes(const std::string& anatomical, const NiftiCodes& read) {
+  if (read.any()) return {read.qform, read.sform > 0 ? read.sform : read.qform};
+  return {anatomical.empty() ? NIFTI_XFORM_UNKNOWN : NIFTI_XFORM_ALIGNED_ANAT,
+          NIFTI_XFORM_ALIGNED_ANAT};
+}
+
 void write_nifti(const fs::path& path, const Sizes& sizes, const Affine& affine,
-                 const EncodedSamples& samples, bool anatomical) {
+                 const EncodedSamples& samples, const NiftiCodes& codes) {
+  if (codes.sform < 1 || codes.sform > kLastXformCode || codes.qform < 0 ||
+      codes.qform > kLastXformCode)
+    throw std::invalid_argument(fmt::format(
+        "NIfTI codes must be 1..{} (sform) and 0..{} (qform), got sform {} and qform {}",
+        kLastXformCode, kLastXformCode, codes.sform, codes.qform));
   const auto count = static_cast<std::uint64_t>(sizes[0]) * static_cast<std::uint64_t>(sizes[1]) *
                      static_cast<std::uint64_t>(sizes[2]);
   if (count * sample_type_size(samples.type) != samples.bytes.size())
@@ -208,7 +228,7 @@ void write_nifti(const fs::path& path, const Sizes& sizes, const Affine& affine,
   {
     std::lock_guard lock(nifti_mutex());
     nifti_set_debug_level(0);
-    header = nifti1_header(sizes, affine, samples.type, anatomical);
+    header = nifti1_header(sizes, affine, samples.type, codes);
   }
   const char extension[4] = {0, 0, 0, 0};  // no header extensions
   const bool gz = ends_with_gz(path);
@@ -418,6 +438,7 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
     *source = describe_samples<T>(volume.samples(), type);
     source->frame = frame;
     source->anatomical = anatomical ? "RAS" : "";
+    source->nifti_codes = {known_xform_code(im.qform_code), known_xform_code(im.sform_code)};
   }
   return volume;
 }

@@ -20,10 +20,12 @@
 #pragma once
 #include <filesystem>
 #include <optional>
+#include <string>
 
 #include "runtime/affine.h"
 #include "runtime/nrrd_io.h"
 #include "runtime/sample_encoding.h"
+#include "runtime/source_samples.h"
 
 namespace boxgen::runtime {
 
@@ -44,15 +46,22 @@ void refuse_foreign_file(const std::filesystem::path& path);
 
 // Writes a Cartesian grid as one NIfTI-1 file (.nii; gzip-compressed when the name ends in .gz):
 // `sizes` voxels, x fastest, of `samples` (their type is the file's datatype), voxel (i, j, k) at
-// the world point affine(i, j, k). The affine is the sform (exact, code 2: aligned) and the
-// qform (its rotation, voxel sizes and qfac: exact for every grid without shear). `anatomical`:
-// the world is tied to a patient (the input had a qform/sform, or a RAS/LAS/LPS NRRD space): the
-// qform has code 2 too; otherwise (3D-right-handed NRRD, Python arrays) its code is 0, as nibabel
-// writes a new image, so that no reader takes the qform for a scanner's. Units unknown, as
-// nibabel writes them. Written through output_file.h (atomic; links followed, special files
-// refused). Throws NrrdError (one line).
+// the world point affine(i, j, k). The affine is the sform (exact) and the qform (its rotation,
+// voxel sizes and qfac: exact for every grid without shear), with the codes `codes` (what the
+// world is: nifti_output_codes chooses them; the sform's must be 1..5, the qform's 0..5, else
+// std::invalid_argument). Units unknown, as nibabel writes them. Written through output_file.h
+// (atomic; links followed, special files refused). Throws NrrdError (one line).
 void write_nifti(const std::filesystem::path& path, const Sizes& sizes, const Affine& affine,
-                 const EncodedSamples& samples, bool anatomical);
+                 const EncodedSamples& samples, const NiftiCodes& codes);
+
+// The codes a NIfTI written from a volume claims. A volume read from NIfTI keeps its file's
+// (`read`: SourceSamples::nifti_codes), as nibabel keeps a header's: the qform's as it was, the
+// sform's, or the qform's when the file had no sform, so that the exact affine always has one.
+// Otherwise the world is "aligned anatomical" (2) in the sform, and in the qform too only when
+// it is tied to a patient (`anatomical`: a RAS/LAS/LPS NRRD space); a world tied to none
+// (3D-right-handed NRRD, Python arrays) leaves the qform's 0, as nibabel writes a new image, so
+// that no reader takes it for a scanner's.
+NiftiCodes nifti_output_codes(const std::string& anatomical, const NiftiCodes& read);
 
 // The one reader of volume files: NIfTI by extension (is_nifti_path), NRRD otherwise (after
 // refuse_foreign_file).

@@ -42,7 +42,8 @@ struct PrefilterShrink {
 };
 
 // Throws std::invalid_argument (one line) for an empty filter, an offset that is not a vector of
-// the lattice or beyond +-2^20, or a weight that is not finite.
+// the lattice or beyond +-kMaxLatticeEntry (runtime/lattice_limits.h), or a weight that is not
+// finite.
 PrefilterShrink prefilter_shrink(const PrefilterTaps& q, const CosetLattice& lattice);
 // The largest entry of prefilter_shrink: the margin a caller must add for q (1 for the taps of
 // Q^I and Q^II on BCC, which lie within max-norm 2).

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 
@@ -676,19 +677,35 @@ void orbit_for(int orbit, int order, const T* v, const T* x, T* out, int lanes) 
   if (order == support::kGradient) return run<Tr, support::kGradient>(orbit, v, x, out, lanes);
   run<Tr, support::kHessian>(orbit, v, x, out, lanes);
 }
+// Whether the chunk kernels can ever serve Tr's volumes: they need consistent stencil steps and
+// samples in one linear layout (runtime/stencils.h), which BCC's parity tables give and the
+// general lattice tables give only on a lattice of period 1 (det G = 1). On FCC and every other
+// lattice of period > 1 simd_block (the orbit kernels) serves every batch, so the chunk kernels
+// are not instantiated there: they were the largest part of a compiled filter's compile.
+template <class Tr>
+constexpr bool chunks_can_serve() {
+  if (!kStencilSteps<Tr>.consistent) return false;
+  if (std::string_view(Tr::kLattice) == "bcc") return true;
+  std::int64_t det = 1;
+  for (int i = 0; i < Tr::kDimension; ++i) det *= Tr::kHermite[i][i];
+  return det == 1;
+}
+
 // One precision's kernels of Tr into `k` (a compiled filter fills each in its own translation
-// unit: loader/filter_loader.cpp).
+// unit: loader/filter_loader.cpp); chunk kernels only where chunks_can_serve<Tr>().
 template <class Tr, class T>
 void set_kernels_for(Kernels& k) {
-  constexpr bool kChunks = kStencilSteps<Tr>.consistent;
+  constexpr bool kChunks = chunks_can_serve<Tr>();
   if constexpr (std::is_same_v<T, float>) {
     k.locate_float = &locate_for<Tr, float>;
     k.orbit_float = &orbit_for<Tr, float>;
-    k.chunk_float = kChunks ? &chunk_for<Tr, float> : nullptr;
+    k.chunk_float = nullptr;
+    if constexpr (kChunks) k.chunk_float = &chunk_for<Tr, float>;
   } else {
     k.locate_double = &locate_for<Tr, double>;
     k.orbit_double = &orbit_for<Tr, double>;
-    k.chunk_double = kChunks ? &chunk_for<Tr, double> : nullptr;
+    k.chunk_double = nullptr;
+    if constexpr (kChunks) k.chunk_double = &chunk_for<Tr, double>;
   }
 }
 template <class Tr>

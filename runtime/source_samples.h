@@ -17,6 +17,15 @@
 
 namespace boxgen::runtime {
 
+// The codes of a NIfTI file's qform and sform (NIfTI's NIFTI_XFORM_*: 1 scanner, 2 aligned
+// anatomical, 3 Talairach, 4 MNI-152, 5 template; 0 unknown): what the world of the file is, kept
+// so that a NIfTI written from it claims the same (write_nifti). Both 0 for other files.
+struct NiftiCodes {
+  int qform = 0, sform = 0;
+  bool any() const { return qform > 0 || sform > 0; }
+  bool operator==(const NiftiCodes&) const = default;
+};
+
 // The file's sample type ("int8", "uint8", "int16", "uint16", "int32", "uint32", "float",
 // "double") and the range of its values as read (after a NIfTI scale slope and intercept).
 struct SourceSamples {
@@ -31,6 +40,8 @@ struct SourceSamples {
   // anterior, +z superior; NIfTI with a qform or sform, a NRRD's space "right-anterior-superior";
   // "LPS" for a NRRD in DICOM's space): empty when the file's world is not tied to a patient.
   std::string anatomical;
+  // A NIfTI file's own qform and sform codes (both 0 for NRRD).
+  NiftiCodes nifti_codes;
 };
 
 // Calls f(S{}) with S the C++ type of a sample type named as SourceSamples::type names it; false

@@ -43,13 +43,13 @@ Affine world_to_ras(const std::string& anatomical) {
 
 // A NIfTI of a Cartesian grid whose index-to-frame map is `in_frame`, in a volume's frame
 // (`frame`: its map to world; nothing: the world itself) and anatomical frame: NIfTI's world is
-// RAS, and only a grid tied to a patient claims an anatomical qform (write_nifti).
+// RAS, and the codes claim what the world is (nifti_output_codes).
 void write_nifti_grid(const fs::path& path, const Sizes& sizes, const Affine& in_frame,
                       const std::optional<Affine>& frame, const std::string& anatomical,
-                      const EncodedSamples& samples) {
+                      const NiftiCodes& codes, const EncodedSamples& samples) {
   write_nifti(path, sizes,
               world_to_ras(anatomical).after(frame ? frame->after(in_frame) : in_frame), samples,
-              !anatomical.empty());
+              nifti_output_codes(anatomical, codes));
 }
 
 }  // namespace
@@ -86,7 +86,7 @@ VolumeFormat require_volume_output(const fs::path& path, std::span<const fs::pat
 template <class T>
 VolumeWrite write_volume_file(const fs::path& path, const LatticeVolume<T>& volume,
                               std::optional<SampleType> type, const std::string& anatomical,
-                              const std::optional<Affine>& frame) {
+                              const std::optional<Affine>& frame, const NiftiCodes& codes) {
   const CosetLattice& lattice = volume.lattice();
   const VolumeFormat format =
       require_volume_output(path, {}, volume.coset_count(), lattice.name().c_str());
@@ -109,14 +109,15 @@ VolumeWrite write_volume_file(const fs::path& path, const LatticeVolume<T>& volu
     step[a] = d * volume.axis_spacing()[a];
     origin[a] = volume.origin()[a] + volume.axis_spacing()[a] * static_cast<double>(offset[a]);
   }
-  write_nifti_grid(path, volume.sizes(), Affine::diagonal(step, origin), frame, anatomical,
+  write_nifti_grid(path, volume.sizes(), Affine::diagonal(step, origin), frame, anatomical, codes,
                    samples);
   return {samples.type, samples.clamped};
 }
 
 template <class T>
 VolumeWrite write_grid_file(const fs::path& path, const CartesianVolume<T>& grid,
-                            std::optional<SampleType> type, const std::string& anatomical) {
+                            std::optional<SampleType> type, const std::string& anatomical,
+                            const NiftiCodes& codes) {
   const VolumeFormat format = require_volume_output(path, {}, 1, "cartesian");
   if (format == VolumeFormat::Nrrd && (!type || *type == own_type<T>())) {
     write_cartesian_nrrd(path, grid, anatomical);
@@ -126,23 +127,25 @@ VolumeWrite write_grid_file(const fs::path& path, const CartesianVolume<T>& grid
     std::vector<T> copy = grid.values;
     const LatticeVolume<T> volume(CosetLattice::cartesian(), grid.sizes, grid.spacing, grid.origin,
                                   std::move(copy));
-    return write_volume_file(path, volume, type, anatomical, grid.frame);
+    return write_volume_file(path, volume, type, anatomical, grid.frame, codes);
   }
   const EncodedSamples samples = encode_samples<T>(grid.values, type.value_or(SampleType::Float32));
   write_nifti_grid(path, grid.sizes, Affine::diagonal(grid.spacing, grid.origin), grid.frame,
-                   anatomical, samples);
+                   anatomical, codes, samples);
   return {samples.type, samples.clamped};
 }
 
 template VolumeWrite write_volume_file<float>(const fs::path&, const LatticeVolume<float>&,
                                               std::optional<SampleType>, const std::string&,
-                                              const std::optional<Affine>&);
+                                              const std::optional<Affine>&, const NiftiCodes&);
 template VolumeWrite write_volume_file<double>(const fs::path&, const LatticeVolume<double>&,
                                                std::optional<SampleType>, const std::string&,
-                                               const std::optional<Affine>&);
+                                               const std::optional<Affine>&, const NiftiCodes&);
 template VolumeWrite write_grid_file<float>(const fs::path&, const CartesianVolume<float>&,
-                                            std::optional<SampleType>, const std::string&);
+                                            std::optional<SampleType>, const std::string&,
+                                            const NiftiCodes&);
 template VolumeWrite write_grid_file<double>(const fs::path&, const CartesianVolume<double>&,
-                                             std::optional<SampleType>, const std::string&);
+                                             std::optional<SampleType>, const std::string&,
+                                             const NiftiCodes&);
 
 }  // namespace boxgen::runtime

@@ -16,6 +16,7 @@
 #include "runtime/cartesian_volume.h"
 #include "runtime/lattice_volume.h"
 #include "runtime/sample_encoding.h"
+#include "runtime/source_samples.h"
 
 namespace boxgen::runtime {
 
@@ -44,32 +45,39 @@ VolumeFormat require_volume_output(const std::filesystem::path& path,
 // output came from: "RAS", "LAS", "LPS" or ""): NRRD writes it as its space, NIfTI (whose world
 // is RAS) maps the world to RAS. `frame`: an oblique volume's map from its own frame to world
 // (SourceSamples::frame), composed into the file's affine (NRRD: oblique space directions).
+// `codes`: the qform and sform codes of the NIfTI the output came from (SourceSamples::
+// nifti_codes), which a NIfTI output claims again (nifti_output_codes; NRRD has none).
 // Returns the type written and how many values were clamped to its range. Throws NrrdError (one
 // line) for a name or lattice require_volume_output refuses, or a failed write.
 template <class T>
 VolumeWrite write_volume_file(const std::filesystem::path& path, const LatticeVolume<T>& volume,
                               std::optional<SampleType> type = std::nullopt,
                               const std::string& anatomical = "",
-                              const std::optional<Affine>& frame = std::nullopt);
+                              const std::optional<Affine>& frame = std::nullopt,
+                              const NiftiCodes& codes = {});
 // The same for a Cartesian grid (an oblique one's frame is its own, CartesianVolume::frame).
 template <class T>
 VolumeWrite write_grid_file(const std::filesystem::path& path, const CartesianVolume<T>& grid,
                             std::optional<SampleType> type = std::nullopt,
-                            const std::string& anatomical = "");
+                            const std::string& anatomical = "", const NiftiCodes& codes = {});
 
 extern template VolumeWrite write_volume_file<float>(const std::filesystem::path&,
                                                      const LatticeVolume<float>&,
                                                      std::optional<SampleType>, const std::string&,
-                                                     const std::optional<Affine>&);
+                                                     const std::optional<Affine>&,
+                                                     const NiftiCodes&);
 extern template VolumeWrite write_volume_file<double>(const std::filesystem::path&,
                                                       const LatticeVolume<double>&,
                                                       std::optional<SampleType>, const std::string&,
-                                                      const std::optional<Affine>&);
+                                                      const std::optional<Affine>&,
+                                                      const NiftiCodes&);
 extern template VolumeWrite write_grid_file<float>(const std::filesystem::path&,
                                                    const CartesianVolume<float>&,
-                                                   std::optional<SampleType>, const std::string&);
+                                                   std::optional<SampleType>, const std::string&,
+                                                   const NiftiCodes&);
 extern template VolumeWrite write_grid_file<double>(const std::filesystem::path&,
                                                     const CartesianVolume<double>&,
-                                                    std::optional<SampleType>, const std::string&);
+                                                    std::optional<SampleType>, const std::string&,
+                                                    const NiftiCodes&);
 
 }  // namespace boxgen::runtime

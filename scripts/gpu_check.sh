@@ -69,10 +69,10 @@ if command -v nvcc > /dev/null; then
   echo "== CUDA: the emitted headers built by nvcc, run on the device against their host build"
   emitted=$build/tests/gpu/emitted
   { nvcc --version | tail -1 &&
-    timeout 240 nvcc -std=c++17 -O3 -arch=native -I "$emitted" \
+    timeout 240 nvcc -std=c++17 -O3 -arch=native -I "$emitted" -I "$source_dir" \
       "$source_dir/tests/gpu/cuda_device_check.cu" -o "$scratch/cuda_device_check" &&
     timeout 60 "$scratch/cuda_device_check" &&
-    timeout 60 nvcc -std=c++17 -O3 -arch=native -I "$emitted" -c \
+    timeout 60 nvcc -std=c++17 -O3 -arch=native -I "$emitted" -I "$source_dir" -c \
       "$source_dir/examples/gpu/m7_kernel.cu" -o "$scratch/m7_kernel.o" &&
     echo "examples/gpu/m7_kernel.cu: built by nvcc"; } 2>&1 | tee "$out/cuda.txt"
   [[ ${PIPESTATUS[0]} -eq 0 ]] || status=1

@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <utility>
 
+#include "support/cell_glue.h"
 #include "support/integer_math.h"
 
 namespace boxgen::generated::support {
@@ -60,27 +61,11 @@ struct Located {
 // inlining, so no division is executed for the power-of-two diagonals of the usual lattices.
 using ::boxgen::support::floor_div;
 
-// Rounding put r on an empty key combination (it lies on a knot plane): take the cell of this
-// cube whose slabs it violates least. The spline is continuous there, so either side is right.
+// Rounding put r on an empty key combination: the cell of this cube whose slabs r violates least
+// (support/cell_glue.h, the one definition the CUDA headers share), out of line since it is rare.
 template <class Tr, class T>
 [[gnu::noinline]] int nearest_cell(int cube, const T* r) {
-  int best = -1;
-  double best_violation = 0;
-  for (int c = 0; c < Tr::kCellCount; ++c) {
-    if (Tr::kCells[c].cube != cube) continue;
-    double violation = 0;
-    for (int k = 0; k < Tr::kNormalCount; ++k) {
-      double s = 0;
-      for (int i = 0; i < Tr::kDimension; ++i) s += Tr::kNormals[k][i] * static_cast<double>(r[i]);
-      const double lo = Tr::kCells[c].keys[k];
-      violation += std::fmax(0.0, lo - s) + std::fmax(0.0, s - (lo + 1));
-    }
-    if (best < 0 || violation < best_violation) {
-      best = c;
-      best_violation = violation;
-    }
-  }
-  return best;
+  return ::boxgen::support::nearest_cell(cube, r, Tr::kCells, Tr::kNormals);
 }
 
 // The arithmetic locate_in() is written in, so that one algorithm locates one point (ScalarArith,

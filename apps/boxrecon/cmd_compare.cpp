@@ -207,13 +207,14 @@ void write_error_volume(const LatticeVolume<float>& errors, const SourceSamples&
                         const std::optional<SampleType>& type) {
   const std::optional<Affine>& frame = reference.frame;
   if (!frame)
-    return app::write_output_volume(args.error_volume, errors, type, reference.anatomical);
+    return app::write_output_volume(args.error_volume, errors, type, reference.anatomical,
+                                    std::nullopt, reference.nifti_codes);
   const std::span<const float> e = errors.samples();
   app::write_output_grid(
       args.error_volume,
       CartesianVolume<float>{
           errors.sizes(), errors.axis_spacing(), errors.origin(), {e.begin(), e.end()}, frame},
-      type, reference.anatomical);
+      type, reference.anatomical, reference.nifti_codes);
 }
 
 // The report on stdout: text, or one JSON object with --json.

@@ -104,7 +104,8 @@ int run_subsample() {
     return resample_to_lattice(volume, filter, grid, BatchEvaluate<float>{},
                                [&progress](double done) { progress.update(done); });
   }();
-  app::write_output_volume(args.output, out, type, source.anatomical, source.frame);
+  app::write_output_volume(args.output, out, type, source.anatomical, source.frame,
+                           source.nifti_codes);
   const std::uint64_t kept = out.sample_count();
   std::cout << fmt::format(
       "kept {} of {} samples: fraction {}/{} = {:.6f}, {} lattice h = {:.9g}, {} x {} x {} x {} "

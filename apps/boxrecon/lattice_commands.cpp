@@ -256,6 +256,7 @@ struct LikeImage {
   Vec3 spacing{}, origin{};
   std::optional<Affine> frame;
   std::string anatomical;  // SourceSamples::anatomical
+  NiftiCodes nifti_codes;  // SourceSamples::nifti_codes
 };
 
 LikeImage read_like(const std::string& path) {
@@ -264,8 +265,8 @@ LikeImage read_like(const std::string& path) {
   limits.allow_oblique = true;
   SourceSamples source;
   const LatticeVolume<float> image = read_volume_file<float>(path, limits, &source);
-  return {image.lattice(), image.sizes(), image.axis_spacing(),
-          image.origin(),  source.frame,  source.anatomical};
+  return {image.lattice(), image.sizes(),     image.axis_spacing(), image.origin(),
+          source.frame,    source.anatomical, source.nifti_codes};
 }
 
 bool is_cartesian(const CosetLattice& lattice) { return lattice == CosetLattice::cartesian(); }
@@ -369,6 +370,10 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
         nrrd_checks::printable(volume_path, 80), source.anatomical));
   const std::string& anatomical =
       source.anatomical.empty() && like ? like->anatomical : source.anatomical;
+  // A NIfTI output claims the NIfTI codes of the image whose grid it takes (--like's, as
+  // nibabel's and nilearn's resampling keep the target's header), else the volume's.
+  const NiftiCodes& codes =
+      like && like->nifti_codes.any() ? like->nifti_codes : source.nifti_codes;
   // A lattice grid lies on the volume's own axes (an oblique volume's output keeps its affine):
   // a world box, or a --like lattice volume with an affine of its own, would need another frame.
   if (!cartesian && source.frame && given_box(options.box))
@@ -408,7 +413,7 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
                         fmt::format("{} x {} x {} x {} {} samples", lattice.coset_count(), n[0],
                                     n[1], n[2], lattice.name()));
     write_output_volume(output, resample_lattice_grid(volume, f, grid, evaluator()), type,
-                        anatomical, source.frame);
+                        anatomical, source.frame, codes);
     return 0;
   }
   CartesianGrid grid;
@@ -441,7 +446,7 @@ int run_resample(const std::string& filter, const std::string& lattice_text,
                       bytes, fmt::format("{} x {} x {} points", n[0], n[1], n[2]));
   CartesianVolume<T> values = resample_grid(volume, f, grid, evaluator());
   values.frame = output_frame;
-  write_output_grid(output, values, type, anatomical);
+  write_output_grid(output, values, type, anatomical, codes);
   return 0;
 }
 

@@ -48,29 +48,35 @@ void require_output_volume(const std::filesystem::path& path,
 template <class T>
 void write_output_volume(const std::filesystem::path& path, const runtime::LatticeVolume<T>& volume,
                          std::optional<runtime::SampleType> type, const std::string& anatomical,
-                         const std::optional<runtime::Affine>& frame) {
-  report_clamped(path, runtime::write_volume_file(path, volume, type, anatomical, frame));
+                         const std::optional<runtime::Affine>& frame,
+                         const runtime::NiftiCodes& codes) {
+  report_clamped(path, runtime::write_volume_file(path, volume, type, anatomical, frame, codes));
 }
 
 template <class T>
 void write_output_grid(const std::filesystem::path& path, const runtime::CartesianVolume<T>& grid,
-                       std::optional<runtime::SampleType> type, const std::string& anatomical) {
-  report_clamped(path, runtime::write_grid_file(path, grid, type, anatomical));
+                       std::optional<runtime::SampleType> type, const std::string& anatomical,
+                       const runtime::NiftiCodes& codes) {
+  report_clamped(path, runtime::write_grid_file(path, grid, type, anatomical, codes));
 }
 
 template void write_output_volume<float>(const std::filesystem::path&,
                                          const runtime::LatticeVolume<float>&,
                                          std::optional<runtime::SampleType>, const std::string&,
-                                         const std::optional<runtime::Affine>&);
+                                         const std::optional<runtime::Affine>&,
+                                         const runtime::NiftiCodes&);
 template void write_output_volume<double>(const std::filesystem::path&,
                                           const runtime::LatticeVolume<double>&,
                                           std::optional<runtime::SampleType>, const std::string&,
-                                          const std::optional<runtime::Affine>&);
+                                          const std::optional<runtime::Affine>&,
+                                          const runtime::NiftiCodes&);
 template void write_output_grid<float>(const std::filesystem::path&,
                                        const runtime::CartesianVolume<float>&,
-                                       std::optional<runtime::SampleType>, const std::string&);
+                                       std::optional<runtime::SampleType>, const std::string&,
+                                       const runtime::NiftiCodes&);
 template void write_output_grid<double>(const std::filesystem::path&,
                                         const runtime::CartesianVolume<double>&,
-                                        std::optional<runtime::SampleType>, const std::string&);
+                                        std::optional<runtime::SampleType>, const std::string&,
+                                        const runtime::NiftiCodes&);
 
 }  // namespace boxgen::app

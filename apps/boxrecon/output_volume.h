@@ -13,6 +13,7 @@
 #include "runtime/cartesian_volume.h"
 #include "runtime/lattice_volume.h"
 #include "runtime/sample_encoding.h"
+#include "runtime/source_samples.h"
 
 namespace boxgen::app {
 
@@ -29,15 +30,18 @@ void require_output_volume(const std::filesystem::path& path,
 
 // Writes the volume or grid (runtime/volume_output.h) in the world of `anatomical` (the
 // SourceSamples::anatomical of the volume it came from: its NRRD space, or RAS for NIfTI; an
-// oblique volume's `frame`, SourceSamples::frame, composed in) and says on stderr how many values
-// an integer --type clamped to its range.
+// oblique volume's `frame`, SourceSamples::frame, composed in; a NIfTI output claims `codes`,
+// SourceSamples::nifti_codes, again) and says on stderr how many values an integer --type clamped
+// to its range.
 template <class T>
 void write_output_volume(const std::filesystem::path& path, const runtime::LatticeVolume<T>& volume,
                          std::optional<runtime::SampleType> type,
                          const std::string& anatomical = "",
-                         const std::optional<runtime::Affine>& frame = std::nullopt);
+                         const std::optional<runtime::Affine>& frame = std::nullopt,
+                         const runtime::NiftiCodes& codes = {});
 template <class T>
 void write_output_grid(const std::filesystem::path& path, const runtime::CartesianVolume<T>& grid,
-                       std::optional<runtime::SampleType> type, const std::string& anatomical = "");
+                       std::optional<runtime::SampleType> type, const std::string& anatomical = "",
+                       const runtime::NiftiCodes& codes = {});
 
 }  // namespace boxgen::app

@@ -1,8 +1,10 @@
 // Reconstructs a BCC volume with M7 at a batch of points on an NVIDIA GPU, with the header from
 //   boxgen emit m7 --name m7 --target cuda --out .
-// Build with nvcc (nvcc -std=c++17 -c m7_kernel.cu) or, without the CUDA SDK, to PTX with clang:
+// and boxgen's headers (the glue m7.cuh includes, support/cell_glue.h) under PREFIX/include/boxgen.
+// Build with nvcc (nvcc -std=c++17 -I PREFIX/include/boxgen -c m7_kernel.cu) or, without the
+// CUDA SDK, to PTX with clang:
 //   clang++ -x cuda --cuda-device-only --cuda-gpu-arch=sm_70 -nocudainc -nocudalib -std=c++17 \
-//       -O3 -S m7_kernel.cu
+//       -I PREFIX/include/boxgen -O3 -S m7_kernel.cu
 // The same header builds as plain C++17 for the host (g++ -std=c++17), which the tests use.
 #include "m7.cuh"
 

@@ -10,6 +10,7 @@
 #include "generator/codegen/code_text.h"
 #include "generator/codegen/evaluator_name.h"
 #include "generator/codegen/strategies/polynomial_code.h"
+#include "generator/codegen/targets/emission_report.h"
 #include "generator/codegen/targets/evaluator_tables.h"
 #include "generator/codegen/targets/glsl_evaluator.h"
 #include "generator/codegen/targets/target_printer.h"

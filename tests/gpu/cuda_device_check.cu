@@ -1,8 +1,9 @@
 // The emitted CUDA evaluators run on an NVIDIA GPU, built with nvcc: a GPU-only check, not in CI
 // (CI has no GPU and no nvcc). scripts/gpu_check.sh builds and runs it where a GPU is lent:
-//   nvcc -std=c++17 -O3 -arch=native -I EMITTED tests/gpu/cuda_device_check.cu -o check && ./check
-// with EMITTED the folder of the headers that `boxgen emit NAME --target cuda` writes (the build
-// emits them into build/tests/gpu/emitted/). For every registry filter, 100000 random points
+//   nvcc -std=c++17 -O3 -arch=native -I EMITTED -I . tests/gpu/cuda_device_check.cu -o check
+// in the source tree (-I . finds support/cell_glue.h, which the headers include), with EMITTED
+// the folder of the headers that `boxgen emit NAME --target cuda` writes (the build emits them
+// into build/tests/gpu/emitted/), then ./check. For every registry filter, 100000 random points
 // are evaluated on the device (value only; value, gradient and Hessian) and by the same header's
 // host build, with the samples of tests/emitted/exact_reference.h's data_value. In CI the host
 // build is checked against the exact rational values within kFloatTolerance (2e-6 of max|V|,

@@ -1,16 +1,17 @@
-// The cell-locating glue on all three targets against the same cases (docs/gpu.md): the C++
-// header's support::nearest_cell and support::floor_div (support/evaluator_support.hpp), the CUDA
-// header's detail::nearest_cell and detail::floor_div built for the host (their PTX compile is
-// CudaHeadersCompileToPtx), and the GLSL evaluator's NAME_nearest_cell and NAME_floor_div in a
-// compute shader on llvmpipe, in float and double, for every filter of gpu_test_support.h.
+// The cell-locating glue on all three targets against the same cases (docs/gpu.md): nearest_cell
+// and floor_div of support/cell_glue.h, the one definition the C++ and CUDA evaluators share, as
+// the C++ header calls it (support::nearest_cell<Traits> of support/evaluator_support.hpp) and as
+// the CUDA header calls it, on the CUDA header's own tables built for the host (the PTX compile
+// is CudaHeadersCompileToPtx), and the GLSL evaluator's port, NAME_nearest_cell and
+// NAME_floor_div, in a compute shader on llvmpipe, in float and double, for every filter of
+// gpu_test_support.h.
 //
 // nearest_cell's cases: every cube of the period and every r in {0, 1/4, 1/2, 3/4}^n, most of them
 // on knot planes, where cells tie. Their sums are exact in every precision (small integers times
 // quarters), so every target must pick exactly the cell that integer arithmetic picks from the
-// tables: the first of the least violation. (Off such points the targets keep their own
-// arithmetic, since no emitted text may change: C++ sums in double, CUDA and GLSL in the
-// evaluator's precision; where a rounding tie differs, either cell is right, the spline being
-// continuous there.)
+// tables: the first of the least violation. (Off such points every target sums in the evaluator's
+// precision; where GLSL's rounding breaks a tie differently, either cell is right, the spline
+// being continuous there.)
 #define GL_GLEXT_PROTOTYPES
 #include <GL/glcorearb.h>
 #include <fmt/format.h>
@@ -66,7 +67,6 @@ struct Glue {
   int (*cpp_double)(int, const double*) = nullptr;
   int (*cuda_float)(int, const float*) = nullptr;
   int (*cuda_double)(int, const double*) = nullptr;
-  long long (*cuda_floor_div)(long long, long long) = nullptr;
 };
 
 template <class Tr>
@@ -88,9 +88,14 @@ Glue tables_of() {
     Glue g = tables_of<generated::NS::Traits>();                                     \
     g.cpp_float = &generated::support::nearest_cell<generated::NS::Traits, float>;   \
     g.cpp_double = &generated::support::nearest_cell<generated::NS::Traits, double>; \
-    g.cuda_float = &generated::NS::cuda::detail::nearest_cell<float>;                \
-    g.cuda_double = &generated::NS::cuda::detail::nearest_cell<double>;              \
-    g.cuda_floor_div = &generated::NS::cuda::detail::floor_div;                      \
+    g.cuda_float = +[](int cube, const float* r) {                                   \
+      return ::boxgen::support::nearest_cell(cube, r, generated::NS::cuda::kCells,   \
+                                             generated::NS::cuda::kNormals);         \
+    };                                                                               \
+    g.cuda_double = +[](int cube, const double* r) {                                 \
+      return ::boxgen::support::nearest_cell(cube, r, generated::NS::cuda::kCells,   \
+                                             generated::NS::cuda::kNormals);         \
+    };                                                                               \
     return g;                                                                        \
   }
 
@@ -266,13 +271,10 @@ TEST_P(CellLocatingGlue, NearestCellAndFloorDivAgreeOnEveryTarget) {
   EXPECT_EQ(run_host(g.cpp_double, cells), expected_cells) << name << ".hpp (double)";
   EXPECT_EQ(run_host(g.cuda_float, cells), expected_cells) << name << ".cuh (float)";
   EXPECT_EQ(run_host(g.cuda_double, cells), expected_cells) << name << ".cuh (double)";
-  std::vector<int> cpp_quotients, cuda_quotients;
-  for (const DivCase& d : divs) {
-    cpp_quotients.push_back(static_cast<int>(generated::support::floor_div(d.a, d.b)));
-    cuda_quotients.push_back(static_cast<int>(g.cuda_floor_div(d.a, d.b)));
-  }
-  EXPECT_EQ(cpp_quotients, expected_quotients) << "support::floor_div";
-  EXPECT_EQ(cuda_quotients, expected_quotients) << name << ".cuh floor_div";
+  std::vector<int> quotients;  // the C++ and CUDA headers' one floor_div (support/integer_math.h)
+  for (const DivCase& d : divs)
+    quotients.push_back(static_cast<int>(::boxgen::support::floor_div(d.a, d.b)));
+  EXPECT_EQ(quotients, expected_quotients) << "support::floor_div";
 
   std::vector<int> expected = expected_cells;
   expected.insert(expected.end(), expected_quotients.begin(), expected_quotients.end());

@@ -12,6 +12,8 @@
 // orbit_chunk), so both are compared with the scalar path.
 #include "runtime/simd_batch.h"
 
+#include <hwy/highway.h>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,10 +27,13 @@
 
 #include "generated/registry.hpp"
 #include "runtime/batch_threads.h"
+#include "runtime/emitted_filter.h"
 #include "runtime/lattice_volume.h"
 #include "runtime/reconstruction.h"
 #include "runtime/resample.h"
+#include "runtime/simd_kernels-inl.h"
 #include "runtime/stencil_steps.h"
+#include "runtime/stencils.h"
 #include "support/evaluator_support.hpp"
 #include "tests/support/bcc_volumes.h"
 
@@ -352,6 +357,27 @@ TEST(SimdBatch, EveryRegistryFilterHasChunkKernels) {
       // Sample 0 is the origin of the steps.
       for (int o = 0; o < StencilSteps<Tr>::kOrbits; ++o)
         for (int a = 0; a < 3; ++a) EXPECT_EQ(kStencilSteps<Tr>.step[o][0][a], 0);
+    });
+  }
+}
+
+// A compiled filter gets chunk kernels (set_kernels_for: chunks_can_serve) exactly where a volume
+// of its own lattice can take them: where the stencils its path takes there (stencil_policy) lay
+// the samples out linearly, as EmittedSpline::prepare_chunks asks. FCC's general tables (period 2)
+// do not, so a compiled FCC filter leaves them out; BCC's parity tables and Cartesian ones do.
+TEST(SimdBatch, ChunkKernelsAreCompiledWhereAVolumeCanTakeThem) {
+  for (int i = 0; i < generated::kFilterCount; ++i) {
+    SCOPED_TRACE(generated::kFilterNames[i]);
+    generated::with_filter(i, [&](auto entry) {
+      using Tr = typename decltype(entry)::Traits;
+      const CosetLattice lattice = CosetLattice::parse(Tr::kLattice);
+      const int n = 8 / lattice.period();
+      const LatticeVolume<float> volume(lattice, {n, n, n}, 1.0, {0.0, 0.0, 0.0});
+      const bool linear = stencil_policy<Tr>(lattice, volume.sizes()) == StencilPolicy::kLattice
+                              ? LatticeStencils<Tr, float>(volume).linear().has_value()
+                              : BccStencils<Tr, float, std::int32_t>(volume).linear().has_value();
+      EXPECT_EQ(simd::HWY_NAMESPACE::chunks_can_serve<Tr>(), linear);
+      EXPECT_EQ(linear, std::string_view(Tr::kLattice) != "fcc");
     });
   }
 }

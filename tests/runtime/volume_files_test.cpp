@@ -496,6 +496,59 @@ TEST_F(VolumeFiles, TheAnatomicalFrameIsWrittenAsTheNrrdSpaceAndAsNiftisRas) {
   EXPECT_FALSE(fs::exists(file("bad.nrrd")));
 }
 
+// The codes of a read NIfTI (scanner, MNI, Talairach, ...) are what a NIfTI written from it
+// claims: the qform's as they were, the sform's (or the qform's where the file had no sform, so
+// that the exact affine keeps a code); a code NIfTI does not define becomes "aligned" (2). Files
+// written by the test through nifticlib, read back through nifticlib.
+TEST_F(VolumeFiles, NiftiCodesOfTheInputAreWrittenAgain) {
+  struct Case {
+    int qform, sform;  // the input's
+    NiftiCodes read, written;
+  };
+  for (const Case& c :
+       {Case{1, 4, {1, 4}, {1, 4}}, Case{0, 3, {0, 3}, {0, 3}}, Case{1, 0, {1, 0}, {1, 1}},
+        Case{5, 1, {5, 1}, {5, 1}}, Case{2, 7, {2, 2}, {2, 2}}}) {
+    SCOPED_TRACE(::testing::Message() << c.qform << " " << c.sform);
+    NiftiSpec s;
+    s.qform_code = c.qform;
+    s.sform_code = c.sform;
+    write_nifti(file("in.nii.gz"), s);
+    SourceSamples source;
+    const LatticeVolume<double> v = read_volume_file<double>(file("in.nii.gz"), {}, &source);
+    EXPECT_EQ(source.nifti_codes, c.read);
+    EXPECT_EQ(source.anatomical, "RAS");
+    for (const bool grid : {false, true}) {
+      const fs::path out = file(grid ? "grid.nii" : "volume.nii");
+      if (grid) {
+        const std::span<const double> x = v.samples();
+        (void)write_grid_file(
+            out,
+            CartesianVolume<double>{
+                v.sizes(), v.axis_spacing(), v.origin(), {x.begin(), x.end()}, std::nullopt},
+            std::nullopt, source.anatomical, source.nifti_codes);
+      } else {
+        (void)write_volume_file(out, v, std::nullopt, source.anatomical, std::nullopt,
+                                source.nifti_codes);
+      }
+      nifti_image* nim = nifti_image_read(out.c_str(), 0);
+      ASSERT_NE(nim, nullptr);
+      EXPECT_EQ(nim->qform_code, c.written.qform);
+      EXPECT_EQ(nim->sform_code, c.written.sform);
+      nifti_image_free(nim);
+    }
+  }
+  // Without a NIfTI's codes: aligned (2) in the sform; in the qform only for a patient's world.
+  EXPECT_EQ(nifti_output_codes("", {}), (NiftiCodes{0, 2}));
+  EXPECT_EQ(nifti_output_codes("LPS", {}), (NiftiCodes{2, 2}));
+  const std::vector<std::byte> bytes(2);
+  for (const NiftiCodes& bad : {NiftiCodes{1, 0}, NiftiCodes{6, 2}, NiftiCodes{-1, 2}}) {
+    EXPECT_THROW(write_nifti(file("bad.nii"), {1, 1, 2}, Affine::diagonal({1, 1, 1}, {0, 0, 0}),
+                             {SampleType::UInt8, bytes, 0}, bad),
+                 std::invalid_argument);
+    EXPECT_FALSE(fs::exists(file("bad.nii")));
+  }
+}
+
 TEST_F(VolumeFiles, OutputNamesChooseTheFormatOrAreRefused) {
   EXPECT_EQ(output_format("a/b.nrrd"), VolumeFormat::Nrrd);
   EXPECT_EQ(output_format("B.NII.GZ"), VolumeFormat::Nifti);

@@ -1,6 +1,7 @@
-// The support library (support/): the one floor_div and UnionFind, and the atomic writer's
-// guarantees (support/output_file.h): complete files or none, sets all or nothing, temporaries
-// removed on signals and after SIGKILL, never an input overwritten.
+// The support library (support/): the one floor_div and UnionFind, the glue's nearest_cell
+// (support/cell_glue.h, on a table written here; every filter's tables: tests/gpu), the atomic
+// writer's guarantees (support/output_file.h): complete files or none, sets all or nothing,
+// temporaries removed on signals and after SIGKILL, never an input overwritten.
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "support/available_memory.h"
+#include "support/cell_glue.h"
 #include "support/integer_math.h"
 #include "support/lattice_text.h"
 #include "support/output_file.h"
@@ -38,6 +40,35 @@ TEST(IntegerMath, FloorDivIsTheMathematicalFloorForEverySignCombination) {
     }
   static_assert(floor_div(-1, 2) == -1 && floor_div(7, -2) == -4 && floor_div(-8, 4) == -2);
   EXPECT_EQ(floor_div(-(std::int64_t{1} << 40) - 1, 1 << 20), -(std::int64_t{1} << 20) - 1);
+}
+
+// Cells as the glue reads them: the cube, and per knot-plane normal the slab [key, key + 1].
+struct TestCell {
+  int cube;
+  int keys[2];
+};
+
+// One normal, x + y, and its unused row; cube 0 holds the slabs [0, 1] and [1, 2] of it, cube 1
+// the slab [0, 1]. The expected cells are worked out by hand from s = x + y.
+template <class T>
+void nearest_cell_cases() {
+  static constexpr TestCell kCells[] = {{0, {0, 0}}, {1, {0, 0}}, {0, {1, 0}}};
+  static constexpr int kNormals[2][2] = {{1, 1}, {0, 0}};
+  const T on_plane[] = {T(0.5), T(0.5)};  // s = 1: in both slabs of cube 0, the first wins
+  const T above[] = {T(0.75), T(0.75)};   // s = 1.5: only in [1, 2]
+  const T below[] = {T(0.25), T(0.5)};    // s = 0.75: only in [0, 1]
+  const T far[] = {T(0.5), T(2.5)};       // s = 3: violates [1, 2] by 1 and [0, 1] by 2
+  EXPECT_EQ(nearest_cell(0, on_plane, kCells, kNormals), 0);
+  EXPECT_EQ(nearest_cell(0, above, kCells, kNormals), 2);
+  EXPECT_EQ(nearest_cell(0, below, kCells, kNormals), 0);
+  EXPECT_EQ(nearest_cell(0, far, kCells, kNormals), 2);
+  EXPECT_EQ(nearest_cell(1, above, kCells, kNormals), 1);   // the only cell of cube 1
+  EXPECT_EQ(nearest_cell(2, above, kCells, kNormals), -1);  // a cube with no cell
+}
+
+TEST(CellGlue, NearestCellIsTheFirstOfTheLeastSlabViolation) {
+  nearest_cell_cases<float>();
+  nearest_cell_cases<double>();
 }
 
 // The memory a process may still take is bounded by its address-space limit

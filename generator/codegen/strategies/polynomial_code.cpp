@@ -4,7 +4,6 @@
 
 #include <utility>
 
-#include "generator/codegen/code_text.h"
 #include "generator/codegen/strategies/bernstein_strategy.h"
 #include "generator/codegen/strategies/horner_strategy.h"
 #include "generator/codegen/strategies/monomial_strategy.h"
@@ -13,8 +12,6 @@
 #include "generator/error.h"
 
 namespace boxgen::generator {
-
-using code::join;
 
 EmissionStrategy parse_strategy(std::string_view name) {
   if (name == "auto") return EmissionStrategy::Auto;
@@ -43,19 +40,6 @@ const char* strategy_name(EmissionStrategy s) {
       return "bernstein";
   }
   return "?";
-}
-
-std::string strategy_description(EmissionStrategy strategy, const std::string& form) {
-  return form.empty() ? strategy_name(strategy)
-                      : fmt::format("{} {}", strategy_name(strategy), form);
-}
-
-std::string considered_text(const std::vector<StrategyCost>& considered) {
-  std::vector<std::string> parts;
-  for (const auto& c : considered)
-    parts.push_back(fmt::format("{} {} / {} / {}", strategy_name(c.strategy), c.value.total(),
-                                c.gradient.total(), c.hessian.total()));
-  return join(parts);
 }
 
 std::optional<OrbitCode> orbit_code(const ReferenceRegion& ref, int orbit, int n, int degree,

@@ -69,10 +69,8 @@ struct OrbitCode {
   std::vector<StrategyCost> considered;  // auto: every applicable strategy, in the order tried
 };
 
-// "shifted about (1,1,1)", or the strategy's name when it has no further choice.
-std::string strategy_description(EmissionStrategy strategy, const std::string& form);
-// "horner 282 / 408 / 540, shifted 278 / 404 / 536, ...": value / + gradient / + Hessian.
-std::string considered_text(const std::vector<StrategyCost>& considered);
+// Their report text (strategy_description, considered_text): generator/codegen/targets/
+// emission_report.h.
 
 // The code of one orbit in a given strategy (not Auto); nullopt when the strategy does not apply
 // (separable code for a polynomial that is not a tensor product, bernstein code on a region that

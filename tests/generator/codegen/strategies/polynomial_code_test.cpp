@@ -11,6 +11,7 @@
 #include <regex>
 
 #include "generator/codegen/ir/expr.h"
+#include "generator/codegen/targets/emission_report.h"
 #include "generator/codegen/targets/target_printer.h"
 #include "generator/error.h"
 #include "tests/generator/derivation_fixture.h"
