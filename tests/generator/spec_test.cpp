@@ -7,6 +7,7 @@
 #include <string>
 
 #include "generator/error.h"
+#include "tests/generator/paper_directions.h"
 
 namespace boxgen::generator {
 namespace {
@@ -41,8 +42,8 @@ IntColumns repeat(const IntColumns& block, int times, int sign = 1) {
     }
   return out;
 }
-const IntColumns kXi1 = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
-const IntColumns kXi2 = {{2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
+using fixture::kXi1;
+using fixture::kXi2;
 const IntColumns kIdentity3 = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 
 IntColumns concat(IntColumns a, const IntColumns& b) {
