@@ -423,6 +423,8 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
                                                           raw.swapped, im.nbyper, data.data());
       !problem.empty())
     fail(problem);
+  // `im` is *image: what is still needed of the header is read before the image is freed.
+  const NiftiCodes codes{known_xform_code(im.qform_code), known_xform_code(im.sform_code)};
   image.reset();
   std::vector<T> samples(n);
   (void)visit_sample_type(type, [&](auto tag) {
@@ -438,7 +440,7 @@ LatticeVolume<T> read_nifti(const fs::path& path, const NrrdReadLimits& limits,
     *source = describe_samples<T>(volume.samples(), type);
     source->frame = frame;
     source->anatomical = anatomical ? "RAS" : "";
-    source->nifti_codes = {known_xform_code(im.qform_code), known_xform_code(im.sform_code)};
+    source->nifti_codes = codes;
   }
   return volume;
 }
