@@ -210,11 +210,13 @@ CostEstimate estimate_cost(const BoxSplineSpec& given, std::size_t knot_cells,
                                           w.integration_deg * kSecondsPerIntegrationProductDegree2D
                                     : w.integration * kSecondsPerIntegrationProduct3D +
                                           w.integration_deg * kSecondsPerIntegrationProductDegree3D;
+  // The symmetry group only where the default checks' share needs its order.
   const bool per_orbit = verify && !full_checks;
-  const double group_order = static_cast<double>(symmetry_group(spec).size());
   const double integration_share = per_orbit ? kOrbitIntegrationShare : 1.0;
   const double stored_share =
-      per_orbit ? std::min(1.0, kOrbitStoredPerRootGroupOrder / std::sqrt(group_order)) : 1.0;
+      per_orbit ? std::min(1.0, kOrbitStoredPerRootGroupOrder /
+                                    std::sqrt(static_cast<double>(symmetry_group(spec).size())))
+                : 1.0;
   e.seconds = kSecondsStart + checks * w.plane_checks * kSecondsPerPlaneCoefficient +
               (verify ? integration_share * integration : 0.0) +
               (verify && full_checks ? 2.0 : 1.0) * w.stencil * kSecondsPerStencilPoint +
